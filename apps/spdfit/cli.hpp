@@ -1,0 +1,49 @@
+// Shared pieces of the command-line tool: the error kinds that decide the exit status, and the
+// registration functions of the subcommands.
+#pragma once
+
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace spdfit::cli {
+
+/// Exit statuses (the CLI contract): 0 success, 1 bad data or numerical failure, 2 usage error.
+inline constexpr int kExitSuccess = 0;
+inline constexpr int kExitDataError = 1;
+inline constexpr int kExitUsageError = 2;
+
+/// A usage error found after parsing (e.g. an option value out of range): exit status 2.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Bad data or a numerical failure: exit status 1. The message is shown as is.
+struct DataFailure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Options every command shares.
+struct GlobalOptions {
+  bool quiet = false;  ///< suppress warnings on stderr
+};
+
+/// A subcommand and its action, run after the whole command line has parsed.
+struct Command {
+  CLI::App* app = nullptr;
+  std::function<void()> run;
+};
+
+/// Each adds its subcommand to `app`.
+Command add_fit_command(CLI::App& app, const GlobalOptions& global);
+Command add_nearest_command(CLI::App& app, const GlobalOptions& global);
+Command add_compare_command(CLI::App& app, const GlobalOptions& global);
+
+/// Prints "spdfit: warning: MESSAGE" on stderr unless quiet.
+void warn(const GlobalOptions& global, const std::string& message);
+
+}  // namespace spdfit::cli

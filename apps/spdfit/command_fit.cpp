@@ -1,0 +1,58 @@
+// spdfit fit --method METHOD [--json] [--output FILE] A B
+#include <memory>
+
+#include <CLI/CLI.hpp>
+
+#include "cli.hpp"
+#include "input.hpp"
+#include "output.hpp"
+#include "spdfit/fit.hpp"
+
+namespace spdfit::cli {
+
+namespace {
+
+struct FitOptionsCli {
+  std::string method;
+  std::string a_path, b_path, output;
+  bool json = false;
+  double rank_tolerance = -1.0;
+};
+
+std::vector<std::string> method_names() {
+  std::vector<std::string> names;
+  for (Method m : kAllMethods) names.emplace_back(to_string(m));
+  return names;
+}
+
+}  // namespace
+
+Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
+  auto options = std::make_shared<FitOptionsCli>();
+  CLI::App* sub = app.add_subcommand("fit", "Estimate X in A X ~= B with one method; print X as CSV");
+  sub->add_option("-m,--method", options->method,
+                  "ls (least squares), procrustes (symmetric least squares), tls (total least squares), "
+                  "tls-sym, tls-psd, spde (area criterion, always SPD)")
+      ->required()
+      ->check(CLI::IsMember(method_names()));
+  sub->add_flag("--json", options->json, "Print the estimate, diagnostics and warnings as JSON");
+  sub->add_option("-o,--output", options->output, "Write to FILE instead of stdout");
+  sub->add_option("--rank-tol", options->rank_tolerance,
+                  "Relative singular-value cut-off for numerical rank (default max(m,n)*eps)")
+      ->check(CLI::Range(0.0, 1.0));
+  sub->add_option("A", options->a_path, "File of A (m x n): delimited text or .npy")->required();
+  sub->add_option("B", options->b_path, "File of B (m x n): delimited text or .npy")->required();
+
+  auto run = [options, &global]() {
+    const DataPair data = load_pair(options->a_path, options->b_path);
+    FitOptions fit_options;
+    fit_options.rank_tolerance = options->rank_tolerance;
+    const FitResult result = fit(data.A, data.B, *parse_method(options->method), fit_options);
+    for (const std::string& w : result.warnings) warn(global, w);
+    if (!result.ok()) throw DataFailure(result.message);
+    emit(options->json ? result_json(result).dump(2) + "\n" : matrix_csv(result.X), options->output);
+  };
+  return {sub, run};
+}
+
+}  // namespace spdfit::cli

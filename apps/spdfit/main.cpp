@@ -1,0 +1,75 @@
+// spdfit: estimate symmetric positive definite matrices from imperfect measurements.
+#include <iostream>
+#include <vector>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "cli.hpp"
+#include "spdfit/io.hpp"
+#include "spdfit/version.hpp"
+
+namespace spdfit::cli {
+
+void warn(const GlobalOptions& global, const std::string& message) {
+  if (!global.quiet) std::cerr << "spdfit: warning: " << message << '\n';
+}
+
+}  // namespace spdfit::cli
+
+int main(int argc, char** argv) {
+  using namespace spdfit::cli;
+  CLI::App app{
+      "spdfit: estimate a symmetric positive definite matrix X from noisy data A X ~= B\n"
+      "(least squares, symmetric Procrustes, total least squares and the area-criterion SPDE)"};
+  app.name("spdfit");
+  app.set_version_flag("--version", std::string("spdfit ") + spdfit::kVersion);
+  app.require_subcommand(1);
+  app.footer(
+      "Exit status: 0 success, 1 bad data or numerical failure, 2 usage error.\n"
+      "Run 'spdfit COMMAND --help' for a command's options.");
+
+  GlobalOptions global;
+  app.add_flag("-q,--quiet", global.quiet, "Do not print warnings on stderr");
+
+  const std::vector<Command> commands = {
+      add_fit_command(app, global),
+      add_nearest_command(app, global),
+      add_compare_command(app, global),
+  };
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "spdfit: error: " << e.what() << "\nRun 'spdfit --help' for usage.\n";
+    return kExitUsageError;
+  }
+
+  try {
+    for (const Command& command : commands) {
+      if (command.app->parsed()) command.run();
+    }
+    return kExitSuccess;
+  } catch (const UsageError& e) {
+    std::cerr << "spdfit: error: " << e.what() << "\nRun 'spdfit --help' for usage.\n";
+    return kExitUsageError;
+  } catch (const spdfit::io::DataError& e) {
+    std::cerr << "spdfit: error: " << e.what() << '\n';
+    return kExitDataError;
+  } catch (const DataFailure& e) {
+    std::cerr << "spdfit: error: " << e.what() << '\n';
+    return kExitDataError;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "spdfit: error: " << e.what() << '\n';
+    return kExitDataError;
+  } catch (const std::exception& e) {
+    std::cerr << "spdfit: error: " << e.what() << '\n';
+    return kExitDataError;
+  }
+}

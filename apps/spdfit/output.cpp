@@ -1,0 +1,146 @@
+#include "output.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "spdfit/io.hpp"
+
+namespace spdfit::cli {
+
+using nlohmann::json;
+
+json number_json(double value) {
+  if (std::isfinite(value)) return value;
+  return nullptr;
+}
+
+json vector_json(const Eigen::VectorXd& v) {
+  json out = json::array();
+  for (Eigen::Index i = 0; i < v.size(); ++i) out.push_back(number_json(v(i)));
+  return out;
+}
+
+json matrix_json(const Eigen::MatrixXd& M) {
+  json rows = json::array();
+  for (Eigen::Index i = 0; i < M.rows(); ++i) {
+    json row = json::array();
+    for (Eigen::Index j = 0; j < M.cols(); ++j) row.push_back(number_json(M(i, j)));
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+namespace {
+
+json diagnostics_json(const Diagnostics& d) {
+  json out;
+  out["rank_a"] = d.rank_a;
+  out["rank_b"] = d.rank_b;
+  out["cond_a"] = number_json(d.cond_a);
+  out["cond_b"] = number_json(d.cond_b);
+  out["singular_values_a"] = vector_json(d.singular_values_a);
+  out["singular_values_b"] = vector_json(d.singular_values_b);
+  out["residual_norm"] = number_json(d.residual_norm);
+  out["symmetric"] = d.symmetric;
+  out["positive_definite"] = d.positive_definite;
+  out["positive_semidefinite"] = d.positive_semidefinite;
+  auto optional_number = [&out](const char* key, const std::optional<double>& value) {
+    if (value) out[key] = number_json(*value);
+  };
+  optional_number("min_eigenvalue", d.min_eigenvalue);
+  optional_number("max_eigenvalue", d.max_eigenvalue);
+  optional_number("area_criterion", d.area_criterion);
+  optional_number("area_criterion_minimum", d.area_criterion_minimum);
+  if (d.cross_term_positive_definite) out["cross_term_positive_definite"] = *d.cross_term_positive_definite;
+  optional_number("tls_sigma_n", d.tls_sigma_n);
+  optional_number("tls_sigma_n1", d.tls_sigma_n1);
+  optional_number("tls_correction_norm", d.tls_correction_norm);
+  optional_number("tls_v22_min_singular_value", d.tls_v22_min_singular_value);
+  return out;
+}
+
+}  // namespace
+
+json result_json(const FitResult& result) {
+  json out;
+  out["method"] = std::string(to_string(result.method));
+  out["m"] = result.diagnostics.m;
+  out["n"] = result.diagnostics.n;
+  out["X"] = matrix_json(result.X);
+  out["diagnostics"] = diagnostics_json(result.diagnostics);
+  out["warnings"] = result.warnings;
+  if (!result.ok()) out["error"] = result.message;
+  return out;
+}
+
+std::string matrix_csv(const Eigen::MatrixXd& M) {
+  std::ostringstream out;
+  io::write_csv(out, M);
+  return out.str();
+}
+
+void emit(const std::string& text, const std::string& path) {
+  if (path.empty()) {
+    std::cout << text;
+    std::cout.flush();
+    return;
+  }
+  std::ofstream file(path, std::ios::binary);
+  file << text;
+  file.close();
+  if (!file) throw io::DataError(path, 0, 0, "cannot write the output file");
+}
+
+std::string side_by_side(const std::vector<std::string>& titles, const std::vector<Eigen::MatrixXd>& matrices,
+                         int significant_digits, std::size_t width) {
+  // Format every entry first so that each block's column width fits its widest entry.
+  std::vector<std::vector<std::string>> cells(matrices.size());
+  std::vector<std::size_t> cell_width(matrices.size(), 0);
+  for (std::size_t k = 0; k < matrices.size(); ++k) {
+    const Eigen::MatrixXd& M = matrices[k];
+    for (Eigen::Index i = 0; i < M.rows(); ++i) {
+      for (Eigen::Index j = 0; j < M.cols(); ++j) {
+        char buffer[40];
+        std::snprintf(buffer, sizeof buffer, "%.*g", significant_digits, M(i, j));
+        cells[k].emplace_back(buffer);
+        cell_width[k] = std::max(cell_width[k], cells[k].back().size());
+      }
+    }
+  }
+  auto block_width = [&](std::size_t k) {
+    const std::size_t body = matrices[k].cols() * (cell_width[k] + 1);
+    return std::max(body, titles[k].size()) + 3;
+  };
+  std::ostringstream out;
+  std::size_t first = 0;
+  while (first < matrices.size()) {
+    std::size_t last = first, used = block_width(first);
+    while (last + 1 < matrices.size() && used + block_width(last + 1) <= width) used += block_width(++last);
+    Eigen::Index rows = 0;
+    for (std::size_t k = first; k <= last; ++k) rows = std::max(rows, matrices[k].rows());
+    for (std::size_t k = first; k <= last; ++k) {
+      out << titles[k] << std::string(block_width(k) - titles[k].size(), ' ');
+    }
+    out << '\n';
+    for (Eigen::Index i = 0; i < rows; ++i) {
+      for (std::size_t k = first; k <= last; ++k) {
+        std::string line;
+        for (Eigen::Index j = 0; j < matrices[k].cols() && i < matrices[k].rows(); ++j) {
+          const std::string& cell = cells[k][i * matrices[k].cols() + j];
+          line += std::string(cell_width[k] + 1 - cell.size(), ' ') + cell;
+        }
+        out << line << std::string(block_width(k) - line.size(), ' ');
+      }
+      out << '\n';
+    }
+    out << '\n';
+    first = last + 1;
+  }
+  return out.str();
+}
+
+}  // namespace spdfit::cli

@@ -1,0 +1,27 @@
+// Running an estimator chosen at run time, or all of them on the same data.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "spdfit/fit_result.hpp"
+#include "spdfit/method.hpp"
+#include "spdfit/reduction.hpp"
+
+namespace spdfit {
+
+/// Runs `method` on the reduced data (see the estimator's own header for what it computes).
+FitResult fit(const Reduction& data, Method method);
+
+/// Runs `method` on A X ~= B. Throws std::invalid_argument on misuse (see least_squares).
+FitResult fit(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
+              Method method, const FitOptions& options = {});
+
+/// Runs every method in kAllMethods on the same data, sharing the QR and the SVDs.
+std::vector<FitResult> fit_all(const Reduction& data);
+std::vector<FitResult> fit_all(const Eigen::Ref<const Eigen::MatrixXd>& A,
+                               const Eigen::Ref<const Eigen::MatrixXd>& B,
+                               const FitOptions& options = {});
+
+}  // namespace spdfit

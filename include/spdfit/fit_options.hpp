@@ -1,0 +1,35 @@
+// Knobs shared by every estimator.
+#pragma once
+
+#include <limits>
+#include <string>
+
+#include <Eigen/Core>
+
+namespace spdfit {
+
+/// Options for the estimators. The defaults follow the source documents.
+struct FitOptions {
+  /// Relative cut-off for the numerical rank: a singular value sigma_i counts as zero when
+  /// sigma_i <= rank_tolerance * sigma_max. A negative value (the default) means
+  /// max(rows, cols) * machine epsilon, the editing rule of the lecture notes
+  /// (shared/seeds/002, section 3.8).
+  double rank_tolerance = -1.0;
+
+  /// True when the options are usable; otherwise `error` says why.
+  bool is_valid(std::string* error = nullptr) const {
+    if (!(rank_tolerance < 1.0) || rank_tolerance != rank_tolerance) {
+      if (error) *error = "rank_tolerance must be a number below 1 (negative for the default)";
+      return false;
+    }
+    return true;
+  }
+
+  /// The cut-off to use for a rows x cols matrix.
+  double rank_cutoff(Eigen::Index rows, Eigen::Index cols) const {
+    if (rank_tolerance >= 0.0) return rank_tolerance;
+    return static_cast<double>(rows > cols ? rows : cols) * std::numeric_limits<double>::epsilon();
+  }
+};
+
+}  // namespace spdfit

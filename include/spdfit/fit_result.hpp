@@ -1,0 +1,67 @@
+// What an estimator returns: the estimate and the evidence a user checks it by.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "spdfit/method.hpp"
+
+namespace spdfit {
+
+/// Whether an estimator produced an estimate. Misuse of the API (wrong shapes, NaN input)
+/// throws std::invalid_argument instead; a status is for valid input that has no answer.
+enum class Status {
+  Success,
+  NumericalFailure,  ///< e.g. V22 singular in TLS, A rank-deficient in SPDE; see `message`
+};
+
+/// Quantities a user checks an estimate by. Singular values, ranks and condition numbers
+/// are those of the data A and B (computed from the triangular factor, not Gram matrices).
+/// Optional entries are present only where they are defined for the method and estimate.
+struct Diagnostics {
+  Eigen::Index m = 0;   ///< rows (samples)
+  Eigen::Index n = 0;   ///< columns; X is n x n
+  Eigen::Index rank_a = 0, rank_b = 0;   ///< numerical ranks (FitOptions::rank_tolerance)
+  double cond_a = 0.0, cond_b = 0.0;     ///< sigma_max / sigma_min; +inf when singular
+  Eigen::VectorXd singular_values_a, singular_values_b;  ///< descending
+
+  double residual_norm = 0.0;  ///< ||A X - B||_F
+  bool symmetric = false;      ///< X == X^T exactly
+  std::optional<double> min_eigenvalue;    ///< of X, when X is symmetric
+  std::optional<double> max_eigenvalue;    ///< of X, when X is symmetric
+  bool positive_definite = false;          ///< X symmetric with every eigenvalue > 0
+  bool positive_semidefinite = false;      ///< X symmetric, eigenvalues >= -n eps ||X||
+
+  /// The area criterion ||A Y - B Y^-T||_F^2 with X = Y Y^T (Chen & McInroy, Definition II.1),
+  /// for a symmetric positive definite X; for a semidefinite X of rank r the criterion
+  /// tr(P X + X^+ Q) - 2 tr(A^T B) of Corollary III.7.
+  std::optional<double> area_criterion;
+  /// spde only: the closed-form minimum 2 tr(Sigma_Q~ - A^T B) (Corollary III.4 / III.7).
+  std::optional<double> area_criterion_minimum;
+
+  /// procrustes only: whether A^T B + B^T A is positive definite (thesis Theorem 3.2 (3):
+  /// then the estimate is too).
+  std::optional<bool> cross_term_positive_definite;
+
+  /// TLS family: singular values sigma_n and sigma_{n+1} of [A B], the correction norm
+  /// ||[dA dB]||_F = sqrt(sum_{i>n} sigma_i^2) (thesis eq. 4.33), and the smallest
+  /// singular value of V22 (the solution exists when it is nonzero).
+  std::optional<double> tls_sigma_n, tls_sigma_n1, tls_correction_norm, tls_v22_min_singular_value;
+};
+
+/// The result of one estimator on one data set.
+struct FitResult {
+  Method method = Method::Spde;
+  Status status = Status::Success;
+  std::string message;                 ///< why it failed, when status != Success
+  Eigen::MatrixXd X;                   ///< the estimate (empty on failure)
+  Diagnostics diagnostics;
+  std::vector<std::string> warnings;   ///< conditions the user should know about
+
+  bool ok() const { return status == Status::Success; }
+};
+
+}  // namespace spdfit

@@ -1,0 +1,71 @@
+// Reading matrices from data files (delimited text, .npy) and writing them back.
+#pragma once
+
+#include <cstddef>
+#include <iosfwd>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace spdfit::io {
+
+/// Bad input data: names the source (a file path) and, for text, the 1-based line and column
+/// (0 when not applicable). what() is the full message, "SOURCE:LINE:COLUMN: problem", ready
+/// to show a user.
+class DataError : public std::runtime_error {
+ public:
+  DataError(std::string source, std::size_t line, std::size_t column, const std::string& problem);
+  const std::string& source() const noexcept { return source_; }
+  std::size_t line() const noexcept { return line_; }
+  std::size_t column() const noexcept { return column_; }
+  const std::string& problem() const noexcept { return problem_; }
+
+ private:
+  std::string source_;
+  std::size_t line_;
+  std::size_t column_;
+  std::string problem_;
+};
+
+/// Options for reading.
+struct ReadOptions {
+  bool allow_nonfinite = false;  ///< NaN and Inf are rejected unless this is set
+};
+
+/// A matrix with the column names of its header row (empty when the file had none).
+struct Table {
+  Eigen::MatrixXd values;
+  std::vector<std::string> column_names;
+};
+
+/// Reads a matrix from `path`: a .npy file (recognized by its magic bytes, float64, C or Fortran
+/// order, 1-D read as a column) or delimited text. Text: fields separated by commas, semicolons,
+/// tabs or runs of spaces; CRLF or LF line ends; an optional UTF-8 byte-order mark; lines whose
+/// first non-blank character is '#' or '%' are comments; blank lines are skipped; an optional
+/// header row (a first data line in which no field is a number) gives the column names.
+/// Throws DataError (naming the file, and for text the line and column) on: a missing,
+/// unreadable or empty file, a directory, binary garbage, ragged rows, empty fields, a token
+/// that is not a number, NaN or Inf (unless allowed), no data rows, a malformed .npy.
+Table read_table(const std::string& path, const ReadOptions& options = {});
+Eigen::MatrixXd read_matrix(const std::string& path, const ReadOptions& options = {});
+
+/// The parsers behind read_table, on bytes already in memory; `source` names them in errors.
+Table parse_delimited(std::string_view text, const std::string& source, const ReadOptions& options = {});
+Eigen::MatrixXd parse_npy(std::string_view bytes, const std::string& source,
+                          const ReadOptions& options = {});
+
+/// The shortest decimal text that reads back as exactly `value` ("inf", "-inf", "nan" for
+/// non-finite values).
+std::string format_double(double value);
+
+/// Writes X as CSV: one matrix row per line, comma-separated, values as format_double.
+void write_csv(std::ostream& out, const Eigen::Ref<const Eigen::MatrixXd>& X);
+/// Writes X to `path` as CSV. Throws DataError when the file cannot be written.
+void write_csv(const std::string& path, const Eigen::Ref<const Eigen::MatrixXd>& X);
+/// Writes X to `path` as a .npy file (float64, C order). Throws DataError on failure.
+void write_npy(const std::string& path, const Eigen::Ref<const Eigen::MatrixXd>& X);
+
+}  // namespace spdfit::io

@@ -1,0 +1,42 @@
+// Multidimensional total least squares and its symmetric and semidefinite repairs.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "spdfit/fit_result.hpp"
+#include "spdfit/reduction.hpp"
+
+namespace spdfit {
+
+/// The multidimensional total least-squares estimate X = -V12 V22^-1 (thesis 000, eq. 4.37),
+/// where [V12; V22] are the right singular vectors of [A B] belonging to its n smallest
+/// singular values. Computed from the SVD of the 2n x 2n triangular factor R of [A B], which
+/// has the same singular values and right singular vectors.
+///
+/// Failure (Status::NumericalFailure): V22 numerically singular (no TLS solution exists).
+/// Warning: sigma_n and sigma_{n+1} of [A B] equal to within the rank cut-off, so that the
+/// solution is not unique (Theorem 4.7's condition sigma_n > sigma_{n+1} fails).
+/// TLS is not invariant under scaling A and B by different factors: scale them to comparable
+/// noise levels first.
+///
+/// Preconditions: as least_squares. Cost: O(m n^2) for the factor, O(n^3) after it.
+FitResult total_least_squares(const Reduction& data);
+FitResult total_least_squares(const Eigen::Ref<const Eigen::MatrixXd>& A,
+                              const Eigen::Ref<const Eigen::MatrixXd>& B,
+                              const FitOptions& options = {});
+
+/// The symmetric part (X_TLS + X_TLS^T) / 2 of the TLS estimate (thesis eq. 4.38): the nearest
+/// symmetric matrix to it in the Frobenius norm. Fails where total_least_squares fails.
+FitResult total_least_squares_symmetric(const Reduction& data);
+FitResult total_least_squares_symmetric(const Eigen::Ref<const Eigen::MatrixXd>& A,
+                                        const Eigen::Ref<const Eigen::MatrixXd>& B,
+                                        const FitOptions& options = {});
+
+/// Higham's nearest symmetric positive semidefinite matrix to the TLS estimate
+/// (thesis eq. 4.39, section 3.3; see nearest_spd). Fails where total_least_squares fails.
+FitResult total_least_squares_psd(const Reduction& data);
+FitResult total_least_squares_psd(const Eigen::Ref<const Eigen::MatrixXd>& A,
+                                  const Eigen::Ref<const Eigen::MatrixXd>& B,
+                                  const FitOptions& options = {});
+
+}  // namespace spdfit

@@ -1,0 +1,71 @@
+// The triangular factor of the Householder QR of the data [A B]: everything every
+// estimator needs, without forming the Gram matrices A^T A or B^T B.
+#pragma once
+
+#include <optional>
+
+#include <Eigen/Core>
+
+namespace spdfit {
+
+/// R, the 2n x 2n upper triangular factor of the Householder QR of [A B] (m x 2n),
+///
+///     [A B] = Q R,   R = [R11 R12; 0 R22],
+///
+/// accumulated from the data in one piece or chunk by chunk. R carries every estimator's
+/// input: A^T A = R11^T R11, A^T B = R11^T R12, ||A X - B||_F^2 = ||R11 X - R12||_F^2 +
+/// ||R22||_F^2, and the singular values and right singular vectors of [A B] are those of R.
+/// Two factors of disjoint row sets merge into the factor of their union (TSQR), which is
+/// the basis of streaming and multithreading.
+///
+/// To keep every estimate unchanged under scaling of the data by any factor between 1e-300 and
+/// 1e300, A and B are stored scaled by powers of two (exact): R is the factor of
+/// [A 2^-exponent_a(), B 2^-exponent_b()], with the exponents chosen so that every scaled
+/// entry has magnitude below 1. When m < 2n the bottom rows of R are zero.
+///
+/// Cost: O(m n^2) for m rows; memory O(n^2) beyond the chunk being added.
+class TriangularFactor {
+ public:
+  /// An empty factor for data with n columns (no rows yet). Throws std::invalid_argument
+  /// when n < 1.
+  explicit TriangularFactor(Eigen::Index n);
+
+  /// The factor of the data A, B (both m x n, finite). Throws std::invalid_argument when the
+  /// shapes differ, n < 1, or an entry is NaN or Inf.
+  static TriangularFactor from_data(const Eigen::Ref<const Eigen::MatrixXd>& A,
+                                    const Eigen::Ref<const Eigen::MatrixXd>& B);
+
+  /// Adds the rows of A and B (k x n each, finite). Throws std::invalid_argument as
+  /// from_data does. Cost O((k + n) n^2).
+  void append(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B);
+
+  /// Makes this the factor of the union of both row sets. Throws std::invalid_argument when
+  /// the column counts differ. Cost O(n^3).
+  void merge(const TriangularFactor& other);
+
+  Eigen::Index n() const { return n_; }
+  Eigen::Index rows() const { return rows_; }   ///< m, the number of rows accumulated
+  /// A is stored as A 2^-exponent_a() (0 while A has been all zero); likewise B.
+  int exponent_a() const { return exponent_a_.value_or(0); }
+  int exponent_b() const { return exponent_b_.value_or(0); }
+
+  /// The 2n x 2n upper triangular factor of the scaled data.
+  const Eigen::MatrixXd& R() const { return R_; }
+  auto R11() const { return R_.topLeftCorner(n_, n_); }
+  auto R12() const { return R_.topRightCorner(n_, n_); }
+  auto R22() const { return R_.bottomRightCorner(n_, n_); }
+
+ private:
+  // Raises the stored exponents to at least (ea, eb), rescaling R exactly.
+  void raise_exponents(std::optional<int> ea, std::optional<int> eb);
+  // Stacks R on top of the (already scaled) rows and re-triangularizes.
+  void absorb(const Eigen::Ref<const Eigen::MatrixXd>& scaled_rows);
+
+  Eigen::Index n_ = 0;
+  Eigen::Index rows_ = 0;
+  std::optional<int> exponent_a_;
+  std::optional<int> exponent_b_;
+  Eigen::MatrixXd R_;
+};
+
+}  // namespace spdfit

@@ -1,0 +1,132 @@
+#include "diagnostics.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include <Eigen/Eigenvalues>
+
+#include "linalg.hpp"
+
+namespace spdfit::detail {
+
+using Eigen::Index;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+namespace {
+
+// The lecture notes (002, section 3.7.2) call a matrix ill-conditioned when its reciprocal
+// condition number is below 1e-12: estimates may then have lost about 12 digits or more.
+constexpr double kIllConditionedRcond = 1e-12;
+
+// Eigenvalues above -kSemidefiniteSlack * n * eps * max|lambda| count as nonnegative: the
+// rounding error of a symmetric eigensolver.
+constexpr double kSemidefiniteSlack = 4.0;
+
+void fill_data_diagnostics(const Reduction& data, Diagnostics& d, std::vector<std::string>& warnings) {
+  d.m = data.m;
+  d.n = data.n;
+  d.rank_a = data.rank_a;
+  d.rank_b = data.rank_b;
+  d.singular_values_a = times_power_of_two(data.s_a, data.exponent_a);
+  d.singular_values_b = times_power_of_two(data.s_b, data.exponent_b);
+  d.cond_a = condition_number(data.s_a);
+  d.cond_b = condition_number(data.s_b);
+  if (data.rank_a == data.n && d.cond_a * kIllConditionedRcond > 1.0) {
+    warnings.push_back("A is ill-conditioned (cond(A) = " + format_number(d.cond_a) +
+                       "): the estimate may have lost about " +
+                       format_number(std::floor(std::log10(d.cond_a))) + " significant digits");
+  }
+}
+
+}  // namespace
+
+std::string format_number(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3g", value);
+  return buffer;
+}
+
+std::optional<double> scaled_area_criterion(const Reduction& data, const MatrixXd& X_s) {
+  const Index n = data.n;
+  Eigen::SelfAdjointEigenSolver<MatrixXd> eig(X_s);
+  if (eig.info() != Eigen::Success) return std::nullopt;
+  const VectorXd& lambda = eig.eigenvalues();  // ascending
+  const double scale = lambda.cwiseAbs().maxCoeff();
+  const double eps = std::numeric_limits<double>::epsilon();
+  if (!(scale > 0.0)) return std::nullopt;
+  if (lambda(0) < -kSemidefiniteSlack * n * eps * scale) return std::nullopt;
+  const double zero = n * eps * scale;  // eigenvalues at or below this are zero: rank of X
+  Index first = 0;
+  while (first < n && lambda(first) <= zero) ++first;
+  const Index r = n - first;
+  const MatrixXd W = eig.eigenvectors().rightCols(r);
+  const VectorXd root = lambda.tail(r).cwiseSqrt();
+  const MatrixXd Y = W * root.asDiagonal();                 // X = Y Y^T
+  const MatrixXd Z = W * root.cwiseInverse().asDiagonal();  // Y^-T when r = n
+  if (r == n) {
+    // ||A Y - B Y^-T||^2 = ||R11 Y - R12 Y^-T||^2 + ||R22 Y^-T||^2: a sum of squares, no
+    // cancellation (Chen & McInroy, Definition II.1).
+    const double top = (data.R11 * Y - data.R12 * Z).squaredNorm();
+    return top + (data.R22 * Z).squaredNorm();
+  }
+  // Semidefinite X of rank r (Corollary III.7): tr(P X) + tr(X^+ Q) - 2 tr(A^T B) with
+  // P = R11^T R11, Q = R_b^T R_b and X^+ = Z Z^T.
+  const double cross = (data.R11.transpose() * data.R12).trace();
+  return (data.R11 * Y).squaredNorm() + (data.R_b * Z).squaredNorm() - 2.0 * cross;
+}
+
+FitResult finish(Method method, const Reduction& data, const MatrixXd& X_s, Diagnostics d,
+                 std::vector<std::string> warnings) {
+  FitResult result;
+  result.method = method;
+  fill_data_diagnostics(data, d, warnings);
+  const int ea = data.exponent_a;
+  const int eb = data.exponent_b;
+
+  // ||A X - B||_F^2 = ||R11 X - R12||_F^2 + ||R22||_F^2, in B's units.
+  const double fit_part = (data.R11 * X_s - data.R12).norm();
+  d.residual_norm = std::ldexp(std::hypot(fit_part, data.R22.norm()), eb);
+
+  d.symmetric = X_s == X_s.transpose();
+  if (d.symmetric) {
+    Eigen::SelfAdjointEigenSolver<MatrixXd> eig(X_s, Eigen::EigenvaluesOnly);
+    if (eig.info() == Eigen::Success) {
+      const VectorXd& lambda = eig.eigenvalues();
+      const double scale = lambda.cwiseAbs().maxCoeff();
+      const double eps = std::numeric_limits<double>::epsilon();
+      d.min_eigenvalue = std::ldexp(lambda(0), eb - ea);
+      d.max_eigenvalue = std::ldexp(lambda(lambda.size() - 1), eb - ea);
+      d.positive_definite = lambda(0) > 0.0;
+      d.positive_semidefinite = lambda(0) >= -kSemidefiniteSlack * data.n * eps * scale;
+    }
+    if (d.positive_semidefinite) {
+      if (auto f = scaled_area_criterion(data, X_s)) d.area_criterion = std::ldexp(*f, ea + eb);
+    }
+  }
+
+  result.X = times_power_of_two(X_s, eb - ea);
+  result.diagnostics = std::move(d);
+  result.warnings = std::move(warnings);
+  if (!result.X.allFinite()) {
+    result.status = Status::NumericalFailure;
+    result.message = std::string(to_string(method)) +
+                     ": the estimate overflows the range of double precision numbers";
+    result.X.resize(0, 0);
+  }
+  return result;
+}
+
+FitResult failure(Method method, const Reduction& data, std::string message,
+                  std::vector<std::string> warnings) {
+  FitResult result;
+  result.method = method;
+  result.status = Status::NumericalFailure;
+  result.message = std::move(message);
+  fill_data_diagnostics(data, result.diagnostics, warnings);
+  result.warnings = std::move(warnings);
+  return result;
+}
+
+}  // namespace spdfit::detail

@@ -1,0 +1,41 @@
+#include "spdfit/fit.hpp"
+
+#include "spdfit/least_squares.hpp"
+#include "spdfit/spde.hpp"
+#include "spdfit/symmetric_procrustes.hpp"
+#include "spdfit/total_least_squares.hpp"
+
+namespace spdfit {
+
+using Eigen::MatrixXd;
+
+FitResult fit(const Reduction& data, Method method) {
+  switch (method) {
+    case Method::LeastSquares: return least_squares(data);
+    case Method::SymmetricProcrustes: return symmetric_procrustes(data);
+    case Method::TotalLeastSquares: return total_least_squares(data);
+    case Method::TotalLeastSquaresSymmetric: return total_least_squares_symmetric(data);
+    case Method::TotalLeastSquaresPsd: return total_least_squares_psd(data);
+    case Method::Spde: return spde(data);
+  }
+  return spde(data);  // unreachable: every enumerator is handled above
+}
+
+FitResult fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Method method,
+              const FitOptions& options) {
+  return fit(reduce(TriangularFactor::from_data(A, B), options), method);
+}
+
+std::vector<FitResult> fit_all(const Reduction& data) {
+  std::vector<FitResult> results;
+  results.reserve(kAllMethods.size());
+  for (Method method : kAllMethods) results.push_back(fit(data, method));
+  return results;
+}
+
+std::vector<FitResult> fit_all(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
+                               const FitOptions& options) {
+  return fit_all(reduce(TriangularFactor::from_data(A, B), options));
+}
+
+}  // namespace spdfit

@@ -1,0 +1,73 @@
+#include "spdfit/spde.hpp"
+
+#include <cmath>
+
+#include "diagnostics.hpp"
+#include "linalg.hpp"
+
+namespace spdfit {
+
+using Eigen::Index;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+FitResult spde(const Reduction& data) {
+  const Index n = data.n;
+  if (data.rank_a < n) {
+    return detail::failure(Method::Spde, data,
+                           "spde: A is rank-deficient (rank " + std::to_string(data.rank_a) + " < n = " +
+                               std::to_string(n) +
+                               "), so the area criterion has no minimizer: "
+                               "collect data that excites every direction of A");
+  }
+  std::vector<std::string> warnings;
+
+  // X P X = Q with P = R11^T R11 and Q = R_b^T R_b. With Z = R11 X R11^T this reads
+  // Z^2 = R11 Q R11^T = M^T M for M = R_b R11^T, so Z is the symmetric polar factor
+  // H = V_M S V_M^T of M (the unique SPD square root; Chen & McInroy eq. 15) and
+  // X = R11^-1 H R11^-T = L L^T with L = R11^-1 V_M S^(1/2). Working with the triangular
+  // factors instead of P and Q keeps the error at about cond(A) eps instead of cond(A)^2 eps.
+  const MatrixXd M = data.R_b * data.R11.transpose();
+  const detail::Svd polar = detail::svd(M, false, true);
+  VectorXd s = polar.s;
+
+  Index r = n;
+  if (data.rank_b < n) {
+    // Corollary III.7: B of rank r gives the semidefinite minimizer of rank r. M has the rank
+    // of B (R11 is invertible); its trailing singular values are rounding noise: drop them.
+    r = data.rank_b;
+    s.tail(n - r).setZero();
+    warnings.push_back("B is rank-deficient (rank " + std::to_string(r) + " < n = " +
+                       std::to_string(n) +
+                       "): returning the positive semidefinite minimizer of rank " + std::to_string(r) +
+                       " (Chen & McInroy, Corollary III.7)");
+  }
+
+  const MatrixXd V_root = polar.V.leftCols(r) * s.head(r).cwiseSqrt().asDiagonal();
+  const MatrixXd L = data.R11.triangularView<Eigen::Upper>().solve(V_root);
+  MatrixXd X_s = MatrixXd::Zero(n, n);
+  X_s.selfadjointView<Eigen::Lower>().rankUpdate(L);
+  detail::make_symmetric_from_lower(X_s);
+
+  // Corollary III.4: min f = 2 tr(Sigma_Q~ - A^T B); tr(Sigma_Q~) is the sum of the singular
+  // values of M (Q~ and M^T M are similar).
+  Diagnostics d;
+  const double cross = (data.R11.transpose() * data.R12).trace();
+  d.area_criterion_minimum = std::ldexp(2.0 * (s.sum() - cross), data.exponent_a + data.exponent_b);
+
+  FitResult result = detail::finish(Method::Spde, data, X_s, std::move(d), std::move(warnings));
+  if (result.ok() && r == n && !result.diagnostics.positive_definite) {
+    result.warnings.push_back(
+        "the estimate is positive definite in exact arithmetic but numerically singular "
+        "(smallest eigenvalue " + detail::format_number(result.diagnostics.min_eigenvalue.value_or(0.0)) +
+        " against largest " + detail::format_number(result.diagnostics.max_eigenvalue.value_or(0.0)) + ")");
+  }
+  return result;
+}
+
+FitResult spde(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
+               const FitOptions& options) {
+  return spde(reduce(TriangularFactor::from_data(A, B), options));
+}
+
+}  // namespace spdfit

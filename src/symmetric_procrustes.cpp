@@ -1,0 +1,64 @@
+#include "spdfit/symmetric_procrustes.hpp"
+
+#include <Eigen/Eigenvalues>
+
+#include "diagnostics.hpp"
+#include "linalg.hpp"
+
+namespace spdfit {
+
+using Eigen::Index;
+using Eigen::MatrixXd;
+
+FitResult symmetric_procrustes(const Reduction& data) {
+  const Index n = data.n;
+  const Index r = data.rank_a;
+  std::vector<std::string> warnings;
+
+  // With R11 = U S V^T, ||R11 X - R12||_F = ||S Xt - C||_F for Xt = V^T X V and C = U^T R12 V.
+  // Minimizing over symmetric Xt entry pair by entry pair gives Higham's closed form, the
+  // solution of the normal equation (thesis eq. 3.15) without forming A^T A. Singular values
+  // under the rank cut-off are edited to zero; entries with both zero are free, and zero is
+  // their minimum-norm choice.
+  const MatrixXd C = data.U_a.transpose() * data.R12 * data.V_a;
+  Eigen::VectorXd s = data.s_a;
+  s.tail(n - r).setZero();
+  MatrixXd Xt(n, n);
+  for (Index j = 0; j < n; ++j) {
+    for (Index i = j; i < n; ++i) {
+      const double denominator = s(i) * s(i) + s(j) * s(j);
+      Xt(i, j) = denominator > 0.0 ? (s(i) * C(i, j) + s(j) * C(j, i)) / denominator : 0.0;
+    }
+  }
+  detail::make_symmetric_from_lower(Xt);
+  MatrixXd X_s = data.V_a * Xt * data.V_a.transpose();
+  X_s = detail::symmetric_part(X_s);
+
+  if (r < n) {
+    warnings.push_back("A is rank-deficient (rank " + std::to_string(r) + " < n = " + std::to_string(n) +
+                       "): the symmetric minimizer is not unique; returning the one of minimum norm");
+  }
+
+  // Theorem 3.2 (3): A^T B + B^T A positive definite implies a positive definite estimate.
+  Diagnostics d;
+  const MatrixXd cross = data.R11.transpose() * data.R12;
+  Eigen::SelfAdjointEigenSolver<MatrixXd> eig(cross + cross.transpose(), Eigen::EigenvaluesOnly);
+  d.cross_term_positive_definite = eig.info() == Eigen::Success && eig.eigenvalues()(0) > 0.0;
+
+  FitResult result = detail::finish(Method::SymmetricProcrustes, data, X_s, std::move(d), std::move(warnings));
+  if (result.ok() && !result.diagnostics.positive_definite) {
+    result.warnings.push_back(
+        "the procrustes estimate is not positive definite (smallest eigenvalue " +
+        detail::format_number(result.diagnostics.min_eigenvalue.value_or(0.0)) +
+        "); A^T B + B^T A is " +
+        (*result.diagnostics.cross_term_positive_definite ? "positive definite" : "not positive definite"));
+  }
+  return result;
+}
+
+FitResult symmetric_procrustes(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
+                               const FitOptions& options) {
+  return symmetric_procrustes(reduce(TriangularFactor::from_data(A, B), options));
+}
+
+}  // namespace spdfit
