@@ -1,0 +1,474 @@
+// parse_delimited: every accepted variation of delimited text, and every rejected one with the
+// position and wording of its error.
+#include <gtest/gtest.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "spdfit/io.hpp"
+
+namespace {
+
+using Eigen::MatrixXd;
+using spdfit::io::DataError;
+using spdfit::io::parse_delimited;
+using spdfit::io::ReadOptions;
+using spdfit::io::Table;
+
+MatrixXd Parse(std::string_view text, ReadOptions options = {}) {
+  return parse_delimited(text, "A.csv", options).values;
+}
+
+// The DataError that parsing `text` throws (a failed test, and an empty error, if none).
+DataError ParseError(std::string_view text, ReadOptions options = {}) {
+  try {
+    parse_delimited(text, "A.csv", options);
+  } catch (const DataError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no DataError for: " << text;
+  return DataError("", 0, 0, "");
+}
+
+void ExpectError(std::string_view text, std::size_t line, std::size_t column,
+                 const std::string& problem) {
+  const DataError e = ParseError(text);
+  EXPECT_EQ(e.source(), "A.csv") << text;
+  EXPECT_EQ(e.line(), line) << e.what();
+  EXPECT_EQ(e.column(), column) << e.what();
+  EXPECT_EQ(e.problem(), problem) << e.what();
+}
+
+std::uint64_t Bits(double x) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &x, sizeof(bits));
+  return bits;
+}
+
+const MatrixXd k2x3 = (MatrixXd(2, 3) << 1, 2, 3, 4, 5, 6).finished();
+
+// ---- Accepted ----------------------------------------------------------------------------------
+
+TEST(IoDelimited, Comma) { EXPECT_EQ(Parse("1,2,3\n4,5,6\n"), k2x3); }
+
+TEST(IoDelimited, CommaWithSpacesAroundIt) {
+  EXPECT_EQ(Parse("1, 2, 3\n4 ,5 ,  6\n"), k2x3);
+  EXPECT_EQ(Parse("1,\t2,3\n4\t,5,6\n"), k2x3);
+}
+
+TEST(IoDelimited, Semicolon) { EXPECT_EQ(Parse("1;2;3\n4; 5 ;6\n"), k2x3); }
+
+TEST(IoDelimited, Tab) { EXPECT_EQ(Parse("1\t2\t3\n4\t5\t6\n"), k2x3); }
+
+TEST(IoDelimited, RunsOfSpaces) { EXPECT_EQ(Parse("1  2     3\n   4 5 6   \n"), k2x3); }
+
+TEST(IoDelimited, MatlabSaveAscii) {
+  // What MATLAB's `save -ascii` writes: "%16.7e" per value, so leading spaces and runs of them.
+  const char* text =
+      "   1.0000000e+00   2.5000000e+00  -3.0000000e+00\n"
+      "   4.0000000e-01  -5.0000000e+10   6.0000000e-12\n";
+  const MatrixXd expected = (MatrixXd(2, 3) << 1, 2.5, -3, 0.4, -5e10, 6e-12).finished();
+  EXPECT_EQ(Parse(text), expected);
+}
+
+TEST(IoDelimited, MatlabSaveAsciiDouble) {
+  const char* text = "   3.141592653589793e+00   2.718281828459045e+00\n";
+  const MatrixXd X = Parse(text);
+  ASSERT_EQ(X.rows(), 1);
+  EXPECT_EQ(X(0, 0), 3.141592653589793);
+  EXPECT_EQ(X(0, 1), 2.718281828459045);
+}
+
+TEST(IoDelimited, MatlabSaveAsciiTabs) {
+  // save -ascii -tabs: the same padded fields, separated by tabs.
+  const char* text = "   1.0000000e+00\t   2.0000000e+00\n   3.0000000e+00\t   4.0000000e+00\n";
+  EXPECT_EQ(Parse(text), (MatrixXd(2, 2) << 1, 2, 3, 4).finished());
+}
+
+TEST(IoDelimited, LineEnds) {
+  EXPECT_EQ(Parse("1,2,3\r\n4,5,6\r\n"), k2x3);
+  EXPECT_EQ(Parse("1,2,3\r4,5,6\r"), k2x3);  // old Mac spreadsheets
+  EXPECT_EQ(Parse("1,2,3\n4,5,6"), k2x3);    // no line end at the end
+  EXPECT_EQ(Parse("1,2,3\r\n\r\n4,5,6\n\n\n"), k2x3);
+}
+
+TEST(IoDelimited, ByteOrderMark) {
+  EXPECT_EQ(Parse("\xEF\xBB\xBF"
+                  "1,2,3\n4,5,6\n"),
+            k2x3);
+  const Table table = parse_delimited("\xEF\xBB\xBFx,y\r\n1,2\r\n", "A.csv");
+  EXPECT_EQ(table.column_names, (std::vector<std::string>{"x", "y"}));
+}
+
+TEST(IoDelimited, CommentsAndBlankLines) {
+  const char* text =
+      "# written by a logger\n"
+      "% MATLAB comment\n"
+      "\n"
+      "   \t \n"
+      "1,2,3\n"
+      "   # indented comment, 7, 8\n"
+      "4,5,6\n"
+      "%\n";
+  EXPECT_EQ(Parse(text), k2x3);
+}
+
+TEST(IoDelimited, HeaderRow) {
+  const Table table = parse_delimited("time, force ,torque\n1,2,3\n4,5,6\n", "A.csv");
+  EXPECT_EQ(table.values, k2x3);
+  EXPECT_EQ(table.column_names, (std::vector<std::string>{"time", "force", "torque"}));
+}
+
+TEST(IoDelimited, NoHeaderMeansNoNames) {
+  EXPECT_TRUE(parse_delimited("1,2\n", "A.csv").column_names.empty());
+}
+
+TEST(IoDelimited, HeaderAfterComments) {
+  const Table table = parse_delimited("# units: SI\n\na;b\n1;2\n", "A.csv");
+  EXPECT_EQ(table.column_names, (std::vector<std::string>{"a", "b"}));
+  EXPECT_EQ(table.values, (MatrixXd(1, 2) << 1, 2).finished());
+}
+
+TEST(IoDelimited, QuotedHeaderNames) {
+  const Table table =
+      parse_delimited("\"x, mm\",\"say \"\"hi\"\"\", \"1\"\n1,2,3\n", "A.csv");
+  EXPECT_EQ(table.column_names, (std::vector<std::string>{"x, mm", "say \"hi\"", "1"}));
+}
+
+TEST(IoDelimited, QuotedHeaderNamesWithSpaces) {
+  const Table table = parse_delimited("\"sensor a\"  \"sensor b\"\n1 2\n", "A.csv");
+  EXPECT_EQ(table.column_names, (std::vector<std::string>{"sensor a", "sensor b"}));
+}
+
+TEST(IoDelimited, SpaceSeparatedHeader) {
+  const Table table = parse_delimited("t   x   y\n1 2 3\n4 5 6\n", "A.csv");
+  EXPECT_EQ(table.column_names, (std::vector<std::string>{"t", "x", "y"}));
+  EXPECT_EQ(table.values, k2x3);
+}
+
+TEST(IoDelimited, SingleColumnHeaderWithSpaces) {
+  const Table table = parse_delimited("Force (N)\n1.5\n2.5\n", "A.csv");
+  EXPECT_EQ(table.column_names, (std::vector<std::string>{"Force (N)"}));
+  EXPECT_EQ(table.values, (MatrixXd(2, 1) << 1.5, 2.5).finished());
+}
+
+TEST(IoDelimited, SingleNameHeaderOverSeparatedData) {
+  const Table table = parse_delimited("force\n1.5\n", "A.csv");
+  EXPECT_EQ(table.column_names, (std::vector<std::string>{"force"}));
+}
+
+TEST(IoDelimited, HeaderWithEmptyIndexName) {
+  // pandas' DataFrame.to_csv() writes the index with an empty name.
+  const Table table = parse_delimited(",a,b\n0,1.5,2.5\n1,3.5,4.5\n", "A.csv");
+  EXPECT_EQ(table.column_names, (std::vector<std::string>{"", "a", "b"}));
+  EXPECT_EQ(table.values, (MatrixXd(2, 3) << 0, 1.5, 2.5, 1, 3.5, 4.5).finished());
+}
+
+TEST(IoDelimited, NumberSpellings) {
+  const MatrixXd X = Parse("+1,-2,+2.5e+3,1E-3,.5,5.,-0.0,0001.5000,1e-320,1e-400,-1e-400\n");
+  ASSERT_EQ(X.cols(), 11);
+  EXPECT_EQ(X(0, 0), 1.0);
+  EXPECT_EQ(X(0, 1), -2.0);
+  EXPECT_EQ(X(0, 2), 2500.0);
+  EXPECT_EQ(X(0, 3), 1e-3);
+  EXPECT_EQ(X(0, 4), 0.5);
+  EXPECT_EQ(X(0, 5), 5.0);
+  EXPECT_EQ(Bits(X(0, 6)), Bits(-0.0));
+  EXPECT_EQ(X(0, 7), 1.5);
+  EXPECT_EQ(X(0, 8), 1e-320);  // a denormal
+  EXPECT_GT(X(0, 8), 0.0);
+  EXPECT_EQ(Bits(X(0, 9)), Bits(0.0));  // below the smallest denormal: zero, as strtod gives
+  EXPECT_EQ(Bits(X(0, 10)), Bits(-0.0));
+}
+
+TEST(IoDelimited, ExactValues) {
+  const MatrixXd X = Parse("0.1,0.2,0.30000000000000004,1.7976931348623157e308,4.9e-324\n");
+  EXPECT_EQ(X(0, 0), 0.1);
+  EXPECT_EQ(X(0, 1), 0.2);
+  EXPECT_EQ(X(0, 2), 0.1 + 0.2);
+  EXPECT_EQ(X(0, 3), std::numeric_limits<double>::max());
+  EXPECT_EQ(X(0, 4), std::numeric_limits<double>::denorm_min());
+}
+
+TEST(IoDelimited, OneByOne) {
+  EXPECT_EQ(Parse("42"), (MatrixXd(1, 1) << 42).finished());
+  EXPECT_EQ(Parse("  -7.5  \r\n"), (MatrixXd(1, 1) << -7.5).finished());
+}
+
+TEST(IoDelimited, SingleColumn) {
+  EXPECT_EQ(Parse("1\n2\n3\n"), (MatrixXd(3, 1) << 1, 2, 3).finished());
+}
+
+TEST(IoDelimited, SingleRow) { EXPECT_EQ(Parse("1 2 3"), (MatrixXd(1, 3) << 1, 2, 3).finished()); }
+
+TEST(IoDelimited, LongLine) {
+  constexpr int kColumns = 200000;
+  std::string text;
+  for (int j = 0; j < kColumns; ++j) text += std::to_string(j) + (j + 1 < kColumns ? "," : "\n");
+  text += text;
+  const MatrixXd X = Parse(text);
+  ASSERT_EQ(X.rows(), 2);
+  ASSERT_EQ(X.cols(), kColumns);
+  EXPECT_EQ(X(1, kColumns - 1), kColumns - 1);
+  EXPECT_EQ(X(0, 12345), 12345);
+}
+
+TEST(IoDelimited, ManyRows) {
+  std::string text;
+  for (int i = 0; i < 50000; ++i) text += std::to_string(i) + "\t" + std::to_string(-i) + "\n";
+  const MatrixXd X = Parse(text);
+  ASSERT_EQ(X.rows(), 50000);
+  EXPECT_EQ(X(49999, 1), -49999);
+}
+
+TEST(IoDelimited, Utf8TextInHeader) {
+  const Table table = parse_delimited("Température;Kraft µN\n1;2\n", "A.csv");
+  EXPECT_EQ(table.column_names, (std::vector<std::string>{"Température", "Kraft µN"}));
+}
+
+TEST(IoDelimited, NonfiniteWhenAllowed) {
+  ReadOptions options;
+  options.allow_nonfinite = true;
+  const MatrixXd X = Parse("nan,NaN,inf,-Inf,Infinity,1e999,-1e999,+inf\n", options);
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(std::isnan(X(0, 0)));
+  EXPECT_TRUE(std::isnan(X(0, 1)));
+  EXPECT_EQ(X(0, 2), inf);
+  EXPECT_EQ(X(0, 3), -inf);
+  EXPECT_EQ(X(0, 4), inf);
+  EXPECT_EQ(X(0, 5), inf);
+  EXPECT_EQ(X(0, 6), -inf);
+  EXPECT_EQ(X(0, 7), inf);
+}
+
+// ---- Rejected ----------------------------------------------------------------------------------
+
+TEST(IoDelimited, NotANumber) {
+  const DataError e = ParseError("1,2,3\n4,5,6\n7,abc,9\n");
+  EXPECT_STREQ(e.what(), "A.csv:3:3: 'abc' is not a number");
+  ExpectError("1,2\n3,1.5abc\n", 2, 3, "'1.5abc' is not a number");
+  ExpectError("1 2\n3 1e\n", 2, 3, "'1e' is not a number");
+  ExpectError("1 2\n3 0x10\n", 2, 3, "'0x10' is not a number");
+  ExpectError("1 2\n3 1.5.2\n", 2, 3, "'1.5.2' is not a number");
+  ExpectError("1 2\n3 --1\n", 2, 3, "'--1' is not a number");
+  ExpectError("1 2\n3 +-1\n", 2, 3, "'+-1' is not a number");
+  ExpectError("1 2\n3 ++1\n", 2, 3, "'++1' is not a number");
+  ExpectError("1 2\n3 +\n", 2, 3, "'+' is not a number");
+  ExpectError("1 2\n3 infinit\n", 2, 3, "'infinit' is not a number");
+}
+
+TEST(IoDelimited, ColumnCountsCharactersOfTheRawLine) {
+  ExpectError("1,2\n   1,  abc\n", 2, 9, "'abc' is not a number");
+  ExpectError("1\t2\n\t4\t x\n", 2, 5, "'x' is not a number");
+  // Columns count characters, not bytes: 'ä' is two bytes but one column.
+  ExpectError("1;2\n1; ä\n", 2, 4, "'ä' is not a number");
+  ExpectError("1;2;3\n1;ää;x\n", 2, 6, "'x' is not a number");
+  // The byte-order mark is not a column.
+  ExpectError("\xEF\xBB\xBF"
+              "x,1\n",
+              1, 1, "'x' is not a number");
+}
+
+TEST(IoDelimited, FirstLineMixingNumbersAndTextIsData) {
+  ExpectError("1,abc,3\n4,5,6\n", 1, 3, "'abc' is not a number");
+  ExpectError("sensor 1\n2\n", 1, 1, "'sensor' is not a number");
+}
+
+TEST(IoDelimited, DecimalComma) {
+  ExpectError("1;2\n1,5;3\n", 2, 1, "'1,5' is not a number (decimal comma? use '.' for decimals)");
+}
+
+TEST(IoDelimited, EmptyFields) {
+  ExpectError("1,,3\n", 1, 3, "empty field: nothing between two ','");
+  ExpectError("1, ,3\n", 1, 4, "empty field: nothing between two ','");
+  ExpectError("1,2,3\n4,5,\n", 2, 4, "empty field: the line ends with ','");
+  ExpectError("1,2,3\n4,5, \n", 2, 4, "empty field: the line ends with ','");
+  ExpectError("1;2;3\n;5;6\n", 2, 1, "empty field: the line starts with ';'");
+  ExpectError("1\t2\t3\n4\t\t6\n", 2, 3, "empty field: nothing between two tabs");
+  ExpectError("a,b\n1,,\n", 2, 3, "empty field: nothing between two ','");
+}
+
+TEST(IoDelimited, NaNAndInfRejected) {
+  ExpectError("1,2\nnan,3\n", 2, 1, "NaN is not allowed");
+  EXPECT_STREQ(ParseError("1,2\nNaN,3\n").what(), "A.csv:2:1: NaN is not allowed");
+  ExpectError("1,NAN\n", 1, 3, "NaN is not allowed");
+  ExpectError("1,-nan\n", 1, 3, "NaN is not allowed");
+  ExpectError("1,nan(123)\n", 1, 3, "NaN is not allowed");
+  ExpectError("1,inf\n", 1, 3, "Inf is not allowed");
+  ExpectError("1,+inf\n", 1, 3, "Inf is not allowed");
+  ExpectError("1,-Inf\n", 1, 3, "-Inf is not allowed");
+  ExpectError("1,Infinity\n", 1, 3, "Inf is not allowed");
+  ExpectError("1,-INFINITY\n", 1, 3, "-Inf is not allowed");
+  // A first row of missing values is data, not a header.
+  ExpectError("NaN,NaN\n1,2\n", 1, 1, "NaN is not allowed");
+}
+
+TEST(IoDelimited, OverflowRejected) {
+  ExpectError("1,1e999\n", 1, 3, "'1e999' is too large for a double (it would be Inf)");
+  ExpectError("1,-1e999\n", 1, 3, "'-1e999' is too large for a double (it would be -Inf)");
+  ExpectError("1,+1.8e308\n", 1, 3, "'+1.8e308' is too large for a double (it would be Inf)");
+  ExpectError("1,0.0001e312\n", 1, 3, "'0.0001e312' is too large for a double (it would be Inf)");
+}
+
+TEST(IoDelimited, RaggedRows) {
+  const DataError e = ParseError("# data\n1,2,3,4,5,6\n1,2,3,4,5,6\n1,2,3,4,5\n");
+  EXPECT_STREQ(e.what(), "A.csv:4: row has 5 fields, expected 6 (as in line 2)");
+  EXPECT_EQ(e.line(), 4u);
+  EXPECT_EQ(e.column(), 0u);
+  ExpectError("1 2\n3 4 5\n", 2, 0, "row has 3 fields, expected 2 (as in line 1)");
+  ExpectError("1 2\n3\n", 2, 0, "row has 1 field, expected 2 (as in line 1)");
+  ExpectError("a,b,c\n1,2,3\n4,5,6,7\n", 3, 0, "row has 4 fields, expected 3 (as in line 1)");
+  ExpectError("a,b\n1,2,3\n", 2, 0, "row has 3 fields, expected 2 (as in line 1)");
+  ExpectError("force\n1\t2\n", 2, 0, "row has 2 fields, expected 1 (as in line 1)");
+}
+
+TEST(IoDelimited, MixedSeparators) {
+  ExpectError("1,2\n3;4\n", 2, 2,
+              "found ';' here, but fields in this file are separated by ',' (see line 1)");
+  ExpectError("1 2\n3,4\n", 2, 2,
+              "found ',' here, but fields in this file are separated by spaces (see line 1)");
+  ExpectError("1 2\n3\t4\n", 2, 2,
+              "found a tab here, but fields in this file are separated by spaces (see line 1)");
+  ExpectError("1,2\n3\t4\n", 2, 2,
+              "found a tab here, but fields in this file are separated by ',' (see line 1)");
+  ExpectError("1\t2\n3 4\n", 2, 1,
+              "'3 4' is not a number; fields in this file are separated by tabs (see line 1)");
+  ExpectError("1\n2,3\n", 2, 2, "found ',' here, but line 1 has a single field");
+  ExpectError("a,b\n1 2\n", 2, 0,
+              "this line separates fields with spaces, but the header (line 1) uses ','");
+}
+
+TEST(IoDelimited, Quotes) {
+  ExpectError("1,\"2\"\n", 1, 3, "'\"2\"' is quoted text, not a number");
+  ExpectError("\"a,b\n1,2\n", 1, 1, "missing closing quote");
+  ExpectError("\"a\"x,b\n1,2\n", 1, 4, "unexpected text after closing quote");
+  ExpectError("\"a\"x b\n1 2\n", 1, 4, "unexpected text after closing quote");
+}
+
+TEST(IoDelimited, BinaryGarbage) {
+  const DataError nul = ParseError(std::string("1,2\n3,\0\n", 8));
+  EXPECT_EQ(nul.line(), 2u);
+  EXPECT_EQ(nul.column(), 3u);
+  EXPECT_EQ(nul.problem(), "looks like a binary file, not text (NUL byte at byte offset 6)");
+  ExpectError("1,2\n3,\x01\n", 2, 3,
+              "looks like a binary file, not text (control character 0x01 at byte offset 6)");
+  ExpectError("1,2\r3,\x7F\n", 2, 3,
+              "looks like a binary file, not text (control character 0x7F at byte offset 6)");
+  ExpectError("1,2\r\n\x1B\n", 2, 1,
+              "looks like a binary file, not text (control character 0x1B at byte offset 5)");
+  ExpectError("a\xC3\xA9"
+              "b,\x0C\n",
+              1, 5,
+              "looks like a binary file, not text (control character 0x0C at byte offset 5)");
+  // The offset counts the byte-order mark; the column does not.
+  ExpectError("\xEF\xBB\xBF\x02", 1, 1,
+              "looks like a binary file, not text (control character 0x02 at byte offset 3)");
+  // Binary content is reported even when an earlier line has another error.
+  EXPECT_EQ(ParseError(std::string("abc\n1,x\n\0", 9)).line(), 3u);
+  // A zip file, such as an .xlsx workbook.
+  EXPECT_NE(ParseError(std::string("PK\x03\x04\x14\0\x06\0", 8)).problem().find("binary"),
+            std::string::npos);
+}
+
+TEST(IoDelimited, InvalidUtf8) {
+  const auto expect_invalid = [](const std::string& text, std::size_t line, std::size_t column) {
+    const DataError e = ParseError(text);
+    EXPECT_EQ(e.line(), line) << text;
+    EXPECT_EQ(e.column(), column) << text;
+    EXPECT_NE(e.problem().find("looks like a binary file"), std::string::npos) << e.what();
+    EXPECT_NE(e.problem().find("not valid UTF-8"), std::string::npos) << e.what();
+  };
+  expect_invalid("Temp\xE9rature,x\n1,2\n", 1, 5);  // Latin-1
+  expect_invalid("1,2\n\xC3\x28\n", 2, 1);          // bad continuation
+  expect_invalid("1,2\n\xC0\xAF\n", 2, 1);          // overlong
+  expect_invalid("1,2\n\xED\xA0\x80\n", 2, 1);      // surrogate
+  expect_invalid("1,2\n\xF4\x90\x80\x80\n", 2, 1);  // beyond U+10FFFF
+  expect_invalid("1,2\nx\xE2\x82", 2, 2);           // cut off at the end
+  expect_invalid("\x93NUMPY", 1, 1);                // a broken .npy
+  EXPECT_EQ(ParseError("Temp\xE9rature").problem(),
+            "looks like a binary file, not text (byte 0xE9 that is not valid UTF-8 at byte "
+            "offset 4)");
+}
+
+TEST(IoDelimited, Utf16) {
+  const DataError e = ParseError(std::string("\xFF\xFE" "1\0,\0" "2\0", 8));
+  EXPECT_EQ(e.line(), 0u);
+  EXPECT_NE(e.problem().find("UTF-16"), std::string::npos) << e.what();
+}
+
+TEST(IoDelimited, NoData) {
+  EXPECT_STREQ(ParseError("").what(), "A.csv: no data rows (the text is empty)");
+  EXPECT_STREQ(ParseError("\xEF\xBB\xBF").what(), "A.csv: no data rows (the text is empty)");
+  EXPECT_STREQ(ParseError("# nothing\n\n  \n").what(),
+               "A.csv: no data rows (only comments and blank lines)");
+  EXPECT_STREQ(ParseError("\n").what(), "A.csv: no data rows (only comments and blank lines)");
+  EXPECT_STREQ(ParseError("% c\nx,y\n# c\n").what(),
+               "A.csv: no data rows (only a header row, line 2)");
+}
+
+TEST(IoDelimited, HeaderOnlyFirstLine) {
+  // Only the first non-comment line can be a header; later text is an error.
+  ExpectError("a,b\nc,d\n", 2, 1, "'c' is not a number");
+}
+
+// ---- Hostile input -----------------------------------------------------------------------------
+
+TEST(IoDelimited, HugeTokenIsShortenedInTheMessage) {
+  const std::string token(1000000, 'x');
+  const DataError e = ParseError("1,2\n1," + token + "\n");
+  EXPECT_EQ(e.column(), 3u);
+  EXPECT_LT(e.problem().size(), 100u);
+  EXPECT_EQ(e.problem(), "'" + std::string(40, 'x') + "...' is not a number");
+}
+
+TEST(IoDelimited, HugeTokenIsShortenedAtACharacterBoundary) {
+  std::string token = "1";
+  for (int i = 0; i < 100; ++i) token += "é";
+  const DataError e = ParseError("1;2\n1;" + token + "\n");
+  EXPECT_EQ(e.problem(), "'1" + std::string(token.substr(1, 38)) + "...' is not a number");
+}
+
+TEST(IoDelimited, HugeNumberTokens) {
+  // A million digits: too large, found in linear time.
+  const std::string digits(1000000, '7');
+  const DataError e = ParseError("1," + digits + "\n");
+  EXPECT_NE(e.problem().find("is too large for a double"), std::string::npos);
+  // A million zeros after the point and then a digit: tiny, reads as zero.
+  const MatrixXd X = Parse("1,0." + std::string(1000000, '0') + "1\n");
+  EXPECT_EQ(X(0, 1), 0.0);
+  // Absurd exponents.
+  ExpectError("1,1e99999999999999999999999\n", 1, 3,
+              "'1e99999999999999999999999' is too large for a double (it would be Inf)");
+  EXPECT_EQ(Parse("1,1e-99999999999999999999999\n")(0, 1), 0.0);
+}
+
+TEST(IoDelimited, MillionsOfColumnsThenRagged) {
+  std::string text;
+  text.reserve(4000000);
+  for (int j = 0; j < 1000000; ++j) text += "1,";
+  text += "1\n1,2\n";
+  const DataError e = ParseError(text);
+  EXPECT_STREQ(e.what(), "A.csv:2: row has 2 fields, expected 1000001 (as in line 1)");
+}
+
+TEST(IoDelimited, HugeColumnNumberInError) {
+  const std::string text = "1 2\n1" + std::string(1000000, ' ') + "x\n";
+  ExpectError(text, 2, 1000002, "'x' is not a number");
+}
+
+TEST(IoDelimited, ManyQuotes) {
+  const std::string text = "\"" + std::string(1000000, '"') + "\n1\n";
+  EXPECT_NO_FATAL_FAILURE(ParseError(text));
+}
+
+TEST(IoDelimited, OnlySeparators) {
+  ExpectError(",,,,\n", 1, 1, "empty field: the line starts with ','");
+  ExpectError(";\n1\n", 1, 1, "empty field: the line starts with ';'");
+}
+
+}  // namespace

@@ -1,0 +1,103 @@
+// Higham's nearest symmetric positive (semi)definite matrix.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+
+#include "spdfit/nearest_spd.hpp"
+#include "test_support.hpp"
+
+namespace spdfit {
+namespace {
+
+using test::Generator;
+using test::kEps;
+
+double min_eigenvalue(const MatrixXd& X) {
+  return Eigen::SelfAdjointEigenSolver<MatrixXd>(X, Eigen::EigenvaluesOnly).eigenvalues()(0);
+}
+
+TEST(NearestSpd, IsSymmetricSemidefiniteAndHighamsFormula) {
+  Generator g(51);
+  const MatrixXd X = g.gaussian(6, 6);
+  const NearestSpdResult r = nearest_spd(X);
+  EXPECT_TRUE(r.X == r.X.transpose());
+  EXPECT_GE(min_eigenvalue(r.X), -10 * 6 * kEps * r.X.norm());
+  // Higham / thesis eq. 4.39: (S + H)/2 with H the polar factor of S = (X + X^T)/2, via SVD.
+  const MatrixXd S = 0.5 * (X + X.transpose());
+  Eigen::JacobiSVD<MatrixXd> svd(S, Eigen::ComputeFullV);
+  const MatrixXd H = svd.matrixV() * svd.singularValues().asDiagonal() * svd.matrixV().transpose();
+  EXPECT_LT(test::relative_error(r.X, 0.5 * (S + H)), 1e-14);
+  EXPECT_NEAR(r.distance, (X - r.X).norm(), 1e-14 * X.norm());
+  EXPECT_GT(r.clipped, 0);
+}
+
+TEST(NearestSpd, IsCloserThanOtherPositiveSemidefiniteMatrices) {
+  Generator g(52);
+  const MatrixXd X = g.gaussian(5, 5);
+  const NearestSpdResult r = nearest_spd(X);
+  const double best = (X - r.X).norm();
+  const MatrixXd S = 0.5 * (X + X.transpose());
+  Eigen::SelfAdjointEigenSolver<MatrixXd> eig(S);
+  const MatrixXd& W = eig.eigenvectors();
+  const VectorXd lambda = eig.eigenvalues();
+  // Other ways to make S semidefinite: its polar factor |S|, a shift by -lambda_min, and
+  // clipping the negative eigenvalues at other nonnegative values.
+  std::vector<MatrixXd> others;
+  others.push_back(W * lambda.cwiseAbs().asDiagonal() * W.transpose());
+  others.push_back(S - lambda(0) * MatrixXd::Identity(5, 5));
+  for (double floor : {1e-3, 0.1, 1.0}) {
+    others.push_back(W * lambda.cwiseMax(floor).asDiagonal() * W.transpose());
+  }
+  // Random semidefinite perturbations of the answer.
+  for (int trial = 0; trial < 200; ++trial) {
+    const MatrixXd G = g.gaussian(5, 2) * (trial % 2 ? 0.01 : 0.5);
+    others.push_back(r.X + G * G.transpose());
+  }
+  for (const MatrixXd& other : others) EXPECT_GE((X - other).norm(), best * (1 - 1e-14));
+}
+
+TEST(NearestSpd, MinimumEigenvalueGivesAStrictlyDefiniteMatrix) {
+  Generator g(53);
+  const MatrixXd X = Generator::symmetrize(g.gaussian(8, 8));
+  for (double floor : {1e-8, 1e-3, 0.5}) {
+    const NearestSpdResult r = nearest_spd(X, floor);
+    EXPECT_TRUE(r.X == r.X.transpose());
+    EXPECT_GE(min_eigenvalue(r.X), floor * (1 - 1e-8) - 10 * 8 * kEps * r.X.norm());
+    EXPECT_GT(min_eigenvalue(r.X), 0.0);
+  }
+}
+
+TEST(NearestSpd, LeavesAnAdmissibleMatrixUnchanged) {
+  Generator g(54);
+  const MatrixXd X = g.spd(6, 100.0);
+  const NearestSpdResult r = nearest_spd(X);
+  EXPECT_TRUE(r.X == X);
+  EXPECT_EQ(r.clipped, 0);
+  EXPECT_EQ(r.distance, 0.0);
+}
+
+TEST(NearestSpd, HandlesEntriesNearTheDoubleRange) {
+  Generator g(55);
+  const MatrixXd X = g.gaussian(4, 4) * 1e300;
+  const NearestSpdResult r = nearest_spd(X);
+  EXPECT_TRUE(r.X.allFinite());
+  EXPECT_TRUE(std::isfinite(r.distance));
+  const NearestSpdResult unit = nearest_spd(X / 1e300);
+  EXPECT_LT(test::relative_error(r.X / 1e300, unit.X), 1e-14);
+}
+
+TEST(NearestSpd, RejectsMisuse) {
+  EXPECT_THROW(nearest_spd(MatrixXd::Ones(2, 3)), std::invalid_argument);
+  EXPECT_THROW(nearest_spd(MatrixXd(0, 0)), std::invalid_argument);
+  EXPECT_THROW(nearest_spd(MatrixXd::Identity(2, 2), -1.0), std::invalid_argument);
+  EXPECT_THROW(nearest_spd(MatrixXd::Identity(2, 2), INFINITY), std::invalid_argument);
+  MatrixXd bad = MatrixXd::Identity(2, 2);
+  bad(0, 1) = std::nan("");
+  EXPECT_THROW(nearest_spd(bad), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace spdfit
