@@ -96,16 +96,20 @@ void emit(const std::string& text, const std::string& path) {
 }
 
 std::string side_by_side(const std::vector<std::string>& titles, const std::vector<Eigen::MatrixXd>& matrices,
-                         int significant_digits, std::size_t width) {
-  // Format every entry first so that each block's column width fits its widest entry.
+                         int digits, std::size_t width) {
+  // Format every entry first so that each block's column width fits its widest entry. Fixed
+  // point with `digits` decimals reads best when the entries are of ordinary size; otherwise
+  // scientific notation.
   std::vector<std::vector<std::string>> cells(matrices.size());
   std::vector<std::size_t> cell_width(matrices.size(), 0);
   for (std::size_t k = 0; k < matrices.size(); ++k) {
     const Eigen::MatrixXd& M = matrices[k];
+    const double biggest = M.size() ? M.cwiseAbs().maxCoeff() : 0.0;
+    const bool fixed = biggest < 1e5 && biggest >= 1e-2;
     for (Eigen::Index i = 0; i < M.rows(); ++i) {
       for (Eigen::Index j = 0; j < M.cols(); ++j) {
         char buffer[40];
-        std::snprintf(buffer, sizeof buffer, "%.*g", significant_digits, M(i, j));
+        std::snprintf(buffer, sizeof buffer, fixed ? "%.*f" : "%.*e", digits, M(i, j));
         cells[k].emplace_back(buffer);
         cell_width[k] = std::max(cell_width[k], cells[k].back().size());
       }
@@ -140,7 +144,18 @@ std::string side_by_side(const std::vector<std::string>& titles, const std::vect
     out << '\n';
     first = last + 1;
   }
-  return out.str();
+  // Drop the padding at line ends.
+  std::string text = out.str(), trimmed;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(start, end - start);
+    line.erase(line.find_last_not_of(' ') + 1);
+    trimmed += line + '\n';
+    start = end + 1;
+  }
+  return trimmed;
 }
 
 }  // namespace spdfit::cli

@@ -28,8 +28,8 @@ std::string matrix_csv(const Eigen::MatrixXd& M);
 /// when the file cannot be written.
 void emit(const std::string& text, const std::string& path);
 
-/// Matrices printed side by side under their titles, with %.*g formatting, wrapped to `width`.
+/// Matrices printed side by side under their titles (`digits` decimals), wrapped to `width`.
 std::string side_by_side(const std::vector<std::string>& titles, const std::vector<Eigen::MatrixXd>& matrices,
-                         int significant_digits = 5, std::size_t width = 110);
+                         int digits = 4, std::size_t width = 120);
 
 }  // namespace spdfit::cli

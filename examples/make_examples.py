@@ -1,0 +1,77 @@
+"""Regenerates the example data sets in examples/ (run with Debian's /usr/bin/python3).
+
+The files are committed; this script documents exactly how they were made:
+  hexapod/    the thesis' appendix-B generator (000, chapter 6, experiment 2 set-up: m = 12
+              samples of n = 6 strut accelerations uniform on [-5, 5], uniform noise with
+              nm = 3.2, i.e. variance 0.86, in accelerations A and forces B = A M_p)
+  paper_2x2/  the paper's second example (001, section IV): X = [3 1; 1 1], A0 4x2,
+              Gaussian noise of std 1.5 in A and 1 in B
+  covariance/ a correlation matrix estimated from incomplete data (pairwise deletion),
+              which is indefinite: repair it with `spdfit nearest --min-eig ...`
+"""
+import pathlib
+
+import numpy as np
+
+HERE = pathlib.Path(__file__).resolve().parent
+
+# Thesis eq. (6.1): UW hexapod joint-space mass-inertia matrix.
+M_P = np.array([
+    [4.6881, 0.1978, -0.4042, 1.7981, -0.4046, 0.6110],
+    [0.1978, 4.6881, 0.6110, -0.4046, 1.7981, -0.4042],
+    [-0.4042, 0.6110, 4.6881, 0.1975, -0.4042, 1.7984],
+    [1.7981, -0.4046, 0.1975, 4.6881, 0.6114, -0.4042],
+    [-0.4046, 1.7981, -0.4042, 0.6114, 4.6881, 0.1975],
+    [0.6110, -0.4042, 1.7984, -0.4042, 0.1975, 4.6881],
+])
+
+
+def save(path, matrix, comment, column_names=None):
+    """CSV with a '#' comment line and, optionally, a header row of column names."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    header = f"# {comment}" + (f"\n{','.join(column_names)}" if column_names else "")
+    np.savetxt(path, matrix, delimiter=",", fmt="%.17g", header=header, comments="")
+
+
+def hexapod(rng):
+    m, n, nm = 12, 6, 3.2
+    accelerations = 10.0 * (rng.random((m, n)) - 0.5)
+    A = accelerations + nm * (rng.random((m, n)) - 0.5)
+    B = accelerations @ M_P + nm * (rng.random((m, n)) - 0.5)
+    names = [f"strut{i + 1}" for i in range(n)]
+    save(HERE / "hexapod/A.csv", A, "payload accelerations along the struts (m/s^2)", names)
+    save(HERE / "hexapod/B.csv", B, "base forces along the struts (N)", names)
+    save(HERE / "hexapod/truth.csv", M_P, "true joint-space mass-inertia matrix M_p, thesis eq. 6.1 (kg)")
+
+
+def paper_2x2(rng):
+    X = np.array([[3.0, 1.0], [1.0, 1.0]])
+    A0 = np.array([[5.0, 2.0], [-3.0, 1.0], [1.0, -2.0], [-1.0, 1.0]])
+    A = A0 + 1.5 * rng.standard_normal(A0.shape)
+    B = A0 @ X + 1.0 * rng.standard_normal(A0.shape)
+    save(HERE / "paper_2x2/A.csv", A, "A0 + noise of std 1.5")
+    save(HERE / "paper_2x2/B.csv", B, "A0 X + noise of std 1")
+    save(HERE / "paper_2x2/truth.csv", X, "true X")
+
+
+def covariance(rng):
+    n, m = 5, 40
+    L = rng.standard_normal((n, n))
+    data = rng.standard_normal((m, n)) @ L.T
+    data[rng.random((m, n)) < 0.35] = np.nan  # missing readings
+    C = np.eye(n)
+    for i in range(n):
+        for j in range(i):
+            both = ~np.isnan(data[:, i]) & ~np.isnan(data[:, j])
+            C[i, j] = C[j, i] = np.corrcoef(data[both, i], data[both, j])[0, 1]
+    # Pairwise deletion does not guarantee a positive semidefinite matrix; make sure this one
+    # shows the problem by pushing one correlation out of the consistent range.
+    C[0, 1] = C[1, 0] = np.clip(C[0, 1] + 0.6 * np.sign(C[0, 1] or 1.0), -0.99, 0.99)
+    assert np.linalg.eigvalsh(C)[0] < 0, "the example must be indefinite"
+    save(HERE / "covariance/C.csv", C, "correlation matrix from pairwise deletion (indefinite)")
+
+
+if __name__ == "__main__":
+    hexapod(np.random.default_rng(2))
+    paper_2x2(np.random.default_rng(7))
+    covariance(np.random.default_rng(11))
