@@ -1,0 +1,124 @@
+// Writing matrices: shortest round-trip decimal text, CSV, and .npy.
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "file_error.hpp"
+#include "npy_header.hpp"
+#include "spdfit/io.hpp"
+
+namespace spdfit::io {
+
+namespace {
+
+std::ofstream open_for_writing(const std::string& path) {
+  errno = 0;
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) {
+    const int error = errno;
+    throw DataError(path, 0, 0,
+                    "cannot be written (" +
+                        (error == ENOENT ? std::string("no such directory")
+                         : error != 0    ? detail::describe_errno(error)
+                                         : std::string("cannot be opened")) +
+                        ")");
+  }
+  return out;
+}
+
+// Closing flushes, so a full disk may show up only here. A failed write earlier leaves the
+// stream failed and errno (cleared before opening) set, so both cases are reported here.
+void finish_writing(std::ofstream& out, const std::string& path) {
+  out.close();
+  if (!out) {
+    const int error = errno;
+    throw DataError(path, 0, 0,
+                    "writing failed (" +
+                        (error != 0 ? detail::describe_errno(error) : std::string("disk full?")) +
+                        ")");
+  }
+}
+
+void append_double(std::string* text, double value) {
+  char buffer[32];
+  if (std::isnan(value)) {
+    text->append("nan");
+  } else if (std::isinf(value)) {
+    text->append(value < 0 ? "-inf" : "inf");
+  } else {
+    // Without a precision, to_chars writes the shortest text that reads back exactly.
+    const std::to_chars_result result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+    text->append(buffer, result.ptr);
+  }
+}
+
+}  // namespace
+
+std::string format_double(double value) {
+  std::string text;
+  append_double(&text, value);
+  return text;
+}
+
+void write_csv(std::ostream& out, const Eigen::Ref<const Eigen::MatrixXd>& X) {
+  std::string line;
+  for (Eigen::Index i = 0; i < X.rows(); ++i) {
+    line.clear();
+    for (Eigen::Index j = 0; j < X.cols(); ++j) {
+      if (j > 0) line += ',';
+      append_double(&line, X(i, j));
+    }
+    line += '\n';
+    out.write(line.data(), static_cast<std::streamsize>(line.size()));
+  }
+}
+
+void write_csv(const std::string& path, const Eigen::Ref<const Eigen::MatrixXd>& X) {
+  std::ofstream out = open_for_writing(path);
+  write_csv(out, X);
+  finish_writing(out, path);
+}
+
+void write_npy(const std::string& path, const Eigen::Ref<const Eigen::MatrixXd>& X) {
+  // Format 1.0 as numpy.save writes it: the dict, padded with spaces and ending in '\n' so
+  // that the data starts on a 64-byte boundary (which lets NumPy memory-map it aligned).
+  std::string dict = "{'descr': '<f8', 'fortran_order': False, 'shape': " +
+                     detail::format_shape({static_cast<std::uint64_t>(X.rows()),
+                                           static_cast<std::uint64_t>(X.cols())}) +
+                     ", }";
+  constexpr std::size_t kPreamble = 10;  // magic, version, 2-byte header length
+  const std::size_t unpadded = kPreamble + dict.size() + 1;
+  dict.append((64 - unpadded % 64) % 64, ' ');
+  dict += '\n';
+
+  std::string head(detail::kNpyMagic);
+  head += '\x01';
+  head += '\x00';
+  head += static_cast<char>(dict.size() & 0xFF);
+  head += static_cast<char>((dict.size() >> 8) & 0xFF);
+  head += dict;
+
+  std::ofstream out = open_for_writing(path);
+  out.write(head.data(), static_cast<std::streamsize>(head.size()));
+  // C order, little-endian, one row at a time to keep the buffer small.
+  std::vector<char> row(static_cast<std::size_t>(X.cols()) * 8);
+  for (Eigen::Index i = 0; i < X.rows(); ++i) {
+    for (Eigen::Index j = 0; j < X.cols(); ++j) {
+      const double value = X(i, j);
+      std::uint64_t bits;
+      std::memcpy(&bits, &value, sizeof(bits));
+      for (int k = 0; k < 8; ++k)
+        row[static_cast<std::size_t>(j) * 8 + k] = static_cast<char>(bits >> (8 * k));
+    }
+    out.write(row.data(), static_cast<std::streamsize>(row.size()));
+  }
+  finish_writing(out, path);
+}
+
+}  // namespace spdfit::io

@@ -1,0 +1,152 @@
+// parse_delimited on input that is not text, or is text built to exhaust time or memory: it
+// must fail with a clear message, in linear time, without crashing.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "spdfit/io.hpp"
+
+namespace {
+
+using Eigen::MatrixXd;
+using spdfit::io::DataError;
+using spdfit::io::parse_delimited;
+using spdfit::io::ReadOptions;
+
+MatrixXd Parse(std::string_view text, ReadOptions options = {}) {
+  return parse_delimited(text, "A.csv", options).values;
+}
+
+// The DataError that parsing `text` throws (a failed test, and an empty error, if none).
+DataError ParseError(std::string_view text, ReadOptions options = {}) {
+  try {
+    parse_delimited(text, "A.csv", options);
+  } catch (const DataError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no DataError for: " << text;
+  return DataError("", 0, 0, "");
+}
+
+void ExpectError(std::string_view text, std::size_t line, std::size_t column,
+                 const std::string& problem) {
+  const DataError e = ParseError(text);
+  EXPECT_EQ(e.source(), "A.csv") << text;
+  EXPECT_EQ(e.line(), line) << e.what();
+  EXPECT_EQ(e.column(), column) << e.what();
+  EXPECT_EQ(e.problem(), problem) << e.what();
+}
+
+// ---- Not text ----------------------------------------------------------------------------------
+
+TEST(IoHostileText, BinaryGarbage) {
+  const DataError nul = ParseError(std::string("1,2\n3,\0\n", 8));
+  EXPECT_EQ(nul.line(), 2u);
+  EXPECT_EQ(nul.column(), 3u);
+  EXPECT_EQ(nul.problem(), "looks like a binary file, not text (NUL byte at byte offset 6)");
+  ExpectError("1,2\n3,\x01\n", 2, 3,
+              "looks like a binary file, not text (control character 0x01 at byte offset 6)");
+  ExpectError("1,2\r3,\x7F\n", 2, 3,
+              "looks like a binary file, not text (control character 0x7F at byte offset 6)");
+  ExpectError("1,2\r\n\x1B\n", 2, 1,
+              "looks like a binary file, not text (control character 0x1B at byte offset 5)");
+  ExpectError(
+      "a\xC3\xA9"
+      "b,\x0C\n",
+      1, 5, "looks like a binary file, not text (control character 0x0C at byte offset 5)");
+  // The offset counts the byte-order mark; the column does not.
+  ExpectError("\xEF\xBB\xBF\x02", 1, 1,
+              "looks like a binary file, not text (control character 0x02 at byte offset 3)");
+  // Binary content is reported even when an earlier line has another error.
+  EXPECT_EQ(ParseError(std::string("abc\n1,x\n\0", 9)).line(), 3u);
+  // A zip file, such as an .xlsx workbook.
+  EXPECT_NE(ParseError(std::string("PK\x03\x04\x14\0\x06\0", 8)).problem().find("binary"),
+            std::string::npos);
+}
+
+TEST(IoHostileText, InvalidUtf8) {
+  const auto expect_invalid = [](const std::string& text, std::size_t line, std::size_t column) {
+    const DataError e = ParseError(text);
+    EXPECT_EQ(e.line(), line) << text;
+    EXPECT_EQ(e.column(), column) << text;
+    EXPECT_NE(e.problem().find("looks like a binary file"), std::string::npos) << e.what();
+    EXPECT_NE(e.problem().find("not valid UTF-8"), std::string::npos) << e.what();
+  };
+  expect_invalid("Temp\xE9rature,x\n1,2\n", 1, 5);  // Latin-1
+  expect_invalid("1,2\n\xC3\x28\n", 2, 1);          // bad continuation
+  expect_invalid("1,2\n\xC0\xAF\n", 2, 1);          // overlong
+  expect_invalid("1,2\n\xED\xA0\x80\n", 2, 1);      // surrogate
+  expect_invalid("1,2\n\xF4\x90\x80\x80\n", 2, 1);  // beyond U+10FFFF
+  expect_invalid("1,2\nx\xE2\x82", 2, 2);           // cut off at the end
+  expect_invalid("\x93NUMPY", 1, 1);                // a broken .npy
+  EXPECT_EQ(ParseError("Temp\xE9rature").problem(),
+            "looks like a binary file, not text (byte 0xE9 that is not valid UTF-8 at byte "
+            "offset 4)");
+}
+
+TEST(IoHostileText, Utf16) {
+  const DataError e =
+      ParseError(std::string("\xFF\xFE"
+                             "1\0,\0"
+                             "2\0",
+                             8));
+  EXPECT_EQ(e.line(), 0u);
+  EXPECT_NE(e.problem().find("UTF-16"), std::string::npos) << e.what();
+}
+
+// ---- Hostile input -----------------------------------------------------------------------------
+
+TEST(IoHostileText, HugeTokenIsShortenedInTheMessage) {
+  const std::string token(1000000, 'x');
+  const DataError e = ParseError("1,2\n1," + token + "\n");
+  EXPECT_EQ(e.column(), 3u);
+  EXPECT_LT(e.problem().size(), 100u);
+  EXPECT_EQ(e.problem(), "'" + std::string(40, 'x') + "...' is not a number");
+}
+
+TEST(IoHostileText, HugeTokenIsShortenedAtACharacterBoundary) {
+  std::string token = "1";
+  for (int i = 0; i < 100; ++i) token += "é";
+  const DataError e = ParseError("1;2\n1;" + token + "\n");
+  EXPECT_EQ(e.problem(), "'1" + std::string(token.substr(1, 38)) + "...' is not a number");
+}
+
+TEST(IoHostileText, HugeNumberTokens) {
+  // A million digits: too large, found in linear time.
+  const std::string digits(1000000, '7');
+  const DataError e = ParseError("1," + digits + "\n");
+  EXPECT_NE(e.problem().find("is too large for a double"), std::string::npos);
+  // A million zeros after the point and then a digit: tiny, reads as zero.
+  const MatrixXd X = Parse("1,0." + std::string(1000000, '0') + "1\n");
+  EXPECT_EQ(X(0, 1), 0.0);
+  // Absurd exponents.
+  ExpectError("1,1e99999999999999999999999\n", 1, 3,
+              "'1e99999999999999999999999' is too large for a double (it would be Inf)");
+  EXPECT_EQ(Parse("1,1e-99999999999999999999999\n")(0, 1), 0.0);
+}
+
+TEST(IoHostileText, MillionsOfColumnsThenRagged) {
+  std::string text;
+  text.reserve(4000000);
+  for (int j = 0; j < 1000000; ++j) text += "1,";
+  text += "1\n1,2\n";
+  const DataError e = ParseError(text);
+  EXPECT_STREQ(e.what(), "A.csv:2: row has 2 fields, expected 1000001 (as in line 1)");
+}
+
+TEST(IoHostileText, HugeColumnNumberInError) {
+  const std::string text = "1 2\n1" + std::string(1000000, ' ') + "x\n";
+  ExpectError(text, 2, 1000002, "'x' is not a number");
+}
+
+TEST(IoHostileText, ManyQuotes) {
+  const std::string text = "\"" + std::string(1000000, '"') + "\n1\n";
+  EXPECT_NO_FATAL_FAILURE(ParseError(text));
+}
+
+TEST(IoHostileText, OnlySeparators) {
+  ExpectError(",,,,\n", 1, 1, "empty field: the line starts with ','");
+  ExpectError(";\n1\n", 1, 1, "empty field: the line starts with ';'");
+}
+
+}  // namespace
