@@ -1,14 +1,13 @@
 #include "linalg.hpp"
 
+#include <Eigen/Householder>
+#include <Eigen/QR>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
 #include <vector>
-
-#include <Eigen/Householder>
-#include <Eigen/QR>
-#include <Eigen/SVD>
 
 #include "one_sided_jacobi.hpp"
 
@@ -41,8 +40,10 @@ Svd svd(const Eigen::Ref<const MatrixXd>& A, bool compute_u, bool compute_v) {
       out.s(k) = norms(j);
       if (compute_u) {
         // A zero singular value has no defined left vector; zero is what the callers expect.
-        if (norms(j) > 0.0) out.U.col(k) = G.col(j) / norms(j);
-        else out.U.col(k).setZero();
+        if (norms(j) > 0.0)
+          out.U.col(k) = G.col(j) / norms(j);
+        else
+          out.U.col(k).setZero();
       }
       if (compute_v) out.V.col(k) = V.col(j);
     }
@@ -85,9 +86,7 @@ MatrixXd triangular_factor(const Eigen::Ref<const MatrixXd>& A) {
   return R;
 }
 
-void make_symmetric_from_lower(MatrixXd& X) {
-  X.triangularView<Eigen::StrictlyUpper>() = X.transpose();
-}
+void make_symmetric_from_lower(MatrixXd& X) { X.triangularView<Eigen::StrictlyUpper>() = X.transpose(); }
 
 MatrixXd symmetric_part(const Eigen::Ref<const MatrixXd>& X) {
   // Halving first keeps entries near the double range finite; addition commutes, so the

@@ -2,9 +2,8 @@
 // library uses goes through here, so that a faster backend is swapped in at one place.
 #pragma once
 
-#include <optional>
-
 #include <Eigen/Core>
+#include <optional>
 
 namespace spdfit::detail {
 

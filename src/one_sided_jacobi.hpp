@@ -11,10 +11,9 @@
 // scaling allows, and the method works for fixed-size matrices without heap allocation.
 #pragma once
 
+#include <Eigen/Core>
 #include <cmath>
 #include <limits>
-
-#include <Eigen/Core>
 
 namespace spdfit::detail {
 

@@ -28,8 +28,7 @@ DataError ParseError(std::string_view text, ReadOptions options = {}) {
   return DataError("", 0, 0, "");
 }
 
-void ExpectError(std::string_view text, std::size_t line, std::size_t column,
-                 const std::string& problem) {
+void ExpectError(std::string_view text, std::size_t line, std::size_t column, const std::string& problem) {
   const DataError e = ParseError(text);
   EXPECT_EQ(e.source(), "A.csv") << text;
   EXPECT_EQ(e.line(), line) << e.what();
@@ -60,8 +59,7 @@ TEST(IoHostileText, BinaryGarbage) {
   // Binary content is reported even when an earlier line has another error.
   EXPECT_EQ(ParseError(std::string("abc\n1,x\n\0", 9)).line(), 3u);
   // A zip file, such as an .xlsx workbook.
-  EXPECT_NE(ParseError(std::string("PK\x03\x04\x14\0\x06\0", 8)).problem().find("binary"),
-            std::string::npos);
+  EXPECT_NE(ParseError(std::string("PK\x03\x04\x14\0\x06\0", 8)).problem().find("binary"), std::string::npos);
 }
 
 TEST(IoHostileText, InvalidUtf8) {
