@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "io_test_support.hpp"
 #include "spdfit/io.hpp"
 
 namespace {
@@ -20,28 +21,9 @@ using spdfit::io::parse_delimited;
 using spdfit::io::ReadOptions;
 using spdfit::io::Table;
 
-MatrixXd Parse(std::string_view text, ReadOptions options = {}) {
-  return parse_delimited(text, "A.csv", options).values;
-}
-
-// The DataError that parsing `text` throws (a failed test, and an empty error, if none).
-DataError ParseError(std::string_view text, ReadOptions options = {}) {
-  try {
-    parse_delimited(text, "A.csv", options);
-  } catch (const DataError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no DataError for: " << text;
-  return DataError("", 0, 0, "");
-}
-
-void ExpectError(std::string_view text, std::size_t line, std::size_t column, const std::string& problem) {
-  const DataError e = ParseError(text);
-  EXPECT_EQ(e.source(), "A.csv") << text;
-  EXPECT_EQ(e.line(), line) << e.what();
-  EXPECT_EQ(e.column(), column) << e.what();
-  EXPECT_EQ(e.problem(), problem) << e.what();
-}
+using spdfit::io::test::ExpectError;
+using spdfit::io::test::Parse;
+using spdfit::io::test::ParseError;
 
 std::uint64_t Bits(double x) {
   std::uint64_t bits;
