@@ -131,13 +131,13 @@ LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<c
   // Minimum-norm least-squares solution with the small singular values edited (eq. 3.21).
   r.solution = dec.V.leftCols(k) * (dec.s.head(k).cwiseInverse().asDiagonal() * (dec.U.leftCols(k).transpose() * B));
   const MatrixXd residual = A * r.solution - B;
-  r.residual_norm = residual.norm();
+  r.residual_norm = residual.stableNorm();
 
   // The projective view, one right-hand side at a time: [A | -b_j] [x; w] = 0.
   r.consistent = true;
   for (Index j = 0; j < r.p; ++j) {
     ColumnClassification c;
-    const double bnorm = B.col(j).norm();
+    const double bnorm = B.col(j).stableNorm();  // no underflow at 1e-200, no overflow at 1e200
     MatrixXd M(r.m, r.n + 1);
     M.leftCols(r.n) = A;
     // Scaling the homogeneous coordinate w changes nothing in the solution set, and putting
@@ -150,8 +150,8 @@ LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<c
     c.consistent = c.augmented_rank <= r.rank;
     c.finite_solution_dimension = c.consistent ? r.nullity : -1;
     c.at_infinity_dimension = r.nullity - 1;
-    c.residual_norm = residual.col(j).norm();
-    const double denominator = smax * r.solution.col(j).norm() + bnorm;
+    c.residual_norm = residual.col(j).stableNorm();
+    const double denominator = smax * r.solution.col(j).stableNorm() + bnorm;
     c.backward_error = denominator > 0.0 ? c.residual_norm / denominator : 0.0;
     r.consistent = r.consistent && c.consistent;
     r.columns.push_back(c);
