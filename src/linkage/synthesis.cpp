@@ -200,36 +200,43 @@ SynthesisResult synthesize(const Eigen::Ref<const VectorXd>& delta_psi_in, const
     step_norm = refined.step_norm;
     rounding_limited = refined.rounding_limited;
   } else {
-    // Start from the design-error fit, or from the grid start when that has the smaller
-    // structural error (the design error favours positions near dead points, where D is small).
-    detail::DialZeroPoint start{k_design, zeros};
-    auto start_objective = detail::structural_objective(delta_psi, delta_phi, weights, start);
-    if (grid_start) {
-      const auto grid_objective = detail::structural_objective(delta_psi, delta_phi, weights, *grid_start);
-      if (grid_objective && (!start_objective || grid_objective->first < start_objective->first)) {
-        start = *grid_start;
-        start_objective = grid_objective;
+    // Start from the design-error fit and from the grid start, and keep the better converged
+    // refinement: the design error favours positions near dead points (where D is small), so the
+    // design fit can be a poor start for the structural error.
+    std::vector<detail::DialZeroPoint> starts = {{k_design, zeros}};
+    if (grid_start) starts.push_back(*grid_start);
+    std::optional<detail::DialZeroFit> best;
+    double best_objective = std::numeric_limits<double>::infinity();
+    int best_branch = 1;
+    std::string failure;
+    for (const detail::DialZeroPoint& start : starts) {
+      const auto start_objective = detail::structural_objective(delta_psi, delta_phi, weights, start);
+      if (!start_objective) continue;
+      const detail::DialZeroFit fit =
+          detail::fit_structural_dial_zeros(delta_psi, delta_phi, weights, start, start_objective->second, settings);
+      if (!fit.gauss_newton.converged) {
+        if (failure.empty()) failure = fit.gauss_newton.message;
+        continue;
+      }
+      const auto objective = detail::structural_objective(delta_psi, delta_phi, weights, fit.point);
+      if (objective && objective->first < best_objective) {
+        best = fit;
+        best_objective = objective->first;
+        best_branch = start_objective->second;
       }
     }
-    if (!start_objective) {
-      r.status = SynthesisStatus::NotAssemblable;
-      r.message = "no real, assemblable linkage to start the structural-error refinement from";
+    if (!best) {
+      r.status = failure.empty() ? SynthesisStatus::NotAssemblable : SynthesisStatus::Diverged;
+      r.message = failure.empty() ? "no real, assemblable linkage to start the structural-error refinement from"
+                                  : "structural-error refinement with dial zeros failed: " + failure;
       return r;
     }
-    const int start_branch = start_objective->second;
-    const detail::DialZeroFit fit =
-        detail::fit_structural_dial_zeros(delta_psi, delta_phi, weights, start, start_branch, settings);
-    if (!fit.gauss_newton.converged) {
-      r.status = SynthesisStatus::Diverged;
-      r.message = "structural-error refinement with dial zeros failed: " + fit.gauss_newton.message;
-      return r;
-    }
-    k_structural = fit.point.k;
-    zeros_structural = fit.point.zeros;
-    iterations = fit.gauss_newton.iterations;
-    step_norm = fit.gauss_newton.step_norm;
-    rounding_limited = fit.gauss_newton.rounding_limited;
-    r.branch = start_branch;
+    k_structural = best->point.k;
+    zeros_structural = best->point.zeros;
+    iterations = best->gauss_newton.iterations;
+    step_norm = best->gauss_newton.step_norm;
+    rounding_limited = best->gauss_newton.rounding_limited;
+    r.branch = best_branch;
   }
   r.structural = describe(k_structural, zeros_structural, delta_psi, delta_phi, weights, r.branch);
   r.structural.iterations = iterations;

@@ -79,7 +79,7 @@ struct SynthesisResult {
 ///  2. the assembly branch whose outputs follow the prescribed ones (nearest_branch);
 ///  3. structural error (section 3.6): Gauss-Newton from the design solution (eq. 3.18; with
 ///     fit_dial_zeros also over alpha and beta, where ds/dbeta = 1 and ds/dalpha = (df/dpsi) /
-///     (df/dphi)), unless there are exactly as many positions as unknowns (3, or 5 with dial zeros:
+///     (df/dphi), from both the design fit and the grid start, keeping the better), unless there are exactly as many positions as unknowns (3, or 5 with dial zeros:
 ///     precision points, section 3.3.3, solved exactly by step 1) or refine is off;
 ///  4. the link lengths of each solution (eq. 3.4) and their check_motion.
 ///
