@@ -42,9 +42,10 @@ Eigen::VectorXd synthesis_rhs(const Eigen::Ref<const Eigen::VectorXd>& psi, cons
 /// `branch` (+1 or -1). Eq. 3.3 is (k2 - cos psi) cos phi - sin psi sin phi + (k1 - k3 cos psi)
 /// = 0, i.e. R cos(phi - theta) = -c with theta = atan2(-sin psi, k2 - cos psi), so
 /// phi = theta + branch * arccos(-c / R), returned in [-pi, pi]. The two branches are the two ways
-/// of assembling the coupler and output link on the diagonal from the input pivot's crank tip
-/// to the output pivot; they meet at the dead points (|c| = R), where the output link and the
-/// coupler are in line. Nothing when the linkage cannot be assembled at psi (|c| > R).
+/// of closing the triangle of the coupler and the output link over the diagonal from the crank
+/// tip to the output pivot (mirror images in that diagonal); they meet at the dead points
+/// (|c| = R), where the output link and the coupler are in line. Nothing when the linkage cannot
+/// be assembled at psi (|c| > R). Cost: O(1).
 std::optional<double> output_angle(const Eigen::Vector3d& k, double psi, int branch);
 
 /// df/dphi = -k2 sin(phi) - sin(psi - phi): the diagonal entries of D (notes section 3.6.1).

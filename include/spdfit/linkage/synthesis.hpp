@@ -24,7 +24,8 @@ struct SynthesisOptions {
   std::optional<double> alpha, beta;
   /// Also solve for alpha and beta (5 unknowns, eq. 3.7) by nonlinear least squares. Without a
   /// starting guess, every (alpha, beta) on a 5-degree grid is tried and the one whose
-  /// design-error linkage has the smallest structural error is the start.
+  /// design-error linkage has the smallest structural error (preferring linkages without a dead
+  /// point in the swept input range) is the start.
   bool fit_dial_zeros = false;
   /// Run the structural-error Gauss-Newton refinement (section 3.6) after the design solution.
   bool refine = true;
