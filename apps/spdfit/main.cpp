@@ -36,6 +36,8 @@ int main(int argc, char** argv) {
       add_fit_command(app, global),
       add_nearest_command(app, global),
       add_compare_command(app, global),
+      add_solve_command(app, global),
+      add_linkage_command(app, global),
   };
 
   try {
