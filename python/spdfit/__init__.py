@@ -21,7 +21,8 @@ import warnings as _warnings
 import numpy as _np
 
 from . import _spdfit
-from ._spdfit import DataError, Diagnostics, FitResult, NearestSpdResult, read_matrix, read_table, write_csv
+from ._spdfit import (DataError, Diagnostics, FitResult, LinearSystemResult, NearestSpdResult, read_matrix,
+                      read_table, write_csv)
 
 __version__ = _spdfit.__version__
 
@@ -29,7 +30,7 @@ METHODS = ("ls", "procrustes", "tls", "tls-sym", "tls-psd", "spde")
 
 __all__ = [
     "METHODS", "DataError", "Diagnostics", "FitResult", "NearestSpdResult", "NumericalError",
-    "SpdfitWarning", "area_criterion", "fit", "fit_all", "least_squares", "nearest_spd", "read_matrix",
+    "LinearSystemResult", "SpdfitWarning", "area_criterion", "solve", "fit", "fit_all", "least_squares", "nearest_spd", "read_matrix",
     "read_table", "spde", "symmetric_procrustes", "total_least_squares", "total_least_squares_psd",
     "total_least_squares_symmetric", "write_csv",
 ]
@@ -153,3 +154,18 @@ def area_criterion(A, B, X):
     For X semidefinite of rank r < n, tr(P X + X^+ Q) - 2 tr(A^T B) (Corollary III.7). None
     when X is not symmetric positive semidefinite."""
     return _spdfit.area_criterion(_as_matrix("A", A), _as_matrix("B", B), _as_matrix("X", X))
+
+
+def solve(A, b, *, threshold=None):
+    """Classify and solve A x = b (lecture notes 002, sections 3.3.2 and 3.7-3.8).
+
+    From the SVD of A with singular values below threshold * sigma_max edited to zero (default
+    max(m, n) eps): rank, nullity, condition number, whether the system is consistent, the
+    dimension of the finite solution set (-1 none, 0 a point, 1 a line, ...) and of the solutions
+    at infinity (the homogeneous [A | -b][x; w] = 0 with w = 0), the minimum-norm least-squares
+    solution, the residual, bases of the null space and range, and an explanation in words.
+    b may have several columns (each is classified on its own)."""
+    result = _spdfit.solve(_as_matrix("A", A), _as_matrix("b", b), threshold)
+    for message in result.warnings:
+        _warnings.warn(message, SpdfitWarning, stacklevel=2)
+    return result

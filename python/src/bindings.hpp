@@ -7,5 +7,7 @@ namespace spdfit::python {
 
 void bind_estimators(pybind11::module_& m);
 void bind_io(pybind11::module_& m);
+void bind_linear_system(pybind11::module_& m);
+void bind_linkage(pybind11::module_& m);
 
 }  // namespace spdfit::python
