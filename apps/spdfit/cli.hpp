@@ -42,6 +42,9 @@ struct Command {
 Command add_fit_command(CLI::App& app, const GlobalOptions& global);
 Command add_nearest_command(CLI::App& app, const GlobalOptions& global);
 Command add_compare_command(CLI::App& app, const GlobalOptions& global);
+Command add_hexapod_command(CLI::App& app, const GlobalOptions& global);
+Command add_experiment_command(CLI::App& app, const GlobalOptions& global);
+Command add_demo_command(CLI::App& app, const GlobalOptions& global);
 
 /// Prints "spdfit: warning: MESSAGE" on stderr unless quiet.
 void warn(const GlobalOptions& global, const std::string& message);

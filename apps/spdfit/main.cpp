@@ -36,6 +36,9 @@ int main(int argc, char** argv) {
       add_fit_command(app, global),
       add_nearest_command(app, global),
       add_compare_command(app, global),
+      add_hexapod_command(app, global),
+      add_experiment_command(app, global),
+      add_demo_command(app, global),
   };
 
   try {

@@ -103,7 +103,7 @@ class Reader {
     if (value.is_string()) return "the string " + value.dump();
     if (value.is_boolean()) return value.dump();
     if (value.is_null()) return "null";
-    return value.dump();
+    return "the number " + value.dump();
   }
 
  private:
