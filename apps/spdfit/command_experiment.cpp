@@ -51,6 +51,8 @@ experiment::MonteCarloOptions monte_carlo(const CommonCli& common, const std::st
 struct SimulationCli {
   hexapod::SimulationOptions options;
   std::string distribution = "uniform";
+  double force_noise_var = 0.0;
+  CLI::Option* force_noise = nullptr;
 };
 
 void add_simulation(CLI::App* sub, SimulationCli& simulation, bool noise_required) {
@@ -62,6 +64,10 @@ void add_simulation(CLI::App* sub, SimulationCli& simulation, bool noise_require
   } else {
     noise->capture_default_str();
   }
+  simulation.force_noise =
+      sub->add_option("--force-noise-var", simulation.force_noise_var,
+                      "Variance of the noise in B when it differs from A's (default: --noise-var, as the thesis)")
+          ->check(non_negative());
   sub->add_option("--samples", simulation.options.samples, "Samples m (rows of A and B)")
       ->check(CLI::Range(Eigen::Index{6}, Eigen::Index{100000000}))
       ->capture_default_str();
@@ -76,14 +82,19 @@ void add_simulation(CLI::App* sub, SimulationCli& simulation, bool noise_require
 hexapod::SimulationOptions simulation_options(const SimulationCli& simulation) {
   hexapod::SimulationOptions options = simulation.options;
   options.distribution = *hexapod::parse_noise_distribution(simulation.distribution);
+  if (simulation.force_noise->count() > 0) options.force_noise_var = simulation.force_noise_var;
   return options;
 }
 
 std::string describe(const hexapod::SimulationOptions& s) {
   std::ostringstream out;
   out << "m = " << s.samples << " samples of 6 strut accelerations (uniform, variance " << fixed(s.signal_var, 3)
-      << "),\n" << hexapod::to_string(s.distribution) << " noise of variance " << s.noise_var
-      << " in every entry of A and B";
+      << "),\n" << hexapod::to_string(s.distribution) << " noise of variance " << s.noise_var;
+  if (s.force_noise_var && *s.force_noise_var != s.noise_var) {
+    out << " in every entry of A and " << *s.force_noise_var << " in every entry of B";
+  } else {
+    out << " in every entry of A and B";
+  }
   return out.str();
 }
 
@@ -145,6 +156,7 @@ Command add_paper_hexapod(CLI::App& parent, const GlobalOptions& global) {
       nlohmann::json out;
       out["experiment"] = "paper-hexapod";
       out["noise_var"] = options.simulation.noise_var;
+      out["force_noise_var"] = options.simulation.force_noise_var.value_or(options.simulation.noise_var);
       out["samples"] = options.simulation.samples;
       out["trials"] = result.trials;
       out["seed"] = result.seed;

@@ -40,7 +40,7 @@ std::string vector_text(const Eigen::VectorXd& v, int digits) {
 
 Command add_model(CLI::App& parent, const GlobalOptions&) {
   struct Cli {
-    std::string geometry, output;
+    std::string geometry, output, write_geometry;
     bool json = false;
   };
   auto cli = std::make_shared<Cli>();
@@ -50,9 +50,12 @@ Command add_model(CLI::App& parent, const GlobalOptions&) {
                   "Geometry file (JSON, SI units; see docs/hexapod.md). Default: the built-in cubic hexapod");
   sub->add_flag("--json", cli->json, "Print everything as JSON, the geometry included (a template for a file)");
   sub->add_option("-o,--output", cli->output, "Write to FILE instead of stdout");
+  sub->add_option("--write-geometry", cli->write_geometry,
+                  "Also write the geometry to FILE in the geometry-file format (a template to edit)");
 
   auto run = [cli]() {
     const hexapod::Geometry geometry = load_geometry(cli->geometry);
+    if (!cli->write_geometry.empty()) emit(hexapod::geometry_json(geometry), cli->write_geometry);
     const hexapod::Matrix6d J = hexapod::jacobian(geometry);
     const hexapod::Matrix6d Mp = hexapod::joint_space_mass_matrix(geometry);
     const hexapod::Vector6d modes = hexapod::modal_frequencies_hz(geometry);
@@ -97,6 +100,7 @@ Command add_simulate(CLI::App& parent, const GlobalOptions& global) {
     hexapod::SimulationOptions options;
     std::string distribution = "uniform", truth = "thesis", geometry, out;
     std::uint64_t seed = 1;
+    double force_noise_var = 0.0;
   };
   auto cli = std::make_shared<Cli>();
   CLI::App* sub = parent.add_subcommand(
@@ -107,6 +111,10 @@ Command add_simulate(CLI::App& parent, const GlobalOptions& global) {
   sub->add_option("--noise-var", cli->options.noise_var, "Variance V of the noise in every entry of A and B")
       ->required()
       ->check(non_negative());
+  auto* force_noise =
+      sub->add_option("--force-noise-var", cli->force_noise_var,
+                      "Variance of the noise in B when it differs from A's (default: --noise-var, as the thesis)")
+          ->check(non_negative());
   sub->add_option("--signal-var", cli->options.signal_var,
                   "Variance S of the true accelerations, uniform on [-sqrt(3 S), sqrt(3 S)] (default 25/3: [-5, 5])")
       ->check(positive());
@@ -122,7 +130,7 @@ Command add_simulate(CLI::App& parent, const GlobalOptions& global) {
       ->capture_default_str();
   sub->add_option("--out", cli->out, "Directory to write A.csv, B.csv, truth.csv and simulation.json to")->required();
 
-  auto run = [cli, &global]() {
+  auto run = [cli, force_noise, &global]() {
     Eigen::MatrixXd M;
     std::string truth_source;
     if (!cli->geometry.empty()) {
@@ -142,6 +150,7 @@ Command add_simulate(CLI::App& parent, const GlobalOptions& global) {
     }
     hexapod::SimulationOptions options = cli->options;
     options.distribution = *hexapod::parse_noise_distribution(cli->distribution);
+    if (force_noise->count() > 0) options.force_noise_var = cli->force_noise_var;
     if (options.samples < M.rows()) {
       warn(global, "fewer samples (" + std::to_string(options.samples) + ") than M_p has columns (" +
                        std::to_string(M.rows()) + "): the estimators need m >= n");
@@ -160,6 +169,7 @@ Command add_simulate(CLI::App& parent, const GlobalOptions& global) {
     nlohmann::json settings;
     settings["samples"] = options.samples;
     settings["noise_var"] = options.noise_var;
+    settings["force_noise_var"] = options.force_noise_var.value_or(options.noise_var);
     settings["signal_var"] = options.signal_var;
     settings["distribution"] = cli->distribution;
     settings["truth"] = truth_source;

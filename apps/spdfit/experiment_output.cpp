@@ -37,6 +37,7 @@ json thesis_json(const experiment::ThesisExperimentResult& result) {
   json out;
   out["experiment"] = "thesis";
   out["noise_var"] = result.options.simulation.noise_var;
+  out["force_noise_var"] = result.options.simulation.force_noise_var.value_or(result.options.simulation.noise_var);
   out["samples"] = result.options.simulation.samples;
   out["trials"] = result.trials;
   out["seed"] = result.seed;

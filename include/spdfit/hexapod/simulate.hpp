@@ -28,14 +28,17 @@ std::optional<NoiseDistribution> parse_noise_distribution(std::string_view name)
 /// The generator's settings. The defaults are the thesis' chapter-6 set-up.
 struct SimulationOptions {
   Eigen::Index samples = 12;   ///< m, rows of A and B
-  double noise_var = 0.0;      ///< V: variance of the noise in every entry of A and B
+  double noise_var = 0.0;      ///< V: variance of the noise in every entry of A (and of B)
+  /// Variance of the noise in B when it differs from A's (force and acceleration sensors
+  /// seldom share a noise level); nothing means noise_var, as in the thesis.
+  std::optional<double> force_noise_var;
   /// S: variance of the true accelerations, uniform on [-sqrt(3 S), sqrt(3 S)]. The thesis
   /// draws 10 (rand - 0.5), uniform on [-5, 5]: S = 25/3 (its text rounds this to 8.2).
   double signal_var = 25.0 / 3.0;
   NoiseDistribution distribution = NoiseDistribution::Uniform;
 
-  /// True when usable (samples >= 1, noise_var >= 0 and signal_var > 0, finite); otherwise
-  /// `error` says why.
+  /// True when usable (samples >= 1, noise_var and force_noise_var >= 0, signal_var > 0, all
+  /// finite); otherwise `error` says why.
   bool is_valid(std::string* error = nullptr) const;
 };
 
@@ -49,7 +52,7 @@ struct Measurements {
 
 /// The thesis generator (appendix B): A_true uniform with variance S; B_true = A_true M;
 /// A = A_true + noise, B = B_true + noise, with independent noise of variance V in every
-/// entry. Draws in the M-file's order (A_true, A's noise, B's noise), each matrix column by
+/// entry (of variance force_noise_var in B, when given). Draws in the M-file's order (A_true, A's noise, B's noise), each matrix column by
 /// column as MATLAB's rand([m, n]) fills it, from `random` (so the numbers are reproducible;
 /// see Random). `truth` is n x n; the thesis' is thesis_mass_matrix().
 ///
