@@ -127,6 +127,20 @@ TEST(HexapodSimulate, SignalAndNoiseHaveTheRequestedVariances) {
   }
 }
 
+TEST(HexapodSimulate, ForceNoiseCanHaveItsOwnVariance) {
+  SimulationOptions options;
+  options.samples = 20000;
+  options.noise_var = 0.1;
+  options.force_noise_var = 2.0;
+  Random random(35);
+  const Measurements data = hexapod::simulate(hexapod::thesis_mass_matrix(), options, random);
+  const double count = static_cast<double>(data.A.size());
+  EXPECT_NEAR(moments(data.A - data.A_true).variance, 0.1, kSigmas * std::sqrt(0.8 / count) * 0.1);
+  EXPECT_NEAR(moments(data.B - data.B_true).variance, 2.0, kSigmas * std::sqrt(0.8 / count) * 2.0);
+  options.force_noise_var = -1.0;
+  EXPECT_THROW(hexapod::simulate(hexapod::thesis_mass_matrix(), options, random), std::invalid_argument);
+}
+
 TEST(HexapodSimulate, DefaultSignalIsUniformOnMinusFiveToFive) {
   SimulationOptions options;
   options.samples = 5000;
