@@ -22,3 +22,11 @@ fi
 jobs=$(nproc 2>/dev/null || echo 2)
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build --parallel "$jobs"
+
+# Install (default prefix /usr/local) so that `spdfit` is on PATH and Debian's
+# /usr/bin/python3 can `import spdfit` from any directory.
+if [ "$(id -u)" = "0" ]; then
+  cmake --install build >/dev/null
+else
+  echo "setup: not root, so not installing; use build/apps/spdfit and PYTHONPATH=build/python" >&2
+fi

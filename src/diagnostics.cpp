@@ -1,10 +1,9 @@
 #include "diagnostics.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <cstdio>
 #include <limits>
-
-#include <Eigen/Eigenvalues>
 
 #include "linalg.hpp"
 
@@ -111,8 +110,8 @@ FitResult finish(Method method, const Reduction& data, const MatrixXd& X_s, Diag
   result.warnings = std::move(warnings);
   if (!result.X.allFinite()) {
     result.status = Status::NumericalFailure;
-    result.message = std::string(to_string(method)) +
-                     ": the estimate overflows the range of double precision numbers";
+    result.message =
+        std::string(to_string(method)) + ": the estimate overflows the range of double precision numbers";
     result.X.resize(0, 0);
   }
   return result;

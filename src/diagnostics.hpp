@@ -15,8 +15,8 @@ namespace spdfit::detail {
 /// fills every common diagnostic (ranks, condition numbers, residual, definiteness, area
 /// criterion), appends the common warnings, and converts X to the data's units. The
 /// method-specific diagnostics already in `diagnostics` are kept.
-FitResult finish(Method method, const Reduction& data, const Eigen::MatrixXd& X_s,
-                 Diagnostics diagnostics, std::vector<std::string> warnings);
+FitResult finish(Method method, const Reduction& data, const Eigen::MatrixXd& X_s, Diagnostics diagnostics,
+                 std::vector<std::string> warnings);
 
 /// A failed result: no estimate, the common diagnostics of the data, and the message.
 FitResult failure(Method method, const Reduction& data, std::string message,

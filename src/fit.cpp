@@ -11,12 +11,18 @@ using Eigen::MatrixXd;
 
 FitResult fit(const Reduction& data, Method method) {
   switch (method) {
-    case Method::LeastSquares: return least_squares(data);
-    case Method::SymmetricProcrustes: return symmetric_procrustes(data);
-    case Method::TotalLeastSquares: return total_least_squares(data);
-    case Method::TotalLeastSquaresSymmetric: return total_least_squares_symmetric(data);
-    case Method::TotalLeastSquaresPsd: return total_least_squares_psd(data);
-    case Method::Spde: return spde(data);
+    case Method::LeastSquares:
+      return least_squares(data);
+    case Method::SymmetricProcrustes:
+      return symmetric_procrustes(data);
+    case Method::TotalLeastSquares:
+      return total_least_squares(data);
+    case Method::TotalLeastSquaresSymmetric:
+      return total_least_squares_symmetric(data);
+    case Method::TotalLeastSquaresPsd:
+      return total_least_squares_psd(data);
+    case Method::Spde:
+      return spde(data);
   }
   return spde(data);  // unreachable: every enumerator is handled above
 }

@@ -19,8 +19,7 @@ FitResult least_squares(const Reduction& data) {
     const Eigen::Index r = data.rank_a;
     X_s = data.V_a.leftCols(r) *
           (data.s_a.head(r).cwiseInverse().asDiagonal() * (data.U_a.leftCols(r).transpose() * data.R12));
-    warnings.push_back("A is rank-deficient (rank " + std::to_string(r) + " < n = " +
-                       std::to_string(data.n) +
+    warnings.push_back("A is rank-deficient (rank " + std::to_string(r) + " < n = " + std::to_string(data.n) +
                        "): returning the minimum-norm least-squares solution from the edited SVD");
   }
   return detail::finish(Method::LeastSquares, data, X_s, {}, std::move(warnings));

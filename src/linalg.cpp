@@ -1,36 +1,61 @@
 #include "linalg.hpp"
 
-#include <cmath>
-#include <limits>
-
 #include <Eigen/Householder>
 #include <Eigen/QR>
 #include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <vector>
+
+#include "one_sided_jacobi.hpp"
 
 namespace spdfit::detail {
 
 namespace {
-// Above this size divide and conquer is much faster than one-sided Jacobi and as accurate
-// in the normwise sense the estimators need (Eigen's own switch-over is 16).
-constexpr Index kJacobiMaxSize = 32;
+// Up to this size the one-sided Jacobi SVD (accurate for the small singular values the
+// estimators depend on, see one_sided_jacobi.hpp) is used; above it divide and conquer, which
+// is much faster for large n.
+constexpr Index kJacobiMaxSize = 64;
 }  // namespace
 
 Svd svd(const Eigen::Ref<const MatrixXd>& A, bool compute_u, bool compute_v) {
+  Svd out;
+  if (A.cols() <= kJacobiMaxSize && A.rows() >= A.cols()) {
+    MatrixXd G = A;
+    MatrixXd V;
+    one_sided_jacobi(G, compute_v ? &V : static_cast<MatrixXd*>(nullptr));
+    const Index n = A.cols();
+    const VectorXd norms = G.colwise().norm();
+    // Sort descending: the order every caller (ranks, TLS's trailing vectors) relies on.
+    std::vector<Index> order(n);
+    std::iota(order.begin(), order.end(), Index{0});
+    std::stable_sort(order.begin(), order.end(), [&](Index i, Index j) { return norms(i) > norms(j); });
+    out.s.resize(n);
+    if (compute_u) out.U.resize(A.rows(), n);
+    if (compute_v) out.V.resize(n, n);
+    for (Index k = 0; k < n; ++k) {
+      const Index j = order[k];
+      out.s(k) = norms(j);
+      if (compute_u) {
+        // A zero singular value has no defined left vector; zero is what the callers expect.
+        if (norms(j) > 0.0)
+          out.U.col(k) = G.col(j) / norms(j);
+        else
+          out.U.col(k).setZero();
+      }
+      if (compute_v) out.V.col(k) = V.col(j);
+    }
+    return out;
+  }
   unsigned options = 0;
   if (compute_u) options |= Eigen::ComputeThinU;
   if (compute_v) options |= Eigen::ComputeThinV;
-  Svd out;
-  if (std::max(A.rows(), A.cols()) <= kJacobiMaxSize) {
-    Eigen::JacobiSVD<MatrixXd> dec(A, options);
-    out.s = dec.singularValues();
-    if (compute_u) out.U = dec.matrixU();
-    if (compute_v) out.V = dec.matrixV();
-  } else {
-    Eigen::BDCSVD<MatrixXd> dec(A, options);
-    out.s = dec.singularValues();
-    if (compute_u) out.U = dec.matrixU();
-    if (compute_v) out.V = dec.matrixV();
-  }
+  Eigen::BDCSVD<MatrixXd> dec(A, options);
+  out.s = dec.singularValues();
+  if (compute_u) out.U = dec.matrixU();
+  if (compute_v) out.V = dec.matrixV();
   return out;
 }
 
@@ -61,9 +86,7 @@ MatrixXd triangular_factor(const Eigen::Ref<const MatrixXd>& A) {
   return R;
 }
 
-void make_symmetric_from_lower(MatrixXd& X) {
-  X.triangularView<Eigen::StrictlyUpper>() = X.transpose();
-}
+void make_symmetric_from_lower(MatrixXd& X) { X.triangularView<Eigen::StrictlyUpper>() = X.transpose(); }
 
 MatrixXd symmetric_part(const Eigen::Ref<const MatrixXd>& X) {
   // Halving first keeps entries near the double range finite; addition commutes, so the

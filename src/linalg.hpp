@@ -2,9 +2,8 @@
 // library uses goes through here, so that a faster backend is swapped in at one place.
 #pragma once
 
-#include <optional>
-
 #include <Eigen/Core>
+#include <optional>
 
 namespace spdfit::detail {
 
@@ -18,8 +17,8 @@ struct Svd {
   VectorXd s;
 };
 
-/// The SVD of a square or tall matrix. Jacobi (accurate on graded matrices) for small sizes,
-/// divide and conquer for large ones.
+/// The SVD of a square or tall matrix: one-sided Jacobi (accurate small singular vectors, see
+/// one_sided_jacobi.hpp) up to 64 columns, divide and conquer above.
 Svd svd(const Eigen::Ref<const MatrixXd>& A, bool compute_u = true, bool compute_v = true);
 
 /// The singular values only, descending.

@@ -1,9 +1,8 @@
 #include "spdfit/nearest_spd.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <stdexcept>
-
-#include <Eigen/Eigenvalues>
 
 #include "linalg.hpp"
 

@@ -15,8 +15,8 @@ FitResult spde(const Reduction& data) {
   const Index n = data.n;
   if (data.rank_a < n) {
     return detail::failure(Method::Spde, data,
-                           "spde: A is rank-deficient (rank " + std::to_string(data.rank_a) + " < n = " +
-                               std::to_string(n) +
+                           "spde: A is rank-deficient (rank " + std::to_string(data.rank_a) +
+                               " < n = " + std::to_string(n) +
                                "), so the area criterion has no minimizer: "
                                "collect data that excites every direction of A");
   }
@@ -37,8 +37,7 @@ FitResult spde(const Reduction& data) {
     // of B (R11 is invertible); its trailing singular values are rounding noise: drop them.
     r = data.rank_b;
     s.tail(n - r).setZero();
-    warnings.push_back("B is rank-deficient (rank " + std::to_string(r) + " < n = " +
-                       std::to_string(n) +
+    warnings.push_back("B is rank-deficient (rank " + std::to_string(r) + " < n = " + std::to_string(n) +
                        "): returning the positive semidefinite minimizer of rank " + std::to_string(r) +
                        " (Chen & McInroy, Corollary III.7)");
   }
@@ -59,8 +58,9 @@ FitResult spde(const Reduction& data) {
   if (result.ok() && r == n && !result.diagnostics.positive_definite) {
     result.warnings.push_back(
         "the estimate is positive definite in exact arithmetic but numerically singular "
-        "(smallest eigenvalue " + detail::format_number(result.diagnostics.min_eigenvalue.value_or(0.0)) +
-        " against largest " + detail::format_number(result.diagnostics.max_eigenvalue.value_or(0.0)) + ")");
+        "(smallest eigenvalue " +
+        detail::format_number(result.diagnostics.min_eigenvalue.value_or(0.0)) + " against largest " +
+        detail::format_number(result.diagnostics.max_eigenvalue.value_or(0.0)) + ")");
   }
   return result;
 }

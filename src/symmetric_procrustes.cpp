@@ -45,12 +45,12 @@ FitResult symmetric_procrustes(const Reduction& data) {
   Eigen::SelfAdjointEigenSolver<MatrixXd> eig(cross + cross.transpose(), Eigen::EigenvaluesOnly);
   d.cross_term_positive_definite = eig.info() == Eigen::Success && eig.eigenvalues()(0) > 0.0;
 
-  FitResult result = detail::finish(Method::SymmetricProcrustes, data, X_s, std::move(d), std::move(warnings));
+  FitResult result =
+      detail::finish(Method::SymmetricProcrustes, data, X_s, std::move(d), std::move(warnings));
   if (result.ok() && !result.diagnostics.positive_definite) {
     result.warnings.push_back(
         "the procrustes estimate is not positive definite (smallest eigenvalue " +
-        detail::format_number(result.diagnostics.min_eigenvalue.value_or(0.0)) +
-        "); A^T B + B^T A is " +
+        detail::format_number(result.diagnostics.min_eigenvalue.value_or(0.0)) + "); A^T B + B^T A is " +
         (*result.diagnostics.cross_term_positive_definite ? "positive definite" : "not positive definite"));
   }
   return result;

@@ -1,9 +1,8 @@
 #include "spdfit/total_least_squares.hpp"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
-
-#include <Eigen/LU>
 
 #include "diagnostics.hpp"
 #include "linalg.hpp"

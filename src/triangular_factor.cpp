@@ -17,8 +17,8 @@ namespace {
 void check_block(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Index n) {
   if (A.rows() != B.rows() || A.cols() != B.cols()) {
     throw std::invalid_argument("A is " + std::to_string(A.rows()) + "x" + std::to_string(A.cols()) +
-                                " but B is " + std::to_string(B.rows()) + "x" +
-                                std::to_string(B.cols()) + ": they must have the same shape");
+                                " but B is " + std::to_string(B.rows()) + "x" + std::to_string(B.cols()) +
+                                ": they must have the same shape");
   }
   if (A.cols() != n) {
     throw std::invalid_argument("data has " + std::to_string(A.cols()) + " columns, expected " +
@@ -54,7 +54,8 @@ void TriangularFactor::raise_exponents(std::optional<int> ea, std::optional<int>
       return;
     }
     if (*wanted <= *current) return;
-    R_.middleCols(first_col, n_) = detail::times_power_of_two(R_.middleCols(first_col, n_), *current - *wanted);
+    R_.middleCols(first_col, n_) =
+        detail::times_power_of_two(R_.middleCols(first_col, n_), *current - *wanted);
     current = wanted;
   };
   raise(exponent_a_, ea, 0);

@@ -42,6 +42,8 @@ struct Command {
 Command add_fit_command(CLI::App& app, const GlobalOptions& global);
 Command add_nearest_command(CLI::App& app, const GlobalOptions& global);
 Command add_compare_command(CLI::App& app, const GlobalOptions& global);
+Command add_solve_command(CLI::App& app, const GlobalOptions& global);
+Command add_linkage_command(CLI::App& app, const GlobalOptions& global);
 Command add_hexapod_command(CLI::App& app, const GlobalOptions& global);
 Command add_experiment_command(CLI::App& app, const GlobalOptions& global);
 Command add_demo_command(CLI::App& app, const GlobalOptions& global);

@@ -36,6 +36,8 @@ int main(int argc, char** argv) {
       add_fit_command(app, global),
       add_nearest_command(app, global),
       add_compare_command(app, global),
+      add_solve_command(app, global),
+      add_linkage_command(app, global),
       add_hexapod_command(app, global),
       add_experiment_command(app, global),
       add_demo_command(app, global),
@@ -50,7 +52,18 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "spdfit: error: " << e.what() << "\nRun 'spdfit --help' for usage.\n";
+    std::string message = e.what();
+    // CLI11 reports an unknown first word only as a missing subcommand: name it.
+    std::string known;
+    bool is_command = false;
+    for (const Command& command : commands) {
+      known += (known.empty() ? "" : ", ") + command.app->get_name();
+      if (argc > 1 && command.app->get_name() == argv[1]) is_command = true;
+    }
+    if (argc > 1 && argv[1][0] != '-' && !is_command) {
+      message = std::string("unknown command '") + argv[1] + "' (commands: " + known + ")";
+    }
+    std::cerr << "spdfit: error: " << message << "\nRun 'spdfit --help' for usage.\n";
     return kExitUsageError;
   }
 

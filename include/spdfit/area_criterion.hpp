@@ -1,9 +1,8 @@
 // The area criterion of Chen & McInroy, evaluated for a given estimate.
 #pragma once
 
-#include <optional>
-
 #include <Eigen/Core>
+#include <optional>
 
 #include "spdfit/reduction.hpp"
 

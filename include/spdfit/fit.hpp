@@ -1,9 +1,8 @@
 // Running an estimator chosen at run time, or all of them on the same data.
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "spdfit/fit_result.hpp"
 #include "spdfit/method.hpp"
@@ -21,7 +20,6 @@ FitResult fit(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const
 /// Runs every method in kAllMethods on the same data, sharing the QR and the SVDs.
 std::vector<FitResult> fit_all(const Reduction& data);
 std::vector<FitResult> fit_all(const Eigen::Ref<const Eigen::MatrixXd>& A,
-                               const Eigen::Ref<const Eigen::MatrixXd>& B,
-                               const FitOptions& options = {});
+                               const Eigen::Ref<const Eigen::MatrixXd>& B, const FitOptions& options = {});
 
 }  // namespace spdfit

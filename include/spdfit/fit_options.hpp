@@ -1,10 +1,9 @@
 // Knobs shared by every estimator.
 #pragma once
 
+#include <Eigen/Core>
 #include <limits>
 #include <string>
-
-#include <Eigen/Core>
 
 namespace spdfit {
 

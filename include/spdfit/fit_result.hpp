@@ -1,11 +1,10 @@
 // What an estimator returns: the estimate and the evidence a user checks it by.
 #pragma once
 
+#include <Eigen/Core>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "spdfit/method.hpp"
 
@@ -22,18 +21,18 @@ enum class Status {
 /// are those of the data A and B (computed from the triangular factor, not Gram matrices).
 /// Optional entries are present only where they are defined for the method and estimate.
 struct Diagnostics {
-  Eigen::Index m = 0;   ///< rows (samples)
-  Eigen::Index n = 0;   ///< columns; X is n x n
-  Eigen::Index rank_a = 0, rank_b = 0;   ///< numerical ranks (FitOptions::rank_tolerance)
-  double cond_a = 0.0, cond_b = 0.0;     ///< sigma_max / sigma_min; +inf when singular
+  Eigen::Index m = 0;                                    ///< rows (samples)
+  Eigen::Index n = 0;                                    ///< columns; X is n x n
+  Eigen::Index rank_a = 0, rank_b = 0;                   ///< numerical ranks (FitOptions::rank_tolerance)
+  double cond_a = 0.0, cond_b = 0.0;                     ///< sigma_max / sigma_min; +inf when singular
   Eigen::VectorXd singular_values_a, singular_values_b;  ///< descending
 
-  double residual_norm = 0.0;  ///< ||A X - B||_F
-  bool symmetric = false;      ///< X == X^T exactly
-  std::optional<double> min_eigenvalue;    ///< of X, when X is symmetric
-  std::optional<double> max_eigenvalue;    ///< of X, when X is symmetric
-  bool positive_definite = false;          ///< X symmetric with every eigenvalue > 0
-  bool positive_semidefinite = false;      ///< X symmetric, eigenvalues >= -n eps ||X||
+  double residual_norm = 0.0;            ///< ||A X - B||_F
+  bool symmetric = false;                ///< X == X^T exactly
+  std::optional<double> min_eigenvalue;  ///< of X, when X is symmetric
+  std::optional<double> max_eigenvalue;  ///< of X, when X is symmetric
+  bool positive_definite = false;        ///< X symmetric with every eigenvalue > 0
+  bool positive_semidefinite = false;    ///< X symmetric, eigenvalues >= -n eps ||X||
 
   /// The area criterion ||A Y - B Y^-T||_F^2 with X = Y Y^T (Chen & McInroy, Definition II.1),
   /// for a symmetric positive definite X; for a semidefinite X of rank r the criterion
@@ -56,10 +55,10 @@ struct Diagnostics {
 struct FitResult {
   Method method = Method::Spde;
   Status status = Status::Success;
-  std::string message;                 ///< why it failed, when status != Success
-  Eigen::MatrixXd X;                   ///< the estimate (empty on failure)
+  std::string message;  ///< why it failed, when status != Success
+  Eigen::MatrixXd X;    ///< the estimate (empty on failure)
   Diagnostics diagnostics;
-  std::vector<std::string> warnings;   ///< conditions the user should know about
+  std::vector<std::string> warnings;  ///< conditions the user should know about
 
   bool ok() const { return status == Status::Success; }
 };

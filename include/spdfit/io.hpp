@@ -1,14 +1,13 @@
 // Reading matrices from data files (delimited text, .npy) and writing them back.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstddef>
 #include <iosfwd>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace spdfit::io {
 
@@ -54,8 +53,7 @@ Eigen::MatrixXd read_matrix(const std::string& path, const ReadOptions& options 
 
 /// The parsers behind read_table, on bytes already in memory; `source` names them in errors.
 Table parse_delimited(std::string_view text, const std::string& source, const ReadOptions& options = {});
-Eigen::MatrixXd parse_npy(std::string_view bytes, const std::string& source,
-                          const ReadOptions& options = {});
+Eigen::MatrixXd parse_npy(std::string_view bytes, const std::string& source, const ReadOptions& options = {});
 
 /// The shortest decimal text that reads back as exactly `value` ("inf", "-inf", "nan" for
 /// non-finite values).

@@ -9,28 +9,35 @@ namespace spdfit {
 
 /// An estimator of X in A X ~= B. The command-line names are those of `to_string`.
 enum class Method {
-  LeastSquares,                 ///< "ls": X = A^+ B (thesis 000 section 3.1)
-  SymmetricProcrustes,          ///< "procrustes": symmetric least squares (thesis eq. 3.15)
-  TotalLeastSquares,            ///< "tls": X = -V12 V22^-1 (thesis eq. 4.37)
-  TotalLeastSquaresSymmetric,   ///< "tls-sym": (X_TLS + X_TLS^T) / 2 (thesis eq. 4.38)
-  TotalLeastSquaresPsd,         ///< "tls-psd": Higham's nearest PSD matrix to X_TLS (thesis eq. 4.39)
-  Spde,                         ///< "spde": the area-criterion estimate (Chen & McInroy, Thm III.3)
+  LeastSquares,                ///< "ls": X = A^+ B (thesis 000 section 3.1)
+  SymmetricProcrustes,         ///< "procrustes": symmetric least squares (thesis eq. 3.15)
+  TotalLeastSquares,           ///< "tls": X = -V12 V22^-1 (thesis eq. 4.37)
+  TotalLeastSquaresSymmetric,  ///< "tls-sym": (X_TLS + X_TLS^T) / 2 (thesis eq. 4.38)
+  TotalLeastSquaresPsd,        ///< "tls-psd": Higham's nearest PSD matrix to X_TLS (thesis eq. 4.39)
+  Spde,                        ///< "spde": the area-criterion estimate (Chen & McInroy, Thm III.3)
 };
 
 /// Every method, in the order reports list them.
 inline constexpr std::array<Method, 6> kAllMethods = {
-    Method::LeastSquares,         Method::SymmetricProcrustes,        Method::TotalLeastSquares,
-    Method::TotalLeastSquaresSymmetric, Method::TotalLeastSquaresPsd, Method::Spde};
+    Method::LeastSquares,         Method::SymmetricProcrustes,
+    Method::TotalLeastSquares,    Method::TotalLeastSquaresSymmetric,
+    Method::TotalLeastSquaresPsd, Method::Spde};
 
 /// The method's command-line name: "ls", "procrustes", "tls", "tls-sym", "tls-psd" or "spde".
 constexpr std::string_view to_string(Method method) {
   switch (method) {
-    case Method::LeastSquares: return "ls";
-    case Method::SymmetricProcrustes: return "procrustes";
-    case Method::TotalLeastSquares: return "tls";
-    case Method::TotalLeastSquaresSymmetric: return "tls-sym";
-    case Method::TotalLeastSquaresPsd: return "tls-psd";
-    case Method::Spde: return "spde";
+    case Method::LeastSquares:
+      return "ls";
+    case Method::SymmetricProcrustes:
+      return "procrustes";
+    case Method::TotalLeastSquares:
+      return "tls";
+    case Method::TotalLeastSquaresSymmetric:
+      return "tls-sym";
+    case Method::TotalLeastSquaresPsd:
+      return "tls-psd";
+    case Method::Spde:
+      return "spde";
   }
   return "unknown";
 }

@@ -7,9 +7,9 @@ namespace spdfit {
 
 /// The result of nearest_spd.
 struct NearestSpdResult {
-  Eigen::MatrixXd X;            ///< the nearest matrix; exactly symmetric
-  double distance = 0.0;        ///< ||X_in - X||_F
-  Eigen::Index clipped = 0;     ///< eigenvalues of the symmetric part raised to min_eig
+  Eigen::MatrixXd X;                   ///< the nearest matrix; exactly symmetric
+  double distance = 0.0;               ///< ||X_in - X||_F
+  Eigen::Index clipped = 0;            ///< eigenvalues of the symmetric part raised to min_eig
   double min_eigenvalue_before = 0.0;  ///< of the symmetric part of the input
 };
 

@@ -24,7 +24,6 @@ namespace spdfit {
 /// Preconditions: as least_squares. Cost: O(m n^2) for the factor, O(n^3) after it.
 FitResult symmetric_procrustes(const Reduction& data);
 FitResult symmetric_procrustes(const Eigen::Ref<const Eigen::MatrixXd>& A,
-                               const Eigen::Ref<const Eigen::MatrixXd>& B,
-                               const FitOptions& options = {});
+                               const Eigen::Ref<const Eigen::MatrixXd>& B, const FitOptions& options = {});
 
 }  // namespace spdfit

@@ -22,8 +22,7 @@ namespace spdfit {
 /// Preconditions: as least_squares. Cost: O(m n^2) for the factor, O(n^3) after it.
 FitResult total_least_squares(const Reduction& data);
 FitResult total_least_squares(const Eigen::Ref<const Eigen::MatrixXd>& A,
-                              const Eigen::Ref<const Eigen::MatrixXd>& B,
-                              const FitOptions& options = {});
+                              const Eigen::Ref<const Eigen::MatrixXd>& B, const FitOptions& options = {});
 
 /// The symmetric part (X_TLS + X_TLS^T) / 2 of the TLS estimate (thesis eq. 4.38): the nearest
 /// symmetric matrix to it in the Frobenius norm. Fails where total_least_squares fails.
@@ -36,7 +35,6 @@ FitResult total_least_squares_symmetric(const Eigen::Ref<const Eigen::MatrixXd>&
 /// (thesis eq. 4.39, section 3.3; see nearest_spd). Fails where total_least_squares fails.
 FitResult total_least_squares_psd(const Reduction& data);
 FitResult total_least_squares_psd(const Eigen::Ref<const Eigen::MatrixXd>& A,
-                                  const Eigen::Ref<const Eigen::MatrixXd>& B,
-                                  const FitOptions& options = {});
+                                  const Eigen::Ref<const Eigen::MatrixXd>& B, const FitOptions& options = {});
 
 }  // namespace spdfit

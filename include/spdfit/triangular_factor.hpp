@@ -2,9 +2,8 @@
 // estimator needs, without forming the Gram matrices A^T A or B^T B.
 #pragma once
 
-#include <optional>
-
 #include <Eigen/Core>
+#include <optional>
 
 namespace spdfit {
 
@@ -44,7 +43,7 @@ class TriangularFactor {
   void merge(const TriangularFactor& other);
 
   Eigen::Index n() const { return n_; }
-  Eigen::Index rows() const { return rows_; }   ///< m, the number of rows accumulated
+  Eigen::Index rows() const { return rows_; }  ///< m, the number of rows accumulated
   /// A is stored as A 2^-exponent_a() (0 while A has been all zero); likewise B.
   int exponent_a() const { return exponent_a_.value_or(0); }
   int exponent_b() const { return exponent_b_.value_or(0); }

@@ -23,8 +23,7 @@ std::string format_message(const std::string& source, std::size_t line, std::siz
 
 }  // namespace
 
-DataError::DataError(std::string source, std::size_t line, std::size_t column,
-                     const std::string& problem)
+DataError::DataError(std::string source, std::size_t line, std::size_t column, const std::string& problem)
     : std::runtime_error(format_message(source, line, column, problem)),
       source_(std::move(source)),
       line_(line),

@@ -24,9 +24,7 @@ using detail::SplitStatus;
 
 constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
 
-bool is_blank(char c) {
-  return c == ' ' || c == '\t';
-}
+bool is_blank(char c) { return c == ' ' || c == '\t'; }
 
 // One line of the text, without its line end.
 struct Line {
@@ -110,9 +108,8 @@ Table DelimitedParser::parse() {
     }
     if (fields != columns) {
       fail(line, std::string_view::npos,
-           "row has " + std::to_string(fields) + (fields == 1 ? " field" : " fields") +
-               ", expected " + std::to_string(columns) + " (as in line " +
-               std::to_string(columns_line) + ")");
+           "row has " + std::to_string(fields) + (fields == 1 ? " field" : " fields") + ", expected " +
+               std::to_string(columns) + " (as in line " + std::to_string(columns_line) + ")");
     }
     ++rows;
   }
@@ -173,9 +170,12 @@ bool DelimitedParser::next_line(Line* line) {
 
 bool DelimitedParser::next_field(const Line& line, FieldSplitter* splitter, Field* field) const {
   switch (splitter->next(field)) {
-    case SplitStatus::kField: return true;
-    case SplitStatus::kEnd: return false;
-    case SplitStatus::kMissingClosingQuote: fail(line, field->offset, "missing closing quote");
+    case SplitStatus::kField:
+      return true;
+    case SplitStatus::kEnd:
+      return false;
+    case SplitStatus::kMissingClosingQuote:
+      fail(line, field->offset, "missing closing quote");
     case SplitStatus::kTextAfterClosingQuote:
       fail(line, field->offset, "unexpected text after closing quote");
   }
@@ -215,8 +215,7 @@ void DelimitedParser::choose_separator_after_header(const Line& header, const Li
            std::to_string(header.number) + ") uses " + separator_name(separator_));
 }
 
-std::vector<std::string> DelimitedParser::column_names(const Line& header,
-                                                       std::size_t data_fields) const {
+std::vector<std::string> DelimitedParser::column_names(const Line& header, std::size_t data_fields) const {
   std::vector<std::string> names;
   FieldSplitter splitter(header.content, separator_);
   Field field;
@@ -254,7 +253,8 @@ double DelimitedParser::parse_value(const Line& line, const Field& field) const 
   const detail::ParsedNumber number = detail::parse_number(field.text);
   const bool negative = number.value < 0;
   switch (number.kind) {
-    case NumberKind::kFinite: return number.value;
+    case NumberKind::kFinite:
+      return number.value;
     case NumberKind::kNaN:
       if (!options_.allow_nonfinite) fail(line, field.offset, "NaN is not allowed");
       return number.value;
@@ -270,13 +270,13 @@ double DelimitedParser::parse_value(const Line& line, const Field& field) const 
                  (negative ? "-Inf)" : "Inf)"));
       }
       return number.value;
-    case NumberKind::kNotANumber: break;
+    case NumberKind::kNotANumber:
+      break;
   }
   fail_not_a_number(line, field);
 }
 
-void DelimitedParser::fail_empty_field(const Line& line, const Field& field,
-                                       std::size_t index) const {
+void DelimitedParser::fail_empty_field(const Line& line, const Field& field, std::size_t index) const {
   const bool tab = separator_ == Separator::kTab;
   const std::string one = tab ? "a tab" : separator_name(separator_);
   if (field.offset >= line.content.size()) {
@@ -331,8 +331,7 @@ void DelimitedParser::fail(const Line& line, std::size_t offset, const std::stri
 
 }  // namespace
 
-Table parse_delimited(std::string_view text, const std::string& source,
-                      const ReadOptions& options) {
+Table parse_delimited(std::string_view text, const std::string& source, const ReadOptions& options) {
   return DelimitedParser(text, source, options).parse();
 }
 

@@ -22,11 +22,15 @@ std::size_t find_closing_quote(std::string_view s, std::size_t open) {
 
 std::string separator_name(Separator separator) {
   switch (separator) {
-    case Separator::kSemicolon: return "';'";
-    case Separator::kComma: return "','";
-    case Separator::kTab: return "tabs";
+    case Separator::kSemicolon:
+      return "';'";
+    case Separator::kComma:
+      return "','";
+    case Separator::kTab:
+      return "tabs";
     case Separator::kSpaces:
-    case Separator::kNone: break;
+    case Separator::kNone:
+      break;
   }
   return "spaces";
 }
@@ -76,9 +80,7 @@ SplitStatus FieldSplitter::next(Field* field) {
                          : separator_ == Separator::kComma   ? ','
                                                              : '\t';
   // Blanks around a separator are padding ("1, 2, 3"); a tab is padding unless it separates.
-  const auto is_padding = [separator](char c) {
-    return c == ' ' || (c == '\t' && separator != '\t');
-  };
+  const auto is_padding = [separator](char c) { return c == ' ' || (c == '\t' && separator != '\t'); };
   std::size_t i = pos_;
   while (i < n && is_padding(s[i])) ++i;
   std::size_t end = 0;

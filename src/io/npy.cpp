@@ -33,8 +33,7 @@ double decode_double(const char* bytes, bool big_endian) {
 
 }  // namespace
 
-Eigen::MatrixXd parse_npy(std::string_view bytes, const std::string& source,
-                          const ReadOptions& options) {
+Eigen::MatrixXd parse_npy(std::string_view bytes, const std::string& source, const ReadOptions& options) {
   const detail::NpyHeader header = detail::parse_npy_header(bytes, source);
 
   const bool big_endian = header.descr == ">f8";
@@ -42,16 +41,14 @@ Eigen::MatrixXd parse_npy(std::string_view bytes, const std::string& source,
     fail(source, "structured dtypes are not supported; save a plain float64 array");
   }
   if (header.descr != "<f8" && !big_endian) {
-    fail(source,
-         "dtype " + detail::quote_token(header.descr) + " is not supported; save as float64");
+    fail(source, "dtype " + detail::quote_token(header.descr) + " is not supported; save as float64");
   }
   const std::string shape = detail::format_shape(header.shape);
   if (header.shape.empty()) fail(source, "shape () is a single number; save a 1-D or 2-D array");
   if (header.shape.size() > 2) {
     // The shape itself only when short: a damaged header may list thousands of dimensions.
     const std::string which = header.shape.size() <= 8 ? "shape " + shape + " has " : "it has ";
-    fail(source,
-         which + std::to_string(header.shape.size()) + " dimensions; save a 1-D or 2-D array");
+    fail(source, which + std::to_string(header.shape.size()) + " dimensions; save a 1-D or 2-D array");
   }
 
   // Check the claimed size against the file before allocating anything, so that a damaged or
@@ -70,8 +67,8 @@ Eigen::MatrixXd parse_npy(std::string_view bytes, const std::string& source,
   }
   const std::uint64_t count = rows * cols;
   if (count != held || data_bytes % 8 != 0) {
-    fail(source, "header claims " + std::to_string(count) + " values, file holds " + holds +
-                     " (shape is " + shape + ")");
+    fail(source, "header claims " + std::to_string(count) + " values, file holds " + holds + " (shape is " +
+                     shape + ")");
   }
   if (count == 0) fail(source, "no data (shape " + shape + ")");
 
@@ -98,8 +95,8 @@ Eigen::MatrixXd parse_npy(std::string_view bytes, const std::string& source,
         const double x = X(i, j);
         if (std::isfinite(x)) continue;
         const std::string what = std::isnan(x) ? "NaN" : x < 0 ? "-Inf" : "Inf";
-        fail(source, "entry (" + std::to_string(i + 1) + ", " + std::to_string(j + 1) + ") is " +
-                         what + " (rows and columns counted from 1)");
+        fail(source, "entry (" + std::to_string(i + 1) + ", " + std::to_string(j + 1) + ") is " + what +
+                         " (rows and columns counted from 1)");
       }
     }
   }

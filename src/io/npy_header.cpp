@@ -201,8 +201,8 @@ NpyHeader parse_npy_header(std::string_view bytes, const std::string& source) {
   const auto major = static_cast<unsigned char>(bytes[6]);
   const auto minor = static_cast<unsigned char>(bytes[7]);
   if (!(major >= 1 && major <= 3 && minor == 0)) {
-    fail(source, "unsupported .npy format version " + std::to_string(major) + "." +
-                     std::to_string(minor) + " (1.0, 2.0 and 3.0 are supported)");
+    fail(source, "unsupported .npy format version " + std::to_string(major) + "." + std::to_string(minor) +
+                     " (1.0, 2.0 and 3.0 are supported)");
   }
   // Version 1.0 stores the header length in 2 bytes; 2.0 and 3.0 (UTF-8 header) in 4.
   const std::size_t length_size = major == 1 ? 2 : 4;
@@ -218,8 +218,8 @@ NpyHeader parse_npy_header(std::string_view bytes, const std::string& source) {
   // a float64 array takes about 120 bytes. The cap also bounds the parser's work and memory.
   constexpr std::size_t kMaxHeaderLength = 10000;
   if (header_length > kMaxHeaderLength) {
-    fail(source, "malformed .npy header: it is " + std::to_string(header_length) +
-                     " bytes long (at most " + std::to_string(kMaxHeaderLength) + " are accepted)");
+    fail(source, "malformed .npy header: it is " + std::to_string(header_length) + " bytes long (at most " +
+                     std::to_string(kMaxHeaderLength) + " are accepted)");
   }
 
   PyLiteralParser parser(bytes.substr(header_start, header_length), source);
@@ -253,8 +253,7 @@ NpyHeader parse_npy_header(std::string_view bytes, const std::string& source) {
     if (dimension.kind != PyValue::Kind::kInt || dimension.negative) {
       fail(source, "malformed .npy header: 'shape' holds something other than sizes");
     }
-    if (dimension.too_large)
-      fail(source, "shape dimension " + quote_token(dimension.text) + " is too large");
+    if (dimension.too_large) fail(source, "shape dimension " + quote_token(dimension.text) + " is too large");
     header.shape.push_back(dimension.integer);
   }
   return header;

@@ -25,13 +25,24 @@ void check_regular_file(const std::string& path) {
   const fs::file_status status = fs::status(path, error);
   std::string problem;
   switch (status.type()) {
-    case fs::file_type::regular: return;
-    case fs::file_type::not_found: problem = "no such file"; break;
-    case fs::file_type::directory: problem = "is a directory"; break;
-    case fs::file_type::fifo: problem = "is not a regular file (it is a named pipe)"; break;
-    case fs::file_type::socket: problem = "is not a regular file (it is a socket)"; break;
+    case fs::file_type::regular:
+      return;
+    case fs::file_type::not_found:
+      problem = "no such file";
+      break;
+    case fs::file_type::directory:
+      problem = "is a directory";
+      break;
+    case fs::file_type::fifo:
+      problem = "is not a regular file (it is a named pipe)";
+      break;
+    case fs::file_type::socket:
+      problem = "is not a regular file (it is a socket)";
+      break;
     case fs::file_type::block:
-    case fs::file_type::character: problem = "is not a regular file (it is a device)"; break;
+    case fs::file_type::character:
+      problem = "is not a regular file (it is a device)";
+      break;
     default:
       // No type: stat itself failed, e.g. for lack of permission on a directory on the path.
       problem = error ? detail::describe_errno(error.value()) : "is not a regular file";
@@ -42,8 +53,7 @@ void check_regular_file(const std::string& path) {
 std::string read_file(const std::string& path) {
   check_regular_file(path);
   errno = 0;
-  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
-                                                             &std::fclose);
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
   if (!file) {
     throw DataError(path, 0, 0, errno != 0 ? detail::describe_errno(errno) : "cannot be opened");
   }

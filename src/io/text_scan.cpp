@@ -11,9 +11,7 @@ namespace spdfit::io::detail {
 
 namespace {
 
-bool is_continuation(unsigned char c) {
-  return (c & 0xC0) == 0x80;
-}
+bool is_continuation(unsigned char c) { return (c & 0xC0) == 0x80; }
 
 std::string hex_byte(unsigned char c) {
   char buffer[8];

@@ -38,10 +38,9 @@ void finish_writing(std::ofstream& out, const std::string& path) {
   out.close();
   if (!out) {
     const int error = errno;
-    throw DataError(path, 0, 0,
-                    "writing failed (" +
-                        (error != 0 ? detail::describe_errno(error) : std::string("disk full?")) +
-                        ")");
+    throw DataError(
+        path, 0, 0,
+        "writing failed (" + (error != 0 ? detail::describe_errno(error) : std::string("disk full?")) + ")");
   }
 }
 
@@ -88,10 +87,10 @@ void write_csv(const std::string& path, const Eigen::Ref<const Eigen::MatrixXd>&
 void write_npy(const std::string& path, const Eigen::Ref<const Eigen::MatrixXd>& X) {
   // Format 1.0 as numpy.save writes it: the dict, padded with spaces and ending in '\n' so
   // that the data starts on a 64-byte boundary (which lets NumPy memory-map it aligned).
-  std::string dict = "{'descr': '<f8', 'fortran_order': False, 'shape': " +
-                     detail::format_shape({static_cast<std::uint64_t>(X.rows()),
-                                           static_cast<std::uint64_t>(X.cols())}) +
-                     ", }";
+  std::string dict =
+      "{'descr': '<f8', 'fortran_order': False, 'shape': " +
+      detail::format_shape({static_cast<std::uint64_t>(X.rows()), static_cast<std::uint64_t>(X.cols())}) +
+      ", }";
   constexpr std::size_t kPreamble = 10;  // magic, version, 2-byte header length
   const std::size_t unpadded = kPreamble + dict.size() + 1;
   dict.append((64 - unpadded % 64) % 64, ' ');

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "io_test_support.hpp"
 #include "spdfit/io.hpp"
 
 namespace {
@@ -20,29 +21,9 @@ using spdfit::io::parse_delimited;
 using spdfit::io::ReadOptions;
 using spdfit::io::Table;
 
-MatrixXd Parse(std::string_view text, ReadOptions options = {}) {
-  return parse_delimited(text, "A.csv", options).values;
-}
-
-// The DataError that parsing `text` throws (a failed test, and an empty error, if none).
-DataError ParseError(std::string_view text, ReadOptions options = {}) {
-  try {
-    parse_delimited(text, "A.csv", options);
-  } catch (const DataError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no DataError for: " << text;
-  return DataError("", 0, 0, "");
-}
-
-void ExpectError(std::string_view text, std::size_t line, std::size_t column,
-                 const std::string& problem) {
-  const DataError e = ParseError(text);
-  EXPECT_EQ(e.source(), "A.csv") << text;
-  EXPECT_EQ(e.line(), line) << e.what();
-  EXPECT_EQ(e.column(), column) << e.what();
-  EXPECT_EQ(e.problem(), problem) << e.what();
-}
+using spdfit::io::test::ExpectError;
+using spdfit::io::test::Parse;
+using spdfit::io::test::ParseError;
 
 std::uint64_t Bits(double x) {
   std::uint64_t bits;
@@ -54,26 +35,18 @@ const MatrixXd k2x3 = (MatrixXd(2, 3) << 1, 2, 3, 4, 5, 6).finished();
 
 // ---- Accepted ----------------------------------------------------------------------------------
 
-TEST(IoDelimited, Comma) {
-  EXPECT_EQ(Parse("1,2,3\n4,5,6\n"), k2x3);
-}
+TEST(IoDelimited, Comma) { EXPECT_EQ(Parse("1,2,3\n4,5,6\n"), k2x3); }
 
 TEST(IoDelimited, CommaWithSpacesAroundIt) {
   EXPECT_EQ(Parse("1, 2, 3\n4 ,5 ,  6\n"), k2x3);
   EXPECT_EQ(Parse("1,\t2,3\n4\t,5,6\n"), k2x3);
 }
 
-TEST(IoDelimited, Semicolon) {
-  EXPECT_EQ(Parse("1;2;3\n4; 5 ;6\n"), k2x3);
-}
+TEST(IoDelimited, Semicolon) { EXPECT_EQ(Parse("1;2;3\n4; 5 ;6\n"), k2x3); }
 
-TEST(IoDelimited, Tab) {
-  EXPECT_EQ(Parse("1\t2\t3\n4\t5\t6\n"), k2x3);
-}
+TEST(IoDelimited, Tab) { EXPECT_EQ(Parse("1\t2\t3\n4\t5\t6\n"), k2x3); }
 
-TEST(IoDelimited, RunsOfSpaces) {
-  EXPECT_EQ(Parse("1  2     3\n   4 5 6   \n"), k2x3);
-}
+TEST(IoDelimited, RunsOfSpaces) { EXPECT_EQ(Parse("1  2     3\n   4 5 6   \n"), k2x3); }
 
 TEST(IoDelimited, MatlabSaveAscii) {
   // What MATLAB's `save -ascii` writes: "%16.7e" per value, so leading spaces and runs of them.
@@ -207,13 +180,9 @@ TEST(IoDelimited, OneByOne) {
   EXPECT_EQ(Parse("  -7.5  \r\n"), (MatrixXd(1, 1) << -7.5).finished());
 }
 
-TEST(IoDelimited, SingleColumn) {
-  EXPECT_EQ(Parse("1\n2\n3\n"), (MatrixXd(3, 1) << 1, 2, 3).finished());
-}
+TEST(IoDelimited, SingleColumn) { EXPECT_EQ(Parse("1\n2\n3\n"), (MatrixXd(3, 1) << 1, 2, 3).finished()); }
 
-TEST(IoDelimited, SingleRow) {
-  EXPECT_EQ(Parse("1 2 3"), (MatrixXd(1, 3) << 1, 2, 3).finished());
-}
+TEST(IoDelimited, SingleRow) { EXPECT_EQ(Parse("1 2 3"), (MatrixXd(1, 3) << 1, 2, 3).finished()); }
 
 TEST(IoDelimited, LongLine) {
   constexpr int kColumns = 200000;
@@ -350,8 +319,7 @@ TEST(IoDelimited, MixedSeparators) {
   ExpectError("1\t2\n3 4\n", 2, 1,
               "'3 4' is not a number; fields in this file are separated by tabs (see line 1)");
   ExpectError("1\n2,3\n", 2, 2, "found ',' here, but line 1 has a single field");
-  ExpectError("a,b\n1 2\n", 2, 0,
-              "this line separates fields with spaces, but the header (line 1) uses ','");
+  ExpectError("a,b\n1 2\n", 2, 0, "this line separates fields with spaces, but the header (line 1) uses ','");
 }
 
 TEST(IoDelimited, Quotes) {
@@ -364,11 +332,9 @@ TEST(IoDelimited, Quotes) {
 TEST(IoDelimited, NoData) {
   EXPECT_STREQ(ParseError("").what(), "A.csv: no data rows (the text is empty)");
   EXPECT_STREQ(ParseError("\xEF\xBB\xBF").what(), "A.csv: no data rows (the text is empty)");
-  EXPECT_STREQ(ParseError("# nothing\n\n  \n").what(),
-               "A.csv: no data rows (only comments and blank lines)");
+  EXPECT_STREQ(ParseError("# nothing\n\n  \n").what(), "A.csv: no data rows (only comments and blank lines)");
   EXPECT_STREQ(ParseError("\n").what(), "A.csv: no data rows (only comments and blank lines)");
-  EXPECT_STREQ(ParseError("% c\nx,y\n# c\n").what(),
-               "A.csv: no data rows (only a header row, line 2)");
+  EXPECT_STREQ(ParseError("% c\nx,y\n# c\n").what(), "A.csv: no data rows (only a header row, line 2)");
 }
 
 TEST(IoDelimited, HeaderOnlyFirstLine) {

@@ -123,9 +123,7 @@ TEST_F(IoFiles, MissingFile) {
   ExpectReadError(Write("A.csv", "1\n") + "/B.csv", "no such file");
 }
 
-TEST_F(IoFiles, Directory) {
-  ExpectReadError(dir_.string(), "is a directory");
-}
+TEST_F(IoFiles, Directory) { ExpectReadError(dir_.string(), "is a directory"); }
 
 TEST_F(IoFiles, Symlink) {
   const std::string target = Write("A.csv", "1,2,3\n4,5,6\n");
@@ -148,9 +146,7 @@ TEST_F(IoFiles, FifoIsRefusedWithoutBlocking) {
   EXPECT_EQ(result.get(), "is not a regular file (it is a named pipe)");
 }
 
-TEST_F(IoFiles, DeviceIsRefused) {
-  ExpectReadError("/dev/null", "is not a regular file (it is a device)");
-}
+TEST_F(IoFiles, DeviceIsRefused) { ExpectReadError("/dev/null", "is not a regular file (it is a device)"); }
 
 TEST_F(IoFiles, PermissionDenied) {
   const std::string path = Write("secret.csv", "1,2\n");
@@ -173,10 +169,8 @@ TEST_F(IoFiles, UnsearchableDirectory) {
 
 TEST_F(IoFiles, EmptyFile) {
   ExpectReadError(Write("empty.csv", ""), "file is empty");
-  EXPECT_EQ(ReadError(Write("bom.csv", "\xEF\xBB\xBF")).problem(),
-            "no data rows (the text is empty)");
-  EXPECT_EQ(ReadError(Write("blank.csv", "\n\n")).problem(),
-            "no data rows (only comments and blank lines)");
+  EXPECT_EQ(ReadError(Write("bom.csv", "\xEF\xBB\xBF")).problem(), "no data rows (the text is empty)");
+  EXPECT_EQ(ReadError(Write("blank.csv", "\n\n")).problem(), "no data rows (only comments and blank lines)");
 }
 
 TEST_F(IoFiles, BinaryFile) {
@@ -190,8 +184,7 @@ TEST_F(IoFiles, WriteCsvThenReadBack) {
   std::mt19937_64 rng(1);
   std::normal_distribution<double> normal;
   MatrixXd X(300, 20);
-  for (Eigen::Index i = 0; i < X.size(); ++i)
-    X(i) = std::ldexp(normal(rng), int(rng() % 200) - 100);
+  for (Eigen::Index i = 0; i < X.size(); ++i) X(i) = std::ldexp(normal(rng), int(rng() % 200) - 100);
   X(0, 0) = std::numeric_limits<double>::denorm_min();
   spdfit::io::write_csv(Path("X.csv"), X);
   const MatrixXd back = read_matrix(Path("X.csv"));
@@ -210,8 +203,7 @@ TEST_F(IoFiles, WriteReplacesAnExistingFile) {
 }
 
 TEST_F(IoFiles, WriteErrors) {
-  const auto expect_write_error = [](auto write, const std::string& path,
-                                     const std::string& problem) {
+  const auto expect_write_error = [](auto write, const std::string& path, const std::string& problem) {
     try {
       write(path, k2x3);
       ADD_FAILURE() << "no DataError writing " << path;

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "io_test_support.hpp"
 #include "spdfit/io.hpp"
 
 namespace {
@@ -13,29 +14,9 @@ using spdfit::io::DataError;
 using spdfit::io::parse_delimited;
 using spdfit::io::ReadOptions;
 
-MatrixXd Parse(std::string_view text, ReadOptions options = {}) {
-  return parse_delimited(text, "A.csv", options).values;
-}
-
-// The DataError that parsing `text` throws (a failed test, and an empty error, if none).
-DataError ParseError(std::string_view text, ReadOptions options = {}) {
-  try {
-    parse_delimited(text, "A.csv", options);
-  } catch (const DataError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no DataError for: " << text;
-  return DataError("", 0, 0, "");
-}
-
-void ExpectError(std::string_view text, std::size_t line, std::size_t column,
-                 const std::string& problem) {
-  const DataError e = ParseError(text);
-  EXPECT_EQ(e.source(), "A.csv") << text;
-  EXPECT_EQ(e.line(), line) << e.what();
-  EXPECT_EQ(e.column(), column) << e.what();
-  EXPECT_EQ(e.problem(), problem) << e.what();
-}
+using spdfit::io::test::ExpectError;
+using spdfit::io::test::Parse;
+using spdfit::io::test::ParseError;
 
 // ---- Not text ----------------------------------------------------------------------------------
 
@@ -60,8 +41,7 @@ TEST(IoHostileText, BinaryGarbage) {
   // Binary content is reported even when an earlier line has another error.
   EXPECT_EQ(ParseError(std::string("abc\n1,x\n\0", 9)).line(), 3u);
   // A zip file, such as an .xlsx workbook.
-  EXPECT_NE(ParseError(std::string("PK\x03\x04\x14\0\x06\0", 8)).problem().find("binary"),
-            std::string::npos);
+  EXPECT_NE(ParseError(std::string("PK\x03\x04\x14\0\x06\0", 8)).problem().find("binary"), std::string::npos);
 }
 
 TEST(IoHostileText, InvalidUtf8) {

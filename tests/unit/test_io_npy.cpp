@@ -72,8 +72,7 @@ std::string EncodeAll(std::initializer_list<double> values, bool big_endian = fa
 // A .npy file as numpy.save lays it out: magic, version, header length (2 bytes for 1.0,
 // 4 bytes for 2.0 and 3.0), the dict padded with spaces and ending in '\n' so that the data
 // starts at a multiple of 64, then the data.
-std::string MakeNpy(const std::string& dict, const std::string& data, int major = 1,
-                    bool pad = true) {
+std::string MakeNpy(const std::string& dict, const std::string& data, int major = 1, bool pad = true) {
   const std::size_t preamble = major == 1 ? 10 : 12;
   std::string header = dict;
   if (pad) {
@@ -202,11 +201,9 @@ TEST(IoNpy, FortranOrder) {
 }
 
 TEST(IoNpy, BigEndian) {
-  const std::string bytes =
-      MakeNpy(Dict(">f8", false, "(2, 3)"), EncodeAll({1, 2, 3, 4, 5, 6}, true));
+  const std::string bytes = MakeNpy(Dict(">f8", false, "(2, 3)"), EncodeAll({1, 2, 3, 4, 5, 6}, true));
   EXPECT_EQ(parse_npy(bytes, "X.npy"), k2x3);
-  const std::string fortran =
-      MakeNpy(Dict(">f8", true, "(2, 3)"), EncodeAll({1, 4, 2, 5, 3, 6}, true));
+  const std::string fortran = MakeNpy(Dict(">f8", true, "(2, 3)"), EncodeAll({1, 4, 2, 5, 3, 6}, true));
   EXPECT_EQ(parse_npy(fortran, "X.npy"), k2x3);
 }
 
@@ -267,14 +264,10 @@ TEST(IoNpy, TooMuchData) {
 
 TEST(IoNpy, UnsupportedDtype) {
   const std::string data = EncodeAll({1, 2});
-  ExpectNpyError(MakeNpy(Dict("<f4", false, "(4,)"), data),
-                 "dtype '<f4' is not supported; save as float64");
-  ExpectNpyError(MakeNpy(Dict("<i8", false, "(2,)"), data),
-                 "dtype '<i8' is not supported; save as float64");
-  ExpectNpyError(MakeNpy(Dict("|b1", false, "(16,)"), data),
-                 "dtype '|b1' is not supported; save as float64");
-  ExpectNpyError(MakeNpy(Dict("|f8", false, "(2,)"), data),
-                 "dtype '|f8' is not supported; save as float64");
+  ExpectNpyError(MakeNpy(Dict("<f4", false, "(4,)"), data), "dtype '<f4' is not supported; save as float64");
+  ExpectNpyError(MakeNpy(Dict("<i8", false, "(2,)"), data), "dtype '<i8' is not supported; save as float64");
+  ExpectNpyError(MakeNpy(Dict("|b1", false, "(16,)"), data), "dtype '|b1' is not supported; save as float64");
+  ExpectNpyError(MakeNpy(Dict("|f8", false, "(2,)"), data), "dtype '|f8' is not supported; save as float64");
   ExpectNpyError(MakeNpy(Dict("<c16", false, "(1,)"), data),
                  "dtype '<c16' is not supported; save as float64");
   ExpectNpyError(MakeNpy(Dict(std::string(1000, 'f'), false, "(1,)"), data),
@@ -321,8 +314,7 @@ TEST(IoNpy, Empty) {
 TEST(IoNpy, NonfiniteEntries) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
-  const DataError e =
-      NpyError(MakeNpy(Dict("<f8", false, "(3, 2)"), EncodeAll({1, 2, 3, 4, 5, nan})));
+  const DataError e = NpyError(MakeNpy(Dict("<f8", false, "(3, 2)"), EncodeAll({1, 2, 3, 4, 5, nan})));
   EXPECT_STREQ(e.what(), "X.npy: entry (3, 2) is NaN (rows and columns counted from 1)");
   ExpectNpyError(MakeNpy(Dict("<f8", false, "(2, 3)"), EncodeAll({1, inf, 3, 4, 5, 6})),
                  "entry (1, 2) is Inf (rows and columns counted from 1)");
@@ -336,11 +328,9 @@ TEST(IoNpy, NonfiniteEntries) {
 TEST(IoNpy, BadMagicAndVersion) {
   ExpectNpyError("", "not a .npy file (it does not start with the .npy magic bytes)");
   ExpectNpyError("1,2,3\n", "not a .npy file (it does not start with the .npy magic bytes)");
-  ExpectNpyError("\x93NUMPX\x01\x00",
-                 "not a .npy file (it does not start with the .npy magic bytes)");
+  ExpectNpyError("\x93NUMPX\x01\x00", "not a .npy file (it does not start with the .npy magic bytes)");
   ExpectNpyError("\x93NUMPY", "truncated .npy file: the header is incomplete");
-  ExpectNpyError(std::string("\x93NUMPY\x01\x00\x10", 9),
-                 "truncated .npy file: the header is incomplete");
+  ExpectNpyError(std::string("\x93NUMPY\x01\x00\x10", 9), "truncated .npy file: the header is incomplete");
   ExpectNpyError(std::string("\x93NUMPY\x02\x00\x10\x00\x00", 11),
                  "truncated .npy file: the header is incomplete");
   std::string v4 = MakeNpy(Dict("<f8", false, "(1,)"), EncodeAll({1}), 2);
@@ -357,8 +347,7 @@ TEST(IoNpy, HeaderLengthPastTheEnd) {
   ExpectNpyError(bytes, "truncated .npy file: the header claims 32630 bytes, but only 118 follow");
   std::string v2 = MakeNpy(Dict("<f8", false, "(1,)"), "", 2);
   v2[11] = '\xFF';
-  ExpectNpyError(v2,
-                 "truncated .npy file: the header claims 4278190196 bytes, but only 116 follow");
+  ExpectNpyError(v2, "truncated .npy file: the header claims 4278190196 bytes, but only 116 follow");
 }
 
 TEST(IoNpy, MalformedHeaders) {
@@ -373,10 +362,8 @@ TEST(IoNpy, MalformedHeaders) {
   expect_malformed("{'descr': '<f8', 'shape': (2,)}", "no 'fortran_order' entry");
   expect_malformed("{'descr': '<f8', 'fortran_order': 0, 'shape': (2,)}",
                    "'fortran_order' is not True or False");
-  expect_malformed("{'descr': 8, 'fortran_order': False, 'shape': (2,)}",
-                   "'descr' is not a string");
-  expect_malformed("{'descr': '<f8', 'fortran_order': False, 'shape': [2]}",
-                   "'shape' is not a tuple");
+  expect_malformed("{'descr': 8, 'fortran_order': False, 'shape': (2,)}", "'descr' is not a string");
+  expect_malformed("{'descr': '<f8', 'fortran_order': False, 'shape': [2]}", "'shape' is not a tuple");
   expect_malformed("{'descr': '<f8', 'fortran_order': False, 'shape': (-2,)}",
                    "'shape' holds something other than sizes");
   expect_malformed("{'descr': '<f8', 'fortran_order': False, 'shape': ('2',)}",
@@ -391,8 +378,7 @@ TEST(IoNpy, MalformedHeaders) {
   expect_malformed("{1: 2}", "a key is not a string");
   expect_malformed("{'descr': '<f8', 'fortran_order': False, 'shape': (2,)} x",
                    "unexpected text after the closing '}'");
-  expect_malformed("{'descr': '<f8', 'fortran_order': Fals, 'shape': (2,)}",
-                   "unexpected character 'F'");
+  expect_malformed("{'descr': '<f8', 'fortran_order': Fals, 'shape': (2,)}", "unexpected character 'F'");
   expect_malformed("{'descr': '<f8', 'fortran_order': False, 'shape': (2,)",
                    "expected ',' or '}' after the value of 'shape'");
   expect_malformed("{'descr': '<f8", "a string has no closing quote");

@@ -1,10 +1,9 @@
 // Higham's nearest symmetric positive (semi)definite matrix.
 #include <gtest/gtest.h>
 
-#include <vector>
-
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
+#include <vector>
 
 #include "spdfit/nearest_spd.hpp"
 #include "test_support.hpp"

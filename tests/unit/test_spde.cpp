@@ -122,8 +122,7 @@ TEST(Spde, RankDeficientBGivesASemidefiniteMinimizerOfThatRank) {
   EXPECT_LT((r.X * P * r.X - Q).norm(), 1e-12 * Q.norm());
   // Corollary III.7: the minimum of tr(P X + X^+ Q) - 2 tr(A^T B) equals the closed form.
   ASSERT_TRUE(r.diagnostics.area_criterion && r.diagnostics.area_criterion_minimum);
-  const MatrixXd Xpinv = eig.eigenvectors().rightCols(r_b) *
-                         lambda.tail(r_b).cwiseInverse().asDiagonal() *
+  const MatrixXd Xpinv = eig.eigenvectors().rightCols(r_b) * lambda.tail(r_b).cwiseInverse().asDiagonal() *
                          eig.eigenvectors().rightCols(r_b).transpose();
   const double direct = (P * r.X + Xpinv * Q).trace() - 2 * (A.transpose() * B).trace();
   const double scale = A.norm() * B.norm();

@@ -1,12 +1,11 @@
 // Generators with known answers and comparison helpers shared by the unit tests.
 #pragma once
 
+#include <Eigen/Core>
+#include <Eigen/QR>
 #include <cmath>
 #include <limits>
 #include <random>
-
-#include <Eigen/Core>
-#include <Eigen/QR>
 
 namespace spdfit::test {
 
@@ -47,7 +46,9 @@ class Generator {
   }
 
   /// An m x n matrix with condition number `cond` (singular values log-spaced from 1 to 1/cond).
-  MatrixXd with_condition(Index m, Index n, double cond) { return with_singular_values(m, log_spaced(n, cond)); }
+  MatrixXd with_condition(Index m, Index n, double cond) {
+    return with_singular_values(m, log_spaced(n, cond));
+  }
 
   /// A symmetric positive definite matrix with eigenvalues log-spaced from 1 to cond, exactly symmetric.
   MatrixXd spd(Index n, double cond = 10.0) {

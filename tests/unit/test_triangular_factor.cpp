@@ -28,7 +28,8 @@ MatrixXd unscaled(const TriangularFactor& f, double a_factor, double b_factor) {
   const Index n = f.n();
   MatrixXd R = f.R();
   R.leftCols(n) = R.leftCols(n).unaryExpr([&](double x) { return std::ldexp(x, f.exponent_a()) * a_factor; });
-  R.rightCols(n) = R.rightCols(n).unaryExpr([&](double x) { return std::ldexp(x, f.exponent_b()) * b_factor; });
+  R.rightCols(n) =
+      R.rightCols(n).unaryExpr([&](double x) { return std::ldexp(x, f.exponent_b()) * b_factor; });
   return R;
 }
 
@@ -93,7 +94,8 @@ TEST(TriangularFactor, ScalesExtremeDataByPowersOfTwo) {
     EXPECT_LT((unscaled(f, 1.0 / scale, scale) - R_ref).norm() / R_ref.norm(), 1e-14) << scale;
   }
   // A power-of-two scaling changes no bit of the stored factor.
-  const TriangularFactor exact = TriangularFactor::from_data(std::ldexp(1.0, 700) * A, std::ldexp(1.0, -900) * B);
+  const TriangularFactor exact =
+      TriangularFactor::from_data(std::ldexp(1.0, 700) * A, std::ldexp(1.0, -900) * B);
   EXPECT_TRUE(exact.R() == reference.R());
   EXPECT_EQ(exact.exponent_a(), reference.exponent_a() + 700);
   EXPECT_EQ(exact.exponent_b(), reference.exponent_b() - 900);
@@ -127,8 +129,10 @@ TEST(TriangularFactor, LaterLargerChunkRaisesTheScale) {
 
 TEST(TriangularFactor, RejectsMisuse) {
   EXPECT_THROW(TriangularFactor(0), std::invalid_argument);
-  EXPECT_THROW(TriangularFactor::from_data(MatrixXd::Ones(4, 2), MatrixXd::Ones(4, 3)), std::invalid_argument);
-  EXPECT_THROW(TriangularFactor::from_data(MatrixXd::Ones(4, 2), MatrixXd::Ones(3, 2)), std::invalid_argument);
+  EXPECT_THROW(TriangularFactor::from_data(MatrixXd::Ones(4, 2), MatrixXd::Ones(4, 3)),
+               std::invalid_argument);
+  EXPECT_THROW(TriangularFactor::from_data(MatrixXd::Ones(4, 2), MatrixXd::Ones(3, 2)),
+               std::invalid_argument);
   MatrixXd bad = MatrixXd::Ones(4, 2);
   bad(1, 1) = std::nan("");
   EXPECT_THROW(TriangularFactor::from_data(bad, MatrixXd::Ones(4, 2)), std::invalid_argument);

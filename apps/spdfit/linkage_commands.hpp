@@ -1,0 +1,60 @@
+// The two halves of `spdfit linkage`: their options and actions (CLI internal).
+#pragma once
+
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "cli.hpp"
+#include "linkage_arguments.hpp"
+#include "spdfit/linkage/analysis.hpp"
+
+namespace spdfit::cli {
+
+/// The options of `spdfit linkage synthesize` as parsed.
+struct SynthesizeOptionsCli {
+  std::string pairs, weights, output;
+  bool radians = false, steering = false, fit_dial_zeros = false, json = false, positions = false;
+  std::optional<double> rho, alpha, beta;
+  std::string function, x_range, psi_range, phi_range, spacing = "uniform";
+  int points = 21;
+  double tolerance = 1e-10, threshold = -1.0;
+  int max_iterations = 100;
+};
+
+/// The options of `spdfit linkage analyze` as parsed.
+struct AnalyzeOptionsCli {
+  std::string lengths, psi_range = "0:360", output;
+  int points = 37;
+  bool json = false;
+};
+
+/// Parse the prescribed positions, call linkage::synthesize, print the result.
+void run_synthesize(const SynthesizeOptionsCli& options, const GlobalOptions& global);
+
+/// Call linkage::analyze on the lengths and print the table.
+void run_analyze(const AnalyzeOptionsCli& options);
+
+/// Numbers for people: 6 significant digits, or 4 decimals; "-" for NaN.
+inline std::string g(double value) {
+  if (std::isnan(value)) return "-";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.6g", value);
+  return buffer;
+}
+inline std::string f4(double value) {
+  if (std::isnan(value)) return "-";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4f", value);
+  return buffer;
+}
+
+/// {"min", "max"} in degrees.
+inline nlohmann::json range_json(const linkage::AngleRange& range) {
+  return {{"min", degrees(range.min)}, {"max", degrees(range.max)}};
+}
+
+}  // namespace spdfit::cli

@@ -1,0 +1,111 @@
+// Linear systems A x = b: classification (finite solutions and solutions at infinity), the
+// minimum-norm least-squares solution from the edited SVD, and the evidence behind both.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace spdfit {
+
+/// Options for solve().
+struct LinearSystemOptions {
+  /// Relative singular-value cut-off: sigma_i is treated as zero when sigma_i < threshold *
+  /// sigma_max (and always when sigma_i == 0). A negative value (the default) means
+  /// max(m, n) * machine epsilon, the editing rule of the lecture notes (shared/seeds/
+  /// 002_fe976fdf53be9def.txt, section 3.8).
+  double threshold = -1.0;
+
+  /// The reciprocal condition number below which A counts as ill-conditioned and a warning is
+  /// added (notes 002, section 3.7.2: "if lambda(A) < 1e-12, A is ill-conditioned").
+  double rcond_warning = 1e-12;
+
+  /// True when the options are usable; otherwise `error` says why.
+  bool is_valid(std::string* error = nullptr) const;
+
+  /// The cut-off used for an m x n matrix.
+  double cutoff(Eigen::Index m, Eigen::Index n) const;
+};
+
+/// How the notes classify A x = b by the number of equations m and unknowns n (section 3.3.2).
+enum class SystemShape {
+  Underdetermined,  ///< m < n
+  Determined,       ///< m == n
+  Overdetermined,   ///< m > n
+};
+
+/// "underdetermined", "determined", "overdetermined".
+const char* to_string(SystemShape shape);
+
+/// The classification of one right-hand side b_j.
+///
+/// The projective view of notes 002 section 3.3.2: A x = b_j is the homogeneous system
+/// [A | -b_j] [x; w] = 0, whose solutions with w != 0 are the finite solutions x / w and whose
+/// solutions with w == 0 are the points at infinity (A x = 0). Consequently
+///  - the system is consistent exactly when rank [A | -b_j] == rank A (Rouche-Capelli);
+///  - the finite solutions form an affine set of dimension n - rank A (0 a point, 1 a line,
+///    2 a plane ...) when consistent, and none (-1) otherwise;
+///  - the solutions at infinity form a projective set of dimension n - rank A - 1 (0 a
+///    single point, 1 a line ...; -1 none) whether or not the system is consistent: they are the
+///    directions of the null space of A. For a consistent system they are the points at
+///    infinity of the finite solution set; for an inconsistent one they are all there is.
+struct ColumnClassification {
+  bool consistent = false;
+  Eigen::Index finite_solution_dimension = -1;
+  Eigen::Index at_infinity_dimension = -1;
+  Eigen::Index augmented_rank = 0;  ///< numerical rank of [A | -b_j] (b_j scaled to norm ||A||_2)
+  double residual_norm = 0.0;       ///< ||A x_j - b_j||_2 for the minimum-norm solution x_j
+  /// ||A x_j - b_j|| / (||A||_2 ||x_j|| + ||b_j||): the normwise backward error of x_j
+  /// (Rigal and Gaches); about machine epsilon when the system is consistent.
+  double backward_error = 0.0;
+};
+
+/// The result of solve(A, B): everything the notes read off the SVD of A.
+struct LinearSystemResult {
+  Eigen::Index m = 0, n = 0, p = 0;  ///< A is m x n, B is m x p (p right-hand sides)
+  SystemShape shape = SystemShape::Determined;
+
+  Eigen::VectorXd singular_values;   ///< of A, descending (min(m, n) of them)
+  double threshold = 0.0;            ///< the relative cut-off that was used
+  Eigen::Index rank = 0;             ///< number of singular values kept
+  Eigen::Index nullity = 0;          ///< n - rank
+  double condition_number = 0.0;     ///< sigma_max / sigma_min (unedited); +inf when singular
+  double reciprocal_condition_number = 0.0;  ///< sigma_min / sigma_max (notes 3.7.2); 0 when singular
+  double effective_condition_number = 0.0;  ///< sigma_max / sigma_rank: of the edited A
+
+  /// The classification of the set A X = B: consistent when every column is; the dimensions
+  /// are per column (they depend only on rank A, so they are the same for every consistent
+  /// column); finite_solution_dimension is -1 as soon as one column is inconsistent.
+  bool consistent = false;
+  Eigen::Index finite_solution_dimension = -1;
+  Eigen::Index at_infinity_dimension = -1;
+  std::vector<ColumnClassification> columns;  ///< one per right-hand side
+
+  Eigen::MatrixXd solution;   ///< n x p: X = V_r diag(1/sigma_i) U_r^T B (notes eq. 3.21)
+  double residual_norm = 0.0; ///< ||A X - B||_F
+  Eigen::MatrixXd null_space; ///< n x (n - rank), orthonormal columns: A N ~= 0
+  Eigen::MatrixXd range;      ///< m x rank, orthonormal columns spanning the range of A
+
+  std::string explanation;            ///< the answer in words, in the notes' terms
+  std::vector<std::string> warnings;  ///< ill-conditioning, edited singular values
+};
+
+/// Solves and classifies A x = b for each column of B (notes 002 sections 3.3.2 and 3.7-3.8).
+///
+/// The SVD A = U diag(sigma) V^T gives the rank (singular values below the options' cut-off are
+/// edited to zero), the null space (columns of V for the edited sigma_i), the range (columns of
+/// U for the kept ones), the condition number, and the minimum-norm least-squares solution
+/// x = V diag(1/sigma_i) U^T b with 1/sigma_i set to 0 for the edited values (eq. 3.21). It is
+/// the exact solution when the system is consistent and the least-squares approximation
+/// otherwise. Consistency and the projective classification use the SVD of [A | -b_j] with b_j
+/// scaled to the norm of A (a homogeneous coordinate can be scaled freely) and the same cut-off.
+///
+/// Preconditions: A non-empty, B with A's number of rows and at least one column, all entries
+/// finite; valid options (else std::invalid_argument). Never fails numerically: a singular A
+/// is an answer, not an error. Cost: O(m n min(m, n)) for the SVD of A plus O(m n^2) per column
+/// of B for the augmented matrix.
+LinearSystemResult solve(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
+                         const LinearSystemOptions& options = {});
+
+}  // namespace spdfit

@@ -1,0 +1,155 @@
+"""spdfit: estimate symmetric positive definite matrices from imperfect measurements.
+
+Given measurements A X ~= B with noise in both A and B (A, B m x n, one sample per row),
+estimate X (n x n):
+
+    >>> import numpy as np, spdfit
+    >>> A = np.array([[5., 2.], [-3., 1.], [1., -2.], [-1., 1.]])
+    >>> X = np.array([[3., 1.], [1., 1.]])
+    >>> r = spdfit.fit(A, A @ X, method="spde")
+    >>> bool(np.allclose(r.X, X))
+    True
+
+Methods (the names of the command line): "ls" (least squares), "procrustes" (symmetric least
+squares), "tls", "tls-sym", "tls-psd" (total least squares and its repairs), "spde" (the
+area-criterion estimate, always symmetric positive definite). Every method works from the
+Householder QR of [A B], not from Gram matrices. Numerical failures raise NumericalError; bad
+input raises ValueError (DataError for files); warnings are SpdfitWarning.
+"""
+import warnings as _warnings
+
+import numpy as _np
+
+from . import _spdfit
+from ._spdfit import DataError, Diagnostics, FitResult, NearestSpdResult, read_matrix, read_table, write_csv
+
+__version__ = _spdfit.__version__
+
+METHODS = ("ls", "procrustes", "tls", "tls-sym", "tls-psd", "spde")
+
+__all__ = [
+    "METHODS", "DataError", "Diagnostics", "FitResult", "NearestSpdResult", "NumericalError",
+    "SpdfitWarning", "area_criterion", "fit", "fit_all", "least_squares", "nearest_spd", "read_matrix",
+    "read_table", "spde", "symmetric_procrustes", "total_least_squares", "total_least_squares_psd",
+    "total_least_squares_symmetric", "write_csv",
+]
+
+
+class NumericalError(RuntimeError):
+    """Valid input without an answer (e.g. A rank-deficient for spde, V22 singular for tls).
+
+    The failed FitResult, with the diagnostics of the data, is in the `result` attribute."""
+
+    def __init__(self, message, result=None):
+        super().__init__(message)
+        self.result = result
+
+
+class SpdfitWarning(UserWarning):
+    """A condition the user should know about (rank deficiency, ill-conditioning, ...)."""
+
+
+def _as_matrix(name, value):
+    """A float64 2-D array from any real numeric array-like; a 1-D array is one column."""
+    array = _np.asarray(value)
+    if array.dtype.kind not in "fiu":
+        raise ValueError(f"{name} must be a real numeric array, got dtype {array.dtype}")
+    if array.ndim == 1:
+        array = array[:, None]
+    if array.ndim != 2:
+        raise ValueError(f"{name} must be a matrix (2-D array), got {array.ndim} dimensions")
+    return _np.asarray(array, dtype=_np.float64)
+
+
+def _checked(result, stacklevel=3):
+    for message in result.warnings:
+        _warnings.warn(f"{result.method}: {message}", SpdfitWarning, stacklevel=stacklevel)
+    if not result.ok:
+        raise NumericalError(result.message, result)
+    return result
+
+
+def fit(A, B, method="spde", *, rank_tolerance=None):
+    """Estimate X in A X ~= B with `method` (one of METHODS); returns a FitResult.
+
+    rank_tolerance: relative singular-value cut-off for numerical rank (default max(m, n) eps,
+    lecture notes 002 section 3.8). Raises ValueError for bad input (shapes, NaN/Inf, m < n,
+    unknown method) and NumericalError when the method has no answer for this data."""
+    A, B = _as_matrix("A", A), _as_matrix("B", B)
+    return _checked(_spdfit.fit(A, B, method, rank_tolerance))
+
+
+def fit_all(A, B, *, rank_tolerance=None):
+    """Every method on the same data (one shared QR); a dict {method: FitResult}.
+
+    Failures are not raised here: check `result.ok` and `result.message`."""
+    A, B = _as_matrix("A", A), _as_matrix("B", B)
+    results = {}
+    for result in _spdfit.fit_all(A, B, rank_tolerance):
+        for message in result.warnings:
+            _warnings.warn(f"{result.method}: {message}", SpdfitWarning, stacklevel=2)
+        results[result.method] = result
+    return results
+
+
+def least_squares(A, B, *, rank_tolerance=None):
+    """Least squares X = A^+ B minimizing ||A X - B||_F (thesis 000 section 3.1).
+
+    Back substitution in R11 X = R12 from the QR of [A B]; for rank-deficient A the
+    minimum-norm solution from the SVD with small singular values edited (notes 002 eq. 3.21)."""
+    return fit(A, B, "ls", rank_tolerance=rank_tolerance)
+
+
+def symmetric_procrustes(A, B, *, rank_tolerance=None):
+    """The symmetric X minimizing ||A X - B||_F: A^T A X + X A^T A = A^T B + B^T A (thesis eq. 3.15).
+
+    Positive definite when A^T B + B^T A is (Theorem 3.2 (3)); see
+    result.diagnostics.cross_term_positive_definite."""
+    return fit(A, B, "procrustes", rank_tolerance=rank_tolerance)
+
+
+def total_least_squares(A, B, *, rank_tolerance=None):
+    """Total least squares X = -V12 V22^-1 from the SVD of [A B] (thesis eq. 4.37).
+
+    Raises NumericalError when V22 is singular; warns when sigma_n = sigma_{n+1}."""
+    return fit(A, B, "tls", rank_tolerance=rank_tolerance)
+
+
+def total_least_squares_symmetric(A, B, *, rank_tolerance=None):
+    """(X_TLS + X_TLS^T) / 2, the nearest symmetric matrix to the TLS estimate (thesis eq. 4.38)."""
+    return fit(A, B, "tls-sym", rank_tolerance=rank_tolerance)
+
+
+def total_least_squares_psd(A, B, *, rank_tolerance=None):
+    """Higham's nearest symmetric positive semidefinite matrix to X_TLS (thesis eq. 4.39)."""
+    return fit(A, B, "tls-psd", rank_tolerance=rank_tolerance)
+
+
+def spde(A, B, *, rank_tolerance=None):
+    """The area-criterion estimate: the unique SPD X with X (A^T A) X = B^T B.
+
+    Minimizes ||A Y - B Y^-T||_F^2 over X = Y Y^T (Chen & McInroy, Definition II.1, Theorem
+    III.3). Computed as X = L L^T, L = R11^-1 V_M S^(1/2) from the polar decomposition of
+    M = R_b R11^T, so X is exactly symmetric and positive definite, with error ~cond(A) eps on
+    noise-free data. B of rank r < n gives the PSD minimizer of rank r (Corollary III.7, with a
+    warning); A rank-deficient raises NumericalError."""
+    return fit(A, B, "spde", rank_tolerance=rank_tolerance)
+
+
+def nearest_spd(X, min_eig=0.0, *, full_output=False):
+    """The nearest symmetric matrix to X (Frobenius norm) with every eigenvalue >= min_eig.
+
+    Higham 1988 (thesis section 3.3): clip the eigenvalues of (X + X^T)/2 at min_eig. With
+    min_eig = 0 the result is positive semidefinite; with min_eig > 0 positive definite (what
+    covariance repair needs). Returns the matrix, or a NearestSpdResult (X, distance, clipped,
+    min_eigenvalue_before) with full_output=True."""
+    result = _spdfit.nearest_spd(_as_matrix("X", X), float(min_eig))
+    return result if full_output else result.X
+
+
+def area_criterion(A, B, X):
+    """The area criterion ||A Y - B Y^-T||_F^2 for X = Y Y^T (Chen & McInroy, Definition II.1).
+
+    For X semidefinite of rank r < n, tr(P X + X^+ Q) - 2 tr(A^T B) (Corollary III.7). None
+    when X is not symmetric positive semidefinite."""
+    return _spdfit.area_criterion(_as_matrix("A", A), _as_matrix("B", B), _as_matrix("X", X))

@@ -1,0 +1,55 @@
+"""Type stubs for the compiled core of spdfit (use the `spdfit` package, not this module)."""
+from typing import List, Optional, Tuple
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+class DataError(ValueError): ...
+
+class Diagnostics:
+    m: int
+    n: int
+    rank_a: int
+    rank_b: int
+    cond_a: float
+    cond_b: float
+    singular_values_a: npt.NDArray[np.float64]
+    singular_values_b: npt.NDArray[np.float64]
+    residual_norm: float
+    symmetric: bool
+    positive_definite: bool
+    positive_semidefinite: bool
+    min_eigenvalue: Optional[float]
+    max_eigenvalue: Optional[float]
+    area_criterion: Optional[float]
+    area_criterion_minimum: Optional[float]
+    cross_term_positive_definite: Optional[bool]
+    tls_sigma_n: Optional[float]
+    tls_sigma_n1: Optional[float]
+    tls_correction_norm: Optional[float]
+    tls_v22_min_singular_value: Optional[float]
+
+class FitResult:
+    method: str
+    ok: bool
+    status: str
+    message: str
+    X: npt.NDArray[np.float64]
+    diagnostics: Diagnostics
+    warnings: List[str]
+
+class NearestSpdResult:
+    X: npt.NDArray[np.float64]
+    distance: float
+    clipped: int
+    min_eigenvalue_before: float
+
+def fit(A: npt.ArrayLike, B: npt.ArrayLike, method: str, rank_tolerance: Optional[float] = ...) -> FitResult: ...
+def fit_all(A: npt.ArrayLike, B: npt.ArrayLike, rank_tolerance: Optional[float] = ...) -> List[FitResult]: ...
+def nearest_spd(X: npt.ArrayLike, min_eig: float = ...) -> NearestSpdResult: ...
+def area_criterion(A: npt.ArrayLike, B: npt.ArrayLike, X: npt.ArrayLike) -> Optional[float]: ...
+def read_matrix(path: str, *, allow_nonfinite: bool = ...) -> npt.NDArray[np.float64]: ...
+def read_table(path: str) -> Tuple[npt.NDArray[np.float64], List[str]]: ...
+def write_csv(path: str, X: npt.ArrayLike) -> None: ...

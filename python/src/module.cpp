@@ -1,0 +1,13 @@
+// _spdfit: the compiled half of the spdfit Python package (python/spdfit/__init__.py is the
+// public face; it turns warnings into Python warnings and failures into exceptions).
+#include <pybind11/pybind11.h>
+
+#include "bindings.hpp"
+#include "spdfit/version.hpp"
+
+PYBIND11_MODULE(_spdfit, m) {
+  m.doc() = "Compiled core of spdfit; use the `spdfit` package instead.";
+  m.attr("__version__") = spdfit::kVersion;
+  spdfit::python::bind_io(m);
+  spdfit::python::bind_estimators(m);
+}

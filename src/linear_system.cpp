@@ -1,0 +1,171 @@
+#include "spdfit/linear_system.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <Eigen/SVD>
+
+#include "linear_system_explanation.hpp"
+
+namespace spdfit {
+
+using Eigen::Index;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+// Above this size divide and conquer is much faster than one-sided Jacobi (src/linalg.cpp makes
+// the same choice).
+constexpr Index kJacobiMaxSize = 32;
+
+struct FullSvd {
+  MatrixXd U;  // m x min(m, n)
+  MatrixXd V;  // n x n: the full V, whose trailing columns span the null space even when m < n
+  VectorXd s;  // min(m, n), descending
+};
+
+FullSvd svd_with_full_v(const Eigen::Ref<const MatrixXd>& A) {
+  const unsigned options = Eigen::ComputeThinU | Eigen::ComputeFullV;
+  FullSvd out;
+  if (std::max(A.rows(), A.cols()) <= kJacobiMaxSize) {
+    Eigen::JacobiSVD<MatrixXd> dec(A, options);
+    out.U = dec.matrixU();
+    out.V = dec.matrixV();
+    out.s = dec.singularValues();
+  } else {
+    Eigen::BDCSVD<MatrixXd> dec(A, options);
+    out.U = dec.matrixU();
+    out.V = dec.matrixV();
+    out.s = dec.singularValues();
+  }
+  return out;
+}
+
+VectorXd singular_values(const Eigen::Ref<const MatrixXd>& A) {
+  if (std::max(A.rows(), A.cols()) <= kJacobiMaxSize) return Eigen::JacobiSVD<MatrixXd>(A).singularValues();
+  return Eigen::BDCSVD<MatrixXd>(A).singularValues();
+}
+
+// The number of singular values kept by the editing rule of notes 002 section 3.8: sigma_i
+// counts as zero when sigma_i < cutoff * sigma_max, and always when it is exactly zero.
+Index edited_rank(const VectorXd& s, double cutoff) {
+  if (s.size() == 0 || !(s(0) > 0.0)) return 0;
+  Index r = 0;
+  while (r < s.size() && s(r) > 0.0 && !(s(r) < cutoff * s(0))) ++r;
+  return r;
+}
+
+bool all_finite(const Eigen::Ref<const MatrixXd>& M) { return M.allFinite(); }
+
+}  // namespace
+
+const char* to_string(SystemShape shape) {
+  switch (shape) {
+    case SystemShape::Underdetermined: return "underdetermined";
+    case SystemShape::Determined: return "determined";
+    case SystemShape::Overdetermined: return "overdetermined";
+  }
+  return "?";
+}
+
+bool LinearSystemOptions::is_valid(std::string* error) const {
+  if (std::isnan(threshold) || !(threshold < 1.0)) {
+    if (error) *error = "threshold must be a number below 1 (negative for the default max(m, n) * eps)";
+    return false;
+  }
+  if (!(rcond_warning >= 0.0) || !(rcond_warning <= 1.0)) {
+    if (error) *error = "rcond_warning must lie in [0, 1]";
+    return false;
+  }
+  return true;
+}
+
+double LinearSystemOptions::cutoff(Index m, Index n) const {
+  if (threshold >= 0.0) return threshold;
+  return static_cast<double>(std::max(m, n)) * kEps;
+}
+
+LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
+                         const LinearSystemOptions& options) {
+  std::string error;
+  if (!options.is_valid(&error)) throw std::invalid_argument("solve: " + error);
+  if (A.rows() == 0 || A.cols() == 0) throw std::invalid_argument("solve: A is empty");
+  if (B.cols() == 0) throw std::invalid_argument("solve: b has no columns");
+  if (B.rows() != A.rows()) {
+    throw std::invalid_argument("solve: b has " + std::to_string(B.rows()) + " rows but A has " +
+                                std::to_string(A.rows()) + ": one entry of b per equation is needed");
+  }
+  if (!all_finite(A)) throw std::invalid_argument("solve: A has a NaN or infinite entry");
+  if (!all_finite(B)) throw std::invalid_argument("solve: b has a NaN or infinite entry");
+
+  LinearSystemResult r;
+  r.m = A.rows();
+  r.n = A.cols();
+  r.p = B.cols();
+  r.shape = r.m < r.n ? SystemShape::Underdetermined
+                      : (r.m == r.n ? SystemShape::Determined : SystemShape::Overdetermined);
+  r.threshold = options.cutoff(r.m, r.n);
+
+  const FullSvd dec = svd_with_full_v(A);
+  r.singular_values = dec.s;
+  r.rank = edited_rank(dec.s, r.threshold);
+  r.nullity = r.n - r.rank;
+  const double smax = dec.s(0);
+  const double smin = dec.s(dec.s.size() - 1);
+  const double inf = std::numeric_limits<double>::infinity();
+  // A wide matrix (m < n) always has a null space: its condition number is that of its
+  // min(m, n) singular values, as MATLAB's cond() reports, and the nullity says the rest.
+  r.condition_number = smin > 0.0 ? smax / smin : inf;
+  r.reciprocal_condition_number = smax > 0.0 ? smin / smax : 0.0;
+  r.effective_condition_number = r.rank > 0 ? smax / dec.s(r.rank - 1) : inf;
+
+  const Index k = r.rank;
+  r.range = dec.U.leftCols(k);
+  r.null_space = dec.V.rightCols(r.nullity);
+
+  // Minimum-norm least-squares solution with the small singular values edited (eq. 3.21).
+  r.solution = dec.V.leftCols(k) * (dec.s.head(k).cwiseInverse().asDiagonal() * (dec.U.leftCols(k).transpose() * B));
+  const MatrixXd residual = A * r.solution - B;
+  r.residual_norm = residual.stableNorm();
+
+  // The projective view, one right-hand side at a time: [A | -b_j] [x; w] = 0.
+  r.consistent = true;
+  for (Index j = 0; j < r.p; ++j) {
+    ColumnClassification c;
+    const double bnorm = B.col(j).stableNorm();  // no underflow at 1e-200, no overflow at 1e200
+    MatrixXd M(r.m, r.n + 1);
+    M.leftCols(r.n) = A;
+    // Scaling the homogeneous coordinate w changes nothing in the solution set, and putting
+    // b_j on the scale of A keeps the rank decision from depending on the units of b.
+    const double scale = bnorm > 0.0 ? (smax > 0.0 ? smax : 1.0) / bnorm : 0.0;
+    M.col(r.n) = -scale * B.col(j);
+    c.augmented_rank = edited_rank(singular_values(M), r.threshold);
+    // Appending a column cannot lower the rank; a count below rank A only happens when a
+    // singular value sits right at the cut-off, and then the column is consistent.
+    c.consistent = c.augmented_rank <= r.rank;
+    c.finite_solution_dimension = c.consistent ? r.nullity : -1;
+    c.at_infinity_dimension = r.nullity - 1;
+    c.residual_norm = residual.col(j).stableNorm();
+    const double denominator = smax * r.solution.col(j).stableNorm() + bnorm;
+    c.backward_error = denominator > 0.0 ? c.residual_norm / denominator : 0.0;
+    r.consistent = r.consistent && c.consistent;
+    r.columns.push_back(c);
+  }
+  r.finite_solution_dimension = r.consistent ? r.nullity : -1;
+  r.at_infinity_dimension = r.nullity - 1;
+
+  if (r.reciprocal_condition_number < options.rcond_warning) {
+    r.warnings.push_back("A is ill-conditioned: reciprocal condition number " +
+                         detail::short_number(r.reciprocal_condition_number) + " < " +
+                         detail::short_number(options.rcond_warning) + " (notes 002, section 3.7.2)");
+  }
+  r.explanation = detail::explain(r);
+  return r;
+}
+
+}  // namespace spdfit
