@@ -7,10 +7,10 @@
 #include "cli.hpp"
 #include "experiment_output.hpp"
 #include "output.hpp"
-#include "validators.hpp"
 #include "spdfit/experiment/paper.hpp"
 #include "spdfit/experiment/thesis.hpp"
 #include "spdfit/io.hpp"
+#include "validators.hpp"
 
 namespace spdfit::cli {
 
@@ -30,7 +30,8 @@ void add_common(CLI::App* sub, CommonCli& common, std::size_t default_trials) {
   sub->add_option("--trials", common.trials, "Number of Monte Carlo trials")
       ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}))
       ->capture_default_str();
-  sub->add_option("--seed", common.seed, "Seed: the same seed gives the same numbers on any number of threads")
+  sub->add_option("--seed", common.seed,
+                  "Seed: the same seed gives the same numbers on any number of threads")
       ->capture_default_str();
   sub->add_option("--threads", common.threads, "Worker threads (default: all cores)");
   sub->add_flag("--json", common.json, "Print the results as JSON");
@@ -38,7 +39,8 @@ void add_common(CLI::App* sub, CommonCli& common, std::size_t default_trials) {
   sub->add_option("-o,--output", common.output, "Write to FILE instead of stdout");
 }
 
-experiment::MonteCarloOptions monte_carlo(const CommonCli& common, const std::string& label, const GlobalOptions& global) {
+experiment::MonteCarloOptions monte_carlo(const CommonCli& common, const std::string& label,
+                                          const GlobalOptions& global) {
   experiment::MonteCarloOptions options;
   options.trials = common.trials;
   options.seed = common.seed;
@@ -56,17 +58,19 @@ struct SimulationCli {
 };
 
 void add_simulation(CLI::App* sub, SimulationCli& simulation, bool noise_required) {
-  auto* noise = sub->add_option("--noise-var", simulation.options.noise_var,
-                                "Variance V of the noise in every entry of A and B (thesis: 0.082, 0.86, 1.28)")
-                    ->check(non_negative());
+  auto* noise =
+      sub->add_option("--noise-var", simulation.options.noise_var,
+                      "Variance V of the noise in every entry of A and B (thesis: 0.082, 0.86, 1.28)")
+          ->check(non_negative());
   if (noise_required) {
     noise->required();
   } else {
     noise->capture_default_str();
   }
   simulation.force_noise =
-      sub->add_option("--force-noise-var", simulation.force_noise_var,
-                      "Variance of the noise in B when it differs from A's (default: --noise-var, as the thesis)")
+      sub->add_option(
+             "--force-noise-var", simulation.force_noise_var,
+             "Variance of the noise in B when it differs from A's (default: --noise-var, as the thesis)")
           ->check(non_negative());
   sub->add_option("--samples", simulation.options.samples, "Samples m (rows of A and B)")
       ->check(CLI::Range(Eigen::Index{6}, Eigen::Index{100000000}))
@@ -74,7 +78,8 @@ void add_simulation(CLI::App* sub, SimulationCli& simulation, bool noise_require
   sub->add_option("--signal-var", simulation.options.signal_var,
                   "Variance of the true accelerations, uniform on [-sqrt(3 S), sqrt(3 S)] (thesis: 25/3)")
       ->check(positive());
-  sub->add_option("--distribution", simulation.distribution, "Noise distribution: uniform (the thesis') or gaussian")
+  sub->add_option("--distribution", simulation.distribution,
+                  "Noise distribution: uniform (the thesis') or gaussian")
       ->check(CLI::IsMember({"uniform", "gaussian"}))
       ->capture_default_str();
 }
@@ -88,8 +93,9 @@ hexapod::SimulationOptions simulation_options(const SimulationCli& simulation) {
 
 std::string describe(const hexapod::SimulationOptions& s) {
   std::ostringstream out;
-  out << "m = " << s.samples << " samples of 6 strut accelerations (uniform, variance " << fixed(s.signal_var, 3)
-      << "),\n" << hexapod::to_string(s.distribution) << " noise of variance " << s.noise_var;
+  out << "m = " << s.samples << " samples of 6 strut accelerations (uniform, variance "
+      << fixed(s.signal_var, 3) << "),\n"
+      << hexapod::to_string(s.distribution) << " noise of variance " << s.noise_var;
   if (s.force_noise_var && *s.force_noise_var != s.noise_var) {
     out << " in every entry of A and " << *s.force_noise_var << " in every entry of B";
   } else {
@@ -105,7 +111,8 @@ Command add_thesis(CLI::App& parent, const GlobalOptions& global) {
   };
   auto cli = std::make_shared<Cli>();
   CLI::App* sub = parent.add_subcommand(
-      "thesis", "The thesis' chapter-6 experiment (M_p of eq. 6.1, appendix-B generator), repeated --trials times");
+      "thesis",
+      "The thesis' chapter-6 experiment (M_p of eq. 6.1, appendix-B generator), repeated --trials times");
   add_simulation(sub, cli->simulation, true);
   add_common(sub, cli->common, 1000);
   sub->footer("--csv FILE writes each trial's error ||M_p - M_hat||_F per method (one row per trial).");
@@ -121,7 +128,8 @@ Command add_thesis(CLI::App& parent, const GlobalOptions& global) {
       return;
     }
     std::ostringstream out;
-    out << "Thesis experiment (seed 000, chapter 6), M_p of eq. 6.1:\n" << describe(result.options.simulation) << ".\n"
+    out << "Thesis experiment (seed 000, chapter 6), M_p of eq. 6.1:\n"
+        << describe(result.options.simulation) << ".\n"
         << result.trials << " trials, seed " << result.seed << ". Error ||M_p - M_hat||_F:\n\n"
         << thesis_table(result) << '\n'
         << paired_line(result, Method::Spde, Method::SymmetricProcrustes);
@@ -137,9 +145,9 @@ Command add_paper_hexapod(CLI::App& parent, const GlobalOptions& global) {
   };
   auto cli = std::make_shared<Cli>();
   cli->simulation.options = experiment::PaperHexapodOptions::default_simulation();
-  CLI::App* sub = parent.add_subcommand(
-      "paper-hexapod",
-      "The paper's Figure 2: per-entry error statistics of the 21 parameters of M_p, Procrustes against SPDE");
+  CLI::App* sub = parent.add_subcommand("paper-hexapod",
+                                        "The paper's Figure 2: per-entry error statistics of the 21 "
+                                        "parameters of M_p, Procrustes against SPDE");
   add_simulation(sub, cli->simulation, false);
   add_common(sub, cli->common, 100);
   sub->footer(
@@ -193,15 +201,17 @@ Command add_paper_2x2(CLI::App& parent, const GlobalOptions& global) {
   };
   auto cli = std::make_shared<Cli>();
   CLI::App* sub = parent.add_subcommand(
-      "paper-2x2", "The paper's 2x2 example (Figure 3): X = [3 1; 1 1] from A X ~= B with Gaussian noise in A and B");
+      "paper-2x2",
+      "The paper's 2x2 example (Figure 3): X = [3 1; 1 1] from A X ~= B with Gaussian noise in A and B");
   auto* std_a = sub->add_option("--std-a", cli->options.std_a, "Standard deviation of the noise in A")
                     ->check(non_negative());
   sub->add_option("--std-b", cli->options.std_b, "Standard deviation of the noise in B")
       ->check(non_negative())
       ->capture_default_str();
-  auto* sweep = sub->add_flag("--sweep", cli->sweep,
-                              "Run std_a = 0, 0.1, ..., 1.9 (Figure 3) and print the table as CSV (with --csv "
-                              "FILE: write it there and print a readable table)");
+  auto* sweep =
+      sub->add_flag("--sweep", cli->sweep,
+                    "Run std_a = 0, 0.1, ..., 1.9 (Figure 3) and print the table as CSV (with --csv "
+                    "FILE: write it there and print a readable table)");
   sweep->excludes(std_a);
   add_common(sub, cli->common, 10000);
   sub->footer(
@@ -209,7 +219,8 @@ Command add_paper_2x2(CLI::App& parent, const GlobalOptions& global) {
       "mae: mean |x_hat - x|; std: standard deviation of x_hat - x; bias: mean of x_hat - x.");
 
   auto run = [cli, std_a, &global]() {
-    if (!cli->sweep && std_a->count() == 0) throw UsageError("experiment paper-2x2: give --std-a VA, or --sweep");
+    if (!cli->sweep && std_a->count() == 0)
+      throw UsageError("experiment paper-2x2: give --std-a VA, or --sweep");
     if (cli->sweep) {
       const std::vector<double> levels = experiment::paper_2x2_sweep_levels();
       const std::vector<experiment::EntryExperimentResult> results = experiment::run_paper_2x2_sweep(

@@ -12,13 +12,13 @@
 #include "experiment_output.hpp"
 #include "input.hpp"
 #include "output.hpp"
-#include "validators.hpp"
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/hexapod/identify.hpp"
 #include "spdfit/hexapod/model.hpp"
 #include "spdfit/hexapod/simulate.hpp"
 #include "spdfit/io.hpp"
 #include "spdfit/random.hpp"
+#include "validators.hpp"
 
 namespace spdfit::cli {
 
@@ -45,10 +45,12 @@ Command add_model(CLI::App& parent, const GlobalOptions&) {
   };
   auto cli = std::make_shared<Cli>();
   CLI::App* sub = parent.add_subcommand(
-      "model", "The Jacobian, the joint-space mass-inertia matrix M_p (thesis eq. 2.12) and the modes of a hexapod");
+      "model",
+      "The Jacobian, the joint-space mass-inertia matrix M_p (thesis eq. 2.12) and the modes of a hexapod");
   sub->add_option("--geometry", cli->geometry,
                   "Geometry file (JSON, SI units; see docs/hexapod.md). Default: the built-in cubic hexapod");
-  sub->add_flag("--json", cli->json, "Print everything as JSON, the geometry included (a template for a file)");
+  sub->add_flag("--json", cli->json,
+                "Print everything as JSON, the geometry included (a template for a file)");
   sub->add_option("-o,--output", cli->output, "Write to FILE instead of stdout");
   sub->add_option("--write-geometry", cli->write_geometry,
                   "Also write the geometry to FILE in the geometry-file format (a template to edit)");
@@ -60,7 +62,8 @@ Command add_model(CLI::App& parent, const GlobalOptions&) {
     const hexapod::Matrix6d Mp = hexapod::joint_space_mass_matrix(geometry);
     const hexapod::Vector6d modes = hexapod::modal_frequencies_hz(geometry);
     const Eigen::VectorXd eigenvalues =
-        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Eigen::MatrixXd(Mp), Eigen::EigenvaluesOnly).eigenvalues();
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Eigen::MatrixXd(Mp), Eigen::EigenvaluesOnly)
+            .eigenvalues();
     const Eigen::VectorXd sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(Eigen::MatrixXd(J)).singularValues();
     const double cond_j = sigma(0) / sigma(5);
     const std::string source = cli->geometry.empty() ? kBuiltInName : cli->geometry;
@@ -81,13 +84,16 @@ Command add_model(CLI::App& parent, const GlobalOptions&) {
     }
     std::ostringstream out;
     out << "Hexapod: " << source << "\n"
-        << "payload " << fixed(geometry.payload_mass, 3) << " kg; strut lengths (m): "
-        << vector_text(hexapod::strut_lengths(geometry), 4) << "\n\n"
+        << "payload " << fixed(geometry.payload_mass, 3)
+        << " kg; strut lengths (m): " << vector_text(hexapod::strut_lengths(geometry), 4) << "\n\n"
         << "Jacobian J, l_dot = J [v; w] (rows: struts; v, w of the payload's centre of mass in {B} axes); "
         << "cond(J) = " << fixed(cond_j, 2) << "\n"
-        << side_by_side({"J"}, {Eigen::MatrixXd(J)}) << "Joint-space mass-inertia matrix (thesis eq. 2.12), kg\n"
-        << side_by_side({"M_p"}, {Eigen::MatrixXd(Mp)}) << "eigenvalues of M_p (kg): " << vector_text(eigenvalues, 4)
-        << "\nmodes sqrt(eig(M_p^-1 K)) / 2 pi (Hz), K = diag(strut_stiffness): " << vector_text(modes, 2) << "\n";
+        << side_by_side({"J"}, {Eigen::MatrixXd(J)})
+        << "Joint-space mass-inertia matrix (thesis eq. 2.12), kg\n"
+        << side_by_side({"M_p"}, {Eigen::MatrixXd(Mp)})
+        << "eigenvalues of M_p (kg): " << vector_text(eigenvalues, 4)
+        << "\nmodes sqrt(eig(M_p^-1 K)) / 2 pi (Hz), K = diag(strut_stiffness): " << vector_text(modes, 2)
+        << "\n";
     emit(out.str(), cli->output);
   };
   return {sub, run};
@@ -104,7 +110,8 @@ Command add_simulate(CLI::App& parent, const GlobalOptions& global) {
   };
   auto cli = std::make_shared<Cli>();
   CLI::App* sub = parent.add_subcommand(
-      "simulate", "Simulated accelerations A and base forces B = A M_p with noise (the thesis' appendix-B generator)");
+      "simulate",
+      "Simulated accelerations A and base forces B = A M_p with noise (the thesis' appendix-B generator)");
   sub->add_option("--samples", cli->options.samples, "Samples m (rows of A and B)")
       ->check(CLI::Range(Eigen::Index{1}, Eigen::Index{100000000}))
       ->capture_default_str();
@@ -112,23 +119,30 @@ Command add_simulate(CLI::App& parent, const GlobalOptions& global) {
       ->required()
       ->check(non_negative());
   auto* force_noise =
-      sub->add_option("--force-noise-var", cli->force_noise_var,
-                      "Variance of the noise in B when it differs from A's (default: --noise-var, as the thesis)")
+      sub->add_option(
+             "--force-noise-var", cli->force_noise_var,
+             "Variance of the noise in B when it differs from A's (default: --noise-var, as the thesis)")
           ->check(non_negative());
-  sub->add_option("--signal-var", cli->options.signal_var,
-                  "Variance S of the true accelerations, uniform on [-sqrt(3 S), sqrt(3 S)] (default 25/3: [-5, 5])")
+  sub->add_option(
+         "--signal-var", cli->options.signal_var,
+         "Variance S of the true accelerations, uniform on [-sqrt(3 S), sqrt(3 S)] (default 25/3: [-5, 5])")
       ->check(positive());
-  sub->add_option("--distribution", cli->distribution, "Noise distribution: uniform (the thesis') or gaussian")
+  sub->add_option("--distribution", cli->distribution,
+                  "Noise distribution: uniform (the thesis') or gaussian")
       ->check(CLI::IsMember({"uniform", "gaussian"}))
       ->capture_default_str();
-  auto* truth = sub->add_option("--truth", cli->truth, "True M_p: 'thesis' (eq. 6.1) or a matrix file (n x n)")
-                    ->capture_default_str();
-  auto* geometry = sub->add_option("--geometry", cli->geometry, "Use the M_p of this geometry file as the truth");
+  auto* truth =
+      sub->add_option("--truth", cli->truth, "True M_p: 'thesis' (eq. 6.1) or a matrix file (n x n)")
+          ->capture_default_str();
+  auto* geometry =
+      sub->add_option("--geometry", cli->geometry, "Use the M_p of this geometry file as the truth");
   geometry->excludes(truth);
-  sub->add_option("--seed", cli->seed,
-                  "Seed; the data are those of trial 0 of 'spdfit experiment thesis' with the same seed and settings")
+  sub->add_option(
+         "--seed", cli->seed,
+         "Seed; the data are those of trial 0 of 'spdfit experiment thesis' with the same seed and settings")
       ->capture_default_str();
-  sub->add_option("--out", cli->out, "Directory to write A.csv, B.csv, truth.csv and simulation.json to")->required();
+  sub->add_option("--out", cli->out, "Directory to write A.csv, B.csv, truth.csv and simulation.json to")
+      ->required();
 
   auto run = [cli, force_noise, &global]() {
     Eigen::MatrixXd M;
@@ -142,8 +156,9 @@ Command add_simulate(CLI::App& parent, const GlobalOptions& global) {
     } else {
       M = load_matrix(cli->truth);
       if (M.rows() != M.cols()) {
-        throw io::DataError(cli->truth, 0, 0,
-                            "the true M_p must be square, not " + std::to_string(M.rows()) + "x" + std::to_string(M.cols()));
+        throw io::DataError(
+            cli->truth, 0, 0,
+            "the true M_p must be square, not " + std::to_string(M.rows()) + "x" + std::to_string(M.cols()));
       }
       if (!M.isApprox(M.transpose())) warn(global, cli->truth + ": the true M_p is not symmetric");
       truth_source = cli->truth;
@@ -209,8 +224,8 @@ Eigen::MatrixXd parse_stiffness(const std::string& text, Eigen::Index n) {
   }
   if (values.size() == 1) values.assign(static_cast<std::size_t>(n), values.front());
   if (values.size() != static_cast<std::size_t>(n)) {
-    throw UsageError("--stiffness: give one number or " + std::to_string(n) + " comma-separated numbers, not " +
-                     std::to_string(values.size()));
+    throw UsageError("--stiffness: give one number or " + std::to_string(n) +
+                     " comma-separated numbers, not " + std::to_string(values.size()));
   }
   return Eigen::Map<const Eigen::VectorXd>(values.data(), n).asDiagonal();
 }
@@ -245,18 +260,20 @@ std::string identify_report(const std::vector<hexapod::MethodIdentification>& me
     const FitResult& r = m.result;
     const std::string name(to_string(r.method));
     if (!r.ok()) {
-      out << name << std::string(12 - std::min<std::size_t>(name.size(), 11), ' ') << "failed: " << r.message << '\n';
+      out << name << std::string(12 - std::min<std::size_t>(name.size(), 11), ' ') << "failed: " << r.message
+          << '\n';
       continue;
     }
     const Diagnostics& d = r.diagnostics;
-    std::snprintf(line, sizeof line, "%-11s %-10s %-10s %12s %12s %12s%s\n", name.c_str(), d.symmetric ? "yes" : "no",
-                  d.positive_definite ? "positive" : (d.symmetric ? "no" : "-"), fixed(d.residual_norm).c_str(),
-                  d.area_criterion ? fixed(*d.area_criterion).c_str() : "-",
+    std::snprintf(line, sizeof line, "%-11s %-10s %-10s %12s %12s %12s%s\n", name.c_str(),
+                  d.symmetric ? "yes" : "no", d.positive_definite ? "positive" : (d.symmetric ? "no" : "-"),
+                  fixed(d.residual_norm).c_str(), d.area_criterion ? fixed(*d.area_criterion).c_str() : "-",
                   d.min_eigenvalue ? fixed(*d.min_eigenvalue).c_str() : "-",
                   m.error_vs_truth ? ("  " + fixed(*m.error_vs_truth)).c_str() : "");
     out << line;
   }
-  out << "\neigenvalues (kg)" << (options.stiffness ? " and modes sqrt(eig(M_hat^-1 K)) / 2 pi (Hz)" : "") << "\n";
+  out << "\neigenvalues (kg)" << (options.stiffness ? " and modes sqrt(eig(M_hat^-1 K)) / 2 pi (Hz)" : "")
+      << "\n";
   for (const hexapod::MethodIdentification& m : methods) {
     if (!m.result.ok()) continue;
     const std::string name(to_string(m.result.method));
@@ -276,7 +293,9 @@ std::string identify_report(const std::vector<hexapod::MethodIdentification>& me
     for (const hexapod::MethodIdentification& m : methods) {
       if (m.error_vs_truth && (!best || *m.error_vs_truth < *best->error_vs_truth)) best = &m;
     }
-    if (best) out << "\nclosest to the truth: " << to_string(best->result.method) << " (error " << fixed(*best->error_vs_truth) << ")\n";
+    if (best)
+      out << "\nclosest to the truth: " << to_string(best->result.method) << " (error "
+          << fixed(*best->error_vs_truth) << ")\n";
   }
   return out.str();
 }
@@ -292,9 +311,11 @@ Command add_identify(CLI::App& parent, const GlobalOptions& global) {
   sub->add_option("A", cli->a_path, "File of payload accelerations along the struts (m x 6)")->required();
   sub->add_option("B", cli->b_path, "File of base forces (m x 6)")->required();
   sub->add_option("--truth", cli->truth, "File of the true M_p, to report each method's error");
-  auto* geometry = sub->add_option("--geometry", cli->geometry, "Geometry file whose strut stiffness gives the modes");
-  auto* stiffness = sub->add_option("--stiffness", cli->stiffness,
-                                    "Strut stiffness (N/m) for the modes: one number, or one per strut, comma-separated");
+  auto* geometry =
+      sub->add_option("--geometry", cli->geometry, "Geometry file whose strut stiffness gives the modes");
+  auto* stiffness =
+      sub->add_option("--stiffness", cli->stiffness,
+                      "Strut stiffness (N/m) for the modes: one number, or one per strut, comma-separated");
   stiffness->excludes(geometry);
   sub->add_flag("--json", cli->json, "Print every result as JSON");
   sub->add_option("-o,--output", cli->output, "Write to FILE instead of stdout");
@@ -306,19 +327,22 @@ Command add_identify(CLI::App& parent, const GlobalOptions& global) {
     if (!cli->truth.empty()) {
       options.truth = load_matrix(cli->truth);
       if (options.truth->rows() != n || options.truth->cols() != n) {
-        throw io::DataError(cli->truth, 0, 0, "the true M_p must be " + std::to_string(n) + "x" + std::to_string(n));
+        throw io::DataError(cli->truth, 0, 0,
+                            "the true M_p must be " + std::to_string(n) + "x" + std::to_string(n));
       }
     }
     if (!cli->geometry.empty()) {
       const hexapod::Geometry geometry = hexapod::read_geometry(cli->geometry);
-      if (n != 6) throw io::DataError(cli->a_path, 0, 0, "a hexapod geometry needs data with 6 columns (struts)");
+      if (n != 6)
+        throw io::DataError(cli->a_path, 0, 0, "a hexapod geometry needs data with 6 columns (struts)");
       options.stiffness = Eigen::MatrixXd(geometry.strut_stiffness.asDiagonal());
     } else if (!cli->stiffness.empty()) {
       options.stiffness = parse_stiffness(cli->stiffness, n);
     }
     const std::vector<hexapod::MethodIdentification> methods = hexapod::identify(data.A, data.B, options);
     for (const hexapod::MethodIdentification& m : methods) {
-      for (const std::string& w : m.result.warnings) warn(global, std::string(to_string(m.result.method)) + ": " + w);
+      for (const std::string& w : m.result.warnings)
+        warn(global, std::string(to_string(m.result.method)) + ": " + w);
     }
     if (!cli->json) {
       emit(identify_report(methods, options), cli->output);
@@ -345,7 +369,8 @@ Command add_identify(CLI::App& parent, const GlobalOptions& global) {
 }  // namespace
 
 Command add_hexapod_command(CLI::App& app, const GlobalOptions& global) {
-  CLI::App* sub = app.add_subcommand("hexapod", "A flexure-jointed hexapod's M_p: model, simulated data, identification");
+  CLI::App* sub =
+      app.add_subcommand("hexapod", "A flexure-jointed hexapod's M_p: model, simulated data, identification");
   sub->require_subcommand(1);
   auto children = std::make_shared<std::vector<Command>>(
       std::vector<Command>{add_model(*sub, global), add_simulate(*sub, global), add_identify(*sub, global)});

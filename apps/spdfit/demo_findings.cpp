@@ -32,7 +32,8 @@ Order order_of(const PairedComparison& c) {
 
 std::vector<double> absolute_errors(const experiment::EntryStatistics& s, Eigen::Index entry) {
   std::vector<double> out(static_cast<std::size_t>(s.errors.rows()));
-  for (Eigen::Index k = 0; k < s.errors.rows(); ++k) out[static_cast<std::size_t>(k)] = std::abs(s.errors(k, entry));
+  for (Eigen::Index k = 0; k < s.errors.rows(); ++k)
+    out[static_cast<std::size_t>(k)] = std::abs(s.errors(k, entry));
   return out;
 }
 
@@ -84,47 +85,55 @@ std::string thesis_statements(const std::vector<ThesisExperimentResult>& thesis,
     growing = growing && gain > previous_gain;
     previous_gain = gain;
     weakest = std::min(weakest, -c[i].mean_difference / c[i].standard_error);
-    gains += std::string(i ? ", " : "") + percent(gain) + " at V = " + trimmed(thesis[i].options.simulation.noise_var);
+    gains += std::string(i ? ", " : "") + percent(gain) +
+             " at V = " + trimmed(thesis[i].options.simulation.noise_var);
     losses += std::string(i ? ", " : "") + percent(1.0 - c[i].fraction_lower);
   }
   std::string text;
   if (all_lower) {
-    text = "Hexapod, thesis set-up: SPDE's mean error is below symmetric Procrustes' at all three noise levels, by " +
-           gains + (growing ? ", growing with the noise" : "") + ". The smallest of these differences is " +
-           fixed(weakest, 0) + " standard errors of the trial-by-trial difference: far beyond chance.";
+    text =
+        "Hexapod, thesis set-up: SPDE's mean error is below symmetric Procrustes' at all three noise levels, "
+        "by " +
+        gains + (growing ? ", growing with the noise" : "") + ". The smallest of these differences is " +
+        fixed(weakest, 0) + " standard errors of the trial-by-trial difference: far beyond chance.";
   } else {
     text = "Hexapod, thesis set-up, SPDE against symmetric Procrustes:";
     for (std::size_t i = 0; i < thesis.size(); ++i) {
       const Order o = order_of(c[i]);
       text += std::string(i ? ";" : "") + " at V = " + trimmed(thesis[i].options.simulation.noise_var) + " " +
-              (o == Order::Lower ? "SPDE's mean error is lower" :
-               o == Order::Higher ? "SPDE's mean error is higher" : "no significant difference");
+              (o == Order::Lower    ? "SPDE's mean error is lower"
+               : o == Order::Higher ? "SPDE's mean error is higher"
+                                    : "no significant difference");
     }
     text += ".";
   }
-  text += " Yet Procrustes is closer to the truth in " + losses +
-          " of the single runs, so one run like the thesis' tables can show either order; the averages are what "
-          "carries over to new data.";
+  text +=
+      " Yet Procrustes is closer to the truth in " + losses +
+      " of the single runs, so one run like the thesis' tables can show either order; the averages are what "
+      "carries over to new data.";
   out << bullet(text);
 
   bool ls_worse = true;
   for (const ThesisExperimentResult& r : thesis) {
-    ls_worse = ls_worse && order_of(compare_paired(r.of(Method::LeastSquares).errors,
-                                                   r.of(Method::SymmetricProcrustes).errors)) == Order::Higher;
+    ls_worse =
+        ls_worse && order_of(compare_paired(r.of(Method::LeastSquares).errors,
+                                            r.of(Method::SymmetricProcrustes).errors)) == Order::Higher;
   }
   if (ls_worse) {
-    out << bullet("Ignoring symmetry costs accuracy: unconstrained least squares (ls) is worse than Procrustes at "
-                  "every level.");
+    out << bullet(
+        "Ignoring symmetry costs accuracy: unconstrained least squares (ls) is worse than Procrustes at "
+        "every level.");
   }
   const experiment::Summary& tls = thesis.back().of(Method::TotalLeastSquaresSymmetric).summary;
   const experiment::Summary& spde_high = thesis.back().of(Method::Spde).summary;
   if (tls.mean > 1.1 * tls.median && tls.max > 5.0 * tls.median) {
-    out << bullet("TLS made symmetric (eq. 4.38) is erratic: at V = " +
-                  trimmed(thesis.back().options.simulation.noise_var) + " its mean error " + trimmed(tls.mean) +
-                  " is pulled far above its median " + trimmed(tls.median) + " by a few runs with errors up to " +
-                  trimmed(tls.max) + " (SPDE's largest: " + trimmed(spde_high.max) +
-                  "): its formula -V12 V22^-1 divides by V22, which is nearly singular in a few runs, and nothing "
-                  "guards against that.");
+    out << bullet(
+        "TLS made symmetric (eq. 4.38) is erratic: at V = " +
+        trimmed(thesis.back().options.simulation.noise_var) + " its mean error " + trimmed(tls.mean) +
+        " is pulled far above its median " + trimmed(tls.median) + " by a few runs with errors up to " +
+        trimmed(tls.max) + " (SPDE's largest: " + trimmed(spde_high.max) +
+        "): its formula -V12 V22^-1 divides by V22, which is nearly singular in a few runs, and nothing "
+        "guards against that.");
   }
 
   facts.spde_below_procrustes = all_lower;
@@ -167,7 +176,8 @@ std::string paper_statements(const std::vector<EntryExperimentResult>& paper, Fa
     text += " With no noise in A (std_a = 0) " +
             (procrustes_better.empty() ? std::string("the two are within noise of each other")
                                        : "Procrustes is the better one, for " + procrustes_better) +
-            ": least squares assumes exactly that A is exact, and SPDE's area criterion, which allows for noise in "
+            ": least squares assumes exactly that A is exact, and SPDE's area criterion, which allows for "
+            "noise in "
             "A, has nothing to gain.";
   } else {
     text += " Even with no noise in A (std_a = 0) SPDE is better for " + spde_better + ".";
@@ -179,10 +189,11 @@ std::string paper_statements(const std::vector<EntryExperimentResult>& paper, Fa
   Eigen::Index worst = 0;
   (tls_2x2.std.array() / spde_2x2.std.array()).maxCoeff(&worst);
   if (tls_2x2.std(worst) > 5.0 * spde_2x2.std(worst)) {
-    out << bullet("TLS allows for noise in A too, but is unstable: at std_a = " + trimmed(levels_2x2().back()) +
-                  " the standard deviation of its " + kEntryNames[worst] + " error is " + trimmed(tls_2x2.std(worst)) +
-                  " against SPDE's " + trimmed(spde_2x2.std(worst)) +
-                  " (the paper attributes this to TLS not enforcing positive definiteness).");
+    out << bullet(
+        "TLS allows for noise in A too, but is unstable: at std_a = " + trimmed(levels_2x2().back()) +
+        " the standard deviation of its " + kEntryNames[worst] + " error is " + trimmed(tls_2x2.std(worst)) +
+        " against SPDE's " + trimmed(spde_2x2.std(worst)) +
+        " (the paper attributes this to TLS not enforcing positive definiteness).");
   }
 
   facts.spde_wins_somewhere = from < paper.size();
@@ -210,20 +221,22 @@ std::string samples_statements(const std::vector<ThesisExperimentResult>& sample
                      fall(Method::SymmetricProcrustes) + ".";
   if (best_large != Method::Spde) {
     const PairedComparison edge = compare_paired(most.of(best_large).errors, most.of(Method::Spde).errors);
-    text += " At m = " + std::to_string(most.options.simulation.samples) + " " + std::string(to_string(best_large)) +
-            " is the most accurate" +
+    text += " At m = " + std::to_string(most.options.simulation.samples) + " " +
+            std::string(to_string(best_large)) + " is the most accurate" +
             (order_of(edge) == Order::Lower ? " (" + fixed(-edge.mean_difference / edge.standard_error, 0) +
                                                   " standard errors below spde)"
                                             : std::string(", though not significantly below spde")) +
             ".";
     bool others_slower = true;
     for (Method method : kCompared) {
-      others_slower = others_slower && (method == best_large || fall_fraction(method) < fall_fraction(best_large));
+      others_slower =
+          others_slower && (method == best_large || fall_fraction(method) < fall_fraction(best_large));
     }
     if (others_slower) text += " The others' errors fall more slowly with more data.";
     if (best_large == Method::TotalLeastSquaresSymmetric) {
-      text += " TLS models noise of the same variance in A and B, which is what is simulated here; with real "
-              "sensors, scale A and B to equal noise levels first (docs/hexapod.md).";
+      text +=
+          " TLS models noise of the same variance in A and B, which is what is simulated here; with real "
+          "sensors, scale A and B to equal noise levels first (docs/hexapod.md).";
     }
   } else {
     text += " spde stays the most accurate at m = " + std::to_string(most.options.simulation.samples) + ".";
@@ -249,8 +262,9 @@ std::string findings(const Results& results) {
   }
   std::string conclusion = "In short:";
   if (spde_best_small && facts.spde_below_procrustes && facts.spde_wins_somewhere) {
-    conclusion += " with few samples (m = 12, as in the thesis) and noise in both the accelerations and the forces, "
-                  "spde is the most accurate estimate;";
+    conclusion +=
+        " with few samples (m = 12, as in the thesis) and noise in both the accelerations and the forces, "
+        "spde is the most accurate estimate;";
   } else {
     conclusion += " at m = 12 no method is the most accurate at every noise level (see the tables);";
   }

@@ -67,8 +67,10 @@ std::string section_model() {
   text << "The built-in cubic-configuration hexapod (payload " << fixed(geometry.payload_mass, 2)
        << " kg, struts on six edges of a " << trimmed(hexapod::CubicGeometryParameters{}.edge)
        << " m cube) has the joint-space mass-inertia matrix M_p = J^-T M_x J^-1 + M_s of thesis eq. 2.12. It "
-       << "differs from the UW hexapod's M_p, eq. 6.1, by at most " << trimmed(gap) << " kg in any entry. With strut "
-       << "stiffness " << fixed(geometry.strut_stiffness(0), 0) << " N/m its modes sqrt(eig(M_p^-1 K)) / 2 pi are";
+       << "differs from the UW hexapod's M_p, eq. 6.1, by at most " << trimmed(gap)
+       << " kg in any entry. With strut "
+       << "stiffness " << fixed(geometry.strut_stiffness(0), 0)
+       << " N/m its modes sqrt(eig(M_p^-1 K)) / 2 pi are";
   for (int i = 0; i < 6; ++i) text << (i ? ", " : " ") << fixed(modes(i), 2);
   text << " Hz. The experiments below use eq. 6.1 as the truth, like the thesis.";
   std::ostringstream out;
@@ -85,8 +87,7 @@ std::string section_thesis(const std::vector<ThesisExperimentResult>& results, s
   // One run shown in full, like the thesis' tables: Experiment 2, trial 0.
   const ThesisExperimentResult& shown = results[1];
   Random random(trial_seed(seed, 0));
-  const hexapod::Measurements data =
-      hexapod::simulate(shown.options.truth, shown.options.simulation, random);
+  const hexapod::Measurements data = hexapod::simulate(shown.options.truth, shown.options.simulation, random);
   hexapod::IdentifyOptions identify_options;
   identify_options.truth = shown.options.truth;
   const std::vector<hexapod::MethodIdentification> run = hexapod::identify(data.A, data.B, identify_options);
@@ -94,8 +95,8 @@ std::string section_thesis(const std::vector<ThesisExperimentResult>& results, s
   std::vector<Eigen::MatrixXd> matrices = {shown.options.truth};
   for (const hexapod::MethodIdentification& m : run) {
     const Method method = m.result.method;
-    if (m.result.ok() &&
-        (method == Method::SymmetricProcrustes || method == Method::TotalLeastSquaresSymmetric || method == Method::Spde)) {
+    if (m.result.ok() && (method == Method::SymmetricProcrustes ||
+                          method == Method::TotalLeastSquaresSymmetric || method == Method::Spde)) {
       titles.push_back(std::string(to_string(method)) + " (error " + fixed(*m.error_vs_truth) + ")");
       matrices.push_back(m.result.X);
     }
@@ -105,16 +106,17 @@ std::string section_thesis(const std::vector<ThesisExperimentResult>& results, s
       << side_by_side(titles, matrices, 4, kWidth + 12);
 
   out << "One run of each experiment, error ||M_p - M_hat||_F (our trial 0 | the thesis' single run):\n\n";
-  std::snprintf(line, sizeof line, "%-4s %6s   %10s %10s %10s   |  %10s %10s %10s\n", "exp", "V", "procrustes",
-                "tls-sym", "spde", "procrustes", "tls-sym", "spde");
+  std::snprintf(line, sizeof line, "%-4s %6s   %10s %10s %10s   |  %10s %10s %10s\n", "exp", "V",
+                "procrustes", "tls-sym", "spde", "procrustes", "tls-sym", "spde");
   out << line;
   for (std::size_t i = 0; i < results.size(); ++i) {
     const ThesisExperimentResult& r = results[i];
     const experiment::ThesisReportedRun& thesis = experiment::kThesisReportedRuns[i];
-    std::snprintf(line, sizeof line, "%-4d %6.3f   %10s %10s %10s   |  %10.4f %10.4f %10.4f\n", thesis.experiment,
-                  r.options.simulation.noise_var, fixed(r.of(Method::SymmetricProcrustes).errors[0]).c_str(),
-                  fixed(r.of(Method::TotalLeastSquaresSymmetric).errors[0]).c_str(),
-                  fixed(r.of(Method::Spde).errors[0]).c_str(), thesis.procrustes, thesis.tls_sym, thesis.spde);
+    std::snprintf(
+        line, sizeof line, "%-4d %6.3f   %10s %10s %10s   |  %10.4f %10.4f %10.4f\n", thesis.experiment,
+        r.options.simulation.noise_var, fixed(r.of(Method::SymmetricProcrustes).errors[0]).c_str(),
+        fixed(r.of(Method::TotalLeastSquaresSymmetric).errors[0]).c_str(),
+        fixed(r.of(Method::Spde).errors[0]).c_str(), thesis.procrustes, thesis.tls_sym, thesis.spde);
     out << line;
   }
 
@@ -139,7 +141,8 @@ std::string section_thesis(const std::vector<ThesisExperimentResult>& results, s
       std::snprintf(line, sizeof line, " %10s", ("(" + fixed(s.standard_error(), 3) + ")").c_str());
       errors += line;
     }
-    const PairedComparison c = compare_paired(r.of(Method::Spde).errors, r.of(Method::SymmetricProcrustes).errors);
+    const PairedComparison c =
+        compare_paired(r.of(Method::Spde).errors, r.of(Method::SymmetricProcrustes).errors);
     out << means << "   in " << percent(c.fraction_lower) << " of the trials\n" << errors << '\n';
   }
   out << '\n';
@@ -149,7 +152,8 @@ std::string section_thesis(const std::vector<ThesisExperimentResult>& results, s
 std::string section_2x2(const std::vector<EntryExperimentResult>& results) {
   std::ostringstream out;
   out << "== 3. The paper's 2x2 example (001, Fig. 3): X = [3 1; 1 1] from (A0 + Va) X ~= A0 X + Vb,\n"
-      << "Gaussian noise of std_a in A and std_b = 1 in B; " << results.front().trials << " trials per level\n\n"
+      << "Gaussian noise of std_a in A and std_b = 1 in B; " << results.front().trials
+      << " trials per level\n\n"
       << sweep_table(levels_2x2(), results) << '\n';
   return out.str();
 }
@@ -170,11 +174,13 @@ std::string section_samples(const std::vector<ThesisExperimentResult>& thesis,
   std::vector<const ThesisExperimentResult*> rows = {&thesis[1]};
   for (const ThesisExperimentResult& r : samples) rows.push_back(&r);
   for (const ThesisExperimentResult* r : rows) {
-    std::snprintf(line, sizeof line, "%6ld %8zu", static_cast<long>(r->options.simulation.samples), r->trials);
+    std::snprintf(line, sizeof line, "%6ld %8zu", static_cast<long>(r->options.simulation.samples),
+                  r->trials);
     out << line;
     for (Method method : {Method::SymmetricProcrustes, Method::TotalLeastSquaresSymmetric, Method::Spde}) {
       const experiment::Summary& s = r->of(method).summary;
-      std::snprintf(line, sizeof line, " %9s +- %5s", fixed(s.mean, 3).c_str(), fixed(s.standard_error(), 3).c_str());
+      std::snprintf(line, sizeof line, " %9s +- %5s", fixed(s.mean, 3).c_str(),
+                    fixed(s.standard_error(), 3).c_str());
       out << line;
     }
     out << '\n';

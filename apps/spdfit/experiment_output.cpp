@@ -37,7 +37,8 @@ json thesis_json(const experiment::ThesisExperimentResult& result) {
   json out;
   out["experiment"] = "thesis";
   out["noise_var"] = result.options.simulation.noise_var;
-  out["force_noise_var"] = result.options.simulation.force_noise_var.value_or(result.options.simulation.noise_var);
+  out["force_noise_var"] =
+      result.options.simulation.force_noise_var.value_or(result.options.simulation.noise_var);
   out["samples"] = result.options.simulation.samples;
   out["trials"] = result.trials;
   out["seed"] = result.seed;
@@ -58,9 +59,10 @@ std::string thesis_table(const experiment::ThesisExperimentResult& result) {
   out << line;
   for (const experiment::MethodErrors& m : result.methods) {
     const experiment::Summary& s = m.summary;
-    std::snprintf(line, sizeof line, "%-11s %9s %9s %9s %9s %11s %9zu\n", std::string(to_string(m.method)).c_str(),
-                  fixed(s.mean).c_str(), fixed(s.standard_error()).c_str(), fixed(s.std).c_str(),
-                  fixed(s.median).c_str(), fixed(s.max).c_str(), s.failures);
+    std::snprintf(line, sizeof line, "%-11s %9s %9s %9s %9s %11s %9zu\n",
+                  std::string(to_string(m.method)).c_str(), fixed(s.mean).c_str(),
+                  fixed(s.standard_error()).c_str(), fixed(s.std).c_str(), fixed(s.median).c_str(),
+                  fixed(s.max).c_str(), s.failures);
     out << line;
   }
   return out.str();
@@ -69,10 +71,11 @@ std::string thesis_table(const experiment::ThesisExperimentResult& result) {
 std::string paired_line(const experiment::ThesisExperimentResult& result, Method a, Method b) {
   const experiment::PairedComparison c = experiment::compare_paired(result.of(a).errors, result.of(b).errors);
   char line[240];
-  std::snprintf(line, sizeof line,
-                "%s - %s, trial by trial: mean difference %s +- %s (s.e.); %s lower in %.1f%% of %zu trials\n",
-                std::string(to_string(a)).c_str(), std::string(to_string(b)).c_str(), fixed(c.mean_difference).c_str(),
-                fixed(c.standard_error).c_str(), std::string(to_string(a)).c_str(), 100.0 * c.fraction_lower, c.count);
+  std::snprintf(
+      line, sizeof line,
+      "%s - %s, trial by trial: mean difference %s +- %s (s.e.); %s lower in %.1f%% of %zu trials\n",
+      std::string(to_string(a)).c_str(), std::string(to_string(b)).c_str(), fixed(c.mean_difference).c_str(),
+      fixed(c.standard_error).c_str(), std::string(to_string(a)).c_str(), 100.0 * c.fraction_lower, c.count);
   return line;
 }
 
@@ -99,10 +102,10 @@ json entry_methods_json(const experiment::EntryExperimentResult& result) {
   json out = json::object();
   for (const experiment::EntryStatistics& s : result.methods) {
     out[std::string(to_string(s.method))] = {{"mae", vector_json(s.mae)},
-                                            {"std", vector_json(s.std)},
-                                            {"bias", vector_json(s.bias)},
-                                            {"count", s.count},
-                                            {"failures", s.failures}};
+                                             {"std", vector_json(s.std)},
+                                             {"bias", vector_json(s.bias)},
+                                             {"count", s.count},
+                                             {"failures", s.failures}};
   }
   return out;
 }
@@ -128,7 +131,8 @@ std::string entry_table(const experiment::EntryExperimentResult& result, const s
   out << '\n';
   for (std::size_t e = 0; e < result.entries.size(); ++e) {
     const auto [i, j] = result.entries[e];
-    std::snprintf(cell, sizeof cell, "%-6s %8s", entry_name(entry_prefix, i, j).c_str(), fixed(result.truth(i, j)).c_str());
+    std::snprintf(cell, sizeof cell, "%-6s %8s", entry_name(entry_prefix, i, j).c_str(),
+                  fixed(result.truth(i, j)).c_str());
     out << cell;
     for (const experiment::EntryStatistics& s : result.methods) {
       const auto k = static_cast<Eigen::Index>(e);
@@ -147,9 +151,9 @@ std::string entry_csv(const experiment::EntryExperimentResult& result, const std
     for (std::size_t e = 0; e < result.entries.size(); ++e) {
       const auto [i, j] = result.entries[e];
       const auto k = static_cast<Eigen::Index>(e);
-      out << to_string(s.method) << ',' << entry_name(entry_prefix, i, j) << ',' << io::format_double(result.truth(i, j))
-          << ',' << io::format_double(s.mae(k)) << ',' << io::format_double(s.std(k)) << ','
-          << io::format_double(s.bias(k)) << '\n';
+      out << to_string(s.method) << ',' << entry_name(entry_prefix, i, j) << ','
+          << io::format_double(result.truth(i, j)) << ',' << io::format_double(s.mae(k)) << ','
+          << io::format_double(s.std(k)) << ',' << io::format_double(s.bias(k)) << '\n';
     }
   }
   return out.str();
@@ -164,8 +168,8 @@ std::string sweep_csv(const std::vector<double>& levels, double std_b,
   out << '\n';
   for (std::size_t l = 0; l < levels.size(); ++l) {
     for (const experiment::EntryStatistics& s : results[l].methods) {
-      out << io::format_double(levels[l]) << ',' << io::format_double(std_b) << ',' << results[l].trials << ','
-          << to_string(s.method) << ',' << s.failures;
+      out << io::format_double(levels[l]) << ',' << io::format_double(std_b) << ',' << results[l].trials
+          << ',' << to_string(s.method) << ',' << s.failures;
       for (const Eigen::VectorXd* v : {&s.mae, &s.std, &s.bias})
         for (Eigen::Index e = 0; e < v->size(); ++e) out << ',' << io::format_double((*v)(e));
       out << '\n';
@@ -174,7 +178,8 @@ std::string sweep_csv(const std::vector<double>& levels, double std_b,
   return out.str();
 }
 
-std::string sweep_table(const std::vector<double>& levels, const std::vector<experiment::EntryExperimentResult>& results) {
+std::string sweep_table(const std::vector<double>& levels,
+                        const std::vector<experiment::EntryExperimentResult>& results) {
   std::ostringstream out;
   char cell[120];
   out << "mean absolute error\n";
@@ -190,8 +195,8 @@ std::string sweep_table(const std::vector<double>& levels, const std::vector<exp
     std::snprintf(cell, sizeof cell, "%5.2f ", levels[l]);
     out << cell;
     for (const experiment::EntryStatistics& s : results[l].methods) {
-      std::snprintf(cell, sizeof cell, "   %8s %8s %8s", fixed(s.mae(0), 3).c_str(), fixed(s.mae(1), 3).c_str(),
-                    fixed(s.mae(2), 3).c_str());
+      std::snprintf(cell, sizeof cell, "   %8s %8s %8s", fixed(s.mae(0), 3).c_str(),
+                    fixed(s.mae(1), 3).c_str(), fixed(s.mae(2), 3).c_str());
       out << cell;
     }
     out << '\n';

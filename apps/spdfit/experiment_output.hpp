@@ -48,7 +48,8 @@ std::string sweep_csv(const std::vector<double>& levels, double std_b,
                       const std::vector<experiment::EntryExperimentResult>& results);
 
 /// The sweep as a readable table: mean absolute error of each entry, per level and method.
-std::string sweep_table(const std::vector<double>& levels, const std::vector<experiment::EntryExperimentResult>& results);
+std::string sweep_table(const std::vector<double>& levels,
+                        const std::vector<experiment::EntryExperimentResult>& results);
 
 /// A progress callback for MonteCarloOptions that shows "LABEL: done/total trials" on stderr,
 /// only when stderr is a terminal (and not when `quiet`), and clears it when the run ends.

@@ -62,19 +62,20 @@ const EntryStatistics& EntryExperimentResult::of(Method method) const {
   throw std::invalid_argument("experiment result: method " + std::string(to_string(method)) + " was not run");
 }
 
-EntryExperimentResult run_paper_hexapod(const PaperHexapodOptions& options, const MonteCarloOptions& monte_carlo) {
+EntryExperimentResult run_paper_hexapod(const PaperHexapodOptions& options,
+                                        const MonteCarloOptions& monte_carlo) {
   const Eigen::MatrixXd truth = options.truth.size() ? options.truth : hexapod::thesis_mass_matrix();
   std::string error;
   if (!options.simulation.is_valid(&error)) throw std::invalid_argument("paper-hexapod experiment: " + error);
   if (options.simulation.samples < truth.rows()) {
     throw std::invalid_argument("paper-hexapod experiment: need at least as many samples as M_p has columns");
   }
-  return run_entry_experiment(truth, options.methods, monte_carlo,
-                              [&](Random& random, Eigen::MatrixXd& A, Eigen::MatrixXd& B) {
-                                hexapod::Measurements data = hexapod::simulate(truth, options.simulation, random);
-                                A = std::move(data.A);
-                                B = std::move(data.B);
-                              });
+  return run_entry_experiment(
+      truth, options.methods, monte_carlo, [&](Random& random, Eigen::MatrixXd& A, Eigen::MatrixXd& B) {
+        hexapod::Measurements data = hexapod::simulate(truth, options.simulation, random);
+        A = std::move(data.A);
+        B = std::move(data.B);
+      });
 }
 
 Eigen::MatrixXd paper_2x2_truth() { return (Eigen::MatrixXd(2, 2) << 3.0, 1.0, 1.0, 1.0).finished(); }
@@ -87,20 +88,19 @@ Eigen::MatrixXd paper_2x2_design() {
 EntryExperimentResult run_paper_2x2(const Paper2x2Options& options, const MonteCarloOptions& monte_carlo) {
   if (!(options.std_a >= 0.0) || !std::isfinite(options.std_a) || !(options.std_b >= 0.0) ||
       !std::isfinite(options.std_b)) {
-    throw std::invalid_argument("paper-2x2 experiment: the noise standard deviations must be finite and >= 0");
+    throw std::invalid_argument(
+        "paper-2x2 experiment: the noise standard deviations must be finite and >= 0");
   }
   const Eigen::MatrixXd X = paper_2x2_truth();
   const Eigen::MatrixXd A0 = paper_2x2_design();
   const Eigen::MatrixXd B0 = A0 * X;
-  return run_entry_experiment(X, options.methods, monte_carlo,
-                              [&](Random& random, Eigen::MatrixXd& A, Eigen::MatrixXd& B) {
-                                A = A0;
-                                B = B0;
-                                hexapod::add_noise(A, options.std_a * options.std_a,
-                                                   hexapod::NoiseDistribution::Gaussian, random);
-                                hexapod::add_noise(B, options.std_b * options.std_b,
-                                                   hexapod::NoiseDistribution::Gaussian, random);
-                              });
+  return run_entry_experiment(
+      X, options.methods, monte_carlo, [&](Random& random, Eigen::MatrixXd& A, Eigen::MatrixXd& B) {
+        A = A0;
+        B = B0;
+        hexapod::add_noise(A, options.std_a * options.std_a, hexapod::NoiseDistribution::Gaussian, random);
+        hexapod::add_noise(B, options.std_b * options.std_b, hexapod::NoiseDistribution::Gaussian, random);
+      });
 }
 
 std::vector<double> paper_2x2_sweep_levels() {

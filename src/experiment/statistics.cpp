@@ -32,7 +32,8 @@ double Summary::standard_error() const {
 
 Summary summarize(std::vector<double> values) {
   Summary s;
-  const auto finite_end = std::partition(values.begin(), values.end(), [](double x) { return !std::isnan(x); });
+  const auto finite_end =
+      std::partition(values.begin(), values.end(), [](double x) { return !std::isnan(x); });
   s.failures = static_cast<std::size_t>(values.end() - finite_end);
   values.erase(finite_end, values.end());
   s.count = values.size();

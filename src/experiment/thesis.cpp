@@ -10,7 +10,8 @@ const MethodErrors& ThesisExperimentResult::of(Method method) const {
   for (const MethodErrors& m : methods) {
     if (m.method == method) return m;
   }
-  throw std::invalid_argument("ThesisExperimentResult: no results for method " + std::string(to_string(method)));
+  throw std::invalid_argument("ThesisExperimentResult: no results for method " +
+                              std::string(to_string(method)));
 }
 
 ThesisExperimentResult run_thesis_experiment(const ThesisExperimentOptions& options,
@@ -29,8 +30,8 @@ ThesisExperimentResult run_thesis_experiment(const ThesisExperimentOptions& opti
   result.seed = monte_carlo.seed;
 
   const std::size_t method_count = kAllMethods.size();
-  std::vector<std::vector<double>> errors(method_count,
-                                          std::vector<double>(monte_carlo.trials, std::numeric_limits<double>::quiet_NaN()));
+  std::vector<std::vector<double>> errors(
+      method_count, std::vector<double>(monte_carlo.trials, std::numeric_limits<double>::quiet_NaN()));
   run_trials(monte_carlo, [&](std::size_t k, Random& random) {
     const hexapod::Measurements data = hexapod::simulate(truth, options.simulation, random);
     const std::vector<FitResult> fits = estimate_all(data.A, data.B);

@@ -57,14 +57,15 @@ bool check_inertia(const Eigen::Matrix3d& I, std::string* error) {
   const double scale = I.cwiseAbs().maxCoeff();
   if (!((I - I.transpose()).cwiseAbs().maxCoeff() <= kTypedDataTolerance * scale)) {
     return fail(error, "payload_inertia is not symmetric (an inertia tensor always is): entry [0][1] = " +
-                           number(I(0, 1)) + " but [1][0] = " + number(I(1, 0)) + ", [0][2] = " + number(I(0, 2)) +
-                           " but [2][0] = " + number(I(2, 0)) + ", [1][2] = " + number(I(1, 2)) +
-                           " but [2][1] = " + number(I(2, 1)));
+                           number(I(0, 1)) + " but [1][0] = " + number(I(1, 0)) +
+                           ", [0][2] = " + number(I(0, 2)) + " but [2][0] = " + number(I(2, 0)) +
+                           ", [1][2] = " + number(I(1, 2)) + " but [2][1] = " + number(I(2, 1)));
   }
-  const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I, Eigen::EigenvaluesOnly).eigenvalues();
+  const Eigen::Vector3d moments =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I, Eigen::EigenvaluesOnly).eigenvalues();
   if (!(moments(0) > 0.0)) {
-    return fail(error, "payload_inertia is not positive definite: its principal moments are " + number(moments(0)) +
-                           ", " + number(moments(1)) + ", " + number(moments(2)) +
+    return fail(error, "payload_inertia is not positive definite: its principal moments are " +
+                           number(moments(0)) + ", " + number(moments(1)) + ", " + number(moments(2)) +
                            " kg m^2, and a rigid body's are all positive (is it in kg m^2, about the centre "
                            "of mass?)");
   }
@@ -72,8 +73,8 @@ bool check_inertia(const Eigen::Matrix3d& I, std::string* error) {
   // flat plate), since I_zz = sum m (x^2 + y^2) <= sum m (x^2 + z^2) + sum m (y^2 + z^2).
   if (moments(2) > (moments(0) + moments(1)) * (1.0 + kTypedDataTolerance)) {
     return fail(error, "payload_inertia is not physically realizable: its largest principal moment " +
-                           number(moments(2)) + " kg m^2 exceeds the sum of the other two (" + number(moments(0)) +
-                           " + " + number(moments(1)) + ")");
+                           number(moments(2)) + " kg m^2 exceeds the sum of the other two (" +
+                           number(moments(0)) + " + " + number(moments(1)) + ")");
   }
   return true;
 }
@@ -82,9 +83,10 @@ bool check_rotation(const Eigen::Matrix3d& R, std::string* error) {
   const double orthogonality = (R.transpose() * R - Eigen::Matrix3d::Identity()).norm();
   const double det = R.determinant();
   if (!(orthogonality <= kRotationTolerance) || !(std::abs(det - 1.0) <= kRotationTolerance)) {
-    return fail(error, "payload_rotation is not a rotation matrix (||R^T R - I|| = " + number(orthogonality) +
-                           ", det R = " + number(det) +
-                           "); give an orthonormal matrix with determinant +1, to at least 7 significant digits");
+    return fail(error,
+                "payload_rotation is not a rotation matrix (||R^T R - I|| = " + number(orthogonality) +
+                    ", det R = " + number(det) +
+                    "); give an orthonormal matrix with determinant +1, to at least 7 significant digits");
   }
   return true;
 }
@@ -97,9 +99,10 @@ bool check_struts(const Geometry& g, std::string* error) {
   for (int i = 0; i < 6; ++i) {
     if (!(s.col(i).norm() > kCoincidenceTolerance * size)) {
       return fail(error, "base_points[" + std::to_string(i) + "] and payload_points[" + std::to_string(i) +
-                             "]: strut " + std::to_string(i + 1) + " has zero length at the home pose (its base joint " +
-                             vector_text(g.base_points.col(i)) + " and payload joint " + vector_text(b.col(i)) +
-                             " coincide in {B})");
+                             "]: strut " + std::to_string(i + 1) +
+                             " has zero length at the home pose (its base joint " +
+                             vector_text(g.base_points.col(i)) + " and payload joint " +
+                             vector_text(b.col(i)) + " coincide in {B})");
     }
   }
   // Plucker coordinates (u_i, r_i x u_i) with the moment taken about the centre of mass: two
@@ -132,8 +135,9 @@ bool check_struts(const Geometry& g, std::string* error) {
     return fail(error, "base_points/payload_points: the Jacobian is singular (condition number " +
                            (sigma(5) > 0 ? number(sigma(0) / sigma(5)) : std::string("infinite")) +
                            "): the struts do not hold the payload in all six directions; it can move freely "
-                           "along v = " + vector_text(free_twist.head<3>()) + ", w = " +
-                           vector_text(free_twist.tail<3>() / length) +
+                           "along v = " +
+                           vector_text(free_twist.head<3>()) +
+                           ", w = " + vector_text(free_twist.tail<3>() / length) +
                            " (all struts parallel, or all meeting one line, do this)");
   }
   return true;
@@ -147,10 +151,10 @@ bool Geometry::is_valid(std::string* error) const {
     bool finite;
   };
   const Field fields[] = {
-      {"base_points", base_points.allFinite()},        {"payload_points", payload_points.allFinite()},
-      {"payload_origin", payload_origin.allFinite()},  {"payload_rotation", payload_rotation.allFinite()},
-      {"payload_mass", std::isfinite(payload_mass)},   {"payload_inertia", payload_inertia.allFinite()},
-      {"strut_mass", strut_mass.allFinite()},          {"strut_stiffness", strut_stiffness.allFinite()},
+      {"base_points", base_points.allFinite()},       {"payload_points", payload_points.allFinite()},
+      {"payload_origin", payload_origin.allFinite()}, {"payload_rotation", payload_rotation.allFinite()},
+      {"payload_mass", std::isfinite(payload_mass)},  {"payload_inertia", payload_inertia.allFinite()},
+      {"strut_mass", strut_mass.allFinite()},         {"strut_stiffness", strut_stiffness.allFinite()},
       {"strut_damping", strut_damping.allFinite()},
   };
   for (const Field& field : fields) {
@@ -203,7 +207,8 @@ Geometry cubic_geometry(const CubicGeometryParameters& c) {
   g.payload_origin = com - Eigen::Vector3d(0.0, 0.0, base_height);
   g.payload_rotation.setIdentity();
   g.payload_mass = c.payload_mass;
-  g.payload_inertia = Eigen::Vector3d(c.inertia_transverse, c.inertia_transverse, c.inertia_axial).asDiagonal();
+  g.payload_inertia =
+      Eigen::Vector3d(c.inertia_transverse, c.inertia_transverse, c.inertia_axial).asDiagonal();
   g.strut_mass.setConstant(c.strut_mass);
   g.strut_stiffness.setConstant(c.strut_stiffness);
   g.strut_damping.setConstant(c.strut_damping);

@@ -24,7 +24,8 @@ struct KeyInfo {
 
 const KeyInfo kKeys[] = {
     {"base_points", true, "the six base joints [[x, y, z], ...] in {B}, metres"},
-    {"payload_points", true, "the six payload joints [[x, y, z], ...] in {P}, metres from the centre of mass"},
+    {"payload_points", true,
+     "the six payload joints [[x, y, z], ...] in {P}, metres from the centre of mass"},
     {"payload_origin", true, "{P}'s origin (the payload's centre of mass) in {B}, [x, y, z] metres"},
     {"payload_rotation", false, "{P}'s axes in {B}, a 3x3 rotation matrix"},
     {"payload_mass", true, "the payload's mass in kg"},
@@ -60,8 +61,10 @@ class Reader {
   }
 
   Eigen::Vector3d vector3(const json& value, const std::string& where) const {
-    if (!value.is_array() || value.size() != 3) fail(where + " must be [x, y, z] (3 numbers), found " + describe(value));
-    return {number(value[0], where + "[0]"), number(value[1], where + "[1]"), number(value[2], where + "[2]")};
+    if (!value.is_array() || value.size() != 3)
+      fail(where + " must be [x, y, z] (3 numbers), found " + describe(value));
+    return {number(value[0], where + "[0]"), number(value[1], where + "[1]"),
+            number(value[2], where + "[2]")};
   }
 
   Points points(const char* key) const {
@@ -71,13 +74,15 @@ class Reader {
            describe(value));
     }
     Points p;
-    for (int i = 0; i < 6; ++i) p.col(i) = vector3(value[i], std::string(key) + "[" + std::to_string(i) + "]");
+    for (int i = 0; i < 6; ++i)
+      p.col(i) = vector3(value[i], std::string(key) + "[" + std::to_string(i) + "]");
     return p;
   }
 
   Eigen::Matrix3d matrix3(const json& value, const char* key) const {
     if (!value.is_array() || value.size() != 3) {
-      fail(std::string(key) + " must be a 3x3 matrix [[a, b, c], [d, e, f], [g, h, i]]; found " + describe(value));
+      fail(std::string(key) + " must be a 3x3 matrix [[a, b, c], [d, e, f], [g, h, i]]; found " +
+           describe(value));
     }
     Eigen::Matrix3d M;
     for (int i = 0; i < 3; ++i) {
@@ -89,8 +94,8 @@ class Reader {
   Vector6d per_strut(const json& value, const char* key) const {
     if (value.is_number()) return Vector6d::Constant(value.get<double>());
     if (!value.is_array() || value.size() != 6) {
-      fail(std::string(key) + " must be a number (the same for every strut) or an array of 6 numbers; found " +
-           describe(value));
+      fail(std::string(key) +
+           " must be a number (the same for every strut) or an array of 6 numbers; found " + describe(value));
     }
     Vector6d v;
     for (int i = 0; i < 6; ++i) v(i) = number(value[i], std::string(key) + "[" + std::to_string(i) + "]");
@@ -159,12 +164,14 @@ Geometry parse_geometry(const std::string& text, const std::string& source) {
   g.base_points = in.points("base_points");
   g.payload_points = in.points("payload_points");
   g.payload_origin = in.vector3(in.require("payload_origin"), "payload_origin");
-  if (const json* rotation = in.find("payload_rotation")) g.payload_rotation = in.matrix3(*rotation, "payload_rotation");
+  if (const json* rotation = in.find("payload_rotation"))
+    g.payload_rotation = in.matrix3(*rotation, "payload_rotation");
   g.payload_mass = in.number(in.require("payload_mass"), "payload_mass");
   g.payload_inertia = in.matrix3(in.require("payload_inertia"), "payload_inertia");
   g.strut_mass = in.per_strut(in.require("strut_mass"), "strut_mass");
   g.strut_stiffness = in.per_strut(in.require("strut_stiffness"), "strut_stiffness");
-  if (const json* damping = in.find("strut_damping")) g.strut_damping = in.per_strut(*damping, "strut_damping");
+  if (const json* damping = in.find("strut_damping"))
+    g.strut_damping = in.per_strut(*damping, "strut_damping");
 
   std::string error;
   if (!g.is_valid(&error)) in.fail(error);

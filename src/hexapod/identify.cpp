@@ -15,8 +15,8 @@ std::vector<MethodIdentification> identify(const Eigen::MatrixXd& A, const Eigen
   const Eigen::Index n = A.cols();
   auto check_square = [n](const std::optional<Eigen::MatrixXd>& M, const char* what) {
     if (M && (M->rows() != n || M->cols() != n)) {
-      throw std::invalid_argument(std::string("identify: the ") + what + " must be " + std::to_string(n) + "x" +
-                                  std::to_string(n) + " like the data's columns, not " +
+      throw std::invalid_argument(std::string("identify: the ") + what + " must be " + std::to_string(n) +
+                                  "x" + std::to_string(n) + " like the data's columns, not " +
                                   std::to_string(M->rows()) + "x" + std::to_string(M->cols()));
     }
   };
@@ -34,7 +34,8 @@ std::vector<MethodIdentification> identify(const Eigen::MatrixXd& A, const Eigen
     if (r.ok()) {
       if (options.truth) m.error_vs_truth = (r.X - *options.truth).norm();
       if (r.diagnostics.symmetric) {
-        m.eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(r.X, Eigen::EigenvaluesOnly).eigenvalues();
+        m.eigenvalues =
+            Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(r.X, Eigen::EigenvaluesOnly).eigenvalues();
       }
       if (options.stiffness && r.diagnostics.positive_definite) {
         try {

@@ -41,7 +41,7 @@ Matrix6d payload_mass_matrix(const Geometry& geometry) {
   const Eigen::Matrix3d& R = geometry.payload_rotation;
   Matrix6d Mx = Matrix6d::Zero();
   Mx.topLeftCorner<3, 3>() = geometry.payload_mass * Eigen::Matrix3d::Identity();  // R m I R^T = m I
-  Mx.bottomRightCorner<3, 3>() = R * geometry.payload_inertia * R.transpose();      // eq. 2.13
+  Mx.bottomRightCorner<3, 3>() = R * geometry.payload_inertia * R.transpose();     // eq. 2.13
   return Mx;
 }
 
@@ -83,7 +83,7 @@ Eigen::VectorXd modal_frequencies_hz(const Eigen::MatrixXd& M, const Eigen::Matr
   }
   Eigen::MatrixXd C = K;
   llt.matrixL().solveInPlace(C);  // L^-1 K
-  C.transposeInPlace();            // K L^-T (K symmetric)
+  C.transposeInPlace();           // K L^-T (K symmetric)
   llt.matrixL().solveInPlace(C);  // L^-1 K L^-T
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(C, Eigen::EigenvaluesOnly);
   Eigen::VectorXd hz = solver.eigenvalues();  // ascending

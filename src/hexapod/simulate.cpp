@@ -39,7 +39,8 @@ bool SimulationOptions::is_valid(std::string* error) const {
   if (force_noise_var && (!(*force_noise_var >= 0.0) || !std::isfinite(*force_noise_var))) {
     return fail("force_noise_var must be a finite number >= 0");
   }
-  if (!(signal_var > 0.0) || !std::isfinite(signal_var)) return fail("signal_var must be a finite number > 0");
+  if (!(signal_var > 0.0) || !std::isfinite(signal_var))
+    return fail("signal_var must be a finite number > 0");
   return true;
 }
 
@@ -71,7 +72,7 @@ Measurements simulate(const Eigen::MatrixXd& truth, const SimulationOptions& opt
   add_noise(out.A_true, options.signal_var, NoiseDistribution::Uniform, random);
   out.A = out.A_true;
   add_noise(out.A, options.noise_var, options.distribution, random);  // lddotm (eq. 6.3)
-  out.B_true = out.A_true * truth;                                      // fb = lddot * Mprel (eq. 6.2)
+  out.B_true = out.A_true * truth;                                    // fb = lddot * Mprel (eq. 6.2)
   out.B = out.B_true;
   const double force_noise_var = options.force_noise_var.value_or(options.noise_var);
   add_noise(out.B, force_noise_var, options.distribution, random);  // fbm (eq. 6.4)

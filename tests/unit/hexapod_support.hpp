@@ -33,7 +33,8 @@ inline hexapod::Geometry random_geometry(Generator& g) {
   constexpr double kPi = 3.14159265358979323846;
   hexapod::Geometry geometry;
   geometry.payload_rotation = random_rotation(g);
-  geometry.payload_origin = Eigen::Vector3d(g.uniform(-0.01, 0.01), g.uniform(-0.01, 0.01), g.uniform(0.18, 0.22));
+  geometry.payload_origin =
+      Eigen::Vector3d(g.uniform(-0.01, 0.01), g.uniform(-0.01, 0.01), g.uniform(0.18, 0.22));
   for (int i = 0; i < 6; ++i) {
     const int pair = i / 2;
     const double side = (i % 2 == 0) ? -1.0 : 1.0;
@@ -48,9 +49,8 @@ inline hexapod::Geometry random_geometry(Generator& g) {
     geometry.payload_points.col(i) = geometry.payload_rotation.transpose() * (payload_in_base + jitter);
   }
   geometry.payload_mass = g.uniform(2.0, 20.0);
-  geometry.payload_inertia =
-      box_inertia(geometry.payload_mass, g.uniform(0.1, 0.3), g.uniform(0.1, 0.3), g.uniform(0.02, 0.1),
-                  random_rotation(g));
+  geometry.payload_inertia = box_inertia(geometry.payload_mass, g.uniform(0.1, 0.3), g.uniform(0.1, 0.3),
+                                         g.uniform(0.02, 0.1), random_rotation(g));
   for (int i = 0; i < 6; ++i) {
     geometry.strut_mass(i) = g.uniform(0.1, 1.0);
     geometry.strut_stiffness(i) = g.uniform(5e3, 5e4);

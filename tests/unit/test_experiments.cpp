@@ -29,7 +29,8 @@ constexpr double kSigmas = 4.0;
 // |errors| of one entry (column) over the trials.
 std::vector<double> absolute_errors(const EntryStatistics& s, Eigen::Index entry) {
   std::vector<double> out(static_cast<std::size_t>(s.errors.rows()));
-  for (Eigen::Index k = 0; k < s.errors.rows(); ++k) out[static_cast<std::size_t>(k)] = std::abs(s.errors(k, entry));
+  for (Eigen::Index k = 0; k < s.errors.rows(); ++k)
+    out[static_cast<std::size_t>(k)] = std::abs(s.errors(k, entry));
   return out;
 }
 

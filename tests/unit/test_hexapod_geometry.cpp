@@ -95,8 +95,8 @@ TEST(HexapodGeometry, RejectsARotationThatIsNotOne) {
 TEST(HexapodGeometry, RejectsCoincidentJoints) {
   Geometry geometry = hexapod::cubic_geometry();
   // Put payload joint 3 exactly on base joint 3.
-  geometry.payload_points.col(2) = geometry.payload_rotation.transpose() *
-                                   (geometry.base_points.col(2) - geometry.payload_origin);
+  geometry.payload_points.col(2) =
+      geometry.payload_rotation.transpose() * (geometry.base_points.col(2) - geometry.payload_origin);
   EXPECT_TRUE(Contains(problem_with(geometry), "strut 3 has zero length"));
   EXPECT_TRUE(Contains(problem_with(geometry), "base_points[2] and payload_points[2]"));
 }
@@ -193,14 +193,23 @@ TEST(HexapodGeometryFile, AcceptsScalarStrutPropertiesOptionalKeysAndComments) {
 }
 
 TEST(HexapodGeometryFile, ErrorsNameTheKey) {
-  EXPECT_TRUE(Contains(read_error(with_value("payload_mass", "-3")), "G.json: payload_mass must be positive"));
-  EXPECT_TRUE(Contains(read_error(with_value("payload_mass", "\"heavy\"")), "payload_mass must be a number, found the string \"heavy\""));
-  EXPECT_TRUE(Contains(read_error(with_value("base_points", "[[0, 0, 0], [1, 0, 0]]")), "base_points must be an array of 6 points"));
-  EXPECT_TRUE(Contains(read_error(with_value("payload_origin", "[0, 0]")), "payload_origin must be [x, y, z] (3 numbers), found an array of 2 entries"));
-  EXPECT_TRUE(Contains(read_error(with_value("payload_inertia", "[[1, 0, 0], [0, 1, 0]]")), "payload_inertia must be a 3x3 matrix"));
-  EXPECT_TRUE(Contains(read_error(with_value("payload_inertia", "[[1, 0, 0], [0, 1, 0], [0, 0, -1]]")), "payload_inertia is not positive definite"));
-  EXPECT_TRUE(Contains(read_error(with_value("strut_stiffness", "[1, 2, 3]")), "strut_stiffness must be a number (the same for every strut) or an array of 6 numbers"));
-  EXPECT_TRUE(Contains(read_error(with_value("strut_mass", "[1, 2, 3, 4, 5, null]")), "strut_mass[5] must be a number, found null"));
+  EXPECT_TRUE(
+      Contains(read_error(with_value("payload_mass", "-3")), "G.json: payload_mass must be positive"));
+  EXPECT_TRUE(Contains(read_error(with_value("payload_mass", "\"heavy\"")),
+                       "payload_mass must be a number, found the string \"heavy\""));
+  EXPECT_TRUE(Contains(read_error(with_value("base_points", "[[0, 0, 0], [1, 0, 0]]")),
+                       "base_points must be an array of 6 points"));
+  EXPECT_TRUE(Contains(read_error(with_value("payload_origin", "[0, 0]")),
+                       "payload_origin must be [x, y, z] (3 numbers), found an array of 2 entries"));
+  EXPECT_TRUE(Contains(read_error(with_value("payload_inertia", "[[1, 0, 0], [0, 1, 0]]")),
+                       "payload_inertia must be a 3x3 matrix"));
+  EXPECT_TRUE(Contains(read_error(with_value("payload_inertia", "[[1, 0, 0], [0, 1, 0], [0, 0, -1]]")),
+                       "payload_inertia is not positive definite"));
+  EXPECT_TRUE(
+      Contains(read_error(with_value("strut_stiffness", "[1, 2, 3]")),
+               "strut_stiffness must be a number (the same for every strut) or an array of 6 numbers"));
+  EXPECT_TRUE(Contains(read_error(with_value("strut_mass", "[1, 2, 3, 4, 5, null]")),
+                       "strut_mass[5] must be a number, found null"));
 }
 
 TEST(HexapodGeometryFile, RejectsMissingAndUnknownKeys) {

@@ -30,11 +30,13 @@ constexpr double kTwoPi = 6.283185307179586476925286766559;
 // vector in {B} axes, applied about the centre of mass): the exact nonlinear kinematics.
 Vector6d lengths_after(const Geometry& g, const Vector6d& dx) {
   const Eigen::Vector3d dw = dx.tail<3>();
-  const Eigen::Matrix3d turn =
-      dw.norm() > 0 ? Eigen::AngleAxisd(dw.norm(), dw.normalized()).toRotationMatrix() : Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d turn = dw.norm() > 0
+                                   ? Eigen::AngleAxisd(dw.norm(), dw.normalized()).toRotationMatrix()
+                                   : Eigen::Matrix3d::Identity();
   Vector6d l;
   for (int i = 0; i < 6; ++i) {
-    const Eigen::Vector3d joint = g.payload_origin + dx.head<3>() + turn * g.payload_rotation * g.payload_points.col(i);
+    const Eigen::Vector3d joint =
+        g.payload_origin + dx.head<3>() + turn * g.payload_rotation * g.payload_points.col(i);
     l(i) = (joint - g.base_points.col(i)).norm();
   }
   return l;
@@ -73,7 +75,8 @@ TEST(HexapodModel, MassMatrixIsTheKineticEnergyMetricInStrutRates) {
       const Vector6d l_dot = J * x_dot;
       const Eigen::Vector3d v = x_dot.head<3>();
       const Eigen::Vector3d w_p = geometry.payload_rotation.transpose() * x_dot.tail<3>();
-      const double expected = 0.5 * (geometry.payload_mass * v.squaredNorm() + w_p.dot(geometry.payload_inertia * w_p));
+      const double expected =
+          0.5 * (geometry.payload_mass * v.squaredNorm() + w_p.dot(geometry.payload_inertia * w_p));
       const double actual = 0.5 * l_dot.dot(Mp * l_dot);
       // M_p comes from solves with J: relative error ~ cond(J)^2 eps; 100 for the constants.
       EXPECT_NEAR(actual, expected, 100 * cond_j * cond_j * kEps * expected) << "repeat " << repeat;
@@ -112,7 +115,8 @@ TEST(HexapodModel, BuiltInCubicStrutsAreMutuallyOrthogonal) {
   for (int i = 0; i < 6; ++i) {
     const int next = (i + 1) % 6, opposite = (i + 3) % 6;
     EXPECT_NEAR(u.col(i).dot(u.col(next)), 0.0, kTolerance) << "struts " << i + 1 << ", " << next + 1;
-    EXPECT_NEAR(std::abs(u.col(i).dot(u.col(opposite))), 1.0, kTolerance) << "struts " << i + 1 << ", " << opposite + 1;
+    EXPECT_NEAR(std::abs(u.col(i).dot(u.col(opposite))), 1.0, kTolerance)
+        << "struts " << i + 1 << ", " << opposite + 1;
   }
   // All struts equally long, and every joint distinct.
   const Vector6d l = hexapod::strut_lengths(geometry);
@@ -157,8 +161,9 @@ TEST(HexapodModel, ModesRejectAnIndefiniteMassMatrix) {
   Eigen::MatrixXd M = Eigen::MatrixXd::Identity(2, 2);
   M(1, 1) = -1.0;
   EXPECT_THROW(hexapod::modal_frequencies_hz(M, Eigen::MatrixXd::Identity(2, 2)), std::invalid_argument);
-  EXPECT_THROW(hexapod::modal_frequencies_hz(Eigen::MatrixXd::Identity(2, 2), Eigen::MatrixXd::Identity(3, 3)),
-               std::invalid_argument);
+  EXPECT_THROW(
+      hexapod::modal_frequencies_hz(Eigen::MatrixXd::Identity(2, 2), Eigen::MatrixXd::Identity(3, 3)),
+      std::invalid_argument);
 }
 
 TEST(HexapodModel, ModelFunctionsRejectAnInvalidGeometry) {

@@ -111,7 +111,8 @@ TEST(HexapodSimulate, SignalAndNoiseHaveTheRequestedVariances) {
       const double count = static_cast<double>(data.A.size());
       // The variance of one squared draw: uniform 4/5 V^2 (E x^4 = 9/5 V^2), Gaussian 2 V^2.
       const double fourth = distribution == NoiseDistribution::Uniform ? 0.8 : 2.0;
-      for (const Eigen::MatrixXd& noise : {Eigen::MatrixXd(data.A - data.A_true), Eigen::MatrixXd(data.B - data.B_true)}) {
+      for (const Eigen::MatrixXd& noise :
+           {Eigen::MatrixXd(data.A - data.A_true), Eigen::MatrixXd(data.B - data.B_true)}) {
         const Moments m = moments(noise);
         EXPECT_NEAR(m.mean, 0.0, kSigmas * std::sqrt(noise_var / count));
         EXPECT_NEAR(m.variance, noise_var, kSigmas * std::sqrt(fourth / count) * noise_var);
@@ -176,7 +177,8 @@ TEST(HexapodSimulate, RejectsInvalidOptions) {
   options = {};
   options.signal_var = 0.0;
   EXPECT_THROW(hexapod::simulate(hexapod::thesis_mass_matrix(), options, random), std::invalid_argument);
-  EXPECT_THROW(hexapod::simulate(Eigen::MatrixXd::Zero(2, 3), SimulationOptions{}, random), std::invalid_argument);
+  EXPECT_THROW(hexapod::simulate(Eigen::MatrixXd::Zero(2, 3), SimulationOptions{}, random),
+               std::invalid_argument);
 }
 
 TEST(HexapodSimulate, ThesisMassMatrixIsEquation6_1) {

@@ -51,9 +51,10 @@ TEST(MonteCarlo, ReportsProgressAndRethrowsTheFirstError) {
   run_trials(options, [](std::size_t, Random&) {});
   EXPECT_EQ(last_done, 50u);
   EXPECT_EQ(last_total, 50u);
-  EXPECT_THROW(run_trials(options, [](std::size_t k, Random&) {
-                 if (k == 17) throw std::runtime_error("trial 17 failed");
-               }),
+  EXPECT_THROW(run_trials(options,
+                          [](std::size_t k, Random&) {
+                            if (k == 17) throw std::runtime_error("trial 17 failed");
+                          }),
                std::runtime_error);
   options.trials = 0;
   EXPECT_THROW(run_trials(options, [](std::size_t, Random&) {}), std::invalid_argument);

@@ -46,7 +46,8 @@ struct PaperHexapodOptions {
 /// For each of the 21 independent entries of M_p, the statistics of each method's estimation
 /// error over the trials (the paper used 100). Throws std::invalid_argument on invalid
 /// options. Cost O(trials (m n^2 + n^3)).
-EntryExperimentResult run_paper_hexapod(const PaperHexapodOptions& options, const MonteCarloOptions& monte_carlo);
+EntryExperimentResult run_paper_hexapod(const PaperHexapodOptions& options,
+                                        const MonteCarloOptions& monte_carlo);
 
 // ---- Figure 3: the 2x2 example ---------------------------------------------------------------
 

@@ -18,7 +18,7 @@ struct Summary {
   std::size_t count = 0;     ///< values summarized (finite ones)
   std::size_t failures = 0;  ///< NaN values left out
   double mean = 0.0;
-  double std = 0.0;          ///< sample standard deviation (n - 1); 0 for one value
+  double std = 0.0;  ///< sample standard deviation (n - 1); 0 for one value
   double median = 0.0;
   double min = 0.0;
   double max = 0.0;
@@ -58,8 +58,8 @@ struct EntryStatistics {
   /// Standard deviation of the signed error e (n - 1): the spread of the estimate, the paper's
   /// STD{}.
   Eigen::VectorXd std;
-  Eigen::VectorXd bias;      ///< mean signed error, mean e (|bias| is the paper's "absolute mean")
-  Eigen::MatrixXd errors;    ///< the per-trial signed errors (trials x entries), kept for tests
+  Eigen::VectorXd bias;    ///< mean signed error, mean e (|bias| is the paper's "absolute mean")
+  Eigen::MatrixXd errors;  ///< the per-trial signed errors (trials x entries), kept for tests
 };
 
 /// Summarizes a trials x entries matrix of signed errors. Cost O(trials x entries).

@@ -24,7 +24,8 @@ struct Geometry {
   Eigen::Vector3d payload_origin = Eigen::Vector3d::Zero();        ///< {P}'s origin in {B} (m)
   Eigen::Matrix3d payload_rotation = Eigen::Matrix3d::Identity();  ///< B_P R: {P}'s axes in {B}
   double payload_mass = 0.0;                                       ///< m_p (kg)
-  Eigen::Matrix3d payload_inertia = Eigen::Matrix3d::Zero();  ///< ^cI about the centre of mass, {P} axes (kg m^2)
+  Eigen::Matrix3d payload_inertia =
+      Eigen::Matrix3d::Zero();                  ///< ^cI about the centre of mass, {P} axes (kg m^2)
   Vector6d strut_mass = Vector6d::Zero();       ///< moving mass of each strut, M_s = diag (kg)
   Vector6d strut_stiffness = Vector6d::Zero();  ///< K = diag (N/m)
   Vector6d strut_damping = Vector6d::Zero();    ///< B = diag (N s/m); not used by M_p
@@ -48,19 +49,19 @@ inline constexpr double kMaxJacobianCondition = 1e8;
 /// Parameters of the built-in cubic-configuration hexapod (cubic_geometry). The defaults are
 /// calibrated so that its M_p reproduces the UW hexapod's matrix of thesis eq. (6.1) to the
 /// printed digits (largest entry difference 2.7e-4 kg; entries that the three-fold symmetry
-/// makes equal differ by up to 4e-4 in print). The thesis gives M_p but not the design parameters behind it: these are a
-/// geometry consistent with it, not UW's drawings. M_p depends on the size only through
-/// inertia / edge^2 and com_offset / edge, so other sizes can be had with M_p unchanged.
+/// makes equal differ by up to 4e-4 in print). The thesis gives M_p but not the design parameters behind it:
+/// these are a geometry consistent with it, not UW's drawings. M_p depends on the size only through inertia /
+/// edge^2 and com_offset / edge, so other sizes can be had with M_p unchanged.
 struct CubicGeometryParameters {
-  double edge = 0.254;               ///< cube edge (m), 10 in; the struts lie on six edges
-  double joint_inset = 0.025;        ///< joint distance from the cube vertex along the strut (m)
-  double payload_mass = 11.973;      ///< kg
+  double edge = 0.254;                  ///< cube edge (m), 10 in; the struts lie on six edges
+  double joint_inset = 0.025;           ///< joint distance from the cube vertex along the strut (m)
+  double payload_mass = 11.973;         ///< kg
   double inertia_transverse = 0.10249;  ///< about the horizontal axes through the centre of mass (kg m^2)
   double inertia_axial = 0.09968;       ///< about the vertical axis (the cube's diagonal) (kg m^2)
-  double com_offset = -0.007598;     ///< centre of mass above the cube's centre, along the diagonal (m)
-  double strut_mass = 0.5;           ///< moving mass of each strut (kg)
-  double strut_stiffness = 1.0e4;    ///< N/m; illustrative (the thesis gives none)
-  double strut_damping = 10.0;       ///< N s/m; illustrative
+  double com_offset = -0.007598;        ///< centre of mass above the cube's centre, along the diagonal (m)
+  double strut_mass = 0.5;              ///< moving mass of each strut (kg)
+  double strut_stiffness = 1.0e4;       ///< N/m; illustrative (the thesis gives none)
+  double strut_damping = 10.0;          ///< N s/m; illustrative
 };
 
 /// A cubic-configuration hexapod: the six struts lie on six edges of a cube whose diagonal is

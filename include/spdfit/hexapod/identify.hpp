@@ -14,7 +14,7 @@ namespace spdfit::hexapod {
 
 /// One estimator's estimate of M_p and what it implies.
 struct MethodIdentification {
-  FitResult result;                      ///< the estimate, diagnostics and warnings
+  FitResult result;                            ///< the estimate, diagnostics and warnings
   std::optional<Eigen::VectorXd> eigenvalues;  ///< of the estimate, ascending; when it is symmetric
   /// sqrt(eig(X^-1 K)) / (2 pi) in Hz, ascending; when the estimate is symmetric positive
   /// definite and a stiffness was given (an indefinite "mass matrix" has no modes).

@@ -27,8 +27,8 @@ std::optional<NoiseDistribution> parse_noise_distribution(std::string_view name)
 
 /// The generator's settings. The defaults are the thesis' chapter-6 set-up.
 struct SimulationOptions {
-  Eigen::Index samples = 12;   ///< m, rows of A and B
-  double noise_var = 0.0;      ///< V: variance of the noise in every entry of A (and of B)
+  Eigen::Index samples = 12;  ///< m, rows of A and B
+  double noise_var = 0.0;     ///< V: variance of the noise in every entry of A (and of B)
   /// Variance of the noise in B when it differs from A's (force and acceleration sensors
   /// seldom share a noise level); nothing means noise_var, as in the thesis.
   std::optional<double> force_noise_var;
@@ -52,9 +52,9 @@ struct Measurements {
 
 /// The thesis generator (appendix B): A_true uniform with variance S; B_true = A_true M;
 /// A = A_true + noise, B = B_true + noise, with independent noise of variance V in every
-/// entry (of variance force_noise_var in B, when given). Draws in the M-file's order (A_true, A's noise, B's noise), each matrix column by
-/// column as MATLAB's rand([m, n]) fills it, from `random` (so the numbers are reproducible;
-/// see Random). `truth` is n x n; the thesis' is thesis_mass_matrix().
+/// entry (of variance force_noise_var in B, when given). Draws in the M-file's order (A_true, A's noise, B's
+/// noise), each matrix column by column as MATLAB's rand([m, n]) fills it, from `random` (so the numbers are
+/// reproducible; see Random). `truth` is n x n; the thesis' is thesis_mass_matrix().
 ///
 /// Throws std::invalid_argument when the options are invalid or `truth` is not square.
 /// Cost O(m n^2).
