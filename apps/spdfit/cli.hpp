@@ -44,6 +44,9 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global);
 Command add_compare_command(CLI::App& app, const GlobalOptions& global);
 Command add_solve_command(CLI::App& app, const GlobalOptions& global);
 Command add_linkage_command(CLI::App& app, const GlobalOptions& global);
+Command add_hexapod_command(CLI::App& app, const GlobalOptions& global);
+Command add_experiment_command(CLI::App& app, const GlobalOptions& global);
+Command add_demo_command(CLI::App& app, const GlobalOptions& global);
 
 /// Prints "spdfit: warning: MESSAGE" on stderr unless quiet.
 void warn(const GlobalOptions& global, const std::string& message);

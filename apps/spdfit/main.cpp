@@ -38,6 +38,9 @@ int main(int argc, char** argv) {
       add_compare_command(app, global),
       add_solve_command(app, global),
       add_linkage_command(app, global),
+      add_hexapod_command(app, global),
+      add_experiment_command(app, global),
+      add_demo_command(app, global),
   };
 
   try {

@@ -1,0 +1,42 @@
+// The report of `spdfit demo`: its tables (demo_tables.cpp) and the explanation drawn from
+// them (demo_findings.cpp).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "spdfit/experiment/paper.hpp"
+#include "spdfit/experiment/thesis.hpp"
+
+namespace spdfit::cli::demo {
+
+/// What the demo runs.
+struct Results {
+  std::uint64_t seed = 1;
+  std::vector<experiment::ThesisExperimentResult> thesis;   ///< Experiments 1-3 (m = 12)
+  std::vector<experiment::ThesisExperimentResult> samples;  ///< Experiment 2 at sample_sizes()
+  std::vector<experiment::EntryExperimentResult> paper;     ///< the 2x2 example at levels_2x2()
+};
+
+/// The 2x2 example's noise levels std_a, and the larger sample sizes Experiment 2 is rerun at.
+const std::vector<double>& levels_2x2();
+const std::vector<Eigen::Index>& sample_sizes();
+
+/// Sections 1-4: the built-in hexapod, the thesis' experiments, the 2x2 example, more samples.
+std::string tables(const Results& results);
+
+/// "What the numbers show": each statement chosen by comparing the numbers in `results`.
+std::string findings(const Results& results);
+
+/// Text helpers shared by both: `text` wrapped at kWidth columns (the first line starting with
+/// `first`, the others with `rest`); a "* " bullet; "12%"; "%.3g".
+inline constexpr std::size_t kWidth = 98;
+std::string wrap(const std::string& text, const std::string& first = "", const std::string& rest = "");
+std::string bullet(const std::string& text);
+std::string percent(double fraction);
+std::string trimmed(double value);
+
+}  // namespace spdfit::cli::demo

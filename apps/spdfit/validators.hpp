@@ -1,0 +1,42 @@
+// Option validators with messages a person can act on (CLI11's numeric ranges print the
+// largest double in full).
+#pragma once
+
+#include <cmath>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace spdfit::cli {
+
+/// A finite number >= 0.
+inline CLI::Validator non_negative() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        try {
+          std::size_t used = 0;
+          const double value = std::stod(text, &used);
+          if (used == text.size() && std::isfinite(value) && value >= 0.0) return "";
+        } catch (const std::exception&) {
+        }
+        return "'" + text + "' is not a finite number >= 0";
+      },
+      "NUMBER >= 0");
+}
+
+/// A finite number > 0.
+inline CLI::Validator positive() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        try {
+          std::size_t used = 0;
+          const double value = std::stod(text, &used);
+          if (used == text.size() && std::isfinite(value) && value > 0.0) return "";
+        } catch (const std::exception&) {
+        }
+        return "'" + text + "' is not a finite number > 0";
+      },
+      "NUMBER > 0");
+}
+
+}  // namespace spdfit::cli

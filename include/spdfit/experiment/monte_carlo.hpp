@@ -1,0 +1,49 @@
+// Reproducible parallel Monte Carlo: independent trials spread over threads, with numbers that
+// do not depend on the number of threads.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "spdfit/fit_result.hpp"
+#include "spdfit/random.hpp"
+
+namespace spdfit::experiment {
+
+/// How many trials to run, from which seed, on how many threads.
+struct MonteCarloOptions {
+  std::size_t trials = 1000;
+  std::uint64_t seed = 1;
+  /// Worker threads; 0 means std::thread::hardware_concurrency(). The results do not depend
+  /// on it.
+  unsigned threads = 0;
+  /// Called on the calling thread about every 0.1 s while trials run, with (trials done,
+  /// trials in all), and once at the end; may be empty. For progress display only.
+  std::function<void(std::size_t, std::size_t)> progress;
+
+  /// True when usable (trials >= 1); otherwise `error` says why.
+  bool is_valid(std::string* error = nullptr) const;
+};
+
+/// The number of worker threads `requested` stands for (0: the hardware's, at least 1).
+unsigned resolve_threads(unsigned requested);
+
+/// Runs trial(k, random) for k = 0, ..., trials - 1, where `random` is a fresh
+/// Random(trial_seed(seed, k)) for each trial. Trials are handed out to the threads one at a
+/// time; a trial must write its results only to storage indexed by k (no other shared mutable
+/// state), which makes the results identical for any number of threads. The first exception
+/// a trial throws stops the remaining trials and is rethrown here. Throws
+/// std::invalid_argument when the options are invalid.
+void run_trials(const MonteCarloOptions& options, const std::function<void(std::size_t, Random&)>& trial);
+
+/// Every estimator on one trial's data: fit_all(reduce(TriangularFactor::from_data(A, B))).
+/// This is every experiment's inner loop, kept in one function so that a faster one can be
+/// swapped in at one place. Cost O(m n^2 + n^3).
+std::vector<FitResult> estimate_all(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B);
+
+}  // namespace spdfit::experiment

@@ -1,0 +1,50 @@
+"""Fixtures for the hexapod suite: the spdfit CLI named by SPDFIT_CLI, run in a scratch directory."""
+import json
+import os
+import pathlib
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+SOURCE_DIR = pathlib.Path(os.environ.get("SPDFIT_SOURCE_DIR", pathlib.Path(__file__).resolve().parents[2]))
+# The independent NumPy implementations of the thesis' algorithms and generator.
+sys.path.insert(0, str(SOURCE_DIR / "tests" / "reference"))
+
+CLI_TIMEOUT_S = 120  # the slowest call here (the demo) takes a few seconds
+
+
+@pytest.fixture(scope="session")
+def spdfit_cli():
+    path = os.environ.get("SPDFIT_CLI")
+    if not path:
+        pytest.skip("SPDFIT_CLI is not set; export SPDFIT_CLI=/path/to/spdfit")
+    if not (os.path.isfile(path) and os.access(path, os.X_OK)):
+        pytest.fail(f"SPDFIT_CLI={path!r} is not an executable file")
+    return path
+
+
+@pytest.fixture
+def cli(spdfit_cli, tmp_path):
+    """cli(*args, expect=0, cwd=tmp_path) -> CompletedProcess of `spdfit args...`, asserting its exit status."""
+    def run(*args, expect=0, cwd=None):
+        cmd = [spdfit_cli, *map(str, args)]
+        proc = subprocess.run(cmd, capture_output=True, text=True, timeout=CLI_TIMEOUT_S, cwd=cwd or tmp_path)
+        assert proc.returncode == expect, (
+            f"{' '.join(cmd)} exited {proc.returncode}, expected {expect}\n"
+            f"stdout:\n{proc.stdout}\nstderr:\n{proc.stderr}")
+        return proc
+    return run
+
+
+@pytest.fixture
+def cli_json(cli):
+    """cli_json(*args) -> the parsed JSON that `spdfit args... --json` prints."""
+    def run(*args):
+        return json.loads(cli(*args, "--json").stdout)
+    return run
+
+
+def read_csv(path):
+    return np.loadtxt(path, delimiter=",", ndmin=2)
