@@ -169,3 +169,7 @@ def solve(A, b, *, threshold=None):
     for message in result.warnings:
         _warnings.warn(message, SpdfitWarning, stacklevel=2)
     return result
+
+
+# Submodules (imported last: they use the helpers above).
+from . import experiment, hexapod, linkage  # noqa: E402

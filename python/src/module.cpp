@@ -12,4 +12,6 @@ PYBIND11_MODULE(_spdfit, m) {
   spdfit::python::bind_estimators(m);
   spdfit::python::bind_linear_system(m);
   spdfit::python::bind_linkage(m);
+  spdfit::python::bind_hexapod(m);
+  spdfit::python::bind_experiment(m);
 }

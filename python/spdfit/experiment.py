@@ -1,0 +1,53 @@
+"""The Monte Carlo experiments of the source documents. Trials run on all cores (threads=0) and
+a given seed gives the same numbers whatever the number of threads.
+
+    thesis(noise_var)          the thesis' chapter 6: ||M_p - M_hat||_F per method over trials
+    paper_hexapod()            the paper's Figure 2: per-entry error statistics, Procrustes vs SPDE
+    paper_2x2(std_a)           the paper's second example (Figure 3) at one noise level
+    paper_2x2_sweep()          the same for std_a = 0, 0.1, ..., 1.9
+"""
+from . import _as_matrix
+from ._spdfit import experiment as _core
+
+# The thesis' experiments 1-3: noise variances (its M-file's nm = 1, 3.2, 3.9; V = nm^2 / 12).
+THESIS_NOISE_VARIANCES = (0.082, 0.86, 1.28)
+
+# The thesis' single runs (eq. 6.6-6.22): {experiment: (V, procrustes, tls-sym, spde)}.
+THESIS_REPORTED = {1: (0.082, 0.6755, 0.6899, 0.6630), 2: (0.86, 2.3610, 2.3007, 1.9689),
+                   3: (1.28, 2.9120, 3.7761, 2.0083)}
+
+__all__ = ["THESIS_NOISE_VARIANCES", "THESIS_REPORTED", "paper_2x2", "paper_2x2_sweep", "paper_hexapod", "thesis"]
+
+
+def thesis(noise_var, *, samples=12, trials=1000, seed=1, threads=0, force_noise_var=None,
+           signal_var=25.0 / 3.0, distribution="uniform", truth=None):
+    """The thesis' experiment (M_p of eq. 6.1, appendix-B generator) repeated `trials` times.
+
+    Returns a ThesisExperimentResult: .methods is a list (one per method, in spdfit.METHODS
+    order) with .method, .errors (||M_p - M_hat||_F per trial, NaN where the method failed) and
+    .summary (mean, std, median, max, standard_error). Same numbers as
+    `spdfit experiment thesis --noise-var V --trials N --seed S`."""
+    return _core.thesis(float(noise_var), int(samples), int(trials), int(seed), int(threads),
+                        None if force_noise_var is None else float(force_noise_var), float(signal_var),
+                        distribution, None if truth is None else _as_matrix("truth", truth))
+
+
+def paper_hexapod(*, noise_var=0.86, samples=12, trials=100, seed=1, threads=0):
+    """The paper's Figure 2 on simulated data: for the 21 independent entries of M_p, the mean
+    (bias), mean absolute value and standard deviation of the estimation error over the trials,
+    Procrustes against SPDE (.methods), entries in .entries."""
+    return _core.paper_hexapod(float(noise_var), int(samples), int(trials), int(seed), int(threads))
+
+
+def paper_2x2(std_a, *, std_b=1.0, trials=10000, seed=1, threads=0):
+    """The paper's second example: X = [3 1; 1 1], A = A0 + N(0, std_a^2), B = A0 X + N(0, std_b^2);
+    per method (procrustes, tls, spde) the mean absolute error (.mae), its standard deviation
+    (.std) and the bias of x11, x12, x22."""
+    return _core.paper_2x2(float(std_a), float(std_b), int(trials), int(seed), int(threads))
+
+
+def paper_2x2_sweep(levels=None, *, std_b=1.0, trials=10000, seed=1, threads=0):
+    """paper_2x2 at each std_a in `levels` (default 0, 0.1, ..., 1.9: the paper's Figure 3);
+    a list of results in the order of the levels."""
+    levels = list(_core.paper_2x2_sweep_levels() if levels is None else map(float, levels))
+    return list(zip(levels, _core.paper_2x2_sweep(levels, float(std_b), int(trials), int(seed), int(threads))))

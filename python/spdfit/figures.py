@@ -1,0 +1,252 @@
+"""The source documents' figures, reproduced from spdfit's own computations.
+
+    /usr/bin/python3 -m spdfit.figures [--out DIR] [--format png|svg] [--trials-scale S]
+
+draws, into DIR (default ./figures):
+  thesis_experiments   error ||M_p - M_hat||_F of each method at the thesis' three noise levels
+                       (box plots over the Monte Carlo trials; thesis ch. 6)
+  paper_figure2        |mean| and standard deviation of the error of M_p's 21 entries,
+                       least squares (Procrustes) against SPDE (paper Fig. 2)
+  paper_figure3        mean absolute error of x11, x12, x22 against std_a, least squares, TLS and
+                       SPDE (paper Fig. 3; log scale)
+  linkage_steering     the steering-condition four-bar: prescribed and generated output angle,
+                       structural error before and after Gauss-Newton, the linkage drawn
+  hexapod_model        the built-in hexapod's geometry and its mode frequencies
+
+Each plot_* function takes the data its *_data function returns (the experiment functions'
+results, unchanged), so what is drawn is what the library computed.
+"""
+import argparse
+import math
+import os
+import pathlib
+import sys
+import warnings
+
+import matplotlib
+
+matplotlib.use("Agg")  # non-interactive: files only
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from . import METHODS, SpdfitWarning, experiment, hexapod, linkage  # noqa: E402
+
+COLORS = {"ls": "#7f7f7f", "procrustes": "#1f77b4", "tls": "#d62728", "tls-sym": "#ff7f0e",
+          "tls-psd": "#e377c2", "spde": "#2ca02c"}
+LABELS = {"ls": "least squares", "procrustes": "LS (symmetric Procrustes)", "tls": "TLS",
+          "tls-sym": "TLS, symmetrized", "tls-psd": "TLS, nearest PSD", "spde": "SPDE (area criterion)"}
+
+
+# ---- 1. The thesis' experiments ---------------------------------------------------------------
+
+def thesis_data(trials=2000, seed=1):
+    """{noise variance: ThesisExperimentResult} for the thesis' three experiments."""
+    return {v: experiment.thesis(v, trials=trials, seed=seed) for v in experiment.THESIS_NOISE_VARIANCES}
+
+
+def plot_thesis(data):
+    fig, axes = plt.subplots(1, len(data), figsize=(13, 4.6), sharey=False)
+    for ax, (v, result) in zip(np.atleast_1d(axes), data.items()):
+        errors = [m.errors[np.isfinite(m.errors)] for m in result.methods]
+        names = [m.method for m in result.methods]
+        box = ax.boxplot(errors, showfliers=False, patch_artist=True, medianprops={"color": "black"})
+        for patch, name in zip(box["boxes"], names):
+            patch.set_facecolor(COLORS[name])
+            patch.set_alpha(0.7)
+        ax.plot(range(1, len(names) + 1), [m.summary.mean for m in result.methods], "k^", label="mean")
+        ax.set_xticks(range(1, len(names) + 1), names, rotation=30)
+        ax.set_title(f"noise variance V = {v} ({result.trials} trials)")
+        ax.set_xlabel("method")
+        ax.set_ylabel("error ||M_p - M_hat||_F (kg)")
+        ax.grid(axis="y", alpha=0.3)
+        ax.legend(loc="upper left")
+    fig.suptitle("Thesis experiments 1-3 (m = 12 samples): estimation error of each method "
+                 "(boxes: quartiles, whiskers: 1.5 IQR)")
+    fig.tight_layout()
+    return fig
+
+
+# ---- 2. The paper's Figure 2 ------------------------------------------------------------------
+
+def paper_figure2_data(trials=100, seed=1):
+    return experiment.paper_hexapod(trials=trials, seed=seed)
+
+
+def plot_paper_figure2(result):
+    labels = [f"m{i + 1}{j + 1}" for i, j in result.entries]
+    x = np.arange(len(labels))
+    fig, axes = plt.subplots(2, 1, figsize=(12, 6.5), sharex=True)
+    width = 0.4
+    for k, stats in enumerate(result.methods):
+        offset = (k - 0.5) * width
+        axes[0].bar(x + offset, np.abs(stats.bias), width, color=COLORS[stats.method], label=LABELS[stats.method])
+        axes[1].bar(x + offset, stats.std, width, color=COLORS[stats.method], label=LABELS[stats.method])
+    axes[0].set_ylabel("|mean of error| (kg)")
+    axes[1].set_ylabel("std of error (kg)")
+    axes[1].set_xticks(x, labels, rotation=60)
+    axes[1].set_xlabel("entry of M_p")
+    for ax in axes:
+        ax.grid(axis="y", alpha=0.3)
+        ax.legend()
+    fig.suptitle(f"Paper Fig. 2 (simulated, thesis exp. 2 noise, {result.trials} trials): error of the 21 "
+                 "entries of M_p")
+    fig.tight_layout()
+    return fig
+
+
+# ---- 3. The paper's Figure 3 ------------------------------------------------------------------
+
+def paper_figure3_data(trials=10000, seed=1):
+    """[(std_a, EntryExperimentResult)] for std_a = 0, 0.1, ..., 1.9."""
+    return experiment.paper_2x2_sweep(trials=trials, seed=seed)
+
+
+def plot_paper_figure3(sweep):
+    levels = np.array([level for level, _ in sweep])
+    names = [stats.method for stats in sweep[0][1].methods]
+    fig, axes = plt.subplots(1, 3, figsize=(14, 4.4))
+    for e, entry in enumerate(["x11", "x12", "x22"]):
+        ax = axes[e]
+        for k, name in enumerate(names):
+            mae = np.array([result.methods[k].mae[e] for _, result in sweep])
+            ax.semilogy(levels, mae, "o-", color=COLORS[name], label=LABELS[name], markersize=4)
+        ax.set_title(f"{entry}")
+        ax.set_xlabel("std of the noise in A, std_a")
+        ax.set_ylabel(f"mean |{entry} estimate - {entry}| (log scale)")
+        ax.grid(alpha=0.3, which="both")
+        ax.legend()
+    fig.suptitle(f"Paper Fig. 3: X = [3 1; 1 1], std_b = 1, {sweep[0][1].trials} trials per level")
+    fig.tight_layout()
+    return fig
+
+
+# ---- 4. Four-bar synthesis --------------------------------------------------------------------
+
+def linkage_data(rho=0.5):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SpdfitWarning)
+        return linkage.synthesize(steering=rho)
+
+
+def _draw_fourbar(ax, bar, psi, phi, color, alpha):
+    o2, o4 = np.array([0.0, 0.0]), np.array([bar.a1, 0.0])
+    a = o2 + bar.a2 * np.array([math.cos(psi), math.sin(psi)])
+    b = o4 + bar.a4 * np.array([math.cos(phi), math.sin(phi)])
+    points = np.array([o2, a, b, o4])
+    ax.plot(points[:, 0], points[:, 1], "-o", color=color, alpha=alpha, markersize=3)
+
+
+def plot_linkage(result):
+    psi, phi = np.degrees(result.psi), np.degrees(result.phi)
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
+    ax = axes[0]
+    ax.plot(psi, phi, "k-", label="prescribed (steering condition)")
+    for name, solution, style in (("design error", result.design, "--"),
+                                  ("structural (Gauss-Newton)", result.structural, ":")):
+        ax.plot(psi, np.degrees(solution.phi_generated), style, label=f"generated: {name}")
+    ax.set_xlabel("input angle psi (deg)")
+    ax.set_ylabel("output angle phi (deg)")
+    ax.set_title("prescribed and generated output")
+    ax.legend()
+    ax.grid(alpha=0.3)
+    ax = axes[1]
+    for name, solution, color in (("before (design error)", result.design, COLORS["procrustes"]),
+                                  ("after Gauss-Newton", result.structural, COLORS["spde"])):
+        s = np.degrees(result.phi - solution.phi_generated)
+        ax.plot(psi, s, "o-", color=color, markersize=3,
+                label=f"{name}: RMS {math.degrees(solution.structural_error_rms):.3f} deg")
+    ax.axhline(0, color="black", lw=0.5)
+    ax.set_xlabel("input angle psi (deg)")
+    ax.set_ylabel("structural error phi_pres - phi_gen (deg)")
+    ax.set_title("structural error")
+    ax.legend()
+    ax.grid(alpha=0.3)
+    ax = axes[2]
+    bar = result.structural.lengths
+    picks = np.linspace(0, len(result.psi) - 1, 5).round().astype(int)
+    for n, i in enumerate(picks):
+        _draw_fourbar(ax, bar, result.psi[i], result.structural.phi_generated[i], COLORS["spde"], 0.3 + 0.7 * n / 4)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (ground link = 1)")
+    ax.set_ylabel("y (ground link = 1)")
+    ax.set_title(f"the linkage at 5 inputs ({result.structural.check.grashof})")
+    ax.grid(alpha=0.3)
+    fig.suptitle("Four-bar steering linkage (notes 002, eq. 3.5, rho = 0.5): a1 = 1, "
+                 f"a2 = {bar.a2:.4f}, a3 = {bar.a3:.4f}, a4 = {bar.a4:.4f}")
+    fig.tight_layout()
+    return fig
+
+
+# ---- 5. The hexapod model ---------------------------------------------------------------------
+
+def hexapod_data():
+    return hexapod.model()
+
+
+def plot_hexapod(model):
+    g = model.geometry
+    payload = g.payload_rotation @ g.payload_points + g.payload_origin[:, None]
+    fig = plt.figure(figsize=(12, 5))
+    ax = fig.add_subplot(1, 2, 1, projection="3d")
+    base, top = g.base_points, payload
+    for points, color, label in ((base, "#444444", "base attachment points"),
+                                 (top, COLORS["procrustes"], "payload attachment points")):
+        ring = np.hstack([points, points[:, :1]])
+        ax.plot(*ring, "o-", color=color, label=label)
+    for i in range(6):
+        ax.plot(*np.column_stack([base[:, i], top[:, i]]), color=COLORS["tls"], lw=2,
+                label="struts" if i == 0 else None)
+    ax.scatter(*g.payload_origin, color="black", marker="x", label="payload centre of mass")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_zlabel("z (m)")
+    ax.set_title("built-in cubic-configuration hexapod")
+    ax.legend(loc="upper left", fontsize=8)
+    ax = fig.add_subplot(1, 2, 2)
+    ax.bar(np.arange(1, 7), model.modes_hz, color=COLORS["spde"], label="sqrt(eig(M_p^-1 K)) / 2 pi")
+    ax.set_xlabel("mode")
+    ax.set_ylabel("frequency (Hz)")
+    ax.set_title(f"modes (strut stiffness {g.strut_stiffness[0]:.0f} N/m)")
+    ax.legend()
+    ax.grid(axis="y", alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+FIGURES = {
+    "thesis_experiments": (thesis_data, plot_thesis),
+    "paper_figure2": (paper_figure2_data, plot_paper_figure2),
+    "paper_figure3": (paper_figure3_data, plot_paper_figure3),
+    "linkage_steering": (linkage_data, plot_linkage),
+    "hexapod_model": (hexapod_data, plot_hexapod),
+}
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="python3 -m spdfit.figures", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--out", default="figures", help="output directory (default: ./figures)")
+    parser.add_argument("--format", choices=["png", "svg"], default="png")
+    parser.add_argument("--only", choices=sorted(FIGURES), action="append", help="draw only these")
+    parser.add_argument("--quick", action="store_true", help="a tenth of the Monte Carlo trials (for tests)")
+    args = parser.parse_args(argv)
+    out = pathlib.Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    scale = 0.1 if args.quick else 1.0
+    for name, (data_function, plot_function) in FIGURES.items():
+        if args.only and name not in args.only:
+            continue
+        kwargs = {}
+        if "trials" in data_function.__code__.co_varnames:
+            default = data_function.__defaults__[0]
+            kwargs["trials"] = max(10, int(default * scale))
+        fig = plot_function(data_function(**kwargs))
+        path = out / f"{name}.{args.format}"
+        fig.savefig(path, dpi=110)
+        plt.close(fig)
+        print(path)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

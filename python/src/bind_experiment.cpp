@@ -1,0 +1,148 @@
+// spdfit.experiment: the Monte Carlo experiments of the thesis (ch. 6) and the paper (sec. IV).
+// Trials run on threads with the GIL released; results do not depend on the thread count.
+#include <pybind11/eigen.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "spdfit/experiment/monte_carlo.hpp"
+#include "spdfit/experiment/paper.hpp"
+#include "spdfit/experiment/statistics.hpp"
+#include "spdfit/experiment/thesis.hpp"
+#include "spdfit/hexapod/simulate.hpp"
+
+namespace py = pybind11;
+
+namespace spdfit::python {
+
+using namespace spdfit::experiment;
+
+namespace {
+
+MonteCarloOptions monte_carlo(std::size_t trials, std::uint64_t seed, unsigned threads) {
+  MonteCarloOptions options;
+  options.trials = trials;
+  options.seed = seed;
+  options.threads = threads;
+  std::string error;
+  if (!options.is_valid(&error)) throw std::invalid_argument(error);
+  return options;
+}
+
+hexapod::SimulationOptions simulation(Eigen::Index samples, double noise_var, std::optional<double> force_noise_var,
+                                      double signal_var, const std::string& distribution) {
+  hexapod::SimulationOptions options;
+  options.samples = samples;
+  options.signal_var = signal_var;
+  options.noise_var = noise_var;
+  options.force_noise_var = force_noise_var;
+  const auto parsed = hexapod::parse_noise_distribution(distribution);
+  if (!parsed) throw std::invalid_argument("distribution must be 'uniform' or 'gaussian', got '" + distribution + "'");
+  options.distribution = *parsed;
+  std::string error;
+  if (!options.is_valid(&error)) throw std::invalid_argument(error);
+  return options;
+}
+
+std::string method_name(Method m) { return std::string(to_string(m)); }
+
+}  // namespace
+
+void bind_experiment(py::module_& parent) {
+  py::module_ m = parent.def_submodule("experiment", "Monte Carlo experiments of the thesis and the paper.");
+
+  py::class_<Summary>(m, "Summary")
+      .def_readonly("count", &Summary::count)
+      .def_readonly("failures", &Summary::failures)
+      .def_readonly("mean", &Summary::mean)
+      .def_readonly("std", &Summary::std)
+      .def_readonly("median", &Summary::median)
+      .def_readonly("min", &Summary::min)
+      .def_readonly("max", &Summary::max)
+      .def_property_readonly("standard_error", &Summary::standard_error);
+
+  py::class_<MethodErrors>(m, "MethodErrors")
+      .def_property_readonly("method", [](const MethodErrors& e) { return method_name(e.method); })
+      .def_property_readonly("errors", [](const MethodErrors& e) {
+        return Eigen::Map<const Eigen::VectorXd>(e.errors.data(), static_cast<Eigen::Index>(e.errors.size())).eval();
+      })
+      .def_readonly("summary", &MethodErrors::summary);
+
+  py::class_<ThesisExperimentResult>(m, "ThesisExperimentResult")
+      .def_readonly("trials", &ThesisExperimentResult::trials)
+      .def_readonly("seed", &ThesisExperimentResult::seed)
+      .def_readonly("methods", &ThesisExperimentResult::methods)
+      .def_property_readonly("truth", [](const ThesisExperimentResult& r) { return r.options.truth; });
+
+  py::class_<EntryStatistics>(m, "EntryStatistics")
+      .def_property_readonly("method", [](const EntryStatistics& s) { return method_name(s.method); })
+      .def_readonly("count", &EntryStatistics::count)
+      .def_readonly("failures", &EntryStatistics::failures)
+      .def_readonly("mae", &EntryStatistics::mae)
+      .def_readonly("std", &EntryStatistics::std)
+      .def_readonly("bias", &EntryStatistics::bias)
+      .def_readonly("errors", &EntryStatistics::errors);
+
+  py::class_<EntryExperimentResult>(m, "EntryExperimentResult")
+      .def_readonly("trials", &EntryExperimentResult::trials)
+      .def_readonly("seed", &EntryExperimentResult::seed)
+      .def_readonly("truth", &EntryExperimentResult::truth)
+      .def_readonly("entries", &EntryExperimentResult::entries)
+      .def_readonly("methods", &EntryExperimentResult::methods);
+
+  m.def(
+      "thesis",
+      [](double noise_var, Eigen::Index samples, std::size_t trials, std::uint64_t seed, unsigned threads,
+         std::optional<double> force_noise_var, double signal_var, const std::string& distribution,
+         std::optional<Eigen::MatrixXd> truth) {
+        ThesisExperimentOptions options;
+        options.simulation = simulation(samples, noise_var, force_noise_var, signal_var, distribution);
+        if (truth) options.truth = *truth;
+        const MonteCarloOptions mc = monte_carlo(trials, seed, threads);
+        py::gil_scoped_release release;
+        return run_thesis_experiment(options, mc);
+      },
+      py::arg("noise_var"), py::arg("samples"), py::arg("trials"), py::arg("seed"), py::arg("threads"),
+      py::arg("force_noise_var"), py::arg("signal_var"), py::arg("distribution"), py::arg("truth"));
+
+  m.def(
+      "paper_hexapod",
+      [](double noise_var, Eigen::Index samples, std::size_t trials, std::uint64_t seed, unsigned threads) {
+        PaperHexapodOptions options;
+        options.simulation.samples = samples;
+        options.simulation.noise_var = noise_var;
+        const MonteCarloOptions mc = monte_carlo(trials, seed, threads);
+        py::gil_scoped_release release;
+        return run_paper_hexapod(options, mc);
+      },
+      py::arg("noise_var"), py::arg("samples"), py::arg("trials"), py::arg("seed"), py::arg("threads"));
+
+  m.def(
+      "paper_2x2",
+      [](double std_a, double std_b, std::size_t trials, std::uint64_t seed, unsigned threads) {
+        Paper2x2Options options;
+        options.std_a = std_a;
+        options.std_b = std_b;
+        const MonteCarloOptions mc = monte_carlo(trials, seed, threads);
+        py::gil_scoped_release release;
+        return run_paper_2x2(options, mc);
+      },
+      py::arg("std_a"), py::arg("std_b"), py::arg("trials"), py::arg("seed"), py::arg("threads"));
+
+  m.def(
+      "paper_2x2_sweep",
+      [](std::vector<double> levels, double std_b, std::size_t trials, std::uint64_t seed, unsigned threads) {
+        Paper2x2Options options;
+        options.std_b = std_b;
+        if (levels.empty()) levels = paper_2x2_sweep_levels();
+        const MonteCarloOptions mc = monte_carlo(trials, seed, threads);
+        py::gil_scoped_release release;
+        return run_paper_2x2_sweep(options, levels, mc);
+      },
+      py::arg("levels"), py::arg("std_b"), py::arg("trials"), py::arg("seed"), py::arg("threads"));
+  m.def("paper_2x2_sweep_levels", &paper_2x2_sweep_levels);
+  m.def("paper_2x2_truth", &paper_2x2_truth);
+  m.def("paper_2x2_design", &paper_2x2_design);
+}
+
+}  // namespace spdfit::python

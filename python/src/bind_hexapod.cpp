@@ -1,0 +1,89 @@
+// spdfit.hexapod: the Stewart platform model (thesis 000 ch. 2), the thesis' measurement
+// generator (appendix B) and identification; python/spdfit/hexapod.py is the public face.
+#include <pybind11/eigen.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "spdfit/hexapod/geometry.hpp"
+#include "spdfit/hexapod/identify.hpp"
+#include "spdfit/hexapod/model.hpp"
+#include "spdfit/hexapod/simulate.hpp"
+#include "spdfit/random.hpp"
+
+namespace py = pybind11;
+
+namespace spdfit::python {
+
+using namespace spdfit::hexapod;
+
+void bind_hexapod(py::module_& parent) {
+  py::module_ m = parent.def_submodule("hexapod", "Hexapod model, simulation and identification.");
+
+  py::class_<Geometry>(m, "Geometry", "A Stewart platform's geometry and masses (SI units).")
+      .def_readonly("base_points", &Geometry::base_points, "3 x 6, one column per strut, in {B} (m)")
+      .def_readonly("payload_points", &Geometry::payload_points, "3 x 6, in {P} (m)")
+      .def_readonly("payload_origin", &Geometry::payload_origin)
+      .def_readonly("payload_rotation", &Geometry::payload_rotation)
+      .def_readonly("payload_mass", &Geometry::payload_mass)
+      .def_readonly("payload_inertia", &Geometry::payload_inertia)
+      .def_readonly("strut_mass", &Geometry::strut_mass)
+      .def_readonly("strut_stiffness", &Geometry::strut_stiffness)
+      .def_readonly("strut_damping", &Geometry::strut_damping)
+      .def("to_json", &geometry_json, "The geometry in the geometry-file format (JSON text).");
+
+  m.def("cubic_geometry", []() { return cubic_geometry(); },
+        "The built-in cubic-configuration hexapod (mutually orthogonal struts).");
+  m.def("read_geometry", &read_geometry, py::arg("path"));
+  m.def("parse_geometry", &parse_geometry, py::arg("text"), py::arg("source") = "<geometry>");
+  m.def("jacobian", &jacobian, py::arg("geometry"));
+  m.def("joint_space_mass_matrix", &joint_space_mass_matrix, py::arg("geometry"));
+  m.def("payload_mass_matrix", &payload_mass_matrix, py::arg("geometry"));
+  m.def("strut_lengths", &strut_lengths, py::arg("geometry"));
+  m.def("strut_directions", &strut_directions, py::arg("geometry"));
+  m.def("modal_frequencies_hz", py::overload_cast<const Geometry&>(&modal_frequencies_hz), py::arg("geometry"));
+  m.def("modal_frequencies_hz_of",
+        py::overload_cast<const Eigen::MatrixXd&, const Eigen::MatrixXd&>(&modal_frequencies_hz), py::arg("M"),
+        py::arg("K"));
+  m.def("thesis_mass_matrix", &thesis_mass_matrix, "M_p of thesis eq. 6.1.");
+
+  m.def(
+      "simulate",
+      [](const Eigen::MatrixXd& truth, Eigen::Index samples, double noise_var, std::optional<double> force_noise_var,
+         double signal_var, const std::string& distribution, std::uint64_t seed) {
+        SimulationOptions options;
+        options.samples = samples;
+        options.noise_var = noise_var;
+        options.force_noise_var = force_noise_var;
+        options.signal_var = signal_var;
+        const auto parsed = parse_noise_distribution(distribution);
+        if (!parsed) throw std::invalid_argument("distribution must be 'uniform' or 'gaussian', got '" + distribution + "'");
+        options.distribution = *parsed;
+        std::string error;
+        if (!options.is_valid(&error)) throw std::invalid_argument(error);
+        Random random(trial_seed(seed, 0));  // as `spdfit hexapod simulate --seed`
+        const Measurements data = simulate(truth, options, random);
+        return py::make_tuple(data.A, data.B, data.A_true, data.B_true);
+      },
+      py::arg("truth"), py::arg("samples"), py::arg("noise_var"), py::arg("force_noise_var"),
+      py::arg("signal_var"), py::arg("distribution"), py::arg("seed"));
+
+  py::class_<MethodIdentification>(m, "MethodIdentification")
+      .def_readonly("result", &MethodIdentification::result)
+      .def_readonly("eigenvalues", &MethodIdentification::eigenvalues)
+      .def_readonly("modes_hz", &MethodIdentification::modes_hz)
+      .def_readonly("error_vs_truth", &MethodIdentification::error_vs_truth);
+  m.def(
+      "identify",
+      [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, std::optional<Eigen::MatrixXd> truth,
+         std::optional<Eigen::MatrixXd> stiffness) {
+        IdentifyOptions options;
+        options.truth = std::move(truth);
+        options.stiffness = std::move(stiffness);
+        py::gil_scoped_release release;
+        return identify(A, B, options);
+      },
+      py::arg("A"), py::arg("B"), py::arg("truth") = py::none(), py::arg("stiffness") = py::none());
+}
+
+}  // namespace spdfit::python
