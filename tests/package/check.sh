@@ -9,4 +9,13 @@ trap 'rm -rf "$scratch"' EXIT
 cmake --install "$build" --prefix "$scratch/prefix" >/dev/null
 cmake -S "$source_dir" -B "$scratch/build" -DCMAKE_PREFIX_PATH="$scratch/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$scratch/build" >/dev/null
-"$scratch/build/consumer"
+"$scratch/build/consumer" | tee "$scratch/output.txt"
+# docs/cpp.md shows this program's output: it must be what the program prints.
+python3=/usr/bin/python3
+"$python3" - "$source_dir/../../docs/cpp.md" "$scratch/output.txt" <<'PYTHON'
+import sys
+doc, output = open(sys.argv[1]).read(), open(sys.argv[2]).read()
+shown = doc.split("It prints:\n\n```\n", 1)[1].split("```", 1)[0]
+if shown != output:
+    sys.exit("docs/cpp.md shows a different output than tests/package/consumer.cpp prints:\n" + output)
+PYTHON

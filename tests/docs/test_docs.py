@@ -1,0 +1,94 @@
+"""The README's and the guide pages' examples cannot go stale: every ```console block's
+`$ spdfit ...` command runs with the exit status and the output lines the page shows, every
+```python block is a doctest, and docs/cpp.md shows tests/package's files verbatim.
+
+Conventions in the pages: lines after a `$` command are expected output lines (each must be
+printed, stdout or stderr, in any order); `...` elides lines; `[exit status N]` gives the
+expected exit status (0 otherwise). Commands run in a scratch directory in which `examples`
+is the repository's examples folder. (docs/hexapod.md and docs/linkage.md have their own
+tests in tests/hexapod and tests/linkage.)"""
+import doctest
+import os
+import pathlib
+import re
+import shlex
+import subprocess
+
+import pytest
+
+ROOT = pathlib.Path(os.environ.get("SPDFIT_SOURCE_DIR", pathlib.Path(__file__).resolve().parents[2]))
+PAGES = ["README.md", "docs/guide.md", "docs/cli.md", "docs/python.md"]
+EXIT = re.compile(r"^\[exit status (\d+)\]$")
+
+
+def console_examples(page):
+    """[(command, expected lines, expected status)] from the page's ```console blocks."""
+    examples = []
+    for block in re.findall(r"```console\n(.*?)```", (ROOT / page).read_text(), flags=re.S):
+        for line in block.splitlines():
+            if line.startswith("$ "):
+                examples.append([line[2:], [], 0])
+            elif EXIT.match(line):
+                examples[-1][2] = int(EXIT.match(line).group(1))
+            elif line.strip() != "...":
+                examples[-1][1].append(line.rstrip())
+    return [tuple(e) for e in examples]
+
+
+ALL = [(page, *example) for page in PAGES for example in console_examples(page)]
+
+
+@pytest.fixture
+def workdir(tmp_path):
+    (tmp_path / "examples").symlink_to(ROOT / "examples")
+    return tmp_path
+
+
+@pytest.fixture(scope="session")
+def cli():
+    path = os.environ.get("SPDFIT_CLI")
+    if not path:
+        pytest.skip("SPDFIT_CLI is not set (ctest sets it)")
+    return path
+
+
+def test_pages_have_examples():
+    for page in PAGES:
+        assert console_examples(page) or "```python" in (ROOT / page).read_text(), page
+
+
+@pytest.mark.parametrize("page,command,expected,status", ALL, ids=[f"{p}: {c}" for p, c, _, _ in ALL])
+def test_console_example(cli, workdir, page, command, expected, status):
+    words = shlex.split(command)
+    assert words[0] == "spdfit", command
+    result = subprocess.run([cli, *words[1:]], cwd=workdir, capture_output=True, text=True, timeout=300)
+    assert result.returncode == status, f"{page}: {command}\n{result.stderr}"
+    printed = {line.rstrip() for line in (result.stdout + result.stderr).splitlines()}
+    for line in expected:
+        assert line in printed, f"{page}: {command}\nthe page shows\n{line}\nbut the command printed\n" \
+                                f"{result.stdout}{result.stderr}"
+
+
+@pytest.mark.parametrize("page", ["README.md", "docs/python.md"])
+def test_python_examples(workdir, page, monkeypatch):
+    blocks = re.findall(r"```python\n(.*?)```", (ROOT / page).read_text(), flags=re.S)
+    if not blocks:
+        pytest.skip(f"{page} has no python examples")
+    monkeypatch.chdir(workdir)
+    parser = doctest.DocTestParser()
+    runner = doctest.DocTestRunner(optionflags=doctest.NORMALIZE_WHITESPACE | doctest.ELLIPSIS)
+    globs = {}
+    for number, block in enumerate(blocks):
+        test = parser.get_doctest(block, globs, f"{page} block {number + 1}", page, 0)
+        runner.run(test, clear_globs=False)
+        globs = test.globs  # later blocks continue where this one left off (DocTest copies globs)
+    failed, attempted = runner.summarize(verbose=False)
+    assert attempted > 0 and failed == 0, f"{failed} of {attempted} examples in {page} failed (output above)"
+
+
+def test_cpp_page_shows_the_package_test_verbatim():
+    page = (ROOT / "docs/cpp.md").read_text()
+    cpp = re.search(r"```cpp\n(.*?)```", page, flags=re.S).group(1)
+    cmake = re.search(r"```cmake\n(.*?)```", page, flags=re.S).group(1)
+    assert cpp.strip() == (ROOT / "tests/package/consumer.cpp").read_text().strip()
+    assert cmake.strip() == (ROOT / "tests/package/CMakeLists.txt").read_text().strip()
