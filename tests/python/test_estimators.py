@@ -168,3 +168,17 @@ def test_gil_is_released_during_fits():
     with concurrent.futures.ThreadPoolExecutor(4) as pool:
         for X in pool.map(lambda _: spdfit.spde(A, B).X, range(8)):
             assert np.array_equal(X, expected)
+
+
+def test_type_stubs_ship_with_the_package_and_name_real_functions():
+    import ast
+    import pathlib
+    package = pathlib.Path(spdfit.__file__).parent
+    assert (package / "py.typed").exists()
+    for stub, module in (("__init__.pyi", spdfit), ("hexapod.pyi", spdfit.hexapod),
+                         ("experiment.pyi", spdfit.experiment), ("linkage.pyi", spdfit.linkage)):
+        tree = ast.parse((package / stub).read_text())
+        functions = [node.name for node in tree.body if isinstance(node, ast.FunctionDef)]
+        assert functions, stub
+        for name in functions:
+            assert callable(getattr(module, name)), f"{stub} declares {name}, which the module lacks"
