@@ -69,6 +69,17 @@ def test_console_example(cli, workdir, page, command, expected, status):
                                 f"{result.stdout}{result.stderr}"
 
 
+def test_readme_command_lines_run(cli, workdir):
+    """The README's indented `spdfit ...` lines (comments dropped) run with exit status 0."""
+    lines = [line.split("  #", 1)[0].strip() for line in (ROOT / "README.md").read_text().splitlines()
+             if line.startswith("    spdfit ")]
+    assert len(lines) >= 5
+    for command in lines:
+        result = subprocess.run([cli, *shlex.split(command)[1:]], cwd=workdir, capture_output=True, text=True,
+                                timeout=300)
+        assert result.returncode == 0, f"README: {command}\n{result.stderr}"
+
+
 @pytest.mark.parametrize("page", ["README.md", "docs/python.md"])
 def test_python_examples(workdir, page, monkeypatch):
     blocks = re.findall(r"```python\n(.*?)```", (ROOT / page).read_text(), flags=re.S)
