@@ -77,16 +77,19 @@ std::string read_file(const std::string& path) {
 
 }  // namespace
 
-Table read_table(const std::string& path, const ReadOptions& options) {
-  const std::string bytes = read_file(path);
-  if (bytes.empty()) throw DataError(path, 0, 0, "file is empty");
+Table parse_table(std::string_view bytes, const std::string& source, const ReadOptions& options) {
+  if (bytes.empty()) throw DataError(source, 0, 0, "file is empty");
   // The magic bytes decide, not the name: a .npy file keeps its format when renamed.
-  if (std::string_view(bytes).substr(0, detail::kNpyMagic.size()) == detail::kNpyMagic) {
+  if (bytes.substr(0, detail::kNpyMagic.size()) == detail::kNpyMagic) {
     Table table;
-    table.values = parse_npy(bytes, path, options);
+    table.values = parse_npy(bytes, source, options);
     return table;
   }
-  return parse_delimited(bytes, path, options);
+  return parse_delimited(bytes, source, options);
+}
+
+Table read_table(const std::string& path, const ReadOptions& options) {
+  return parse_table(read_file(path), path, options);
 }
 
 Eigen::MatrixXd read_matrix(const std::string& path, const ReadOptions& options) {
