@@ -83,6 +83,10 @@ bool LinearSystemOptions::is_valid(std::string* error) const {
     if (error) *error = "rcond_warning must lie in [0, 1]";
     return false;
   }
+  if (max_unknowns < 1) {
+    if (error) *error = "max_unknowns must be at least 1";
+    return false;
+  }
   return true;
 }
 
@@ -100,6 +104,12 @@ LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A_in, const Eigen::Re
   if (B_in.rows() != A_in.rows()) {
     throw std::invalid_argument("solve: b has " + std::to_string(B_in.rows()) + " rows but A has " +
                                 std::to_string(A_in.rows()) + ": one entry of b per equation is needed");
+  }
+  if (A_in.cols() > options.max_unknowns) {
+    throw std::invalid_argument("solve: A has " + std::to_string(A_in.cols()) + " columns (unknowns); at most " +
+                                std::to_string(options.max_unknowns) +
+                                " are supported (LinearSystemOptions::max_unknowns): the SVD's V and the "
+                                "null-space basis take n^2 numbers");
   }
   if (!all_finite(A_in)) throw std::invalid_argument("solve: A has a NaN or infinite entry");
   if (!all_finite(B_in)) throw std::invalid_argument("solve: b has a NaN or infinite entry");

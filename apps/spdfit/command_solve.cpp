@@ -118,6 +118,11 @@ Command add_solve_command(CLI::App& app, const GlobalOptions& global) {
     LinearSystemOptions solve_options;
     solve_options.threshold = options->threshold;
     const Eigen::MatrixXd A = load_matrix(options->a_path);
+    if (A.cols() > solve_options.max_unknowns) {
+      throw io::DataError(options->a_path, 0, 0,
+                          "A has " + std::to_string(A.cols()) + " columns: solve supports at most " +
+                              std::to_string(solve_options.max_unknowns) + " unknowns");
+    }
     Eigen::MatrixXd b = load_matrix(options->b_path);
     if (b.rows() != A.rows() && b.rows() == 1 && b.cols() == A.rows()) b.transposeInPlace();
     if (b.rows() != A.rows()) {

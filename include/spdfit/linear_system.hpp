@@ -23,6 +23,11 @@ struct LinearSystemOptions {
   /// added (notes 002, section 3.7.2: "if lambda(A) < 1e-12, A is ill-conditioned").
   double rcond_warning = 1e-12;
 
+  /// The most unknowns (columns of A) solve() accepts. It computes the full n x n V of the SVD and
+  /// returns the null space, n x (n - rank): n^2 numbers, which a wide A of a few kilobytes of text
+  /// would otherwise turn into terabytes. At the default, V takes 134 MB.
+  Eigen::Index max_unknowns = 4096;
+
   /// True when the options are usable; otherwise `error` says why.
   bool is_valid(std::string* error = nullptr) const;
 
@@ -114,11 +119,11 @@ struct LinearSystemResult {
 /// one, and every result is scaled back: the answer does not depend on the units, from denormal
 /// data to 1e300.
 ///
-/// Preconditions: A non-empty, B with A's number of
+/// Preconditions: A non-empty with at most options.max_unknowns columns, B with A's number of
 /// rows and at least one column, all entries finite; valid options (else std::invalid_argument).
 /// A singular A is an answer, not an error; the one numerical failure is a solution beyond the
 /// range of double (status NumericalFailure). Cost: O(m n min(m, n)) for the SVD of A plus
-/// O(m n^2) per column of B for the augmented matrix.
+/// O(m n^2) per column of B for the augmented matrix; memory O(n^2) for V.
 LinearSystemResult solve(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
                          const LinearSystemOptions& options = {});
 

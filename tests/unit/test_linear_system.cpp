@@ -315,5 +315,22 @@ TEST(LinearSystem, SolutionBeyondTheDoubleRangeIsANumericalFailure) {
   EXPECT_TRUE(r.consistent);
 }
 
+TEST(LinearSystem, TooManyUnknownsThrowsBeforeAllocating) {
+  // 10^6 unknowns would need a V of 8 TB.
+  const MatrixXd A = MatrixXd::Ones(1, 1000000);
+  try {
+    solve(A, VectorXd::Ones(1));
+    ADD_FAILURE() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("A has 1000000 columns (unknowns); at most 4096"), std::string::npos)
+        << e.what();
+  }
+  LinearSystemOptions options;
+  options.max_unknowns = 3;
+  EXPECT_THROW(solve(MatrixXd::Ones(1, 4), VectorXd::Ones(1), options), std::invalid_argument);
+  options.max_unknowns = 0;
+  EXPECT_FALSE(options.is_valid());
+}
+
 }  // namespace
 }  // namespace spdfit
