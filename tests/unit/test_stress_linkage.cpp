@@ -108,17 +108,18 @@ void check_design_normal_equations(const PairsCase& c, const SynthesisResult& r)
   EXPECT_LE((S.transpose() * residual).norm(), tolerance) << c.name;
 }
 
-void check_synthesis(const PairsCase& c, const SynthesisOptions& options) {
+SynthesisResult check_synthesis(const PairsCase& c, const SynthesisOptions& options) {
   SynthesisResult r;
-  ASSERT_NO_THROW(r = synthesize(c.psi, c.phi, c.weights, options)) << c.name;
+  EXPECT_NO_THROW(r = synthesize(c.psi, c.phi, c.weights, options)) << c.name;
   if (!r.ok()) {
     EXPECT_FALSE(r.message.empty()) << c.name;
-    return;
+    return r;
   }
   check_solution(r.design, "design, " + c.name);
   check_solution(r.structural, "structural, " + c.name);
   EXPECT_TRUE(r.psi.allFinite() && r.phi.allFinite()) << c.name;
   if (!options.fit_dial_zeros) check_design_normal_equations(c, r);
+  return r;
 }
 
 TEST(SynthesisStress, AnswersFinitelyOrFailsClearly) {
@@ -127,7 +128,13 @@ TEST(SynthesisStress, AnswersFinitelyOrFailsClearly) {
     for (int kind = 0; kind <= 8; ++kind) {
       const PairsCase c = make_pairs_case(g, m, kind);
       SCOPED_TRACE(c.name);
-      check_synthesis(c, {});
+      const SynthesisResult r = check_synthesis(c, {});
+      // Exact pairs of a real linkage, and those shifted by whole turns, have an answer. (With
+      // weights over 300 decades, W^(1/2) S is numerically rank-deficient: k is then the edited
+      // SVD's, which may be no real linkage; a failure with a message is the right outcome.)
+      if ((kind == 0 || kind == 6) && c.weights.size() == 0) {
+        EXPECT_TRUE(r.ok()) << c.name << ": " << r.message;
+      }
     }
   }
 }
