@@ -1,12 +1,12 @@
 // Reading and writing geometry files (JSON). Every error names the file and the key.
 #include <algorithm>
-#include <fstream>
+#include <cstddef>
 #include <iterator>
-#include <sstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "io/read_file.hpp"
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/io.hpp"
 
@@ -116,6 +116,10 @@ class Reader {
   std::string source_;
 };
 
+// A geometry file is about 2 kB. The cap bounds the parser's memory, which is many times the
+// text's for long arrays (each number becomes a JSON value), and is checked before reading.
+constexpr std::size_t kMaxGeometryBytes = std::size_t{1} << 20;
+
 // 1-based line and column of a byte offset, for parse errors.
 std::pair<std::size_t, std::size_t> line_and_column(const std::string& text, std::size_t byte) {
   byte = std::min(byte, text.size());
@@ -134,6 +138,11 @@ std::pair<std::size_t, std::size_t> line_and_column(const std::string& text, std
 }  // namespace
 
 Geometry parse_geometry(const std::string& text, const std::string& source) {
+  if (text.size() > kMaxGeometryBytes) {
+    throw io::DataError(source, 0, 0,
+                        "is " + std::to_string(text.size()) + " bytes long; at most " +
+                            std::to_string(kMaxGeometryBytes) + " are accepted for a geometry file");
+  }
   json root;
   try {
     root = json::parse(text);
@@ -179,12 +188,7 @@ Geometry parse_geometry(const std::string& text, const std::string& source) {
 }
 
 Geometry read_geometry(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw io::DataError(path, 0, 0, "cannot open the geometry file");
-  std::ostringstream text;
-  text << file.rdbuf();
-  if (file.bad()) throw io::DataError(path, 0, 0, "cannot read the geometry file");
-  return parse_geometry(text.str(), path);
+  return parse_geometry(io::detail::read_file(path, kMaxGeometryBytes, "a geometry file"), path);
 }
 
 std::string geometry_json(const Geometry& g) {

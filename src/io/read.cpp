@@ -10,6 +10,7 @@
 
 #include "file_error.hpp"
 #include "npy_header.hpp"
+#include "read_file.hpp"
 #include "spdfit/io.hpp"
 
 namespace spdfit::io {
@@ -50,32 +51,52 @@ void check_regular_file(const std::string& path) {
   throw DataError(path, 0, 0, problem);
 }
 
-std::string read_file(const std::string& path) {
+}  // namespace
+
+namespace detail {
+
+std::string read_file(const std::string& path, std::size_t max_bytes, const std::string& what,
+                      const std::function<void(std::string_view)>& inspect) {
   check_regular_file(path);
+  std::error_code error;
+  const std::uintmax_t size = fs::file_size(path, error);
+  if (!error && size > max_bytes) {
+    throw DataError(path, 0, 0,
+                    "is " + std::to_string(size) + " bytes long; at most " + std::to_string(max_bytes) +
+                        " are accepted for " + what);
+  }
   errno = 0;
   const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
   if (!file) {
-    throw DataError(path, 0, 0, errno != 0 ? detail::describe_errno(errno) : "cannot be opened");
+    throw DataError(path, 0, 0, errno != 0 ? describe_errno(errno) : "cannot be opened");
   }
   std::string bytes;
-  std::error_code error;
-  const std::uintmax_t size = fs::file_size(path, error);
-  if (!error) bytes.reserve(static_cast<std::size_t>(size));
   // Read until end of file rather than trusting the size: the file may change meanwhile, and
-  // some files (in /proc, say) report size 0.
+  // some files (in /proc, say) report size 0. The first block is inspected before the size is
+  // reserved, so that a refused file never costs its size in memory.
   char buffer[1 << 16];
+  bool inspected = !inspect;
   while (true) {
     const std::size_t got = std::fread(buffer, 1, sizeof(buffer), file.get());
     bytes.append(buffer, got);
-    if (got < sizeof(buffer)) break;
+    const bool done = got < sizeof(buffer);
+    if (bytes.size() > max_bytes) {
+      throw DataError(path, 0, 0, "is longer than " + std::to_string(max_bytes) + " bytes, the most accepted for " + what);
+    }
+    if (!inspected && (done || bytes.size() >= kInspectBytes)) {
+      inspected = true;
+      if (!std::ferror(file.get())) inspect(bytes);
+      if (!error && size > bytes.size()) bytes.reserve(static_cast<std::size_t>(size));
+    }
+    if (done) break;
   }
   if (std::ferror(file.get())) {
-    throw DataError(path, 0, 0, "read error (" + detail::describe_errno(errno) + ")");
+    throw DataError(path, 0, 0, "read error (" + describe_errno(errno) + ")");
   }
   return bytes;
 }
 
-}  // namespace
+}  // namespace detail
 
 Table parse_table(std::string_view bytes, const std::string& source, const ReadOptions& options) {
   if (bytes.empty()) throw DataError(source, 0, 0, "file is empty");
@@ -89,7 +110,7 @@ Table parse_table(std::string_view bytes, const std::string& source, const ReadO
 }
 
 Table read_table(const std::string& path, const ReadOptions& options) {
-  return parse_table(read_file(path), path, options);
+  return parse_table(detail::read_file(path), path, options);
 }
 
 Eigen::MatrixXd read_matrix(const std::string& path, const ReadOptions& options) {
