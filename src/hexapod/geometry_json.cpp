@@ -120,6 +120,10 @@ class Reader {
 // text's for long arrays (each number becomes a JSON value), and is checked before reading.
 constexpr std::size_t kMaxGeometryBytes = std::size_t{1} << 20;
 
+// The file format nests three levels ({"base_points": [[x, y, z], ...]}); anything much deeper is
+// not a geometry, and refusing it before parsing keeps the parser's memory and stack bounded.
+constexpr int kMaxNesting = 64;
+
 // 1-based line and column of a byte offset, for parse errors.
 std::pair<std::size_t, std::size_t> line_and_column(const std::string& text, std::size_t byte) {
   byte = std::min(byte, text.size());
@@ -135,6 +139,33 @@ std::pair<std::size_t, std::size_t> line_and_column(const std::string& text, std
   return {line, column};
 }
 
+// Throws a DataError at the first '[' or '{' (outside strings) that opens level kMaxNesting + 1.
+void check_nesting(const std::string& text, const std::string& source) {
+  int depth = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') {
+        ++i;
+      } else if (c == '"') {
+        in_string = false;
+      }
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxNesting) {
+        const auto [line, column] = line_and_column(text, i + 1);
+        throw io::DataError(source, line, column,
+                            "JSON nested more than " + std::to_string(kMaxNesting) +
+                                " levels deep; a geometry file needs 3");
+      }
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+}
+
 }  // namespace
 
 Geometry parse_geometry(const std::string& text, const std::string& source) {
@@ -143,6 +174,7 @@ Geometry parse_geometry(const std::string& text, const std::string& source) {
                         "is " + std::to_string(text.size()) + " bytes long; at most " +
                             std::to_string(kMaxGeometryBytes) + " are accepted for a geometry file");
   }
+  check_nesting(text, source);
   json root;
   try {
     root = json::parse(text);

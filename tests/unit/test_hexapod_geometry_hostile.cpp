@@ -86,6 +86,16 @@ TEST_F(GeometryFiles, LargeFileIsRefusedBeforeReading) {
   EXPECT_EQ(file_error(path), path + ": is 8589934592 bytes long; at most 1048576 are accepted for a geometry file");
 }
 
+TEST(GeometryText, NestingBeyondSixtyFourLevelsIsRefusedWithItsPosition) {
+  EXPECT_EQ(text_error(std::string(1000, '[') + std::string(1000, ']')),
+            "G.json:1:65: JSON nested more than 64 levels deep; a geometry file needs 3");
+  std::string deep = "{\n \"_c\": \"[[[[\",\n \"base_points\": " + std::string(100000, '[');
+  EXPECT_EQ(text_error(deep), "G.json:3:80: JSON nested more than 64 levels deep; a geometry file needs 3");
+  // Sixty-four levels are parsed (and found not to be a geometry).
+  EXPECT_NE(text_error("{\"_c\": " + std::string(63, '[') + std::string(63, ']') + "}").find("missing key"),
+            std::string::npos);
+}
+
 TEST(GeometryText, MoreThanAMebibyteIsRefused) {
   EXPECT_EQ(text_error("{\"_pad\": \"" + std::string(1 << 20, ' ') + "\"}"),
             "G.json: is 1048588 bytes long; at most 1048576 are accepted for a geometry file");
