@@ -186,6 +186,13 @@ Geometry parse_geometry(const std::string& text, const std::string& source) {
     const std::size_t colon = problem.find("parse error");
     if (colon != std::string::npos) problem = problem.substr(colon);
     throw io::DataError(source, line, column, "not valid JSON: " + problem);
+  } catch (const json::exception& e) {
+    // The parser reports a number beyond the double range ("1e999") as out_of_range, without a
+    // position; keep its explanation after the "[json.exception...] " tag.
+    std::string problem = e.what();
+    const std::size_t tag_end = problem.find("] ");
+    if (tag_end != std::string::npos) problem = problem.substr(tag_end + 2);
+    throw io::DataError(source, 0, 0, "not valid JSON: " + problem);
   }
   Reader in(root, source);
   if (!root.is_object()) in.fail("a geometry file must hold a JSON object {\"base_points\": ..., ...}");

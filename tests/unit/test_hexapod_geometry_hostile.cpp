@@ -101,5 +101,11 @@ TEST(GeometryText, MoreThanAMebibyteIsRefused) {
             "G.json: is 1048588 bytes long; at most 1048576 are accepted for a geometry file");
 }
 
+// Regression: nlohmann's parser reports a number beyond the double range as out_of_range rather
+// than parse_error, which escaped as an exception without the file's name.
+TEST(GeometryText, NumberBeyondTheDoubleRangeNamesTheFile) {
+  EXPECT_EQ(text_error("{\"payload_mass\": 1e999}"), "G.json: not valid JSON: number overflow parsing '1e999'");
+}
+
 }  // namespace
 }  // namespace spdfit
