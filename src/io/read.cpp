@@ -1,8 +1,10 @@
-// Reading a matrix from a file: checks that the path is a readable regular file, then hands
-// the bytes to the .npy or the delimited-text parser.
+// Reading a matrix from a file: checks that the path is a readable regular file, reads it
+// (refusing binary files from their first bytes), then hands the bytes to the .npy or the
+// delimited-text parser.
 #include <cerrno>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -12,6 +14,7 @@
 #include "npy_header.hpp"
 #include "read_file.hpp"
 #include "spdfit/io.hpp"
+#include "text_scan.hpp"
 
 namespace spdfit::io {
 
@@ -98,6 +101,23 @@ std::string read_file(const std::string& path, std::size_t max_bytes, const std:
 
 }  // namespace detail
 
+namespace {
+
+// A file that is not text from its first bytes on (a sparse file of zeros, a disk image) is
+// refused from those bytes with the error the whole text would give, without reading the rest.
+void refuse_binary_early(std::string_view first, const std::string& path) {
+  if (first.substr(0, detail::kNpyMagic.size()) == detail::kNpyMagic) return;
+  std::string description;
+  const std::size_t offset = detail::find_non_text_byte(first, &description);
+  // A multi-byte UTF-8 character may be cut at the end of the block: only judge well inside it.
+  if (offset == std::string_view::npos || offset + 4 >= first.size()) return;
+  // The delimited reader checks the bytes before anything else, so the prefix up to the first
+  // non-text byte fails exactly as the whole file would.
+  parse_delimited(first.substr(0, offset + 1), path);
+}
+
+}  // namespace
+
 Table parse_table(std::string_view bytes, const std::string& source, const ReadOptions& options) {
   if (bytes.empty()) throw DataError(source, 0, 0, "file is empty");
   // The magic bytes decide, not the name: a .npy file keeps its format when renamed.
@@ -110,7 +130,9 @@ Table parse_table(std::string_view bytes, const std::string& source, const ReadO
 }
 
 Table read_table(const std::string& path, const ReadOptions& options) {
-  return parse_table(detail::read_file(path), path, options);
+  const std::string bytes = detail::read_file(path, std::numeric_limits<std::size_t>::max(), "a data file",
+                                              [&path](std::string_view first) { refuse_binary_early(first, path); });
+  return parse_table(bytes, path, options);
 }
 
 Eigen::MatrixXd read_matrix(const std::string& path, const ReadOptions& options) {
