@@ -1,6 +1,10 @@
 #!/usr/bin/env bash
-# Sets up, builds and runs every test (unit tests, the reference comparison, CLI tests).
+# Sets up, builds and runs every test (unit tests, the reference comparison, CLI tests), then the
+# same tests again under AddressSanitizer and UndefinedBehaviorSanitizer (build-sanitize/), then
+# each fuzz target for about a minute (docs/errors.md says what they check).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 ctest --test-dir build --output-on-failure --parallel "$(nproc 2>/dev/null || echo 2)"
+scripts/sanitize.sh
+scripts/fuzz.sh

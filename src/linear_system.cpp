@@ -7,6 +7,7 @@
 
 #include <Eigen/SVD>
 
+#include "linalg.hpp"
 #include "linear_system_explanation.hpp"
 
 namespace spdfit {
@@ -82,6 +83,10 @@ bool LinearSystemOptions::is_valid(std::string* error) const {
     if (error) *error = "rcond_warning must lie in [0, 1]";
     return false;
   }
+  if (max_unknowns < 1) {
+    if (error) *error = "max_unknowns must be at least 1";
+    return false;
+  }
   return true;
 }
 
@@ -90,18 +95,33 @@ double LinearSystemOptions::cutoff(Index m, Index n) const {
   return static_cast<double>(std::max(m, n)) * kEps;
 }
 
-LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
+LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A_in, const Eigen::Ref<const MatrixXd>& B_in,
                          const LinearSystemOptions& options) {
   std::string error;
   if (!options.is_valid(&error)) throw std::invalid_argument("solve: " + error);
-  if (A.rows() == 0 || A.cols() == 0) throw std::invalid_argument("solve: A is empty");
-  if (B.cols() == 0) throw std::invalid_argument("solve: b has no columns");
-  if (B.rows() != A.rows()) {
-    throw std::invalid_argument("solve: b has " + std::to_string(B.rows()) + " rows but A has " +
-                                std::to_string(A.rows()) + ": one entry of b per equation is needed");
+  if (A_in.rows() == 0 || A_in.cols() == 0) throw std::invalid_argument("solve: A is empty");
+  if (B_in.cols() == 0) throw std::invalid_argument("solve: b has no columns");
+  if (B_in.rows() != A_in.rows()) {
+    throw std::invalid_argument("solve: b has " + std::to_string(B_in.rows()) + " rows but A has " +
+                                std::to_string(A_in.rows()) + ": one entry of b per equation is needed");
   }
-  if (!all_finite(A)) throw std::invalid_argument("solve: A has a NaN or infinite entry");
-  if (!all_finite(B)) throw std::invalid_argument("solve: b has a NaN or infinite entry");
+  if (A_in.cols() > options.max_unknowns) {
+    throw std::invalid_argument("solve: A has " + std::to_string(A_in.cols()) + " columns (unknowns); at most " +
+                                std::to_string(options.max_unknowns) +
+                                " are supported (LinearSystemOptions::max_unknowns): the SVD's V and the "
+                                "null-space basis take n^2 numbers");
+  }
+  if (!all_finite(A_in)) throw std::invalid_argument("solve: A has a NaN or infinite entry");
+  if (!all_finite(B_in)) throw std::invalid_argument("solve: b has a NaN or infinite entry");
+
+  // Work in units where the largest entries of A and B are in [0.5, 1): scaling by powers of two
+  // is exact, and the SVD, 1 / sigma_i and the residuals then neither overflow nor lose digits to
+  // denormals, whatever the data's units (as the estimators' TriangularFactor does). Everything
+  // below is in these units until the end; the classification does not depend on them.
+  const int ea = detail::scale_exponent(A_in).value_or(0);
+  const int eb = detail::scale_exponent(B_in).value_or(0);
+  const MatrixXd A = detail::times_power_of_two(A_in, -ea);
+  const MatrixXd B = detail::times_power_of_two(B_in, -eb);
 
   LinearSystemResult r;
   r.m = A.rows();
@@ -112,7 +132,6 @@ LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<c
   r.threshold = options.cutoff(r.m, r.n);
 
   const FullSvd dec = svd_with_full_v(A);
-  r.singular_values = dec.s;
   r.rank = edited_rank(dec.s, r.threshold);
   r.nullity = r.n - r.rank;
   const double smax = dec.s(0);
@@ -129,15 +148,15 @@ LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<c
   r.null_space = dec.V.rightCols(r.nullity);
 
   // Minimum-norm least-squares solution with the small singular values edited (eq. 3.21).
-  r.solution = dec.V.leftCols(k) * (dec.s.head(k).cwiseInverse().asDiagonal() * (dec.U.leftCols(k).transpose() * B));
-  const MatrixXd residual = A * r.solution - B;
-  r.residual_norm = residual.stableNorm();
+  const MatrixXd x = dec.V.leftCols(k) * (dec.s.head(k).cwiseInverse().asDiagonal() * (dec.U.leftCols(k).transpose() * B));
+  const MatrixXd residual = A * x - B;
+  r.residual_norm = std::ldexp(residual.stableNorm(), eb);
 
   // The projective view, one right-hand side at a time: [A | -b_j] [x; w] = 0.
   r.consistent = true;
   for (Index j = 0; j < r.p; ++j) {
     ColumnClassification c;
-    const double bnorm = B.col(j).stableNorm();  // no underflow at 1e-200, no overflow at 1e200
+    const double bnorm = B.col(j).stableNorm();
     MatrixXd M(r.m, r.n + 1);
     M.leftCols(r.n) = A;
     // Scaling the homogeneous coordinate w changes nothing in the solution set, and putting
@@ -150,14 +169,26 @@ LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<c
     c.consistent = c.augmented_rank <= r.rank;
     c.finite_solution_dimension = c.consistent ? r.nullity : -1;
     c.at_infinity_dimension = r.nullity - 1;
-    c.residual_norm = residual.col(j).stableNorm();
-    const double denominator = smax * r.solution.col(j).stableNorm() + bnorm;
-    c.backward_error = denominator > 0.0 ? c.residual_norm / denominator : 0.0;
+    const double residual_norm = residual.col(j).stableNorm();
+    c.residual_norm = std::ldexp(residual_norm, eb);
+    // A ratio of quantities in b's units: the same in any units.
+    const double denominator = smax * x.col(j).stableNorm() + bnorm;
+    c.backward_error = denominator > 0.0 ? residual_norm / denominator : 0.0;
     r.consistent = r.consistent && c.consistent;
     r.columns.push_back(c);
   }
   r.finite_solution_dimension = r.consistent ? r.nullity : -1;
   r.at_infinity_dimension = r.nullity - 1;
+
+  // Back to the data's units: A = 2^ea (units), b = 2^eb (units), x = 2^(eb - ea) (units).
+  r.singular_values = detail::times_power_of_two(dec.s, ea);
+  r.solution = detail::times_power_of_two(x, eb - ea);
+  if (!r.solution.allFinite()) {
+    r.status = Status::NumericalFailure;
+    r.message = "solve: the solution overflows the range of double precision numbers (b is about 2^" +
+                std::to_string(eb) + " and A about 2^" + std::to_string(ea) + ")";
+    r.solution.resize(0, 0);
+  }
 
   if (r.reciprocal_condition_number < options.rcond_warning) {
     r.warnings.push_back("A is ill-conditioned: reciprocal condition number " +

@@ -1,6 +1,7 @@
 #include "spdfit/nearest_spd.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -20,33 +21,47 @@ NearestSpdResult nearest_spd(const Eigen::Ref<const MatrixXd>& X, double min_eig
   if (!std::isfinite(min_eig) || min_eig < 0.0) {
     throw std::invalid_argument("nearest_spd: min_eig must be a finite number >= 0");
   }
+  // Work in units where the largest entry (or min_eig) is in [0.5, 1) (exact: a power of two), so that the
+  // eigenvalues, which can exceed the largest entry n times, do not overflow for entries near the
+  // double range, and denormal input keeps its digits.
+  const MatrixXd largest = MatrixXd::Constant(1, 1, std::max(X.cwiseAbs().maxCoeff(), min_eig));
+  const int e = detail::scale_exponent(largest).value_or(0);
+  const MatrixXd x = detail::times_power_of_two(X, -e);
+  const double floor = std::ldexp(min_eig, -e);
+
   // Higham 1988: the nearest symmetric matrix is S = (X + X^T)/2, and the nearest one with
   // eigenvalues >= min_eig clips the eigenvalues of S = W diag(lambda) W^T. For min_eig = 0 this
   // is (S + H)/2 with H the symmetric polar factor of S (thesis eq. 4.39).
-  const MatrixXd S = detail::symmetric_part(X);
+  const MatrixXd S = detail::symmetric_part(x);
   Eigen::SelfAdjointEigenSolver<MatrixXd> eig(S);
   if (eig.info() != Eigen::Success) {
     throw std::runtime_error("nearest_spd: the symmetric eigensolver did not converge");
   }
   Eigen::VectorXd lambda = eig.eigenvalues();
   NearestSpdResult out;
-  out.min_eigenvalue_before = lambda(0);
+  out.min_eigenvalue_before = std::ldexp(lambda(0), e);
   for (Index i = 0; i < lambda.size(); ++i) {
-    if (lambda(i) < min_eig) {
-      lambda(i) = min_eig;
+    if (lambda(i) < floor) {
+      lambda(i) = floor;
       ++out.clipped;
     }
   }
+  MatrixXd y;
   if (out.clipped == 0) {
-    out.X = S;  // already admissible: no rounding from re-assembly
+    y = S;  // already admissible: no rounding from re-assembly
   } else {
     const MatrixXd& W = eig.eigenvectors();
-    out.X = MatrixXd::Zero(S.rows(), S.cols());
+    y = MatrixXd::Zero(S.rows(), S.cols());
     // Lower triangle of W diag(lambda) W^T, mirrored: exactly symmetric.
-    out.X.triangularView<Eigen::Lower>() = W * lambda.asDiagonal() * W.transpose();
-    detail::make_symmetric_from_lower(out.X);
+    y.triangularView<Eigen::Lower>() = W * lambda.asDiagonal() * W.transpose();
+    detail::make_symmetric_from_lower(y);
   }
-  out.distance = (X - out.X).stableNorm();  // entries near the double range must not overflow
+  out.distance = std::ldexp((x - y).stableNorm(), e);
+  out.X = detail::times_power_of_two(y, e);
+  if (!out.X.allFinite()) {
+    // Possible only for a min_eig or entries within a factor n of the largest double.
+    throw std::runtime_error("nearest_spd: the nearest matrix overflows the range of double precision numbers");
+  }
   return out;
 }
 

@@ -42,11 +42,15 @@ FitResult spde(const Reduction& data) {
                        " (Chen & McInroy, Corollary III.7)");
   }
 
-  const MatrixXd V_root = polar.V.leftCols(r) * s.head(r).cwiseSqrt().asDiagonal();
-  const MatrixXd L = data.R11.triangularView<Eigen::Upper>().solve(V_root);
   MatrixXd X_s = MatrixXd::Zero(n, n);
-  X_s.selfadjointView<Eigen::Lower>().rankUpdate(L);
-  detail::make_symmetric_from_lower(X_s);
+  // B = 0 (r = 0): the minimizer is X = 0. Eigen's triangular solve takes the address of the
+  // first entry of its right-hand side, which an n x 0 matrix does not have.
+  if (r > 0) {
+    const MatrixXd V_root = polar.V.leftCols(r) * s.head(r).cwiseSqrt().asDiagonal();
+    const MatrixXd L = data.R11.triangularView<Eigen::Upper>().solve(V_root);
+    X_s.selfadjointView<Eigen::Lower>().rankUpdate(L);
+    detail::make_symmetric_from_lower(X_s);
+  }
 
   // Corollary III.4: min f = 2 tr(Sigma_Q~ - A^T B); tr(Sigma_Q~) is the sum of the singular
   // values of M (Q~ and M^T M are similar).

@@ -8,6 +8,7 @@
 #include "output.hpp"
 #include "spdfit/io.hpp"
 #include "spdfit/nearest_spd.hpp"
+#include "validators.hpp"
 
 namespace spdfit::cli {
 
@@ -25,7 +26,7 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
       "nearest", "Nearest symmetric positive (semi)definite matrix to X (Higham); repairs covariances");
   sub->add_option("--min-eig", options->min_eig,
                   "Smallest eigenvalue allowed (default 0: semidefinite; > 0: strictly definite)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative());
   sub->add_flag("--json", options->json, "Print the result and its diagnostics as JSON");
   sub->add_option("-o,--output", options->output, "Write to FILE instead of stdout");
   sub->add_option("X", options->path, "File of X (n x n): delimited text or .npy")->required();

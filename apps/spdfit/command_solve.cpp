@@ -115,7 +115,14 @@ Command add_solve_command(CLI::App& app, const GlobalOptions& global) {
 
   auto run = [options, &global]() {
     if (options->threshold >= 1.0) throw UsageError("--threshold must be below 1");
+    LinearSystemOptions solve_options;
+    solve_options.threshold = options->threshold;
     const Eigen::MatrixXd A = load_matrix(options->a_path);
+    if (A.cols() > solve_options.max_unknowns) {
+      throw io::DataError(options->a_path, 0, 0,
+                          "A has " + std::to_string(A.cols()) + " columns: solve supports at most " +
+                              std::to_string(solve_options.max_unknowns) + " unknowns");
+    }
     Eigen::MatrixXd b = load_matrix(options->b_path);
     if (b.rows() != A.rows() && b.rows() == 1 && b.cols() == A.rows()) b.transposeInPlace();
     if (b.rows() != A.rows()) {
@@ -123,10 +130,9 @@ Command add_solve_command(CLI::App& app, const GlobalOptions& global) {
                           "b has " + std::to_string(b.rows()) + " rows but A (" + options->a_path + ") has " +
                               std::to_string(A.rows()) + ": one entry of b per equation is needed");
     }
-    LinearSystemOptions solve_options;
-    solve_options.threshold = options->threshold;
     const LinearSystemResult result = solve(A, b, solve_options);
     for (const std::string& w : result.warnings) warn(global, w);
+    if (!result.ok()) throw DataFailure(result.message);
     emit(options->json ? solve_json(result).dump(2) + "\n" : solve_text(result), options->output);
   };
   return {sub, run};

@@ -13,17 +13,20 @@ std::string shape(const Eigen::MatrixXd& M) {
 Eigen::MatrixXd load_matrix(const std::string& path) { return io::read_matrix(path); }
 
 DataPair load_pair(const std::string& a_path, const std::string& b_path) {
-  DataPair data{load_matrix(a_path), load_matrix(b_path)};
-  if (data.A.rows() != data.B.rows() || data.A.cols() != data.B.cols()) {
-    throw io::DataError(b_path, 0, 0,
-                        "B is " + shape(data.B) + " but A (" + a_path + ") is " + shape(data.A) +
-                            ": A and B must have the same numbers of rows (samples) and columns");
-  }
+  DataPair data;
+  data.A = load_matrix(a_path);
+  // Checked before B is read, so that a hostile A (millions of columns) costs one file, not two.
   if (data.A.rows() < data.A.cols()) {
     throw io::DataError(a_path, 0, 0,
                         "A has " + std::to_string(data.A.rows()) + " rows (samples) but " +
                             std::to_string(data.A.cols()) +
                             " columns: at least as many samples as columns are needed");
+  }
+  data.B = load_matrix(b_path);
+  if (data.A.rows() != data.B.rows() || data.A.cols() != data.B.cols()) {
+    throw io::DataError(b_path, 0, 0,
+                        "B is " + shape(data.B) + " but A (" + a_path + ") is " + shape(data.A) +
+                            ": A and B must have the same numbers of rows (samples) and columns");
   }
   return data;
 }

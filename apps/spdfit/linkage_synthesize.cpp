@@ -8,7 +8,7 @@
 #include "linkage_arguments.hpp"
 #include "linkage_commands.hpp"
 #include "output.hpp"
-#include "spdfit/io.hpp"
+#include "spdfit/linkage/pairs_file.hpp"
 #include "spdfit/linkage/synthesis.hpp"
 
 namespace spdfit::cli {
@@ -24,42 +24,13 @@ struct Prescribed {
 };
 
 Prescribed load_pairs(const SynthesizeOptionsCli& o) {
+  PairsFileOptions options;
+  options.radians = o.radians;
+  options.min_pairs = o.fit_dial_zeros ? 5 : 3;
   Prescribed p;
-  const io::Table table = io::read_table(o.pairs);
-  if (table.values.cols() != 2) {
-    throw io::DataError(o.pairs, 0, 0,
-                        "the pairs file has " + std::to_string(table.values.cols()) +
-                            " columns: two are needed, the input angle psi and the output angle phi");
-  }
-  const Eigen::Index needed = o.fit_dial_zeros ? 5 : 3;
-  if (table.values.rows() < needed) {
-    throw io::DataError(o.pairs, 0, 0,
-                        std::to_string(table.values.rows()) + " pair(s): at least " + std::to_string(needed) +
-                            " are needed (" + std::to_string(needed) + " give exact precision-point synthesis" +
-                            (o.fit_dial_zeros ? " with dial zeros)" : ")"));
-  }
-  const double scale = o.radians ? 1.0 : kRadiansPerDegree;
-  p.pairs.delta_psi = table.values.col(0) * scale;
-  p.pairs.delta_phi = table.values.col(1) * scale;
+  p.pairs = read_pairs(o.pairs, options);
   p.source = o.pairs;
   return p;
-}
-
-Eigen::VectorXd load_weights(const std::string& path, Eigen::Index m) {
-  const Eigen::MatrixXd W = io::read_matrix(path);
-  if (W.size() != m || (W.rows() != 1 && W.cols() != 1)) {
-    throw io::DataError(path, 0, 0,
-                        "the weights are " + std::to_string(W.rows()) + "x" + std::to_string(W.cols()) +
-                            ": one column of " + std::to_string(m) + " weights (one per pair) is needed");
-  }
-  Eigen::VectorXd w = Eigen::Map<const Eigen::VectorXd>(W.data(), m);
-  for (Eigen::Index i = 0; i < m; ++i) {
-    if (!(w(i) > 0.0)) {
-      throw io::DataError(path, 0, 0, "weight " + std::to_string(i + 1) + " is " + io::format_double(w(i)) +
-                                          ": weights must be positive");
-    }
-  }
-  return w;
 }
 
 Spacing parse_spacing(const std::string& name) { return name == "chebyshev" ? Spacing::Chebyshev : Spacing::Uniform; }
@@ -82,7 +53,7 @@ Prescribed prescribe(const SynthesizeOptionsCli& o, SynthesisOptions& options) {
   Prescribed p;
   if (!generated) {
     p = load_pairs(o);
-    if (!o.weights.empty()) p.weights = load_weights(o.weights, p.pairs.delta_psi.size());
+    if (!o.weights.empty()) p.weights = read_weights(o.weights, p.pairs.delta_psi.size());
     return p;
   }
   const Spacing spacing = parse_spacing(o.spacing);
@@ -116,7 +87,7 @@ Prescribed prescribe(const SynthesizeOptionsCli& o, SynthesisOptions& options) {
     }
     p.source = "y = " + o.function + "(x), x in [" + g(x_lo) + ", " + g(x_hi) + "]";
   }
-  if (!o.weights.empty()) p.weights = load_weights(o.weights, p.pairs.delta_psi.size());
+  if (!o.weights.empty()) p.weights = read_weights(o.weights, p.pairs.delta_psi.size());
   return p;
 }
 

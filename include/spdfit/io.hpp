@@ -51,7 +51,12 @@ struct Table {
 Table read_table(const std::string& path, const ReadOptions& options = {});
 Eigen::MatrixXd read_matrix(const std::string& path, const ReadOptions& options = {});
 
-/// The parsers behind read_table, on bytes already in memory; `source` names them in errors.
+/// read_table on bytes already in memory: a .npy file when they start with the .npy magic bytes,
+/// delimited text otherwise. `source` names them in errors. Throws DataError as read_table does
+/// (empty bytes: "file is empty").
+Table parse_table(std::string_view bytes, const std::string& source, const ReadOptions& options = {});
+
+/// The two parsers behind parse_table; `source` names the bytes in errors.
 Table parse_delimited(std::string_view text, const std::string& source, const ReadOptions& options = {});
 Eigen::MatrixXd parse_npy(std::string_view bytes, const std::string& source, const ReadOptions& options = {});
 

@@ -7,6 +7,8 @@
 
 #include <Eigen/Core>
 
+#include "spdfit/fit_result.hpp"
+
 namespace spdfit {
 
 /// Options for solve().
@@ -20,6 +22,11 @@ struct LinearSystemOptions {
   /// The reciprocal condition number below which A counts as ill-conditioned and a warning is
   /// added (notes 002, section 3.7.2: "if lambda(A) < 1e-12, A is ill-conditioned").
   double rcond_warning = 1e-12;
+
+  /// The most unknowns (columns of A) solve() accepts. It computes the full n x n V of the SVD and
+  /// returns the null space, n x (n - rank): n^2 numbers, which a wide A of a few kilobytes of text
+  /// would otherwise turn into terabytes. At the default, V takes 134 MB.
+  Eigen::Index max_unknowns = 4096;
 
   /// True when the options are usable; otherwise `error` says why.
   bool is_valid(std::string* error = nullptr) const;
@@ -63,6 +70,11 @@ struct ColumnClassification {
 
 /// The result of solve(A, B): everything the notes read off the SVD of A.
 struct LinearSystemResult {
+  /// NumericalFailure only when the solution does not fit in a double (b huge against A); the
+  /// classification is still filled in, the solution is empty and `message` says why.
+  Status status = Status::Success;
+  std::string message;
+
   Eigen::Index m = 0, n = 0, p = 0;  ///< A is m x n, B is m x p (p right-hand sides)
   SystemShape shape = SystemShape::Determined;
 
@@ -89,6 +101,8 @@ struct LinearSystemResult {
 
   std::string explanation;            ///< the answer in words, in the notes' terms
   std::vector<std::string> warnings;  ///< ill-conditioning, edited singular values
+
+  bool ok() const { return status == Status::Success; }
 };
 
 /// Solves and classifies A x = b for each column of B (notes 002 sections 3.3.2 and 3.7-3.8).
@@ -101,10 +115,15 @@ struct LinearSystemResult {
 /// otherwise. Consistency and the projective classification use the SVD of [A | -b_j] with b_j
 /// scaled to the norm of A (a homogeneous coordinate can be scaled freely) and the same cut-off.
 ///
-/// Preconditions: A non-empty, B with A's number of rows and at least one column, all entries
-/// finite; valid options (else std::invalid_argument). Never fails numerically: a singular A
-/// is an answer, not an error. Cost: O(m n min(m, n)) for the SVD of A plus O(m n^2) per column
-/// of B for the augmented matrix.
+/// A and B are first scaled by powers of two (exactly) so that their largest entries are of order
+/// one, and every result is scaled back: the answer does not depend on the units, from denormal
+/// data to 1e300.
+///
+/// Preconditions: A non-empty with at most options.max_unknowns columns, B with A's number of
+/// rows and at least one column, all entries finite; valid options (else std::invalid_argument).
+/// A singular A is an answer, not an error; the one numerical failure is a solution beyond the
+/// range of double (status NumericalFailure). Cost: O(m n min(m, n)) for the SVD of A plus
+/// O(m n^2) per column of B for the augmented matrix; memory O(n^2) for V.
 LinearSystemResult solve(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
                          const LinearSystemOptions& options = {});
 

@@ -20,8 +20,13 @@ struct NearestSpdResult {
 /// symmetric polar factor of S: positive semidefinite. With min_eig > 0 it is strictly
 /// positive definite, which is what covariance repair needs.
 ///
+/// Computed in units where the largest entry is of order one (an exact power-of-two scaling), so
+/// that entries anywhere from denormal to near the largest double work.
+///
 /// Preconditions: X square, non-empty, finite; min_eig finite and >= 0 (else
-/// std::invalid_argument). Cost: one symmetric eigendecomposition, O(n^3).
+/// std::invalid_argument). Failure: std::runtime_error when the eigensolver does not converge or
+/// the answer does not fit in a double (entries or min_eig within a factor n of the largest
+/// double). Cost: one symmetric eigendecomposition, O(n^3).
 NearestSpdResult nearest_spd(const Eigen::Ref<const Eigen::MatrixXd>& X, double min_eig = 0.0);
 
 }  // namespace spdfit

@@ -18,6 +18,7 @@
 #include "spdfit/least_squares.hpp"
 #include "spdfit/linear_system.hpp"
 #include "spdfit/linkage/analysis.hpp"
+#include "spdfit/linkage/pairs_file.hpp"
 #include "spdfit/linkage/synthesis.hpp"
 #include "spdfit/method.hpp"
 #include "spdfit/nearest_spd.hpp"

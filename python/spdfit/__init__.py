@@ -164,10 +164,13 @@ def solve(A, b, *, threshold=None):
     dimension of the finite solution set (-1 none, 0 a point, 1 a line, ...) and of the solutions
     at infinity (the homogeneous [A | -b][x; w] = 0 with w = 0), the minimum-norm least-squares
     solution, the residual, bases of the null space and range, and an explanation in words.
-    b may have several columns (each is classified on its own)."""
+    b may have several columns (each is classified on its own). Raises NumericalError when the
+    solution does not fit in a double (b huge against A)."""
     result = _spdfit.solve(_as_matrix("A", A), _as_matrix("b", b), threshold)
     for message in result.warnings:
         _warnings.warn(message, SpdfitWarning, stacklevel=2)
+    if not result.ok:
+        raise NumericalError(result.message, result)
     return result
 
 

@@ -24,6 +24,8 @@ void bind_linear_system(py::module_& m) {
   py::class_<LinearSystemResult>(m, "LinearSystemResult",
                                  "Rank, consistency, solution sets and the minimum-norm least-squares "
                                  "solution of A x = b, with an explanation in words.")
+      .def_property_readonly("ok", &LinearSystemResult::ok)
+      .def_readonly("message", &LinearSystemResult::message, "why it failed ('' on success)")
       .def_readonly("m", &LinearSystemResult::m)
       .def_readonly("n", &LinearSystemResult::n)
       .def_readonly("p", &LinearSystemResult::p, "number of right-hand sides")

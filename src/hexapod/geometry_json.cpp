@@ -1,12 +1,12 @@
 // Reading and writing geometry files (JSON). Every error names the file and the key.
 #include <algorithm>
-#include <fstream>
+#include <cstddef>
 #include <iterator>
-#include <sstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "io/read_file.hpp"
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/io.hpp"
 
@@ -116,6 +116,14 @@ class Reader {
   std::string source_;
 };
 
+// A geometry file is about 2 kB. The cap bounds the parser's memory, which is many times the
+// text's for long arrays (each number becomes a JSON value), and is checked before reading.
+constexpr std::size_t kMaxGeometryBytes = std::size_t{1} << 20;
+
+// The file format nests three levels ({"base_points": [[x, y, z], ...]}); anything much deeper is
+// not a geometry, and refusing it before parsing keeps the parser's memory and stack bounded.
+constexpr int kMaxNesting = 64;
+
 // 1-based line and column of a byte offset, for parse errors.
 std::pair<std::size_t, std::size_t> line_and_column(const std::string& text, std::size_t byte) {
   byte = std::min(byte, text.size());
@@ -131,9 +139,42 @@ std::pair<std::size_t, std::size_t> line_and_column(const std::string& text, std
   return {line, column};
 }
 
+// Throws a DataError at the first '[' or '{' (outside strings) that opens level kMaxNesting + 1.
+void check_nesting(const std::string& text, const std::string& source) {
+  int depth = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') {
+        ++i;
+      } else if (c == '"') {
+        in_string = false;
+      }
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxNesting) {
+        const auto [line, column] = line_and_column(text, i + 1);
+        throw io::DataError(source, line, column,
+                            "JSON nested more than " + std::to_string(kMaxNesting) +
+                                " levels deep; a geometry file needs 3");
+      }
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+}
+
 }  // namespace
 
 Geometry parse_geometry(const std::string& text, const std::string& source) {
+  if (text.size() > kMaxGeometryBytes) {
+    throw io::DataError(source, 0, 0,
+                        "is " + std::to_string(text.size()) + " bytes long; at most " +
+                            std::to_string(kMaxGeometryBytes) + " are accepted for a geometry file");
+  }
+  check_nesting(text, source);
   json root;
   try {
     root = json::parse(text);
@@ -145,6 +186,13 @@ Geometry parse_geometry(const std::string& text, const std::string& source) {
     const std::size_t colon = problem.find("parse error");
     if (colon != std::string::npos) problem = problem.substr(colon);
     throw io::DataError(source, line, column, "not valid JSON: " + problem);
+  } catch (const json::exception& e) {
+    // The parser reports a number beyond the double range ("1e999") as out_of_range, without a
+    // position; keep its explanation after the "[json.exception...] " tag.
+    std::string problem = e.what();
+    const std::size_t tag_end = problem.find("] ");
+    if (tag_end != std::string::npos) problem = problem.substr(tag_end + 2);
+    throw io::DataError(source, 0, 0, "not valid JSON: " + problem);
   }
   Reader in(root, source);
   if (!root.is_object()) in.fail("a geometry file must hold a JSON object {\"base_points\": ..., ...}");
@@ -179,12 +227,7 @@ Geometry parse_geometry(const std::string& text, const std::string& source) {
 }
 
 Geometry read_geometry(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw io::DataError(path, 0, 0, "cannot open the geometry file");
-  std::ostringstream text;
-  text << file.rdbuf();
-  if (file.bad()) throw io::DataError(path, 0, 0, "cannot read the geometry file");
-  return parse_geometry(text.str(), path);
+  return parse_geometry(io::detail::read_file(path, kMaxGeometryBytes, "a geometry file"), path);
 }
 
 std::string geometry_json(const Geometry& g) {

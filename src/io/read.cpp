@@ -1,8 +1,10 @@
-// Reading a matrix from a file: checks that the path is a readable regular file, then hands
-// the bytes to the .npy or the delimited-text parser.
+// Reading a matrix from a file: checks that the path is a readable regular file, reads it
+// (refusing binary files from their first bytes), then hands the bytes to the .npy or the
+// delimited-text parser.
 #include <cerrno>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -10,7 +12,9 @@
 
 #include "file_error.hpp"
 #include "npy_header.hpp"
+#include "read_file.hpp"
 #include "spdfit/io.hpp"
+#include "text_scan.hpp"
 
 namespace spdfit::io {
 
@@ -50,43 +54,85 @@ void check_regular_file(const std::string& path) {
   throw DataError(path, 0, 0, problem);
 }
 
-std::string read_file(const std::string& path) {
+}  // namespace
+
+namespace detail {
+
+std::string read_file(const std::string& path, std::size_t max_bytes, const std::string& what,
+                      const std::function<void(std::string_view)>& inspect) {
   check_regular_file(path);
+  std::error_code error;
+  const std::uintmax_t size = fs::file_size(path, error);
+  if (!error && size > max_bytes) {
+    throw DataError(path, 0, 0,
+                    "is " + std::to_string(size) + " bytes long; at most " + std::to_string(max_bytes) +
+                        " are accepted for " + what);
+  }
   errno = 0;
   const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
   if (!file) {
-    throw DataError(path, 0, 0, errno != 0 ? detail::describe_errno(errno) : "cannot be opened");
+    throw DataError(path, 0, 0, errno != 0 ? describe_errno(errno) : "cannot be opened");
   }
   std::string bytes;
-  std::error_code error;
-  const std::uintmax_t size = fs::file_size(path, error);
-  if (!error) bytes.reserve(static_cast<std::size_t>(size));
   // Read until end of file rather than trusting the size: the file may change meanwhile, and
-  // some files (in /proc, say) report size 0.
+  // some files (in /proc, say) report size 0. The first block is inspected before the size is
+  // reserved, so that a refused file never costs its size in memory.
   char buffer[1 << 16];
+  bool inspected = !inspect;
   while (true) {
     const std::size_t got = std::fread(buffer, 1, sizeof(buffer), file.get());
     bytes.append(buffer, got);
-    if (got < sizeof(buffer)) break;
+    const bool done = got < sizeof(buffer);
+    if (bytes.size() > max_bytes) {
+      throw DataError(path, 0, 0, "is longer than " + std::to_string(max_bytes) + " bytes, the most accepted for " + what);
+    }
+    if (!inspected && (done || bytes.size() >= kInspectBytes)) {
+      inspected = true;
+      if (!std::ferror(file.get())) inspect(bytes);
+      if (!error && size > bytes.size()) bytes.reserve(static_cast<std::size_t>(size));
+    }
+    if (done) break;
   }
   if (std::ferror(file.get())) {
-    throw DataError(path, 0, 0, "read error (" + detail::describe_errno(errno) + ")");
+    throw DataError(path, 0, 0, "read error (" + describe_errno(errno) + ")");
   }
   return bytes;
 }
 
+}  // namespace detail
+
+namespace {
+
+// A file that is not text from its first bytes on (a sparse file of zeros, a disk image) is
+// refused from those bytes with the error the whole text would give, without reading the rest.
+void refuse_binary_early(std::string_view first, const std::string& path) {
+  if (first.substr(0, detail::kNpyMagic.size()) == detail::kNpyMagic) return;
+  std::string description;
+  const std::size_t offset = detail::find_non_text_byte(first, &description);
+  // A multi-byte UTF-8 character may be cut at the end of the block: only judge well inside it.
+  if (offset == std::string_view::npos || offset + 4 >= first.size()) return;
+  // The delimited reader checks the bytes before anything else, so the prefix up to the first
+  // non-text byte fails exactly as the whole file would.
+  parse_delimited(first.substr(0, offset + 1), path);
+}
+
 }  // namespace
 
-Table read_table(const std::string& path, const ReadOptions& options) {
-  const std::string bytes = read_file(path);
-  if (bytes.empty()) throw DataError(path, 0, 0, "file is empty");
+Table parse_table(std::string_view bytes, const std::string& source, const ReadOptions& options) {
+  if (bytes.empty()) throw DataError(source, 0, 0, "file is empty");
   // The magic bytes decide, not the name: a .npy file keeps its format when renamed.
-  if (std::string_view(bytes).substr(0, detail::kNpyMagic.size()) == detail::kNpyMagic) {
+  if (bytes.substr(0, detail::kNpyMagic.size()) == detail::kNpyMagic) {
     Table table;
-    table.values = parse_npy(bytes, path, options);
+    table.values = parse_npy(bytes, source, options);
     return table;
   }
-  return parse_delimited(bytes, path, options);
+  return parse_delimited(bytes, source, options);
+}
+
+Table read_table(const std::string& path, const ReadOptions& options) {
+  const std::string bytes = detail::read_file(path, std::numeric_limits<std::size_t>::max(), "a data file",
+                                              [&path](std::string_view first) { refuse_binary_early(first, path); });
+  return parse_table(bytes, path, options);
 }
 
 Eigen::MatrixXd read_matrix(const std::string& path, const ReadOptions& options) {

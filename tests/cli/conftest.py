@@ -6,6 +6,11 @@ import numpy as np
 import pytest
 
 
+# The sanitizer build (scripts/sanitize.sh sets SPDFIT_SANITIZED=1) runs the CLI about twenty
+# times slower.
+SLOWDOWN = 20 if os.environ.get("SPDFIT_SANITIZED") == "1" else 1
+
+
 @pytest.fixture(scope="session")
 def spdfit():
     path = os.environ.get("SPDFIT_CLI")
@@ -14,7 +19,7 @@ def spdfit():
     assert os.access(path, os.X_OK), f"SPDFIT_CLI={path} is not an executable"
 
     def run(*args, input=None):
-        return subprocess.run([path, *map(str, args)], capture_output=True, text=True, input=input, timeout=60)
+        return subprocess.run([path, *map(str, args)], capture_output=True, text=True, input=input, timeout=60 * SLOWDOWN)
 
     return run
 

@@ -111,5 +111,12 @@ def test_usage_errors_exit_2(spdfit, args, fragment):
     fails(spdfit(*args), 2, fragment)
 
 
+def test_negative_min_eig_is_named_in_a_short_message(spdfit):
+    """Regression: CLI11's NonNegativeNumber printed the largest double in full (310 digits)."""
+    result = spdfit("nearest", "--min-eig", "-1", "x.csv")
+    fails(result, 2, "--min-eig: '-1' is not a finite number >= 0")
+    assert len(result.stderr) < 200, result.stderr
+
+
 def test_nearest_rejects_non_square(spdfit, tmp_path, good):
     fails(spdfit("nearest", good), 1, "good.csv", "square")

@@ -12,7 +12,10 @@ SOURCE_DIR = pathlib.Path(os.environ.get("SPDFIT_SOURCE_DIR", pathlib.Path(__fil
 # The independent NumPy implementations of the thesis' algorithms and generator.
 sys.path.insert(0, str(SOURCE_DIR / "tests" / "reference"))
 
-CLI_TIMEOUT_S = 120  # the slowest call here (the demo) takes a few seconds
+# The sanitizer build (scripts/sanitize.sh sets SPDFIT_SANITIZED=1) runs the CLI about twenty
+# times slower.
+SLOWDOWN = 20 if os.environ.get("SPDFIT_SANITIZED") == "1" else 1
+CLI_TIMEOUT_S = 120 * SLOWDOWN  # the slowest call here (the demo) takes a few seconds
 
 
 @pytest.fixture(scope="session")

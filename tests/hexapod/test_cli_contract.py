@@ -255,7 +255,7 @@ def test_malformed_and_missing_geometry_files_exit_1(cli, tmp_path):
     (tmp_path / "broken.json").write_text('{\n  "payload_mass": 1,\n  oops\n}\n')
     err = cli("hexapod", "model", "--geometry", "broken.json", expect=1).stderr
     assert "broken.json:3:" in err and "not valid JSON" in err
-    assert "missing.json: cannot open" in cli("hexapod", "model", "--geometry", "missing.json", expect=1).stderr
+    assert "missing.json: no such file" in cli("hexapod", "model", "--geometry", "missing.json", expect=1).stderr
     assert "missing.json" in cli("hexapod", "simulate", "--noise-var", 1, "--geometry", "missing.json", "--out", "o",
                                  expect=1).stderr
 

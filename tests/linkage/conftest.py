@@ -8,6 +8,10 @@ import subprocess
 import numpy as np
 import pytest
 
+# The sanitizer build (scripts/sanitize.sh sets SPDFIT_SANITIZED=1) runs the CLI about twenty
+# times slower.
+SLOWDOWN = 20 if os.environ.get("SPDFIT_SANITIZED") == "1" else 1
+
 ROOT = pathlib.Path(os.environ.get("SPDFIT_SOURCE_DIR", pathlib.Path(__file__).resolve().parents[2]))
 
 
@@ -20,7 +24,7 @@ def spdfit():
     assert os.access(path, os.X_OK), f"SPDFIT_CLI={path} is not an executable"
 
     def run(*args):
-        return subprocess.run([path, *map(str, args)], capture_output=True, text=True, timeout=120, cwd=ROOT)
+        return subprocess.run([path, *map(str, args)], capture_output=True, text=True, timeout=120 * SLOWDOWN, cwd=ROOT)
 
     return run
 

@@ -34,6 +34,14 @@ def test_solve_explains_the_notes_example_one():
     assert "one point in common" in result.explanation
 
 
+def test_solve_raises_numerical_error_when_the_solution_overflows():
+    with pytest.raises(spdfit.NumericalError, match="overflows the range of double precision numbers") as error:
+        spdfit.solve(np.eye(2) * 1e-300, np.full(2, 1e300))
+    assert error.value.result.rank == 2
+    x = spdfit.solve(np.eye(2) * 1e-310, np.full(2, 2e-310)).solution
+    assert np.allclose(x, 2.0)
+
+
 def test_steering_example_matches_the_documented_numbers():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", spdfit.SpdfitWarning)

@@ -242,7 +242,7 @@ TEST(HexapodGeometryFile, ReadsAFileAndNamesAMissingOne) {
     hexapod::read_geometry(path + ".missing");
     ADD_FAILURE() << "a missing file was read";
   } catch (const io::DataError& e) {
-    EXPECT_TRUE(Contains(std::string(e.what()), "spdfit_geometry_test.json.missing: cannot open"));
+    EXPECT_TRUE(Contains(std::string(e.what()), "spdfit_geometry_test.json.missing: no such file"));
   }
 }
 

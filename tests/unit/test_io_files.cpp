@@ -146,6 +146,19 @@ TEST_F(IoFiles, FifoIsRefusedWithoutBlocking) {
   EXPECT_EQ(result.get(), "is not a regular file (it is a named pipe)");
 }
 
+// Regression: a sparse file of 8 GB of zeros (no disk space) was read whole before the reader
+// found its first byte was not text.
+TEST_F(IoFiles, SparseFileOfZerosIsRefusedFromItsFirstBytes) {
+  const std::string path = Write("sparse.csv", "");
+  fs::resize_file(path, std::uintmax_t{8} << 30);
+  EXPECT_EQ(std::string(ReadError(path).what()),
+            path + ":1:1: looks like a binary file, not text (NUL byte at byte offset 0)");
+  // Binary content after the first 64 KiB is found by the whole-text check, with the same message.
+  const std::string late = Write("late.csv", std::string(1 << 17, '1') + std::string(1, '\0'));
+  EXPECT_EQ(std::string(ReadError(late).what()),
+            late + ":1:131073: looks like a binary file, not text (NUL byte at byte offset 131072)");
+}
+
 TEST_F(IoFiles, DeviceIsRefused) { ExpectReadError("/dev/null", "is not a regular file (it is a device)"); }
 
 TEST_F(IoFiles, PermissionDenied) {

@@ -271,5 +271,66 @@ TEST(LinearSystem, BadInputThrows) {
   EXPECT_THROW(solve(A, VectorXd::Ones(2), options), std::invalid_argument);
 }
 
+// Regression (found by the stress tests): A of denormal size gave 1 / sigma = Inf and a solution of
+// NaN and Inf even when the exact solution is of order one.
+TEST(LinearSystemRegression, DenormalAGivesTheSolutionOfTheScaledSystem) {
+  Generator g(90);
+  const MatrixXd A = g.gaussian(4, 3);
+  const VectorXd b = g.gaussian(4, 1);
+  const LinearSystemResult unit = solve(A, b);
+  for (const double scale : {1e-310, 1e-200, 1e200}) {
+    const LinearSystemResult scaled = solve(A * scale, b * scale);
+    ASSERT_TRUE(scaled.ok()) << scaled.message;
+    ASSERT_TRUE(scaled.solution.allFinite()) << scale;
+    // 1e-310 has about 44 significant bits left, so the data itself is rounded at 1e-13.
+    EXPECT_LT(relative_error(scaled.solution, unit.solution), scale < 1e-300 ? 1e-11 : 1e-14) << scale;
+    EXPECT_EQ(scaled.rank, unit.rank);
+    EXPECT_NEAR(scaled.condition_number, unit.condition_number, 1e-11 * unit.condition_number);
+    EXPECT_NEAR(scaled.residual_norm / scale, unit.residual_norm, 1e-11 * unit.residual_norm) << scale;
+  }
+}
+
+// Regression (found by the stress tests): b at 1e-310 lost digits in U^T b, computed among the
+// denormals, before the division by sigma, so that x was off by ten units in the last place. The same system lifted into the normal range by a power of two (exactly) has the
+// same solution.
+TEST(LinearSystemRegression, DenormalRightHandSideKeepsItsDigits) {
+  Generator g(91);
+  const MatrixXd R = g.orthonormal(3, 3);
+  const MatrixXd A = R * 1e-300;
+  const VectorXd b = g.gaussian(3, 1) * 3e-310;
+  const LinearSystemResult r = solve(A, b);
+  ASSERT_TRUE(r.ok());
+  const double lift = std::ldexp(1.0, 200);
+  const LinearSystemResult lifted = solve(A * lift, b * lift);
+  EXPECT_LT(relative_error(r.solution, lifted.solution), 4 * kEps);
+}
+
+TEST(LinearSystem, SolutionBeyondTheDoubleRangeIsANumericalFailure) {
+  const LinearSystemResult r = solve(MatrixXd::Identity(2, 2) * 1e-300, VectorXd::Constant(2, 1e300));
+  EXPECT_FALSE(r.ok());
+  EXPECT_EQ(r.status, Status::NumericalFailure);
+  EXPECT_NE(r.message.find("overflows the range of double precision numbers"), std::string::npos) << r.message;
+  EXPECT_EQ(r.solution.size(), 0);
+  EXPECT_EQ(r.rank, 2);  // the classification is still there
+  EXPECT_TRUE(r.consistent);
+}
+
+TEST(LinearSystem, TooManyUnknownsThrowsBeforeAllocating) {
+  // 10^6 unknowns would need a V of 8 TB.
+  const MatrixXd A = MatrixXd::Ones(1, 1000000);
+  try {
+    solve(A, VectorXd::Ones(1));
+    ADD_FAILURE() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("A has 1000000 columns (unknowns); at most 4096"), std::string::npos)
+        << e.what();
+  }
+  LinearSystemOptions options;
+  options.max_unknowns = 3;
+  EXPECT_THROW(solve(MatrixXd::Ones(1, 4), VectorXd::Ones(1), options), std::invalid_argument);
+  options.max_unknowns = 0;
+  EXPECT_FALSE(options.is_valid());
+}
+
 }  // namespace
 }  // namespace spdfit

@@ -88,6 +88,35 @@ TEST(NearestSpd, HandlesEntriesNearTheDoubleRange) {
   EXPECT_LT(test::relative_error(r.X / 1e300, unit.X), 1e-14);
 }
 
+// Regression (found by the stress tests): eigenvalues of a matrix with entries near the largest
+// double exceed it, so the eigensolver's overflowed to Inf and the answer was NaN, although the
+// nearest semidefinite matrix (entries 1.35e308) fits.
+TEST(NearestSpdRegression, EigenvaluesBeyondTheDoubleRangeGiveAFiniteAnswer) {
+  MatrixXd X(2, 2);
+  X << 1e308, -1.7e308, -1.7e308, 1e308;  // eigenvalues 2.7e308 and -0.7e308
+  const NearestSpdResult r = nearest_spd(X);
+  ASSERT_TRUE(r.X.allFinite());
+  EXPECT_EQ(r.clipped, 1);
+  EXPECT_NEAR(r.X(0, 0) / 1.35e308, 1.0, 1e-15);
+  EXPECT_NEAR(r.X(0, 1) / -1.35e308, 1.0, 1e-15);
+  EXPECT_NEAR(r.min_eigenvalue_before / -0.7e308, 1.0, 1e-15);
+  EXPECT_TRUE(std::isfinite(r.distance));
+}
+
+// A tiny matrix under a large floor min_eig: the units follow the floor, not the entries.
+TEST(NearestSpd, FloorFarAboveTheEntries) {
+  const NearestSpdResult r = nearest_spd(MatrixXd::Identity(2, 2) * 1e-300, 1e10);
+  EXPECT_TRUE(r.X.isApprox(MatrixXd::Identity(2, 2) * 1e10, 1e-15));
+  EXPECT_EQ(r.clipped, 2);
+}
+
+TEST(NearestSpd, AnswerBeyondTheDoubleRangeIsAnError) {
+  // Eigenvalues 3.09e308 and -0.39e308: the nearest semidefinite matrix has (0, 0) entry 1.85e308.
+  MatrixXd X(2, 2);
+  X << 1.7e308, 1.7e308, 1.7e308, 1.0e308;
+  EXPECT_THROW(nearest_spd(X), std::runtime_error);
+}
+
 TEST(NearestSpd, RejectsMisuse) {
   EXPECT_THROW(nearest_spd(MatrixXd::Ones(2, 3)), std::invalid_argument);
   EXPECT_THROW(nearest_spd(MatrixXd(0, 0)), std::invalid_argument);

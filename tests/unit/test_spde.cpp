@@ -132,6 +132,19 @@ TEST(Spde, RankDeficientBGivesASemidefiniteMinimizerOfThatRank) {
   EXPECT_NE(r.warnings.front().find("Corollary III.7"), std::string::npos);
 }
 
+// Regression (found by UndefinedBehaviorSanitizer): B = 0 made the triangular solve for L run on
+// an n x 0 right-hand side, which binds a reference to its (null) first entry.
+TEST(SpdeRegression, ZeroBGivesTheZeroMatrixWithoutAnEmptySolve) {
+  Generator g(46);
+  for (const Index n : {1, 3}) {
+    const FitResult r = spde(g.gaussian(2 * n, n), MatrixXd::Zero(2 * n, n));
+    ASSERT_TRUE(r.ok()) << r.message;
+    EXPECT_EQ(r.diagnostics.rank_b, 0);
+    EXPECT_EQ(r.X, MatrixXd::Zero(n, n));
+    EXPECT_TRUE(r.diagnostics.positive_semidefinite);
+  }
+}
+
 TEST(Spde, RankDeficientAIsANumericalFailure) {
   Generator g(46);
   MatrixXd A = g.gaussian(10, 3);

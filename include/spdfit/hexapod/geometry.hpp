@@ -86,7 +86,10 @@ Geometry cubic_geometry(const CubicGeometryParameters& parameters = {});
 /// Keys starting with '_' are ignored (for comments); any other unknown key is an error, so
 /// that a misspelt optional key is not silently dropped. Throws io::DataError naming the file
 /// and the key on malformed JSON (with line and column), a missing key, a wrong array size, a
-/// value that is not a number, or a geometry that fails Geometry::is_valid.
+/// value that is not a number, or a geometry that fails Geometry::is_valid; and naming the file
+/// when it is not a readable regular file (a directory, a FIFO, a device: see io::read_table),
+/// is over 1 MiB (a geometry file is about 2 kB), or nests JSON more than 64 levels deep (with
+/// line and column). The last two are checked before parsing, so that memory stays bounded.
 Geometry read_geometry(const std::string& path);
 
 /// The same, from JSON text; `source` names it in errors.

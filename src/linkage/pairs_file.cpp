@@ -1,0 +1,62 @@
+#include "spdfit/linkage/pairs_file.hpp"
+
+#include <string>
+
+namespace spdfit::linkage {
+
+namespace {
+
+constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180.0;
+
+}  // namespace
+
+PrescribedPairs pairs_from_table(const io::Table& table, const std::string& source, const PairsFileOptions& options) {
+  const Eigen::MatrixXd& values = table.values;
+  if (values.cols() != 2) {
+    throw io::DataError(source, 0, 0,
+                        "the pairs file has " + std::to_string(values.cols()) +
+                            " columns: two are needed, the input angle psi and the output angle phi");
+  }
+  if (values.rows() < options.min_pairs) {
+    const std::string needed = std::to_string(options.min_pairs);
+    throw io::DataError(source, 0, 0,
+                        std::to_string(values.rows()) + " pair(s): at least " + needed + " are needed (" + needed +
+                            " give exact precision-point synthesis)");
+  }
+  const double scale = options.radians ? 1.0 : kRadiansPerDegree;
+  PrescribedPairs pairs;
+  pairs.delta_psi = values.col(0) * scale;
+  pairs.delta_phi = values.col(1) * scale;
+  return pairs;
+}
+
+PrescribedPairs parse_pairs(std::string_view bytes, const std::string& source, const PairsFileOptions& options) {
+  return pairs_from_table(io::parse_table(bytes, source), source, options);
+}
+
+PrescribedPairs read_pairs(const std::string& path, const PairsFileOptions& options) {
+  return pairs_from_table(io::read_table(path), path, options);
+}
+
+Eigen::VectorXd weights_from_matrix(const Eigen::MatrixXd& W, Eigen::Index pairs, const std::string& source) {
+  if (W.size() != pairs || (W.rows() != 1 && W.cols() != 1)) {
+    throw io::DataError(source, 0, 0,
+                        "the weights are " + std::to_string(W.rows()) + "x" + std::to_string(W.cols()) +
+                            ": one column of " + std::to_string(pairs) + " weights (one per pair) is needed");
+  }
+  const Eigen::VectorXd w = Eigen::Map<const Eigen::VectorXd>(W.data(), pairs);
+  for (Eigen::Index i = 0; i < pairs; ++i) {
+    if (!(w(i) > 0.0)) {
+      throw io::DataError(source, 0, 0,
+                          "weight " + std::to_string(i + 1) + " is " + io::format_double(w(i)) +
+                              ": weights must be positive");
+    }
+  }
+  return w;
+}
+
+Eigen::VectorXd read_weights(const std::string& path, Eigen::Index pairs) {
+  return weights_from_matrix(io::read_matrix(path), pairs, path);
+}
+
+}  // namespace spdfit::linkage
