@@ -30,11 +30,21 @@ def test_covariance_example_is_repaired(spdfit):
 
 
 def test_examples_are_what_the_generator_makes(tmp_path):
-    """examples/make_examples.py regenerates the committed files exactly."""
+    """examples/make_examples.py regenerates the committed files (numbers to rounding)."""
     import runpy
     import shutil
     copy = tmp_path / "examples"
     shutil.copytree(EXAMPLES, copy)
     runpy.run_path(str(copy / "make_examples.py"), run_name="__main__")
     for path in EXAMPLES.rglob("*.csv"):
-        assert (copy / path.relative_to(EXAMPLES)).read_bytes() == path.read_bytes(), path
+        made = (copy / path.relative_to(EXAMPLES)).read_text().splitlines()
+        committed = path.read_text().splitlines()
+        assert len(made) == len(committed), path
+        # Lines that differ must be rows of numbers equal to rounding: a matrix product such as
+        # B = A @ M_p may round differently with the CPU's SIMD path (seen: regenerated on an
+        # AVX-512 Xeon, hexapod/B.csv differs in the last bit). Comments and headers must match.
+        differing = [(a, b) for a, b in zip(made, committed) if a != b]
+        for a, b in differing:
+            mine = np.array([float(x) for x in a.split(",")])
+            theirs = np.array([float(x) for x in b.split(",")])
+            np.testing.assert_allclose(mine, theirs, rtol=1e-14, atol=0, err_msg=f"{path}: {b}")
