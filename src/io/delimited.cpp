@@ -5,6 +5,7 @@
 #include <string_view>
 #include <vector>
 
+#include "delimited_parser.hpp"
 #include "fields.hpp"
 #include "spdfit/io.hpp"
 #include "text_scan.hpp"
@@ -13,139 +14,102 @@ namespace spdfit::io {
 
 namespace {
 
-using detail::detect_separator;
-using detail::Field;
-using detail::FieldSplitter;
-using detail::NumberKind;
-using detail::quote_token;
-using detail::Separator;
-using detail::separator_name;
-using detail::SplitStatus;
-
 constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
 
 bool is_blank(char c) { return c == ' ' || c == '\t'; }
 
-// One line of the text, without its line end.
-struct Line {
-  std::string_view raw;
-  std::string_view content;  // raw without leading and trailing blanks
-  std::size_t number = 0;    // 1-based
-};
+}  // namespace
 
-class DelimitedParser {
- public:
-  DelimitedParser(std::string_view text, const std::string& source, const ReadOptions& options)
-      : text_(text), source_(source), options_(options) {}
+namespace detail {
 
-  Table parse();
-
- private:
-  void check_is_text() const;
-  bool next_line(Line* line);
-  bool next_field(const Line& line, FieldSplitter* splitter, Field* field) const;
-  bool is_header(const Line& line, Separator separator) const;
-  void choose_separator_after_header(const Line& header, const Line& data);
-  std::vector<std::string> column_names(const Line& header, std::size_t data_fields) const;
-  std::size_t parse_row(const Line& line);
-  double parse_value(const Line& line, const Field& field) const;
-  [[noreturn]] void fail_empty_field(const Line& line, const Field& field, std::size_t index) const;
-  [[noreturn]] void fail_not_a_number(const Line& line, const Field& field) const;
-  std::string separator_origin() const;
-  [[noreturn]] void fail(const Line& line, std::size_t offset, const std::string& problem) const;
-
-  std::string_view text_;  // after the byte-order mark
-  std::size_t bom_size_ = 0;
-  const std::string& source_;
-  const ReadOptions& options_;
-
-  std::size_t pos_ = 0;
-  std::size_t line_number_ = 0;
-
-  Separator separator_ = Separator::kNone;
-  std::size_t separator_line_ = 0;  // the line that decided separator_
-  std::vector<double> values_;      // row-major; at most one per two bytes of text
-};
-
-Table DelimitedParser::parse() {
-  if (text_.substr(0, kUtf8Bom.size()) == kUtf8Bom) {
-    text_.remove_prefix(kUtf8Bom.size());
-    bom_size_ = kUtf8Bom.size();
+void DelimitedParser::feed(std::string_view text) {
+  const bool first_piece = !any_piece_;
+  any_piece_ = true;
+  piece_offset_ = bytes_fed_;
+  bytes_fed_ += text.size();
+  if (first_piece && text.substr(0, kUtf8Bom.size()) == kUtf8Bom) {
+    text.remove_prefix(kUtf8Bom.size());
+    piece_offset_ += kUtf8Bom.size();
   }
-  check_is_text();
-
-  Table table;
+  check_is_text(text, first_piece);
+  any_text_ = any_text_ || !text.empty();
+  text_ = text;
+  pos_ = 0;
   Line line;
-  Line header;
-  bool have_header = false;
-  bool seen_content = false;
-  std::size_t rows = 0;
-  std::size_t columns = 0;
-  std::size_t columns_line = 0;
-  while (next_line(&line)) {
-    if (line.content.empty() || line.content[0] == '#' || line.content[0] == '%') continue;
-    if (!seen_content) {
-      seen_content = true;
-      separator_ = detect_separator(line.content);
-      separator_line_ = line.number;
-      if (is_header(line, separator_)) {
-        header = line;
-        have_header = true;
-        continue;
-      }
-    }
-    if (have_header && rows == 0) choose_separator_after_header(header, line);
+  while (next_line(&line)) parse_line(line);
+}
 
-    const std::size_t fields = parse_row(line);
-    if (rows == 0) {
-      columns = fields;
-      columns_line = line.number;
-      if (have_header) {
-        table.column_names = column_names(header, fields);
-        columns = table.column_names.size();
-        columns_line = header.number;
-      }
+void DelimitedParser::parse_line(const Line& line) {
+  if (line.content.empty() || line.content[0] == '#' || line.content[0] == '%') return;
+  if (!seen_content_) {
+    seen_content_ = true;
+    separator_ = detect_separator(line.content);
+    separator_line_ = line.number;
+    if (is_header(line, separator_)) {
+      keep_header(line);
+      return;
     }
-    if (fields != columns) {
-      fail(line, std::string_view::npos,
-           "row has " + std::to_string(fields) + (fields == 1 ? " field" : " fields") + ", expected " +
-               std::to_string(columns) + " (as in line " + std::to_string(columns_line) + ")");
-    }
-    ++rows;
   }
+  if (have_header_ && rows_ == 0) choose_separator_after_header(line);
 
-  if (rows == 0) {
-    std::string problem = "no data rows";
-    if (have_header) {
-      problem += " (only a header row, line " + std::to_string(header.number) + ")";
-    } else if (!text_.empty()) {
-      problem += " (only comments and blank lines)";
-    } else {
-      problem += " (the text is empty)";
+  const std::size_t fields = parse_row(line);
+  if (rows_ == 0) {
+    columns_ = fields;
+    columns_line_ = line.number;
+    if (have_header_) {
+      column_names_ = header_names(fields);
+      columns_ = column_names_.size();
+      columns_line_ = header_.number;
     }
-    throw DataError(source_, 0, 0, problem);
   }
-  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  table.values = Eigen::Map<const RowMajor>(values_.data(), static_cast<Eigen::Index>(rows),
-                                            static_cast<Eigen::Index>(columns));
-  return table;
+  if (fields != columns_) {
+    fail(line, std::string_view::npos,
+         "row has " + std::to_string(fields) + (fields == 1 ? " field" : " fields") + ", expected " +
+             std::to_string(columns_) + " (as in line " + std::to_string(columns_line_) + ")");
+  }
+  ++rows_;
+}
+
+// The header is needed again at the first data row, which may be in the next piece.
+void DelimitedParser::keep_header(const Line& line) {
+  have_header_ = true;
+  header_raw_ = std::string(line.raw);
+  const auto lead = static_cast<std::size_t>(line.content.data() - line.raw.data());
+  header_.raw = header_raw_;
+  header_.content = header_.raw.substr(lead, line.content.size());
+  header_.number = line.number;
+}
+
+void DelimitedParser::finish() const {
+  if (rows_ > 0) return;
+  std::string problem = "no data rows";
+  if (have_header_) {
+    problem += " (only a header row, line " + std::to_string(header_.number) + ")";
+  } else if (any_text_) {
+    problem += " (only comments and blank lines)";
+  } else {
+    problem += " (the text is empty)";
+  }
+  throw DataError(source_, 0, 0, problem);
 }
 
 // Binary files (a spreadsheet's .xlsx, a MATLAB .mat) would otherwise produce a confusing
 // "not a number" error somewhere in their first line; say what the file really is instead.
-void DelimitedParser::check_is_text() const {
-  if (bom_size_ == 0 && (text_.substr(0, 2) == "\xFF\xFE" || text_.substr(0, 2) == "\xFE\xFF")) {
+void DelimitedParser::check_is_text(std::string_view text, bool first_piece) const {
+  if (first_piece && piece_offset_ == 0 &&
+      (text.substr(0, 2) == "\xFF\xFE" || text.substr(0, 2) == "\xFE\xFF")) {
     throw DataError(source_, 0, 0,
                     "looks like UTF-16 text (such as Excel's \"Unicode Text\"); save it as "
                     "UTF-8 or plain CSV");
   }
   std::string description;
-  const std::size_t offset = detail::find_non_text_byte(text_, &description);
+  const std::size_t offset = find_non_text_byte(text, &description);
   if (offset == std::string_view::npos) return;
-  const detail::TextPosition position = detail::locate(text_, offset);
-  throw DataError(source_, position.line, position.column,
+  const TextPosition position = locate(text, offset);
+  // The piece starts at a line start, after the lines of the earlier pieces.
+  throw DataError(source_, line_number_ + position.line, position.column,
                   "looks like a binary file, not text (" + description + " at byte offset " +
-                      std::to_string(offset + bom_size_) + ")");
+                      std::to_string(piece_offset_ + offset) + ")");
 }
 
 // Lines end at LF, CRLF, or a lone CR (the line end of old Mac spreadsheets).
@@ -193,7 +157,7 @@ bool DelimitedParser::is_header(const Line& line, Separator separator) const {
     if (field.quoted) {
       any_name = true;
     } else if (!field.text.empty()) {
-      if (detail::parse_number(field.text).kind != NumberKind::kNotANumber) return false;
+      if (parse_number(field.text).kind != NumberKind::kNotANumber) return false;
       any_name = true;
     }
   }
@@ -202,7 +166,7 @@ bool DelimitedParser::is_header(const Line& line, Separator separator) const {
 
 // The header's own separator may be unknown (a single name, perhaps with spaces, as in
 // "Force (N)") and the first data line may be a single number; otherwise the two must agree.
-void DelimitedParser::choose_separator_after_header(const Line& header, const Line& data) {
+void DelimitedParser::choose_separator_after_header(const Line& data) {
   const Separator from_data = detect_separator(data.content);
   if (from_data == Separator::kNone || from_data == separator_) return;
   if (separator_ == Separator::kNone) {
@@ -212,16 +176,17 @@ void DelimitedParser::choose_separator_after_header(const Line& header, const Li
   }
   fail(data, std::string_view::npos,
        "this line separates fields with " + separator_name(from_data) + ", but the header (line " +
-           std::to_string(header.number) + ") uses " + separator_name(separator_));
+           std::to_string(header_.number) + ") uses " + separator_name(separator_));
 }
 
-std::vector<std::string> DelimitedParser::column_names(const Line& header, std::size_t data_fields) const {
+std::vector<std::string> DelimitedParser::header_names(std::size_t data_fields) const {
+  const Line& header = header_;
   std::vector<std::string> names;
   FieldSplitter splitter(header.content, separator_);
   Field field;
   bool any_quoted = false;
   while (next_field(header, &splitter, &field)) {
-    names.push_back(detail::unquote(field));
+    names.push_back(unquote(field));
     any_quoted |= field.quoted;
   }
   // A single column of numbers under a header with spaces ("Force (N)"): the spaces belong to
@@ -250,7 +215,7 @@ std::size_t DelimitedParser::parse_row(const Line& line) {
 }
 
 double DelimitedParser::parse_value(const Line& line, const Field& field) const {
-  const detail::ParsedNumber number = detail::parse_number(field.text);
+  const ParsedNumber number = parse_number(field.text);
   const bool negative = number.value < 0;
   switch (number.kind) {
     case NumberKind::kFinite:
@@ -324,15 +289,23 @@ void DelimitedParser::fail(const Line& line, std::size_t offset, const std::stri
   std::size_t column = 0;
   if (offset != std::string_view::npos) {
     const auto lead = static_cast<std::size_t>(line.content.data() - line.raw.data());
-    column = detail::column_after(line.raw.substr(0, lead + offset));
+    column = column_after(line.raw.substr(0, lead + offset));
   }
   throw DataError(source_, line.number, column, problem);
 }
 
-}  // namespace
+}  // namespace detail
 
 Table parse_delimited(std::string_view text, const std::string& source, const ReadOptions& options) {
-  return DelimitedParser(text, source, options).parse();
+  detail::DelimitedParser parser(source, options);
+  parser.feed(text);
+  parser.finish();
+  Table table;
+  table.column_names = parser.column_names();
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  table.values = Eigen::Map<const RowMajor>(parser.values().data(), static_cast<Eigen::Index>(parser.rows()),
+                                            static_cast<Eigen::Index>(parser.columns()));
+  return table;
 }
 
 }  // namespace spdfit::io

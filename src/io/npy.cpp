@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "npy_header.hpp"
+#include "npy_layout.hpp"
 #include "spdfit/io.hpp"
 #include "text_scan.hpp"
 
@@ -31,19 +31,29 @@ double decode_double(const char* bytes, bool big_endian) {
   return value;
 }
 
+bool host_is_little_endian() {
+  const std::uint16_t one = 1;
+  unsigned char first;
+  std::memcpy(&first, &one, 1);
+  return first == 1;
+}
+
 }  // namespace
 
-Eigen::MatrixXd parse_npy(std::string_view bytes, const std::string& source, const ReadOptions& options) {
-  const detail::NpyHeader header = detail::parse_npy_header(bytes, source);
+namespace detail {
 
-  const bool big_endian = header.descr == ">f8";
+NpyLayout npy_layout(const NpyHeader& header, std::size_t file_bytes, const std::string& source) {
+  NpyLayout layout;
+  layout.big_endian = header.descr == ">f8";
+  layout.fortran_order = header.fortran_order;
+  layout.data_offset = header.data_offset;
   if (header.structured) {
     fail(source, "structured dtypes are not supported; save a plain float64 array");
   }
-  if (header.descr != "<f8" && !big_endian) {
-    fail(source, "dtype " + detail::quote_token(header.descr) + " is not supported; save as float64");
+  if (header.descr != "<f8" && !layout.big_endian) {
+    fail(source, "dtype " + quote_token(header.descr) + " is not supported; save as float64");
   }
-  const std::string shape = detail::format_shape(header.shape);
+  const std::string shape = format_shape(header.shape);
   if (header.shape.empty()) fail(source, "shape () is a single number; save a 1-D or 2-D array");
   if (header.shape.size() > 2) {
     // The shape itself only when short: a damaged header may list thousands of dimensions.
@@ -53,53 +63,83 @@ Eigen::MatrixXd parse_npy(std::string_view bytes, const std::string& source, con
 
   // Check the claimed size against the file before allocating anything, so that a damaged or
   // hostile header (shape (10**12, 10**12)) fails at once instead of exhausting memory.
-  const std::uint64_t rows = header.shape[0];
-  const std::uint64_t cols = header.shape.size() == 2 ? header.shape[1] : 1;
-  const std::size_t data_bytes = bytes.size() - header.data_offset;
+  layout.rows = header.shape[0];
+  layout.cols = header.shape.size() == 2 ? header.shape[1] : 1;
+  const std::size_t data_bytes = file_bytes - header.data_offset;
   const std::uint64_t held = data_bytes / 8;
   std::string holds = std::to_string(held);
   if (data_bytes % 8 != 0) {
     holds += " values and " + std::to_string(data_bytes % 8) +
              (data_bytes % 8 == 1 ? " stray byte" : " stray bytes");
   }
-  if (rows != 0 && cols > std::numeric_limits<std::uint64_t>::max() / rows) {
+  if (layout.rows != 0 && layout.cols > std::numeric_limits<std::uint64_t>::max() / layout.rows) {
     fail(source, "shape " + shape + " is impossibly large; the file holds " + holds);
   }
-  const std::uint64_t count = rows * cols;
+  const std::uint64_t count = layout.rows * layout.cols;
   if (count != held || data_bytes % 8 != 0) {
     fail(source, "header claims " + std::to_string(count) + " values, file holds " + holds + " (shape is " +
                      shape + ")");
   }
   if (count == 0) fail(source, "no data (shape " + shape + ")");
+  return layout;
+}
 
-  // Both dimensions are at most `count`, which fits in memory, so they fit in Eigen::Index.
-  const auto m = static_cast<Eigen::Index>(rows);
-  const auto n = static_cast<Eigen::Index>(cols);
-  Eigen::MatrixXd X(m, n);
-  const char* data = bytes.data() + header.data_offset;
-  if (header.fortran_order) {
-    double* out = X.data();  // column-major, like Fortran order
-    for (std::uint64_t k = 0; k < count; ++k) out[k] = decode_double(data + 8 * k, big_endian);
-  } else {
-    for (Eigen::Index i = 0; i < m; ++i) {
-      for (Eigen::Index j = 0; j < n; ++j) {
-        X(i, j) = decode_double(data + 8 * (i * n + j), big_endian);
+void decode_npy_rows(const NpyLayout& layout, const char* data, std::uint64_t first, Eigen::Index count,
+                     Eigen::MatrixXd* out) {
+  // Both dimensions are at most the file's value count, so they fit in Eigen::Index.
+  const auto n = static_cast<Eigen::Index>(layout.cols);
+  out->resize(count, n);
+  const bool native = !layout.big_endian && host_is_little_endian();
+  if (layout.fortran_order) {
+    // Column j's rows are contiguous: copy each column's run of `count` rows.
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const char* column = data + 8 * (static_cast<std::uint64_t>(j) * layout.rows + first);
+      if (native) {
+        std::memcpy(out->col(j).data(), column, 8 * static_cast<std::size_t>(count));
+      } else {
+        for (Eigen::Index i = 0; i < count; ++i)
+          (*out)(i, j) = decode_double(column + 8 * i, layout.big_endian);
       }
     }
+    return;
   }
+  const char* rows = data + 8 * first * layout.cols;
+  if (native) {
+    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    RowMajor block(count, n);
+    std::memcpy(block.data(), rows, 8 * static_cast<std::size_t>(count * n));
+    *out = block;
+    return;
+  }
+  for (Eigen::Index i = 0; i < count; ++i) {
+    for (Eigen::Index j = 0; j < n; ++j)
+      (*out)(i, j) = decode_double(rows + 8 * (i * n + j), layout.big_endian);
+  }
+}
 
-  if (!options.allow_nonfinite && !X.allFinite()) {
-    // Report the first one in reading order (row by row), as the text reader would.
-    for (Eigen::Index i = 0; i < m; ++i) {
-      for (Eigen::Index j = 0; j < n; ++j) {
-        const double x = X(i, j);
-        if (std::isfinite(x)) continue;
-        const std::string what = std::isnan(x) ? "NaN" : x < 0 ? "-Inf" : "Inf";
-        fail(source, "entry (" + std::to_string(i + 1) + ", " + std::to_string(j + 1) + ") is " + what +
-                         " (rows and columns counted from 1)");
-      }
+void check_npy_finite(const Eigen::MatrixXd& block, std::uint64_t first_row, const std::string& source) {
+  if (block.allFinite()) return;
+  // Report the first one in reading order (row by row), as the text reader would.
+  for (Eigen::Index i = 0; i < block.rows(); ++i) {
+    for (Eigen::Index j = 0; j < block.cols(); ++j) {
+      const double x = block(i, j);
+      if (std::isfinite(x)) continue;
+      const std::string what = std::isnan(x) ? "NaN" : x < 0 ? "-Inf" : "Inf";
+      fail(source, "entry (" + std::to_string(first_row + static_cast<std::uint64_t>(i) + 1) + ", " +
+                       std::to_string(j + 1) + ") is " + what + " (rows and columns counted from 1)");
     }
   }
+}
+
+}  // namespace detail
+
+Eigen::MatrixXd parse_npy(std::string_view bytes, const std::string& source, const ReadOptions& options) {
+  const detail::NpyHeader header = detail::parse_npy_header(bytes, source);
+  const detail::NpyLayout layout = detail::npy_layout(header, bytes.size(), source);
+  Eigen::MatrixXd X;
+  detail::decode_npy_rows(layout, bytes.data() + layout.data_offset, 0,
+                          static_cast<Eigen::Index>(layout.rows), &X);
+  if (!options.allow_nonfinite) detail::check_npy_finite(X, 0, source);
   return X;
 }
 

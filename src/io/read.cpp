@@ -18,12 +18,11 @@
 
 namespace spdfit::io {
 
-namespace {
+namespace detail {
 
 namespace fs = std::filesystem;
 
-// Checked with stat before opening, because opening a FIFO for reading blocks until someone
-// writes to it, and reading a directory or a device gives nothing useful.
+// Reading a directory or a device gives nothing useful either.
 void check_regular_file(const std::string& path) {
   std::error_code error;
   const fs::file_status status = fs::status(path, error);
@@ -54,10 +53,6 @@ void check_regular_file(const std::string& path) {
   throw DataError(path, 0, 0, problem);
 }
 
-}  // namespace
-
-namespace detail {
-
 std::string read_file(const std::string& path, std::size_t max_bytes, const std::string& what,
                       const std::function<void(std::string_view)>& inspect) {
   check_regular_file(path);
@@ -84,7 +79,9 @@ std::string read_file(const std::string& path, std::size_t max_bytes, const std:
     bytes.append(buffer, got);
     const bool done = got < sizeof(buffer);
     if (bytes.size() > max_bytes) {
-      throw DataError(path, 0, 0, "is longer than " + std::to_string(max_bytes) + " bytes, the most accepted for " + what);
+      throw DataError(
+          path, 0, 0,
+          "is longer than " + std::to_string(max_bytes) + " bytes, the most accepted for " + what);
     }
     if (!inspected && (done || bytes.size() >= kInspectBytes)) {
       inspected = true;
@@ -130,8 +127,9 @@ Table parse_table(std::string_view bytes, const std::string& source, const ReadO
 }
 
 Table read_table(const std::string& path, const ReadOptions& options) {
-  const std::string bytes = detail::read_file(path, std::numeric_limits<std::size_t>::max(), "a data file",
-                                              [&path](std::string_view first) { refuse_binary_early(first, path); });
+  const std::string bytes =
+      detail::read_file(path, std::numeric_limits<std::size_t>::max(), "a data file",
+                        [&path](std::string_view first) { refuse_binary_early(first, path); });
   return parse_table(bytes, path, options);
 }
 

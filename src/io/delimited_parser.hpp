@@ -1,0 +1,84 @@
+// The delimited-text parser, fed a piece of the text at a time: parse_delimited gives it the
+// whole text at once, the streaming RowReader gives it blocks of whole lines read from a file.
+// Internal to src/io.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fields.hpp"
+#include "spdfit/io.hpp"
+
+namespace spdfit::io::detail {
+
+class DelimitedParser {
+ public:
+  DelimitedParser(std::string source, ReadOptions options) : source_(std::move(source)), options_(options) {}
+
+  /// Parses the next piece of the text: it starts where the previous piece ended, at the start
+  /// of a line, and ends with a line end or at the end of the input (no line, and no CR LF
+  /// pair, is split between two pieces). The values of its data rows are appended to values(),
+  /// row by row. Throws DataError naming the source, line and column on bad text.
+  void feed(std::string_view text);
+
+  /// Ends the input: throws DataError ("no data rows ...") when there were no data rows.
+  void finish() const;
+
+  std::size_t rows() const { return rows_; }        ///< data rows parsed so far
+  std::size_t columns() const { return columns_; }  ///< 0 until the first data row
+  const std::vector<std::string>& column_names() const { return column_names_; }
+  /// The values of the rows parsed since the caller last cleared them, row-major.
+  std::vector<double>& values() { return values_; }
+  const std::vector<double>& values() const { return values_; }
+  std::size_t lines() const { return line_number_; }  ///< lines parsed so far
+
+ private:
+  // One line of the text, without its line end.
+  struct Line {
+    std::string_view raw;
+    std::string_view content;  // raw without leading and trailing blanks
+    std::size_t number = 0;    // 1-based
+  };
+
+  void check_is_text(std::string_view text, bool first_piece) const;
+  bool next_line(Line* line);
+  void parse_line(const Line& line);
+  void keep_header(const Line& line);
+  bool next_field(const Line& line, FieldSplitter* splitter, Field* field) const;
+  bool is_header(const Line& line, Separator separator) const;
+  void choose_separator_after_header(const Line& data);
+  std::vector<std::string> header_names(std::size_t data_fields) const;
+  std::size_t parse_row(const Line& line);
+  double parse_value(const Line& line, const Field& field) const;
+  [[noreturn]] void fail_empty_field(const Line& line, const Field& field, std::size_t index) const;
+  [[noreturn]] void fail_not_a_number(const Line& line, const Field& field) const;
+  std::string separator_origin() const;
+  [[noreturn]] void fail(const Line& line, std::size_t offset, const std::string& problem) const;
+
+  std::string source_;
+  ReadOptions options_;
+
+  std::string_view text_;  // the piece being parsed (after the byte-order mark)
+  std::size_t pos_ = 0;
+  std::size_t line_number_ = 0;
+  std::size_t bytes_fed_ = 0;     // bytes of all pieces so far
+  std::size_t piece_offset_ = 0;  // where text_ starts in the input
+  bool any_piece_ = false;
+  bool any_text_ = false;
+
+  Separator separator_ = Separator::kNone;
+  std::size_t separator_line_ = 0;  // the line that decided separator_
+  bool seen_content_ = false;
+  bool have_header_ = false;
+  std::string header_raw_;  // the header line, owned: it may be in an earlier piece
+  Line header_;
+  std::size_t rows_ = 0;
+  std::size_t columns_ = 0;
+  std::size_t columns_line_ = 0;
+  std::vector<std::string> column_names_;
+  std::vector<double> values_;  // row-major
+};
+
+}  // namespace spdfit::io::detail

@@ -1,0 +1,37 @@
+// The float64 array that a .npy header describes, checked against the file's size, and
+// decoding it a block of rows at a time (internal to src/io: parse_npy decodes all rows at
+// once, the streaming RowReader a block at a time from the memory-mapped file).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "npy_header.hpp"
+
+namespace spdfit::io::detail {
+
+struct NpyLayout {
+  std::uint64_t rows = 0;
+  std::uint64_t cols = 0;  ///< 1 for a 1-D array (read as a column)
+  bool fortran_order = false;
+  bool big_endian = false;
+  std::size_t data_offset = 0;
+};
+
+/// Checks that the header describes a non-empty 1-D or 2-D float64 array whose values fill the
+/// `file_bytes` bytes after the header exactly. Throws DataError naming `source` otherwise,
+/// before anything is allocated, so that a hostile shape costs nothing.
+NpyLayout npy_layout(const NpyHeader& header, std::size_t file_bytes, const std::string& source);
+
+/// Decodes rows [first, first + count) of the array whose data (after the header) start at
+/// `data` into `out` (resized to count x cols).
+void decode_npy_rows(const NpyLayout& layout, const char* data, std::uint64_t first, Eigen::Index count,
+                     Eigen::MatrixXd* out);
+
+/// Throws DataError naming the first NaN or Inf of `block` in reading order (row by row), with
+/// row numbers counted from 1 at the array's first row, `first_row` being block's first.
+void check_npy_finite(const Eigen::MatrixXd& block, std::uint64_t first_row, const std::string& source);
+
+}  // namespace spdfit::io::detail
