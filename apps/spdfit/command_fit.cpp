@@ -1,12 +1,12 @@
-// spdfit fit --method METHOD [--json] [--output FILE] A B
-#include <memory>
-
+// spdfit fit --method METHOD [--json] [--output FILE] [--stream [--block-rows N] [--threads N]] A B
 #include <CLI/CLI.hpp>
+#include <memory>
 
 #include "cli.hpp"
 #include "input.hpp"
 #include "output.hpp"
 #include "spdfit/fit.hpp"
+#include "spdfit/stream.hpp"
 
 namespace spdfit::cli {
 
@@ -17,6 +17,8 @@ struct FitOptionsCli {
   std::string a_path, b_path, output;
   bool json = false;
   double rank_tolerance = -1.0;
+  bool stream = false;
+  StreamOptions stream_options;
 };
 
 std::vector<std::string> method_names() {
@@ -40,14 +42,33 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--rank-tol", options->rank_tolerance,
                   "Relative singular-value cut-off for numerical rank (default max(m,n)*eps)")
       ->check(CLI::Range(0.0, 1.0));
+  CLI::Option* stream =
+      sub->add_flag("--stream", options->stream,
+                    "Read A and B a block of rows at a time (memory O(n^2) whatever the number of rows; "
+                    "same estimate to rounding)");
+  sub->add_option("--block-rows", options->stream_options.block_rows, "Rows per block with --stream")
+      ->check(CLI::Range(Eigen::Index{1}, Eigen::Index{1} << 24))
+      ->needs(stream);
+  sub->add_option("--threads", options->stream_options.threads,
+                  "Threads with --stream (default: one per core; the result does not depend on it)")
+      ->check(CLI::Range(0u, 1024u))
+      ->needs(stream);
   sub->add_option("A", options->a_path, "File of A (m x n): delimited text or .npy")->required();
   sub->add_option("B", options->b_path, "File of B (m x n): delimited text or .npy")->required();
 
   auto run = [options, &global]() {
-    const DataPair data = load_pair(options->a_path, options->b_path);
     FitOptions fit_options;
     fit_options.rank_tolerance = options->rank_tolerance;
-    const FitResult result = fit(data.A, data.B, *parse_method(options->method), fit_options);
+    const Method method = *parse_method(options->method);
+    FitResult result;
+    if (options->stream) {
+      result =
+          fit(reduce(stream_factor(options->a_path, options->b_path, options->stream_options), fit_options),
+              method);
+    } else {
+      const DataPair data = load_pair(options->a_path, options->b_path);
+      result = fit(data.A, data.B, method, fit_options);
+    }
     for (const std::string& w : result.warnings) warn(global, w);
     if (!result.ok()) throw DataFailure(result.message);
     emit(options->json ? result_json(result).dump(2) + "\n" : matrix_csv(result.X), options->output);

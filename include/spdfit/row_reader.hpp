@@ -1,0 +1,52 @@
+// Reading a data file a block of rows at a time, for data larger than memory.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "spdfit/io.hpp"
+
+namespace spdfit::io {
+
+/// Reads the matrix in a data file (the formats of read_table: .npy by its magic bytes,
+/// delimited text otherwise) a block of rows at a time, in O(block) memory: a .npy file is
+/// memory-mapped and decoded block by block, a text file is read in pieces of about
+/// `kTextPieceBytes` bytes of whole lines. The rows, their values and every error (naming the
+/// file, and for text the line and column) are those of read_table.
+class RowReader {
+ public:
+  /// Bytes of text read at a time (a longer line is read whole, up to kMaxLineBytes).
+  static constexpr std::size_t kTextPieceBytes = std::size_t{1} << 20;
+  static constexpr std::size_t kMaxLineBytes = std::size_t{1} << 26;
+
+  /// Opens `path`. Throws DataError when it is missing, not a regular file, unreadable, empty,
+  /// or (for .npy) has a bad header, dtype or size.
+  explicit RowReader(const std::string& path, const ReadOptions& options = {});
+  ~RowReader();
+  RowReader(RowReader&&) noexcept;
+  RowReader& operator=(RowReader&&) noexcept;
+
+  /// Reads the next rows, at most `max_rows` (>= 1), into `rows` (resized to k x columns) and
+  /// returns k: max_rows until the end of the file, fewer in the last block, 0 after it. Throws
+  /// DataError on bad data (the text is parsed as it is read, so a bad line deep in a file
+  /// fails only when reached), and, at the end, when the file held no data rows.
+  Eigen::Index read(Eigen::Index max_rows, Eigen::MatrixXd* rows);
+
+  const std::string& path() const;
+  /// The number of columns: known after the first read that returned rows.
+  Eigen::Index columns() const;
+  /// The header row's column names (text files with a header; empty otherwise).
+  const std::vector<std::string>& column_names() const;
+  /// Rows returned so far.
+  std::uint64_t rows_read() const;
+
+  struct Source;  // the format-specific part (internal)
+
+ private:
+  std::unique_ptr<Source> source_;
+};
+
+}  // namespace spdfit::io

@@ -1,0 +1,38 @@
+// Estimating from data files larger than memory: the triangular factor of [A B] accumulated a
+// block of rows at a time (TSQR), with O(n^2) state, on all cores.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+
+#include "spdfit/io.hpp"
+#include "spdfit/triangular_factor.hpp"
+
+namespace spdfit {
+
+/// Options for stream_factor.
+struct StreamOptions {
+  /// Rows per block. The result depends on it only through rounding (about 1e-15 relative in
+  /// R); memory is O(block_rows n) per block in flight.
+  Eigen::Index block_rows = Eigen::Index{1} << 15;
+  /// Threads: 0 means one per core. A and B are read side by side and the blocks' factors are
+  /// computed on up to this many threads; the result does not depend on the number.
+  unsigned threads = 0;
+  io::ReadOptions read;
+};
+
+/// The triangular factor of [A B] for A and B in the files `a_path` and `b_path` (the formats
+/// of io::read_table; m x n each, m >= n), read a block of rows at a time: each block's factor
+/// is computed on its own, and the factors are merged in the order of the blocks (the TSQR
+/// merge of TriangularFactor), so the numerically careful path of the in-memory estimators is
+/// kept (no Gram matrices) and memory stays O(threads * block_rows * n + n^2) for any m.
+/// Then `fit(reduce(factor), method)` gives the estimate, equal to the in-memory one to
+/// rounding.
+///
+/// Throws io::DataError (naming the file, line and column) on bad data, when A and B differ in
+/// their numbers of rows or columns, or when m < n. Throws std::invalid_argument when
+/// block_rows < 1. Cost O(m n^2) flops, spread over the threads.
+TriangularFactor stream_factor(const std::string& a_path, const std::string& b_path,
+                               const StreamOptions& options = {});
+
+}  // namespace spdfit

@@ -1,0 +1,208 @@
+// Reading a data file a block of rows at a time: .npy files memory-mapped, text in pieces of
+// whole lines through the same parser as read_table.
+#include "spdfit/row_reader.hpp"
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <string_view>
+
+#include "delimited_parser.hpp"
+#include "file_error.hpp"
+#include "npy_layout.hpp"
+#include "read_file.hpp"
+
+namespace spdfit::io {
+
+using Eigen::Index;
+
+struct RowReader::Source {
+  explicit Source(std::string p) : path(std::move(p)) {}
+  virtual ~Source() = default;
+  Source(const Source&) = delete;
+  Source& operator=(const Source&) = delete;
+  virtual Index read(Index max_rows, Eigen::MatrixXd* rows) = 0;
+  virtual Index columns() const = 0;
+  virtual const std::vector<std::string>& column_names() const { return no_names; }
+
+  std::string path;
+  std::uint64_t rows_read = 0;
+  std::vector<std::string> no_names;
+};
+
+namespace {
+
+[[noreturn]] void fail_errno(const std::string& path, const std::string& doing) {
+  throw DataError(path, 0, 0, doing + " (" + detail::describe_errno(errno) + ")");
+}
+
+// A .npy file, mapped whole and decoded a block at a time: the kernel reads ahead
+// (MADV_SEQUENTIAL) and the pages already decoded can be dropped, so memory stays O(block).
+class NpySource final : public RowReader::Source {
+ public:
+  NpySource(const std::string& path, int fd, std::size_t size, const ReadOptions& options)
+      : Source(path), size_(size), options_(options) {
+    void* map = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
+    if (map == MAP_FAILED) fail_errno(path, "cannot be memory-mapped");
+    map_ = static_cast<const char*>(map);
+    ::madvise(map, size, MADV_SEQUENTIAL);
+    const std::string_view bytes(map_, size_);
+    layout_ = detail::npy_layout(detail::parse_npy_header(bytes, path), size_, path);
+  }
+  ~NpySource() override { ::munmap(const_cast<char*>(map_), size_); }
+
+  Index read(Index max_rows, Eigen::MatrixXd* rows) override {
+    const std::uint64_t left = layout_.rows - rows_read;
+    const auto count =
+        static_cast<Index>(std::min<std::uint64_t>(left, static_cast<std::uint64_t>(max_rows)));
+    detail::decode_npy_rows(layout_, map_ + layout_.data_offset, rows_read, count, rows);
+    if (!options_.allow_nonfinite) detail::check_npy_finite(*rows, rows_read, path);
+    rows_read += static_cast<std::uint64_t>(count);
+    return count;
+  }
+  Index columns() const override { return static_cast<Index>(layout_.cols); }
+
+ private:
+  const char* map_ = nullptr;
+  std::size_t size_;
+  ReadOptions options_;
+  detail::NpyLayout layout_;
+};
+
+// Delimited text, read in pieces that end at a line end and parsed as they arrive.
+class TextSource final : public RowReader::Source {
+ public:
+  TextSource(const std::string& path, int fd, const ReadOptions& options)
+      : Source(path), file_(::fdopen(fd, "rb")), parser_(path, options) {
+    if (file_ == nullptr) {
+      const int error = errno;
+      ::close(fd);
+      errno = error;
+      fail_errno(path, "cannot be opened");
+    }
+  }
+  ~TextSource() override { std::fclose(file_); }
+
+  Index read(Index max_rows, Eigen::MatrixXd* rows) override {
+    while (available() < static_cast<std::size_t>(max_rows) && !at_end_) read_piece();
+    if (at_end_) parser_.finish();  // no data rows at all: the error read_table gives
+    const Index count = static_cast<Index>(std::min(available(), static_cast<std::size_t>(max_rows)));
+    const Index n = columns();
+    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    std::vector<double>& values = parser_.values();
+    *rows = Eigen::Map<const RowMajor>(values.data() + taken_ * static_cast<std::size_t>(n), count, n);
+    taken_ += static_cast<std::size_t>(count);
+    // Drop the rows handed out once they are half the buffer, so that memory stays O(block).
+    if (2 * taken_ * static_cast<std::size_t>(n) >= values.size()) {
+      values.erase(values.begin(),
+                   values.begin() + static_cast<std::ptrdiff_t>(taken_ * static_cast<std::size_t>(n)));
+      taken_ = 0;
+    }
+    rows_read += static_cast<std::uint64_t>(count);
+    return count;
+  }
+  Index columns() const override { return static_cast<Index>(parser_.columns()); }
+  const std::vector<std::string>& column_names() const override { return parser_.column_names(); }
+
+ private:
+  // Rows parsed but not yet handed out.
+  std::size_t available() const {
+    const std::size_t n = parser_.columns();
+    return n == 0 ? 0 : parser_.values().size() / n - taken_;
+  }
+
+  // Reads about kTextPieceBytes more bytes and parses the whole lines among them; the bytes
+  // after the last line end wait for the next piece. A CR at the very end waits too, since
+  // an LF may follow it in the next piece (CR LF is one line end).
+  void read_piece() {
+    const std::size_t kept = buffer_.size();
+    buffer_.resize(kept + RowReader::kTextPieceBytes);
+    const std::size_t got = std::fread(buffer_.data() + kept, 1, RowReader::kTextPieceBytes, file_);
+    buffer_.resize(kept + got);
+    if (std::ferror(file_)) fail_errno(path, "read error");
+    if (got < RowReader::kTextPieceBytes) {
+      if (bytes_ + buffer_.size() == 0) throw DataError(path, 0, 0, "file is empty");
+      parser_.feed(buffer_);
+      bytes_ += buffer_.size();
+      buffer_.clear();
+      at_end_ = true;
+      return;
+    }
+    // The bytes kept from before hold no line end, bar a held-back CR as their last byte.
+    auto line_end = [](char c) { return c == '\n' || c == '\r'; };
+    std::size_t cut = buffer_.size() - (buffer_.back() == '\r' ? 1 : 0);
+    const std::size_t floor = kept > 0 ? kept - 1 : 0;
+    while (cut > floor && !line_end(buffer_[cut - 1])) --cut;
+    if (cut == floor) cut = 0;
+    if (cut == 0) {
+      // No line end yet: the line goes on into the next piece.
+      if (buffer_.size() > RowReader::kMaxLineBytes) {
+        throw DataError(path, parser_.lines() + 1, 0,
+                        "a line is longer than " + std::to_string(RowReader::kMaxLineBytes >> 20) +
+                            " MiB; the streaming reader accepts lines up to that length");
+      }
+      return;
+    }
+    parser_.feed(std::string_view(buffer_.data(), cut));
+    bytes_ += cut;
+    buffer_.erase(0, cut);
+  }
+
+  std::FILE* file_;
+  detail::DelimitedParser parser_;
+  std::string buffer_;       // bytes read but not yet parsed (an incomplete last line)
+  std::uint64_t bytes_ = 0;  // bytes parsed so far
+  std::size_t taken_ = 0;    // rows at the front of parser_.values() already handed out
+  bool at_end_ = false;
+};
+
+}  // namespace
+
+RowReader::RowReader(const std::string& path, const ReadOptions& options) {
+  detail::check_regular_file(path);
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) fail_errno(path, "cannot be opened");
+  struct stat info {};
+  char magic[6] = {};
+  ssize_t got = 0;
+  if (::fstat(fd, &info) != 0 || (got = ::pread(fd, magic, sizeof(magic), 0)) < 0) {
+    const int error = errno;
+    ::close(fd);
+    errno = error;
+    fail_errno(path, "cannot be read");
+  }
+  if (got == 0) {
+    ::close(fd);
+    throw DataError(path, 0, 0, "file is empty");
+  }
+  const bool npy = std::string_view(magic, static_cast<std::size_t>(got)) == detail::kNpyMagic;
+  try {
+    if (npy) {
+      source_ = std::make_unique<NpySource>(path, fd, static_cast<std::size_t>(info.st_size), options);
+      ::close(fd);  // the mapping stays valid
+    } else {
+      source_ = std::make_unique<TextSource>(path, fd, options);  // owns fd now, or closed it
+    }
+  } catch (...) {
+    if (npy) ::close(fd);
+    throw;
+  }
+}
+
+RowReader::~RowReader() = default;
+RowReader::RowReader(RowReader&&) noexcept = default;
+RowReader& RowReader::operator=(RowReader&&) noexcept = default;
+
+Index RowReader::read(Index max_rows, Eigen::MatrixXd* rows) { return source_->read(max_rows, rows); }
+const std::string& RowReader::path() const { return source_->path; }
+Index RowReader::columns() const { return source_->columns(); }
+const std::vector<std::string>& RowReader::column_names() const { return source_->column_names(); }
+std::uint64_t RowReader::rows_read() const { return source_->rows_read; }
+
+}  // namespace spdfit::io
