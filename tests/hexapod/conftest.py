@@ -14,7 +14,12 @@ sys.path.insert(0, str(SOURCE_DIR / "tests" / "reference"))
 
 # The sanitizer build (scripts/sanitize.sh sets SPDFIT_SANITIZED=1) runs the CLI about twenty
 # times slower.
-SLOWDOWN = 20 if os.environ.get("SPDFIT_SANITIZED") == "1" else 1
+SANITIZED = os.environ.get("SPDFIT_SANITIZED") == "1"
+SLOWDOWN = 20 if SANITIZED else 1
+# The docs' full-size runs (thousands of Monte Carlo trials per command, the demo's tables) check
+# the published numbers, which the plain build does. Under the sanitizers they took over 15 of
+# CI's minutes; the same code runs there at small trial counts in test_cli_contract.py.
+full_size = pytest.mark.skipif(SANITIZED, reason="full-size doc runs are checked in the plain build")
 CLI_TIMEOUT_S = 120 * SLOWDOWN  # the slowest call here (the demo) takes a few seconds
 
 

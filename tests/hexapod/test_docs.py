@@ -9,7 +9,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from conftest import CLI_TIMEOUT_S, SOURCE_DIR
+from conftest import CLI_TIMEOUT_S, SOURCE_DIR, full_size
 
 DOC = SOURCE_DIR / "docs" / "hexapod.md"
 
@@ -52,6 +52,7 @@ def test_the_page_shows_commands():
     assert len(doc_commands()) >= 12
 
 
+@full_size
 def test_every_command_runs_as_shown(spdfit_cli, tmp_path):
     bad_geometry(spdfit_cli, tmp_path)
     for command, expected in doc_commands():
@@ -73,6 +74,7 @@ def table_rows(name):
     return [row for row in rows[2:] if row and row[0]]  # skip the header and the |---| line
 
 
+@full_size
 def test_thesis_table_is_what_the_commands_produce(cli_json):
     rows = table_rows("thesis-table")
     assert len(rows) == 18
@@ -86,6 +88,7 @@ def test_thesis_table_is_what_the_commands_produce(cli_json):
         assert thesis == THESIS_RUNS.get((experiment, method), ""), (experiment, method)
 
 
+@full_size
 def test_paper_2x2_table_is_what_the_commands_produce(cli_json):
     rows = table_rows("paper-2x2-table")
     assert len(rows) == 9
@@ -97,6 +100,7 @@ def test_paper_2x2_table_is_what_the_commands_produce(cli_json):
         assert mae == [f"{x:.3f}" for x in runs[std_a]["methods"][method]["mae"]], (std_a, method)
 
 
+@full_size
 def test_readme_hexapod_commands_run(spdfit_cli, tmp_path):
     """The README's "The hexapod" block: each `spdfit ...` line (comments dropped) runs."""
     text = (SOURCE_DIR / "README.md").read_text()
