@@ -39,6 +39,22 @@ void fill_data_diagnostics(const Reduction& data, Diagnostics& d, std::vector<st
   }
 }
 
+// The result with the estimate in the data's units, or a failure when it overflowed.
+FitResult checked(Method method, MatrixXd X, Diagnostics d, std::vector<std::string> warnings) {
+  FitResult result;
+  result.method = method;
+  result.X = std::move(X);
+  result.diagnostics = std::move(d);
+  result.warnings = std::move(warnings);
+  if (!result.X.allFinite()) {
+    result.status = Status::NumericalFailure;
+    result.message =
+        std::string(to_string(method)) + ": the estimate overflows the range of double precision numbers";
+    result.X.resize(0, 0);
+  }
+  return result;
+}
+
 }  // namespace
 
 std::string format_number(double value) {
@@ -78,11 +94,16 @@ std::optional<double> scaled_area_criterion(const Reduction& data, const MatrixX
 
 FitResult finish(Method method, const Reduction& data, const MatrixXd& X_s, Diagnostics d,
                  std::vector<std::string> warnings) {
-  FitResult result;
-  result.method = method;
-  fill_data_diagnostics(data, d, warnings);
   const int ea = data.exponent_a;
   const int eb = data.exponent_b;
+  if (!data.options.diagnostics) {
+    d.m = data.m;
+    d.n = data.n;
+    d.rank_a = data.rank_a;
+    d.rank_b = data.rank_b;
+    return checked(method, times_power_of_two(X_s, eb - ea), std::move(d), std::move(warnings));
+  }
+  fill_data_diagnostics(data, d, warnings);
 
   // ||A X - B||_F^2 = ||R11 X - R12||_F^2 + ||R22||_F^2, in B's units.
   const double fit_part = (data.R11 * X_s - data.R12).norm();
@@ -105,16 +126,7 @@ FitResult finish(Method method, const Reduction& data, const MatrixXd& X_s, Diag
     }
   }
 
-  result.X = times_power_of_two(X_s, eb - ea);
-  result.diagnostics = std::move(d);
-  result.warnings = std::move(warnings);
-  if (!result.X.allFinite()) {
-    result.status = Status::NumericalFailure;
-    result.message =
-        std::string(to_string(method)) + ": the estimate overflows the range of double precision numbers";
-    result.X.resize(0, 0);
-  }
-  return result;
+  return checked(method, times_power_of_two(X_s, eb - ea), std::move(d), std::move(warnings));
 }
 
 FitResult failure(Method method, const Reduction& data, std::string message,

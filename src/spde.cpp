@@ -59,7 +59,7 @@ FitResult spde(const Reduction& data) {
   d.area_criterion_minimum = std::ldexp(2.0 * (s.sum() - cross), data.exponent_a + data.exponent_b);
 
   FitResult result = detail::finish(Method::Spde, data, X_s, std::move(d), std::move(warnings));
-  if (result.ok() && r == n && !result.diagnostics.positive_definite) {
+  if (result.ok() && r == n && data.options.diagnostics && !result.diagnostics.positive_definite) {
     result.warnings.push_back(
         "the estimate is positive definite in exact arithmetic but numerically singular "
         "(smallest eigenvalue " +

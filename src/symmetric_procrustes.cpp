@@ -41,13 +41,15 @@ FitResult symmetric_procrustes(const Reduction& data) {
 
   // Theorem 3.2 (3): A^T B + B^T A positive definite implies a positive definite estimate.
   Diagnostics d;
-  const MatrixXd cross = data.R11.transpose() * data.R12;
-  Eigen::SelfAdjointEigenSolver<MatrixXd> eig(cross + cross.transpose(), Eigen::EigenvaluesOnly);
-  d.cross_term_positive_definite = eig.info() == Eigen::Success && eig.eigenvalues()(0) > 0.0;
+  if (data.options.diagnostics) {
+    const MatrixXd cross = data.R11.transpose() * data.R12;
+    Eigen::SelfAdjointEigenSolver<MatrixXd> eig(cross + cross.transpose(), Eigen::EigenvaluesOnly);
+    d.cross_term_positive_definite = eig.info() == Eigen::Success && eig.eigenvalues()(0) > 0.0;
+  }
 
   FitResult result =
       detail::finish(Method::SymmetricProcrustes, data, X_s, std::move(d), std::move(warnings));
-  if (result.ok() && !result.diagnostics.positive_definite) {
+  if (result.ok() && data.options.diagnostics && !result.diagnostics.positive_definite) {
     result.warnings.push_back(
         "the procrustes estimate is not positive definite (smallest eigenvalue " +
         detail::format_number(result.diagnostics.min_eigenvalue.value_or(0.0)) + "); A^T B + B^T A is " +

@@ -14,6 +14,11 @@ struct FitOptions {
   /// max(rows, cols) * machine epsilon, the editing rule of the lecture notes
   /// (shared/seeds/002, section 3.8).
   double rank_tolerance = -1.0;
+  /// Compute the estimate's diagnostics (residual, eigenvalues, definiteness, area criterion)
+  /// and the warnings about it. Monte Carlo loops that need only X turn this off: X is the same,
+  /// bit for bit, without the two symmetric eigendecompositions and the residual per estimate.
+  /// The data's diagnostics (m, n, ranks) and numerical failures are reported either way.
+  bool diagnostics = true;
 
   /// True when the options are usable; otherwise `error` says why.
   bool is_valid(std::string* error = nullptr) const {

@@ -89,8 +89,15 @@ void run_trials(const MonteCarloOptions& options, const std::function<void(std::
   if (options.progress) options.progress(done.load(), total);
 }
 
-std::vector<FitResult> estimate_all(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
-  return fit_all(reduce(TriangularFactor::from_data(A, B)));
+std::vector<FitResult> estimate(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
+                                const std::vector<Method>& methods) {
+  FitOptions options;
+  options.diagnostics = false;
+  const Reduction data = reduce(TriangularFactor::from_data(A, B), options);
+  std::vector<FitResult> fits;
+  fits.reserve(methods.size());
+  for (Method method : methods) fits.push_back(fit(data, method));
+  return fits;
 }
 
 }  // namespace spdfit::experiment

@@ -24,22 +24,15 @@ EntryExperimentResult run_entry_experiment(const Eigen::MatrixXd& truth, const s
   result.entries = upper_triangle_entries(truth.rows());
   const Eigen::Index entry_count = static_cast<Eigen::Index>(result.entries.size());
 
-  // Where each chosen method sits in estimate_all's output (kAllMethods order).
-  std::vector<std::size_t> slot;
-  for (Method method : methods) {
-    for (std::size_t i = 0; i < kAllMethods.size(); ++i) {
-      if (kAllMethods[i] == method) slot.push_back(i);
-    }
-  }
   std::vector<Eigen::MatrixXd> errors(
       methods.size(), Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(monte_carlo.trials), entry_count,
                                                 std::numeric_limits<double>::quiet_NaN()));
   run_trials(monte_carlo, [&](std::size_t k, Random& random) {
     Eigen::MatrixXd A, B;
     generate(random, A, B);
-    const std::vector<FitResult> fits = estimate_all(A, B);
+    const std::vector<FitResult> fits = estimate(A, B, methods);
     for (std::size_t i = 0; i < methods.size(); ++i) {
-      const FitResult& fit = fits[slot[i]];
+      const FitResult& fit = fits[i];
       if (!fit.ok()) continue;
       for (Eigen::Index e = 0; e < entry_count; ++e) {
         const auto [r, c] = result.entries[static_cast<std::size_t>(e)];

@@ -32,9 +32,10 @@ ThesisExperimentResult run_thesis_experiment(const ThesisExperimentOptions& opti
   const std::size_t method_count = kAllMethods.size();
   std::vector<std::vector<double>> errors(
       method_count, std::vector<double>(monte_carlo.trials, std::numeric_limits<double>::quiet_NaN()));
+  const std::vector<Method> all_methods(kAllMethods.begin(), kAllMethods.end());
   run_trials(monte_carlo, [&](std::size_t k, Random& random) {
     const hexapod::Measurements data = hexapod::simulate(truth, options.simulation, random);
-    const std::vector<FitResult> fits = estimate_all(data.A, data.B);
+    const std::vector<FitResult> fits = estimate(data.A, data.B, all_methods);
     for (std::size_t i = 0; i < method_count; ++i) {
       if (fits[i].ok()) errors[i][k] = (fits[i].X - truth).norm();  // trial k's own slot
     }

@@ -2,13 +2,12 @@
 // do not depend on the number of threads.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "spdfit/fit_result.hpp"
 #include "spdfit/random.hpp"
@@ -41,9 +40,11 @@ unsigned resolve_threads(unsigned requested);
 /// std::invalid_argument when the options are invalid.
 void run_trials(const MonteCarloOptions& options, const std::function<void(std::size_t, Random&)>& trial);
 
-/// Every estimator on one trial's data: fit_all(reduce(TriangularFactor::from_data(A, B))).
-/// This is every experiment's inner loop, kept in one function so that a faster one can be
-/// swapped in at one place. Cost O(m n^2 + n^3).
-std::vector<FitResult> estimate_all(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B);
+/// The estimators `methods` (in that order) on one trial's data, sharing the QR of [A B] and
+/// the reduction, without the estimates' diagnostics (FitOptions::diagnostics = false: the
+/// experiments need X and whether it failed). This is every experiment's inner loop, kept in
+/// one function so that a faster one can be swapped in at one place. Cost O(m n^2 + n^3).
+std::vector<FitResult> estimate(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
+                                const std::vector<Method>& methods);
 
 }  // namespace spdfit::experiment

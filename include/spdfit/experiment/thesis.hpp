@@ -58,7 +58,7 @@ struct ThesisExperimentResult {
 };
 
 /// Repeats the thesis experiment: in trial k, simulate (hexapod::simulate with the trial's own
-/// Random) and run every estimator (estimate_all); record each one's Frobenius error against
+/// Random) and run every estimator (experiment::estimate); record each one's Frobenius error against
 /// the truth. Runs on options' threads; the numbers depend only on the seed (run_trials).
 /// Throws std::invalid_argument on invalid options. Cost O(trials (m n^2 + n^3)).
 ThesisExperimentResult run_thesis_experiment(const ThesisExperimentOptions& options,
