@@ -16,6 +16,7 @@ area-criterion estimate, always symmetric positive definite). Every method works
 Householder QR of [A B], not from Gram matrices. Numerical failures raise NumericalError; bad
 input raises ValueError (DataError for files); warnings are SpdfitWarning.
 """
+import os as _os
 import warnings as _warnings
 
 import numpy as _np
@@ -30,7 +31,8 @@ METHODS = ("ls", "procrustes", "tls", "tls-sym", "tls-psd", "spde")
 
 __all__ = [
     "METHODS", "DataError", "Diagnostics", "FitResult", "NearestSpdResult", "NumericalError",
-    "LinearSystemResult", "SpdfitWarning", "area_criterion", "solve", "fit", "fit_all", "least_squares", "nearest_spd", "read_matrix",
+    "LinearSystemResult", "SpdfitWarning", "area_criterion", "solve", "fit", "fit_all", "fit_files",
+    "least_squares", "nearest_spd", "read_matrix",
     "read_table", "spde", "symmetric_procrustes", "total_least_squares", "total_least_squares_psd",
     "total_least_squares_symmetric", "write_csv",
 ]
@@ -78,6 +80,20 @@ def fit(A, B, method="spde", *, rank_tolerance=None):
     unknown method) and NumericalError when the method has no answer for this data."""
     A, B = _as_matrix("A", A), _as_matrix("B", B)
     return _checked(_spdfit.fit(A, B, method, rank_tolerance))
+
+
+def fit_files(A_path, B_path, method="spde", *, block_rows=32768, threads=0, rank_tolerance=None):
+    """Estimate X from A and B in two data files read a block of rows at a time (`spdfit fit
+    --stream`): any number of rows in O(threads * block_rows * n + n^2) memory.
+
+    The files are read as read_matrix reads them (.npy memory-mapped, delimited text parsed as it
+    is read); each block's triangular QR factor of [A B] is computed on up to `threads` threads
+    (0: one per core) and the factors are merged in block order (TSQR), so the estimate is
+    fit(read_matrix(A_path), read_matrix(B_path), method)'s to rounding, the same for every
+    thread count. Raises DataError for bad files, ValueError for bad arguments and
+    NumericalError as fit does."""
+    return _checked(_spdfit.fit_files(_os.fspath(A_path), _os.fspath(B_path), method, block_rows, threads,
+                                      rank_tolerance))
 
 
 def fit_all(A, B, *, rank_tolerance=None):

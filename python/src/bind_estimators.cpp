@@ -11,6 +11,7 @@
 #include "spdfit/area_criterion.hpp"
 #include "spdfit/fit.hpp"
 #include "spdfit/nearest_spd.hpp"
+#include "spdfit/stream.hpp"
 
 namespace py = pybind11;
 
@@ -110,6 +111,20 @@ void bind_estimators(py::module_& m) {
         return fit(A, B, chosen, options);
       },
       py::arg("A"), py::arg("B"), py::arg("method"), py::arg("rank_tolerance") = py::none());
+  m.def(
+      "fit_files",
+      [](const std::string& a_path, const std::string& b_path, const std::string& method, Eigen::Index block_rows,
+         unsigned threads, std::optional<double> rank_tolerance) {
+        const Method chosen = method_from(method);
+        const FitOptions options = options_from(rank_tolerance);
+        StreamOptions stream;
+        stream.block_rows = block_rows;
+        stream.threads = threads;
+        py::gil_scoped_release release;
+        return fit(reduce(stream_factor(a_path, b_path, stream), options), chosen);
+      },
+      py::arg("A_path"), py::arg("B_path"), py::arg("method"), py::arg("block_rows") = StreamOptions{}.block_rows,
+      py::arg("threads") = 0u, py::arg("rank_tolerance") = py::none());
   m.def(
       "fit_all",
       [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, std::optional<double> rank_tolerance) {

@@ -182,3 +182,26 @@ def test_type_stubs_ship_with_the_package_and_name_real_functions():
         assert functions, stub
         for name in functions:
             assert callable(getattr(module, name)), f"{stub} declares {name}, which the module lacks"
+
+
+@pytest.mark.parametrize("method", spdfit.METHODS)
+def test_fit_files_streams_to_the_in_memory_estimate(tmp_path, method):
+    rng = np.random.default_rng(9)
+    A, B = ref.thesis_generator(3001, 6, 1.0, rng)[:2]
+    np.save(tmp_path / "A.npy", np.asfortranarray(A))
+    np.savetxt(tmp_path / "B.csv", B, delimiter=",", fmt="%.17g")
+    whole = spdfit.fit(A, B, method)
+    for block_rows, threads in ((100, 1), (1000, 2)):
+        streamed = spdfit.fit_files(tmp_path / "A.npy", str(tmp_path / "B.csv"), method,
+                                    block_rows=block_rows, threads=threads)
+        assert relative(streamed.X, whole.X) < 1e-12
+        assert streamed.diagnostics.m == 3001
+
+
+def test_fit_files_errors(tmp_path):
+    (tmp_path / "A.csv").write_text("1,2\n3,4\n5,6\n")
+    (tmp_path / "B.csv").write_text("1,2\n3,x\n5,6\n")
+    with pytest.raises(spdfit.DataError, match=r"B.csv:2:3: 'x' is not a number"):
+        spdfit.fit_files(tmp_path / "A.csv", tmp_path / "B.csv")
+    with pytest.raises(ValueError, match="block_rows"):
+        spdfit.fit_files(tmp_path / "A.csv", tmp_path / "A.csv", block_rows=0)
