@@ -89,6 +89,7 @@ void decode_npy_rows(const NpyLayout& layout, const char* data, std::uint64_t fi
   // Both dimensions are at most the file's value count, so they fit in Eigen::Index.
   const auto n = static_cast<Eigen::Index>(layout.cols);
   out->resize(count, n);
+  if (count == 0) return;  // past the end: an empty block has no storage for memcpy to write to
   const bool native = !layout.big_endian && host_is_little_endian();
   if (layout.fortran_order) {
     // Column j's rows are contiguous: copy each column's run of `count` rows.

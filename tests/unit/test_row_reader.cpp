@@ -71,7 +71,7 @@ TEST_F(RowReaderTest, TextGivesReadTablesRowsInAnyBlockSize) {
   const std::string path = Write("A.csv", "\xEF\xBB\xBF# a comment\nx,y,z\n" + Csv(40000, "\n", &g));
   const MatrixXd expected = io::read_matrix(path);
   ASSERT_GT(std::filesystem::file_size(path), 2 * RowReader::kTextPieceBytes);
-  for (Index block : {1, 7, 4096, 100000}) {
+  for (Index block : {3, 4096, 100000}) {  // block 1 is tested on shorter data in test_stream.cpp
     EXPECT_EQ(ReadAll(path, block), expected) << "block " << block;  // the same parser: bitwise equal
   }
   RowReader reader(path);
