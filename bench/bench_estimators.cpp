@@ -1,8 +1,14 @@
-// Time per estimate of each method on the thesis' problem size (n = 6, m = 12) and a larger one
-// (n = 100, m = 1000), from the data A, B to the FitResult with all its diagnostics. The
-// "factor" rows time the shared part alone (the Householder QR of [A B] and the reduction:
-// SVD of R11, triangular factor and singular values of B), so method minus factor is the
-// method's own cost. Reference points (NumPy, Octave) are measured by bench/compare.py.
+// Time per estimate of each method from the data A, B (m x n) to the FitResult with all its
+// diagnostics, at n = 2, 6, 12 (m = 2n; n = 6, m = 12 is the thesis' hexapod problem),
+// n = 100 and n = 1000 (m = 4n). The BM_Factor rows time the shared part alone (the
+// Householder QR of [A B] and the reduction: SVD of R11, triangular factor and singular values
+// of B), so method minus factor is the method's own cost; the BM_QR rows time the QR of [A B]
+// alone and report its rate in floating-point operations per second ("flops", counting the
+// 2 k^2 (m - k/3) flops of a Householder QR of an m x k matrix, k = 2n), a figure to hold
+// against the machine's peak. The other rows have no flop count: their iterative SVDs and
+// eigensolvers take a data-dependent number of sweeps. The same estimators in NumPy/SciPy are
+// timed by bench/compare.py. The n = 1000 rows take seconds each; --benchmark_filter=-/4000/
+// skips them.
 #include <benchmark/benchmark.h>
 
 #include <random>
@@ -30,6 +36,12 @@ Data make_data(Index m, Index n) {
   return {A0 + 0.3 * random(m, n), A0 * X + 0.3 * random(m, n)};
 }
 
+// Floating-point operations of the Householder QR of the m x 2n matrix [A B] (R only, no Q).
+double qr_flops(Index m, Index n) {
+  const double k = 2.0 * static_cast<double>(n);
+  return 2.0 * k * k * (static_cast<double>(m) - k / 3.0);
+}
+
 void BM_Fit(benchmark::State& state, spdfit::Method method) {
   const Data data = make_data(state.range(0), state.range(1));
   for (auto _ : state) {
@@ -46,10 +58,25 @@ void BM_Factor(benchmark::State& state) {
   }
 }
 
-void sizes(benchmark::internal::Benchmark* b) {
-  b->Args({12, 6})->Args({1000, 100})->Unit(benchmark::kMicrosecond);
+void BM_QR(benchmark::State& state) {
+  const Data data = make_data(state.range(0), state.range(1));
+  for (auto _ : state) {
+    spdfit::TriangularFactor factor = spdfit::TriangularFactor::from_data(data.A, data.B);
+    benchmark::DoNotOptimize(factor.R().data());
+  }
+  state.counters["flops"] = benchmark::Counter(
+      qr_flops(state.range(0), state.range(1)) * static_cast<double>(state.iterations()),
+      benchmark::Counter::kIsRate);
 }
 
+// {m, n}: m = 2n for the small problems (the thesis' m = 12, n = 6 among them), m = 4n for the
+// large ones.
+void sizes(benchmark::internal::Benchmark* b) {
+  b->Args({4, 2})->Args({12, 6})->Args({24, 12})->Args({400, 100})->Args({4000, 1000});
+  b->Unit(benchmark::kMicrosecond);
+}
+
+BENCHMARK(BM_QR)->Apply(sizes);
 BENCHMARK(BM_Factor)->Apply(sizes);
 BENCHMARK_CAPTURE(BM_Fit, ls, spdfit::Method::LeastSquares)->Apply(sizes);
 BENCHMARK_CAPTURE(BM_Fit, procrustes, spdfit::Method::SymmetricProcrustes)->Apply(sizes);
