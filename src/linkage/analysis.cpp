@@ -21,7 +21,8 @@ constexpr double kAssemblySlack = 8 * std::numeric_limits<double>::epsilon();
 
 void check_lengths(const FourBar& bar) {
   for (double a : {bar.a1, bar.a2, bar.a3, bar.a4}) {
-    if (!(a > 0.0) || !std::isfinite(a)) throw std::invalid_argument("link lengths must be positive and finite");
+    if (!(a > 0.0) || !std::isfinite(a))
+      throw std::invalid_argument("link lengths must be positive and finite");
   }
 }
 
@@ -31,13 +32,16 @@ double cos_transmission(const FourBar& bar, double psi) {
   return (bar.a3 * bar.a3 + bar.a4 * bar.a4 - e2) / (2.0 * bar.a3 * bar.a4);
 }
 
-bool assemblable(const FourBar& bar, double psi) { return std::abs(cos_transmission(bar, psi)) <= 1.0 + kAssemblySlack; }
+bool assemblable(const FourBar& bar, double psi) {
+  return std::abs(cos_transmission(bar, psi)) <= 1.0 + kAssemblySlack;
+}
 
 double clamped_acos(double c) { return std::acos(std::max(-1.0, std::min(1.0, c))); }
 
 // Every angle base + 2 pi n in [lo, hi].
 void copies_in(double base, double lo, double hi, std::vector<double>& out) {
-  for (double n = std::ceil((lo - base) / kTwoPi); base + n * kTwoPi <= hi; n += 1.0) out.push_back(base + n * kTwoPi);
+  for (double n = std::ceil((lo - base) / kTwoPi); base + n * kTwoPi <= hi; n += 1.0)
+    out.push_back(base + n * kTwoPi);
 }
 
 // The input angles in [lo, hi] at which mu can be extreme: the ends, the multiples of pi (cos psi
@@ -78,6 +82,12 @@ std::vector<double> dead_points(const FourBar& bar) {
 AngleRange transmission_angle_range(const FourBar& bar, double psi_lo, double psi_hi) {
   check_lengths(bar);
   if (!(psi_lo <= psi_hi)) throw std::invalid_argument("transmission_angle_range: psi_lo > psi_hi");
+  // mu is 2 pi-periodic in psi, so a turn or more of input attains every value of one turn; a
+  // huge range (fuzzing found psi spanning 1e40 rad) would otherwise list a candidate per turn.
+  if (psi_hi - psi_lo >= kTwoPi) {
+    psi_lo = 0.0;
+    psi_hi = kTwoPi;
+  }
   AngleRange range{kPi, 0.0};
   for (double psi : extreme_candidates(bar, psi_lo, psi_hi)) {
     const double mu = clamped_acos(cos_transmission(bar, psi));
@@ -87,10 +97,11 @@ AngleRange transmission_angle_range(const FourBar& bar, double psi_lo, double ps
   return range;
 }
 
-MotionCheck check_motion(const FourBar& bar, const Eigen::Ref<const VectorXd>& psi, const Eigen::Ref<const VectorXd>& phi,
-                         int branch) {
+MotionCheck check_motion(const FourBar& bar, const Eigen::Ref<const VectorXd>& psi,
+                         const Eigen::Ref<const VectorXd>& phi, int branch) {
   check_lengths(bar);
-  if (psi.size() != phi.size() || psi.size() == 0) throw std::invalid_argument("check_motion: psi and phi must be non-empty, of equal length");
+  if (psi.size() != phi.size() || psi.size() == 0)
+    throw std::invalid_argument("check_motion: psi and phi must be non-empty, of equal length");
   MotionCheck check;
   check.grashof = grashof_type(bar);
   const double lo = psi.minCoeff(), hi = psi.maxCoeff();
@@ -135,7 +146,8 @@ Analysis analyze(const FourBar& bar, const Eigen::Ref<const VectorXd>& psi) {
   out.bar = bar;
   out.k = freudenstein_parameters(bar);
   out.grashof = grashof_type(bar);
-  out.input_fully_rotates = bar.a1 + bar.a2 <= bar.a3 + bar.a4 && std::abs(bar.a1 - bar.a2) >= std::abs(bar.a3 - bar.a4);
+  out.input_fully_rotates =
+      bar.a1 + bar.a2 <= bar.a3 + bar.a4 && std::abs(bar.a1 - bar.a2) >= std::abs(bar.a3 - bar.a4);
   out.dead_points = dead_points(bar);
 
   std::optional<double> previous_plus, previous_minus;

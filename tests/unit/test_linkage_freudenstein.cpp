@@ -121,8 +121,10 @@ TEST(Analysis, CrankTurnsFullyWithoutDeadPoints) {
   EXPECT_GT(a.transmission->min, 0.0);
   EXPECT_LT(a.transmission->max, kPi);
   // The extreme transmission angles of a crank-rocker are at psi = 0 and psi = 180 degrees.
-  EXPECT_NEAR(a.transmission->min, std::min(transmission_angle(bar, 0.0), transmission_angle(bar, kPi)), 1e-14);
-  EXPECT_NEAR(a.transmission->max, std::max(transmission_angle(bar, 0.0), transmission_angle(bar, kPi)), 1e-14);
+  EXPECT_NEAR(a.transmission->min, std::min(transmission_angle(bar, 0.0), transmission_angle(bar, kPi)),
+              1e-14);
+  EXPECT_NEAR(a.transmission->max, std::max(transmission_angle(bar, 0.0), transmission_angle(bar, kPi)),
+              1e-14);
 }
 
 TEST(Analysis, RockerInputHasLimitsAndGaps) {
@@ -162,6 +164,19 @@ TEST(MotionCheck, DeadPointInsideTheRangeIsABranchDefect) {
   EXPECT_FALSE(check.dead_points.empty());
   // The limit is passed with mu = 0 or pi.
   EXPECT_TRUE(check.transmission.min < 1e-12 || check.transmission.max > kPi - 1e-12);
+}
+
+// Regression (fuzz/regressions/linkage_pairs/oom-583fb19...): prescribed angles spanning 1e40 rad
+// made transmission_angle_range list a candidate angle for every turn, until 2 GB ran out.
+TEST(Freudenstein, TransmissionRangeOverManyTurnsIsOneTurns) {
+  const FourBar crank{1.0, 0.4, 1.1, 0.9};
+  const AngleRange turn = transmission_angle_range(crank, 0.0, 2.0 * kPi);
+  for (const auto& [lo, hi] :
+       {std::pair{-1.1e33, 2.7e40}, std::pair{-3.0, 3.5}, std::pair{1e15, 1e15 + 7.0}}) {
+    const AngleRange r = transmission_angle_range(crank, lo, hi);
+    EXPECT_DOUBLE_EQ(r.min, turn.min) << lo << ".." << hi;
+    EXPECT_DOUBLE_EQ(r.max, turn.max) << lo << ".." << hi;
+  }
 }
 
 }  // namespace
