@@ -38,9 +38,12 @@ bool assemblable(const FourBar& bar, double psi) {
 
 double clamped_acos(double c) { return std::acos(std::max(-1.0, std::min(1.0, c))); }
 
-// Every angle base + 2 pi n in [lo, hi].
-void copies_in(double base, double lo, double hi, std::vector<double>& out) {
-  for (double n = std::ceil((lo - base) / kTwoPi); base + n * kTwoPi <= hi; n += 1.0)
+// Every angle base + 2 pi n in [lo, hi], the first `most` of them at most (a range may span
+// 1e40 turns).
+void copies_in(double base, double lo, double hi, std::vector<double>& out,
+               std::size_t most = std::numeric_limits<std::size_t>::max()) {
+  std::size_t added = 0;
+  for (double n = std::ceil((lo - base) / kTwoPi); base + n * kTwoPi <= hi && added < most; n += 1.0, ++added)
     out.push_back(base + n * kTwoPi);
 }
 
@@ -106,8 +109,12 @@ MotionCheck check_motion(const FourBar& bar, const Eigen::Ref<const VectorXd>& p
   check.grashof = grashof_type(bar);
   const double lo = psi.minCoeff(), hi = psi.maxCoeff();
   check.transmission = transmission_angle_range(bar, lo, hi);
-  for (double d : dead_points(bar)) copies_in(d, lo, hi, check.dead_points);
+  for (double d : dead_points(bar))
+    copies_in(d, lo, hi, check.dead_points, MotionCheck::kMaxListedDeadPoints);
   std::sort(check.dead_points.begin(), check.dead_points.end());
+  if (check.dead_points.size() > MotionCheck::kMaxListedDeadPoints) {
+    check.dead_points.resize(MotionCheck::kMaxListedDeadPoints);
+  }
 
   std::vector<std::string> reasons;
   if (!check.dead_points.empty()) {

@@ -4,10 +4,10 @@
 #include <limits>
 #include <stdexcept>
 
-#include "spdfit/linkage/design_error.hpp"
 #include "dial_zeros.hpp"
 #include "linkage_format.hpp"
 #include "linkage_inputs.hpp"
+#include "spdfit/linkage/design_error.hpp"
 
 namespace spdfit::linkage {
 
@@ -42,7 +42,9 @@ LinkageSolution describe(const Eigen::Vector3d& k, const DialZeros& zeros, const
   if (generated) {
     s.phi_generated = *generated;
     const VectorXd err = phi - *generated;
-    s.structural_error_rms = std::sqrt(err.squaredNorm() / static_cast<double>(err.size()));
+    // stableNorm: prescribed angles may be huge (fuzzing found 1e305 rad), and a plain sum of
+    // squares would overflow to Inf for a finite error.
+    s.structural_error_rms = err.stableNorm() / std::sqrt(static_cast<double>(err.size()));
     s.structural_error_max = err.cwiseAbs().maxCoeff();
   } else {
     s.structural_error_rms = s.structural_error_max = std::numeric_limits<double>::quiet_NaN();
@@ -51,12 +53,15 @@ LinkageSolution describe(const Eigen::Vector3d& k, const DialZeros& zeros, const
   return s;
 }
 
-void add_check_warnings(const std::string& which, const LinkageSolution& s, std::vector<std::string>& warnings) {
+void add_check_warnings(const std::string& which, const LinkageSolution& s,
+                        std::vector<std::string>& warnings) {
   if (!s.check) return;
-  if (s.check->branch_defect) warnings.push_back(which + " linkage has a branch defect: " + s.check->branch_defect_reason);
+  if (s.check->branch_defect)
+    warnings.push_back(which + " linkage has a branch defect: " + s.check->branch_defect_reason);
   if (s.check->transmission.min < kTransmissionLow || s.check->transmission.max > kTransmissionHigh) {
-    warnings.push_back(which + " linkage's transmission angle ranges over " + detail::degrees(s.check->transmission.min) +
-                       " .. " + detail::degrees(s.check->transmission.max) +
+    warnings.push_back(which + " linkage's transmission angle ranges over " +
+                       detail::degrees(s.check->transmission.min) + " .. " +
+                       detail::degrees(s.check->transmission.max) +
                        ", outside the usual 40..140 deg: the output is poorly driven there");
   }
 }
@@ -65,10 +70,14 @@ void add_check_warnings(const std::string& which, const LinkageSolution& s, std:
 
 const char* to_string(SynthesisStatus status) {
   switch (status) {
-    case SynthesisStatus::Success: return "success";
-    case SynthesisStatus::NoRealLinkage: return "no real linkage";
-    case SynthesisStatus::NotAssemblable: return "not assemblable";
-    case SynthesisStatus::Diverged: return "diverged";
+    case SynthesisStatus::Success:
+      return "success";
+    case SynthesisStatus::NoRealLinkage:
+      return "no real linkage";
+    case SynthesisStatus::NotAssemblable:
+      return "not assemblable";
+    case SynthesisStatus::Diverged:
+      return "diverged";
   }
   return "?";
 }
@@ -78,7 +87,8 @@ bool SynthesisOptions::is_valid(std::string* error) const {
     if (error) *error = why;
     return false;
   };
-  if ((alpha && !std::isfinite(*alpha)) || (beta && !std::isfinite(*beta))) return fail("dial zeros must be finite");
+  if ((alpha && !std::isfinite(*alpha)) || (beta && !std::isfinite(*beta)))
+    return fail("dial zeros must be finite");
   if (!(gauss_newton.tolerance > 0.0) || !std::isfinite(gauss_newton.tolerance)) {
     return fail("the Gauss-Newton tolerance must be a positive number");
   }
@@ -90,7 +100,8 @@ bool SynthesisOptions::is_valid(std::string* error) const {
   return true;
 }
 
-SynthesisResult synthesize(const Eigen::Ref<const VectorXd>& delta_psi_in, const Eigen::Ref<const VectorXd>& delta_phi_in,
+SynthesisResult synthesize(const Eigen::Ref<const VectorXd>& delta_psi_in,
+                           const Eigen::Ref<const VectorXd>& delta_phi_in,
                            const Eigen::Ref<const VectorXd>& weights_in, const SynthesisOptions& options) {
   std::string error;
   if (!options.is_valid(&error)) throw std::invalid_argument("synthesize: " + error);
@@ -116,18 +127,21 @@ SynthesisResult synthesize(const Eigen::Ref<const VectorXd>& delta_psi_in, const
     if (options.alpha || options.beta) {
       start.zeros = zeros;
       start.k = design_error_synthesis(plus(zeros.alpha, delta_psi), plus(zeros.beta, delta_phi), weights,
-                                       options.threshold).k;
+                                       options.threshold)
+                    .k;
     } else {
       grid_start = detail::dial_zero_grid_start(delta_psi, delta_phi, weights, options.threshold);
       if (!grid_start) {
         r.status = SynthesisStatus::NoRealLinkage;
-        r.message = "no dial zeros on a 5-degree grid give a design-error solution that is a real linkage "
-                    "assemblable at every prescribed input; give a start with --alpha and --beta";
+        r.message =
+            "no dial zeros on a 5-degree grid give a design-error solution that is a real linkage "
+            "assemblable at every prescribed input; give a start with --alpha and --beta";
         return r;
       }
       start = *grid_start;
     }
-    const detail::DialZeroFit fit = detail::fit_design_dial_zeros(delta_psi, delta_phi, weights, start, settings);
+    const detail::DialZeroFit fit =
+        detail::fit_design_dial_zeros(delta_psi, delta_phi, weights, start, settings);
     if (!fit.gauss_newton.converged) {
       r.status = SynthesisStatus::Diverged;
       r.message = "the dial-zero fit of the design error (eq. 3.7) failed: " + fit.gauss_newton.message;
@@ -144,8 +158,9 @@ SynthesisResult synthesize(const Eigen::Ref<const VectorXd>& delta_psi_in, const
   r.condition_number = design.condition_number;
   r.used_svd = design.used_svd;
   if (r.used_svd) {
-    r.warnings.push_back("the synthesis matrix S is rank-deficient (rank " + std::to_string(r.rank) +
-                         " < 3): k is the minimum-norm solution of the edited SVD, and other linkages fit as well");
+    r.warnings.push_back(
+        "the synthesis matrix S is rank-deficient (rank " + std::to_string(r.rank) +
+        " < 3): k is the minimum-norm solution of the edited SVD, and other linkages fit as well");
   }
 
   // 2. The assembly branch that follows the prescribed outputs.
@@ -154,7 +169,8 @@ SynthesisResult synthesize(const Eigen::Ref<const VectorXd>& delta_psi_in, const
   r.design = describe(k_design, zeros, delta_psi, delta_phi, weights, r.branch);
   if (!r.design.lengths) {
     r.status = SynthesisStatus::NoRealLinkage;
-    r.message = "the design-error solution " + k_text(k_design) + " is not a real linkage: " + r.design.no_linkage_reason;
+    r.message = "the design-error solution " + k_text(k_design) +
+                " is not a real linkage: " + r.design.no_linkage_reason;
     return r;
   }
   if (!branch) {
@@ -169,8 +185,8 @@ SynthesisResult synthesize(const Eigen::Ref<const VectorXd>& delta_psi_in, const
     r.message = "the design-error linkage (" + k_text(k_design) + "; a1 = 1, a2 = " + detail::format(bar.a2) +
                 ", a3 = " + detail::format(bar.a3) + ", a4 = " + detail::format(bar.a4) +
                 ") cannot be assembled at " + std::to_string(unreachable) + " of the " +
-                std::to_string(r.psi.size()) + " prescribed inputs, the first at psi = " +
-                detail::degrees(r.psi(first)) +
+                std::to_string(r.psi.size()) +
+                " prescribed inputs, the first at psi = " + detail::degrees(r.psi(first)) +
                 ": the input cannot reach them, so there is no structural error to refine. A narrower input "
                 "range or other dial zeros (or fitting them) may give an assemblable linkage";
     return r;
@@ -212,8 +228,8 @@ SynthesisResult synthesize(const Eigen::Ref<const VectorXd>& delta_psi_in, const
     for (const detail::DialZeroPoint& start : starts) {
       const auto start_objective = detail::structural_objective(delta_psi, delta_phi, weights, start);
       if (!start_objective) continue;
-      const detail::DialZeroFit fit =
-          detail::fit_structural_dial_zeros(delta_psi, delta_phi, weights, start, start_objective->second, settings);
+      const detail::DialZeroFit fit = detail::fit_structural_dial_zeros(delta_psi, delta_phi, weights, start,
+                                                                        start_objective->second, settings);
       if (!fit.gauss_newton.converged) {
         if (failure.empty()) failure = fit.gauss_newton.message;
         continue;
@@ -227,8 +243,9 @@ SynthesisResult synthesize(const Eigen::Ref<const VectorXd>& delta_psi_in, const
     }
     if (!best) {
       r.status = failure.empty() ? SynthesisStatus::NotAssemblable : SynthesisStatus::Diverged;
-      r.message = failure.empty() ? "no real, assemblable linkage to start the structural-error refinement from"
-                                  : "structural-error refinement with dial zeros failed: " + failure;
+      r.message = failure.empty()
+                      ? "no real, assemblable linkage to start the structural-error refinement from"
+                      : "structural-error refinement with dial zeros failed: " + failure;
       return r;
     }
     k_structural = best->point.k;
@@ -243,8 +260,9 @@ SynthesisResult synthesize(const Eigen::Ref<const VectorXd>& delta_psi_in, const
   r.structural.final_step_norm = step_norm;
   r.structural.rounding_limited = rounding_limited;
   if (rounding_limited) {
-    r.warnings.push_back("Gauss-Newton stopped at rounding level with ||Delta k|| = " + detail::format(step_norm) +
-                         " above the tolerance: the Jacobian D^-1 S is ill-conditioned, so k is only as accurate as that");
+    r.warnings.push_back(
+        "Gauss-Newton stopped at rounding level with ||Delta k|| = " + detail::format(step_norm) +
+        " above the tolerance: the Jacobian D^-1 S is ill-conditioned, so k is only as accurate as that");
   }
   add_check_warnings("the structural", r.structural, r.warnings);
   return r;

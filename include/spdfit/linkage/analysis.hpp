@@ -2,6 +2,7 @@
 // branches, the transmission angle, the dead points, and whether a motion stays on one branch.
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
@@ -42,7 +43,10 @@ AngleRange transmission_angle_range(const FourBar& bar, double psi_lo, double ps
 struct MotionCheck {
   GrashofType grashof = GrashofType::TripleRocker;
   AngleRange transmission;           ///< radians, over [min psi_i, max psi_i]
-  std::vector<double> dead_points;   ///< input angles of dead points inside that range (radians)
+  /// Input angles of dead points inside that range (radians), ascending; the first
+  /// kMaxListedDeadPoints when the range spans many turns.
+  std::vector<double> dead_points;
+  static constexpr std::size_t kMaxListedDeadPoints = 64;
   /// True when the linkage cannot move through all prescribed positions on one branch without
   /// passing a dead point: a dead point lies in the swept input range (the input cannot turn
   /// through it, and past it only the other branch continues), or some prescribed output angle
