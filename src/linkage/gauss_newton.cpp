@@ -27,13 +27,23 @@ constexpr double kRoundingLevel = 64 * std::numeric_limits<double>::epsilon();
 // taken as in the notes' iteration, and convergence is judged by the steps alone.
 constexpr double kTail = 1e-10;
 
+// The tail is only where the step is small next to the parameters themselves: a nearly
+// singular J also predicts little change for a huge step along its null direction (fuzzing found
+// ||Delta k|| = 4e137 taken as a "tail" step), which must then lower the objective like any other.
+constexpr double kTailStep = 1e-4;
+
+// Parameters that grow this much beyond the start have run off to infinity along a direction in
+// which the error keeps falling (for k: link-length ratios of 1e8, no mechanism): divergence.
+constexpr double kRunaway = 1e8;
+
 // In the tail, steps that shrink by less than this factor have stopped converging: they are
 // rounding amplified by the conditioning of J, and ||Delta x|| will not get below the tolerance.
 constexpr double kNoProgress = 0.5;
 
 }  // namespace
 
-GaussNewtonOutcome gauss_newton(const ResidualModel& model, const VectorXd& x0, const GaussNewtonSettings& settings) {
+GaussNewtonOutcome gauss_newton(const ResidualModel& model, const VectorXd& x0,
+                                const GaussNewtonSettings& settings) {
   GaussNewtonOutcome out;
   out.x = x0;
   VectorXd r, trial_r;
@@ -46,14 +56,16 @@ GaussNewtonOutcome gauss_newton(const ResidualModel& model, const VectorXd& x0, 
     const VectorXd step = small_least_squares(J, -r, settings.threshold).x;
     out.step_norm = step.norm();
     if (!std::isfinite(out.step_norm)) {
-      out.message = "the Gauss-Newton step is not finite (D^-1 S blew up: a prescribed position is at a dead point)";
+      out.message =
+          "the Gauss-Newton step is not finite (D^-1 S blew up: a prescribed position is at a dead point)";
       return out;
     }
     if (out.step_norm < settings.tolerance) {
       out.converged = true;
       return out;
     }
-    const bool tail = (J * step).squaredNorm() <= kTail * objective;
+    const bool tail =
+        (J * step).squaredNorm() <= kTail * objective && out.step_norm <= kTailStep * (1.0 + out.x.norm());
     if (tail && out.step_norm >= kNoProgress * previous_step_norm) {
       out.converged = true;
       out.rounding_limited = true;
@@ -91,6 +103,13 @@ GaussNewtonOutcome gauss_newton(const ResidualModel& model, const VectorXd& x0, 
       return out;
     }
     ++out.iterations;
+    if (out.x.norm() > kRunaway * (1.0 + x0.norm())) {
+      out.message = "Gauss-Newton diverged: the parameters ran off to ||k|| = " + format(out.x.norm()) +
+                    " from " + format(x0.norm()) +
+                    " at the start (the error keeps falling along a direction "
+                    "that leads to no linkage)";
+      return out;
+    }
     model(out.x, r, &J);
   }
 }

@@ -7,6 +7,7 @@
 
 #include "linkage_support.hpp"
 #include "spdfit/linkage/design_error.hpp"
+#include "spdfit/linkage/pairs_file.hpp"
 #include "spdfit/linkage/synthesis.hpp"
 
 namespace spdfit::linkage {
@@ -49,7 +50,8 @@ TEST(Synthesis, RecoversKnownLinkagesFromExactPairs) {
       EXPECT_LE(r.structural.iterations, 1);
       ASSERT_TRUE(r.structural.check);
       EXPECT_EQ(r.structural.check->grashof, known.type) << known.name;
-      EXPECT_FALSE(r.structural.check->branch_defect) << known.name << ": " << r.structural.check->branch_defect_reason;
+      EXPECT_FALSE(r.structural.check->branch_defect)
+          << known.name << ": " << r.structural.check->branch_defect_reason;
     }
   }
 }
@@ -70,7 +72,8 @@ TEST(Synthesis, DesignErrorEqualsAnIndependentWeightedLeastSquaresSolution) {
   const Eigen::Vector3d k = svd.solve(bw);
   EXPECT_LT((d.k - k).norm(), 64 * kEps * d.condition_number * k.norm());
   EXPECT_NEAR(d.design_error_norm, (bw - Sw * k).norm(), 1e-12);
-  EXPECT_NEAR(d.condition_number, svd.singularValues()(0) / svd.singularValues()(2), 1e-10 * d.condition_number);
+  EXPECT_NEAR(d.condition_number, svd.singularValues()(0) / svd.singularValues()(2),
+              1e-10 * d.condition_number);
   EXPECT_EQ(d.rank, 3);
   EXPECT_FALSE(d.used_svd);
   // A heavy weight pulls the design error at its position down.
@@ -106,7 +109,8 @@ TEST(Synthesis, GaussNewtonLowersTheStructuralErrorOfInexactData) {
       const SynthesisResult r = synthesize(psi, phi, kNoWeights);
       ASSERT_TRUE(r.ok()) << known.name << " " << noise_deg << ": " << r.message;
       EXPECT_GT(r.design.structural_error_rms, 1e-6);
-      EXPECT_LT(r.structural.structural_error_rms, r.design.structural_error_rms) << known.name << " " << noise_deg;
+      EXPECT_LT(r.structural.structural_error_rms, r.design.structural_error_rms)
+          << known.name << " " << noise_deg;
       EXPECT_GE(r.structural.iterations, 1);
       const VectorXd s = phi - r.structural.phi_generated;
       const MatrixXd J = structural_jacobian(r.structural.k, psi, r.structural.phi_generated);
@@ -125,7 +129,9 @@ TEST(Synthesis, GaussNewtonLowersTheStructuralErrorOfPrescribedFunctions) {
       function_pairs("exp", 0.0, 1.0, 0.0, 90 * kDeg, 0.0, 90 * kDeg, 15, Spacing::Uniform),
   };
   // Dial zeros near those --fit-dial-zeros finds, so that the design linkages are real.
-  std::vector<DialZeros> zeros = {trapezoid_dial_zeros(0.5), trapezoid_dial_zeros(0.5), {35 * kDeg, 105 * kDeg},
+  std::vector<DialZeros> zeros = {trapezoid_dial_zeros(0.5),
+                                  trapezoid_dial_zeros(0.5),
+                                  {35 * kDeg, 105 * kDeg},
                                   {-120 * kDeg, -140 * kDeg}};
   for (std::size_t p = 0; p < problems.size(); ++p) {
     SynthesisOptions options;
@@ -160,7 +166,8 @@ TEST(Synthesis, SteeringWorkedExample) {
 }
 
 TEST(Synthesis, ThreePairsArePrecisionPoints) {
-  const PrescribedPairs p = function_pairs("log10", 1.0, 10.0, 0.0, 60 * kDeg, 0.0, 60 * kDeg, 3, Spacing::Chebyshev);
+  const PrescribedPairs p =
+      function_pairs("log10", 1.0, 10.0, 0.0, 60 * kDeg, 0.0, 60 * kDeg, 3, Spacing::Chebyshev);
   SynthesisOptions options;
   options.alpha = 35 * kDeg;
   options.beta = 105 * kDeg;
@@ -197,8 +204,9 @@ TEST(Synthesis, FitsKnownDialZeros) {
     double alpha_deg, beta_deg;
     int m;
   };
-  for (const Case& c : {Case{{1.0, 0.4, 1.1, 0.9}, 35.0, 110.0, 12}, Case{{1.0, 0.4, 1.1, 0.9}, -70.0, 20.0, 5},
-                        Case{{1.0, 2.0, 2.2, 1.8}, 10.0, -40.0, 9}}) {
+  for (const Case& c :
+       {Case{{1.0, 0.4, 1.1, 0.9}, 35.0, 110.0, 12}, Case{{1.0, 0.4, 1.1, 0.9}, -70.0, 20.0, 5},
+        Case{{1.0, 2.0, 2.2, 1.8}, 10.0, -40.0, 9}}) {
     const Eigen::Vector3d k = freudenstein_parameters(c.bar);
     const double alpha = c.alpha_deg * kDeg, beta = c.beta_deg * kDeg;
     VectorXd dpsi = VectorXd::LinSpaced(c.m, 0.0, 100 * kDeg), dphi(c.m);
@@ -289,7 +297,8 @@ TEST(PrescribedFunction, SpacingAndMapping) {
   EXPECT_NEAR(c(0), 1.0 - std::cos(kPi / 6), 1e-15);
   EXPECT_NEAR(c(1), 1.0, 1e-15);
   EXPECT_NEAR(c(2), 1.0 + std::cos(kPi / 6), 1e-15);
-  const PrescribedPairs p = function_pairs("log10", 1.0, 10.0, 0.0, 90 * kDeg, 10 * kDeg, 70 * kDeg, 4, Spacing::Uniform);
+  const PrescribedPairs p =
+      function_pairs("log10", 1.0, 10.0, 0.0, 90 * kDeg, 10 * kDeg, 70 * kDeg, 4, Spacing::Uniform);
   EXPECT_NEAR(p.delta_psi(0), 0.0, 1e-15);
   EXPECT_NEAR(p.delta_psi(3), 90 * kDeg, 1e-15);
   EXPECT_NEAR(p.delta_phi(0), 10 * kDeg, 1e-15);
@@ -297,8 +306,69 @@ TEST(PrescribedFunction, SpacingAndMapping) {
   EXPECT_NEAR(p.delta_phi(1), 10 * kDeg + std::log10(4.0) * 60 * kDeg, 1e-15);
   EXPECT_THROW(function_pairs("nope", 1, 2, 0, 1, 0, 1, 4, Spacing::Uniform), std::invalid_argument);
   EXPECT_THROW(function_pairs("log10", -1, 2, 0, 1, 0, 1, 4, Spacing::Uniform), std::invalid_argument);
-  EXPECT_THROW(function_pairs("cos", -1, 1, 0, 1, 0, 1, 4, Spacing::Uniform), std::invalid_argument);  // f(lo) == f(hi)
+  EXPECT_THROW(function_pairs("cos", -1, 1, 0, 1, 0, 1, 4, Spacing::Uniform),
+               std::invalid_argument);  // f(lo) == f(hi)
   EXPECT_THROW(spaced_points(1.0, 1.0, 3, Spacing::Uniform), std::invalid_argument);
+}
+
+// Regression (fuzz/regressions/linkage_pairs/crash-ff05885...): garbled pairs on which the error
+// keeps falling as k runs off to infinity. Gauss-Newton took the huge steps as "rounding-level"
+// tail steps and returned ||k|| ~ 1e137 as a success; now it is a divergence, with a message.
+TEST(Synthesis, ParametersRunningOffToInfinityAreADivergence) {
+  const PrescribedPairs pairs = parse_pairs(R"(# the crank-rocker's o
+37.5,76.079
+50,76.875
+62.5,80.606
+7,113.219
+150,118.013
+162.5,122.777
+175,926.318
+25,107.702
+137.5,113.219
+# the crank-rocker's o
+37.5,76.079
+50,76.875
+62.5,80.606
+7,113.219
+150,118.013
+162.5,122.777
+175,926.318
+25,107.702
+137.5,113.219
+150,118.013
+162.5,122.777
+175,926.318
+187.5,130.944
+200,132.507
+212.5,135.570
+21,5236.435
+237.5,8
+187.5,130.944
+200,132.508
+212.5,135.570
+21,5236.435
+237.5,136.872
+1250150,118.013
+162.5,122.777
+175,926.318
+187.5,130.944
+200,135236.435
+237.5,8
+187.5,130.944
+200,132.508
+212.5,135.570
+21,5236.435
+237.5,136.872
+12506,6.758
+262.5,135.732
+275,135.096
+287.5,130.926
+300,127.121
+)",
+                                            "crash.csv");
+  const SynthesisResult r = synthesize(pairs.delta_psi, pairs.delta_phi, VectorXd());
+  EXPECT_EQ(r.status, SynthesisStatus::Diverged) << r.structural.k.transpose();
+  EXPECT_NE(r.message.find("ran off"), std::string::npos) << r.message;
 }
 
 }  // namespace
