@@ -43,7 +43,8 @@ namespace {
 }
 
 // A .npy file, mapped whole and decoded a block at a time: the kernel reads ahead
-// (MADV_SEQUENTIAL) and the pages already decoded can be dropped, so memory stays O(block).
+// (MADV_SEQUENTIAL), and the pages of rows already decoded are dropped from the mapping (the page
+// cache keeps them), so that resident memory stays O(block) however long the file.
 class NpySource final : public RowReader::Source {
  public:
   NpySource(const std::string& path, int fd, std::size_t size, const ReadOptions& options)
@@ -64,11 +65,30 @@ class NpySource final : public RowReader::Source {
     detail::decode_npy_rows(layout_, map_ + layout_.data_offset, rows_read, count, rows);
     if (!options_.allow_nonfinite) detail::check_npy_finite(*rows, rows_read, path);
     rows_read += static_cast<std::uint64_t>(count);
+    drop_decoded_pages();
     return count;
   }
   Index columns() const override { return static_cast<Index>(layout_.cols); }
 
  private:
+  // The data are one run of rows (C order) or one run per column (Fortran order); in each, the
+  // pages wholly before the first row not yet decoded are dropped.
+  void drop_decoded_pages() {
+    static const std::size_t page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+    const bool fortran = layout_.fortran_order;
+    const std::uint64_t runs = fortran ? layout_.cols : 1;
+    const std::uint64_t run_values = fortran ? layout_.rows : layout_.rows * layout_.cols;
+    const std::uint64_t per_row = fortran ? 1 : layout_.cols;
+    for (std::uint64_t j = 0; j < runs; ++j) {
+      const std::size_t start = layout_.data_offset + 8 * j * run_values;
+      const std::size_t from = (start + 8 * dropped_rows_ * per_row) / page * page;
+      const std::size_t to = (start + 8 * rows_read * per_row) / page * page;
+      if (to > from) ::madvise(const_cast<char*>(map_) + from, to - from, MADV_DONTNEED);
+    }
+    dropped_rows_ = rows_read;
+  }
+
+  std::uint64_t dropped_rows_ = 0;
   const char* map_ = nullptr;
   std::size_t size_;
   ReadOptions options_;
