@@ -104,8 +104,19 @@ TriangularFactor stream_factor(const std::string& a_path, const std::string& b_p
       total = std::move(block);
     }
   };
+  const auto fewer_rows_than_columns = [&] {
+    return io::DataError(a_path, 0, 0,
+                         "A has " + std::to_string(reader.rows()) + " rows (samples) but " +
+                             std::to_string(reader.a().columns()) +
+                             " columns: at least as many samples as columns are needed");
+  };
   Block block;
   while (reader.next(&block)) {
+    // A short block is the last: refuse m < n before the O(n^2) factor of a hostile, very wide
+    // file is allocated.
+    if (block.A.rows() < options.block_rows && reader.rows() < static_cast<std::uint64_t>(block.A.cols())) {
+      throw fewer_rows_than_columns();
+    }
     if (threads == 1) {
       in_flight.push_back(std::async(
           std::launch::deferred, [b = std::move(block)] { return TriangularFactor::from_data(b.A, b.B); }));
@@ -118,13 +129,7 @@ TriangularFactor stream_factor(const std::string& a_path, const std::string& b_p
   }
   while (!in_flight.empty()) merge_oldest();
 
-  const std::uint64_t m = reader.rows();
-  const auto n = static_cast<std::uint64_t>(reader.a().columns());
-  if (m < n) {
-    throw io::DataError(a_path, 0, 0,
-                        "A has " + std::to_string(m) + " rows (samples) but " + std::to_string(n) +
-                            " columns: at least as many samples as columns are needed");
-  }
+  if (reader.rows() < static_cast<std::uint64_t>(reader.a().columns())) throw fewer_rows_than_columns();
   return std::move(*total);
 }
 

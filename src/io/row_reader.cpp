@@ -195,7 +195,7 @@ RowReader::RowReader(const std::string& path, const ReadOptions& options) {
     const int error = errno;
     ::close(fd);
     errno = error;
-    fail_errno(path, "cannot be read");
+    fail_errno(path, "read error");
   }
   if (got == 0) {
     ::close(fd);

@@ -42,6 +42,8 @@ def write(tmp_path, name, content):
 MATRIX_READERS = [
     ["fit", "--method", "spde", "FILE", GOOD_B],
     ["fit", "--method", "spde", GOOD_A, "FILE"],
+    ["fit", "--method", "spde", "--stream", "FILE", GOOD_B],
+    ["fit", "--method", "spde", "--stream", GOOD_A, "FILE"],
     ["compare", "--truth", "FILE", GOOD_A, GOOD_B],
     ["nearest", "FILE"],
     ["solve", "FILE", GOOD_B],
@@ -145,6 +147,7 @@ def test_millions_of_columns_then_a_ragged_row(rejects, tmp_path):
 
 MILLION_COLUMN_CASES = [
     (["fit", "--method", "spde", "FILE", "FILE"], "A has 1 rows (samples) but 4000000 columns"),
+    (["fit", "--method", "spde", "--stream", "FILE", "FILE"], "A has 1 rows (samples) but 4000000 columns"),
     (["nearest", "FILE"], "4000000"),
     (["solve", "FILE", "B"], "A has 4000000 columns: solve supports at most 4096 unknowns"),
     (["linkage", "synthesize", "--pairs", "FILE"], "the pairs file has 4000000 columns"),
