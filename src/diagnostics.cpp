@@ -23,11 +23,16 @@ constexpr double kIllConditionedRcond = 1e-12;
 // rounding error of a symmetric eigensolver.
 constexpr double kSemidefiniteSlack = 4.0;
 
-void fill_data_diagnostics(const Reduction& data, Diagnostics& d, std::vector<std::string>& warnings) {
+// The data's size and ranks: reported with or without the other diagnostics.
+void fill_shape_and_ranks(const Reduction& data, Diagnostics& d) {
   d.m = data.m;
   d.n = data.n;
   d.rank_a = data.rank_a;
   d.rank_b = data.rank_b;
+}
+
+void fill_data_diagnostics(const Reduction& data, Diagnostics& d, std::vector<std::string>& warnings) {
+  fill_shape_and_ranks(data, d);
   d.singular_values_a = times_power_of_two(data.s_a, data.exponent_a);
   d.singular_values_b = times_power_of_two(data.s_b, data.exponent_b);
   d.cond_a = condition_number(data.s_a);
@@ -97,10 +102,7 @@ FitResult finish(Method method, const Reduction& data, const MatrixXd& X_s, Diag
   const int ea = data.exponent_a;
   const int eb = data.exponent_b;
   if (!data.options.diagnostics) {
-    d.m = data.m;
-    d.n = data.n;
-    d.rank_a = data.rank_a;
-    d.rank_b = data.rank_b;
+    fill_shape_and_ranks(data, d);
     return checked(method, times_power_of_two(X_s, eb - ea), std::move(d), std::move(warnings));
   }
   fill_data_diagnostics(data, d, warnings);

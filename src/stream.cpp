@@ -1,14 +1,13 @@
 #include "spdfit/stream.hpp"
 
-#include <algorithm>
 #include <deque>
 #include <future>
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <utility>
 
+#include "spdfit/experiment/monte_carlo.hpp"  // resolve_threads
 #include "spdfit/row_reader.hpp"
 
 namespace spdfit {
@@ -17,11 +16,6 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 
 namespace {
-
-unsigned resolve_threads(unsigned requested) {
-  if (requested > 0) return requested;
-  return std::max(1u, std::thread::hardware_concurrency());
-}
 
 std::string rows_text(std::uint64_t rows) { return std::to_string(rows) + (rows == 1 ? " row" : " rows"); }
 
@@ -88,7 +82,7 @@ class PairReader {
 TriangularFactor stream_factor(const std::string& a_path, const std::string& b_path,
                                const StreamOptions& options) {
   if (options.block_rows < 1) throw std::invalid_argument("block_rows must be at least 1");
-  const unsigned threads = resolve_threads(options.threads);
+  const unsigned threads = experiment::resolve_threads(options.threads);
   PairReader reader(a_path, b_path, options, threads > 1);
 
   // Blocks' factors are computed on up to `threads` threads while the next blocks are read, and
@@ -117,13 +111,10 @@ TriangularFactor stream_factor(const std::string& a_path, const std::string& b_p
     if (block.A.rows() < options.block_rows && reader.rows() < static_cast<std::uint64_t>(block.A.cols())) {
       throw fewer_rows_than_columns();
     }
-    if (threads == 1) {
-      in_flight.push_back(std::async(
-          std::launch::deferred, [b = std::move(block)] { return TriangularFactor::from_data(b.A, b.B); }));
-    } else {
-      in_flight.push_back(std::async(
-          std::launch::async, [b = std::move(block)] { return TriangularFactor::from_data(b.A, b.B); }));
-    }
+    // One thread: computed on this one when merged (deferred).
+    const std::launch policy = threads == 1 ? std::launch::deferred : std::launch::async;
+    in_flight.push_back(
+        std::async(policy, [b = std::move(block)] { return TriangularFactor::from_data(b.A, b.B); }));
     block = Block{};
     if (in_flight.size() >= threads) merge_oldest();
   }

@@ -12,8 +12,8 @@ namespace spdfit {
 
 /// Options for stream_factor.
 struct StreamOptions {
-  /// Rows per block. The result depends on it only through rounding (about 1e-15 relative in
-  /// R); memory is O(block_rows n) per block in flight.
+  /// Rows per block. The result depends on it only through rounding; memory is
+  /// O(block_rows n) per block in flight.
   Eigen::Index block_rows = Eigen::Index{1} << 15;
   /// Threads: 0 means one per core. A and B are read side by side and the blocks' factors are
   /// computed on up to this many threads; the result does not depend on the number.

@@ -23,8 +23,7 @@ bool is_blank(char c) { return c == ' ' || c == '\t'; }
 namespace detail {
 
 void DelimitedParser::feed(std::string_view text) {
-  const bool first_piece = !any_piece_;
-  any_piece_ = true;
+  const bool first_piece = bytes_fed_ == 0;
   piece_offset_ = bytes_fed_;
   bytes_fed_ += text.size();
   if (first_piece && text.substr(0, kUtf8Bom.size()) == kUtf8Bom) {

@@ -65,7 +65,6 @@ class DelimitedParser {
   std::size_t line_number_ = 0;
   std::size_t bytes_fed_ = 0;     // bytes of all pieces so far
   std::size_t piece_offset_ = 0;  // where text_ starts in the input
-  bool any_piece_ = false;
   bool any_text_ = false;
 
   Separator separator_ = Separator::kNone;

@@ -146,10 +146,8 @@ class TextSource final : public RowReader::Source {
     const std::size_t got = std::fread(buffer_.data() + kept, 1, RowReader::kTextPieceBytes, file_);
     buffer_.resize(kept + got);
     if (std::ferror(file_)) fail_errno(path, "read error");
-    if (got < RowReader::kTextPieceBytes) {
-      if (bytes_ + buffer_.size() == 0) throw DataError(path, 0, 0, "file is empty");
+    if (got < RowReader::kTextPieceBytes) {  // the end: the rest is the last line(s)
       parser_.feed(buffer_);
-      bytes_ += buffer_.size();
       buffer_.clear();
       at_end_ = true;
       return;
@@ -159,8 +157,7 @@ class TextSource final : public RowReader::Source {
     std::size_t cut = buffer_.size() - (buffer_.back() == '\r' ? 1 : 0);
     const std::size_t floor = kept > 0 ? kept - 1 : 0;
     while (cut > floor && !line_end(buffer_[cut - 1])) --cut;
-    if (cut == floor) cut = 0;
-    if (cut == 0) {
+    if (cut == floor) {
       // No line end yet: the line goes on into the next piece.
       if (buffer_.size() > RowReader::kMaxLineBytes) {
         throw DataError(path, parser_.lines() + 1, 0,
@@ -170,15 +167,13 @@ class TextSource final : public RowReader::Source {
       return;
     }
     parser_.feed(std::string_view(buffer_.data(), cut));
-    bytes_ += cut;
     buffer_.erase(0, cut);
   }
 
   std::FILE* file_;
   detail::DelimitedParser parser_;
-  std::string buffer_;       // bytes read but not yet parsed (an incomplete last line)
-  std::uint64_t bytes_ = 0;  // bytes parsed so far
-  std::size_t taken_ = 0;    // rows at the front of parser_.values() already handed out
+  std::string buffer_;     // bytes read but not yet parsed (an incomplete last line)
+  std::size_t taken_ = 0;  // rows at the front of parser_.values() already handed out
   bool at_end_ = false;
 };
 

@@ -21,7 +21,10 @@ class ScratchDirectory : public testing::Test {
     std::filesystem::create_directories(dir_);
   }
   void TearDown() override {
+    // A test may have taken the directory's permissions away (unreadable-file tests).
     std::error_code ignored;
+    std::filesystem::permissions(dir_, std::filesystem::perms::owner_all, std::filesystem::perm_options::add,
+                                 ignored);
     std::filesystem::remove_all(dir_, ignored);
   }
 

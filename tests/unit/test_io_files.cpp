@@ -15,6 +15,7 @@
 #include <string>
 #include <thread>
 
+#include "file_test_support.hpp"
 #include "spdfit/io.hpp"
 
 namespace {
@@ -26,32 +27,7 @@ using spdfit::io::read_matrix;
 using spdfit::io::read_table;
 using spdfit::io::Table;
 
-// A fresh directory under the test temp dir, removed afterwards.
-class IoFiles : public testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(testing::TempDir()) /
-           (std::string("spdfit_io_") + info->name() + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::permissions(dir_, fs::perms::owner_all, fs::perm_options::add, ignored);
-    fs::remove_all(dir_, ignored);
-  }
-
-  std::string Path(const std::string& name) const { return (dir_ / name).string(); }
-
-  std::string Write(const std::string& name, const std::string& bytes) const {
-    const std::string path = Path(name);
-    std::ofstream(path, std::ios::binary) << bytes;
-    return path;
-  }
-
-  fs::path dir_;
-};
+class IoFiles : public spdfit::test::ScratchDirectory {};
 
 DataError ReadError(const std::string& path) {
   try {
