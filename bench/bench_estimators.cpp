@@ -13,6 +13,7 @@
 
 #include <random>
 
+#include "spdfit/experiment/monte_carlo.hpp"
 #include "spdfit/fit.hpp"
 
 namespace {
@@ -50,6 +51,18 @@ void BM_Fit(benchmark::State& state, spdfit::Method method) {
   }
 }
 
+// One method's X alone, as the Monte Carlo experiments compute it (experiment::estimate: no
+// diagnostics; n <= 8 on stack matrices with no heap allocation per call).
+void BM_Estimate(benchmark::State& state, spdfit::Method method) {
+  const Data data = make_data(state.range(0), state.range(1));
+  const std::vector<spdfit::Method> methods = {method};
+  std::vector<MatrixXd> X;
+  for (auto _ : state) {
+    spdfit::experiment::estimate(data.A, data.B, methods, X);
+    benchmark::DoNotOptimize(X[0].data());
+  }
+}
+
 void BM_Factor(benchmark::State& state) {
   const Data data = make_data(state.range(0), state.range(1));
   for (auto _ : state) {
@@ -84,6 +97,16 @@ BENCHMARK_CAPTURE(BM_Fit, tls, spdfit::Method::TotalLeastSquares)->Apply(sizes);
 BENCHMARK_CAPTURE(BM_Fit, tls_sym, spdfit::Method::TotalLeastSquaresSymmetric)->Apply(sizes);
 BENCHMARK_CAPTURE(BM_Fit, tls_psd, spdfit::Method::TotalLeastSquaresPsd)->Apply(sizes);
 BENCHMARK_CAPTURE(BM_Fit, spde, spdfit::Method::Spde)->Apply(sizes);
+
+// The small sizes only: above n = 8 estimate() is fit() without the diagnostics.
+void small_sizes(benchmark::internal::Benchmark* b) {
+  b->Args({4, 2})->Args({12, 6})->Args({24, 12});
+  b->Unit(benchmark::kMicrosecond);
+}
+BENCHMARK_CAPTURE(BM_Estimate, ls, spdfit::Method::LeastSquares)->Apply(small_sizes);
+BENCHMARK_CAPTURE(BM_Estimate, procrustes, spdfit::Method::SymmetricProcrustes)->Apply(small_sizes);
+BENCHMARK_CAPTURE(BM_Estimate, tls, spdfit::Method::TotalLeastSquares)->Apply(small_sizes);
+BENCHMARK_CAPTURE(BM_Estimate, spde, spdfit::Method::Spde)->Apply(small_sizes);
 
 }  // namespace
 

@@ -1,9 +1,20 @@
 // Internal dense linear-algebra helpers shared by the estimators. Every decomposition the
 // library uses goes through here, so that a faster backend is swapped in at one place.
+//
+// The helpers are templates over the Eigen matrix type, so that the same arithmetic runs on
+// dynamic matrices (MatrixXd, any size) and on the bounded-size matrices of the small-problem
+// path (small_problem.hpp), whose storage is on the stack: no heap allocation per estimate.
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/QR>
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <optional>
+
+#include "one_sided_jacobi.hpp"
 
 namespace spdfit::detail {
 
@@ -11,14 +22,72 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
-/// A thin SVD A = U diag(s) V^T, s descending.
-struct Svd {
-  MatrixXd U, V;
-  VectorXd s;
+/// A thin SVD A = U diag(s) V^T, s descending, in matrices of type Matrix.
+template <typename Matrix>
+struct BasicSvd {
+  using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, Matrix::MaxColsAtCompileTime, 1>;
+  Matrix U, V;
+  Vector s;
 };
+using Svd = BasicSvd<MatrixXd>;
 
-/// The SVD of a square or tall matrix: one-sided Jacobi (accurate small singular vectors, see
-/// one_sided_jacobi.hpp) up to 64 columns, divide and conquer above.
+namespace svd_detail {
+// Up to this size the one-sided Jacobi SVD (accurate for the small singular values the
+// estimators depend on, see one_sided_jacobi.hpp) is used; above it divide and conquer, which
+// is much faster for large n.
+constexpr Index kJacobiMaxSize = 64;
+}  // namespace svd_detail
+
+/// The SVD of a square or tall A into `out`: one-sided Jacobi (accurate small singular vectors,
+/// see one_sided_jacobi.hpp) up to 64 columns, divide and conquer above (dynamic matrices
+/// only). U is left untouched unless compute_u, V unless compute_v.
+template <typename Matrix, typename Derived>
+void svd_into(const Eigen::MatrixBase<Derived>& A, BasicSvd<Matrix>& out, bool compute_u = true,
+              bool compute_v = true) {
+  const Index n = A.cols();
+  if constexpr (Matrix::MaxColsAtCompileTime == Eigen::Dynamic) {
+    if (n > svd_detail::kJacobiMaxSize || A.rows() < n) {
+      unsigned options = 0;
+      if (compute_u) options |= Eigen::ComputeThinU;
+      if (compute_v) options |= Eigen::ComputeThinV;
+      Eigen::BDCSVD<MatrixXd> dec(A, options);
+      out.s = dec.singularValues();
+      if (compute_u) out.U = dec.matrixU();
+      if (compute_v) out.V = dec.matrixV();
+      return;
+    }
+  }
+  Matrix G = A;
+  Matrix V;
+  one_sided_jacobi(G, compute_v ? &V : static_cast<Matrix*>(nullptr));
+  using Vector = typename BasicSvd<Matrix>::Vector;
+  const Vector norms = G.colwise().norm().transpose();
+  // Sort descending, ties in column order: the order every caller (ranks, TLS's trailing
+  // vectors) relies on. Insertion sort: stable, no allocation, and n is at most 64 here.
+  Eigen::Matrix<Index, Eigen::Dynamic, 1, Eigen::ColMajor, Matrix::MaxColsAtCompileTime, 1> order(n);
+  for (Index k = 0; k < n; ++k) {
+    Index i = k;
+    for (; i > 0 && norms(order(i - 1)) < norms(k); --i) order(i) = order(i - 1);
+    order(i) = k;
+  }
+  out.s.resize(n);
+  if (compute_u) out.U.resize(A.rows(), n);
+  if (compute_v) out.V.resize(n, n);
+  for (Index k = 0; k < n; ++k) {
+    const Index j = order(k);
+    out.s(k) = norms(j);
+    if (compute_u) {
+      // A zero singular value has no defined left vector; zero is what the callers expect.
+      if (norms(j) > 0.0)
+        out.U.col(k) = G.col(j) / norms(j);
+      else
+        out.U.col(k).setZero();
+    }
+    if (compute_v) out.V.col(k) = V.col(j);
+  }
+}
+
+/// The SVD of a square or tall matrix (see svd_into).
 Svd svd(const Eigen::Ref<const MatrixXd>& A, bool compute_u = true, bool compute_v = true);
 
 /// The singular values only, descending.
@@ -30,21 +99,88 @@ Index numerical_rank(const Eigen::Ref<const VectorXd>& s, double cutoff);
 /// sigma_max / sigma_min; +inf when sigma_min == 0 (including the zero matrix).
 double condition_number(const Eigen::Ref<const VectorXd>& s);
 
+/// Householder QR in place for bounded-size matrices (at most a few dozen rows and columns),
+/// column by column as Eigen's unblocked HouseholderQR (the same reflectors, LAPACK's dgeqr2),
+/// in plain loops over contiguous columns: at these sizes Eigen's general kernels spend most of
+/// their time on call overhead. On return the upper triangle of W holds R.
+template <typename Work>
+void small_householder_qr(Work& W) {
+  static_assert(Work::MaxColsAtCompileTime != Eigen::Dynamic && !(Work::Flags & Eigen::RowMajorBit),
+                "for bounded-size column-major matrices");
+  const Index m = W.rows(), k = W.cols();
+  const Index steps = std::min(m, k);
+  for (Index j = 0; j < steps; ++j) {
+    double* x = W.col(j).data() + j;  // the column below the diagonal, x[0] on it
+    const Index len = m - j;
+    double tail = 0.0;
+    for (Index i = 1; i < len; ++i) tail += x[i] * x[i];
+    if (!(tail > std::numeric_limits<double>::min())) continue;  // already triangular here: H = I
+    const double c0 = x[0];
+    double beta = std::sqrt(c0 * c0 + tail);
+    if (c0 >= 0.0) beta = -beta;
+    const double scale = 1.0 / (c0 - beta);
+    for (Index i = 1; i < len; ++i) x[i] *= scale;  // the essential part of v = [1; x(1:)]
+    const double tau = (beta - c0) / beta;
+    x[0] = beta;
+    for (Index c = j + 1; c < k; ++c) {
+      double* y = W.col(c).data() + j;
+      double w = y[0];
+      for (Index i = 1; i < len; ++i) w += x[i] * y[i];
+      w *= tau;
+      y[0] -= w;
+      for (Index i = 1; i < len; ++i) y[i] -= w * x[i];
+    }
+  }
+}
+
+/// The upper triangular factor R (cols x cols, zero-padded when rows < cols) of the
+/// Householder QR of A, written into R. Work is the plain matrix type the QR runs in: bounded
+/// sizes use small_householder_qr, dynamic ones Eigen's blocked HouseholderQR.
+template <typename Work, typename Derived, typename Result>
+void triangular_factor_into(const Eigen::MatrixBase<Derived>& A, Result& R) {
+  const Index cols = A.cols();
+  R.setZero(cols, cols);
+  if (A.rows() == 0) return;
+  const Index k = std::min(A.rows(), cols);
+  if constexpr (Work::MaxColsAtCompileTime == Eigen::Dynamic) {
+    const Eigen::HouseholderQR<Work> qr(A);
+    R.topRows(k) = qr.matrixQR().topRows(k).template triangularView<Eigen::Upper>();
+  } else {
+    Work W = A;
+    small_householder_qr(W);
+    R.topRows(k) = W.topRows(k).template triangularView<Eigen::Upper>();
+  }
+}
+
 /// The upper triangular factor R (cols x cols, zero-padded when rows < cols) of the
 /// Householder QR of A.
 MatrixXd triangular_factor(const Eigen::Ref<const MatrixXd>& A);
 
 /// Copies the lower triangle onto the upper one, making the matrix exactly symmetric.
-void make_symmetric_from_lower(MatrixXd& X);
+template <typename Derived>
+void make_symmetric_from_lower(Eigen::MatrixBase<Derived>& X) {
+  X.template triangularView<Eigen::StrictlyUpper>() = X.transpose();
+}
 
 /// (X + X^T) / 2 without overflow for entries near the double range.
-MatrixXd symmetric_part(const Eigen::Ref<const MatrixXd>& X);
+template <typename Derived>
+typename Derived::PlainObject symmetric_part(const Eigen::MatrixBase<Derived>& X) {
+  // Halving first keeps entries near the double range finite; addition commutes, so the
+  // result is exactly symmetric.
+  return 0.5 * X + 0.5 * X.transpose();
+}
 
 /// The smallest power-of-two exponent e with |x| < 2^e for every entry (nothing for a zero or
 /// empty matrix), so that scaling by 2^-e is exact and leaves every entry below 1 in magnitude.
 std::optional<int> scale_exponent(const Eigen::Ref<const MatrixXd>& X);
 
 /// X * 2^e, exactly (bar overflow and underflow of the results), for any e.
-MatrixXd times_power_of_two(const Eigen::Ref<const MatrixXd>& X, int e);
+template <typename Derived>
+typename Derived::PlainObject times_power_of_two(const Eigen::MatrixBase<Derived>& X, int e) {
+  // 2^e is itself a normal double for |e| <= 1022; beyond that (denormal data, say) scale each
+  // entry with ldexp so the factor never overflows or underflows on its own.
+  if (e >= -1022 && e <= 1022) return X * std::ldexp(1.0, e);
+  return X.unaryExpr([e](double x) { return std::ldexp(x, e); });
+}
 
 }  // namespace spdfit::detail

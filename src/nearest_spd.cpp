@@ -5,12 +5,52 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "kernels.hpp"
 #include "linalg.hpp"
 
 namespace spdfit {
 
 using Eigen::Index;
 using Eigen::MatrixXd;
+
+namespace detail {
+
+template <int MaxN>
+Index nearest_spd_kernel(const SquareMatrix<MaxN>& x, double floor, SquareMatrix<MaxN>& y, double& min_before) {
+  using Matrix = SquareMatrix<MaxN>;
+  // Higham 1988: the nearest symmetric matrix is S = (X + X^T)/2, and the nearest one with
+  // eigenvalues >= min_eig clips the eigenvalues of S = W diag(lambda) W^T. For min_eig = 0 this
+  // is (S + H)/2 with H the symmetric polar factor of S (thesis eq. 4.39).
+  const Matrix S = symmetric_part(x);
+  Eigen::SelfAdjointEigenSolver<Matrix> eig(S);
+  if (eig.info() != Eigen::Success) return -1;
+  typename BasicReduction<MaxN>::Vector lambda = eig.eigenvalues();
+  min_before = lambda(0);
+  Index clipped = 0;
+  for (Index i = 0; i < lambda.size(); ++i) {
+    if (lambda(i) < floor) {
+      lambda(i) = floor;
+      ++clipped;
+    }
+  }
+  if (clipped == 0) {
+    y = S;  // already admissible: no rounding from re-assembly
+    return 0;
+  }
+  const Matrix& W = eig.eigenvectors();
+  y.setZero(S.rows(), S.cols());
+  // Lower triangle of W diag(lambda) W^T, mirrored: exactly symmetric.
+  y.template triangularView<Eigen::Lower>() = W * lambda.asDiagonal() * W.transpose();
+  make_symmetric_from_lower(y);
+  return clipped;
+}
+
+#define SPDFIT_INSTANTIATE(MaxN) \
+  template Index nearest_spd_kernel<MaxN>(const SquareMatrix<MaxN>&, double, SquareMatrix<MaxN>&, double&);
+SPDFIT_FOR_EACH_MAX_N(SPDFIT_INSTANTIATE)
+#undef SPDFIT_INSTANTIATE
+
+}  // namespace detail
 
 NearestSpdResult nearest_spd(const Eigen::Ref<const MatrixXd>& X, double min_eig) {
   if (X.rows() != X.cols() || X.size() == 0) {
@@ -29,33 +69,12 @@ NearestSpdResult nearest_spd(const Eigen::Ref<const MatrixXd>& X, double min_eig
   const MatrixXd x = detail::times_power_of_two(X, -e);
   const double floor = std::ldexp(min_eig, -e);
 
-  // Higham 1988: the nearest symmetric matrix is S = (X + X^T)/2, and the nearest one with
-  // eigenvalues >= min_eig clips the eigenvalues of S = W diag(lambda) W^T. For min_eig = 0 this
-  // is (S + H)/2 with H the symmetric polar factor of S (thesis eq. 4.39).
-  const MatrixXd S = detail::symmetric_part(x);
-  Eigen::SelfAdjointEigenSolver<MatrixXd> eig(S);
-  if (eig.info() != Eigen::Success) {
-    throw std::runtime_error("nearest_spd: the symmetric eigensolver did not converge");
-  }
-  Eigen::VectorXd lambda = eig.eigenvalues();
   NearestSpdResult out;
-  out.min_eigenvalue_before = std::ldexp(lambda(0), e);
-  for (Index i = 0; i < lambda.size(); ++i) {
-    if (lambda(i) < floor) {
-      lambda(i) = floor;
-      ++out.clipped;
-    }
-  }
   MatrixXd y;
-  if (out.clipped == 0) {
-    y = S;  // already admissible: no rounding from re-assembly
-  } else {
-    const MatrixXd& W = eig.eigenvectors();
-    y = MatrixXd::Zero(S.rows(), S.cols());
-    // Lower triangle of W diag(lambda) W^T, mirrored: exactly symmetric.
-    y.triangularView<Eigen::Lower>() = W * lambda.asDiagonal() * W.transpose();
-    detail::make_symmetric_from_lower(y);
-  }
+  const Index clipped = detail::nearest_spd_kernel<Eigen::Dynamic>(x, floor, y, out.min_eigenvalue_before);
+  if (clipped < 0) throw std::runtime_error("nearest_spd: the symmetric eigensolver did not converge");
+  out.clipped = clipped;
+  out.min_eigenvalue_before = std::ldexp(out.min_eigenvalue_before, e);
   out.distance = std::ldexp((x - y).stableNorm(), e);
   out.X = detail::times_power_of_two(y, e);
   if (!out.X.allFinite()) {

@@ -2,44 +2,66 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
+#include "kernels.hpp"
 #include "linalg.hpp"
 
 namespace spdfit {
+
+namespace detail {
+
+template <int MaxN>
+void reduce_into(const typename BasicReduction<MaxN>::Factor& R, Eigen::Index m, int exponent_a,
+                 int exponent_b, BasicReduction<MaxN>& out) {
+  using Matrix = typename BasicReduction<MaxN>::Matrix;
+  const Eigen::Index n = R.cols() / 2;
+  out.m = m;
+  out.n = n;
+  out.exponent_a = exponent_a;
+  out.exponent_b = exponent_b;
+  out.R11 = R.topLeftCorner(n, n);
+  out.R12 = R.topRightCorner(n, n);
+  out.R22 = R.bottomRightCorner(n, n);
+
+  // A = Q1 R11, so A and R11 share their singular values and right singular vectors.
+  BasicSvd<Matrix> a;
+  svd_into(out.R11, a);
+  out.U_a = std::move(a.U);
+  out.V_a = std::move(a.V);
+  out.s_a = std::move(a.s);
+
+  // B = Q [R12; R22]: its triangular factor R_b has B^T B = R_b^T R_b without forming B^T B.
+  using Stacked = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor,
+                                BasicReduction<MaxN>::kMaxFactor, MaxN>;
+  triangular_factor_into<Stacked>(R.rightCols(n), out.R_b);
+  BasicSvd<Matrix> b;
+  svd_into(out.R_b, b, false, false);
+  out.s_b = std::move(b.s);
+
+  const double cutoff = out.options.rank_cutoff(m, n);
+  out.rank_a = numerical_rank(out.s_a, cutoff);
+  out.rank_b = numerical_rank(out.s_b, cutoff);
+}
+
+#define SPDFIT_INSTANTIATE(MaxN)                                                                  \
+  template void reduce_into<MaxN>(const typename BasicReduction<MaxN>::Factor&, Eigen::Index, int, int, \
+                                  BasicReduction<MaxN>&);
+SPDFIT_FOR_EACH_MAX_N(SPDFIT_INSTANTIATE)
+#undef SPDFIT_INSTANTIATE
+
+}  // namespace detail
 
 Reduction reduce(const TriangularFactor& factor, const FitOptions& options) {
   std::string error;
   if (!options.is_valid(&error)) throw std::invalid_argument(error);
   const Eigen::Index n = factor.n();
   if (factor.rows() < n) {
-    throw std::invalid_argument("the data has " + std::to_string(factor.rows()) + " rows but " +
-                                std::to_string(n) + " columns: at least as many rows as columns are needed");
+    throw std::invalid_argument(detail::too_few_rows(factor.rows(), n));
   }
   Reduction r;
-  r.m = factor.rows();
-  r.n = n;
-  r.exponent_a = factor.exponent_a();
-  r.exponent_b = factor.exponent_b();
-  r.R11 = factor.R11();
-  r.R12 = factor.R12();
-  r.R22 = factor.R22();
   r.options = options;
-
-  // A = Q1 R11, so A and R11 share their singular values and right singular vectors.
-  detail::Svd a = detail::svd(r.R11);
-  r.U_a = std::move(a.U);
-  r.V_a = std::move(a.V);
-  r.s_a = std::move(a.s);
-
-  // B = Q [R12; R22]: its triangular factor R_b has B^T B = R_b^T R_b without forming B^T B.
-  Eigen::MatrixXd stacked(2 * n, n);
-  stacked << r.R12, r.R22;
-  r.R_b = detail::triangular_factor(stacked);
-  r.s_b = detail::singular_values(r.R_b);
-
-  const double cutoff = options.rank_cutoff(r.m, n);
-  r.rank_a = detail::numerical_rank(r.s_a, cutoff);
-  r.rank_b = detail::numerical_rank(r.s_b, cutoff);
+  detail::reduce_into(factor.R(), factor.rows(), factor.exponent_a(), factor.exponent_b(), r);
   return r;
 }
 

@@ -3,13 +3,50 @@
 #include <cmath>
 
 #include "diagnostics.hpp"
+#include "kernels.hpp"
 #include "linalg.hpp"
 
 namespace spdfit {
 
 using Eigen::Index;
 using Eigen::MatrixXd;
-using Eigen::VectorXd;
+
+namespace detail {
+
+template <int MaxN>
+double spde_kernel(const BasicReduction<MaxN>& data, SquareMatrix<MaxN>& X_s) {
+  using Matrix = SquareMatrix<MaxN>;
+  const Index n = data.n;
+  // X P X = Q with P = R11^T R11 and Q = R_b^T R_b. With Z = R11 X R11^T this reads
+  // Z^2 = R11 Q R11^T = M^T M for M = R_b R11^T, so Z is the symmetric polar factor
+  // H = V_M S V_M^T of M (the unique SPD square root; Chen & McInroy eq. 15) and
+  // X = R11^-1 H R11^-T = L L^T with L = R11^-1 V_M S^(1/2). Working with the triangular
+  // factors instead of P and Q keeps the error at about cond(A) eps instead of cond(A)^2 eps.
+  const Matrix M = data.R_b * data.R11.transpose();
+  BasicSvd<Matrix> polar;
+  svd_into(M, polar, false, true);
+
+  // Corollary III.7: B of rank r < n gives the semidefinite minimizer of rank r. M has the rank
+  // of B (R11 is invertible); its trailing singular values are rounding noise: drop them.
+  const Index r = data.rank_b;
+  X_s.setZero(n, n);
+  // B = 0 (r = 0): the minimizer is X = 0. Eigen's triangular solve takes the address of the
+  // first entry of its right-hand side, which an n x 0 matrix does not have.
+  if (r > 0) {
+    Matrix L = polar.V.leftCols(r) * polar.s.head(r).cwiseSqrt().asDiagonal();
+    data.R11.template triangularView<Eigen::Upper>().solveInPlace(L);
+    X_s.template selfadjointView<Eigen::Lower>().rankUpdate(L);
+    make_symmetric_from_lower(X_s);
+  }
+  return polar.s.head(r).sum();
+}
+
+#define SPDFIT_INSTANTIATE(MaxN) \
+  template double spde_kernel<MaxN>(const BasicReduction<MaxN>&, SquareMatrix<MaxN>&);
+SPDFIT_FOR_EACH_MAX_N(SPDFIT_INSTANTIATE)
+#undef SPDFIT_INSTANTIATE
+
+}  // namespace detail
 
 FitResult spde(const Reduction& data) {
   const Index n = data.n;
@@ -21,42 +58,20 @@ FitResult spde(const Reduction& data) {
                                "collect data that excites every direction of A");
   }
   std::vector<std::string> warnings;
-
-  // X P X = Q with P = R11^T R11 and Q = R_b^T R_b. With Z = R11 X R11^T this reads
-  // Z^2 = R11 Q R11^T = M^T M for M = R_b R11^T, so Z is the symmetric polar factor
-  // H = V_M S V_M^T of M (the unique SPD square root; Chen & McInroy eq. 15) and
-  // X = R11^-1 H R11^-T = L L^T with L = R11^-1 V_M S^(1/2). Working with the triangular
-  // factors instead of P and Q keeps the error at about cond(A) eps instead of cond(A)^2 eps.
-  const MatrixXd M = data.R_b * data.R11.transpose();
-  const detail::Svd polar = detail::svd(M, false, true);
-  VectorXd s = polar.s;
-
-  Index r = n;
-  if (data.rank_b < n) {
-    // Corollary III.7: B of rank r gives the semidefinite minimizer of rank r. M has the rank
-    // of B (R11 is invertible); its trailing singular values are rounding noise: drop them.
-    r = data.rank_b;
-    s.tail(n - r).setZero();
+  MatrixXd X_s;
+  const double polar_sum = detail::spde_kernel(data, X_s);
+  const Index r = data.rank_b;
+  if (r < n) {
     warnings.push_back("B is rank-deficient (rank " + std::to_string(r) + " < n = " + std::to_string(n) +
                        "): returning the positive semidefinite minimizer of rank " + std::to_string(r) +
                        " (Chen & McInroy, Corollary III.7)");
-  }
-
-  MatrixXd X_s = MatrixXd::Zero(n, n);
-  // B = 0 (r = 0): the minimizer is X = 0. Eigen's triangular solve takes the address of the
-  // first entry of its right-hand side, which an n x 0 matrix does not have.
-  if (r > 0) {
-    const MatrixXd V_root = polar.V.leftCols(r) * s.head(r).cwiseSqrt().asDiagonal();
-    const MatrixXd L = data.R11.triangularView<Eigen::Upper>().solve(V_root);
-    X_s.selfadjointView<Eigen::Lower>().rankUpdate(L);
-    detail::make_symmetric_from_lower(X_s);
   }
 
   // Corollary III.4: min f = 2 tr(Sigma_Q~ - A^T B); tr(Sigma_Q~) is the sum of the singular
   // values of M (Q~ and M^T M are similar).
   Diagnostics d;
   const double cross = (data.R11.transpose() * data.R12).trace();
-  d.area_criterion_minimum = std::ldexp(2.0 * (s.sum() - cross), data.exponent_a + data.exponent_b);
+  d.area_criterion_minimum = std::ldexp(2.0 * (polar_sum - cross), data.exponent_a + data.exponent_b);
 
   FitResult result = detail::finish(Method::Spde, data, X_s, std::move(d), std::move(warnings));
   if (result.ok() && r == n && data.options.diagnostics && !result.diagnostics.positive_definite) {

@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "diagnostics.hpp"
+#include "kernels.hpp"
 #include "linalg.hpp"
 
 namespace spdfit {
@@ -10,29 +11,46 @@ namespace spdfit {
 using Eigen::Index;
 using Eigen::MatrixXd;
 
-FitResult symmetric_procrustes(const Reduction& data) {
+namespace detail {
+
+template <int MaxN>
+void procrustes_kernel(const BasicReduction<MaxN>& data, SquareMatrix<MaxN>& X_s) {
+  using Matrix = SquareMatrix<MaxN>;
   const Index n = data.n;
   const Index r = data.rank_a;
-  std::vector<std::string> warnings;
-
   // With R11 = U S V^T, ||R11 X - R12||_F = ||S Xt - C||_F for Xt = V^T X V and C = U^T R12 V.
   // Minimizing over symmetric Xt entry pair by entry pair gives Higham's closed form, the
   // solution of the normal equation (thesis eq. 3.15) without forming A^T A. Singular values
   // under the rank cut-off are edited to zero; entries with both zero are free, and zero is
   // their minimum-norm choice.
-  const MatrixXd C = data.U_a.transpose() * data.R12 * data.V_a;
-  Eigen::VectorXd s = data.s_a;
+  const Matrix C = data.U_a.transpose() * data.R12 * data.V_a;
+  typename BasicReduction<MaxN>::Vector s = data.s_a;
   s.tail(n - r).setZero();
-  MatrixXd Xt(n, n);
+  Matrix Xt(n, n);
   for (Index j = 0; j < n; ++j) {
     for (Index i = j; i < n; ++i) {
       const double denominator = s(i) * s(i) + s(j) * s(j);
       Xt(i, j) = denominator > 0.0 ? (s(i) * C(i, j) + s(j) * C(j, i)) / denominator : 0.0;
     }
   }
-  detail::make_symmetric_from_lower(Xt);
-  MatrixXd X_s = data.V_a * Xt * data.V_a.transpose();
-  X_s = detail::symmetric_part(X_s);
+  make_symmetric_from_lower(Xt);
+  const Matrix X = data.V_a * Xt * data.V_a.transpose();
+  X_s = symmetric_part(X);
+}
+
+#define SPDFIT_INSTANTIATE(MaxN) \
+  template void procrustes_kernel<MaxN>(const BasicReduction<MaxN>&, SquareMatrix<MaxN>&);
+SPDFIT_FOR_EACH_MAX_N(SPDFIT_INSTANTIATE)
+#undef SPDFIT_INSTANTIATE
+
+}  // namespace detail
+
+FitResult symmetric_procrustes(const Reduction& data) {
+  const Index n = data.n;
+  const Index r = data.rank_a;
+  std::vector<std::string> warnings;
+  MatrixXd X_s;
+  detail::procrustes_kernel(data, X_s);
 
   if (r < n) {
     warnings.push_back("A is rank-deficient (rank " + std::to_string(r) + " < n = " + std::to_string(n) +

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "diagnostics.hpp"
+#include "kernels.hpp"
 #include "linalg.hpp"
 #include "spdfit/nearest_spd.hpp"
 
@@ -12,6 +13,54 @@ namespace spdfit {
 
 using Eigen::Index;
 using Eigen::MatrixXd;
+
+namespace detail {
+
+template <int MaxN>
+void tls_kernel(const BasicReduction<MaxN>& data, TlsKernel<MaxN>& out) {
+  using Factor = typename BasicReduction<MaxN>::Factor;
+  using Matrix = SquareMatrix<MaxN>;
+  const Index n = data.n;
+
+  // TLS is only invariant under a common scaling of A and B, so undo the separate scalings
+  // of the factor into a common one, 2^-max(ea, eb) (exact: powers of two).
+  const int e = std::max(data.exponent_a, data.exponent_b);
+  Factor R = Factor::Zero(2 * n, 2 * n);
+  R.topLeftCorner(n, n) = times_power_of_two(data.R11, data.exponent_a - e);
+  R.topRightCorner(n, n) = times_power_of_two(data.R12, data.exponent_b - e);
+  R.bottomRightCorner(n, n) = times_power_of_two(data.R22, data.exponent_b - e);
+
+  // [A B] = Q R: the SVD of R gives the singular values and right singular vectors of [A B]
+  // (thesis eq. 4.29) at O(n^3) instead of O(m n^2).
+  BasicSvd<Factor> dec;
+  svd_into(R, dec, false, true);
+  const auto& sigma = dec.s;
+  out.sigma_n = std::ldexp(sigma(n - 1), e);
+  out.sigma_n1 = std::ldexp(sigma(n), e);
+  out.correction = std::ldexp(sigma.tail(n).norm(), e);  // thesis eq. 4.33
+
+  const Matrix V12 = dec.V.topRightCorner(n, n);
+  const Matrix V22 = dec.V.bottomRightCorner(n, n);
+  BasicSvd<Matrix> v22;
+  svd_into(V22, v22, false, false);
+  out.v22_min = v22.s(n - 1);
+
+  const double cutoff = data.options.rank_cutoff(data.m, 2 * n);
+  out.exists = out.v22_min > cutoff;
+  if (!out.exists) return;
+  out.unique = sigma(n - 1) - sigma(n) > cutoff * sigma(0);
+  // X = -V12 V22^-1 (thesis eq. 4.37), as the solution of V22^T X^T = -V12^T with pivoting.
+  const Matrix X = -V22.transpose().partialPivLu().solve(V12.transpose()).transpose();
+  // Back to the scaled units of the other estimators: X_s = X 2^(ea - eb).
+  out.X_s = times_power_of_two(X, data.exponent_a - data.exponent_b);
+}
+
+#define SPDFIT_INSTANTIATE(MaxN) \
+  template void tls_kernel<MaxN>(const BasicReduction<MaxN>&, TlsKernel<MaxN>&);
+SPDFIT_FOR_EACH_MAX_N(SPDFIT_INSTANTIATE)
+#undef SPDFIT_INSTANTIATE
+
+}  // namespace detail
 
 namespace {
 
@@ -24,48 +73,27 @@ struct TlsCore {
 };
 
 TlsCore tls_core(const Reduction& data) {
-  const Index n = data.n;
   TlsCore out;
-
-  // TLS is only invariant under a common scaling of A and B, so undo the separate scalings
-  // of the factor into a common one, 2^-max(ea, eb) (exact: powers of two).
-  const int e = std::max(data.exponent_a, data.exponent_b);
-  MatrixXd R = MatrixXd::Zero(2 * n, 2 * n);
-  R.topLeftCorner(n, n) = detail::times_power_of_two(data.R11, data.exponent_a - e);
-  R.topRightCorner(n, n) = detail::times_power_of_two(data.R12, data.exponent_b - e);
-  R.bottomRightCorner(n, n) = detail::times_power_of_two(data.R22, data.exponent_b - e);
-
-  // [A B] = Q R: the SVD of R gives the singular values and right singular vectors of [A B]
-  // (thesis eq. 4.29) at O(n^3) instead of O(m n^2).
-  const detail::Svd dec = detail::svd(R, false, true);
-  const auto& sigma = dec.s;
+  detail::TlsKernel<Eigen::Dynamic> k;
+  detail::tls_kernel(data, k);
   Diagnostics& d = out.diagnostics;
-  d.tls_sigma_n = std::ldexp(sigma(n - 1), e);
-  d.tls_sigma_n1 = std::ldexp(sigma(n), e);
-  d.tls_correction_norm = std::ldexp(sigma.tail(n).norm(), e);  // thesis eq. 4.33
-
-  const MatrixXd V12 = dec.V.topRightCorner(n, n);
-  const MatrixXd V22 = dec.V.bottomRightCorner(n, n);
-  const Eigen::VectorXd v22_sigma = detail::singular_values(V22);
-  d.tls_v22_min_singular_value = v22_sigma(n - 1);
-
-  const double cutoff = data.options.rank_cutoff(data.m, 2 * n);
-  if (!(v22_sigma(n - 1) > cutoff)) {
+  d.tls_sigma_n = k.sigma_n;
+  d.tls_sigma_n1 = k.sigma_n1;
+  d.tls_correction_norm = k.correction;
+  d.tls_v22_min_singular_value = k.v22_min;
+  if (!k.exists) {
     out.error = "tls: no total least-squares solution exists: V22 is singular (smallest singular value " +
-                detail::format_number(v22_sigma(n - 1)) +
+                detail::format_number(k.v22_min) +
                 "), so the smallest singular subspace of [A B] contains directions with no B part";
     return out;
   }
-  if (sigma(n - 1) - sigma(n) <= cutoff * sigma(0)) {
-    out.warnings.push_back("sigma_n = " + detail::format_number(*d.tls_sigma_n) +
-                           " and sigma_{n+1} = " + detail::format_number(*d.tls_sigma_n1) +
+  if (!k.unique) {
+    out.warnings.push_back("sigma_n = " + detail::format_number(k.sigma_n) +
+                           " and sigma_{n+1} = " + detail::format_number(k.sigma_n1) +
                            " of [A B] are equal to working precision, so the TLS solution is not unique "
                            "(the condition of thesis Theorem 4.7 fails)");
   }
-  // X = -V12 V22^-1 (thesis eq. 4.37), as the solution of V22^T X^T = -V12^T with pivoting.
-  const MatrixXd X = -V22.transpose().partialPivLu().solve(V12.transpose()).transpose();
-  // Back to the scaled units of the other estimators: X_s = X 2^(ea - eb).
-  out.X_s = detail::times_power_of_two(X, data.exponent_a - data.exponent_b);
+  out.X_s = std::move(k.X_s);
   return out;
 }
 

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "kernels.hpp"
 #include "linalg.hpp"
 
 namespace spdfit {
@@ -12,9 +13,9 @@ namespace spdfit {
 using Eigen::Index;
 using Eigen::MatrixXd;
 
-namespace {
+namespace detail {
 
-void check_block(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Index n) {
+void check_data(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Index n) {
   if (A.rows() != B.rows() || A.cols() != B.cols()) {
     throw std::invalid_argument("A is " + std::to_string(A.rows()) + "x" + std::to_string(A.cols()) +
                                 " but B is " + std::to_string(B.rows()) + "x" + std::to_string(B.cols()) +
@@ -28,7 +29,12 @@ void check_block(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Mat
   if (!B.allFinite()) throw std::invalid_argument("B contains NaN or Inf");
 }
 
-}  // namespace
+std::string too_few_rows(Index m, Index n) {
+  return "the data has " + std::to_string(m) + " rows but " + std::to_string(n) +
+         " columns: at least as many rows as columns are needed";
+}
+
+}  // namespace detail
 
 TriangularFactor::TriangularFactor(Index n) : n_(n) {
   if (n < 1) throw std::invalid_argument("the data must have at least one column");
@@ -73,7 +79,7 @@ void TriangularFactor::absorb(const Eigen::Ref<const MatrixXd>& scaled_rows) {
 }
 
 void TriangularFactor::append(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B) {
-  check_block(A, B, n_);
+  detail::check_data(A, B, n_);
   if (A.rows() == 0) return;
   raise_exponents(detail::scale_exponent(A), detail::scale_exponent(B));
   MatrixXd scaled(A.rows(), 2 * n_);

@@ -16,17 +16,31 @@ namespace spdfit {
 ///
 /// Built by `reduce` in O(n^3) from a TriangularFactor. Estimators taking a Reduction are the
 /// careful path; the overloads taking A and B call TriangularFactor::from_data and reduce.
-struct Reduction {
+///
+/// MaxN bounds n at compile time: the library's small-problem path (Monte Carlo experiments)
+/// uses BasicReduction<6>-style instances whose matrices live on the stack. User code needs
+/// only `Reduction`, the unbounded one.
+template <int MaxN = Eigen::Dynamic>
+struct BasicReduction {
+  using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, MaxN, MaxN>;
+  using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, MaxN, 1>;
+  /// The 2n x 2n triangular factor R of [A B].
+  static constexpr int kMaxFactor = MaxN == Eigen::Dynamic ? Eigen::Dynamic : 2 * MaxN;
+  using Factor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kMaxFactor, kMaxFactor>;
+
   Eigen::Index m = 0, n = 0;
   int exponent_a = 0, exponent_b = 0;   ///< data scaled by 2^-exponent (TriangularFactor)
-  Eigen::MatrixXd R11, R12, R22;        ///< n x n blocks of R (R22 zero-padded)
-  Eigen::MatrixXd U_a, V_a;             ///< SVD of R11
-  Eigen::VectorXd s_a;                  ///< descending
-  Eigen::MatrixXd R_b;                  ///< triangular factor of B
-  Eigen::VectorXd s_b;                  ///< singular values of B, descending
+  Matrix R11, R12, R22;                 ///< n x n blocks of R (R22 zero-padded)
+  Matrix U_a, V_a;                      ///< SVD of R11
+  Vector s_a;                           ///< descending
+  Matrix R_b;                           ///< triangular factor of B
+  Vector s_b;                           ///< singular values of B, descending
   Eigen::Index rank_a = 0, rank_b = 0;  ///< numerical ranks under the options' cut-off
   FitOptions options;
 };
+
+/// The reduction for any n (dynamic matrices).
+using Reduction = BasicReduction<>;
 
 /// Reduces the factor for the estimators. Throws std::invalid_argument when the factor has
 /// fewer rows than columns (m < n) or the options are invalid. Cost O(n^3).

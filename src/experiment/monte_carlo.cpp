@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "small_problem.hpp"
 #include "spdfit/fit.hpp"
 #include "spdfit/reduction.hpp"
 #include "spdfit/triangular_factor.hpp"
@@ -89,15 +90,17 @@ void run_trials(const MonteCarloOptions& options, const std::function<void(std::
   if (options.progress) options.progress(done.load(), total);
 }
 
-std::vector<FitResult> estimate(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
-                                const std::vector<Method>& methods) {
+void estimate(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
+              const std::vector<Method>& methods, std::vector<Eigen::MatrixXd>& X) {
+  if (detail::estimate_small(A, B, methods, X)) return;
   FitOptions options;
   options.diagnostics = false;
   const Reduction data = reduce(TriangularFactor::from_data(A, B), options);
-  std::vector<FitResult> fits;
-  fits.reserve(methods.size());
-  for (Method method : methods) fits.push_back(fit(data, method));
-  return fits;
+  X.resize(methods.size());
+  for (std::size_t i = 0; i < methods.size(); ++i) {
+    FitResult result = fit(data, methods[i]);
+    X[i] = result.ok() ? std::move(result.X) : Eigen::MatrixXd();
+  }
 }
 
 }  // namespace spdfit::experiment

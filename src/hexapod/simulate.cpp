@@ -59,23 +59,29 @@ void add_noise(Eigen::MatrixXd& out, double variance, NoiseDistribution distribu
   }
 }
 
-Measurements simulate(const Eigen::MatrixXd& truth, const SimulationOptions& options, Random& random) {
+void simulate_into(const Eigen::MatrixXd& truth, const SimulationOptions& options, Random& random,
+                   Measurements& out) {
   std::string error;
   if (!options.is_valid(&error)) throw std::invalid_argument("simulate: " + error);
   if (truth.rows() != truth.cols() || truth.rows() < 1) {
     throw std::invalid_argument("simulate: the true matrix must be square and non-empty");
   }
   const Eigen::Index m = options.samples, n = truth.rows();
-  Measurements out;
   // lddot = 10 (rand - 0.5): uniform on [-5, 5] for the default S = 25/3.
-  out.A_true = Eigen::MatrixXd::Zero(m, n);
+  out.A_true.setZero(m, n);
   add_noise(out.A_true, options.signal_var, NoiseDistribution::Uniform, random);
   out.A = out.A_true;
   add_noise(out.A, options.noise_var, options.distribution, random);  // lddotm (eq. 6.3)
-  out.B_true = out.A_true * truth;                                    // fb = lddot * Mprel (eq. 6.2)
+  out.B_true.resize(m, n);
+  out.B_true.noalias() = out.A_true * truth;  // fb = lddot * Mprel (eq. 6.2)
   out.B = out.B_true;
   const double force_noise_var = options.force_noise_var.value_or(options.noise_var);
   add_noise(out.B, force_noise_var, options.distribution, random);  // fbm (eq. 6.4)
+}
+
+Measurements simulate(const Eigen::MatrixXd& truth, const SimulationOptions& options, Random& random) {
+  Measurements out;
+  simulate_into(truth, options, random, out);
   return out;
 }
 

@@ -40,11 +40,15 @@ unsigned resolve_threads(unsigned requested);
 /// std::invalid_argument when the options are invalid.
 void run_trials(const MonteCarloOptions& options, const std::function<void(std::size_t, Random&)>& trial);
 
-/// The estimators `methods` (in that order) on one trial's data, sharing the QR of [A B] and
-/// the reduction, without the estimates' diagnostics (FitOptions::diagnostics = false: the
-/// experiments need X and whether it failed). This is every experiment's inner loop, kept in
-/// one function so that a faster one can be swapped in at one place. Cost O(m n^2 + n^3).
-std::vector<FitResult> estimate(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
-                                const std::vector<Method>& methods);
+/// The estimates of `methods` (in that order) on one trial's data, X only: X[i] becomes method
+/// i's estimate, or an empty (0 x 0) matrix where the method has none (a numerical failure,
+/// e.g. SPDE with A rank-deficient). The methods share the QR of [A B] and the reduction, and
+/// run without the estimates' diagnostics. For n <= 8 every matrix lives on the stack and X's
+/// storage is reused, so a loop that keeps X allocates nothing per trial; larger n takes the
+/// public estimators' path. The estimates equal spdfit::fit's to rounding. This is every
+/// experiment's inner loop, kept in one function so that a faster one can be swapped in at one
+/// place. Throws std::invalid_argument for data fit() rejects. Cost O(m n^2 + n^3).
+void estimate(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
+              const std::vector<Method>& methods, std::vector<Eigen::MatrixXd>& X);
 
 }  // namespace spdfit::experiment

@@ -60,6 +60,11 @@ struct Measurements {
 /// Cost O(m n^2).
 Measurements simulate(const Eigen::MatrixXd& truth, const SimulationOptions& options, Random& random);
 
+/// simulate() into `out`, reusing its matrices' storage: a Monte Carlo loop that keeps `out`
+/// allocates nothing per trial. Same numbers, same errors.
+void simulate_into(const Eigen::MatrixXd& truth, const SimulationOptions& options, Random& random,
+                   Measurements& out);
+
 /// Adds independent noise of variance `variance` to every entry of `out` (any shape), column
 /// by column. Draws as many numbers for variance 0 as for any other.
 void add_noise(Eigen::MatrixXd& out, double variance, NoiseDistribution distribution, Random& random);

@@ -1,0 +1,78 @@
+// Internal: the estimators' arithmetic, apart from their results' diagnostics and messages.
+//
+// Each kernel is a template over MaxN, the compile-time bound on n of BasicReduction: the
+// public estimators instantiate it with Eigen::Dynamic (any n, heap matrices), the
+// small-problem path (small_problem.hpp) with the bounds in kSmallMaxN (stack matrices, no heap
+// allocation). Both run the same code, so they agree to rounding. The kernels are defined next
+// to their estimator (spde.cpp, ...) and instantiated there for every bound in
+// SPDFIT_FOR_EACH_MAX_N.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+
+#include "spdfit/reduction.hpp"
+
+namespace spdfit::detail {
+
+/// Throws std::invalid_argument unless A and B are both k x n and finite (the data checks of
+/// TriangularFactor, shared with the small-problem path).
+void check_data(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
+                Eigen::Index n);
+
+/// The message for data with fewer rows m than columns n.
+std::string too_few_rows(Eigen::Index m, Eigen::Index n);
+
+/// The compile-time bounds on n the kernels are instantiated for: Eigen::Dynamic, and the small
+/// bounds of small_problem.hpp.
+#define SPDFIT_FOR_EACH_MAX_N(INSTANTIATE) INSTANTIATE(Eigen::Dynamic) INSTANTIATE(2) INSTANTIATE(8)
+
+template <int MaxN>
+using SquareMatrix = typename BasicReduction<MaxN>::Matrix;
+
+/// Fills `out` (all but `options`, which the caller sets) from the 2n x 2n triangular factor R of
+/// the data scaled by 2^-exponent_a, 2^-exponent_b, accumulated from m >= n rows: the SVD of
+/// R11, the triangular factor of B and its singular values, the ranks. Cost O(n^3).
+template <int MaxN>
+void reduce_into(const typename BasicReduction<MaxN>::Factor& R, Eigen::Index m, int exponent_a,
+                 int exponent_b, BasicReduction<MaxN>& out);
+
+/// Least squares in scaled units: back substitution in R11 for full-rank A, else the
+/// minimum-norm solution from the edited SVD.
+template <int MaxN>
+void least_squares_kernel(const BasicReduction<MaxN>& data, SquareMatrix<MaxN>& X_s);
+
+/// Symmetric Procrustes (Higham's closed form) in scaled units, exactly symmetric.
+template <int MaxN>
+void procrustes_kernel(const BasicReduction<MaxN>& data, SquareMatrix<MaxN>& X_s);
+
+/// SPDE in scaled units, for rank_a == n (else there is no minimizer): the positive
+/// semidefinite X_s of rank rank_b. Returns the sum of the kept singular values of
+/// M = R_b R11^T, tr(Sigma_Q~) of the area criterion's minimum (Corollary III.4).
+template <int MaxN>
+double spde_kernel(const BasicReduction<MaxN>& data, SquareMatrix<MaxN>& X_s);
+
+/// Total least squares: X = -V12 V22^-1 from the SVD of R, in the scaled units of the other
+/// estimators, and the quantities its diagnostics report (unscaled).
+template <int MaxN>
+struct TlsKernel {
+  SquareMatrix<MaxN> X_s;   ///< when exists
+  double sigma_n = 0.0;     ///< sigma_n of [A B]
+  double sigma_n1 = 0.0;    ///< sigma_{n+1}
+  double correction = 0.0;  ///< sqrt(sum_{i>n} sigma_i^2)
+  double v22_min = 0.0;     ///< smallest singular value of V22
+  bool exists = false;      ///< V22 nonsingular
+  bool unique = false;      ///< sigma_n > sigma_{n+1} beyond rounding
+};
+template <int MaxN>
+void tls_kernel(const BasicReduction<MaxN>& data, TlsKernel<MaxN>& out);
+
+/// Higham's nearest symmetric matrix with eigenvalues >= floor, for an x already scaled to
+/// units of order one (see nearest_spd): writes it into y; returns the number of eigenvalues
+/// raised and sets min_before to the smallest eigenvalue of the symmetric part. Returns -1 when
+/// the eigensolver did not converge.
+template <int MaxN>
+Eigen::Index nearest_spd_kernel(const SquareMatrix<MaxN>& x, double floor, SquareMatrix<MaxN>& y,
+                                double& min_before);
+
+}  // namespace spdfit::detail

@@ -1,0 +1,126 @@
+#include "small_problem.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "kernels.hpp"
+#include "linalg.hpp"
+
+namespace spdfit::detail {
+
+namespace {
+
+using Eigen::Index;
+using Eigen::MatrixXd;
+
+// The triangular factor of the scaled [A 2^-ea, B 2^-eb] (m x 2n), factored in pieces of at
+// most 4n rows: the first 4n rows, then R stacked on the next 2n rows, and so on.
+template <int MaxN>
+void small_factor(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, int ea, int eb,
+                  typename BasicReduction<MaxN>::Factor& R) {
+  constexpr int kMaxFactor = BasicReduction<MaxN>::kMaxFactor;
+  using Stacked = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 2 * kMaxFactor, kMaxFactor>;
+  const Index m = A.rows(), n = A.cols();
+  const double scale_a = std::ldexp(1.0, -ea), scale_b = std::ldexp(1.0, -eb);
+  const bool exact = ea >= -1022 && ea <= 1022 && eb >= -1022 && eb <= 1022;
+  Stacked work;
+  Index done = 0;
+  while (done < m) {
+    const Index top = done == 0 ? 0 : 2 * n;  // rows of R carried over
+    const Index take = std::min(m - done, 4 * n - top);
+    work.resize(top + take, 2 * n);
+    if (top > 0) work.topRows(top) = R;
+    auto fresh = work.bottomRows(take);
+    if (exact) {
+      fresh.leftCols(n) = A.middleRows(done, take) * scale_a;
+      fresh.rightCols(n) = B.middleRows(done, take) * scale_b;
+    } else {
+      fresh.leftCols(n) = times_power_of_two(A.middleRows(done, take), -ea);
+      fresh.rightCols(n) = times_power_of_two(B.middleRows(done, take), -eb);
+    }
+    triangular_factor_into<Stacked>(work, R);
+    done += take;
+  }
+}
+
+// Where TLS's result is needed by several methods, it is computed once.
+template <int MaxN>
+bool estimate_bounded(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
+                      const std::vector<Method>& methods, std::vector<MatrixXd>& X) {
+  using Matrix = SquareMatrix<MaxN>;
+  const int ea = scale_exponent(A).value_or(0);
+  const int eb = scale_exponent(B).value_or(0);
+  BasicReduction<MaxN> data;
+  data.options.diagnostics = false;
+  {
+    typename BasicReduction<MaxN>::Factor R;
+    small_factor<MaxN>(A, B, ea, eb, R);
+    reduce_into(R, A.rows(), ea, eb, data);
+  }
+  const Index n = data.n;
+  TlsKernel<MaxN> tls;
+  bool tls_done = false;
+  Matrix X_s, psd;
+  X.resize(methods.size());
+  for (std::size_t i = 0; i < methods.size(); ++i) {
+    bool ok = true;
+    switch (methods[i]) {
+      case Method::LeastSquares:
+        least_squares_kernel(data, X_s);
+        break;
+      case Method::SymmetricProcrustes:
+        procrustes_kernel(data, X_s);
+        break;
+      case Method::Spde:
+        ok = data.rank_a == n;
+        if (ok) spde_kernel(data, X_s);
+        break;
+      case Method::TotalLeastSquares:
+      case Method::TotalLeastSquaresSymmetric:
+      case Method::TotalLeastSquaresPsd:
+        if (!tls_done) {
+          tls_kernel(data, tls);
+          tls_done = true;
+        }
+        ok = tls.exists;
+        if (!ok) break;
+        if (methods[i] == Method::TotalLeastSquares) {
+          X_s = tls.X_s;
+        } else if (methods[i] == Method::TotalLeastSquaresSymmetric) {
+          X_s = symmetric_part(tls.X_s);
+        } else {
+          // As nearest_spd does: in units where the largest entry is of order one.
+          ok = tls.X_s.allFinite();
+          if (!ok) break;
+          const int e = scale_exponent(tls.X_s).value_or(0);
+          double min_before = 0.0;
+          const Matrix x = times_power_of_two(tls.X_s, -e);
+          ok = nearest_spd_kernel<MaxN>(x, 0.0, psd, min_before) >= 0;
+          if (ok) X_s = times_power_of_two(psd, e);
+        }
+        break;
+    }
+    if (ok) {
+      X[i] = times_power_of_two(X_s, eb - ea);
+      ok = X[i].allFinite();  // an estimate beyond the double range is a failure, as in fit()
+    }
+    if (!ok) X[i].resize(0, 0);
+  }
+  return true;
+}
+
+}  // namespace
+
+bool estimate_small(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
+                    const std::vector<Method>& methods, std::vector<MatrixXd>& X) {
+  const Index n = A.cols();
+  if (n > kSmallProblemMaxN) return false;
+  if (n < 1) throw std::invalid_argument("the data must have at least one column");
+  check_data(A, B, n);
+  if (A.rows() < n) throw std::invalid_argument(too_few_rows(A.rows(), n));
+  if (n <= 2) return estimate_bounded<2>(A, B, methods, X);
+  return estimate_bounded<kSmallProblemMaxN>(A, B, methods, X);
+}
+
+}  // namespace spdfit::detail
