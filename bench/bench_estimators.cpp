@@ -98,15 +98,15 @@ BENCHMARK_CAPTURE(BM_Fit, tls_sym, spdfit::Method::TotalLeastSquaresSymmetric)->
 BENCHMARK_CAPTURE(BM_Fit, tls_psd, spdfit::Method::TotalLeastSquaresPsd)->Apply(sizes);
 BENCHMARK_CAPTURE(BM_Fit, spde, spdfit::Method::Spde)->Apply(sizes);
 
-// The small sizes only: above n = 8 estimate() is fit() without the diagnostics.
-void small_sizes(benchmark::internal::Benchmark* b) {
-  b->Args({4, 2})->Args({12, 6})->Args({24, 12});
+// X alone: up to n = 8 the small-problem path, above it fit() without the diagnostics.
+void estimate_sizes(benchmark::internal::Benchmark* b) {
+  b->Args({4, 2})->Args({12, 6})->Args({24, 12})->Args({4000, 1000})->Args({8000, 2000});
   b->Unit(benchmark::kMicrosecond);
 }
-BENCHMARK_CAPTURE(BM_Estimate, ls, spdfit::Method::LeastSquares)->Apply(small_sizes);
-BENCHMARK_CAPTURE(BM_Estimate, procrustes, spdfit::Method::SymmetricProcrustes)->Apply(small_sizes);
-BENCHMARK_CAPTURE(BM_Estimate, tls, spdfit::Method::TotalLeastSquares)->Apply(small_sizes);
-BENCHMARK_CAPTURE(BM_Estimate, spde, spdfit::Method::Spde)->Apply(small_sizes);
+BENCHMARK_CAPTURE(BM_Estimate, ls, spdfit::Method::LeastSquares)->Apply(estimate_sizes);
+BENCHMARK_CAPTURE(BM_Estimate, procrustes, spdfit::Method::SymmetricProcrustes)->Apply(estimate_sizes);
+BENCHMARK_CAPTURE(BM_Estimate, tls, spdfit::Method::TotalLeastSquares)->Apply(estimate_sizes);
+BENCHMARK_CAPTURE(BM_Estimate, spde, spdfit::Method::Spde)->Apply(estimate_sizes);
 
 }  // namespace
 

@@ -3,8 +3,73 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
+
+#ifdef SPDFIT_HAVE_LAPACK
+#include <lapacke.h>
+#endif
 
 namespace spdfit::detail {
+
+namespace {
+// From this many columns on, the QR runs on LAPACK (when built with it): below, the call's
+// overhead and OpenBLAS's threads cost more than they save, and the streaming reader's many
+// narrow block QRs (each on a thread of its own) must not start OpenBLAS threads.
+constexpr Index kLapackMinColumns = 64;
+}  // namespace
+
+bool uses_lapack() {
+#ifdef SPDFIT_HAVE_LAPACK
+  return true;
+#else
+  return false;
+#endif
+}
+
+void svd_large(const Eigen::Ref<const MatrixXd>& A, BasicSvd<MatrixXd>& out, bool compute_u, bool compute_v) {
+#ifdef SPDFIT_HAVE_LAPACK
+  if (A.rows() >= A.cols() && A.cols() > 0) {
+    const lapack_int m = static_cast<lapack_int>(A.rows()), n = static_cast<lapack_int>(A.cols());
+    MatrixXd work = A;  // dgesdd overwrites its input
+    out.s.resize(n);
+    const bool vectors = compute_u || compute_v;
+    MatrixXd U(vectors ? m : 1, vectors ? n : 1), VT(vectors ? n : 1, vectors ? n : 1);
+    const lapack_int info = LAPACKE_dgesdd(LAPACK_COL_MAJOR, vectors ? 'S' : 'N', m, n, work.data(), m,
+                                           out.s.data(), U.data(), static_cast<lapack_int>(U.rows()), VT.data(),
+                                           static_cast<lapack_int>(VT.rows()));
+    if (info != 0) throw std::runtime_error("the SVD (LAPACK dgesdd) failed: info = " + std::to_string(info));
+    if (compute_u) out.U = std::move(U);
+    if (compute_v) out.V = VT.transpose();
+    return;
+  }
+#endif
+  unsigned options = 0;
+  if (compute_u) options |= Eigen::ComputeThinU;
+  if (compute_v) options |= Eigen::ComputeThinV;
+  Eigen::BDCSVD<MatrixXd> dec(A, options);
+  out.s = dec.singularValues();
+  if (compute_u) out.U = dec.matrixU();
+  if (compute_v) out.V = dec.matrixV();
+}
+
+void triangular_factor_large(const Eigen::Ref<const MatrixXd>& A, MatrixXd& R) {
+  const Index k = std::min(A.rows(), A.cols());
+#ifdef SPDFIT_HAVE_LAPACK
+  if (A.cols() >= kLapackMinColumns) {
+    MatrixXd work = A;
+    Eigen::VectorXd tau(k);
+    const lapack_int info =
+        LAPACKE_dgeqrf(LAPACK_COL_MAJOR, static_cast<lapack_int>(work.rows()), static_cast<lapack_int>(work.cols()),
+                       work.data(), static_cast<lapack_int>(work.rows()), tau.data());
+    if (info != 0) throw std::runtime_error("the QR (LAPACK dgeqrf) failed: info = " + std::to_string(info));
+    R.topRows(k) = work.topRows(k).triangularView<Eigen::Upper>();
+    return;
+  }
+#endif
+  const Eigen::HouseholderQR<MatrixXd> qr(A);
+  R.topRows(k) = qr.matrixQR().topRows(k).triangularView<Eigen::Upper>();
+}
 
 Svd svd(const Eigen::Ref<const MatrixXd>& A, bool compute_u, bool compute_v) {
   Svd out;

@@ -41,19 +41,20 @@ constexpr Index kJacobiMaxSize = 64;
 /// The SVD of a square or tall A into `out`: one-sided Jacobi (accurate small singular vectors,
 /// see one_sided_jacobi.hpp) up to 64 columns, divide and conquer above (dynamic matrices
 /// only). U is left untouched unless compute_u, V unless compute_v.
+/// The SVD of a dynamic A (rows >= cols > 64) by divide and conquer: LAPACK's dgesdd when
+/// spdfit is built with LAPACK (SPDFIT_LAPACK), else Eigen's BDCSVD.
+void svd_large(const Eigen::Ref<const MatrixXd>& A, BasicSvd<MatrixXd>& out, bool compute_u, bool compute_v);
+
+/// Whether the large-matrix helpers run on LAPACK (SPDFIT_LAPACK) rather than Eigen.
+bool uses_lapack();
+
 template <typename Matrix, typename Derived>
 void svd_into(const Eigen::MatrixBase<Derived>& A, BasicSvd<Matrix>& out, bool compute_u = true,
               bool compute_v = true) {
   const Index n = A.cols();
   if constexpr (Matrix::MaxColsAtCompileTime == Eigen::Dynamic) {
     if (n > svd_detail::kJacobiMaxSize || A.rows() < n) {
-      unsigned options = 0;
-      if (compute_u) options |= Eigen::ComputeThinU;
-      if (compute_v) options |= Eigen::ComputeThinV;
-      Eigen::BDCSVD<MatrixXd> dec(A, options);
-      out.s = dec.singularValues();
-      if (compute_u) out.U = dec.matrixU();
-      if (compute_v) out.V = dec.matrixV();
+      svd_large(A, out, compute_u, compute_v);
       return;
     }
   }
@@ -133,9 +134,13 @@ void small_householder_qr(Work& W) {
   }
 }
 
+/// The upper triangular factor of a dynamic A (rows >= 1) into R: LAPACK's blocked dgeqrf
+/// when spdfit is built with LAPACK and A has at least 64 columns, else Eigen's HouseholderQR.
+void triangular_factor_large(const Eigen::Ref<const MatrixXd>& A, MatrixXd& R);
+
 /// The upper triangular factor R (cols x cols, zero-padded when rows < cols) of the
 /// Householder QR of A, written into R. Work is the plain matrix type the QR runs in: bounded
-/// sizes use small_householder_qr, dynamic ones Eigen's blocked HouseholderQR.
+/// sizes use small_householder_qr, dynamic ones triangular_factor_large.
 template <typename Work, typename Derived, typename Result>
 void triangular_factor_into(const Eigen::MatrixBase<Derived>& A, Result& R) {
   const Index cols = A.cols();
@@ -143,8 +148,7 @@ void triangular_factor_into(const Eigen::MatrixBase<Derived>& A, Result& R) {
   if (A.rows() == 0) return;
   const Index k = std::min(A.rows(), cols);
   if constexpr (Work::MaxColsAtCompileTime == Eigen::Dynamic) {
-    const Eigen::HouseholderQR<Work> qr(A);
-    R.topRows(k) = qr.matrixQR().topRows(k).template triangularView<Eigen::Upper>();
+    triangular_factor_large(A, R);
   } else {
     Work W = A;
     small_householder_qr(W);

@@ -64,8 +64,13 @@ def run(cli):
 
         with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
             start = time.monotonic()
+            # OpenBLAS (spdfit's LAPACK) reserves about 136 MB of address space per worker thread
+            # when the program starts, which RLIMIT_AS counts although nothing touches it. No
+            # hostile file gets as far as LAPACK, so its workers are turned off here, and the
+            # limit bounds what spdfit itself maps.
+            env = dict(os.environ, OPENBLAS_NUM_THREADS="1")
             proc = subprocess.Popen([cli, *map(str, args)], stdin=subprocess.DEVNULL, stdout=out, stderr=err,
-                                    preexec_fn=preexec)
+                                    preexec_fn=preexec, env=env)
             while True:
                 pid, status, usage = os.wait4(proc.pid, os.WNOHANG)
                 if pid:

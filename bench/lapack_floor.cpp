@@ -1,0 +1,108 @@
+// The LAPACK floor of issue 6's goal 3: the work no estimator of X in A X ~= B (m x n, m = 4n)
+// can avoid, done by LAPACK alone (Debian's OpenBLAS, the library spdfit links when built with
+// SPDFIT_LAPACK), timed on the same data as bench_estimators:
+//   BM_FloorSpde:  the QR of [A B] (dgeqrf, m x 2n) plus one symmetric eigendecomposition of
+//                  size n (dsyevd, eigenvectors): the floor of spde and procrustes;
+//   BM_FloorTls:   the QR of [A B] plus the SVD of its 2n x 2n triangular factor (dgesdd,
+//                  right singular vectors): the floor of tls;
+// and the pieces alone (BM_Dgeqrf, BM_Dsyevd, BM_Dgesdd), so that each of spdfit's steps can
+// be held against LAPACK's. OpenBLAS picks its kernels and thread count itself
+// (OPENBLAS_CORETYPE and OPENBLAS_NUM_THREADS override them).
+// Run: build/bench/spdfit_lapack_floor --benchmark_min_time=0.1
+#include <benchmark/benchmark.h>
+#include <lapacke.h>
+
+#include <Eigen/Core>
+#include <random>
+#include <stdexcept>
+
+namespace {
+
+using Eigen::Index;
+using Eigen::MatrixXd;
+
+MatrixXd random_matrix(Index rows, Index cols, unsigned seed) {
+  std::mt19937_64 engine(seed);
+  std::uniform_real_distribution<double> uniform(-5.0, 5.0);
+  return MatrixXd::NullaryExpr(rows, cols, [&]() { return uniform(engine); });
+}
+
+void check(lapack_int info, const char* routine) {
+  if (info != 0) throw std::runtime_error(std::string(routine) + " failed");
+}
+
+// R of [A B] (m x 2n) by dgeqrf; returns the 2n x 2n triangle.
+MatrixXd qr_factor(const MatrixXd& AB) {
+  MatrixXd work = AB;
+  Eigen::VectorXd tau(work.cols());
+  check(LAPACKE_dgeqrf(LAPACK_COL_MAJOR, static_cast<lapack_int>(work.rows()), static_cast<lapack_int>(work.cols()),
+                       work.data(), static_cast<lapack_int>(work.rows()), tau.data()),
+        "dgeqrf");
+  return work.topRows(work.cols()).triangularView<Eigen::Upper>();
+}
+
+void symmetric_eigen(MatrixXd S) {
+  Eigen::VectorXd w(S.rows());
+  check(LAPACKE_dsyevd(LAPACK_COL_MAJOR, 'V', 'U', static_cast<lapack_int>(S.rows()), S.data(),
+                       static_cast<lapack_int>(S.rows()), w.data()),
+        "dsyevd");
+  benchmark::DoNotOptimize(w.data());
+}
+
+void right_singular_vectors(MatrixXd R) {
+  const lapack_int n = static_cast<lapack_int>(R.rows());
+  Eigen::VectorXd s(n);
+  MatrixXd U(n, n), VT(n, n);
+  check(LAPACKE_dgesdd(LAPACK_COL_MAJOR, 'S', n, n, R.data(), n, s.data(), U.data(), n, VT.data(), n), "dgesdd");
+  benchmark::DoNotOptimize(VT.data());
+}
+
+MatrixXd data(Index n) { return random_matrix(4 * n, 2 * n, 42); }
+
+void BM_Dgeqrf(benchmark::State& state) {
+  const MatrixXd AB = data(state.range(0));
+  for (auto _ : state) benchmark::DoNotOptimize(qr_factor(AB).data());
+  const double m = static_cast<double>(AB.rows()), k = static_cast<double>(AB.cols());
+  state.counters["flops"] =
+      benchmark::Counter(2.0 * k * k * (m - k / 3.0) * static_cast<double>(state.iterations()),
+                         benchmark::Counter::kIsRate);
+}
+
+void BM_Dsyevd(benchmark::State& state) {
+  const MatrixXd W = random_matrix(state.range(0), state.range(0), 7);
+  const MatrixXd S = W.transpose() * W;
+  for (auto _ : state) symmetric_eigen(S);
+}
+
+void BM_Dgesdd(benchmark::State& state) {
+  const MatrixXd R = qr_factor(data(state.range(0) / 2));  // 2n' x 2n' triangle, 2n' = range
+  for (auto _ : state) right_singular_vectors(R);
+}
+
+void BM_FloorSpde(benchmark::State& state) {
+  const Index n = state.range(0);
+  const MatrixXd AB = data(n);
+  const MatrixXd W = random_matrix(n, n, 7);
+  const MatrixXd S = W.transpose() * W;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(qr_factor(AB).data());
+    symmetric_eigen(S);
+  }
+}
+
+void BM_FloorTls(benchmark::State& state) {
+  const MatrixXd AB = data(state.range(0));
+  for (auto _ : state) right_singular_vectors(qr_factor(AB));
+}
+
+void sizes(benchmark::internal::Benchmark* b) { b->Arg(1000)->Arg(2000)->Unit(benchmark::kMillisecond); }
+
+BENCHMARK(BM_Dgeqrf)->Apply(sizes);
+BENCHMARK(BM_Dsyevd)->Apply(sizes);
+BENCHMARK(BM_Dgesdd)->Arg(2000)->Arg(4000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FloorSpde)->Apply(sizes);
+BENCHMARK(BM_FloorTls)->Apply(sizes);
+
+}  // namespace
+
+BENCHMARK_MAIN();
