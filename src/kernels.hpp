@@ -2,9 +2,9 @@
 //
 // Each kernel is a template over MaxN, the compile-time bound on n of BasicReduction: the
 // public estimators instantiate it with Eigen::Dynamic (any n, heap matrices), the
-// small-problem path (small_problem.hpp) with the bounds in kSmallMaxN (stack matrices, no heap
-// allocation). Both run the same code, so they agree to rounding. The kernels are defined next
-// to their estimator (spde.cpp, ...) and instantiated there for every bound in
+// small-problem path (small_problem.hpp) with the bounds 2 and kSmallProblemMaxN (stack
+// matrices, no heap allocation). Both run the same code, so they agree to rounding. The kernels
+// are defined next to their estimator (spde.cpp, ...) and instantiated there for every bound in
 // SPDFIT_FOR_EACH_MAX_N.
 #pragma once
 
@@ -67,12 +67,20 @@ struct TlsKernel {
 template <int MaxN>
 void tls_kernel(const BasicReduction<MaxN>& data, TlsKernel<MaxN>& out);
 
-/// Higham's nearest symmetric matrix with eigenvalues >= floor, for an x already scaled to
-/// units of order one (see nearest_spd): writes it into y; returns the number of eigenvalues
-/// raised and sets min_before to the smallest eigenvalue of the symmetric part. Returns -1 when
-/// the eigensolver did not converge.
+/// What nearest_spd_kernel reports besides the matrix.
+struct NearestSpdInfo {
+  Eigen::Index clipped = 0;  ///< eigenvalues raised to the floor
+  double min_before = 0.0;   ///< smallest eigenvalue of the symmetric part, in X's units
+  double distance = 0.0;     ///< ||X - Y||_F
+};
+
+/// Higham's nearest symmetric Y to X with eigenvalues >= min_eig (see nearest_spd), computed in
+/// units where the largest entry of X (or min_eig) is in [0.5, 1), an exact power-of-two
+/// scaling, and written into y in X's units. X finite, min_eig finite and >= 0. Returns false
+/// when the eigensolver did not converge. `info`, when given, is filled (the distance costs a
+/// norm that the estimators do not need).
 template <int MaxN>
-Eigen::Index nearest_spd_kernel(const SquareMatrix<MaxN>& x, double floor, SquareMatrix<MaxN>& y,
-                                double& min_before);
+bool nearest_spd_kernel(const SquareMatrix<MaxN>& X, double min_eig, SquareMatrix<MaxN>& y,
+                        NearestSpdInfo* info = nullptr);
 
 }  // namespace spdfit::detail

@@ -19,14 +19,6 @@ namespace {
 constexpr Index kLapackMinColumns = 64;
 }  // namespace
 
-bool uses_lapack() {
-#ifdef SPDFIT_HAVE_LAPACK
-  return true;
-#else
-  return false;
-#endif
-}
-
 void svd_large(const Eigen::Ref<const MatrixXd>& A, BasicSvd<MatrixXd>& out, bool compute_u, bool compute_v) {
 #ifdef SPDFIT_HAVE_LAPACK
   if (A.rows() >= A.cols() && A.cols() > 0) {
@@ -35,9 +27,9 @@ void svd_large(const Eigen::Ref<const MatrixXd>& A, BasicSvd<MatrixXd>& out, boo
     out.s.resize(n);
     const bool vectors = compute_u || compute_v;
     MatrixXd U(vectors ? m : 1, vectors ? n : 1), VT(vectors ? n : 1, vectors ? n : 1);
-    const lapack_int info = LAPACKE_dgesdd(LAPACK_COL_MAJOR, vectors ? 'S' : 'N', m, n, work.data(), m,
-                                           out.s.data(), U.data(), static_cast<lapack_int>(U.rows()), VT.data(),
-                                           static_cast<lapack_int>(VT.rows()));
+    const lapack_int info =
+        LAPACKE_dgesdd(LAPACK_COL_MAJOR, vectors ? 'S' : 'N', m, n, work.data(), m, out.s.data(), U.data(),
+                       static_cast<lapack_int>(U.rows()), VT.data(), static_cast<lapack_int>(VT.rows()));
     if (info != 0) throw std::runtime_error("the SVD (LAPACK dgesdd) failed: info = " + std::to_string(info));
     if (compute_u) out.U = std::move(U);
     if (compute_v) out.V = VT.transpose();
@@ -59,9 +51,9 @@ void triangular_factor_large(const Eigen::Ref<const MatrixXd>& A, MatrixXd& R) {
   if (A.cols() >= kLapackMinColumns) {
     MatrixXd work = A;
     Eigen::VectorXd tau(k);
-    const lapack_int info =
-        LAPACKE_dgeqrf(LAPACK_COL_MAJOR, static_cast<lapack_int>(work.rows()), static_cast<lapack_int>(work.cols()),
-                       work.data(), static_cast<lapack_int>(work.rows()), tau.data());
+    const lapack_int info = LAPACKE_dgeqrf(LAPACK_COL_MAJOR, static_cast<lapack_int>(work.rows()),
+                                           static_cast<lapack_int>(work.cols()), work.data(),
+                                           static_cast<lapack_int>(work.rows()), tau.data());
     if (info != 0) throw std::runtime_error("the QR (LAPACK dgeqrf) failed: info = " + std::to_string(info));
     R.topRows(k) = work.topRows(k).triangularView<Eigen::Upper>();
     return;
@@ -76,8 +68,6 @@ Svd svd(const Eigen::Ref<const MatrixXd>& A, bool compute_u, bool compute_v) {
   svd_into(A, out, compute_u, compute_v);
   return out;
 }
-
-VectorXd singular_values(const Eigen::Ref<const MatrixXd>& A) { return svd(A, false, false).s; }
 
 Index numerical_rank(const Eigen::Ref<const VectorXd>& s, double cutoff) {
   if (s.size() == 0 || !(s(0) > 0.0)) return 0;
@@ -102,7 +92,10 @@ MatrixXd triangular_factor(const Eigen::Ref<const MatrixXd>& A) {
 
 std::optional<int> scale_exponent(const Eigen::Ref<const MatrixXd>& X) {
   if (X.size() == 0) return std::nullopt;
-  const double biggest = X.cwiseAbs().maxCoeff();
+  return scale_exponent(X.cwiseAbs().maxCoeff());
+}
+
+std::optional<int> scale_exponent(double biggest) {
   if (!(biggest > 0.0)) return std::nullopt;
   int e = 0;
   std::frexp(biggest, &e);  // biggest = f 2^e with f in [0.5, 1): |x| < 2^e

@@ -38,16 +38,13 @@ namespace svd_detail {
 constexpr Index kJacobiMaxSize = 64;
 }  // namespace svd_detail
 
-/// The SVD of a square or tall A into `out`: one-sided Jacobi (accurate small singular vectors,
-/// see one_sided_jacobi.hpp) up to 64 columns, divide and conquer above (dynamic matrices
-/// only). U is left untouched unless compute_u, V unless compute_v.
 /// The SVD of a dynamic A (rows >= cols > 64) by divide and conquer: LAPACK's dgesdd when
 /// spdfit is built with LAPACK (SPDFIT_LAPACK), else Eigen's BDCSVD.
 void svd_large(const Eigen::Ref<const MatrixXd>& A, BasicSvd<MatrixXd>& out, bool compute_u, bool compute_v);
 
-/// Whether the large-matrix helpers run on LAPACK (SPDFIT_LAPACK) rather than Eigen.
-bool uses_lapack();
-
+/// The SVD of a square or tall A into `out`: one-sided Jacobi (accurate small singular vectors,
+/// see one_sided_jacobi.hpp) up to 64 columns, divide and conquer above (dynamic matrices
+/// only). U is left untouched unless compute_u, V unless compute_v.
 template <typename Matrix, typename Derived>
 void svd_into(const Eigen::MatrixBase<Derived>& A, BasicSvd<Matrix>& out, bool compute_u = true,
               bool compute_v = true) {
@@ -90,9 +87,6 @@ void svd_into(const Eigen::MatrixBase<Derived>& A, BasicSvd<Matrix>& out, bool c
 
 /// The SVD of a square or tall matrix (see svd_into).
 Svd svd(const Eigen::Ref<const MatrixXd>& A, bool compute_u = true, bool compute_v = true);
-
-/// The singular values only, descending.
-VectorXd singular_values(const Eigen::Ref<const MatrixXd>& A);
 
 /// The number of singular values above cutoff * s(0) (s descending). Zero when s(0) == 0.
 Index numerical_rank(const Eigen::Ref<const VectorXd>& s, double cutoff);
@@ -146,12 +140,12 @@ void triangular_factor_into(const Eigen::MatrixBase<Derived>& A, Result& R) {
   const Index cols = A.cols();
   R.setZero(cols, cols);
   if (A.rows() == 0) return;
-  const Index k = std::min(A.rows(), cols);
   if constexpr (Work::MaxColsAtCompileTime == Eigen::Dynamic) {
     triangular_factor_large(A, R);
   } else {
     Work W = A;
     small_householder_qr(W);
+    const Index k = std::min(A.rows(), cols);
     R.topRows(k) = W.topRows(k).template triangularView<Eigen::Upper>();
   }
 }
@@ -177,14 +171,27 @@ typename Derived::PlainObject symmetric_part(const Eigen::MatrixBase<Derived>& X
 /// The smallest power-of-two exponent e with |x| < 2^e for every entry (nothing for a zero or
 /// empty matrix), so that scaling by 2^-e is exact and leaves every entry below 1 in magnitude.
 std::optional<int> scale_exponent(const Eigen::Ref<const MatrixXd>& X);
+/// The same for a matrix whose largest magnitude is `biggest` (nothing unless biggest > 0).
+std::optional<int> scale_exponent(double biggest);
 
-/// X * 2^e, exactly (bar overflow and underflow of the results), for any e.
+/// X *= 2^e in place, exactly (bar overflow and underflow of the results), for any e.
 template <typename Derived>
-typename Derived::PlainObject times_power_of_two(const Eigen::MatrixBase<Derived>& X, int e) {
+void multiply_by_power_of_two(Eigen::MatrixBase<Derived>& X, int e) {
   // 2^e is itself a normal double for |e| <= 1022; beyond that (denormal data, say) scale each
   // entry with ldexp so the factor never overflows or underflows on its own.
-  if (e >= -1022 && e <= 1022) return X * std::ldexp(1.0, e);
-  return X.unaryExpr([e](double x) { return std::ldexp(x, e); });
+  if (e >= -1022 && e <= 1022) {
+    X *= std::ldexp(1.0, e);
+  } else {
+    X = X.unaryExpr([e](double x) { return std::ldexp(x, e); });
+  }
+}
+
+/// X * 2^e, exactly (see multiply_by_power_of_two).
+template <typename Derived>
+typename Derived::PlainObject times_power_of_two(const Eigen::MatrixBase<Derived>& X, int e) {
+  typename Derived::PlainObject Y = X;
+  multiply_by_power_of_two(Y, e);
+  return Y;
 }
 
 }  // namespace spdfit::detail

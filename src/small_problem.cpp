@@ -20,10 +20,9 @@ template <int MaxN>
 void small_factor(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, int ea, int eb,
                   typename BasicReduction<MaxN>::Factor& R) {
   constexpr int kMaxFactor = BasicReduction<MaxN>::kMaxFactor;
-  using Stacked = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 2 * kMaxFactor, kMaxFactor>;
+  using Stacked =
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 2 * kMaxFactor, kMaxFactor>;
   const Index m = A.rows(), n = A.cols();
-  const double scale_a = std::ldexp(1.0, -ea), scale_b = std::ldexp(1.0, -eb);
-  const bool exact = ea >= -1022 && ea <= 1022 && eb >= -1022 && eb <= 1022;
   Stacked work;
   Index done = 0;
   while (done < m) {
@@ -31,14 +30,12 @@ void small_factor(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Ma
     const Index take = std::min(m - done, 4 * n - top);
     work.resize(top + take, 2 * n);
     if (top > 0) work.topRows(top) = R;
-    auto fresh = work.bottomRows(take);
-    if (exact) {
-      fresh.leftCols(n) = A.middleRows(done, take) * scale_a;
-      fresh.rightCols(n) = B.middleRows(done, take) * scale_b;
-    } else {
-      fresh.leftCols(n) = times_power_of_two(A.middleRows(done, take), -ea);
-      fresh.rightCols(n) = times_power_of_two(B.middleRows(done, take), -eb);
-    }
+    auto fresh_a = work.bottomLeftCorner(take, n);
+    auto fresh_b = work.bottomRightCorner(take, n);
+    fresh_a = A.middleRows(done, take);
+    fresh_b = B.middleRows(done, take);
+    multiply_by_power_of_two(fresh_a, -ea);
+    multiply_by_power_of_two(fresh_b, -eb);
     triangular_factor_into<Stacked>(work, R);
     done += take;
   }
@@ -61,7 +58,7 @@ bool estimate_bounded(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<cons
   const Index n = data.n;
   TlsKernel<MaxN> tls;
   bool tls_done = false;
-  Matrix X_s, psd;
+  Matrix X_s;
   X.resize(methods.size());
   for (std::size_t i = 0; i < methods.size(); ++i) {
     bool ok = true;
@@ -90,14 +87,7 @@ bool estimate_bounded(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<cons
         } else if (methods[i] == Method::TotalLeastSquaresSymmetric) {
           X_s = symmetric_part(tls.X_s);
         } else {
-          // As nearest_spd does: in units where the largest entry is of order one.
-          ok = tls.X_s.allFinite();
-          if (!ok) break;
-          const int e = scale_exponent(tls.X_s).value_or(0);
-          double min_before = 0.0;
-          const Matrix x = times_power_of_two(tls.X_s, -e);
-          ok = nearest_spd_kernel<MaxN>(x, 0.0, psd, min_before) >= 0;
-          if (ok) X_s = times_power_of_two(psd, e);
+          ok = tls.X_s.allFinite() && nearest_spd_kernel<MaxN>(tls.X_s, 0.0, X_s);
         }
         break;
     }

@@ -34,27 +34,43 @@ class PairReader {
         side_by_side_(side_by_side) {}
 
   // The next block of both files; false at the end of both. The two files are read side by
-  // side on two threads when asked to (parsing text is the expensive part of streaming).
+  // side on two threads when asked to (parsing text is the expensive part of streaming), except
+  // the first block: A's is read alone, so that a hostile A (one row of millions of columns) is
+  // refused before B is read too, as the in-memory reader does.
   bool next(Block* block) {
     Index got_a = 0;
     Index got_b = 0;
-    if (side_by_side_) {
+    if (side_by_side_ && started_) {
       std::future<Index> b = std::async(std::launch::async, [&] { return b_.read(block_rows_, &block->B); });
       // The future's destructor waits for B even when reading A throws.
-      got_a = a_.read(block_rows_, &block->A);
+      got_a = read_a(block);
       got_b = b.get();
     } else {
-      got_a = a_.read(block_rows_, &block->A);
+      got_a = read_a(block);
       got_b = b_.read(block_rows_, &block->B);
     }
+    started_ = true;
     check(got_a, got_b);
     return got_a > 0;
   }
 
-  std::uint64_t rows() const { return a_.rows_read(); }
-  const io::RowReader& a() const { return a_; }
-
  private:
+  // Throws when A, all read, has fewer rows (samples) than columns.
+  void check_enough_rows() const {
+    if (a_.rows_read() < static_cast<std::uint64_t>(a_.columns())) {
+      throw io::fewer_samples_than_columns(a_.path(), a_.rows_read(),
+                                           static_cast<std::uint64_t>(a_.columns()));
+    }
+  }
+
+  // A short block is A's last: m < n is refused there, before the O(n^2) factor of a very wide
+  // file is allocated.
+  Index read_a(Block* block) {
+    const Index got = a_.read(block_rows_, &block->A);
+    if (got < block_rows_) check_enough_rows();
+    return got;
+  }
+
   // Blocks are full until a file ends, so a difference in rows shows as blocks of different
   // sizes; the columns are compared at the first block.
   void check(Index got_a, Index got_b) const {
@@ -75,6 +91,7 @@ class PairReader {
   io::RowReader a_, b_;
   Index block_rows_;
   bool side_by_side_;
+  bool started_ = false;
 };
 
 }  // namespace
@@ -98,19 +115,8 @@ TriangularFactor stream_factor(const std::string& a_path, const std::string& b_p
       total = std::move(block);
     }
   };
-  const auto fewer_rows_than_columns = [&] {
-    return io::DataError(a_path, 0, 0,
-                         "A has " + std::to_string(reader.rows()) + " rows (samples) but " +
-                             std::to_string(reader.a().columns()) +
-                             " columns: at least as many samples as columns are needed");
-  };
   Block block;
   while (reader.next(&block)) {
-    // A short block is the last: refuse m < n before the O(n^2) factor of a hostile, very wide
-    // file is allocated.
-    if (block.A.rows() < options.block_rows && reader.rows() < static_cast<std::uint64_t>(block.A.cols())) {
-      throw fewer_rows_than_columns();
-    }
     // One thread: computed on this one when merged (deferred).
     const std::launch policy = threads == 1 ? std::launch::deferred : std::launch::async;
     in_flight.push_back(
@@ -120,7 +126,8 @@ TriangularFactor stream_factor(const std::string& a_path, const std::string& b_p
   }
   while (!in_flight.empty()) merge_oldest();
 
-  if (reader.rows() < static_cast<std::uint64_t>(reader.a().columns())) throw fewer_rows_than_columns();
+  // The last next() read a short block of A (0 rows when m is a multiple of block_rows), so
+  // m >= n was checked there, and m >= 1 (an empty file is an error): there is a factor.
   return std::move(*total);
 }
 

@@ -83,8 +83,12 @@ void TriangularFactor::append(const Eigen::Ref<const MatrixXd>& A, const Eigen::
   if (A.rows() == 0) return;
   raise_exponents(detail::scale_exponent(A), detail::scale_exponent(B));
   MatrixXd scaled(A.rows(), 2 * n_);
-  scaled.leftCols(n_) = detail::times_power_of_two(A, -exponent_a());
-  scaled.rightCols(n_) = detail::times_power_of_two(B, -exponent_b());
+  auto scaled_a = scaled.leftCols(n_);
+  auto scaled_b = scaled.rightCols(n_);
+  scaled_a = A;
+  scaled_b = B;
+  detail::multiply_by_power_of_two(scaled_a, -exponent_a());
+  detail::multiply_by_power_of_two(scaled_b, -exponent_b());
   absorb(scaled);
   rows_ += A.rows();
 }

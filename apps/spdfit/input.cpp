@@ -17,10 +17,8 @@ DataPair load_pair(const std::string& a_path, const std::string& b_path) {
   data.A = load_matrix(a_path);
   // Checked before B is read, so that a hostile A (millions of columns) costs one file, not two.
   if (data.A.rows() < data.A.cols()) {
-    throw io::DataError(a_path, 0, 0,
-                        "A has " + std::to_string(data.A.rows()) + " rows (samples) but " +
-                            std::to_string(data.A.cols()) +
-                            " columns: at least as many samples as columns are needed");
+    throw io::fewer_samples_than_columns(a_path, static_cast<std::uint64_t>(data.A.rows()),
+                                         static_cast<std::uint64_t>(data.A.cols()));
   }
   data.B = load_matrix(b_path);
   if (data.A.rows() != data.B.rows() || data.A.cols() != data.B.cols()) {

@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <cstdint>
 #include <iosfwd>
 #include <stdexcept>
 #include <string>
@@ -28,6 +29,10 @@ class DataError : public std::runtime_error {
   std::size_t column_;
   std::string problem_;
 };
+
+/// The error for data A, read from `a_path`, with fewer rows (samples) than columns: an n x n
+/// X needs at least n samples. Shared by every reader of A and B.
+DataError fewer_samples_than_columns(const std::string& a_path, std::uint64_t rows, std::uint64_t columns);
 
 /// Options for reading.
 struct ReadOptions {

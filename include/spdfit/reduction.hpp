@@ -18,7 +18,7 @@ namespace spdfit {
 /// careful path; the overloads taking A and B call TriangularFactor::from_data and reduce.
 ///
 /// MaxN bounds n at compile time: the library's small-problem path (Monte Carlo experiments)
-/// uses BasicReduction<6>-style instances whose matrices live on the stack. User code needs
+/// uses BasicReduction<2> and BasicReduction<8> whose matrices live on the stack. User code needs
 /// only `Reduction`, the unbounded one.
 template <int MaxN = Eigen::Dynamic>
 struct BasicReduction {

@@ -53,8 +53,13 @@ class NpySource final : public RowReader::Source {
     if (map == MAP_FAILED) fail_errno(path, "cannot be memory-mapped");
     map_ = static_cast<const char*>(map);
     ::madvise(map, size, MADV_SEQUENTIAL);
-    const std::string_view bytes(map_, size_);
-    layout_ = detail::npy_layout(detail::parse_npy_header(bytes, path), size_, path);
+    try {
+      const std::string_view bytes(map_, size_);
+      layout_ = detail::npy_layout(detail::parse_npy_header(bytes, path), size_, path);
+    } catch (...) {
+      ::munmap(map, size_);  // a constructor that throws runs no destructor
+      throw;
+    }
   }
   ~NpySource() override { ::munmap(const_cast<char*>(map_), size_); }
 
