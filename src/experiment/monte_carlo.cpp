@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "small_problem.hpp"
+#include "estimators/small_problem.hpp"
 #include "spdfit/fit.hpp"
 #include "spdfit/reduction.hpp"
 #include "spdfit/triangular_factor.hpp"

@@ -1,5 +1,5 @@
 // experiment::estimate, the experiments' inner loop: for n <= 8 it runs on stack matrices
-// (src/small_problem.cpp), chunking the QR when m > 4n, and must give fit()'s estimates to
+// (src/estimators/small_problem.cpp), chunking the QR when m > 4n, and must give fit()'s estimates to
 // rounding, the same failures and the same rejections; above n = 8 it is fit() itself.
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
-#include "diagnostics.hpp"
+#include "estimators/diagnostics.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
-#include "linalg.hpp"
+#include "numerics/linalg.hpp"
 
 namespace spdfit::detail {
 

@@ -1,11 +1,11 @@
-#include "small_problem.hpp"
+#include "estimators/small_problem.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "kernels.hpp"
-#include "linalg.hpp"
+#include "estimators/kernels.hpp"
+#include "numerics/linalg.hpp"
 
 namespace spdfit::detail {
 

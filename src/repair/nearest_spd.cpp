@@ -5,8 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "kernels.hpp"
-#include "linalg.hpp"
+#include "estimators/kernels.hpp"
+#include "numerics/linalg.hpp"
 
 namespace spdfit {
 

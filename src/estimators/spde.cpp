@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "diagnostics.hpp"
-#include "kernels.hpp"
-#include "linalg.hpp"
+#include "estimators/diagnostics.hpp"
+#include "estimators/kernels.hpp"
+#include "numerics/linalg.hpp"
 
 namespace spdfit {
 

@@ -7,8 +7,8 @@
 
 #include <Eigen/SVD>
 
-#include "linalg.hpp"
-#include "linear_system_explanation.hpp"
+#include "numerics/linalg.hpp"
+#include "linear_system/linear_system_explanation.hpp"
 
 namespace spdfit {
 

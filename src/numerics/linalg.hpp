@@ -14,7 +14,7 @@
 #include <limits>
 #include <optional>
 
-#include "one_sided_jacobi.hpp"
+#include "numerics/one_sided_jacobi.hpp"
 
 namespace spdfit::detail {
 

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "diagnostics.hpp"
-#include "linalg.hpp"
+#include "estimators/diagnostics.hpp"
+#include "numerics/linalg.hpp"
 
 namespace spdfit {
 

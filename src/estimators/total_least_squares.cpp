@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "diagnostics.hpp"
-#include "kernels.hpp"
-#include "linalg.hpp"
+#include "estimators/diagnostics.hpp"
+#include "estimators/kernels.hpp"
+#include "numerics/linalg.hpp"
 #include "spdfit/nearest_spd.hpp"
 
 namespace spdfit {

@@ -1,4 +1,4 @@
-#include "linear_system_explanation.hpp"
+#include "linear_system/linear_system_explanation.hpp"
 
 #include <cmath>
 #include <cstdio>

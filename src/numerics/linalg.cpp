@@ -1,4 +1,4 @@
-#include "linalg.hpp"
+#include "numerics/linalg.hpp"
 
 #include <algorithm>
 #include <cmath>

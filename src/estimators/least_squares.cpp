@@ -1,8 +1,8 @@
 #include "spdfit/least_squares.hpp"
 
-#include "diagnostics.hpp"
-#include "kernels.hpp"
-#include "linalg.hpp"
+#include "estimators/diagnostics.hpp"
+#include "estimators/kernels.hpp"
+#include "numerics/linalg.hpp"
 
 namespace spdfit {
 

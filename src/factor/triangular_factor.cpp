@@ -5,8 +5,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "kernels.hpp"
-#include "linalg.hpp"
+#include "estimators/kernels.hpp"
+#include "numerics/linalg.hpp"
 
 namespace spdfit {
 

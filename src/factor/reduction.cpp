@@ -4,8 +4,8 @@
 #include <string>
 #include <utility>
 
-#include "kernels.hpp"
-#include "linalg.hpp"
+#include "estimators/kernels.hpp"
+#include "numerics/linalg.hpp"
 
 namespace spdfit {
 
