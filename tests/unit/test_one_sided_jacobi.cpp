@@ -4,7 +4,7 @@
 
 #include <Eigen/SVD>
 
-#include "linalg.hpp"
+#include "numerics/linalg.hpp"
 #include "test_support.hpp"
 
 namespace spdfit {
