@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "fuzz_check.hpp"
+#include "io/parse.hpp"
 #include "spdfit/io.hpp"
 
 namespace {

@@ -9,6 +9,7 @@
 #include "input.hpp"
 #include "output.hpp"
 #include "spdfit/fit.hpp"
+#include "spdfit/fit_files.hpp"
 #include "spdfit/io.hpp"
 
 namespace spdfit::cli {
@@ -86,7 +87,7 @@ Command add_compare_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("B", options->b_path, "File of B (m x n): delimited text or .npy")->required();
 
   auto run = [options, &global]() {
-    const DataPair data = load_pair(options->a_path, options->b_path);
+    const DataPair data = read_pair(options->a_path, options->b_path);
     std::optional<Eigen::MatrixXd> truth;
     if (!options->truth_path.empty()) {
       truth = load_matrix(options->truth_path);

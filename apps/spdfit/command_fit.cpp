@@ -5,8 +5,7 @@
 #include "cli.hpp"
 #include "input.hpp"
 #include "output.hpp"
-#include "spdfit/fit.hpp"
-#include "spdfit/stream.hpp"
+#include "spdfit/fit_files.hpp"
 
 namespace spdfit::cli {
 
@@ -59,16 +58,10 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
   auto run = [options, &global]() {
     FitOptions fit_options;
     fit_options.rank_tolerance = options->rank_tolerance;
-    const Method method = *parse_method(options->method);
-    FitResult result;
-    if (options->stream) {
-      result =
-          fit(reduce(stream_factor(options->a_path, options->b_path, options->stream_options), fit_options),
-              method);
-    } else {
-      const DataPair data = load_pair(options->a_path, options->b_path);
-      result = fit(data.A, data.B, method, fit_options);
-    }
+    const std::optional<StreamOptions> stream =
+        options->stream ? std::optional<StreamOptions>(options->stream_options) : std::nullopt;
+    const FitResult result =
+        fit_files(options->a_path, options->b_path, *parse_method(options->method), fit_options, stream);
     for (const std::string& w : result.warnings) warn(global, w);
     if (!result.ok()) throw DataFailure(result.message);
     emit(options->json ? result_json(result).dump(2) + "\n" : matrix_csv(result.X), options->output);

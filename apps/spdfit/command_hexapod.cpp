@@ -12,6 +12,7 @@
 #include "experiment_output.hpp"
 #include "input.hpp"
 #include "output.hpp"
+#include "spdfit/fit_files.hpp"
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/hexapod/identify.hpp"
 #include "spdfit/hexapod/model.hpp"
@@ -321,7 +322,7 @@ Command add_identify(CLI::App& parent, const GlobalOptions& global) {
   sub->add_option("-o,--output", cli->output, "Write to FILE instead of stdout");
 
   auto run = [cli, &global]() {
-    const DataPair data = load_pair(cli->a_path, cli->b_path);
+    const DataPair data = read_pair(cli->a_path, cli->b_path);
     const Eigen::Index n = data.A.cols();
     hexapod::IdentifyOptions options;
     if (!cli->truth.empty()) {

@@ -68,6 +68,7 @@ json diagnostics_json(const Diagnostics& d) {
 json result_json(const FitResult& result) {
   json out;
   out["method"] = std::string(to_string(result.method));
+  out["status"] = to_string(result.status);
   out["m"] = result.diagnostics.m;
   out["n"] = result.diagnostics.n;
   out["X"] = matrix_json(result.X);

@@ -13,9 +13,23 @@ namespace spdfit {
 /// Whether an estimator produced an estimate. Misuse of the API (wrong shapes, NaN input)
 /// throws std::invalid_argument instead; a status is for valid input that has no answer.
 enum class Status {
+  NotComputed,       ///< no estimator has filled this result (a default-constructed FitResult)
   Success,
   NumericalFailure,  ///< e.g. V22 singular in TLS, A rank-deficient in SPDE; see `message`
 };
+
+/// The status's name in Python and JSON: "not_computed", "success" or "numerical_failure".
+constexpr const char* to_string(Status status) {
+  switch (status) {
+    case Status::NotComputed:
+      return "not_computed";
+    case Status::Success:
+      return "success";
+    case Status::NumericalFailure:
+      return "numerical_failure";
+  }
+  return "unknown";
+}
 
 /// Quantities a user checks an estimate by. Singular values, ranks and condition numbers
 /// are those of the data A and B (computed from the triangular factor, not Gram matrices).
@@ -54,7 +68,7 @@ struct Diagnostics {
 /// The result of one estimator on one data set.
 struct FitResult {
   Method method = Method::Spde;
-  Status status = Status::Success;
+  Status status = Status::NotComputed;  ///< an estimator sets Success or NumericalFailure
   std::string message;  ///< why it failed, when status != Success
   Eigen::MatrixXd X;    ///< the estimate (empty on failure)
   Diagnostics diagnostics;

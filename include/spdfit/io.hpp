@@ -30,10 +30,6 @@ class DataError : public std::runtime_error {
   std::string problem_;
 };
 
-/// The error for data A, read from `a_path`, with fewer rows (samples) than columns: an n x n
-/// X needs at least n samples. Shared by every reader of A and B.
-DataError fewer_samples_than_columns(const std::string& a_path, std::uint64_t rows, std::uint64_t columns);
-
 /// Options for reading.
 struct ReadOptions {
   bool allow_nonfinite = false;  ///< NaN and Inf are rejected unless this is set
@@ -55,15 +51,6 @@ struct Table {
 /// that is not a number, NaN or Inf (unless allowed), no data rows, a malformed .npy.
 Table read_table(const std::string& path, const ReadOptions& options = {});
 Eigen::MatrixXd read_matrix(const std::string& path, const ReadOptions& options = {});
-
-/// read_table on bytes already in memory: a .npy file when they start with the .npy magic bytes,
-/// delimited text otherwise. `source` names them in errors. Throws DataError as read_table does
-/// (empty bytes: "file is empty").
-Table parse_table(std::string_view bytes, const std::string& source, const ReadOptions& options = {});
-
-/// The two parsers behind parse_table; `source` names the bytes in errors.
-Table parse_delimited(std::string_view text, const std::string& source, const ReadOptions& options = {});
-Eigen::MatrixXd parse_npy(std::string_view bytes, const std::string& source, const ReadOptions& options = {});
 
 /// The shortest decimal text that reads back as exactly `value` ("inf", "-inf", "nan" for
 /// non-finite values).

@@ -43,9 +43,10 @@ class RowReader {
   /// Rows returned so far.
   std::uint64_t rows_read() const;
 
-  struct Source;  // the format-specific part (internal)
-
  private:
+  struct Source;  // the format-specific part, one kind per file format (row_reader.cpp)
+  class NpySource;
+  class TextSource;
   std::unique_ptr<Source> source_;
 };
 

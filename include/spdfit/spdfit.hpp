@@ -1,5 +1,6 @@
 // spdfit: estimating symmetric positive definite matrices from imperfect measurements.
-// The umbrella header: includes the whole public API.
+// The umbrella header: includes the whole public API, every header of include/spdfit/ (a test
+// checks that none is left out).
 #pragma once
 
 #include "spdfit/area_criterion.hpp"
@@ -8,6 +9,7 @@
 #include "spdfit/experiment/statistics.hpp"
 #include "spdfit/experiment/thesis.hpp"
 #include "spdfit/fit.hpp"
+#include "spdfit/fit_files.hpp"
 #include "spdfit/fit_options.hpp"
 #include "spdfit/fit_result.hpp"
 #include "spdfit/hexapod/geometry.hpp"
@@ -18,14 +20,23 @@
 #include "spdfit/least_squares.hpp"
 #include "spdfit/linear_system.hpp"
 #include "spdfit/linkage/analysis.hpp"
+#include "spdfit/linkage/design_error.hpp"
+#include "spdfit/linkage/freudenstein.hpp"
+#include "spdfit/linkage/grashof.hpp"
 #include "spdfit/linkage/pairs_file.hpp"
+#include "spdfit/linkage/prescribed_function.hpp"
+#include "spdfit/linkage/status.hpp"
+#include "spdfit/linkage/structural_error.hpp"
 #include "spdfit/linkage/synthesis.hpp"
 #include "spdfit/method.hpp"
 #include "spdfit/nearest_spd.hpp"
 #include "spdfit/random.hpp"
 #include "spdfit/reduction.hpp"
+#include "spdfit/row_reader.hpp"
 #include "spdfit/spde.hpp"
+#include "spdfit/stream.hpp"
 #include "spdfit/symmetric_procrustes.hpp"
+#include "spdfit/threads.hpp"
 #include "spdfit/total_least_squares.hpp"
 #include "spdfit/triangular_factor.hpp"
 #include "spdfit/version.hpp"

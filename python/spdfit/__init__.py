@@ -82,7 +82,12 @@ def fit(A, B, method="spde", *, rank_tolerance=None):
     return _checked(_spdfit.fit(A, B, method, rank_tolerance))
 
 
-def fit_files(A_path, B_path, method="spde", *, block_rows=32768, threads=0, rank_tolerance=None):
+# The streaming defaults are the library's (StreamOptions), not retyped here.
+_STREAM_DEFAULTS = _spdfit.StreamOptions()
+
+
+def fit_files(A_path, B_path, method="spde", *, block_rows=_STREAM_DEFAULTS.block_rows,
+              threads=_STREAM_DEFAULTS.threads, rank_tolerance=None):
     """Estimate X from A and B in two data files read a block of rows at a time (`spdfit fit
     --stream`): any number of rows in O(threads * block_rows * n + n^2) memory.
 

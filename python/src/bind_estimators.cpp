@@ -10,8 +10,8 @@
 #include "bindings.hpp"
 #include "spdfit/area_criterion.hpp"
 #include "spdfit/fit.hpp"
+#include "spdfit/fit_files.hpp"
 #include "spdfit/nearest_spd.hpp"
-#include "spdfit/stream.hpp"
 
 namespace py = pybind11;
 
@@ -92,9 +92,8 @@ void bind_estimators(py::module_& m) {
   py::class_<FitResult>(m, "FitResult", "An estimate of X in A X ~= B with its diagnostics and warnings.")
       .def_property_readonly("method", [](const FitResult& r) { return std::string(to_string(r.method)); })
       .def_property_readonly("ok", &FitResult::ok)
-      .def_property_readonly("status", [](const FitResult& r) {
-        return r.ok() ? std::string("success") : std::string("numerical_failure");
-      })
+      .def_property_readonly("status", [](const FitResult& r) { return std::string(to_string(r.status)); },
+                             "'success', 'numerical_failure', or 'not_computed' (no estimator filled it)")
       .def_readonly("message", &FitResult::message, "why it failed ('' on success)")
       .def_readonly("X", &FitResult::X, "the estimate (n x n ndarray; empty on failure)")
       .def_readonly("diagnostics", &FitResult::diagnostics)
@@ -111,6 +110,11 @@ void bind_estimators(py::module_& m) {
         return fit(A, B, chosen, options);
       },
       py::arg("A"), py::arg("B"), py::arg("method"), py::arg("rank_tolerance") = py::none());
+  py::class_<StreamOptions>(m, "StreamOptions",
+                            "How fit_files streams its files; the defaults are the library's own.")
+      .def(py::init<>())
+      .def_readwrite("block_rows", &StreamOptions::block_rows, "rows per block")
+      .def_readwrite("threads", &StreamOptions::threads, "threads; 0 means one per core");
   m.def(
       "fit_files",
       [](const std::string& a_path, const std::string& b_path, const std::string& method, Eigen::Index block_rows,
@@ -121,10 +125,10 @@ void bind_estimators(py::module_& m) {
         stream.block_rows = block_rows;
         stream.threads = threads;
         py::gil_scoped_release release;
-        return fit(reduce(stream_factor(a_path, b_path, stream), options), chosen);
+        return fit_files(a_path, b_path, chosen, options, stream);
       },
       py::arg("A_path"), py::arg("B_path"), py::arg("method"), py::arg("block_rows") = StreamOptions{}.block_rows,
-      py::arg("threads") = 0u, py::arg("rank_tolerance") = py::none());
+      py::arg("threads") = StreamOptions{}.threads, py::arg("rank_tolerance") = py::none());
   m.def(
       "fit_all",
       [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, std::optional<double> rank_tolerance) {

@@ -10,7 +10,8 @@ namespace spdfit {
 
 using Eigen::MatrixXd;
 
-std::optional<double> area_criterion(const Reduction& data, const Eigen::Ref<const MatrixXd>& X) {
+std::optional<double> area_criterion(const Reduction& reduction, const Eigen::Ref<const MatrixXd>& X) {
+  const detail::DynamicReduction& data = detail::data_of(reduction);
   if (X.rows() != data.n || X.cols() != data.n) {
     throw std::invalid_argument("area_criterion: X must be " + std::to_string(data.n) + "x" +
                                 std::to_string(data.n));

@@ -24,14 +24,14 @@ constexpr double kIllConditionedRcond = 1e-12;
 constexpr double kSemidefiniteSlack = 4.0;
 
 // The data's size and ranks: reported with or without the other diagnostics.
-void fill_shape_and_ranks(const Reduction& data, Diagnostics& d) {
+void fill_shape_and_ranks(const DynamicReduction& data, Diagnostics& d) {
   d.m = data.m;
   d.n = data.n;
   d.rank_a = data.rank_a;
   d.rank_b = data.rank_b;
 }
 
-void fill_data_diagnostics(const Reduction& data, Diagnostics& d, std::vector<std::string>& warnings) {
+void fill_data_diagnostics(const DynamicReduction& data, Diagnostics& d, std::vector<std::string>& warnings) {
   fill_shape_and_ranks(data, d);
   d.singular_values_a = times_power_of_two(data.s_a, data.exponent_a);
   d.singular_values_b = times_power_of_two(data.s_b, data.exponent_b);
@@ -48,6 +48,7 @@ void fill_data_diagnostics(const Reduction& data, Diagnostics& d, std::vector<st
 FitResult checked(Method method, MatrixXd X, Diagnostics d, std::vector<std::string> warnings) {
   FitResult result;
   result.method = method;
+  result.status = Status::Success;
   result.X = std::move(X);
   result.diagnostics = std::move(d);
   result.warnings = std::move(warnings);
@@ -68,7 +69,7 @@ std::string format_number(double value) {
   return buffer;
 }
 
-std::optional<double> scaled_area_criterion(const Reduction& data, const MatrixXd& X_s) {
+std::optional<double> scaled_area_criterion(const DynamicReduction& data, const MatrixXd& X_s) {
   const Index n = data.n;
   Eigen::SelfAdjointEigenSolver<MatrixXd> eig(X_s);
   if (eig.info() != Eigen::Success) return std::nullopt;
@@ -97,7 +98,7 @@ std::optional<double> scaled_area_criterion(const Reduction& data, const MatrixX
   return (data.R11 * Y).squaredNorm() + (data.R_b * Z).squaredNorm() - 2.0 * cross;
 }
 
-FitResult finish(Method method, const Reduction& data, const MatrixXd& X_s, Diagnostics d,
+FitResult finish(Method method, const DynamicReduction& data, const MatrixXd& X_s, Diagnostics d,
                  std::vector<std::string> warnings) {
   const int ea = data.exponent_a;
   const int eb = data.exponent_b;
@@ -131,7 +132,7 @@ FitResult finish(Method method, const Reduction& data, const MatrixXd& X_s, Diag
   return checked(method, times_power_of_two(X_s, eb - ea), std::move(d), std::move(warnings));
 }
 
-FitResult failure(Method method, const Reduction& data, std::string message,
+FitResult failure(Method method, const DynamicReduction& data, std::string message,
                   std::vector<std::string> warnings) {
   FitResult result;
   result.method = method;

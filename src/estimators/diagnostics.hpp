@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "spdfit/fit_result.hpp"
-#include "spdfit/reduction.hpp"
+#include "factor/basic_reduction.hpp"
 
 namespace spdfit::detail {
 
@@ -15,16 +15,16 @@ namespace spdfit::detail {
 /// fills every common diagnostic (ranks, condition numbers, residual, definiteness, area
 /// criterion), appends the common warnings, and converts X to the data's units. The
 /// method-specific diagnostics already in `diagnostics` are kept.
-FitResult finish(Method method, const Reduction& data, const Eigen::MatrixXd& X_s, Diagnostics diagnostics,
+FitResult finish(Method method, const DynamicReduction& data, const Eigen::MatrixXd& X_s, Diagnostics diagnostics,
                  std::vector<std::string> warnings);
 
 /// A failed result: no estimate, the common diagnostics of the data, and the message.
-FitResult failure(Method method, const Reduction& data, std::string message,
+FitResult failure(Method method, const DynamicReduction& data, std::string message,
                   std::vector<std::string> warnings = {});
 
 /// The area criterion of a symmetric X_s in scaled units (see area_criterion.hpp); nothing
 /// when X_s is not positive semidefinite.
-std::optional<double> scaled_area_criterion(const Reduction& data, const Eigen::MatrixXd& X_s);
+std::optional<double> scaled_area_criterion(const DynamicReduction& data, const Eigen::MatrixXd& X_s);
 
 /// "1.5e+08"-style text for messages.
 std::string format_number(double value);

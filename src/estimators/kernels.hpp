@@ -9,9 +9,12 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <string>
 
-#include "spdfit/reduction.hpp"
+#include "spdfit/fit_result.hpp"
+
+#include "factor/basic_reduction.hpp"
 
 namespace spdfit::detail {
 
@@ -82,5 +85,9 @@ struct NearestSpdInfo {
 template <int MaxN>
 bool nearest_spd_kernel(const SquareMatrix<MaxN>& X, double min_eig, SquareMatrix<MaxN>& y,
                         NearestSpdInfo* info = nullptr);
+
+/// tls, tls-sym and tls-psd (in that order) from one TLS SVD, as the three public functions of
+/// total_least_squares.hpp return them: what fit_all shares among the TLS family.
+std::array<FitResult, 3> total_least_squares_family(const Reduction& reduction);
 
 }  // namespace spdfit::detail

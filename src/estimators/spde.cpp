@@ -48,7 +48,8 @@ SPDFIT_FOR_EACH_MAX_N(SPDFIT_INSTANTIATE)
 
 }  // namespace detail
 
-FitResult spde(const Reduction& data) {
+FitResult spde(const Reduction& reduction) {
+  const detail::DynamicReduction& data = detail::data_of(reduction);
   const Index n = data.n;
   if (data.rank_a < n) {
     return detail::failure(Method::Spde, data,

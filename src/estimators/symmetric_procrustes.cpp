@@ -45,7 +45,8 @@ SPDFIT_FOR_EACH_MAX_N(SPDFIT_INSTANTIATE)
 
 }  // namespace detail
 
-FitResult symmetric_procrustes(const Reduction& data) {
+FitResult symmetric_procrustes(const Reduction& reduction) {
+  const detail::DynamicReduction& data = detail::data_of(reduction);
   const Index n = data.n;
   const Index r = data.rank_a;
   std::vector<std::string> warnings;

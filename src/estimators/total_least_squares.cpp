@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "estimators/diagnostics.hpp"
@@ -72,7 +73,7 @@ struct TlsCore {
   std::string error;  // empty on success
 };
 
-TlsCore tls_core(const Reduction& data) {
+TlsCore tls_core(const detail::DynamicReduction& data) {
   TlsCore out;
   detail::TlsKernel<Eigen::Dynamic> k;
   detail::tls_kernel(data, k);
@@ -97,9 +98,9 @@ TlsCore tls_core(const Reduction& data) {
   return out;
 }
 
-FitResult run(Method method, const Reduction& data) {
-  TlsCore core = tls_core(data);
-  if (!core.error.empty()) return detail::failure(method, data, core.error, std::move(core.warnings));
+// The result of `method` (tls, tls-sym or tls-psd) from the shared X_TLS.
+FitResult finish_tls(Method method, const detail::DynamicReduction& data, const TlsCore& core) {
+  if (!core.error.empty()) return detail::failure(method, data, core.error, core.warnings);
   MatrixXd X_s;
   switch (method) {
     case Method::TotalLeastSquaresSymmetric:
@@ -109,12 +110,29 @@ FitResult run(Method method, const Reduction& data) {
       X_s = nearest_spd(core.X_s).X;  // thesis eq. 4.39 (Higham)
       break;
     default:
-      X_s = std::move(core.X_s);
+      X_s = core.X_s;
   }
-  return detail::finish(method, data, X_s, std::move(core.diagnostics), std::move(core.warnings));
+  return detail::finish(method, data, X_s, core.diagnostics, core.warnings);
+}
+
+FitResult run(Method method, const Reduction& reduction) {
+  const detail::DynamicReduction& data = detail::data_of(reduction);
+  return finish_tls(method, data, tls_core(data));
 }
 
 }  // namespace
+
+namespace detail {
+
+std::array<FitResult, 3> total_least_squares_family(const Reduction& reduction) {
+  const DynamicReduction& data = data_of(reduction);
+  const TlsCore core = tls_core(data);
+  return {finish_tls(Method::TotalLeastSquares, data, core),
+          finish_tls(Method::TotalLeastSquaresSymmetric, data, core),
+          finish_tls(Method::TotalLeastSquaresPsd, data, core)};
+}
+
+}  // namespace detail
 
 FitResult total_least_squares(const Reduction& data) { return run(Method::TotalLeastSquares, data); }
 FitResult total_least_squares_symmetric(const Reduction& data) {

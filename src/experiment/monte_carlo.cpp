@@ -29,12 +29,6 @@ bool MonteCarloOptions::is_valid(std::string* error) const {
   return true;
 }
 
-unsigned resolve_threads(unsigned requested) {
-  if (requested > 0) return requested;
-  const unsigned hardware = std::thread::hardware_concurrency();
-  return hardware > 0 ? hardware : 1;
-}
-
 void run_trials(const MonteCarloOptions& options, const std::function<void(std::size_t, Random&)>& trial) {
   std::string error;
   if (!options.is_valid(&error)) throw std::invalid_argument("run_trials: " + error);

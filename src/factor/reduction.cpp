@@ -59,10 +59,19 @@ Reduction reduce(const TriangularFactor& factor, const FitOptions& options) {
   if (factor.rows() < n) {
     throw std::invalid_argument(detail::too_few_rows(factor.rows(), n));
   }
-  Reduction r;
-  r.options = options;
-  detail::reduce_into(factor.R(), factor.rows(), factor.exponent_a(), factor.exponent_b(), r);
-  return r;
+  auto r = std::make_shared<detail::DynamicReduction>();
+  r->options = options;
+  detail::reduce_into(factor.R(), factor.rows(), factor.exponent_a(), factor.exponent_b(), *r);
+  return Reduction(std::move(r));
+}
+
+Eigen::Index Reduction::m() const { return data_ ? data_->m : 0; }
+Eigen::Index Reduction::n() const { return data_ ? data_->n : 0; }
+Eigen::Index Reduction::rank_a() const { return data_ ? data_->rank_a : 0; }
+Eigen::Index Reduction::rank_b() const { return data_ ? data_->rank_b : 0; }
+const FitOptions& Reduction::options() const {
+  static const FitOptions defaults;
+  return data_ ? data_->options : defaults;
 }
 
 }  // namespace spdfit

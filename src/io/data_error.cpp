@@ -31,13 +31,3 @@ DataError::DataError(std::string source, std::size_t line, std::size_t column, c
       problem_(problem) {}
 
 }  // namespace spdfit::io
-
-namespace spdfit::io {
-
-DataError fewer_samples_than_columns(const std::string& a_path, std::uint64_t rows, std::uint64_t columns) {
-  return DataError(a_path, 0, 0,
-                   "A has " + std::to_string(rows) + " rows (samples) but " + std::to_string(columns) +
-                       " columns: at least as many samples as columns are needed");
-}
-
-}  // namespace spdfit::io

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "delimited_parser.hpp"
+#include "parse.hpp"
 #include "fields.hpp"
 #include "spdfit/io.hpp"
 #include "text_scan.hpp"

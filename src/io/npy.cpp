@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "npy_layout.hpp"
+#include "parse.hpp"
 #include "spdfit/io.hpp"
 #include "text_scan.hpp"
 

@@ -1,4 +1,5 @@
 #include "npy_header.hpp"
+#include "parse.hpp"
 
 #include <limits>
 #include <map>

@@ -11,6 +11,7 @@
 #include <system_error>
 
 #include "file_error.hpp"
+#include "parse.hpp"
 #include "npy_header.hpp"
 #include "read_file.hpp"
 #include "spdfit/io.hpp"

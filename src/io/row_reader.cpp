@@ -1,6 +1,7 @@
 // Reading a data file a block of rows at a time: .npy files memory-mapped, text in pieces of
 // whole lines through the same parser as read_table.
 #include "spdfit/row_reader.hpp"
+#include "parse.hpp"
 
 #include <fcntl.h>
 #include <sys/mman.h>
@@ -42,10 +43,12 @@ namespace {
   throw DataError(path, 0, 0, doing + " (" + detail::describe_errno(errno) + ")");
 }
 
+}  // namespace
+
 // A .npy file, mapped whole and decoded a block at a time: the kernel reads ahead
 // (MADV_SEQUENTIAL), and the pages of rows already decoded are dropped from the mapping (the page
 // cache keeps them), so that resident memory stays O(block) however long the file.
-class NpySource final : public RowReader::Source {
+class RowReader::NpySource final : public RowReader::Source {
  public:
   NpySource(const std::string& path, int fd, std::size_t size, const ReadOptions& options)
       : Source(path), size_(size), options_(options) {
@@ -101,7 +104,7 @@ class NpySource final : public RowReader::Source {
 };
 
 // Delimited text, read in pieces that end at a line end and parsed as they arrive.
-class TextSource final : public RowReader::Source {
+class RowReader::TextSource final : public RowReader::Source {
  public:
   TextSource(const std::string& path, int fd, const ReadOptions& options)
       : Source(path), file_(::fdopen(fd, "rb")), parser_(path, options) {
@@ -181,8 +184,6 @@ class TextSource final : public RowReader::Source {
   std::size_t taken_ = 0;  // rows at the front of parser_.values() already handed out
   bool at_end_ = false;
 };
-
-}  // namespace
 
 RowReader::RowReader(const std::string& path, const ReadOptions& options) {
   detail::check_regular_file(path);

@@ -1,4 +1,5 @@
 #include "spdfit/linkage/pairs_file.hpp"
+#include "io/parse.hpp"
 
 #include <string>
 

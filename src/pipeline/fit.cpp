@@ -1,5 +1,9 @@
 #include "spdfit/fit.hpp"
 
+#include <array>
+#include <optional>
+
+#include "estimators/kernels.hpp"
 #include "spdfit/least_squares.hpp"
 #include "spdfit/spde.hpp"
 #include "spdfit/symmetric_procrustes.hpp"
@@ -35,7 +39,22 @@ FitResult fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Matrix
 std::vector<FitResult> fit_all(const Reduction& data) {
   std::vector<FitResult> results;
   results.reserve(kAllMethods.size());
-  for (Method method : kAllMethods) results.push_back(fit(data, method));
+  // The TLS family shares one SVD of [A B]; every other method shares the reduction.
+  std::optional<std::array<FitResult, 3>> tls_family;
+  for (Method method : kAllMethods) {
+    switch (method) {
+      case Method::TotalLeastSquares:
+      case Method::TotalLeastSquaresSymmetric:
+      case Method::TotalLeastSquaresPsd:
+        if (!tls_family) tls_family = detail::total_least_squares_family(data);
+        results.push_back(std::move((*tls_family)[method == Method::TotalLeastSquares            ? 0
+                                                  : method == Method::TotalLeastSquaresSymmetric ? 1
+                                                                                                 : 2]));
+        break;
+      default:
+        results.push_back(fit(data, method));
+    }
+  }
   return results;
 }
 

@@ -7,8 +7,9 @@
 #include <string>
 #include <utility>
 
-#include "spdfit/experiment/monte_carlo.hpp"  // resolve_threads
+#include "pipeline/pair_checks.hpp"
 #include "spdfit/row_reader.hpp"
+#include "spdfit/threads.hpp"
 
 namespace spdfit {
 
@@ -58,7 +59,7 @@ class PairReader {
   // Throws when A, all read, has fewer rows (samples) than columns.
   void check_enough_rows() const {
     if (a_.rows_read() < static_cast<std::uint64_t>(a_.columns())) {
-      throw io::fewer_samples_than_columns(a_.path(), a_.rows_read(),
+      throw detail::fewer_samples_than_columns(a_.path(), a_.rows_read(),
                                            static_cast<std::uint64_t>(a_.columns()));
     }
   }
@@ -99,7 +100,7 @@ class PairReader {
 TriangularFactor stream_factor(const std::string& a_path, const std::string& b_path,
                                const StreamOptions& options) {
   if (options.block_rows < 1) throw std::invalid_argument("block_rows must be at least 1");
-  const unsigned threads = experiment::resolve_threads(options.threads);
+  const unsigned threads = resolve_threads(options.threads);
   PairReader reader(a_path, b_path, options, threads > 1);
 
   // Blocks' factors are computed on up to `threads` threads while the next blocks are read, and

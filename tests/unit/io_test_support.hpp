@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "io/parse.hpp"
 #include "spdfit/io.hpp"
 
 namespace spdfit::io::test {

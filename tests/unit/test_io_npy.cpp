@@ -13,6 +13,7 @@
 #include <random>
 #include <string>
 
+#include "io/parse.hpp"
 #include "spdfit/io.hpp"
 
 namespace {

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "io/parse.hpp"
 #include "spdfit/io.hpp"
 
 namespace {

@@ -11,6 +11,7 @@
 
 #include "spdfit/fit_result.hpp"
 #include "spdfit/random.hpp"
+#include "spdfit/threads.hpp"
 
 namespace spdfit::experiment {
 
@@ -29,8 +30,8 @@ struct MonteCarloOptions {
   bool is_valid(std::string* error = nullptr) const;
 };
 
-/// The number of worker threads `requested` stands for (0: the hardware's, at least 1).
-unsigned resolve_threads(unsigned requested);
+/// spdfit::resolve_threads (spdfit/threads.hpp), also reachable by its earlier name here.
+using spdfit::resolve_threads;
 
 /// Runs trial(k, random) for k = 0, ..., trials - 1, where `random` is a fresh
 /// Random(trial_seed(seed, k)) for each trial. Trials are handed out to the threads one at a

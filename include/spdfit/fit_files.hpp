@@ -1,0 +1,37 @@
+// Estimating from data files: A and B read whole, or streamed a block of rows at a time; the
+// one path the command line and Python share.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+
+#include "spdfit/fit_options.hpp"
+#include "spdfit/fit_result.hpp"
+#include "spdfit/io.hpp"
+#include "spdfit/method.hpp"
+#include "spdfit/stream.hpp"
+
+namespace spdfit {
+
+/// A and B as read from their files.
+struct DataPair {
+  Eigen::MatrixXd A, B;
+};
+
+/// Reads A and B from `a_path` and `b_path` (the formats of io::read_table) and checks that they
+/// have the same shape m x n with m >= n. Throws io::DataError naming the file on bad data, when
+/// A has fewer rows than columns (checked before B is read, so that a hostile A with millions of
+/// columns costs one file, not two) or when the shapes differ. Memory O(m n).
+DataPair read_pair(const std::string& a_path, const std::string& b_path, const io::ReadOptions& options = {});
+
+/// Runs `method` on A X ~= B with A and B in files: read whole with read_pair when `stream` is
+/// empty, else a block of rows at a time with stream_factor (memory
+/// O(threads * block_rows * n + n^2) for any m); then fit(reduce(factor, options), method). The two
+/// paths give the same estimate to rounding. Throws io::DataError on bad data (see read_pair and
+/// stream_factor) and std::invalid_argument on invalid options; a numerical failure is the
+/// result's status. Cost O(m n^2) plus the method's O(n^3).
+FitResult fit_files(const std::string& a_path, const std::string& b_path, Method method,
+                    const FitOptions& options = {}, const std::optional<StreamOptions>& stream = std::nullopt);
+
+}  // namespace spdfit

@@ -1,0 +1,52 @@
+// Internal: the reduced data the estimators' kernels work on, for a compile-time bound on n.
+// Users see it only through spdfit::Reduction (spdfit/reduction.hpp), read-only.
+#pragma once
+
+#include <Eigen/Core>
+#include <stdexcept>
+
+#include "spdfit/fit_options.hpp"
+#include "spdfit/reduction.hpp"
+
+namespace spdfit::detail {
+
+/// The data reduced to small matrices, all in the scaled units of the triangular factor:
+///
+///   R11 = U_a diag(s_a) V_a^T        the SVD of R11: singular values of A, rank_a, cond_a
+///   [R12; R22] = Q_b R_b              R_b (n x n): B^T B = R_b^T R_b; singular values of B
+///
+/// Built by reduce_into (kernels.hpp) in O(n^3) from a triangular factor.
+///
+/// MaxN bounds n at compile time: the small-problem path (Monte Carlo experiments) uses
+/// BasicReduction<2> and BasicReduction<8> whose matrices live on the stack; the public
+/// spdfit::Reduction holds a BasicReduction<Eigen::Dynamic>.
+template <int MaxN = Eigen::Dynamic>
+struct BasicReduction {
+  using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, MaxN, MaxN>;
+  using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, MaxN, 1>;
+  /// The 2n x 2n triangular factor R of [A B].
+  static constexpr int kMaxFactor = MaxN == Eigen::Dynamic ? Eigen::Dynamic : 2 * MaxN;
+  using Factor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kMaxFactor, kMaxFactor>;
+
+  Eigen::Index m = 0, n = 0;
+  int exponent_a = 0, exponent_b = 0;   ///< data scaled by 2^-exponent (TriangularFactor)
+  Matrix R11, R12, R22;                 ///< n x n blocks of R (R22 zero-padded)
+  Matrix U_a, V_a;                      ///< SVD of R11
+  Vector s_a;                           ///< descending
+  Matrix R_b;                           ///< triangular factor of B
+  Vector s_b;                           ///< singular values of B, descending
+  Eigen::Index rank_a = 0, rank_b = 0;  ///< numerical ranks under the options' cut-off
+  FitOptions options;
+};
+
+/// The reduction behind the public, unbounded Reduction.
+using DynamicReduction = BasicReduction<Eigen::Dynamic>;
+
+/// The reduced data behind `reduction`. Throws std::invalid_argument for a default-constructed
+/// Reduction (one not made by reduce).
+inline const DynamicReduction& data_of(const Reduction& reduction) {
+  if (!reduction.data_) throw std::invalid_argument("this Reduction is empty: make one with spdfit::reduce");
+  return *reduction.data_;
+}
+
+}  // namespace spdfit::detail
