@@ -26,6 +26,9 @@ grashof_type = _core.grashof_type
 __all__ = ["Analysis", "FourBar", "LinkageSolution", "SynthesisResult", "analyze", "freudenstein_parameters",
            "function_names", "grashof_type", "link_lengths", "synthesize"]
 
+# Gauss-Newton's defaults are the library's (GaussNewtonOptions), not retyped here.
+_GAUSS_NEWTON = _core.GaussNewtonOptions()
+
 # The command line's default input range for --steering (degrees).
 STEERING_PSI_RANGE = (-30.0, 30.0)
 
@@ -39,7 +42,8 @@ def _vector(name, value):
 
 def synthesize(psi=None, phi=None, *, weights=None, steering=None, function=None, x_range=None,
                psi_range=None, phi_range=None, points=21, spacing="uniform", alpha=None, beta=None,
-               fit_dial_zeros=False, refine=True, tolerance=1e-10, max_iterations=100, radians=False):
+               fit_dial_zeros=False, refine=True, tolerance=_GAUSS_NEWTON.tolerance,
+               max_iterations=_GAUSS_NEWTON.max_iterations, radians=False):
     """Synthesize a 4R function generator k1 + k2 cos(phi) - k3 cos(psi) = cos(psi - phi) (eq. 3.3).
 
     Give exactly one of:

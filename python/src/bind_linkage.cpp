@@ -76,6 +76,12 @@ void bind_linkage(py::module_& parent) {
       .def_readonly("structural", &SynthesisResult::structural)
       .def_readonly("warnings", &SynthesisResult::warnings);
 
+  py::class_<GaussNewtonOptions>(m, "GaussNewtonOptions",
+                                 "Gauss-Newton on the structural error; the defaults are the library's.")
+      .def(py::init<>())
+      .def_readwrite("tolerance", &GaussNewtonOptions::tolerance)
+      .def_readwrite("max_iterations", &GaussNewtonOptions::max_iterations);
+
   m.def(
       "synthesize",
       [](const Eigen::VectorXd& delta_psi, const Eigen::VectorXd& delta_phi, const Eigen::VectorXd& weights,
