@@ -15,6 +15,8 @@ enum class Method {
   TotalLeastSquaresSymmetric,  ///< "tls-sym": (X_TLS + X_TLS^T) / 2 (thesis eq. 4.38)
   TotalLeastSquaresPsd,        ///< "tls-psd": Higham's nearest PSD matrix to X_TLS (thesis eq. 4.39)
   Spde,                        ///< "spde": the area-criterion estimate (Chen & McInroy, Thm III.3)
+  SpdTotalLeastSquares,        ///< "spd-tls": total least squares over the SPD matrices (thesis ch. 7's open problem)
+  PsdLeastSquares,             ///< "psd-ls": least squares over X >= eps I, with an optimality certificate
 };
 
 /// Every method, in the order reports list them.
@@ -38,6 +40,10 @@ constexpr std::string_view to_string(Method method) {
       return "tls-psd";
     case Method::Spde:
       return "spde";
+    case Method::SpdTotalLeastSquares:
+      return "spd-tls";
+    case Method::PsdLeastSquares:
+      return "psd-ls";
   }
   return "unknown";
 }
