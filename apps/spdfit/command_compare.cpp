@@ -8,6 +8,7 @@
 #include "cli.hpp"
 #include "input.hpp"
 #include "output.hpp"
+#include "validators.hpp"
 #include "spdfit/fit.hpp"
 #include "spdfit/fit_files.hpp"
 #include "spdfit/io.hpp"
@@ -19,6 +20,7 @@ namespace {
 struct CompareOptionsCli {
   std::string a_path, b_path, truth_path, output;
   bool json = false;
+  double noise_ratio = 1.0;
 };
 
 std::string yes_no(bool value) { return value ? "yes" : "no"; }
@@ -83,6 +85,9 @@ Command add_compare_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--truth", options->truth_path, "File of the true X, to report each method's error");
   sub->add_flag("--json", options->json, "Print every result as JSON");
   sub->add_option("-o,--output", options->output, "Write to FILE instead of stdout");
+  sub->add_option("--noise-ratio", options->noise_ratio,
+                  "sigma_B / sigma_A for the total least-squares methods and the noise estimate (default 1)")
+      ->check(positive());
   sub->add_option("A", options->a_path, "File of A (m x n): delimited text or .npy")->required();
   sub->add_option("B", options->b_path, "File of B (m x n): delimited text or .npy")->required();
 
@@ -96,7 +101,9 @@ Command add_compare_command(CLI::App& app, const GlobalOptions& global) {
                                                            "x" + std::to_string(data.A.cols()));
       }
     }
-    const std::vector<FitResult> results = fit_all(data.A, data.B);
+    FitOptions fit_options;
+    fit_options.noise_ratio = options->noise_ratio;
+    const std::vector<FitResult> results = fit_all(data.A, data.B, fit_options);
     for (const FitResult& r : results) {
       for (const std::string& w : r.warnings) warn(global, std::string(to_string(r.method)) + ": " + w);
     }

@@ -1,10 +1,12 @@
 // spdfit fit --method METHOD [--json] [--output FILE] [--stream [--block-rows N] [--threads N]] A B
 #include <CLI/CLI.hpp>
 #include <memory>
+#include <optional>
 
 #include "cli.hpp"
 #include "input.hpp"
 #include "output.hpp"
+#include "validators.hpp"
 #include "spdfit/fit_files.hpp"
 
 namespace spdfit::cli {
@@ -16,6 +18,7 @@ struct FitOptionsCli {
   std::string a_path, b_path, output;
   bool json = false;
   double rank_tolerance = -1.0;
+  std::optional<double> noise_ratio;
   bool stream = false;
   StreamOptions stream_options;
 };
@@ -41,6 +44,10 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--rank-tol", options->rank_tolerance,
                   "Relative singular-value cut-off for numerical rank (default max(m,n)*eps)")
       ->check(CLI::Range(0.0, 1.0));
+  sub->add_option("--noise-ratio", options->noise_ratio,
+                  "sigma_B / sigma_A, the noise in B relative to the noise in A, for the total least-squares "
+                  "methods (tls, tls-sym, tls-psd); default 1")
+      ->check(positive());
   CLI::Option* stream =
       sub->add_flag("--stream", options->stream,
                     "Read A and B a block of rows at a time (memory O(n^2) whatever the number of rows; "
@@ -56,12 +63,20 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("B", options->b_path, "File of B (m x n): delimited text or .npy")->required();
 
   auto run = [options, &global]() {
+    const Method method = *parse_method(options->method);
     FitOptions fit_options;
     fit_options.rank_tolerance = options->rank_tolerance;
+    if (options->noise_ratio) {
+      if (!uses_noise_ratio(method)) {
+        throw UsageError("--noise-ratio applies to the total least-squares methods (tls, tls-sym, tls-psd), not to " +
+                         options->method);
+      }
+      fit_options.noise_ratio = *options->noise_ratio;
+    }
     const std::optional<StreamOptions> stream =
         options->stream ? std::optional<StreamOptions>(options->stream_options) : std::nullopt;
     const FitResult result =
-        fit_files(options->a_path, options->b_path, *parse_method(options->method), fit_options, stream);
+        fit_files(options->a_path, options->b_path, method, fit_options, stream);
     for (const std::string& w : result.warnings) warn(global, w);
     if (!result.ok()) throw DataFailure(result.message);
     emit(options->json ? result_json(result).dump(2) + "\n" : matrix_csv(result.X), options->output);

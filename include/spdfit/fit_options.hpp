@@ -19,11 +19,20 @@ struct FitOptions {
   /// bit for bit, without the two symmetric eigendecompositions and the residual per estimate.
   /// The data's diagnostics (m, n, ranks) and numerical failures are reported either way.
   bool diagnostics = true;
+  /// The ratio sigma_B / sigma_A of the noise in B to the noise in A, for the total least-squares
+  /// methods (tls, tls-sym, tls-psd, spd-tls): they fit [A, B / noise_ratio] and scale X back, so
+  /// that the errors they minimize are in a common unit. Also the scaling of the noise estimate
+  /// (Diagnostics::noise_sigma). A finite number > 0; 1 (the default) treats both alike.
+  double noise_ratio = 1.0;
 
   /// True when the options are usable; otherwise `error` says why.
   bool is_valid(std::string* error = nullptr) const {
     if (!(rank_tolerance < 1.0) || rank_tolerance != rank_tolerance) {
       if (error) *error = "rank_tolerance must be a number below 1 (negative for the default)";
+      return false;
+    }
+    if (!(noise_ratio > 0.0) || !(noise_ratio < std::numeric_limits<double>::infinity())) {
+      if (error) *error = "noise_ratio must be a finite number above 0";
       return false;
     }
     return true;

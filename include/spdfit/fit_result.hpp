@@ -64,6 +64,13 @@ struct Diagnostics {
   /// singular value of V22 (the solution exists when it is nonzero).
   std::optional<double> tls_sigma_n, tls_sigma_n1, tls_correction_norm, tls_v22_min_singular_value;
 
+  /// The noise estimate: the standard deviation sigma of independent noise in every entry of A
+  /// (noise_ratio * sigma in B, FitOptions::noise_ratio) under the TLS model A_true X = B_true,
+  /// from sigma^2 = sum_{i>n} s_i^2 / (n (m - n)), s_i the singular values of [A, B / noise_ratio]
+  /// (unbiased for sigma^2). Present whenever m > n, for every method; its relative standard
+  /// error is about sqrt(2 / (n (m - n))), and a warning says so when m - n < n.
+  std::optional<double> noise_sigma;
+
   /// Iterative methods (spd-tls, psd-ls): the iterations taken, the final optimality measure
   /// (spd-tls: ||X^1/2 grad f(X) X^1/2||_F; psd-ls: the relative KKT residual), and whether the
   /// stopping rule was met (false: the best iterate after the iteration limit, with a warning).

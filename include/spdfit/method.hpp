@@ -48,6 +48,13 @@ constexpr std::string_view to_string(Method method) {
   return "unknown";
 }
 
+/// Whether the method fits A and B as total least squares, and so takes FitOptions::noise_ratio
+/// (the ratio of the noise in B to the noise in A): tls, tls-sym, tls-psd and spd-tls.
+constexpr bool uses_noise_ratio(Method method) {
+  return method == Method::TotalLeastSquares || method == Method::TotalLeastSquaresSymmetric ||
+         method == Method::TotalLeastSquaresPsd || method == Method::SpdTotalLeastSquares;
+}
+
 /// The method with the given command-line name, or nothing if there is none.
 constexpr std::optional<Method> parse_method(std::string_view name) {
   for (Method method : kAllMethods) {

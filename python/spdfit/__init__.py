@@ -72,14 +72,16 @@ def _checked(result, stacklevel=3):
     return result
 
 
-def fit(A, B, method="spde", *, rank_tolerance=None):
+def fit(A, B, method="spde", *, rank_tolerance=None, noise_ratio=None):
     """Estimate X in A X ~= B with `method` (one of METHODS); returns a FitResult.
 
     rank_tolerance: relative singular-value cut-off for numerical rank (default max(m, n) eps,
-    lecture notes 002 section 3.8). Raises ValueError for bad input (shapes, NaN/Inf, m < n,
+    lecture notes 002 section 3.8). noise_ratio: sigma_B / sigma_A, the noise in B relative to
+    the noise in A, for the total least-squares methods (tls, tls-sym, tls-psd; default 1; a
+    ValueError with other methods). Raises ValueError for bad input (shapes, NaN/Inf, m < n,
     unknown method) and NumericalError when the method has no answer for this data."""
     A, B = _as_matrix("A", A), _as_matrix("B", B)
-    return _checked(_spdfit.fit(A, B, method, rank_tolerance))
+    return _checked(_spdfit.fit(A, B, method, rank_tolerance, noise_ratio))
 
 
 # The streaming defaults are the library's (StreamOptions), not retyped here.
@@ -87,7 +89,7 @@ _STREAM_DEFAULTS = _spdfit.StreamOptions()
 
 
 def fit_files(A_path, B_path, method="spde", *, block_rows=_STREAM_DEFAULTS.block_rows,
-              threads=_STREAM_DEFAULTS.threads, rank_tolerance=None):
+              threads=_STREAM_DEFAULTS.threads, rank_tolerance=None, noise_ratio=None):
     """Estimate X from A and B in two data files read a block of rows at a time (`spdfit fit
     --stream`): any number of rows in O(threads * block_rows * n + n^2) memory.
 
@@ -98,16 +100,16 @@ def fit_files(A_path, B_path, method="spde", *, block_rows=_STREAM_DEFAULTS.bloc
     thread count. Raises DataError for bad files, ValueError for bad arguments and
     NumericalError as fit does."""
     return _checked(_spdfit.fit_files(_os.fspath(A_path), _os.fspath(B_path), method, block_rows, threads,
-                                      rank_tolerance))
+                                      rank_tolerance, noise_ratio))
 
 
-def fit_all(A, B, *, rank_tolerance=None):
+def fit_all(A, B, *, rank_tolerance=None, noise_ratio=None):
     """Every method on the same data (one shared QR); a dict {method: FitResult}.
 
     Failures are not raised here: check `result.ok` and `result.message`."""
     A, B = _as_matrix("A", A), _as_matrix("B", B)
     results = {}
-    for result in _spdfit.fit_all(A, B, rank_tolerance):
+    for result in _spdfit.fit_all(A, B, rank_tolerance, noise_ratio):
         for message in result.warnings:
             _warnings.warn(f"{result.method}: {message}", SpdfitWarning, stacklevel=2)
         results[result.method] = result
@@ -130,21 +132,21 @@ def symmetric_procrustes(A, B, *, rank_tolerance=None):
     return fit(A, B, "procrustes", rank_tolerance=rank_tolerance)
 
 
-def total_least_squares(A, B, *, rank_tolerance=None):
+def total_least_squares(A, B, *, rank_tolerance=None, noise_ratio=None):
     """Total least squares X = -V12 V22^-1 from the SVD of [A B] (thesis eq. 4.37).
 
     Raises NumericalError when V22 is singular; warns when sigma_n = sigma_{n+1}."""
-    return fit(A, B, "tls", rank_tolerance=rank_tolerance)
+    return fit(A, B, "tls", rank_tolerance=rank_tolerance, noise_ratio=noise_ratio)
 
 
-def total_least_squares_symmetric(A, B, *, rank_tolerance=None):
+def total_least_squares_symmetric(A, B, *, rank_tolerance=None, noise_ratio=None):
     """(X_TLS + X_TLS^T) / 2, the nearest symmetric matrix to the TLS estimate (thesis eq. 4.38)."""
-    return fit(A, B, "tls-sym", rank_tolerance=rank_tolerance)
+    return fit(A, B, "tls-sym", rank_tolerance=rank_tolerance, noise_ratio=noise_ratio)
 
 
-def total_least_squares_psd(A, B, *, rank_tolerance=None):
+def total_least_squares_psd(A, B, *, rank_tolerance=None, noise_ratio=None):
     """Higham's nearest symmetric positive semidefinite matrix to X_TLS (thesis eq. 4.39)."""
-    return fit(A, B, "tls-psd", rank_tolerance=rank_tolerance)
+    return fit(A, B, "tls-psd", rank_tolerance=rank_tolerance, noise_ratio=noise_ratio)
 
 
 def spde(A, B, *, rank_tolerance=None):

@@ -1,5 +1,5 @@
 """Type stubs for the compiled core of spdfit (use the `spdfit` package, not this module)."""
-from typing import List, Optional, Tuple
+from typing import Dict, List, Optional, Tuple
 
 import numpy as np
 import numpy.typing as npt
@@ -30,6 +30,11 @@ class Diagnostics:
     tls_sigma_n1: Optional[float]
     tls_correction_norm: Optional[float]
     tls_v22_min_singular_value: Optional[float]
+    noise_sigma: Optional[float]
+    iterations: Optional[int]
+    gradient_norm: Optional[float]
+    converged: Optional[bool]
+    certificate: Optional[Dict[str, float]]
 
 class FitResult:
     method: str
@@ -46,15 +51,17 @@ class NearestSpdResult:
     clipped: int
     min_eigenvalue_before: float
 
-def fit(A: npt.ArrayLike, B: npt.ArrayLike, method: str, rank_tolerance: Optional[float] = ...) -> FitResult: ...
+def fit(A: npt.ArrayLike, B: npt.ArrayLike, method: str, rank_tolerance: Optional[float] = ...,
+        noise_ratio: Optional[float] = ...) -> FitResult: ...
 class StreamOptions:
     block_rows: int
     threads: int
     def __init__(self) -> None: ...
 
 def fit_files(A_path: str, B_path: str, method: str, block_rows: int = ..., threads: int = ...,
-              rank_tolerance: Optional[float] = ...) -> FitResult: ...
-def fit_all(A: npt.ArrayLike, B: npt.ArrayLike, rank_tolerance: Optional[float] = ...) -> List[FitResult]: ...
+              rank_tolerance: Optional[float] = ..., noise_ratio: Optional[float] = ...) -> FitResult: ...
+def fit_all(A: npt.ArrayLike, B: npt.ArrayLike, rank_tolerance: Optional[float] = ...,
+            noise_ratio: Optional[float] = ...) -> List[FitResult]: ...
 def nearest_spd(X: npt.ArrayLike, min_eig: float = ...) -> NearestSpdResult: ...
 def area_criterion(A: npt.ArrayLike, B: npt.ArrayLike, X: npt.ArrayLike) -> Optional[float]: ...
 def read_matrix(path: str, *, allow_nonfinite: bool = ...) -> npt.NDArray[np.float64]: ...

@@ -26,9 +26,20 @@ Method method_from(const std::string& name) {
   throw std::invalid_argument("unknown method '" + name + "' (methods: " + known + ")");
 }
 
-FitOptions options_from(const std::optional<double>& rank_tolerance) {
+// The options of a Python call; noise_ratio is refused (ValueError) for a method that does not
+// take it, as the CLI refuses --noise-ratio.
+FitOptions options_from(const std::optional<double>& rank_tolerance, const std::optional<double>& noise_ratio = {},
+                        std::optional<Method> method = {}) {
   FitOptions options;
   if (rank_tolerance) options.rank_tolerance = *rank_tolerance;
+  if (noise_ratio) {
+    if (method && !uses_noise_ratio(*method)) {
+      throw std::invalid_argument("noise_ratio applies to the total least-squares methods (tls, tls-sym, "
+                                  "tls-psd, spd-tls), not to " +
+                                  std::string(to_string(*method)));
+    }
+    options.noise_ratio = *noise_ratio;
+  }
   std::string error;
   if (!options.is_valid(&error)) throw std::invalid_argument(error);
   return options;
@@ -81,6 +92,25 @@ void bind_estimators(py::module_& m) {
       .def_readonly("tls_sigma_n1", &Diagnostics::tls_sigma_n1)
       .def_readonly("tls_correction_norm", &Diagnostics::tls_correction_norm, "thesis eq. 4.33")
       .def_readonly("tls_v22_min_singular_value", &Diagnostics::tls_v22_min_singular_value)
+      .def_readonly("noise_sigma", &Diagnostics::noise_sigma,
+                    "noise standard deviation in A under the TLS model (noise_ratio times it in B); "
+                    "None when m == n")
+      .def_readonly("iterations", &Diagnostics::iterations, "iterative methods: iterations taken")
+      .def_readonly("gradient_norm", &Diagnostics::gradient_norm,
+                    "iterative methods: the final optimality measure")
+      .def_readonly("converged", &Diagnostics::converged, "iterative methods: the stopping rule was met")
+      .def_property_readonly(
+          "certificate",
+          [](const Diagnostics& d) -> py::object {
+            if (!d.certificate) return py::none();
+            py::dict c;
+            c["primal_min_eig"] = d.certificate->primal_min_eig;
+            c["dual_min_eig"] = d.certificate->dual_min_eig;
+            c["complementarity"] = d.certificate->complementarity;
+            c["duality_gap"] = d.certificate->duality_gap;
+            return std::move(c);
+          },
+          "psd-ls: {primal_min_eig, dual_min_eig, complementarity, duality_gap}")
       .def("__repr__", [](const Diagnostics& d) {
         std::ostringstream out;
         out << "Diagnostics(m=" << d.m << ", n=" << d.n << ", rank_a=" << d.rank_a << ", rank_b=" << d.rank_b
@@ -103,13 +133,14 @@ void bind_estimators(py::module_& m) {
   m.def(
       "fit",
       [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const std::string& method,
-         std::optional<double> rank_tolerance) {
+         std::optional<double> rank_tolerance, std::optional<double> noise_ratio) {
         const Method chosen = method_from(method);
-        const FitOptions options = options_from(rank_tolerance);
+        const FitOptions options = options_from(rank_tolerance, noise_ratio, chosen);
         py::gil_scoped_release release;
         return fit(A, B, chosen, options);
       },
-      py::arg("A"), py::arg("B"), py::arg("method"), py::arg("rank_tolerance") = py::none());
+      py::arg("A"), py::arg("B"), py::arg("method"), py::arg("rank_tolerance") = py::none(),
+      py::arg("noise_ratio") = py::none());
   py::class_<StreamOptions>(m, "StreamOptions",
                             "How fit_files streams its files; the defaults are the library's own.")
       .def(py::init<>())
@@ -118,9 +149,9 @@ void bind_estimators(py::module_& m) {
   m.def(
       "fit_files",
       [](const std::string& a_path, const std::string& b_path, const std::string& method, Eigen::Index block_rows,
-         unsigned threads, std::optional<double> rank_tolerance) {
+         unsigned threads, std::optional<double> rank_tolerance, std::optional<double> noise_ratio) {
         const Method chosen = method_from(method);
-        const FitOptions options = options_from(rank_tolerance);
+        const FitOptions options = options_from(rank_tolerance, noise_ratio, chosen);
         StreamOptions stream;
         stream.block_rows = block_rows;
         stream.threads = threads;
@@ -128,15 +159,17 @@ void bind_estimators(py::module_& m) {
         return fit_files(a_path, b_path, chosen, options, stream);
       },
       py::arg("A_path"), py::arg("B_path"), py::arg("method"), py::arg("block_rows") = StreamOptions{}.block_rows,
-      py::arg("threads") = StreamOptions{}.threads, py::arg("rank_tolerance") = py::none());
+      py::arg("threads") = StreamOptions{}.threads, py::arg("rank_tolerance") = py::none(),
+      py::arg("noise_ratio") = py::none());
   m.def(
       "fit_all",
-      [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, std::optional<double> rank_tolerance) {
-        const FitOptions options = options_from(rank_tolerance);
+      [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, std::optional<double> rank_tolerance,
+         std::optional<double> noise_ratio) {
+        const FitOptions options = options_from(rank_tolerance, noise_ratio);
         py::gil_scoped_release release;
         return fit_all(A, B, options);
       },
-      py::arg("A"), py::arg("B"), py::arg("rank_tolerance") = py::none());
+      py::arg("A"), py::arg("B"), py::arg("rank_tolerance") = py::none(), py::arg("noise_ratio") = py::none());
 
   py::class_<NearestSpdResult>(m, "NearestSpdResult", "The nearest matrix and how far it moved.")
       .def_readonly("X", &NearestSpdResult::X)

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "estimators/kernels.hpp"
 #include "numerics/linalg.hpp"
 
 namespace spdfit::detail {
@@ -19,6 +20,8 @@ namespace {
 // condition number is below 1e-12: estimates may then have lost about 12 digits or more.
 constexpr double kIllConditionedRcond = 1e-12;
 
+
+
 // Eigenvalues above -kSemidefiniteSlack * n * eps * max|lambda| count as nonnegative: the
 // rounding error of a symmetric eigensolver.
 constexpr double kSemidefiniteSlack = 4.0;
@@ -31,7 +34,11 @@ void fill_shape_and_ranks(const DynamicReduction& data, Diagnostics& d) {
   d.rank_b = data.rank_b;
 }
 
-void fill_data_diagnostics(const DynamicReduction& data, Diagnostics& d, std::vector<std::string>& warnings) {
+// The data's diagnostics. The noise estimate's relative standard error is about sqrt(2 / dof),
+// dof = n (m - n) (a chi-squared sum); below n rows beyond the n the fit uses (m - n < n) it is
+// worth a warning, unless the estimate failed anyway.
+void fill_data_diagnostics(const DynamicReduction& data, Diagnostics& d, std::vector<std::string>& warnings,
+                           bool warn_thin_noise_estimate = true) {
   fill_shape_and_ranks(data, d);
   d.singular_values_a = times_power_of_two(data.s_a, data.exponent_a);
   d.singular_values_b = times_power_of_two(data.s_b, data.exponent_b);
@@ -41,6 +48,15 @@ void fill_data_diagnostics(const DynamicReduction& data, Diagnostics& d, std::ve
     warnings.push_back("A is ill-conditioned (cond(A) = " + format_number(d.cond_a) +
                        "): the estimate may have lost about " +
                        format_number(std::floor(std::log10(d.cond_a))) + " significant digits");
+  }
+  if (const auto variance = noise_variance(data)) {
+    d.noise_sigma = std::sqrt(*variance);
+    if (warn_thin_noise_estimate && data.m - data.n < data.n) {
+      const double dof = static_cast<double>(data.n) * static_cast<double>(data.m - data.n);
+      warnings.push_back("the noise estimate (noise_sigma) rests on n (m - n) = " + format_number(dof) +
+                         " degrees of freedom (m - n < n), so its relative standard error is about " +
+                         format_number(100.0 * std::sqrt(2.0 / dof)) + "%: more samples make it reliable");
+    }
   }
 }
 
@@ -138,7 +154,7 @@ FitResult failure(Method method, const DynamicReduction& data, std::string messa
   result.method = method;
   result.status = Status::NumericalFailure;
   result.message = std::move(message);
-  fill_data_diagnostics(data, result.diagnostics, warnings);
+  fill_data_diagnostics(data, result.diagnostics, warnings, false);
   result.warnings = std::move(warnings);
   return result;
 }

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <optional>
 #include <string>
 
 #include "spdfit/fit_result.hpp"
@@ -69,6 +70,18 @@ struct TlsKernel {
 };
 template <int MaxN>
 void tls_kernel(const BasicReduction<MaxN>& data, TlsKernel<MaxN>& out);
+
+/// The 2n x 2n factor of [A, B / noise_ratio] in a common scaling 2^-e of A and B (what TLS and
+/// the noise estimate decompose).
+template <int MaxN>
+void tls_factor(const BasicReduction<MaxN>& data, typename BasicReduction<MaxN>::Factor& R, int& e);
+
+/// The noise estimate sigma^2 = sum_{i>n} s_i^2 / (n (m - n)), s_i the singular values of
+/// [A, B / noise_ratio] in the data's units (of A): unbiased for independent noise of variance
+/// sigma^2 in every entry of A (and noise_ratio^2 sigma^2 in B) when A_true X = B_true. Nothing
+/// when m <= n. Cost O(n^3).
+template <int MaxN>
+std::optional<double> noise_variance(const BasicReduction<MaxN>& data);
 
 /// What nearest_spd_kernel reports besides the matrix.
 struct NearestSpdInfo {
