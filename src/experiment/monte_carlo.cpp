@@ -29,6 +29,17 @@ bool MonteCarloOptions::is_valid(std::string* error) const {
   return true;
 }
 
+void check_methods(const std::vector<Method>& methods, const std::string& what) {
+  if (methods.empty()) throw std::invalid_argument(what + ": no methods to compare");
+  for (std::size_t i = 0; i < methods.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (methods[i] == methods[j]) {
+        throw std::invalid_argument(what + ": method " + std::string(to_string(methods[i])) + " is listed twice");
+      }
+    }
+  }
+}
+
 void run_trials(const MonteCarloOptions& options, const std::function<void(std::size_t, Random&)>& trial) {
   std::string error;
   if (!options.is_valid(&error)) throw std::invalid_argument("run_trials: " + error);

@@ -16,7 +16,7 @@ using Generate = std::function<void(Random&, Eigen::MatrixXd& A, Eigen::MatrixXd
 // errors of the independent entries for the chosen methods.
 EntryExperimentResult run_entry_experiment(const Eigen::MatrixXd& truth, const std::vector<Method>& methods,
                                            const MonteCarloOptions& monte_carlo, const Generate& generate) {
-  if (methods.empty()) throw std::invalid_argument("experiment: no methods to compare");
+  check_methods(methods, "experiment");
   EntryExperimentResult result;
   result.trials = monte_carlo.trials;
   result.seed = monte_carlo.seed;

@@ -26,19 +26,20 @@ ThesisExperimentResult run_thesis_experiment(const ThesisExperimentOptions& opti
     throw std::invalid_argument("thesis experiment: need at least as many samples as M_p has columns (" +
                                 std::to_string(truth.rows()) + ")");
   }
+  check_methods(options.methods, "thesis experiment");
   result.trials = monte_carlo.trials;
   result.seed = monte_carlo.seed;
 
-  const std::size_t method_count = kAllMethods.size();
+  const std::vector<Method>& methods = options.methods;
+  const std::size_t method_count = methods.size();
   std::vector<std::vector<double>> errors(
       method_count, std::vector<double>(monte_carlo.trials, std::numeric_limits<double>::quiet_NaN()));
-  const std::vector<Method> all_methods(kAllMethods.begin(), kAllMethods.end());
   run_trials(monte_carlo, [&](std::size_t k, Random& random) {
     // Each thread keeps its own matrices from trial to trial: no allocation per trial.
     thread_local hexapod::Measurements data;
     thread_local std::vector<Eigen::MatrixXd> X;
     hexapod::simulate_into(truth, options.simulation, random, data);
-    estimate(data.A, data.B, all_methods, X);
+    estimate(data.A, data.B, methods, X);
     for (std::size_t i = 0; i < method_count; ++i) {
       if (X[i].size() > 0) errors[i][k] = (X[i] - truth).norm();  // trial k's own slot
     }
@@ -46,7 +47,7 @@ ThesisExperimentResult run_thesis_experiment(const ThesisExperimentOptions& opti
 
   for (std::size_t i = 0; i < method_count; ++i) {
     MethodErrors m;
-    m.method = kAllMethods[i];
+    m.method = methods[i];
     m.summary = summarize(errors[i]);
     m.errors = std::move(errors[i]);
     result.methods.push_back(std::move(m));

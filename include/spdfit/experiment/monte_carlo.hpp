@@ -33,6 +33,9 @@ struct MonteCarloOptions {
 /// spdfit::resolve_threads (spdfit/threads.hpp), also reachable by its earlier name here.
 using spdfit::resolve_threads;
 
+/// Throws std::invalid_argument ("<what>: ...") unless `methods` is non-empty and has no repeats.
+void check_methods(const std::vector<Method>& methods, const std::string& what);
+
 /// Runs trial(k, random) for k = 0, ..., trials - 1, where `random` is a fresh
 /// Random(trial_seed(seed, k)) for each trial. Trials are handed out to the threads one at a
 /// time; a trial must write its results only to storage indexed by k (no other shared mutable

@@ -37,6 +37,9 @@ struct ThesisExperimentOptions {
   hexapod::SimulationOptions simulation;
   /// The true M_p; empty means thesis_mass_matrix() (eq. 6.1).
   Eigen::MatrixXd truth;
+  /// The methods to run, in the order results list them (default: every method of kAllMethods,
+  /// the thesis' six). Must be non-empty and without repeats.
+  std::vector<Method> methods{kAllMethods.begin(), kAllMethods.end()};
 };
 
 /// One method's errors over the trials.
@@ -51,14 +54,14 @@ struct ThesisExperimentResult {
   ThesisExperimentOptions options;  ///< as run (truth filled in)
   std::size_t trials = 0;
   std::uint64_t seed = 0;
-  std::vector<MethodErrors> methods;  ///< in kAllMethods order
+  std::vector<MethodErrors> methods;  ///< in the options' order
 
   /// The errors of `method`.
   const MethodErrors& of(Method method) const;
 };
 
 /// Repeats the thesis experiment: in trial k, simulate (hexapod::simulate with the trial's own
-/// Random) and run every estimator (experiment::estimate); record each one's Frobenius error against
+/// Random) and run the options' estimators (experiment::estimate); record each one's Frobenius error against
 /// the truth. Runs on options' threads; the numbers depend only on the seed (run_trials).
 /// Throws std::invalid_argument on invalid options. Cost O(trials (m n^2 + n^3)).
 ThesisExperimentResult run_thesis_experiment(const ThesisExperimentOptions& options,
