@@ -6,7 +6,6 @@
 #include <sstream>
 
 #include <CLI/CLI.hpp>
-#include <Eigen/Eigenvalues>
 
 #include "cli.hpp"
 #include "experiment_output.hpp"
@@ -59,26 +58,19 @@ Command add_model(CLI::App& parent, const GlobalOptions&) {
   auto run = [cli]() {
     const hexapod::Geometry geometry = load_geometry(cli->geometry);
     if (!cli->write_geometry.empty()) emit(hexapod::geometry_json(geometry), cli->write_geometry);
-    const hexapod::Matrix6d J = hexapod::jacobian(geometry);
-    const hexapod::Matrix6d Mp = hexapod::joint_space_mass_matrix(geometry);
-    const hexapod::Vector6d modes = hexapod::modal_frequencies_hz(geometry);
-    const Eigen::VectorXd eigenvalues =
-        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Eigen::MatrixXd(Mp), Eigen::EigenvaluesOnly)
-            .eigenvalues();
-    const Eigen::VectorXd sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(Eigen::MatrixXd(J)).singularValues();
-    const double cond_j = sigma(0) / sigma(5);
+    const hexapod::ModelDescription model = hexapod::describe(geometry);
     const std::string source = cli->geometry.empty() ? kBuiltInName : cli->geometry;
     if (cli->json) {
       nlohmann::json out;
       out["geometry_source"] = source;
-      out["jacobian"] = matrix_json(J);
-      out["mass_matrix"] = matrix_json(Mp);
-      out["modes_hz"] = vector_json(modes);
-      out["mass_matrix_eigenvalues"] = vector_json(eigenvalues);
-      out["jacobian_condition"] = number_json(cond_j);
-      out["payload_mass_matrix"] = matrix_json(hexapod::payload_mass_matrix(geometry));
-      out["strut_lengths"] = vector_json(hexapod::strut_lengths(geometry));
-      out["strut_directions"] = matrix_json(hexapod::strut_directions(geometry).transpose());
+      out["jacobian"] = matrix_json(model.jacobian);
+      out["mass_matrix"] = matrix_json(model.mass_matrix);
+      out["modes_hz"] = vector_json(model.modes_hz);
+      out["mass_matrix_eigenvalues"] = vector_json(model.mass_matrix_eigenvalues);
+      out["jacobian_condition"] = number_json(model.jacobian_condition);
+      out["payload_mass_matrix"] = matrix_json(model.payload_mass_matrix);
+      out["strut_lengths"] = vector_json(model.strut_lengths);
+      out["strut_directions"] = matrix_json(model.strut_directions.transpose());
       out["geometry"] = nlohmann::json::parse(hexapod::geometry_json(geometry));
       emit(out.dump(2) + "\n", cli->output);
       return;
@@ -86,14 +78,14 @@ Command add_model(CLI::App& parent, const GlobalOptions&) {
     std::ostringstream out;
     out << "Hexapod: " << source << "\n"
         << "payload " << fixed(geometry.payload_mass, 3)
-        << " kg; strut lengths (m): " << vector_text(hexapod::strut_lengths(geometry), 4) << "\n\n"
+        << " kg; strut lengths (m): " << vector_text(model.strut_lengths, 4) << "\n\n"
         << "Jacobian J, l_dot = J [v; w] (rows: struts; v, w of the payload's centre of mass in {B} axes); "
-        << "cond(J) = " << fixed(cond_j, 2) << "\n"
-        << side_by_side({"J"}, {Eigen::MatrixXd(J)})
+        << "cond(J) = " << fixed(model.jacobian_condition, 2) << "\n"
+        << side_by_side({"J"}, {Eigen::MatrixXd(model.jacobian)})
         << "Joint-space mass-inertia matrix (thesis eq. 2.12), kg\n"
-        << side_by_side({"M_p"}, {Eigen::MatrixXd(Mp)})
-        << "eigenvalues of M_p (kg): " << vector_text(eigenvalues, 4)
-        << "\nmodes sqrt(eig(M_p^-1 K)) / 2 pi (Hz), K = diag(strut_stiffness): " << vector_text(modes, 2)
+        << side_by_side({"M_p"}, {Eigen::MatrixXd(model.mass_matrix)})
+        << "eigenvalues of M_p (kg): " << vector_text(model.mass_matrix_eigenvalues, 4)
+        << "\nmodes sqrt(eig(M_p^-1 K)) / 2 pi (Hz), K = diag(strut_stiffness): " << vector_text(model.modes_hz, 2)
         << "\n";
     emit(out.str(), cli->output);
   };
@@ -171,8 +163,7 @@ Command add_simulate(CLI::App& parent, const GlobalOptions& global) {
       warn(global, "fewer samples (" + std::to_string(options.samples) + ") than M_p has columns (" +
                        std::to_string(M.rows()) + "): the estimators need m >= n");
     }
-    Random random(trial_seed(cli->seed, 0));
-    const hexapod::Measurements data = hexapod::simulate(M, options, random);
+    const hexapod::Measurements data = hexapod::simulate(M, options, cli->seed);
 
     namespace fs = std::filesystem;
     std::error_code error;

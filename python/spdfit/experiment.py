@@ -9,18 +9,22 @@ a given seed gives the same numbers whatever the number of threads.
 from . import _as_matrix
 from ._spdfit import experiment as _core
 
-# The thesis' experiments 1-3: noise variances (its M-file's nm = 1, 3.2, 3.9; V = nm^2 / 12).
-THESIS_NOISE_VARIANCES = (0.082, 0.86, 1.28)
+# The thesis' experiments 1-3: noise variances (its M-file's nm = 1, 3.2, 3.9; V = nm^2 / 12), as
+# the library's table of its reported runs gives them.
+THESIS_NOISE_VARIANCES = tuple(run[1] for run in _core.THESIS_REPORTED_RUNS)
 
-# The thesis' single runs (eq. 6.6-6.22): {experiment: (V, procrustes, tls-sym, spde)}.
-THESIS_REPORTED = {1: (0.082, 0.6755, 0.6899, 0.6630), 2: (0.86, 2.3610, 2.3007, 1.9689),
-                   3: (1.28, 2.9120, 3.7761, 2.0083)}
+# The thesis' single runs (eq. 6.6-6.22): {experiment: (V, procrustes, tls-sym, spde)}, from the
+# library's table (experiment::kThesisReportedRuns).
+THESIS_REPORTED = {run[0]: tuple(run[1:]) for run in _core.THESIS_REPORTED_RUNS}
+
+# The library's defaults (the thesis' chapter-6 set-up, the paper's), not retyped here.
+_DEFAULTS = _core.DEFAULTS
 
 __all__ = ["THESIS_NOISE_VARIANCES", "THESIS_REPORTED", "paper_2x2", "paper_2x2_sweep", "paper_hexapod", "thesis"]
 
 
-def thesis(noise_var, *, samples=12, trials=1000, seed=1, threads=0, force_noise_var=None,
-           signal_var=25.0 / 3.0, distribution="uniform", truth=None):
+def thesis(noise_var, *, samples=_DEFAULTS["samples"], trials=1000, seed=1, threads=0, force_noise_var=None,
+           signal_var=_DEFAULTS["signal_var"], distribution=_DEFAULTS["distribution"], truth=None):
     """The thesis' experiment (M_p of eq. 6.1, appendix-B generator) repeated `trials` times.
 
     Returns a ThesisExperimentResult: .methods is a list (one per method, in spdfit.METHODS
@@ -32,21 +36,22 @@ def thesis(noise_var, *, samples=12, trials=1000, seed=1, threads=0, force_noise
                         distribution, None if truth is None else _as_matrix("truth", truth))
 
 
-def paper_hexapod(*, noise_var=0.86, samples=12, trials=100, seed=1, threads=0):
+def paper_hexapod(*, noise_var=_DEFAULTS["paper_hexapod_noise_var"], samples=_DEFAULTS["paper_hexapod_samples"],
+                  trials=100, seed=1, threads=0):
     """The paper's Figure 2 on simulated data: for the 21 independent entries of M_p, the mean
     (bias), mean absolute value and standard deviation of the estimation error over the trials,
     Procrustes against SPDE (.methods), entries in .entries."""
     return _core.paper_hexapod(float(noise_var), int(samples), int(trials), int(seed), int(threads))
 
 
-def paper_2x2(std_a, *, std_b=1.0, trials=10000, seed=1, threads=0):
+def paper_2x2(std_a, *, std_b=_DEFAULTS["paper_2x2_std_b"], trials=10000, seed=1, threads=0):
     """The paper's second example: X = [3 1; 1 1], A = A0 + N(0, std_a^2), B = A0 X + N(0, std_b^2);
     per method (procrustes, tls, spde) the mean absolute error (.mae), its standard deviation
     (.std) and the bias of x11, x12, x22."""
     return _core.paper_2x2(float(std_a), float(std_b), int(trials), int(seed), int(threads))
 
 
-def paper_2x2_sweep(levels=None, *, std_b=1.0, trials=10000, seed=1, threads=0):
+def paper_2x2_sweep(levels=None, *, std_b=_DEFAULTS["paper_2x2_std_b"], trials=10000, seed=1, threads=0):
     """paper_2x2 at each std_a in `levels` (default 0, 0.1, ..., 1.9: the paper's Figure 3);
     a list of results in the order of the levels."""
     levels = list(_core.paper_2x2_sweep_levels() if levels is None else map(float, levels))

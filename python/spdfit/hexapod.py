@@ -23,8 +23,14 @@ thesis_mass_matrix = _core.thesis_mass_matrix
 __all__ = ["Geometry", "Model", "Simulation", "cubic_geometry", "geometry", "identify", "model", "simulate",
            "thesis_mass_matrix"]
 
-Model = _namedtuple("Model", "geometry jacobian mass_matrix payload_mass_matrix modes_hz strut_lengths")
-Model.__doc__ = "The hexapod model: J, M_p (eq. 2.12), the payload's M_x and the modes in Hz."
+Model = _namedtuple("Model", "geometry jacobian mass_matrix payload_mass_matrix modes_hz strut_lengths "
+                             "mass_matrix_eigenvalues jacobian_condition strut_directions")
+Model.__doc__ = ("The hexapod model (hexapod::describe): J, M_p (eq. 2.12), the payload's M_x, the modes in "
+                 "Hz, the strut lengths, M_p's eigenvalues, cond(J) and the unit strut vectors (columns).")
+
+# The generator's defaults are the library's (SimulationOptions), not retyped here; the thesis'
+# experiment 2 noise (0.86) is the documented default of `spdfit hexapod simulate` examples.
+_SIMULATION = _core.SimulationOptions()
 
 Simulation = _namedtuple("Simulation", "A B truth A_true B_true")
 Simulation.__doc__ = "Simulated measurements A (accelerations), B (forces) and the true M_p."
@@ -49,12 +55,13 @@ def model(geometry_source=None):
     """The Jacobian J, the joint-space mass-inertia matrix M_p (thesis eq. 2.12) and the modal
     frequencies sqrt(eig(M_p^-1 K)) / 2 pi in Hz (section 2.2) of a hexapod (see `geometry`)."""
     g = geometry(geometry_source)
-    return Model(g, _core.jacobian(g), _core.joint_space_mass_matrix(g), _core.payload_mass_matrix(g),
-                 _core.modal_frequencies_hz(g), _core.strut_lengths(g))
+    d = _core.describe(g)
+    return Model(g, d.jacobian, d.mass_matrix, d.payload_mass_matrix, d.modes_hz, d.strut_lengths,
+                 d.mass_matrix_eigenvalues, d.jacobian_condition, d.strut_directions)
 
 
-def simulate(samples=12, noise_var=0.86, *, seed=1, truth="thesis", signal_var=25.0 / 3.0,
-             distribution="uniform", force_noise_var=None):
+def simulate(samples=_SIMULATION.samples, noise_var=0.86, *, seed=1, truth="thesis",
+             signal_var=_SIMULATION.signal_var, distribution=_SIMULATION.distribution, force_noise_var=None):
     """Measurements as the thesis' appendix-B generator makes them: true accelerations uniform with
     variance signal_var (on [-5, 5] by default), true forces B_true = A_true M_p, and independent
     noise of variance noise_var (force_noise_var for B, if given) in every entry of A and B,

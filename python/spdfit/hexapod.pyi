@@ -32,6 +32,9 @@ class Model(NamedTuple):
     payload_mass_matrix: Array
     modes_hz: Array
     strut_lengths: Array
+    mass_matrix_eigenvalues: Array
+    jacobian_condition: float
+    strut_directions: Array
 
 class Simulation(NamedTuple):
     A: Array

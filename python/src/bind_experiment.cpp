@@ -51,6 +51,23 @@ std::string method_name(Method m) { return std::string(to_string(m)); }
 void bind_experiment(py::module_& parent) {
   py::module_ m = parent.def_submodule("experiment", "Monte Carlo experiments of the thesis and the paper.");
 
+  // The library's tables and defaults, so that spdfit/experiment.py does not retype them.
+  py::list reported;
+  for (const ThesisReportedRun& run : kThesisReportedRuns) {
+    reported.append(py::make_tuple(run.experiment, run.noise_var, run.procrustes, run.tls_sym, run.spde));
+  }
+  m.attr("THESIS_REPORTED_RUNS") = reported;
+  const hexapod::SimulationOptions thesis_simulation;
+  const hexapod::SimulationOptions paper_simulation = PaperHexapodOptions::default_simulation();
+  py::dict defaults;
+  defaults["samples"] = thesis_simulation.samples;
+  defaults["signal_var"] = thesis_simulation.signal_var;
+  defaults["distribution"] = std::string(hexapod::to_string(thesis_simulation.distribution));
+  defaults["paper_hexapod_noise_var"] = paper_simulation.noise_var;
+  defaults["paper_hexapod_samples"] = paper_simulation.samples;
+  defaults["paper_2x2_std_b"] = Paper2x2Options{}.std_b;
+  m.attr("DEFAULTS") = defaults;
+
   py::class_<Summary>(m, "Summary")
       .def_readonly("count", &Summary::count)
       .def_readonly("failures", &Summary::failures)

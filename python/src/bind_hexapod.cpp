@@ -36,16 +36,27 @@ void bind_hexapod(py::module_& parent) {
         "The built-in cubic-configuration hexapod (mutually orthogonal struts).");
   m.def("read_geometry", &read_geometry, py::arg("path"));
   m.def("parse_geometry", &parse_geometry, py::arg("text"), py::arg("source") = "<geometry>");
-  m.def("jacobian", &jacobian, py::arg("geometry"));
   m.def("joint_space_mass_matrix", &joint_space_mass_matrix, py::arg("geometry"));
-  m.def("payload_mass_matrix", &payload_mass_matrix, py::arg("geometry"));
-  m.def("strut_lengths", &strut_lengths, py::arg("geometry"));
-  m.def("strut_directions", &strut_directions, py::arg("geometry"));
-  m.def("modal_frequencies_hz", py::overload_cast<const Geometry&>(&modal_frequencies_hz), py::arg("geometry"));
-  m.def("modal_frequencies_hz_of",
-        py::overload_cast<const Eigen::MatrixXd&, const Eigen::MatrixXd&>(&modal_frequencies_hz), py::arg("M"),
-        py::arg("K"));
+  py::class_<ModelDescription>(m, "ModelDescription", "What hexapod::describe reports about a hexapod.")
+      .def_readonly("jacobian", &ModelDescription::jacobian)
+      .def_readonly("jacobian_condition", &ModelDescription::jacobian_condition)
+      .def_readonly("payload_mass_matrix", &ModelDescription::payload_mass_matrix)
+      .def_readonly("mass_matrix", &ModelDescription::mass_matrix)
+      .def_readonly("mass_matrix_eigenvalues", &ModelDescription::mass_matrix_eigenvalues)
+      .def_readonly("modes_hz", &ModelDescription::modes_hz)
+      .def_readonly("strut_lengths", &ModelDescription::strut_lengths)
+      .def_readonly("strut_directions", &ModelDescription::strut_directions);
+  m.def("describe", &describe, py::arg("geometry"));
   m.def("thesis_mass_matrix", &thesis_mass_matrix, "M_p of thesis eq. 6.1.");
+
+  py::class_<SimulationOptions>(m, "SimulationOptions",
+                                "The generator's settings; the defaults are the thesis' chapter-6 set-up.")
+      .def(py::init<>())
+      .def_readonly("samples", &SimulationOptions::samples)
+      .def_readonly("noise_var", &SimulationOptions::noise_var)
+      .def_readonly("signal_var", &SimulationOptions::signal_var)
+      .def_property_readonly("distribution",
+                             [](const SimulationOptions& o) { return std::string(to_string(o.distribution)); });
 
   m.def(
       "simulate",
@@ -61,8 +72,7 @@ void bind_hexapod(py::module_& parent) {
         options.distribution = *parsed;
         std::string error;
         if (!options.is_valid(&error)) throw std::invalid_argument(error);
-        Random random(trial_seed(seed, 0));  // as `spdfit hexapod simulate --seed`
-        const Measurements data = simulate(truth, options, random);
+        const Measurements data = simulate(truth, options, seed);  // as `spdfit hexapod simulate --seed`
         return py::make_tuple(data.A, data.B, data.A_true, data.B_true);
       },
       py::arg("truth"), py::arg("samples"), py::arg("noise_var"), py::arg("force_noise_var"),

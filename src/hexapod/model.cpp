@@ -6,6 +6,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <Eigen/SVD>
 
 #include "kinematics.hpp"
 
@@ -89,6 +90,23 @@ Eigen::VectorXd modal_frequencies_hz(const Eigen::MatrixXd& M, const Eigen::Matr
   Eigen::VectorXd hz = solver.eigenvalues();  // ascending
   for (Eigen::Index i = 0; i < hz.size(); ++i) hz(i) = std::sqrt(std::max(hz(i), 0.0)) / kTwoPi;
   return hz;
+}
+
+ModelDescription describe(const Geometry& geometry) {
+  ModelDescription d;
+  d.jacobian = jacobian(geometry);
+  // Dynamic-size decompositions: the numbers the CLI printed before this function existed.
+  const Eigen::VectorXd sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(Eigen::MatrixXd(d.jacobian)).singularValues();
+  d.jacobian_condition = sigma(0) / sigma(5);
+  d.payload_mass_matrix = payload_mass_matrix(geometry);
+  d.mass_matrix = joint_space_mass_matrix(geometry);
+  d.mass_matrix_eigenvalues =
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Eigen::MatrixXd(d.mass_matrix), Eigen::EigenvaluesOnly)
+          .eigenvalues();
+  d.modes_hz = modal_frequencies_hz(geometry);
+  d.strut_lengths = strut_lengths(geometry);
+  d.strut_directions = strut_directions(geometry);
+  return d;
 }
 
 }  // namespace spdfit::hexapod

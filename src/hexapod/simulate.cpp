@@ -85,4 +85,9 @@ Measurements simulate(const Eigen::MatrixXd& truth, const SimulationOptions& opt
   return out;
 }
 
+Measurements simulate(const Eigen::MatrixXd& truth, const SimulationOptions& options, std::uint64_t seed) {
+  Random random(trial_seed(seed, 0));  // trial 0 of run_trials' per-trial generators
+  return simulate(truth, options, random);
+}
+
 }  // namespace spdfit::hexapod

@@ -2,6 +2,8 @@
 not retyped: a default changed in C++ changes Python's with it."""
 import inspect
 
+import pytest
+
 import spdfit
 import spdfit.linkage
 from spdfit import _spdfit
@@ -27,3 +29,38 @@ def test_a_result_reports_its_status_by_name(tmp_path):
     A = [[1.0, 0.0], [0.0, 1.0], [1.0, 1.0]]
     B = [[2.0, 0.0], [0.0, 3.0], [2.0, 3.0]]
     assert spdfit.fit(A, B, "spde").status == "success"
+
+
+def test_hexapod_and_experiment_defaults_are_the_librarys():
+    import spdfit.experiment
+    import spdfit.hexapod
+    from spdfit._spdfit import experiment as core_experiment
+    from spdfit._spdfit import hexapod as core_hexapod
+
+    options = core_hexapod.SimulationOptions()
+    assert default(spdfit.hexapod.simulate, "samples") == options.samples == 12
+    assert default(spdfit.hexapod.simulate, "signal_var") == options.signal_var == 25.0 / 3.0
+    assert default(spdfit.hexapod.simulate, "distribution") == options.distribution == "uniform"
+    assert default(spdfit.experiment.thesis, "signal_var") == options.signal_var
+    assert default(spdfit.experiment.paper_hexapod, "noise_var") == 0.86
+    assert default(spdfit.experiment.paper_2x2, "std_b") == 1.0
+    # The thesis' reported runs (eq. 6.6-6.22) come from the library's table.
+    assert spdfit.experiment.THESIS_REPORTED[2] == (0.86, 2.3610, 2.3007, 1.9689)
+    assert [run[0] for run in core_experiment.THESIS_REPORTED_RUNS] == [1, 2, 3]
+
+
+def test_the_hexapod_model_is_the_librarys_one_description():
+    import numpy as np
+    import spdfit.hexapod
+
+    model = spdfit.hexapod.model()
+    J, M = model.jacobian, model.mass_matrix
+    # Against NumPy: M_p's eigenvalues, cond(J), unit strut directions.
+    assert np.allclose(model.mass_matrix_eigenvalues, np.linalg.eigvalsh(M), rtol=1e-12, atol=0)
+    s = np.linalg.svd(J, compute_uv=False)
+    assert model.jacobian_condition == pytest.approx(s[0] / s[-1], rel=1e-12)
+    assert np.allclose(np.linalg.norm(model.strut_directions, axis=0), 1.0, rtol=0, atol=1e-14)
+    # Modes: sqrt(eig(M^-1 K)) / 2 pi with K = diag(strut_stiffness).
+    K = np.diag(model.geometry.strut_stiffness)
+    expected = np.sqrt(np.sort(np.linalg.eigvals(np.linalg.solve(M, K)).real)) / (2 * np.pi)
+    assert np.allclose(model.modes_hz, expected, rtol=1e-10, atol=0)

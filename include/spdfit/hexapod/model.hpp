@@ -59,4 +59,22 @@ Vector6d modal_frequencies_hz(const Geometry& geometry);
 /// negative by rounding give 0 Hz. Cost O(n^3).
 Eigen::VectorXd modal_frequencies_hz(const Eigen::MatrixXd& M, const Eigen::MatrixXd& K);
 
+/// Everything a description of the hexapod reports, computed once (what `spdfit hexapod model` and
+/// Python's spdfit.hexapod.model() format).
+struct ModelDescription {
+  Matrix6d jacobian;                  ///< J, l_dot = J x_dot
+  double jacobian_condition = 0.0;    ///< sigma_max(J) / sigma_min(J)
+  Matrix6d payload_mass_matrix;       ///< ^B M_x (thesis eq. 2.13)
+  Matrix6d mass_matrix;               ///< M_p (thesis eq. 2.12)
+  Vector6d mass_matrix_eigenvalues;   ///< of M_p, ascending (kg)
+  Vector6d modes_hz;                  ///< modal frequencies, ascending (Hz), K = diag(strut_stiffness)
+  Vector6d strut_lengths;             ///< at the home pose (m)
+  Points strut_directions;            ///< unit strut vectors u_i (columns), in {B}
+};
+
+/// The hexapod's Jacobian and its condition number, the payload's and the joint-space mass
+/// matrices, M_p's eigenvalues, the modes and the struts, by the functions above. Throws
+/// std::invalid_argument unless geometry.is_valid(). Cost O(1) (6x6 matrices).
+ModelDescription describe(const Geometry& geometry);
+
 }  // namespace spdfit::hexapod

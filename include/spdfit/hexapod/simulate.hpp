@@ -1,6 +1,7 @@
 // Simulated hexapod measurements: the thesis' data generator (000, appendix B; chapter 6).
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -59,6 +60,11 @@ struct Measurements {
 /// Throws std::invalid_argument when the options are invalid or `truth` is not square.
 /// Cost O(m n^2).
 Measurements simulate(const Eigen::MatrixXd& truth, const SimulationOptions& options, Random& random);
+
+/// simulate() with the data of trial 0 of the thesis experiment for `seed`: its generator is
+/// Random(trial_seed(seed, 0)), so `spdfit hexapod simulate --seed S` and Python's
+/// spdfit.hexapod.simulate(seed=S) give what `spdfit experiment thesis --seed S` draws first.
+Measurements simulate(const Eigen::MatrixXd& truth, const SimulationOptions& options, std::uint64_t seed);
 
 /// simulate() into `out`, reusing its matrices' storage: a Monte Carlo loop that keeps `out`
 /// allocates nothing per trial. Same numbers, same errors.
