@@ -43,7 +43,7 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("-o,--output", options->output, "Write to FILE instead of stdout");
   sub->add_option("--rank-tol", options->rank_tolerance,
                   "Relative singular-value cut-off for numerical rank (default max(m,n)*eps)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(rank_tolerance());
   sub->add_option("--noise-ratio", options->noise_ratio,
                   "sigma_B / sigma_A, the noise in B relative to the noise in A, for the total least-squares "
                   "methods (tls, tls-sym, tls-psd); default 1")

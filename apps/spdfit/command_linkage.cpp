@@ -6,6 +6,7 @@
 
 #include "cli.hpp"
 #include "linkage_commands.hpp"
+#include "validators.hpp"
 #include "spdfit/linkage/prescribed_function.hpp"
 
 namespace spdfit::cli {
@@ -44,7 +45,7 @@ Command add_linkage_command(CLI::App& app, const GlobalOptions& global) {
       ->check(CLI::PositiveNumber);
   syn->add_option("--threshold", so->threshold,
                   "Relative singular-value cut-off for S (default max(m,3)*eps, notes 3.8)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(rank_tolerance());
   syn->add_flag("--positions", so->positions, "Also print every position: prescribed and generated phi");
   syn->add_flag("--json", so->json, "Print the result as JSON");
   syn->add_option("-o,--output", so->output, "Write to FILE instead of stdout");

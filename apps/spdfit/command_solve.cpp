@@ -8,6 +8,7 @@
 #include "cli.hpp"
 #include "input.hpp"
 #include "output.hpp"
+#include "validators.hpp"
 #include "spdfit/io.hpp"
 #include "spdfit/linear_system.hpp"
 
@@ -106,8 +107,8 @@ Command add_solve_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_flag("--json", options->json, "Print the classification and solution as JSON");
   sub->add_option("-o,--output", options->output, "Write to FILE instead of stdout");
   sub->add_option("--threshold,--rank-tol", options->threshold,
-                  "Relative singular-value cut-off: sigma_i < T * sigma_max counts as zero (default max(m,n)*eps)")
-      ->check(CLI::Range(0.0, 1.0));
+                  "Relative singular-value cut-off: sigma_i <= T * sigma_max counts as zero (default max(m,n)*eps)")
+      ->check(rank_tolerance());
   sub->add_option("A", options->a_path, "File of A (m x n): delimited text or .npy")->required();
   sub->add_option("b", options->b_path,
                   "File of b (m x 1, or m x p for p right-hand sides; a single row of m values is read as a column)")

@@ -5,12 +5,14 @@
 #include <limits>
 #include <string>
 
+#include "spdfit/rank.hpp"
+
 namespace spdfit {
 
 /// Options for the estimators. The defaults follow the source documents.
 struct FitOptions {
-  /// Relative cut-off for the numerical rank: a singular value sigma_i counts as zero when
-  /// sigma_i <= rank_tolerance * sigma_max. A negative value (the default) means
+  /// Relative cut-off for the numerical rank (spdfit/rank.hpp): a singular value sigma_i counts
+  /// as zero when sigma_i <= rank_tolerance * sigma_max. A negative value (the default) means
   /// max(rows, cols) * machine epsilon, the editing rule of the lecture notes
   /// (shared/seeds/002, section 3.8).
   double rank_tolerance = -1.0;
@@ -27,10 +29,7 @@ struct FitOptions {
 
   /// True when the options are usable; otherwise `error` says why.
   bool is_valid(std::string* error = nullptr) const {
-    if (!(rank_tolerance < 1.0) || rank_tolerance != rank_tolerance) {
-      if (error) *error = "rank_tolerance must be a number below 1 (negative for the default)";
-      return false;
-    }
+    if (!is_valid_rank_tolerance(rank_tolerance, "rank_tolerance", error)) return false;
     if (!(noise_ratio > 0.0) || !(noise_ratio < std::numeric_limits<double>::infinity())) {
       if (error) *error = "noise_ratio must be a finite number above 0";
       return false;
@@ -38,10 +37,9 @@ struct FitOptions {
     return true;
   }
 
-  /// The cut-off to use for a rows x cols matrix.
+  /// The cut-off to use for a rows x cols matrix (spdfit::rank_cutoff).
   double rank_cutoff(Eigen::Index rows, Eigen::Index cols) const {
-    if (rank_tolerance >= 0.0) return rank_tolerance;
-    return static_cast<double>(rows > cols ? rows : cols) * std::numeric_limits<double>::epsilon();
+    return spdfit::rank_cutoff(rank_tolerance, rows, cols);
   }
 };
 

@@ -7,7 +7,6 @@
 
 #include <Eigen/Core>
 
-#include "spdfit/fit_result.hpp"
 
 namespace spdfit {
 
@@ -68,11 +67,18 @@ struct ColumnClassification {
   double backward_error = 0.0;
 };
 
+/// Whether solve produced a solution. Misuse (shapes, NaN input, invalid options) throws
+/// std::invalid_argument instead.
+enum class SolveStatus {
+  Success,
+  NumericalFailure,  ///< the solution does not fit in a double; see `message`
+};
+
 /// The result of solve(A, B): everything the notes read off the SVD of A.
 struct LinearSystemResult {
   /// NumericalFailure only when the solution does not fit in a double (b huge against A); the
   /// classification is still filled in, the solution is empty and `message` says why.
-  Status status = Status::Success;
+  SolveStatus status = SolveStatus::Success;
   std::string message;
 
   Eigen::Index m = 0, n = 0, p = 0;  ///< A is m x n, B is m x p (p right-hand sides)
@@ -102,7 +108,7 @@ struct LinearSystemResult {
   std::string explanation;            ///< the answer in words, in the notes' terms
   std::vector<std::string> warnings;  ///< ill-conditioning, edited singular values
 
-  bool ok() const { return status == Status::Success; }
+  bool ok() const { return status == SolveStatus::Success; }
 };
 
 /// Solves and classifies A x = b for each column of B (notes 002 sections 3.3.2 and 3.7-3.8).

@@ -31,6 +31,7 @@
 #include "spdfit/method.hpp"
 #include "spdfit/nearest_spd.hpp"
 #include "spdfit/random.hpp"
+#include "spdfit/rank.hpp"
 #include "spdfit/reduction.hpp"
 #include "spdfit/row_reader.hpp"
 #include "spdfit/spde.hpp"

@@ -8,6 +8,7 @@
 #include <Eigen/SVD>
 
 #include "numerics/linalg.hpp"
+#include "spdfit/rank.hpp"
 #include "linear_system/linear_system_explanation.hpp"
 
 namespace spdfit {
@@ -52,15 +53,6 @@ VectorXd singular_values(const Eigen::Ref<const MatrixXd>& A) {
   return Eigen::BDCSVD<MatrixXd>(A).singularValues();
 }
 
-// The number of singular values kept by the editing rule of notes 002 section 3.8: sigma_i
-// counts as zero when sigma_i < cutoff * sigma_max, and always when it is exactly zero.
-Index edited_rank(const VectorXd& s, double cutoff) {
-  if (s.size() == 0 || !(s(0) > 0.0)) return 0;
-  Index r = 0;
-  while (r < s.size() && s(r) > 0.0 && !(s(r) < cutoff * s(0))) ++r;
-  return r;
-}
-
 bool all_finite(const Eigen::Ref<const MatrixXd>& M) { return M.allFinite(); }
 
 }  // namespace
@@ -75,10 +67,7 @@ const char* to_string(SystemShape shape) {
 }
 
 bool LinearSystemOptions::is_valid(std::string* error) const {
-  if (std::isnan(threshold) || !(threshold < 1.0)) {
-    if (error) *error = "threshold must be a number below 1 (negative for the default max(m, n) * eps)";
-    return false;
-  }
+  if (!is_valid_rank_tolerance(threshold, "threshold", error)) return false;
   if (!(rcond_warning >= 0.0) || !(rcond_warning <= 1.0)) {
     if (error) *error = "rcond_warning must lie in [0, 1]";
     return false;
@@ -90,10 +79,7 @@ bool LinearSystemOptions::is_valid(std::string* error) const {
   return true;
 }
 
-double LinearSystemOptions::cutoff(Index m, Index n) const {
-  if (threshold >= 0.0) return threshold;
-  return static_cast<double>(std::max(m, n)) * kEps;
-}
+double LinearSystemOptions::cutoff(Index m, Index n) const { return rank_cutoff(threshold, m, n); }
 
 LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A_in, const Eigen::Ref<const MatrixXd>& B_in,
                          const LinearSystemOptions& options) {
@@ -132,7 +118,7 @@ LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A_in, const Eigen::Re
   r.threshold = options.cutoff(r.m, r.n);
 
   const FullSvd dec = svd_with_full_v(A);
-  r.rank = edited_rank(dec.s, r.threshold);
+  r.rank = numerical_rank(dec.s, r.threshold);
   r.nullity = r.n - r.rank;
   const double smax = dec.s(0);
   const double smin = dec.s(dec.s.size() - 1);
@@ -163,7 +149,7 @@ LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A_in, const Eigen::Re
     // b_j on the scale of A keeps the rank decision from depending on the units of b.
     const double scale = bnorm > 0.0 ? (smax > 0.0 ? smax : 1.0) / bnorm : 0.0;
     M.col(r.n) = -scale * B.col(j);
-    c.augmented_rank = edited_rank(singular_values(M), r.threshold);
+    c.augmented_rank = numerical_rank(singular_values(M), r.threshold);
     // Appending a column cannot lower the rank; a count below rank A only happens when a
     // singular value sits right at the cut-off, and then the column is consistent.
     c.consistent = c.augmented_rank <= r.rank;
@@ -184,7 +170,7 @@ LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A_in, const Eigen::Re
   r.singular_values = detail::times_power_of_two(dec.s, ea);
   r.solution = detail::times_power_of_two(x, eb - ea);
   if (!r.solution.allFinite()) {
-    r.status = Status::NumericalFailure;
+    r.status = SolveStatus::NumericalFailure;
     r.message = "solve: the solution overflows the range of double precision numbers (b is about 2^" +
                 std::to_string(eb) + " and A about 2^" + std::to_string(ea) + ")";
     r.solution.resize(0, 0);

@@ -1,5 +1,7 @@
 #include "small_least_squares.hpp"
 
+#include "spdfit/rank.hpp"
+
 #include <algorithm>
 #include <limits>
 
@@ -15,8 +17,7 @@ using Eigen::VectorXd;
 SmallLeastSquares small_least_squares(const Eigen::Ref<const MatrixXd>& M, const Eigen::Ref<const VectorXd>& rhs,
                                       double threshold) {
   const Index m = M.rows(), n = M.cols();
-  const double cutoff =
-      threshold >= 0.0 ? threshold : static_cast<double>(std::max(m, n)) * std::numeric_limits<double>::epsilon();
+  const double cutoff = rank_cutoff(threshold, m, n);
   SmallLeastSquares out;
   Eigen::HouseholderQR<MatrixXd> qr(M);
   const Index k = std::min(m, n);
@@ -25,7 +26,7 @@ SmallLeastSquares small_least_squares(const Eigen::Ref<const MatrixXd>& M, const
   const VectorXd s = Eigen::JacobiSVD<MatrixXd>(R).singularValues();
   const double inf = std::numeric_limits<double>::infinity();
   out.condition_number = s(n - 1) > 0.0 ? s(0) / s(n - 1) : inf;
-  while (out.rank < n && s(out.rank) > 0.0 && !(s(out.rank) < cutoff * s(0))) ++out.rank;
+  out.rank = numerical_rank(s, cutoff);
   if (out.rank == n) {
     out.x = R.triangularView<Eigen::Upper>().solve((qr.householderQ().transpose() * rhs).head(n));
     return out;

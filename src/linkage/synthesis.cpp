@@ -8,6 +8,7 @@
 #include "linkage_format.hpp"
 #include "linkage_inputs.hpp"
 #include "spdfit/linkage/design_error.hpp"
+#include "spdfit/rank.hpp"
 
 namespace spdfit::linkage {
 
@@ -93,11 +94,8 @@ bool SynthesisOptions::is_valid(std::string* error) const {
     return fail("the Gauss-Newton tolerance must be a positive number");
   }
   if (gauss_newton.max_iterations < 1) return fail("the Gauss-Newton iteration limit must be at least 1");
-  if (std::isnan(threshold) || !(threshold < 1.0) || std::isnan(gauss_newton.threshold) ||
-      !(gauss_newton.threshold < 1.0)) {
-    return fail("the singular-value threshold must be a number below 1 (negative for the default)");
-  }
-  return true;
+  return is_valid_rank_tolerance(threshold, "threshold", error) &&
+         is_valid_rank_tolerance(gauss_newton.threshold, "the Gauss-Newton threshold", error);
 }
 
 SynthesisResult synthesize(const Eigen::Ref<const VectorXd>& delta_psi_in,

@@ -69,14 +69,6 @@ Svd svd(const Eigen::Ref<const MatrixXd>& A, bool compute_u, bool compute_v) {
   return out;
 }
 
-Index numerical_rank(const Eigen::Ref<const VectorXd>& s, double cutoff) {
-  if (s.size() == 0 || !(s(0) > 0.0)) return 0;
-  const double threshold = cutoff * s(0);
-  Index rank = 0;
-  while (rank < s.size() && s(rank) > threshold) ++rank;
-  return rank;
-}
-
 double condition_number(const Eigen::Ref<const VectorXd>& s) {
   if (s.size() == 0) return std::numeric_limits<double>::infinity();
   const double smin = s(s.size() - 1);

@@ -15,6 +15,7 @@
 #include <optional>
 
 #include "numerics/one_sided_jacobi.hpp"
+#include "spdfit/rank.hpp"
 
 namespace spdfit::detail {
 
@@ -88,8 +89,7 @@ void svd_into(const Eigen::MatrixBase<Derived>& A, BasicSvd<Matrix>& out, bool c
 /// The SVD of a square or tall matrix (see svd_into).
 Svd svd(const Eigen::Ref<const MatrixXd>& A, bool compute_u = true, bool compute_v = true);
 
-/// The number of singular values above cutoff * s(0) (s descending). Zero when s(0) == 0.
-Index numerical_rank(const Eigen::Ref<const VectorXd>& s, double cutoff);
+// The numerical rank is spdfit::numerical_rank (spdfit/rank.hpp), the one rule for every path.
 
 /// sigma_max / sigma_min; +inf when sigma_min == 0 (including the zero matrix).
 double condition_number(const Eigen::Ref<const VectorXd>& s);

@@ -308,7 +308,7 @@ TEST(LinearSystemRegression, DenormalRightHandSideKeepsItsDigits) {
 TEST(LinearSystem, SolutionBeyondTheDoubleRangeIsANumericalFailure) {
   const LinearSystemResult r = solve(MatrixXd::Identity(2, 2) * 1e-300, VectorXd::Constant(2, 1e300));
   EXPECT_FALSE(r.ok());
-  EXPECT_EQ(r.status, Status::NumericalFailure);
+  EXPECT_EQ(r.status, SolveStatus::NumericalFailure);
   EXPECT_NE(r.message.find("overflows the range of double precision numbers"), std::string::npos) << r.message;
   EXPECT_EQ(r.solution.size(), 0);
   EXPECT_EQ(r.rank, 2);  // the classification is still there
