@@ -4,6 +4,8 @@
 
 #include <Eigen/Core>
 #include <optional>
+#include <string>
+#include <string_view>
 
 namespace spdfit {
 
@@ -41,6 +43,23 @@ class TriangularFactor {
   /// Makes this the factor of the union of both row sets. Throws std::invalid_argument when
   /// the column counts differ. Cost O(n^3).
   void merge(const TriangularFactor& other);
+
+  /// The factor of the union of both row sets, leaving a and b unchanged (a.merge(b) on a
+  /// copy of a). Throws std::invalid_argument when the column counts differ. Cost O(n^3).
+  static TriangularFactor merged(const TriangularFactor& a, const TriangularFactor& b);
+
+  /// The factor's whole state as bytes, to send to another process (MPI) or to store (pickling):
+  /// the 8-byte magic "spdfitR\0", a little-endian uint32 layout version (1), int64 n, uint64 rows,
+  /// for A then B one byte (1 when the block's exponent is set, 0 while its data were all zero)
+  /// and an int32 exponent, then the upper triangle of R column by column as little-endian IEEE
+  /// doubles. deserialize(serialize()) is the same factor, bit for bit. Cost O(n^2).
+  std::string serialize() const;
+
+  /// The factor serialize() wrote. Throws std::invalid_argument, saying what is wrong, for bytes
+  /// that are not such a factor: a wrong magic or version, a size that does not match n, n < 1,
+  /// an exponent flag other than 0 or 1, an exponent outside the range of double, a NaN or Inf
+  /// entry, or rows of R beyond the rows accumulated (m < 2n) that are not zero. Cost O(n^2).
+  static TriangularFactor deserialize(std::string_view bytes);
 
   Eigen::Index n() const { return n_; }
   Eigen::Index rows() const { return rows_; }  ///< m, the number of rows accumulated
