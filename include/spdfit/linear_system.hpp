@@ -102,7 +102,9 @@ struct LinearSystemResult {
 
   Eigen::MatrixXd solution;   ///< n x p: X = V_r diag(1/sigma_i) U_r^T B (notes eq. 3.21)
   double residual_norm = 0.0; ///< ||A X - B||_F
-  Eigen::MatrixXd null_space; ///< n x (n - rank), orthonormal columns: A N ~= 0
+  /// n x (n - rank), orthonormal columns: A N ~= 0. Each column of null_space and range has its
+  /// entry of largest magnitude positive (a singular vector's sign is otherwise arbitrary).
+  Eigen::MatrixXd null_space;
   Eigen::MatrixXd range;      ///< m x rank, orthonormal columns spanning the range of A
 
   std::string explanation;            ///< the answer in words, in the notes' terms

@@ -21,39 +21,18 @@ namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
-// Above this size divide and conquer is much faster than one-sided Jacobi (src/linalg.cpp makes
-// the same choice).
-constexpr Index kJacobiMaxSize = 32;
-
-struct FullSvd {
-  MatrixXd U;  // m x min(m, n)
-  MatrixXd V;  // n x n: the full V, whose trailing columns span the null space even when m < n
-  VectorXd s;  // min(m, n), descending
-};
-
-FullSvd svd_with_full_v(const Eigen::Ref<const MatrixXd>& A) {
-  const unsigned options = Eigen::ComputeThinU | Eigen::ComputeFullV;
-  FullSvd out;
-  if (std::max(A.rows(), A.cols()) <= kJacobiMaxSize) {
-    Eigen::JacobiSVD<MatrixXd> dec(A, options);
-    out.U = dec.matrixU();
-    out.V = dec.matrixV();
-    out.s = dec.singularValues();
-  } else {
-    Eigen::BDCSVD<MatrixXd> dec(A, options);
-    out.U = dec.matrixU();
-    out.V = dec.matrixV();
-    out.s = dec.singularValues();
-  }
-  return out;
-}
-
-VectorXd singular_values(const Eigen::Ref<const MatrixXd>& A) {
-  if (std::max(A.rows(), A.cols()) <= kJacobiMaxSize) return Eigen::JacobiSVD<MatrixXd>(A).singularValues();
-  return Eigen::BDCSVD<MatrixXd>(A).singularValues();
-}
-
 bool all_finite(const Eigen::Ref<const MatrixXd>& M) { return M.allFinite(); }
+
+// A singular vector is defined up to its sign, which differs between SVD algorithms: make each
+// column's entry of largest magnitude positive (the first such entry on a tie), so that the
+// range and null-space bases reported do not depend on which SVD ran.
+void orient_columns(MatrixXd& M) {
+  for (Index j = 0; j < M.cols(); ++j) {
+    Index i = 0;
+    M.col(j).cwiseAbs().maxCoeff(&i);
+    if (M(i, j) < 0.0) M.col(j) = -M.col(j);
+  }
+}
 
 }  // namespace
 
@@ -117,7 +96,7 @@ LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A_in, const Eigen::Re
                       : (r.m == r.n ? SystemShape::Determined : SystemShape::Overdetermined);
   r.threshold = options.cutoff(r.m, r.n);
 
-  const FullSvd dec = svd_with_full_v(A);
+  const detail::FullSvd dec = detail::svd_full_v(A);
   r.rank = numerical_rank(dec.s, r.threshold);
   r.nullity = r.n - r.rank;
   const double smax = dec.s(0);
@@ -132,6 +111,8 @@ LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A_in, const Eigen::Re
   const Index k = r.rank;
   r.range = dec.U.leftCols(k);
   r.null_space = dec.V.rightCols(r.nullity);
+  orient_columns(r.range);
+  orient_columns(r.null_space);
 
   // Minimum-norm least-squares solution with the small singular values edited (eq. 3.21).
   const MatrixXd x = dec.V.leftCols(k) * (dec.s.head(k).cwiseInverse().asDiagonal() * (dec.U.leftCols(k).transpose() * B));
@@ -149,7 +130,7 @@ LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A_in, const Eigen::Re
     // b_j on the scale of A keeps the rank decision from depending on the units of b.
     const double scale = bnorm > 0.0 ? (smax > 0.0 ? smax : 1.0) / bnorm : 0.0;
     M.col(r.n) = -scale * B.col(j);
-    c.augmented_rank = numerical_rank(singular_values(M), r.threshold);
+    c.augmented_rank = numerical_rank(detail::singular_values(M), r.threshold);
     // Appending a column cannot lower the rank; a count below rank A only happens when a
     // singular value sits right at the cut-off, and then the column is consistent.
     c.consistent = c.augmented_rank <= r.rank;

@@ -69,6 +69,43 @@ Svd svd(const Eigen::Ref<const MatrixXd>& A, bool compute_u, bool compute_v) {
   return out;
 }
 
+FullSvd svd_full_v(const Eigen::Ref<const MatrixXd>& A) {
+  FullSvd out;
+  if (A.rows() >= A.cols()) {
+    Svd dec;
+    svd_into(A, dec, true, true);  // V is n x n already
+    out.U = std::move(dec.U);
+    out.V = std::move(dec.V);
+    out.s = std::move(dec.s);
+    return out;
+  }
+  const unsigned options = Eigen::ComputeThinU | Eigen::ComputeFullV;
+  if (A.cols() <= svd_detail::kJacobiMaxSize) {
+    Eigen::JacobiSVD<MatrixXd> dec(A, options);
+    out.U = dec.matrixU();
+    out.V = dec.matrixV();
+    out.s = dec.singularValues();
+  } else {
+    Eigen::BDCSVD<MatrixXd> dec(A, options);
+    out.U = dec.matrixU();
+    out.V = dec.matrixV();
+    out.s = dec.singularValues();
+  }
+  return out;
+}
+
+VectorXd singular_values(const Eigen::Ref<const MatrixXd>& A) {
+  if (A.size() == 0) return VectorXd(0);
+  Svd dec;
+  if (A.rows() >= A.cols()) {
+    svd_into(A, dec, false, false);
+  } else {
+    const MatrixXd At = A.transpose();
+    svd_into(At, dec, false, false);
+  }
+  return dec.s;
+}
+
 double condition_number(const Eigen::Ref<const VectorXd>& s) {
   if (s.size() == 0) return std::numeric_limits<double>::infinity();
   const double smin = s(s.size() - 1);

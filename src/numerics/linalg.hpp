@@ -1,5 +1,8 @@
-// Internal dense linear-algebra helpers shared by the estimators. Every decomposition the
-// library uses goes through here, so that a faster backend is swapped in at one place.
+// Internal dense linear-algebra helpers: the SVD (the one choice of algorithm by size, used by the
+// estimators and the linear-system solver), the QR, and exact power-of-two scaling. The estimators'
+// and the linear-system solver's SVDs and QRs go through here, so that a faster backend is swapped
+// in at one place; the small fixed-size eigen-decompositions of diagnostics and repair call Eigen
+// directly.
 //
 // The helpers are templates over the Eigen matrix type, so that the same arithmetic runs on
 // dynamic matrices (MatrixXd, any size) and on the bounded-size matrices of the small-problem
@@ -88,6 +91,22 @@ void svd_into(const Eigen::MatrixBase<Derived>& A, BasicSvd<Matrix>& out, bool c
 
 /// The SVD of a square or tall matrix (see svd_into).
 Svd svd(const Eigen::Ref<const MatrixXd>& A, bool compute_u = true, bool compute_v = true);
+
+/// An SVD with the full V: U m x min(m, n), V n x n (its trailing columns span the null space
+/// even when m < n), s descending.
+struct FullSvd {
+  MatrixXd U, V;
+  VectorXd s;
+};
+
+/// The SVD of any A (m < n too) with the full V, by the same choice as svd_into: for m >= n it is
+/// svd_into's (one-sided Jacobi up to 64 columns, divide and conquer above); for m < n, Eigen's
+/// two-sided Jacobi SVD up to 64 columns and divide and conquer (BDCSVD) above.
+FullSvd svd_full_v(const Eigen::Ref<const MatrixXd>& A);
+
+/// The singular values of any A (descending, min(m, n) of them), by svd_into's choice on A or,
+/// when A is wide, on A^T.
+VectorXd singular_values(const Eigen::Ref<const MatrixXd>& A);
 
 // The numerical rank is spdfit::numerical_rank (spdfit/rank.hpp), the one rule for every path.
 
