@@ -9,21 +9,19 @@ The files are committed; this script documents exactly how they were made:
   covariance/ a correlation matrix estimated from incomplete data (pairwise deletion),
               which is indefinite: repair it with `spdfit nearest --min-eig ...`
 """
+import os
 import pathlib
+import sys
 
 import numpy as np
 
 HERE = pathlib.Path(__file__).resolve().parent
 
-# Thesis eq. (6.1): UW hexapod joint-space mass-inertia matrix.
-M_P = np.array([
-    [4.6881, 0.1978, -0.4042, 1.7981, -0.4046, 0.6110],
-    [0.1978, 4.6881, 0.6110, -0.4046, 1.7981, -0.4042],
-    [-0.4042, 0.6110, 4.6881, 0.1975, -0.4042, 1.7984],
-    [1.7981, -0.4046, 0.1975, 4.6881, 0.6114, -0.4042],
-    [-0.4046, 1.7981, -0.4042, 0.6114, 4.6881, 0.1975],
-    [0.6110, -0.4042, 1.7984, -0.4042, 0.1975, 4.6881],
-])
+# Thesis eq. (6.1), the UW hexapod's joint-space mass-inertia matrix, from its one home in the
+# independent reference (tests/reference/thesis_reference.py).
+# (SPDFIT_SOURCE_DIR names the source tree when this script runs from a copy of examples/.)
+sys.path.insert(0, str(pathlib.Path(os.environ.get("SPDFIT_SOURCE_DIR", HERE.parent)) / "tests" / "reference"))
+from thesis_reference import MP_THESIS as M_P  # noqa: E402
 
 
 def save(path, matrix, comment, column_names=None):

@@ -11,51 +11,40 @@
 
 namespace spdfit::cli {
 
-/// A finite number >= 0.
-inline CLI::Validator non_negative() {
+/// A number option whose value must pass `accepts`; otherwise "'TEXT' is not a <what>".
+template <typename Accepts>
+CLI::Validator number_validator(Accepts accepts, const std::string& what, const std::string& shown) {
   return CLI::Validator(
-      [](std::string& text) -> std::string {
+      [accepts, what](std::string& text) -> std::string {
         try {
           std::size_t used = 0;
           const double value = std::stod(text, &used);
-          if (used == text.size() && std::isfinite(value) && value >= 0.0) return "";
+          if (used == text.size() && accepts(value)) return "";
         } catch (const std::exception&) {
         }
-        return "'" + text + "' is not a finite number >= 0";
+        return "'" + text + "' is not a " + what;
       },
-      "NUMBER >= 0");
+      shown);
+}
+
+/// A finite number >= 0.
+inline CLI::Validator non_negative() {
+  return number_validator([](double v) { return std::isfinite(v) && v >= 0.0; }, "finite number >= 0",
+                          "NUMBER >= 0");
 }
 
 /// A finite number > 0.
 inline CLI::Validator positive() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        try {
-          std::size_t used = 0;
-          const double value = std::stod(text, &used);
-          if (used == text.size() && std::isfinite(value) && value > 0.0) return "";
-        } catch (const std::exception&) {
-        }
-        return "'" + text + "' is not a finite number > 0";
-      },
-      "NUMBER > 0");
+  return number_validator([](double v) { return std::isfinite(v) && v > 0.0; }, "finite number > 0",
+                          "NUMBER > 0");
 }
 
-/// A relative rank cut-off given on the command line: a finite number >= 0 that the library's
-/// one rule accepts (spdfit::is_valid_rank_tolerance: below 1), so that every such option is a
-/// usage error (exit 2) on the same values.
+/// A relative rank cut-off given on the command line: a number >= 0 that the library's one rule
+/// accepts (spdfit::is_valid_rank_tolerance: below 1), so that every such option is a usage error
+/// (exit 2) on the same values.
 inline CLI::Validator rank_tolerance() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        try {
-          std::size_t used = 0;
-          const double value = std::stod(text, &used);
-          if (used == text.size() && value >= 0.0 && is_valid_rank_tolerance(value, "")) return "";
-        } catch (const std::exception&) {
-        }
-        return "'" + text + "' is not a number in [0, 1)";
-      },
-      "NUMBER in [0, 1)");
+  return number_validator([](double v) { return v >= 0.0 && is_valid_rank_tolerance(v, ""); },
+                          "number in [0, 1)", "NUMBER in [0, 1)");
 }
 
 }  // namespace spdfit::cli

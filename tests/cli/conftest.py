@@ -1,25 +1,22 @@
 """Fixtures for the CLI tests: the spdfit binary (SPDFIT_CLI) and a runner."""
-import os
-import subprocess
+import pathlib
+import sys
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "support"))
 
 import numpy as np
 import pytest
 
-
-# The sanitizer build (scripts/sanitize.sh sets SPDFIT_SANITIZED=1) runs the CLI about twenty
-# times slower.
-SLOWDOWN = 20 if os.environ.get("SPDFIT_SANITIZED") == "1" else 1
+from spdfit_testing import cli_path, run_cli
 
 
 @pytest.fixture(scope="session")
 def spdfit():
-    path = os.environ.get("SPDFIT_CLI")
-    if not path:
-        pytest.skip("SPDFIT_CLI is not set (ctest sets it to the built spdfit)")
-    assert os.access(path, os.X_OK), f"SPDFIT_CLI={path} is not an executable"
+    """spdfit(*args, input=None) -> CompletedProcess of the CLI."""
+    path = cli_path()
 
     def run(*args, input=None):
-        return subprocess.run([path, *map(str, args)], capture_output=True, text=True, input=input, timeout=60 * SLOWDOWN)
+        return run_cli(path, *args, input=input)
 
     return run
 

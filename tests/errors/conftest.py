@@ -2,18 +2,21 @@
 memory, and the evidence of how it ended (exit status, messages, seconds, peak memory)."""
 import dataclasses
 import os
+import pathlib
 import resource
 import signal
 import subprocess
+import sys
 import tempfile
 import time
 
 import pytest
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "support"))
 # The sanitizer build (SPDFIT_SANITIZED=1) runs the CLI several times slower, and AddressSanitizer
 # reserves terabytes of address space and keeps freed memory in quarantine: there the time budget
 # is larger and memory is measured against a larger bound instead of capped with RLIMIT_AS.
-SANITIZED = os.environ.get("SPDFIT_SANITIZED") == "1"
+from spdfit_testing import SANITIZED, cli_path  # noqa: E402
 
 # Issue 7: each hostile file gets a clear error within a second and bounded memory. The second is
 # CPU time (user + system) of the CLI, which other jobs on a busy CI machine do not inflate.
@@ -43,10 +46,7 @@ def _limit_memory():
 
 @pytest.fixture(scope="session")
 def cli():
-    path = os.environ.get("SPDFIT_CLI")
-    if not path:
-        pytest.skip("SPDFIT_CLI is not set (ctest sets it to the built spdfit)")
-    return path
+    return cli_path()
 
 
 @pytest.fixture(scope="session")

@@ -10,24 +10,14 @@ import sys
 
 import pytest
 
-ROOT = pathlib.Path(os.environ.get("SPDFIT_SOURCE_DIR", pathlib.Path(__file__).resolve().parents[2]))
-DOC = ROOT / "docs" / "errors.md"
+import spdfit_testing
+
+DOC = spdfit_testing.SOURCE_DIR / "docs" / "errors.md"
 
 
 def doc_commands():
-    """[(command, [expected output lines])] from the page's code blocks."""
-    commands, in_block = [], False
-    for line in DOC.read_text().splitlines():
-        if line.startswith("```"):
-            in_block = not in_block
-            continue
-        if not in_block:
-            continue
-        if line.startswith("$ "):
-            commands.append((line[2:], []))
-        elif commands and line.strip() != "...":
-            commands[-1][1].append(line.rstrip())
-    return commands
+    """[(command, [expected output lines])] from the page's code blocks; "..." elides lines."""
+    return spdfit_testing.doc_commands(DOC)
 
 
 def expected_status(lines):
@@ -41,9 +31,7 @@ def test_the_page_shows_commands():
 
 
 def test_every_command_runs_as_shown(tmp_path):
-    cli = os.environ.get("SPDFIT_CLI")
-    if not cli:
-        pytest.skip("SPDFIT_CLI is not set (ctest sets it to the built spdfit)")
+    cli = spdfit_testing.cli_path()
     bin_dir = tmp_path / "bin"
     bin_dir.mkdir()
     (bin_dir / "spdfit").symlink_to(cli)

@@ -1,21 +1,16 @@
 """Fixtures for the hexapod suite: the spdfit CLI named by SPDFIT_CLI, run in a scratch directory."""
 import json
-import os
 import pathlib
-import subprocess
 import sys
 
 import numpy as np
 import pytest
 
-SOURCE_DIR = pathlib.Path(os.environ.get("SPDFIT_SOURCE_DIR", pathlib.Path(__file__).resolve().parents[2]))
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "support"))
+from spdfit_testing import SANITIZED, SLOWDOWN, SOURCE_DIR, cli_path, run_cli  # noqa: E402
+
 # The independent NumPy implementations of the thesis' algorithms and generator.
 sys.path.insert(0, str(SOURCE_DIR / "tests" / "reference"))
-
-# The sanitizer build (scripts/sanitize.sh sets SPDFIT_SANITIZED=1) runs the CLI about twenty
-# times slower.
-SANITIZED = os.environ.get("SPDFIT_SANITIZED") == "1"
-SLOWDOWN = 20 if SANITIZED else 1
 # The docs' full-size runs (thousands of Monte Carlo trials per command, the demo's tables) check
 # the published numbers, which the plain build does. Under the sanitizers they took over 15 of
 # CI's minutes; the same code runs there at small trial counts in test_cli_contract.py.
@@ -25,22 +20,16 @@ CLI_TIMEOUT_S = 120 * SLOWDOWN  # the slowest call here (the demo) takes a few s
 
 @pytest.fixture(scope="session")
 def spdfit_cli():
-    path = os.environ.get("SPDFIT_CLI")
-    if not path:
-        pytest.skip("SPDFIT_CLI is not set; export SPDFIT_CLI=/path/to/spdfit")
-    if not (os.path.isfile(path) and os.access(path, os.X_OK)):
-        pytest.fail(f"SPDFIT_CLI={path!r} is not an executable file")
-    return path
+    return cli_path()
 
 
 @pytest.fixture
 def cli(spdfit_cli, tmp_path):
     """cli(*args, expect=0, cwd=tmp_path) -> CompletedProcess of `spdfit args...`, asserting its exit status."""
     def run(*args, expect=0, cwd=None):
-        cmd = [spdfit_cli, *map(str, args)]
-        proc = subprocess.run(cmd, capture_output=True, text=True, timeout=CLI_TIMEOUT_S, cwd=cwd or tmp_path)
+        proc = run_cli(spdfit_cli, *args, timeout_s=120, cwd=cwd or tmp_path)
         assert proc.returncode == expect, (
-            f"{' '.join(cmd)} exited {proc.returncode}, expected {expect}\n"
+            f"spdfit {' '.join(map(str, args))} exited {proc.returncode}, expected {expect}\n"
             f"stdout:\n{proc.stdout}\nstderr:\n{proc.stderr}")
         return proc
     return run

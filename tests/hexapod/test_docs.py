@@ -9,6 +9,7 @@ import subprocess
 import numpy as np
 import pytest
 
+import spdfit_testing
 from conftest import CLI_TIMEOUT_S, SOURCE_DIR, full_size
 
 DOC = SOURCE_DIR / "docs" / "hexapod.md"
@@ -23,18 +24,7 @@ THESIS_RUNS = {
 
 def doc_commands():
     """[(command, [expected output lines])] from the page's code blocks; "..." elides lines."""
-    commands, in_block = [], False
-    for line in DOC.read_text().splitlines():
-        if line.startswith("```"):
-            in_block = not in_block
-            continue
-        if not in_block:
-            continue
-        if line.startswith("$ "):
-            commands.append((line[2:], []))
-        elif commands and line.strip() != "...":
-            commands[-1][1].append(line.rstrip())
-    return commands
+    return spdfit_testing.doc_commands(DOC)
 
 
 def bad_geometry(spdfit_cli, directory):

@@ -1,30 +1,25 @@
 """Fixtures for the linear-system and linkage tests: the spdfit binary (SPDFIT_CLI), the source
 tree (SPDFIT_SOURCE_DIR), a runner and a CSV writer."""
 import json
-import os
 import pathlib
-import subprocess
+import sys
 
-import numpy as np
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "support"))
+
 import pytest
 
-# The sanitizer build (scripts/sanitize.sh sets SPDFIT_SANITIZED=1) runs the CLI about twenty
-# times slower.
-SLOWDOWN = 20 if os.environ.get("SPDFIT_SANITIZED") == "1" else 1
+from spdfit_testing import SOURCE_DIR, cli_path, run_cli, save_csv
 
-ROOT = pathlib.Path(os.environ.get("SPDFIT_SOURCE_DIR", pathlib.Path(__file__).resolve().parents[2]))
+ROOT = SOURCE_DIR
 
 
 @pytest.fixture(scope="session")
 def spdfit():
     """spdfit(*args) -> CompletedProcess of the CLI run in the source tree."""
-    path = os.environ.get("SPDFIT_CLI")
-    if not path:
-        pytest.skip("SPDFIT_CLI is not set (ctest sets it to the built spdfit)")
-    assert os.access(path, os.X_OK), f"SPDFIT_CLI={path} is not an executable"
+    path = cli_path()
 
     def run(*args):
-        return subprocess.run([path, *map(str, args)], capture_output=True, text=True, timeout=120 * SLOWDOWN, cwd=ROOT)
+        return run_cli(path, *args, timeout_s=120, cwd=ROOT)
 
     return run
 
@@ -44,10 +39,7 @@ def spdfit_json(spdfit):
 def write_csv(tmp_path):
     """write_csv(name, M, header=None) -> path of M saved with round-trip precision."""
     def write(name, M, header=None):
-        path = tmp_path / name
-        np.savetxt(path, np.atleast_2d(M), delimiter=",", fmt="%.17g",
-                   header=header or "", comments="")
-        return path
+        return save_csv(tmp_path / name, M, header)
 
     return write
 

@@ -8,6 +8,9 @@
 #include <fstream>
 #include <string>
 
+#include "spdfit/io.hpp"
+#include "test_support.hpp"
+
 namespace spdfit::test {
 
 class ScratchDirectory : public testing::Test {
@@ -37,6 +40,25 @@ class ScratchDirectory : public testing::Test {
   }
 
   std::filesystem::path dir_;
+};
+
+/// A scratch directory with noisy data A X ~= B, m x n, written as CSV (A) and .npy (B): both
+/// readers at once.
+class NoisyDataFiles : public ScratchDirectory {
+ protected:
+  void MakeData(Eigen::Index m, Eigen::Index n, unsigned seed) {
+    Generator g(seed);
+    const Eigen::MatrixXd X = g.spd(n, 10.0);
+    A_ = g.gaussian(m, n) * 3.0;
+    B_ = A_ * X + 0.1 * g.gaussian(m, n);
+    a_path_ = Path("A.csv");
+    b_path_ = Path("B.npy");
+    io::write_csv(a_path_, A_);
+    io::write_npy(b_path_, B_);
+  }
+
+  Eigen::MatrixXd A_, B_;
+  std::string a_path_, b_path_;
 };
 
 }  // namespace spdfit::test

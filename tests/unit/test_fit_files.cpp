@@ -17,21 +17,7 @@
 namespace spdfit {
 namespace {
 
-class FitFilesTest : public test::ScratchDirectory {
- protected:
-  void MakeData(Index m, Index n, unsigned seed) {
-    test::Generator g(seed);
-    const MatrixXd X = g.spd(n, 10.0);
-    A_ = g.gaussian(m, n) * 3.0;
-    B_ = A_ * X + 0.1 * g.gaussian(m, n);
-    a_path_ = Path("A.csv");
-    b_path_ = Path("B.npy");
-    io::write_csv(a_path_, A_);
-    io::write_npy(b_path_, B_);
-  }
-  MatrixXd A_, B_;
-  std::string a_path_, b_path_;
-};
+class FitFilesTest : public test::NoisyDataFiles {};
 
 // The CSV holds the shortest round-trip text of each value, so A is read back exactly.
 TEST_F(FitFilesTest, ReadWholeIsTheInMemoryFitBitForBit) {

@@ -17,29 +17,14 @@ namespace {
 
 using io::DataError;
 
-class StreamTest : public test::ScratchDirectory {
+class StreamTest : public test::NoisyDataFiles {
  protected:
-  // Noisy data A X ~= B, m x n, written as CSV (A) and .npy (B): both readers at once.
-  void MakeData(Index m, Index n, unsigned seed) {
-    test::Generator g(seed);
-    const MatrixXd X = g.spd(n, 10.0);
-    A_ = g.gaussian(m, n) * 3.0;
-    B_ = A_ * X + 0.1 * g.gaussian(m, n);
-    a_path_ = Path("A.csv");
-    b_path_ = Path("B.npy");
-    io::write_csv(a_path_, A_);
-    io::write_npy(b_path_, B_);
-  }
-
   TriangularFactor Stream(Index block_rows, unsigned threads) const {
     StreamOptions options;
     options.block_rows = block_rows;
     options.threads = threads;
     return stream_factor(a_path_, b_path_, options);
   }
-
-  MatrixXd A_, B_;
-  std::string a_path_, b_path_;
 };
 
 // Rounding in the QR of a differently blocked [A B] changes R by a few eps relative; the

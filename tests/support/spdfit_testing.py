@@ -1,0 +1,59 @@
+"""What every Python test suite shares: the source tree, the CLI under test (SPDFIT_CLI, set by
+ctest to the built spdfit), how much slower the sanitizer build runs it, a runner, a CSV writer,
+and the `$ command` blocks of a documentation page. Each suite's conftest.py imports this module
+(ctest runs every suite as its own pytest, so a conftest.py above them would not be loaded) and
+keeps its own fixture names on top of it."""
+import os
+import pathlib
+import subprocess
+
+import numpy as np
+import pytest
+
+SOURCE_DIR = pathlib.Path(os.environ.get("SPDFIT_SOURCE_DIR", pathlib.Path(__file__).resolve().parents[2]))
+
+# The sanitizer build (scripts/sanitize.sh sets SPDFIT_SANITIZED=1) runs the CLI about twenty
+# times slower.
+SANITIZED = os.environ.get("SPDFIT_SANITIZED") == "1"
+SLOWDOWN = 20 if SANITIZED else 1
+
+
+def cli_path():
+    """The spdfit executable named by SPDFIT_CLI; skips the calling test when it is unset and fails
+    it when it is not an executable file."""
+    path = os.environ.get("SPDFIT_CLI")
+    if not path:
+        pytest.skip("SPDFIT_CLI is not set (ctest sets it to the built spdfit)")
+    if not (os.path.isfile(path) and os.access(path, os.X_OK)):
+        pytest.fail(f"SPDFIT_CLI={path!r} is not an executable file")
+    return path
+
+
+def run_cli(path, *args, timeout_s=60, cwd=None, input=None):
+    """CompletedProcess of `spdfit args...` (text, both streams captured); timeout_s is scaled by
+    SLOWDOWN."""
+    return subprocess.run([path, *map(str, args)], capture_output=True, text=True, input=input,
+                          timeout=timeout_s * SLOWDOWN, cwd=cwd)
+
+
+def save_csv(path, M, header=None):
+    """M written to `path` as CSV with round-trip precision (an optional header row); returns path."""
+    np.savetxt(path, np.atleast_2d(M), delimiter=",", fmt="%.17g", header=header or "", comments="")
+    return path
+
+
+def doc_commands(page):
+    """[(command, [expected output lines])] from the code blocks of the page at `page`: each
+    `$ command` line starts an entry, the lines after it are its expected output, "..." elides."""
+    commands, in_block = [], False
+    for line in pathlib.Path(page).read_text().splitlines():
+        if line.startswith("```"):
+            in_block = not in_block
+            continue
+        if not in_block:
+            continue
+        if line.startswith("$ "):
+            commands.append((line[2:], []))
+        elif commands and line.strip() != "...":
+            commands[-1][1].append(line.rstrip())
+    return commands
