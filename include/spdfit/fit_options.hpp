@@ -22,7 +22,7 @@ struct FitOptions {
   /// The data's diagnostics (m, n, ranks) and numerical failures are reported either way.
   bool diagnostics = true;
   /// The ratio sigma_B / sigma_A of the noise in B to the noise in A, for the total least-squares
-  /// methods (tls, tls-sym, tls-psd, spd-tls): they fit [A, B / noise_ratio] and scale X back, so
+  /// methods (tls, tls-sym, tls-psd): they fit [A, B / noise_ratio] and scale X back, so
   /// that the errors they minimize are in a common unit. Also the scaling of the noise estimate
   /// (Diagnostics::noise_sigma). A finite number > 0; 1 (the default) treats both alike.
   double noise_ratio = 1.0;

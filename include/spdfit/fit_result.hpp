@@ -70,22 +70,6 @@ struct Diagnostics {
   /// (unbiased for sigma^2). Present whenever m > n, for every method; its relative standard
   /// error is about sqrt(2 / (n (m - n))), and a warning says so when m - n < n.
   std::optional<double> noise_sigma;
-
-  /// Iterative methods (spd-tls, psd-ls): the iterations taken, the final optimality measure
-  /// (spd-tls: ||X^1/2 grad f(X) X^1/2||_F; psd-ls: the relative KKT residual), and whether the
-  /// stopping rule was met (false: the best iterate after the iteration limit, with a warning).
-  std::optional<int> iterations;
-  std::optional<double> gradient_norm;
-  std::optional<bool> converged;
-
-  /// psd-ls: the evidence that X minimizes ||A X - B||_F over X >= eps I, checkable from these
-  /// numbers alone: primal_min_eig = lambda_min(X - eps I) >= 0, dual_min_eig = lambda_min(S) >= 0
-  /// with S = sym(A^T A X - A^T B), complementarity = <X - eps I, S> ~ 0, and the relative
-  /// duality gap.
-  struct Certificate {
-    double primal_min_eig = 0.0, dual_min_eig = 0.0, complementarity = 0.0, duality_gap = 0.0;
-  };
-  std::optional<Certificate> certificate;
 };
 
 /// The result of one estimator on one data set.

@@ -15,8 +15,6 @@ enum class Method {
   TotalLeastSquaresSymmetric,  ///< "tls-sym": (X_TLS + X_TLS^T) / 2 (thesis eq. 4.38)
   TotalLeastSquaresPsd,        ///< "tls-psd": Higham's nearest PSD matrix to X_TLS (thesis eq. 4.39)
   Spde,                        ///< "spde": the area-criterion estimate (Chen & McInroy, Thm III.3)
-  SpdTotalLeastSquares,        ///< "spd-tls": total least squares over the SPD matrices (thesis ch. 7's open problem)
-  PsdLeastSquares,             ///< "psd-ls": least squares over X >= eps I, with an optimality certificate
 };
 
 /// Every method, in the order reports list them.
@@ -40,19 +38,15 @@ constexpr std::string_view to_string(Method method) {
       return "tls-psd";
     case Method::Spde:
       return "spde";
-    case Method::SpdTotalLeastSquares:
-      return "spd-tls";
-    case Method::PsdLeastSquares:
-      return "psd-ls";
   }
   return "unknown";
 }
 
 /// Whether the method fits A and B as total least squares, and so takes FitOptions::noise_ratio
-/// (the ratio of the noise in B to the noise in A): tls, tls-sym, tls-psd and spd-tls.
+/// (the ratio of the noise in B to the noise in A): tls, tls-sym and tls-psd.
 constexpr bool uses_noise_ratio(Method method) {
   return method == Method::TotalLeastSquares || method == Method::TotalLeastSquaresSymmetric ||
-         method == Method::TotalLeastSquaresPsd || method == Method::SpdTotalLeastSquares;
+         method == Method::TotalLeastSquaresPsd;
 }
 
 /// The method with the given command-line name, or nothing if there is none.

@@ -1,5 +1,5 @@
 """Type stubs for the compiled core of spdfit (use the `spdfit` package, not this module)."""
-from typing import Dict, List, Optional, Tuple
+from typing import List, Optional, Tuple
 
 import numpy as np
 import numpy.typing as npt
@@ -31,10 +31,6 @@ class Diagnostics:
     tls_correction_norm: Optional[float]
     tls_v22_min_singular_value: Optional[float]
     noise_sigma: Optional[float]
-    iterations: Optional[int]
-    gradient_norm: Optional[float]
-    converged: Optional[bool]
-    certificate: Optional[Dict[str, float]]
 
 class FitResult:
     method: str

@@ -35,7 +35,7 @@ FitOptions options_from(const std::optional<double>& rank_tolerance, const std::
   if (noise_ratio) {
     if (method && !uses_noise_ratio(*method)) {
       throw std::invalid_argument("noise_ratio applies to the total least-squares methods (tls, tls-sym, "
-                                  "tls-psd, spd-tls), not to " +
+                                  "tls-psd), not to " +
                                   std::string(to_string(*method)));
     }
     options.noise_ratio = *noise_ratio;
@@ -95,22 +95,6 @@ void bind_estimators(py::module_& m) {
       .def_readonly("noise_sigma", &Diagnostics::noise_sigma,
                     "noise standard deviation in A under the TLS model (noise_ratio times it in B); "
                     "None when m == n")
-      .def_readonly("iterations", &Diagnostics::iterations, "iterative methods: iterations taken")
-      .def_readonly("gradient_norm", &Diagnostics::gradient_norm,
-                    "iterative methods: the final optimality measure")
-      .def_readonly("converged", &Diagnostics::converged, "iterative methods: the stopping rule was met")
-      .def_property_readonly(
-          "certificate",
-          [](const Diagnostics& d) -> py::object {
-            if (!d.certificate) return py::none();
-            py::dict c;
-            c["primal_min_eig"] = d.certificate->primal_min_eig;
-            c["dual_min_eig"] = d.certificate->dual_min_eig;
-            c["complementarity"] = d.certificate->complementarity;
-            c["duality_gap"] = d.certificate->duality_gap;
-            return std::move(c);
-          },
-          "psd-ls: {primal_min_eig, dual_min_eig, complementarity, duality_gap}")
       .def("__repr__", [](const Diagnostics& d) {
         std::ostringstream out;
         out << "Diagnostics(m=" << d.m << ", n=" << d.n << ", rank_a=" << d.rank_a << ", rank_b=" << d.rank_b

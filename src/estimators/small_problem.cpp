@@ -90,10 +90,6 @@ bool estimate_bounded(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<cons
           ok = tls.X_s.allFinite() && nearest_spd_kernel<MaxN>(tls.X_s, 0.0, X_s);
         }
         break;
-      case Method::SpdTotalLeastSquares:
-      case Method::PsdLeastSquares:
-        ok = false;  // not reached: estimate_small sends these to the general path
-        break;
     }
     if (ok) {
       X[i] = times_power_of_two(X_s, eb - ea);
@@ -110,10 +106,6 @@ bool estimate_small(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const 
                     const std::vector<Method>& methods, std::vector<MatrixXd>& X) {
   const Index n = A.cols();
   if (n > kSmallProblemMaxN) return false;
-  // The iterative methods run on the general path.
-  for (Method method : methods) {
-    if (method == Method::SpdTotalLeastSquares || method == Method::PsdLeastSquares) return false;
-  }
   if (n < 1) throw std::invalid_argument("the data must have at least one column");
   check_data(A, B, n);
   if (A.rows() < n) throw std::invalid_argument(too_few_rows(A.rows(), n));

@@ -2,8 +2,6 @@
 
 #include <array>
 #include <optional>
-#include <stdexcept>
-#include <string>
 
 #include "estimators/kernels.hpp"
 #include "spdfit/least_squares.hpp"
@@ -29,11 +27,6 @@ FitResult fit(const Reduction& data, Method method) {
       return total_least_squares_psd(data);
     case Method::Spde:
       return spde(data);
-    case Method::SpdTotalLeastSquares:
-    case Method::PsdLeastSquares:
-      // Wired to their estimators when those land (issue 14); not reachable from parse_method.
-      throw std::invalid_argument(std::string("fit: method ") + std::string(to_string(method)) +
-                                  " is not available yet");
   }
   return spde(data);  // unreachable: every enumerator is handled above
 }
