@@ -49,8 +49,8 @@ void fill_data_diagnostics(const DynamicReduction& data, Diagnostics& d, std::ve
                        "): the estimate may have lost about " +
                        format_number(std::floor(std::log10(d.cond_a))) + " significant digits");
   }
-  if (const auto variance = noise_variance(data)) {
-    d.noise_sigma = std::sqrt(*variance);
+  if (data.noise_var) {
+    d.noise_sigma = std::sqrt(*data.noise_var);
     if (warn_thin_noise_estimate && data.m - data.n < data.n) {
       const double dof = static_cast<double>(data.n) * static_cast<double>(data.m - data.n);
       warnings.push_back("the noise estimate (noise_sigma) rests on n (m - n) = " + format_number(dof) +

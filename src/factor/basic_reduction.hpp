@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <stdexcept>
 
 #include "spdfit/fit_options.hpp"
@@ -37,6 +38,9 @@ struct BasicReduction {
   Vector s_b;                           ///< singular values of B, descending
   Eigen::Index rank_a = 0, rank_b = 0;  ///< numerical ranks under the options' cut-off
   FitOptions options;
+  /// The noise estimate sigma^2 (noise_variance, kernels.hpp), in A's units: set by reduce when
+  /// options.diagnostics and m > n, for every method's diagnostics to report.
+  std::optional<double> noise_var;
 };
 
 /// The reduction behind the public, unbounded Reduction.

@@ -1,5 +1,8 @@
 #include "spdfit/reduction.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -44,9 +47,42 @@ void reduce_into(const typename BasicReduction<MaxN>::Factor& R, Eigen::Index m,
   out.rank_b = numerical_rank(out.s_b, cutoff);
 }
 
+template <int MaxN>
+void tls_factor(const BasicReduction<MaxN>& data, typename BasicReduction<MaxN>::Factor& R, int& e) {
+  const Index n = data.n;
+  // TLS is only invariant under a common scaling of A and B, so undo the separate scalings
+  // of the factor into a common one, 2^-max(ea, eb) (exact: powers of two); then B / r.
+  e = std::max(data.exponent_a, data.exponent_b);
+  R.setZero(2 * n, 2 * n);
+  R.topLeftCorner(n, n) = times_power_of_two(data.R11, data.exponent_a - e);
+  R.topRightCorner(n, n) = times_power_of_two(data.R12, data.exponent_b - e);
+  R.bottomRightCorner(n, n) = times_power_of_two(data.R22, data.exponent_b - e);
+  const double r = data.options.noise_ratio;
+  if (r != 1.0) R.rightCols(n) /= r;
+}
+
+template <int MaxN>
+std::optional<double> noise_variance(const BasicReduction<MaxN>& data) {
+  using Factor = typename BasicReduction<MaxN>::Factor;
+  const Index n = data.n, m = data.m;
+  if (m <= n) return std::nullopt;
+  int e = 0;
+  Factor R;
+  tls_factor(data, R, e);
+  BasicSvd<Factor> dec;
+  svd_into(R, dec, false, false);
+  // Under the TLS model the n smallest singular values of [A, B / r] carry only noise: their
+  // squares sum to sigma^2 times n (m - n) in expectation (issue 14's unbiased estimate). At
+  // m < 2n the factor's bottom rows are zero, and so are the trailing singular values.
+  const double tail = dec.s.tail(n).norm();
+  return std::ldexp(tail * tail / (static_cast<double>(n) * static_cast<double>(m - n)), 2 * e);
+}
+
 #define SPDFIT_INSTANTIATE(MaxN)                                                                  \
   template void reduce_into<MaxN>(const typename BasicReduction<MaxN>::Factor&, Eigen::Index, int, int, \
-                                  BasicReduction<MaxN>&);
+                                  BasicReduction<MaxN>&);                                               \
+  template void tls_factor<MaxN>(const BasicReduction<MaxN>&, typename BasicReduction<MaxN>::Factor&, int&); \
+  template std::optional<double> noise_variance<MaxN>(const BasicReduction<MaxN>&);
 SPDFIT_FOR_EACH_MAX_N(SPDFIT_INSTANTIATE)
 #undef SPDFIT_INSTANTIATE
 
@@ -62,6 +98,8 @@ Reduction reduce(const TriangularFactor& factor, const FitOptions& options) {
   auto r = std::make_shared<detail::DynamicReduction>();
   r->options = options;
   detail::reduce_into(factor.R(), factor.rows(), factor.exponent_a(), factor.exponent_b(), *r);
+  // A property of the data, computed once for every method that reports it.
+  if (options.diagnostics) r->noise_var = detail::noise_variance(*r);
   return Reduction(std::move(r));
 }
 
