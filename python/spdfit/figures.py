@@ -1,6 +1,6 @@
 """The source documents' figures, reproduced from spdfit's own computations.
 
-    /usr/bin/python3 -m spdfit.figures [--out DIR] [--format png|svg] [--trials-scale S]
+    /usr/bin/python3 -m spdfit.figures [--out DIR] [--format png|svg] [--only NAME ...] [--quick]
 
 draws, into DIR (default ./figures):
   thesis_experiments   error ||M_p - M_hat||_F of each method at the thesis' three noise levels

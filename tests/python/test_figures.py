@@ -52,3 +52,16 @@ def test_every_axis_is_labelled():
     fig = figures.plot_hexapod(figures.hexapod_data())
     for ax in fig.axes:
         assert ax.get_xlabel() and ax.get_ylabel() and ax.get_title()
+
+
+def test_the_usage_line_names_only_real_options(capsys):
+    # Issue 18: the docstring's usage line (shown by --help) offered a --trials-scale that did not exist.
+    import re
+
+    import pytest
+
+    with pytest.raises(SystemExit):
+        figures.main(["--help"])
+    shown = capsys.readouterr().out
+    for option in set(re.findall(r"--[a-z-]+", figures.__doc__)):
+        assert f"  {option}" in shown.split("options:")[-1], option
