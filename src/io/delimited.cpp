@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "delimited_parser.hpp"
-#include "parse.hpp"
 #include "fields.hpp"
+#include "parse.hpp"
 #include "spdfit/io.hpp"
 #include "text_scan.hpp"
 

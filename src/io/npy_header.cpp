@@ -1,5 +1,4 @@
 #include "npy_header.hpp"
-#include "parse.hpp"
 
 #include <limits>
 #include <map>

@@ -1,7 +1,6 @@
 // Reading a data file a block of rows at a time: .npy files memory-mapped, text in pieces of
 // whole lines through the same parser as read_table.
 #include "spdfit/row_reader.hpp"
-#include "parse.hpp"
 
 #include <fcntl.h>
 #include <sys/mman.h>

@@ -1,7 +1,8 @@
 #include "spdfit/linkage/pairs_file.hpp"
-#include "io/parse.hpp"
 
 #include <string>
+
+#include "io/parse.hpp"
 
 namespace spdfit::linkage {
 
