@@ -187,9 +187,12 @@ Command add_simulate(CLI::App& parent, const GlobalOptions& global) {
     std::ostringstream out;
     out << "wrote " << (dir / "A.csv").string() << " (" << data.A.rows() << "x" << data.A.cols()
         << " accelerations), " << (dir / "B.csv").string() << " (forces), " << (dir / "truth.csv").string()
-        << " (M_p: " << truth_source << "), " << (dir / "simulation.json").string() << "\n"
-        << "identify M_p from them with:\n  spdfit hexapod identify " << (dir / "A.csv").string() << ' '
-        << (dir / "B.csv").string() << " --truth " << (dir / "truth.csv").string() << "\n";
+        << " (M_p: " << truth_source << "), " << (dir / "simulation.json").string() << "\n";
+    // The next step only when it can succeed: identify needs at least as many samples as columns.
+    if (options.samples >= M.rows()) {
+      out << "identify M_p from them with:\n  spdfit hexapod identify " << (dir / "A.csv").string() << ' '
+          << (dir / "B.csv").string() << " --truth " << (dir / "truth.csv").string() << "\n";
+    }
     emit(out.str(), "");
   };
   return {sub, run};

@@ -292,3 +292,15 @@ def test_usage_errors_exit_2(cli, tmp_path, args):
     np.savetxt(tmp_path / "B.csv", np.ones((12, 6)), delimiter=",")
     err = cli(*args, expect=2).stderr
     assert err.startswith("spdfit: error: "), err
+
+
+def test_simulate_suggests_identify_only_when_it_can_succeed(cli, tmp_path):
+    # Issue 18: with fewer samples than M_p has columns the warning stays, and the identify
+    # command (which would fail with m < n) is not offered.
+    few = cli("hexapod", "simulate", "--samples", 3, "--noise-var", 0.86, "--out", "few")
+    assert "fewer samples (3) than M_p has columns (6)" in few.stderr
+    assert "identify" not in few.stdout
+    enough = cli("hexapod", "simulate", "--samples", 6, "--noise-var", 0.86, "--out", "enough")
+    assert "spdfit hexapod identify" in enough.stdout
+    command = enough.stdout.split("identify M_p from them with:\n  spdfit ")[1].split()
+    cli(*command)  # the suggested command succeeds, as printed
