@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "spdfit/rank.hpp"
+
 namespace spdfit::detail {
 
 using Eigen::Index;
@@ -123,9 +125,19 @@ std::string explain(const LinearSystemResult& r) {
   Index edited_nonzero = 0;
   for (Index i = r.rank; i < r.singular_values.size(); ++i) edited_nonzero += r.singular_values(i) > 0.0;
   if (edited_nonzero > 0) {
-    out += " (" + plural(edited_nonzero, "nonzero singular value") + " below " + short_number(r.threshold) +
-           " * sigma_max " + (edited_nonzero == 1 ? "is" : "are") + " roundoff and " +
-           (edited_nonzero == 1 ? "was" : "were") + " edited to zero, notes 002 section 3.8.)";
+    // Only the default cut-off, max(m, n) eps, marks a value as roundoff; a threshold the user
+    // chose cuts values that may be real (issue 18).
+    const bool roundoff = r.threshold == default_rank_tolerance(r.m, r.n);
+    const std::string was = edited_nonzero == 1 ? "was" : "were";
+    if (roundoff) {
+      out += " (" + plural(edited_nonzero, "nonzero singular value") + " below " + short_number(r.threshold) +
+             " * sigma_max " + (edited_nonzero == 1 ? "is" : "are") + " roundoff and " + was +
+             " edited to zero, notes 002 section 3.8.)";
+    } else {
+      out += " (" + plural(edited_nonzero, "nonzero singular value") + " below the chosen threshold " +
+             short_number(r.threshold) + " * sigma_max " + was +
+             " edited to zero, notes 002 section 3.8: not roundoff, so check that the threshold suits the data.)";
+    }
   }
   for (std::size_t j = 0; j < r.columns.size(); ++j) {
     out += "\n";

@@ -142,3 +142,14 @@ def test_usage_errors_exit_2(spdfit, args):
     result = spdfit(*args)
     assert result.returncode == 2, (result.returncode, result.stderr)
     assert result.stderr.startswith("spdfit: error: ")
+
+
+def test_a_chosen_threshold_is_not_called_roundoff(spdfit):
+    # Issue 18: values cut by the user's --threshold were called "roundoff"; only the default
+    # cut-off max(m, n) eps says so.
+    chosen = spdfit("solve", "--threshold", "0.7", "examples/linkage/notes_ex1_A.csv", "examples/linkage/notes_ex1_b.csv")
+    assert chosen.returncode == 0
+    assert "below the chosen threshold 0.7 * sigma_max was edited to zero" in chosen.stdout
+    assert "roundoff" not in chosen.stdout.replace("not roundoff", "")
+    default = spdfit("solve", "examples/linkage/notes_ex5_A.csv", "examples/linkage/notes_ex5_b.csv")
+    assert "is roundoff and was edited to zero" in default.stdout
