@@ -24,8 +24,9 @@ const std::map<std::string, std::function<double(double)>>& functions() {
       {"sqrt", [](double x) { return x >= 0.0 ? std::sqrt(x) : std::nan(""); }},
       {"reciprocal", [](double x) { return 1.0 / x; }},
       {"exp", [](double x) { return std::exp(x); }},
-      {"ln", [](double x) { return x > 0.0 ? std::log(x) : std::nan(""); }},
-      {"log10", [](double x) { return x > 0.0 ? std::log10(x) : std::nan(""); }},
+      // log(0) is -inf (std::log says so too); only a negative argument has no value.
+      {"ln", [](double x) { return x >= 0.0 ? std::log(x) : std::nan(""); }},
+      {"log10", [](double x) { return x >= 0.0 ? std::log10(x) : std::nan(""); }},
       {"sin", [](double x) { return std::sin(x); }},
       {"cos", [](double x) { return std::cos(x); }},
       {"tan", [](double x) { return std::tan(x); }},

@@ -229,3 +229,13 @@ def test_usage_errors_exit_2(spdfit, args):
     assert result.returncode == 2, (args, result.returncode, result.stderr)
     assert result.stderr.startswith("spdfit: error: ")
     assert result.stdout == ""
+
+
+def test_a_logarithm_at_zero_is_reported_as_minus_infinity(spdfit):
+    # Issue 18: log10(0) was reported as nan; it is -inf (and a negative argument stays nan).
+    zero = spdfit("linkage", "synthesize", "--function", "log10", "--x-range", "0:10", "--psi-range", "0:60",
+                  "--phi-range", "0:60")
+    fails(zero, 2, "log10(0) = -inf", "log10(10) = 1")
+    negative = spdfit("linkage", "synthesize", "--function", "ln", "--x-range", "-1:10", "--psi-range", "0:60",
+                      "--phi-range", "0:60")
+    fails(negative, 2, "ln(-1) = nan")
