@@ -23,36 +23,46 @@ _DEFAULTS = _core.DEFAULTS
 __all__ = ["THESIS_NOISE_VARIANCES", "THESIS_REPORTED", "paper_2x2", "paper_2x2_sweep", "paper_hexapod", "thesis"]
 
 
+def _names(methods):
+    """None, or the method names as a list of str (a single name is accepted too)."""
+    if methods is None:
+        return None
+    return [methods] if isinstance(methods, str) else [str(m) for m in methods]
+
+
 def thesis(noise_var, *, samples=_DEFAULTS["samples"], trials=1000, seed=1, threads=0, force_noise_var=None,
-           signal_var=_DEFAULTS["signal_var"], distribution=_DEFAULTS["distribution"], truth=None):
+           signal_var=_DEFAULTS["signal_var"], distribution=_DEFAULTS["distribution"], truth=None, methods=None):
     """The thesis' experiment (M_p of eq. 6.1, appendix-B generator) repeated `trials` times.
 
     Returns a ThesisExperimentResult: .methods is a list (one per method, in spdfit.METHODS
     order) with .method, .errors (||M_p - M_hat||_F per trial, NaN where the method failed) and
     .summary (mean, std, median, max, standard_error). Same numbers as
-    `spdfit experiment thesis --noise-var V --trials N --seed S`."""
+    `spdfit experiment thesis --noise-var V --trials N --seed S`. methods: the method names to run
+    (default: all six), as `--methods`."""
     return _core.thesis(float(noise_var), int(samples), int(trials), int(seed), int(threads),
                         None if force_noise_var is None else float(force_noise_var), float(signal_var),
-                        distribution, None if truth is None else _as_matrix("truth", truth))
+                        distribution, None if truth is None else _as_matrix("truth", truth), _names(methods))
 
 
 def paper_hexapod(*, noise_var=_DEFAULTS["paper_hexapod_noise_var"], samples=_DEFAULTS["paper_hexapod_samples"],
-                  trials=100, seed=1, threads=0):
+                  trials=100, seed=1, threads=0, methods=None):
     """The paper's Figure 2 on simulated data: for the 21 independent entries of M_p, the mean
     (bias), mean absolute value and standard deviation of the estimation error over the trials,
     Procrustes against SPDE (.methods), entries in .entries."""
-    return _core.paper_hexapod(float(noise_var), int(samples), int(trials), int(seed), int(threads))
+    return _core.paper_hexapod(float(noise_var), int(samples), int(trials), int(seed), int(threads), _names(methods))
 
 
-def paper_2x2(std_a, *, std_b=_DEFAULTS["paper_2x2_std_b"], trials=10000, seed=1, threads=0):
+def paper_2x2(std_a, *, std_b=_DEFAULTS["paper_2x2_std_b"], trials=10000, seed=1, threads=0, methods=None):
     """The paper's second example: X = [3 1; 1 1], A = A0 + N(0, std_a^2), B = A0 X + N(0, std_b^2);
     per method (procrustes, tls, spde) the mean absolute error (.mae), its standard deviation
     (.std) and the bias of x11, x12, x22."""
-    return _core.paper_2x2(float(std_a), float(std_b), int(trials), int(seed), int(threads))
+    return _core.paper_2x2(float(std_a), float(std_b), int(trials), int(seed), int(threads), _names(methods))
 
 
-def paper_2x2_sweep(levels=None, *, std_b=_DEFAULTS["paper_2x2_std_b"], trials=10000, seed=1, threads=0):
+def paper_2x2_sweep(levels=None, *, std_b=_DEFAULTS["paper_2x2_std_b"], trials=10000, seed=1, threads=0,
+                    methods=None):
     """paper_2x2 at each std_a in `levels` (default 0, 0.1, ..., 1.9: the paper's Figure 3);
     a list of results in the order of the levels."""
     levels = list(_core.paper_2x2_sweep_levels() if levels is None else map(float, levels))
-    return list(zip(levels, _core.paper_2x2_sweep(levels, float(std_b), int(trials), int(seed), int(threads))))
+    return list(zip(levels, _core.paper_2x2_sweep(levels, float(std_b), int(trials), int(seed), int(threads),
+                                                  _names(methods))))

@@ -46,6 +46,19 @@ hexapod::SimulationOptions simulation(Eigen::Index samples, double noise_var, st
 
 std::string method_name(Method m) { return std::string(to_string(m)); }
 
+// The methods named (ValueError for an unknown name), or `defaults` when none are given; the
+// library refuses an empty list or a repeat (experiment::check_methods).
+std::vector<Method> methods_from(const std::optional<std::vector<std::string>>& names, std::vector<Method> defaults) {
+  if (!names) return defaults;
+  std::vector<Method> methods;
+  for (const std::string& name : *names) {
+    const auto method = parse_method(name);
+    if (!method) throw std::invalid_argument("unknown method '" + name + "'");
+    methods.push_back(*method);
+  }
+  return methods;
+}
+
 }  // namespace
 
 void bind_experiment(py::module_& parent) {
@@ -111,52 +124,63 @@ void bind_experiment(py::module_& parent) {
       "thesis",
       [](double noise_var, Eigen::Index samples, std::size_t trials, std::uint64_t seed, unsigned threads,
          std::optional<double> force_noise_var, double signal_var, const std::string& distribution,
-         std::optional<Eigen::MatrixXd> truth) {
+         std::optional<Eigen::MatrixXd> truth, std::optional<std::vector<std::string>> methods) {
         ThesisExperimentOptions options;
         options.simulation = simulation(samples, noise_var, force_noise_var, signal_var, distribution);
         if (truth) options.truth = *truth;
+        options.methods = methods_from(methods, options.methods);
         const MonteCarloOptions mc = monte_carlo(trials, seed, threads);
         py::gil_scoped_release release;
         return run_thesis_experiment(options, mc);
       },
       py::arg("noise_var"), py::arg("samples"), py::arg("trials"), py::arg("seed"), py::arg("threads"),
-      py::arg("force_noise_var"), py::arg("signal_var"), py::arg("distribution"), py::arg("truth"));
+      py::arg("force_noise_var"), py::arg("signal_var"), py::arg("distribution"), py::arg("truth"),
+      py::arg("methods") = py::none());
 
   m.def(
       "paper_hexapod",
-      [](double noise_var, Eigen::Index samples, std::size_t trials, std::uint64_t seed, unsigned threads) {
+      [](double noise_var, Eigen::Index samples, std::size_t trials, std::uint64_t seed, unsigned threads,
+         std::optional<std::vector<std::string>> methods) {
         PaperHexapodOptions options;
         options.simulation.samples = samples;
         options.simulation.noise_var = noise_var;
+        options.methods = methods_from(methods, options.methods);
         const MonteCarloOptions mc = monte_carlo(trials, seed, threads);
         py::gil_scoped_release release;
         return run_paper_hexapod(options, mc);
       },
-      py::arg("noise_var"), py::arg("samples"), py::arg("trials"), py::arg("seed"), py::arg("threads"));
+      py::arg("noise_var"), py::arg("samples"), py::arg("trials"), py::arg("seed"), py::arg("threads"),
+      py::arg("methods") = py::none());
 
   m.def(
       "paper_2x2",
-      [](double std_a, double std_b, std::size_t trials, std::uint64_t seed, unsigned threads) {
+      [](double std_a, double std_b, std::size_t trials, std::uint64_t seed, unsigned threads,
+         std::optional<std::vector<std::string>> methods) {
         Paper2x2Options options;
         options.std_a = std_a;
         options.std_b = std_b;
+        options.methods = methods_from(methods, options.methods);
         const MonteCarloOptions mc = monte_carlo(trials, seed, threads);
         py::gil_scoped_release release;
         return run_paper_2x2(options, mc);
       },
-      py::arg("std_a"), py::arg("std_b"), py::arg("trials"), py::arg("seed"), py::arg("threads"));
+      py::arg("std_a"), py::arg("std_b"), py::arg("trials"), py::arg("seed"), py::arg("threads"),
+      py::arg("methods") = py::none());
 
   m.def(
       "paper_2x2_sweep",
-      [](std::vector<double> levels, double std_b, std::size_t trials, std::uint64_t seed, unsigned threads) {
+      [](std::vector<double> levels, double std_b, std::size_t trials, std::uint64_t seed, unsigned threads,
+         std::optional<std::vector<std::string>> methods) {
         Paper2x2Options options;
         options.std_b = std_b;
+        options.methods = methods_from(methods, options.methods);
         if (levels.empty()) levels = paper_2x2_sweep_levels();
         const MonteCarloOptions mc = monte_carlo(trials, seed, threads);
         py::gil_scoped_release release;
         return run_paper_2x2_sweep(options, levels, mc);
       },
-      py::arg("levels"), py::arg("std_b"), py::arg("trials"), py::arg("seed"), py::arg("threads"));
+      py::arg("levels"), py::arg("std_b"), py::arg("trials"), py::arg("seed"), py::arg("threads"),
+      py::arg("methods") = py::none());
   m.def("paper_2x2_sweep_levels", &paper_2x2_sweep_levels);
   m.def("paper_2x2_truth", &paper_2x2_truth);
   m.def("paper_2x2_design", &paper_2x2_design);

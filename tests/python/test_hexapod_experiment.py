@@ -90,3 +90,22 @@ def test_bad_arguments_are_value_errors():
         ex.thesis(-1.0, trials=10)
     with pytest.raises(ValueError, match="distribution"):
         hx.simulate(distribution="cauchy")
+
+
+def test_experiments_take_methods_like_the_cli():
+    # The Python face of `experiment ... --methods`: the same numbers as the default run for the
+    # methods chosen, in the order given; unknown names and repeats raise ValueError.
+    import pytest
+
+    from spdfit import experiment
+
+    everything = {m.method: m.summary.mean for m in experiment.thesis(0.86, trials=50).methods}
+    chosen = experiment.thesis(0.86, trials=50, methods=["tls-sym", "spde"]).methods
+    assert [m.method for m in chosen] == ["tls-sym", "spde"]
+    assert all(m.summary.mean == everything[m.method] for m in chosen)
+    two = experiment.paper_2x2(0.5, trials=200, methods=["spde", "ls"]).methods
+    assert [m.method for m in two] == ["spde", "ls"]
+    with pytest.raises(ValueError, match="unknown method 'bogus'"):
+        experiment.paper_2x2(0.5, trials=10, methods=["spde", "bogus"])
+    with pytest.raises(ValueError, match="listed twice"):
+        experiment.paper_hexapod(trials=10, methods=["spde", "spde"])
