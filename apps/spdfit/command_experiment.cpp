@@ -44,7 +44,7 @@ void add_common(CLI::App* sub, CommonCli& common, std::size_t default_trials) {
 // --methods a,b,...: which estimators an experiment runs (default: the experiment's own set).
 void add_methods(CLI::App* sub, std::vector<std::string>& names, const std::vector<Method>& defaults) {
   std::vector<std::string> known, shown;
-  for (Method m : kAllMethods) known.emplace_back(to_string(m));
+  for (Method m : kSelectableMethods) known.emplace_back(to_string(m));
   for (Method m : defaults) shown.emplace_back(to_string(m));
   std::string default_text;
   for (const std::string& name : shown) default_text += (default_text.empty() ? "" : ",") + name;

@@ -19,13 +19,15 @@ struct FitOptionsCli {
   bool json = false;
   double rank_tolerance = -1.0;
   std::optional<double> noise_ratio;
+  std::optional<int> max_iterations;
+  std::optional<double> min_eig;
   bool stream = false;
   StreamOptions stream_options;
 };
 
 std::vector<std::string> method_names() {
   std::vector<std::string> names;
-  for (Method m : kAllMethods) names.emplace_back(to_string(m));
+  for (Method m : kSelectableMethods) names.emplace_back(to_string(m));
   return names;
 }
 
@@ -36,7 +38,9 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
   CLI::App* sub = app.add_subcommand("fit", "Estimate X in A X ~= B with one method; print X as CSV");
   sub->add_option("-m,--method", options->method,
                   "ls (least squares), procrustes (symmetric least squares), tls (total least squares), "
-                  "tls-sym, tls-psd, spde (area criterion, always SPD)")
+                  "tls-sym, tls-psd, spde (area criterion, always SPD), spd-tls (total least squares over "
+                  "the SPD matrices), psd-ls (least squares over X >= min-eig I, with a certificate), auto "
+                  "(spde, spd-tls or psd-ls, chosen from the data)")
       ->required()
       ->check(CLI::IsMember(method_names()));
   sub->add_flag("--json", options->json, "Print the estimate, diagnostics and warnings as JSON");
@@ -46,8 +50,15 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
       ->check(rank_tolerance());
   sub->add_option("--noise-ratio", options->noise_ratio,
                   "sigma_B / sigma_A, the noise in B relative to the noise in A, for the total least-squares "
-                  "methods (tls, tls-sym, tls-psd); default 1")
+                  "methods (tls, tls-sym, tls-psd, spd-tls) and auto; default 1")
       ->check(positive());
+  sub->add_option("--max-iter", options->max_iterations,
+                  "Iteration limit of spd-tls, psd-ls and auto (default 200); then the best iterate, with a "
+                  "warning")
+      ->check(CLI::Range(1, 1000000));
+  sub->add_option("--min-eig", options->min_eig,
+                  "psd-ls: the floor epsilon of X >= epsilon I (default 0: positive semidefinite)")
+      ->check(non_negative());
   CLI::Option* stream =
       sub->add_flag("--stream", options->stream,
                     "Read A and B a block of rows at a time (memory O(n^2) whatever the number of rows; "
@@ -68,10 +79,21 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
     fit_options.rank_tolerance = options->rank_tolerance;
     if (options->noise_ratio) {
       if (!uses_noise_ratio(method)) {
-        throw UsageError("--noise-ratio applies to the total least-squares methods (tls, tls-sym, tls-psd), not to " +
-                         options->method);
+        throw UsageError("--noise-ratio applies to the total least-squares methods (tls, tls-sym, tls-psd, "
+                         "spd-tls) and auto, not to " + options->method);
       }
       fit_options.noise_ratio = *options->noise_ratio;
+    }
+    if (options->max_iterations) {
+      if (!uses_max_iterations(method)) {
+        throw UsageError("--max-iter applies to the iterative methods (spd-tls, psd-ls, auto), not to " +
+                         options->method);
+      }
+      fit_options.max_iterations = *options->max_iterations;
+    }
+    if (options->min_eig) {
+      if (!uses_min_eig(method)) throw UsageError("--min-eig applies to psd-ls, not to " + options->method);
+      fit_options.min_eig = *options->min_eig;
     }
     const std::optional<StreamOptions> stream =
         options->stream ? std::optional<StreamOptions>(options->stream_options) : std::nullopt;

@@ -61,6 +61,17 @@ json diagnostics_json(const Diagnostics& d) {
   optional_number("tls_correction_norm", d.tls_correction_norm);
   optional_number("tls_v22_min_singular_value", d.tls_v22_min_singular_value);
   optional_number("noise_sigma", d.noise_sigma);
+  if (d.iterations) out["iterations"] = *d.iterations;
+  optional_number("gradient_norm", d.gradient_norm);
+  if (d.converged) out["converged"] = *d.converged;
+  if (d.certificate) {
+    out["certificate"] = {{"primal_min_eig", number_json(d.certificate->primal_min_eig)},
+                          {"dual_min_eig", number_json(d.certificate->dual_min_eig)},
+                          {"complementarity", number_json(d.certificate->complementarity)},
+                          {"duality_gap", number_json(d.certificate->duality_gap)}};
+  }
+  if (d.chosen_method) out["chosen_method"] = std::string(to_string(*d.chosen_method));
+  if (d.reason) out["reason"] = {{"code", d.reason->code}, {"text", d.reason->text}};
   return out;
 }
 

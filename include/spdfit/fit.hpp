@@ -17,8 +17,8 @@ FitResult fit(const Reduction& data, Method method);
 FitResult fit(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
               Method method, const FitOptions& options = {});
 
-/// Runs every method in kAllMethods on the same data: one QR and reduction for all, and one SVD
-/// of [A B] for tls, tls-sym and tls-psd. The results are those of `fit` for each method.
+/// Runs every method in kAllMethods (not auto, which runs one of them) on the same data: one QR
+/// and reduction for all, and one SVD of [A B] for tls, tls-sym and tls-psd. The results are those of `fit` for each method.
 std::vector<FitResult> fit_all(const Reduction& data);
 std::vector<FitResult> fit_all(const Eigen::Ref<const Eigen::MatrixXd>& A,
                                const Eigen::Ref<const Eigen::MatrixXd>& B, const FitOptions& options = {});

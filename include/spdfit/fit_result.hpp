@@ -31,6 +31,25 @@ constexpr const char* to_string(Status status) {
   return "unknown";
 }
 
+/// psd-ls's proof of optimality: the KKT conditions of minimizing ||A X - B||_F^2 / 2 over
+/// symmetric X >= epsilon I, with the multiplier S = sym(A^T A X - A^T B) (from the triangular
+/// factor). X is optimal exactly when primal_min_eig >= 0, dual_min_eig >= 0 and
+/// complementarity = 0; the numbers say how far from that the returned X is, in the data's units.
+struct PsdCertificate {
+  double primal_min_eig = 0.0;   ///< lambda_min(X - epsilon I)
+  double dual_min_eig = 0.0;     ///< lambda_min(S)
+  double complementarity = 0.0;  ///< <X - epsilon I, S>
+  /// The relative duality gap |<X - epsilon I, S>| / (||A^T A||_2 ||X||_F + ||A^T B||_F):
+  /// the objective's distance from its lower bound when S >= 0 (dimensionless).
+  double duality_gap = 0.0;
+};
+
+/// Why `auto` chose its method: a stable code for scripts and a sentence for people.
+struct AutoReason {
+  std::string code;  ///< e.g. "few_samples", "many_samples", "errors_in_b_only", "boundary"
+  std::string text;
+};
+
 /// Quantities a user checks an estimate by. Singular values, ranks and condition numbers
 /// are those of the data A and B (computed from the triangular factor, not Gram matrices).
 /// Optional entries are present only where they are defined for the method and estimate.
@@ -70,6 +89,18 @@ struct Diagnostics {
   /// (unbiased for sigma^2). Present whenever m > n, for every method; its relative standard
   /// error is about sqrt(2 / (n (m - n))), and a warning says so when m - n < n.
   std::optional<double> noise_sigma;
+
+  /// The iterative methods (spd-tls, psd-ls): iterations taken, the final stopping quantity
+  /// (spd-tls: ||X^1/2 grad f(X) X^1/2||_F in the units of the criterion; psd-ls: the relative
+  /// KKT residual), and whether the stopping rule held.
+  std::optional<int> iterations;
+  std::optional<double> gradient_norm;
+  std::optional<bool> converged;
+  /// psd-ls only: the optimality certificate.
+  std::optional<PsdCertificate> certificate;
+  /// auto only: the method it ran (also the result's `method`) and why.
+  std::optional<Method> chosen_method;
+  std::optional<AutoReason> reason;
 };
 
 /// The result of one estimator on one data set.

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "spdfit/area_criterion.hpp"
+#include "spdfit/auto.hpp"
 #include "spdfit/experiment/monte_carlo.hpp"
 #include "spdfit/experiment/paper.hpp"
 #include "spdfit/experiment/statistics.hpp"
@@ -30,10 +31,12 @@
 #include "spdfit/linkage/synthesis.hpp"
 #include "spdfit/method.hpp"
 #include "spdfit/nearest_spd.hpp"
+#include "spdfit/psd_least_squares.hpp"
 #include "spdfit/random.hpp"
 #include "spdfit/rank.hpp"
 #include "spdfit/reduction.hpp"
 #include "spdfit/row_reader.hpp"
+#include "spdfit/spd_total_least_squares.hpp"
 #include "spdfit/spde.hpp"
 #include "spdfit/stream.hpp"
 #include "spdfit/symmetric_procrustes.hpp"

@@ -22,7 +22,7 @@ namespace {
 Method method_from(const std::string& name) {
   if (const auto method = parse_method(name)) return *method;
   std::string known;
-  for (Method m : kAllMethods) known += (known.empty() ? "" : ", ") + std::string(to_string(m));
+  for (Method m : kSelectableMethods) known += (known.empty() ? "" : ", ") + std::string(to_string(m));
   throw std::invalid_argument("unknown method '" + name + "' (methods: " + known + ")");
 }
 

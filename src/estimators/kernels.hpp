@@ -99,6 +99,23 @@ template <int MaxN>
 bool nearest_spd_kernel(const SquareMatrix<MaxN>& X, double min_eig, SquareMatrix<MaxN>& y,
                         NearestSpdInfo* info = nullptr);
 
+/// What auto (auto.hpp) chooses, and the numbers it chose by.
+struct AutoChoice {
+  Method method = Method::Spde;
+  const char* code = "";       ///< "rank_deficient_a", "many_samples" or "few_samples"
+  double snr = 0.0;            ///< signal-to-noise ratio of A's weakest direction (NaN: unknown)
+};
+
+/// auto's choice between spde and spd-tls from the reduced data and the noise estimate (in A's
+/// units; nothing when m <= n). O(1) given the noise estimate.
+template <int MaxN>
+AutoChoice auto_choice(const BasicReduction<MaxN>& data, std::optional<double> noise_var);
+
+/// auto's fallback floor for psd-ls, in scaled units: 1e-8 ||X_ls||_F (its least-squares
+/// estimate), or the smallest normal number when that is 0.
+template <int MaxN>
+double auto_floor(const BasicReduction<MaxN>& data);
+
 /// tls, tls-sym and tls-psd (in that order) from one TLS SVD, as the three public functions of
 /// total_least_squares.hpp return them: what fit_all shares among the TLS family.
 std::array<FitResult, 3> total_least_squares_family(const Reduction& reduction);

@@ -4,7 +4,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <Eigen/Eigenvalues>
+
 #include "estimators/kernels.hpp"
+#include "estimators/psd_ls_kernel.hpp"
+#include "estimators/spd_tls_kernel.hpp"
 #include "numerics/linalg.hpp"
 
 namespace spdfit::detail {
@@ -41,6 +45,16 @@ void small_factor(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Ma
   }
 }
 
+// spd-tls's estimate, or false where spd_total_least_squares fails (no start, no minimizer).
+template <int MaxN>
+bool spd_tls(const BasicReduction<MaxN>& data, double r_s, int max_iterations, SquareMatrix<MaxN>& X_s) {
+  if (!(r_s > 0.0) || !std::isfinite(r_s * r_s) || r_s * r_s == 0.0) return false;
+  SpdTlsKernel<MaxN> k;
+  if (!spd_tls_solve(data, r_s, max_iterations, k) || k.unbounded) return false;
+  X_s = k.X_s;
+  return true;
+}
+
 // Where TLS's result is needed by several methods, it is computed once.
 template <int MaxN>
 bool estimate_bounded(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
@@ -56,6 +70,9 @@ bool estimate_bounded(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<cons
     reduce_into(R, A.rows(), ea, eb, data);
   }
   const Index n = data.n;
+  const FitOptions defaults;
+  // spd-tls's noise ratio in scaled units (see spd_total_least_squares.cpp).
+  const double r_s = std::ldexp(defaults.noise_ratio, ea - eb);
   TlsKernel<MaxN> tls;
   bool tls_done = false;
   Matrix X_s;
@@ -90,6 +107,30 @@ bool estimate_bounded(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<cons
           ok = tls.X_s.allFinite() && nearest_spd_kernel<MaxN>(tls.X_s, 0.0, X_s);
         }
         break;
+      case Method::SpdTotalLeastSquares:
+        ok = spd_tls(data, r_s, defaults.max_iterations, X_s);
+        break;
+      case Method::PsdLeastSquares: {
+        PsdLsKernel<MaxN> k;
+        ok = psd_ls_kernel(data, 0.0, defaults.max_iterations, k);
+        if (ok) X_s = k.X_s;
+        break;
+      }
+      case Method::Auto: {
+        const AutoChoice choice = auto_choice(data, noise_variance(data));
+        ok = choice.method == Method::Spde ? (spde_kernel(data, X_s), true)
+                                           : spd_tls(data, r_s, defaults.max_iterations, X_s);
+        if (ok) {
+          Eigen::SelfAdjointEigenSolver<Matrix> eig(X_s, Eigen::EigenvaluesOnly);
+          ok = eig.info() == Eigen::Success && eig.eigenvalues()(0) > 0.0;
+        }
+        if (!ok) {  // the boundary: psd-ls with auto's floor, as auto_fit
+          PsdLsKernel<MaxN> k;
+          ok = psd_ls_kernel(data, auto_floor(data), defaults.max_iterations, k);
+          if (ok) X_s = k.X_s;
+        }
+        break;
+      }
     }
     if (ok) {
       X[i] = times_power_of_two(X_s, eb - ea);

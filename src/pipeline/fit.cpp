@@ -4,7 +4,10 @@
 #include <optional>
 
 #include "estimators/kernels.hpp"
+#include "spdfit/auto.hpp"
 #include "spdfit/least_squares.hpp"
+#include "spdfit/psd_least_squares.hpp"
+#include "spdfit/spd_total_least_squares.hpp"
 #include "spdfit/spde.hpp"
 #include "spdfit/symmetric_procrustes.hpp"
 #include "spdfit/total_least_squares.hpp"
@@ -27,6 +30,12 @@ FitResult fit(const Reduction& data, Method method) {
       return total_least_squares_psd(data);
     case Method::Spde:
       return spde(data);
+    case Method::SpdTotalLeastSquares:
+      return spd_total_least_squares(data);
+    case Method::PsdLeastSquares:
+      return psd_least_squares(data);
+    case Method::Auto:
+      return auto_fit(data);
   }
   return spde(data);  // unreachable: every enumerator is handled above
 }

@@ -1,0 +1,250 @@
+#include "estimators/psd_ls_kernel.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "numerics/linalg.hpp"
+
+namespace spdfit::detail {
+
+using Eigen::Index;
+
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+// The problem in the eigenbasis of H = R11^T R11 = V diag(h) V^T (V from the SVD of R11, h = s^2
+// with the singular values under the rank cut-off edited to zero). With Y = X - epsilon I and
+// Yt = V^T Y V (the orthogonal change keeps the cone):
+//
+//   ||R11 X - R12||^2 / 2 = sum_ij c_ij Yt_ij^2 / 2 - sum_ij G_ij Yt_ij + const,
+//   c_ij = (h_i + h_j) / 2,   G = sym(diag(s) Ct),   Ct = U^T (R12 - epsilon R11) V,
+//
+// a diagonal quadratic over the positive semidefinite cone, with gradient S = c o Yt - G (the
+// multiplier of the KKT conditions, V^T sym(R11^T (R11 X - R12)) V).
+template <int MaxN>
+struct Problem {
+  using Matrix = SquareMatrix<MaxN>;
+  using Vector = typename BasicReduction<MaxN>::Vector;
+  Index n = 0;
+  Vector h;           // curvature of the diagonal, descending
+  Matrix c, G;        // see above
+  double h_max = 0.0;
+  double scale = 0.0;  // ||R11^T R12||_F, the data part of the KKT residual's denominator
+  double epsilon = 0.0;
+};
+
+// The positive semidefinite part of the symmetric M (eigenvalues clipped at 0), its number of
+// positive eigenvalues, and their eigenvectors (columns of `range`). False when the eigensolver
+// fails.
+template <int MaxN>
+bool project(const SquareMatrix<MaxN>& M, SquareMatrix<MaxN>& out, SquareMatrix<MaxN>* range = nullptr,
+             Index* rank = nullptr) {
+  using Matrix = SquareMatrix<MaxN>;
+  Eigen::SelfAdjointEigenSolver<Matrix> eig(M);
+  if (eig.info() != Eigen::Success) return false;
+  const Index n = M.rows();
+  Index first = 0;  // eigenvalues ascending: the positive ones are the trailing n - first
+  while (first < n && !(eig.eigenvalues()(first) > 0.0)) ++first;
+  const Index k = n - first;
+  const Matrix W = eig.eigenvectors().rightCols(k);
+  out.setZero(n, n);
+  if (k > 0) {
+    out.template triangularView<Eigen::Lower>() = W * eig.eigenvalues().tail(k).asDiagonal() * W.transpose();
+    make_symmetric_from_lower(out);
+  }
+  if (range) *range = W;
+  if (rank) *rank = k;
+  return true;
+}
+
+// The relative KKT residual of the feasible Yt: ||Yt - P(Yt - S / h_max)||_F h_max over
+// h_max ||Yt + epsilon I||_F + ||R11^T R12||_F, zero exactly at the minimizer (the natural
+// residual of the variational inequality). Negative on eigensolver failure.
+template <int MaxN>
+double kkt_residual(const Problem<MaxN>& p, const SquareMatrix<MaxN>& Yt) {
+  using Matrix = SquareMatrix<MaxN>;
+  if (!(p.h_max > 0.0)) return 0.0;  // A = 0: every feasible X is a minimizer
+  const Matrix S = p.c.cwiseProduct(Yt) - p.G;
+  Matrix P;
+  if (!project<MaxN>(Yt - S / p.h_max, P)) return -1.0;
+  Matrix X = Yt;
+  X.diagonal().array() += p.epsilon;
+  return (Yt - P).norm() * p.h_max / (p.h_max * X.norm() + p.scale);
+}
+
+// The minimizer over the face {U Z U^T : Z symmetric} of the cone, U an orthonormal basis of the
+// range of the iterate: (H_U Z + Z H_U) / 2 = U^T G U with H_U = U^T diag(h) U, solved in the
+// eigenbasis of H_U (directions without curvature get 0, the minimum-norm choice). Returns the
+// candidate Yt = U Z+ U^T with Z's rounding-level negative eigenvalues clipped, or false when Z
+// is clearly indefinite (the face is too large) or an eigensolver fails.
+template <int MaxN>
+bool face_solve(const Problem<MaxN>& p, const SquareMatrix<MaxN>& U, SquareMatrix<MaxN>& Yt) {
+  using Matrix = SquareMatrix<MaxN>;
+  const Index k = U.cols(), n = p.n;
+  if (k == 0) {
+    Yt.setZero(n, n);
+    return true;
+  }
+  const Matrix HU = U.transpose() * p.h.asDiagonal() * U;
+  Eigen::SelfAdjointEigenSolver<Matrix> eig(HU);
+  if (eig.info() != Eigen::Success) return false;
+  const Matrix& Q = eig.eigenvectors();
+  const auto& lambda = eig.eigenvalues();
+  Matrix Zt = Q.transpose() * (U.transpose() * p.G * U) * Q;
+  const double floor = static_cast<double>(n) * kEps * p.h_max;
+  for (Index j = 0; j < k; ++j)
+    for (Index i = 0; i < k; ++i) {
+      const double d = 0.5 * (lambda(i) + lambda(j));
+      Zt(i, j) = d > floor ? Zt(i, j) / d : 0.0;
+    }
+  Matrix Z = Q * Zt * Q.transpose();
+  Z = symmetric_part(Z);
+  Eigen::SelfAdjointEigenSolver<Matrix> ez(Z);
+  if (ez.info() != Eigen::Success) return false;
+  const double zmax = ez.eigenvalues().cwiseAbs().maxCoeff();
+  if (ez.eigenvalues()(0) < -64.0 * static_cast<double>(n) * kEps * zmax) return false;
+  Matrix Zp;
+  if (!project<MaxN>(Z, Zp)) return false;
+  Yt.noalias() = U * Zp * U.transpose();
+  Yt = symmetric_part(Yt);
+  return true;
+}
+
+// An orthonormal basis of diag(1/d) P (the range of Yt = diag(1/d) W diag(1/d) when P spans W's).
+template <int MaxN>
+SquareMatrix<MaxN> range_basis(const typename BasicReduction<MaxN>::Vector& d, const SquareMatrix<MaxN>& P) {
+  using Matrix = SquareMatrix<MaxN>;
+  const Index n = P.rows(), k = P.cols();
+  Matrix M = d.cwiseInverse().asDiagonal() * P;
+  if (k == 0) return M;
+  Eigen::HouseholderQR<Matrix> qr(M);
+  return qr.householderQ() * Matrix::Identity(n, k);
+}
+
+}  // namespace
+
+template <int MaxN>
+bool psd_ls_kernel(const BasicReduction<MaxN>& data, double epsilon_s, int max_iterations, PsdLsKernel<MaxN>& out) {
+  using Matrix = SquareMatrix<MaxN>;
+  using Vector = typename BasicReduction<MaxN>::Vector;
+  const Index n = data.n, r = data.rank_a;
+
+  Problem<MaxN> p;
+  p.n = n;
+  p.epsilon = epsilon_s;
+  Vector s = data.s_a;
+  s.tail(n - r).setZero();
+  p.h = s.cwiseAbs2();
+  p.h_max = n > 0 ? p.h(0) : 0.0;
+  const Matrix C0 = data.U_a.transpose() * data.R12 * data.V_a;
+  p.scale = (s.asDiagonal() * C0).norm();  // ||R11^T R12||_F
+  Matrix Ct = C0;
+  Ct.diagonal() -= epsilon_s * s;
+  p.G = 0.5 * (s.asDiagonal() * Ct + (s.asDiagonal() * Ct).transpose());
+  p.c.resize(n, n);
+  for (Index j = 0; j < n; ++j)
+    for (Index i = 0; i < n; ++i) p.c(i, j) = 0.5 * (p.h(i) + p.h(j));
+
+  // The unconstrained symmetric minimizer (symmetric Procrustes for R12 - epsilon R11).
+  Matrix Yt(n, n);
+  for (Index j = 0; j < n; ++j)
+    for (Index i = 0; i < n; ++i) Yt(i, j) = p.c(i, j) > 0.0 ? p.G(i, j) / p.c(i, j) : 0.0;
+
+  Matrix best;
+  double best_kkt = std::numeric_limits<double>::infinity();
+  out.iterations = 0;
+  auto consider = [&](const Matrix& candidate) {
+    const double kkt = kkt_residual(p, candidate);
+    if (kkt >= 0.0 && kkt < best_kkt) {
+      best_kkt = kkt;
+      best = candidate;
+    }
+    return kkt >= 0.0 && kkt <= kPsdLsTolerance;
+  };
+
+  bool done = false;
+  {
+    Eigen::SelfAdjointEigenSolver<Matrix> eig(Yt, Eigen::EigenvaluesOnly);
+    if (eig.info() != Eigen::Success) return false;
+    if (eig.eigenvalues()(0) >= 0.0) {  // Procrustes is feasible, so it is the minimizer
+      best = Yt;
+      best_kkt = kkt_residual(p, Yt);
+      done = true;
+    }
+  }
+
+  if (!done) {
+    // Preconditioning by the congruence W = D Yt D, D = diag(d), d_i = h_i^(1/4) (floored for a
+    // rank-deficient A): the curvature c_ij / (d_i^2 d_j^2) lies in [1, (k^1/2 + k^-1/2) / 2],
+    // k = cond(A)^2, instead of [h_min, h_max].
+    Vector d(n);
+    const double h_floor = std::max(p.h_max * 1e-12, std::numeric_limits<double>::min());
+    for (Index i = 0; i < n; ++i) d(i) = std::sqrt(std::sqrt(std::max(p.h(i), h_floor)));
+    Matrix cw(n, n), Gw(n, n);
+    for (Index j = 0; j < n; ++j)
+      for (Index i = 0; i < n; ++i) {
+        const double dd = d(i) * d(j);
+        cw(i, j) = p.c(i, j) / (dd * dd);
+        Gw(i, j) = p.G(i, j) / dd;
+      }
+    const double lipschitz = std::max(cw.maxCoeff(), std::numeric_limits<double>::min());
+
+    Matrix W, Wnext, V, P, candidate;
+    Index rank = 0;
+    const Matrix Wstart = d.asDiagonal() * Yt * d.asDiagonal();
+    if (!project<MaxN>(symmetric_part(Wstart), W, &P, &rank)) return false;
+    if (face_solve(p, range_basis<MaxN>(d, P), candidate) && consider(candidate)) done = true;
+    consider(d.cwiseInverse().asDiagonal() * W * d.cwiseInverse().asDiagonal());
+    V = W;
+    double t = 1.0;
+    while (!done && out.iterations < max_iterations) {
+      ++out.iterations;
+      // Accelerated projected gradient (FISTA) with the gradient restart of O'Donoghue and
+      // Candes (2015): linear convergence on this strongly convex problem.
+      Matrix step = V - (cw.cwiseProduct(V) - Gw) / lipschitz;
+      if (!project<MaxN>(symmetric_part(step), Wnext, &P, &rank)) return false;
+      const bool restart = (V - Wnext).cwiseProduct(Wnext - W).sum() > 0.0;
+      const double t_next = restart ? 1.0 : 0.5 * (1.0 + std::sqrt(1.0 + 4.0 * t * t));
+      V = restart ? Wnext : Matrix(Wnext + ((t - 1.0) / t_next) * (Wnext - W));
+      t = t_next;
+      W = Wnext;
+      // The face W identifies, solved exactly: the minimizer as soon as the face is right.
+      if (face_solve(p, range_basis<MaxN>(d, P), candidate) && consider(candidate)) {
+        done = true;
+        break;
+      }
+      if (consider(d.cwiseInverse().asDiagonal() * W * d.cwiseInverse().asDiagonal())) done = true;
+    }
+  }
+
+  out.kkt_residual = best_kkt;
+  out.converged = best_kkt <= kPsdLsTolerance;
+  out.X_s = data.V_a * best * data.V_a.transpose();
+  out.X_s = symmetric_part(out.X_s);
+  out.X_s.diagonal().array() += epsilon_s;
+
+  // The certificate, from the returned X_s itself.
+  Matrix Y = out.X_s;
+  Y.diagonal().array() -= epsilon_s;
+  Matrix S = data.R11.transpose() * (data.R11 * out.X_s - data.R12);
+  S = symmetric_part(S);
+  Eigen::SelfAdjointEigenSolver<Matrix> ey(Y, Eigen::EigenvaluesOnly), es(S, Eigen::EigenvaluesOnly);
+  if (ey.info() != Eigen::Success || es.info() != Eigen::Success) return false;
+  out.primal_min_eig = n > 0 ? ey.eigenvalues()(0) : 0.0;
+  out.dual_min_eig = n > 0 ? es.eigenvalues()(0) : 0.0;
+  out.complementarity = Y.cwiseProduct(S).sum();
+  const double denominator = p.h_max * out.X_s.norm() + p.scale;
+  out.duality_gap = denominator > 0.0 ? std::abs(out.complementarity) / denominator : 0.0;
+  return true;
+}
+
+#define SPDFIT_INSTANTIATE(MaxN) \
+  template bool psd_ls_kernel<MaxN>(const BasicReduction<MaxN>&, double, int, PsdLsKernel<MaxN>&);
+SPDFIT_FOR_EACH_MAX_N(SPDFIT_INSTANTIATE)
+#undef SPDFIT_INSTANTIATE
+
+}  // namespace spdfit::detail

@@ -1,0 +1,388 @@
+#include "estimators/spd_tls_kernel.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Jacobi>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "numerics/linalg.hpp"
+
+namespace spdfit::detail {
+
+using Eigen::Index;
+
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+// The stopping rule of issue 14: ||X^1/2 grad f X^1/2||_F <= 1e-10 f (scale-invariant).
+constexpr double kGradientTolerance = 1e-10;
+// The computed gradient carries a rounding error of about a few eps times the sizes of the terms
+// it cancels (G = R11 X - R12 cancels to the residual): a target below it cannot be met, so the
+// rule also accepts a gradient within kRoundingMultiple n eps of those sizes (noise-free data).
+constexpr double kRoundingMultiple = 4.0;
+// Start and iterates must be numerically positive definite: lambda_min > n eps lambda_max.
+// Trust region on ||S||_F (S the step in X^1/2 exp(S) X^1/2): the initial and largest radius
+// (a radius of 8 lets an eigenvalue change by e^8 in one step), the ratio of actual to
+// predicted decrease below which a step is refused, and the radius at which progress stalls.
+// Steps with ||S||_F <= kTaylorRadius use exp's Taylor polynomial of degree 2 (error ||S||^3 / 6).
+constexpr double kTaylorRadius = 0.25;
+constexpr double kInitialRadius = 1.0, kMaxRadius = 8.0, kAcceptRatio = 1e-4, kMinRadius = 1e-14;
+// The infimum is on the boundary when an eigenvalue has fallen below kBoundaryRatio times the
+// largest while the criterion still decreases along it (at the stopping rule such an
+// eigenvalue is about 1e-10 f / (df/dlambda), far below this; an interior minimizer this
+// ill-conditioned is kept unless zeroing the eigenvalue lowers f).
+// "The largest" is the larger of lambda_max and the data's scale ||R12|| / ||R11|| (~||B|| / ||A||),
+// so that n = 1 and X -> 0 are covered.
+constexpr double kBoundaryRatio = 1e-6;
+// The criterion has no minimizer when an eigenvalue exceeds kUnboundedRatio ||R12|| / sigma_min(R11)
+// (~||B|| / sigma_min(A), a bound on any reasonable fit's ||X||) with f still decreasing along it.
+constexpr double kUnboundedRatio = 1e6;
+// The rounding error of the computed criterion, in units of n eps f.
+constexpr double kCriterionRounding = 64.0;
+
+// A point of the iteration: X = Q diag(lambda) Q^T and what f needs, in the eigenbasis.
+template <int MaxN>
+struct Point {
+  using Matrix = SquareMatrix<MaxN>;
+  using Vector = typename BasicReduction<MaxN>::Vector;
+  Matrix X, Q, Gt, R22t;  // X, its eigenvectors, (R11 X - R12) Q, R22 Q
+  Vector lambda, k;       // eigenvalues ascending, k = 1 / (r^2 + lambda^2)
+  double f = 0.0;
+};
+
+// Cyclic Jacobi on the symmetric T, accumulating the rotations into Q: on return T is diagonal
+// (the eigenvalues) and the input is Q_out diag Q_out^T in Q_in's coordinates. Few sweeps when T
+// is nearly diagonal (the iterates' X in the previous eigenbasis, near convergence), and the
+// eigenvalues of a positive definite T to high relative accuracy (Demmel & Veselic 1992) with
+// the threshold |t_pq| <= eps sqrt(|t_pp t_qq|). False when it does not converge.
+template <typename Matrix>
+bool jacobi_eigen(Matrix& T, Matrix& Q) {
+  constexpr int kMaxSweeps = 40;
+  const Index n = T.rows();
+  for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
+    bool rotated = false;
+    for (Index q = 1; q < n; ++q)
+      for (Index p = 0; p < q; ++p) {
+        const double tpq = std::abs(T(p, q));
+        if (tpq <= kEps * std::sqrt(std::abs(T(p, p) * T(q, q))) || tpq <= std::numeric_limits<double>::min()) {
+          continue;
+        }
+        rotated = true;
+        Eigen::JacobiRotation<double> J;
+        J.makeJacobi(T, p, q);
+        T.applyOnTheLeft(p, q, J.adjoint());
+        T.applyOnTheRight(p, q, J);
+        T(p, q) = T(q, p) = 0.0;
+        Q.applyOnTheRight(p, q, J);
+      }
+    if (!rotated) return true;
+  }
+  return false;
+}
+
+// Fills p from p.X, given T = Q0^T X Q0 for an orthogonal Q0 in which X is nearly diagonal (the
+// identity, or the previous iterate's eigenvectors); false when the eigensolver fails or X is
+// not numerically positive definite (unless allow_singular) or f is not finite.
+template <int MaxN>
+bool evaluate(const BasicReduction<MaxN>& data, double r2, SquareMatrix<MaxN> T, const SquareMatrix<MaxN>& Q0,
+              Point<MaxN>& p, bool allow_singular = false) {
+  using Matrix = SquareMatrix<MaxN>;
+  const Index n = data.n;
+  p.Q = Q0;
+  if (!jacobi_eigen(T, p.Q)) return false;
+  p.lambda = T.diagonal();
+  if (!allow_singular && !(p.lambda.minCoeff() > static_cast<double>(n) * kEps * p.lambda.maxCoeff())) return false;
+  const Matrix G = data.R11 * p.X - data.R12;
+  p.Gt.noalias() = G * p.Q;
+  p.R22t.noalias() = data.R22 * p.Q;
+  p.k = (r2 + p.lambda.array().square()).inverse().matrix();
+  // f = tr(Q^T E Q diag(k)) = sum_i k_i (||G q_i||^2 + ||R22 q_i||^2).
+  p.f = (p.k.array() * (p.Gt.colwise().squaredNorm() + p.R22t.colwise().squaredNorm()).transpose().array()).sum();
+  return std::isfinite(p.f);
+}
+
+// Packed index of the symmetric coordinate (i, j), i <= j.
+inline Index packed(Index i, Index j) {
+  if (i > j) std::swap(i, j);
+  return j * (j + 1) / 2 + i;
+}
+
+}  // namespace
+
+template <int MaxN>
+double spd_tls_criterion(const BasicReduction<MaxN>& data, const SquareMatrix<MaxN>& X_s, double r_s) {
+  Point<MaxN> p;
+  p.X = X_s;
+  const Index n = data.n;
+  if (!evaluate<MaxN>(data, r_s * r_s, X_s, SquareMatrix<MaxN>::Identity(n, n), p, true)) return std::numeric_limits<double>::quiet_NaN();
+  return p.f;
+}
+
+// How a Newton run on one face ended.
+enum class NewtonEnd { Failed, Converged, Stopped, Boundary, Unbounded };
+
+// Newton's method on the positive definite k x k matrices, k = data.n (the whole problem, or a
+// face X = U Y U^T of the boundary, whose data are R11 U, R12 U, R22 U). On Boundary, `zero`
+// marks the eigenvalues of cur (in cur.Q) heading to zero.
+template <int MaxN>
+NewtonEnd newton(const BasicReduction<MaxN>& data, double r2, double infinity, const SquareMatrix<MaxN>& X0,
+                 int max_iterations,
+                 Point<MaxN>& cur, double& gnorm, int& iterations,
+                 Eigen::Matrix<bool, Eigen::Dynamic, 1, Eigen::ColMajor, MaxN, 1>& zero) {
+  using Matrix = SquareMatrix<MaxN>;
+  using Vector = typename BasicReduction<MaxN>::Vector;
+  constexpr int kMaxP = MaxN == Eigen::Dynamic ? Eigen::Dynamic : MaxN * (MaxN + 1) / 2;
+  using PMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kMaxP, kMaxP>;
+  using PVector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxP, 1>;
+  const Index n = data.n, np = n * (n + 1) / 2;
+  const double root2 = std::sqrt(2.0);
+  const double norm_a = data.R11.norm();
+  const double data_scale = norm_a > 0.0 ? data.R12.norm() / norm_a : 0.0;
+
+  iterations = 0;
+  Point<MaxN> trial;
+  cur.X = X0;
+  if (!evaluate<MaxN>(data, r2, X0, Matrix::Identity(n, n), cur)) return NewtonEnd::Failed;
+
+  Matrix At, M, E, F, g, gS, S, Z, T;
+  Vector sqrt_lambda;
+  PMatrix H(np, np), Hmu(np, np);
+  PVector grad(np), s(np);
+  Eigen::LLT<PMatrix> llt(np);
+  double radius = kInitialRadius;
+  gnorm = 0.0;
+
+  for (;;) {
+    // The Euclidean gradient in the eigenbasis of X (K = diag(k) commutes with X = diag(lambda)):
+    // grad f = R11^T G K + K G^T R11 - X F - F X with F = K E K, so with M = Q^T R11^T G Q,
+    // g_ij = M_ij k_j + k_i M_ji - (lambda_i + lambda_j) F_ij.
+    const auto& lambda = cur.lambda;
+    const auto& k = cur.k;
+    sqrt_lambda = lambda.cwiseSqrt();
+    At.noalias() = data.R11 * cur.Q;
+    M.noalias() = At.transpose() * cur.Gt;
+    E.noalias() = cur.Gt.transpose() * cur.Gt;
+    E.noalias() += cur.R22t.transpose() * cur.R22t;
+    F = k.asDiagonal() * E * k.asDiagonal();
+    g.resize(n, n);
+    for (Index j = 0; j < n; ++j)
+      for (Index i = 0; i < n; ++i) g(i, j) = M(i, j) * k(j) + k(i) * M(j, i) - (lambda(i) + lambda(j)) * F(i, j);
+    // The Riemannian gradient X^1/2 grad f X^1/2 (the derivative in S at S = 0).
+    gS = sqrt_lambda.asDiagonal() * g * sqrt_lambda.asDiagonal();
+    gnorm = gS.norm();
+
+    // The boundary: an eigenvalue driven towards zero while the criterion still decreases along
+    // it (g_ii > 0) has the limit 0; the caller continues on the face without it.
+    const double scale = std::max(lambda.maxCoeff(), data_scale);
+    zero.resize(n);
+    for (Index i = 0; i < n; ++i) zero(i) = lambda(i) <= kBoundaryRatio * scale && g(i, i) > 0.0;
+    if (zero.any()) return NewtonEnd::Boundary;
+    // No minimizer: an eigenvalue grows past any sensible size while f still decreases along it.
+    for (Index i = 0; i < n; ++i)
+      if (lambda(i) >= infinity && g(i, i) < 0.0) return NewtonEnd::Unbounded;
+
+    // The rounding level of gS: each term's rounding error, from the sizes of what it cancels.
+    {
+      const Matrix Gabs = (data.R11.cwiseAbs() * cur.X.cwiseAbs() + data.R12.cwiseAbs()) * cur.Q.cwiseAbs();
+      const Matrix Mabs = At.cwiseAbs().transpose() * Gabs;
+      const Matrix Eabs = cur.Gt.cwiseAbs().transpose() * Gabs;
+      double floor2 = 0.0;
+      for (Index j = 0; j < n; ++j)
+        for (Index i = 0; i < n; ++i) {
+          const double t = sqrt_lambda(i) * sqrt_lambda(j) *
+                           (Mabs(i, j) * k(j) + k(i) * Mabs(j, i) +
+                            (lambda(i) + lambda(j)) * k(i) * k(j) * (Eabs(i, j) + Eabs(j, i)));
+          floor2 += t * t;
+        }
+      const double floor = kRoundingMultiple * static_cast<double>(n) * kEps * std::sqrt(floor2);
+      if (gnorm <= kGradientTolerance * cur.f || gnorm <= floor) return NewtonEnd::Converged;
+    }
+    if (iterations >= max_iterations || radius < kMinRadius) return NewtonEnd::Stopped;
+
+    // Newton's model of f(X^1/2 exp(S) X^1/2) in the symmetric S (eigenbasis):
+    // f + <gS, S> + sum_abc phi(a,b,c) S_ab S_bc with
+    // phi = sqrt(l_a l_c) (l_b h(a,b,c) + g_ac / 2), where f(X + D) = f + <g, D> +
+    // sum_abc h D_ab D_bc + O(D^3) and (K' the derivative of K, c_bc = (l_b + l_c) k_b k_c)
+    // h = k_b P_ac - (M_ac c_bc + M_ca c_ba) - F_ac + F_ac (l_a + l_b)(l_b + l_c) k_b.
+    // Coordinates: S_ii = s_ii, S_ij = S_ji = s_ij / sqrt(2), so that |s| = ||S||_F.
+    const Matrix P = At.transpose() * At;
+    H.setZero();
+    for (Index b = 0; b < n; ++b)
+      for (Index a = 0; a < n; ++a) {
+        const double beta_ab = a == b ? 1.0 : 1.0 / root2;
+        const Index pab = packed(a, b);
+        for (Index c = 0; c < n; ++c) {
+          const double beta_bc = b == c ? 1.0 : 1.0 / root2;
+          const double c_bc = (lambda(b) + lambda(c)) * k(b) * k(c);
+          const double c_ba = (lambda(b) + lambda(a)) * k(b) * k(a);
+          const double h = k(b) * P(a, c) - (M(a, c) * c_bc + M(c, a) * c_ba) - F(a, c) +
+                           F(a, c) * (lambda(a) + lambda(b)) * (lambda(b) + lambda(c)) * k(b);
+          const double phi = sqrt_lambda(a) * sqrt_lambda(c) * (lambda(b) * h + 0.5 * g(a, c));
+          H(pab, packed(b, c)) += phi * beta_ab * beta_bc;
+        }
+      }
+    H = (H + H.transpose()).eval();
+    for (Index j = 0; j < n; ++j)
+      for (Index i = 0; i <= j; ++i) grad(packed(i, j)) = i == j ? gS(i, i) : root2 * gS(i, j);
+
+    // Levenberg-Marquardt shift: the smallest of 0, 1e-8 |H|, 1e-7 |H|, ... making H + mu I
+    // positive definite.
+    const double h_scale = std::max(H.diagonal().cwiseAbs().maxCoeff(), gnorm);
+    double mu = 0.0;
+    for (;;) {
+      Hmu = H;
+      Hmu.diagonal().array() += mu;
+      llt.compute(Hmu);
+      if (llt.info() == Eigen::Success && (llt.matrixLLT().diagonal().array() > 0.0).all()) break;
+      mu = mu == 0.0 ? 1e-8 * h_scale : 10.0 * mu;
+      if (!(mu < 1e30 * h_scale)) return NewtonEnd::Failed;  // non-finite H
+    }
+    s = -llt.solve(grad);
+    double step = s.norm();
+    if (step > radius) {
+      s *= radius / step;
+      step = radius;
+    }
+    const double predicted = -(grad.dot(s) + 0.5 * s.dot(H * s));
+
+    // The trial point X^1/2 Z X^1/2 with Z = exp(S) = V exp(sigma) V^T, or for small steps its
+    // second-order Taylor polynomial I + S + S^2 / 2, positive definite for every S (1 + x + x^2/2
+    // > 0) and agreeing with exp to third order: Newton's quadratic convergence is kept. In the
+    // eigenbasis of X, T = Lambda^1/2 Z Lambda^1/2; X_trial = Q T Q^T.
+    S.resize(n, n);
+    for (Index j = 0; j < n; ++j)
+      for (Index i = 0; i <= j; ++i) {
+        const double v = i == j ? s(packed(i, j)) : s(packed(i, j)) / root2;
+        S(i, j) = v;
+        S(j, i) = v;
+      }
+    if (step <= kTaylorRadius) {
+      Z.noalias() = 0.5 * S * S;
+      Z += S;
+      Z.diagonal().array() += 1.0;
+    } else {
+      T = S;
+      Z = Matrix::Identity(n, n);  // V
+      if (!jacobi_eigen(T, Z)) return NewtonEnd::Failed;
+      Z = Z * T.diagonal().array().exp().matrix().asDiagonal() * Z.transpose();
+    }
+    T = sqrt_lambda.asDiagonal() * Z * sqrt_lambda.asDiagonal();
+    T = symmetric_part(T);
+    trial.X.noalias() = cur.Q * T * cur.Q.transpose();
+    trial.X = symmetric_part(trial.X);
+    ++iterations;
+
+    const bool valid = evaluate<MaxN>(data, r2, T, cur.Q, trial);
+    const double ratio = valid && predicted > 0.0 ? (cur.f - trial.f) / predicted : -1.0;
+    // Below the resolution of f (the last Newton steps: the decrease is about g^2 / H, the
+    // rounding of f about eps f), the ratio is noise: take the step unless f rose beyond its
+    // rounding, and let the gradient at the new point judge it.
+    if (predicted < kCriterionRounding * static_cast<double>(n) * kEps * cur.f) {
+      if (valid && trial.f <= cur.f * (1.0 + kCriterionRounding * static_cast<double>(n) * kEps)) {
+        std::swap(cur, trial);
+      } else {
+        radius = 0.25 * step;
+      }
+      continue;
+    }
+    if (ratio < 0.25) {
+      radius = 0.25 * step;
+    } else if (ratio > 0.75 && step >= 0.99 * radius) {
+      radius = std::min(2.0 * radius, kMaxRadius);
+    }
+    if (ratio > kAcceptRatio) std::swap(cur, trial);
+  }
+
+}
+
+template <int MaxN>
+bool spd_tls_kernel(const BasicReduction<MaxN>& data, double r_s, int max_iterations,
+                    const SquareMatrix<MaxN>& X0_s, SpdTlsKernel<MaxN>& out) {
+  using Matrix = SquareMatrix<MaxN>;
+  const double r2 = r_s * r_s;
+  const Index n = data.n;
+  Point<MaxN> cur;
+  Eigen::Matrix<bool, Eigen::Dynamic, 1, Eigen::ColMajor, MaxN, 1> zero;
+  double gnorm = 0.0;
+  int iterations = 0;
+  out.iterations = 0;
+  // ||X|| <= ||A X|| / sigma_min(A) ~ ||R12|| / sigma_min(R11) for any fit worth the name.
+  const double sigma_min = data.s_a.size() == n ? data.s_a(n - 1) : 0.0;
+  const double infinity = sigma_min > 0.0 ? kUnboundedRatio * data.R12.norm() / sigma_min
+                                          : std::numeric_limits<double>::infinity();
+  NewtonEnd end = newton(data, r2, infinity, X0_s, max_iterations, cur, gnorm, iterations, zero);
+  out.iterations = iterations;
+  if (end == NewtonEnd::Failed) return false;
+
+  // On the boundary, continue on the face X = U Y U^T (U the eigenvectors whose eigenvalues
+  // stay), where f(U Y U^T) is the same criterion for the data A U, B U plus a constant, from
+  // Y = the kept eigenvalues; and so on while eigenvalues keep leaving.
+  Matrix U = Matrix::Identity(n, n);
+  BasicReduction<MaxN> face;
+  while (end == NewtonEnd::Boundary) {
+    const Index k = U.cols(), kept = k - zero.count();
+    Matrix U_next(n, kept), Y0 = Matrix::Zero(kept, kept);
+    for (Index i = 0, j = 0; i < k; ++i) {
+      if (zero(i)) continue;
+      U_next.col(j) = U * cur.Q.col(i);
+      Y0(j, j) = cur.lambda(i);
+      ++j;
+    }
+    U = U_next;
+    if (kept == 0) break;
+    face.n = kept;
+    face.R11.noalias() = data.R11 * U;
+    face.R12.noalias() = data.R12 * U;
+    face.R22.noalias() = data.R22 * U;
+    end = newton(face, r2, infinity, Y0, max_iterations - out.iterations, cur, gnorm, iterations, zero);
+    out.iterations += iterations;
+    if (end == NewtonEnd::Failed) return false;
+  }
+
+  out.unbounded = end == NewtonEnd::Unbounded;
+  out.boundary_zeros = n - U.cols();
+  if (U.cols() == n) {
+    out.X_s = cur.X;
+  } else if (U.cols() == 0) {
+    out.X_s = Matrix::Zero(n, n);
+    gnorm = 0.0;
+    end = NewtonEnd::Converged;
+  } else {
+    out.X_s.noalias() = U * cur.X * U.transpose();
+    out.X_s = symmetric_part(out.X_s);
+  }
+  out.criterion = spd_tls_criterion(data, out.X_s, r_s);
+  out.gradient_norm = gnorm;
+  out.converged = end == NewtonEnd::Converged;
+  return true;
+}
+
+template <int MaxN>
+bool spd_tls_solve(const BasicReduction<MaxN>& data, double r_s, int max_iterations, SpdTlsKernel<MaxN>& out) {
+  SquareMatrix<MaxN> X0;
+  int iterations = 0;
+  out.iterations = 0;
+  if (data.rank_a == data.n) {
+    spde_kernel(data, X0);
+    if (spd_tls_kernel(data, r_s, max_iterations, X0, out)) return true;
+    iterations = out.iterations;
+  }
+  TlsKernel<MaxN> tls;
+  tls_kernel(data, tls);
+  const bool started = tls.exists && tls.X_s.allFinite() &&
+                       nearest_spd_kernel<MaxN>(symmetric_part(tls.X_s), 0.0, X0) &&
+                       spd_tls_kernel(data, r_s, max_iterations, X0, out);
+  out.iterations += iterations;
+  return started;
+}
+
+#define SPDFIT_INSTANTIATE(MaxN)                                                                       \
+  template double spd_tls_criterion<MaxN>(const BasicReduction<MaxN>&, const SquareMatrix<MaxN>&, double); \
+  template bool spd_tls_kernel<MaxN>(const BasicReduction<MaxN>&, double, int, const SquareMatrix<MaxN>&,  \
+                                     SpdTlsKernel<MaxN>&);                                     \
+  template bool spd_tls_solve<MaxN>(const BasicReduction<MaxN>&, double, int, SpdTlsKernel<MaxN>&);
+SPDFIT_FOR_EACH_MAX_N(SPDFIT_INSTANTIATE)
+#undef SPDFIT_INSTANTIATE
+
+}  // namespace spdfit::detail
