@@ -44,16 +44,17 @@ template <int MaxN>
 bool project(const SquareMatrix<MaxN>& M, SquareMatrix<MaxN>& out, SquareMatrix<MaxN>* range = nullptr,
              Index* rank = nullptr) {
   using Matrix = SquareMatrix<MaxN>;
-  Eigen::SelfAdjointEigenSolver<Matrix> eig(M);
-  if (eig.info() != Eigen::Success) return false;
+  typename BasicReduction<MaxN>::Vector w;
+  Matrix V;
+  if (!symmetric_eigen(M, w, &V)) return false;
   const Index n = M.rows();
   Index first = 0;  // eigenvalues ascending: the positive ones are the trailing n - first
-  while (first < n && !(eig.eigenvalues()(first) > 0.0)) ++first;
+  while (first < n && !(w(first) > 0.0)) ++first;
   const Index k = n - first;
-  const Matrix W = eig.eigenvectors().rightCols(k);
+  const Matrix W = V.rightCols(k);
   out.setZero(n, n);
   if (k > 0) {
-    out.template triangularView<Eigen::Lower>() = W * eig.eigenvalues().tail(k).asDiagonal() * W.transpose();
+    out.template triangularView<Eigen::Lower>() = W * w.tail(k).asDiagonal() * W.transpose();
     make_symmetric_from_lower(out);
   }
   if (range) *range = W;
@@ -90,10 +91,9 @@ bool face_solve(const Problem<MaxN>& p, const SquareMatrix<MaxN>& U, SquareMatri
     return true;
   }
   const Matrix HU = U.transpose() * p.h.asDiagonal() * U;
-  Eigen::SelfAdjointEigenSolver<Matrix> eig(HU);
-  if (eig.info() != Eigen::Success) return false;
-  const Matrix& Q = eig.eigenvectors();
-  const auto& lambda = eig.eigenvalues();
+  typename BasicReduction<MaxN>::Vector lambda, z;
+  Matrix Q;
+  if (!symmetric_eigen(HU, lambda, &Q)) return false;
   Matrix Zt = Q.transpose() * (U.transpose() * p.G * U) * Q;
   const double floor = static_cast<double>(n) * kEps * p.h_max;
   for (Index j = 0; j < k; ++j)
@@ -103,10 +103,9 @@ bool face_solve(const Problem<MaxN>& p, const SquareMatrix<MaxN>& U, SquareMatri
     }
   Matrix Z = Q * Zt * Q.transpose();
   Z = symmetric_part(Z);
-  Eigen::SelfAdjointEigenSolver<Matrix> ez(Z);
-  if (ez.info() != Eigen::Success) return false;
-  const double zmax = ez.eigenvalues().cwiseAbs().maxCoeff();
-  if (ez.eigenvalues()(0) < -64.0 * static_cast<double>(n) * kEps * zmax) return false;
+  if (!symmetric_eigen(Z, z)) return false;
+  const double zmax = z.cwiseAbs().maxCoeff();
+  if (z(0) < -64.0 * static_cast<double>(n) * kEps * zmax) return false;
   Matrix Zp;
   if (!project<MaxN>(Z, Zp)) return false;
   Yt.noalias() = U * Zp * U.transpose();
@@ -168,9 +167,9 @@ bool psd_ls_kernel(const BasicReduction<MaxN>& data, double epsilon_s, int max_i
 
   bool done = false;
   {
-    Eigen::SelfAdjointEigenSolver<Matrix> eig(Yt, Eigen::EigenvaluesOnly);
-    if (eig.info() != Eigen::Success) return false;
-    if (eig.eigenvalues()(0) >= 0.0) {  // Procrustes is feasible, so it is the minimizer
+    Vector w;
+    if (!symmetric_eigen(Yt, w)) return false;
+    if (w(0) >= 0.0) {  // Procrustes is feasible, so it is the minimizer
       best = Yt;
       best_kkt = kkt_residual(p, Yt);
       done = true;
@@ -193,32 +192,52 @@ bool psd_ls_kernel(const BasicReduction<MaxN>& data, double epsilon_s, int max_i
       }
     const double lipschitz = std::max(cw.maxCoeff(), std::numeric_limits<double>::min());
 
-    Matrix W, Wnext, V, P, candidate;
-    Index rank = 0;
+    Matrix W, Wnext, P, candidate, g, gnext;
+    Index rank = 0, previous_rank = -1;
     const Matrix Wstart = d.asDiagonal() * Yt * d.asDiagonal();
     if (!project<MaxN>(symmetric_part(Wstart), W, &P, &rank)) return false;
     if (face_solve(p, range_basis<MaxN>(d, P), candidate) && consider(candidate)) done = true;
-    consider(d.cwiseInverse().asDiagonal() * W * d.cwiseInverse().asDiagonal());
-    V = W;
-    double t = 1.0;
+    // The objective in W (up to a constant) and its gradient c o W - G.
+    auto objective = [&](const Matrix& X) { return 0.5 * cw.cwiseProduct(X).cwiseProduct(X).sum() - Gw.cwiseProduct(X).sum(); };
+    g = cw.cwiseProduct(W) - Gw;
+    double phi = objective(W);
+    // Spectral projected gradient (Birgin, Martinez and Raydan 2000): Barzilai-Borwein steps,
+    // safeguarded to [1 / L, 1] (the curvature lies in [1, L]), with a non-monotone acceptance
+    // over the last kMemory objective values; a step that fails it is redone with 1 / L, which
+    // always decreases the objective (sufficient decrease of projected gradient).
+    constexpr int kMemory = 8;
+    double recent[kMemory];
+    for (double& v : recent) v = phi;
+    double alpha = 1.0 / lipschitz, next_try = 1e-3;
     while (!done && out.iterations < max_iterations) {
       ++out.iterations;
-      // Accelerated projected gradient (FISTA) with the gradient restart of O'Donoghue and
-      // Candes (2015): linear convergence on this strongly convex problem.
-      Matrix step = V - (cw.cwiseProduct(V) - Gw) / lipschitz;
-      if (!project<MaxN>(symmetric_part(step), Wnext, &P, &rank)) return false;
-      const bool restart = (V - Wnext).cwiseProduct(Wnext - W).sum() > 0.0;
-      const double t_next = restart ? 1.0 : 0.5 * (1.0 + std::sqrt(1.0 + 4.0 * t * t));
-      V = restart ? Wnext : Matrix(Wnext + ((t - 1.0) / t_next) * (Wnext - W));
-      t = t_next;
-      W = Wnext;
-      // The face W identifies, solved exactly: the minimizer as soon as the face is right.
-      if (face_solve(p, range_basis<MaxN>(d, P), candidate) && consider(candidate)) {
-        done = true;
-        break;
+      previous_rank = rank;
+      if (!project<MaxN>(symmetric_part(Matrix(W - alpha * g)), Wnext, &P, &rank)) return false;
+      double phi_next = objective(Wnext);
+      const double reference = *std::max_element(recent, recent + kMemory);
+      if (phi_next > reference - 1e-4 * g.cwiseProduct(W - Wnext).sum() && alpha > 1.0 / lipschitz) {
+        alpha = 1.0 / lipschitz;
+        if (!project<MaxN>(symmetric_part(Matrix(W - alpha * g)), Wnext, &P, &rank)) return false;
+        phi_next = objective(Wnext);
       }
-      if (consider(d.cwiseInverse().asDiagonal() * W * d.cwiseInverse().asDiagonal())) done = true;
+      gnext = cw.cwiseProduct(Wnext) - Gw;
+      const Matrix step = Wnext - W;
+      const double sy = step.cwiseProduct(gnext - g).sum(), ss = step.squaredNorm();
+      alpha = sy > 0.0 ? std::clamp(ss / sy, 1.0 / lipschitz, 1.0) : 1.0;
+      const double moved = std::sqrt(ss) / std::max(Wnext.norm(), std::numeric_limits<double>::min());
+      W = Wnext;
+      g = gnext;
+      phi = phi_next;
+      recent[out.iterations % kMemory] = phi;
+      // Once the rank has settled and the iterates move little, the face W identifies, solved
+      // exactly: the minimizer as soon as the face is right to the tolerance. Each try costs
+      // three eigendecompositions, an iteration one: the next try waits until the iterates move
+      // 100 times less.
+      if (rank != previous_rank || moved > next_try) continue;
+      next_try = moved * 1e-2;
+      if (face_solve(p, range_basis<MaxN>(d, P), candidate) && consider(candidate)) done = true;
     }
+    if (!done) consider(d.cwiseInverse().asDiagonal() * W * d.cwiseInverse().asDiagonal());
   }
 
   out.kkt_residual = best_kkt;
@@ -232,10 +251,10 @@ bool psd_ls_kernel(const BasicReduction<MaxN>& data, double epsilon_s, int max_i
   Y.diagonal().array() -= epsilon_s;
   Matrix S = data.R11.transpose() * (data.R11 * out.X_s - data.R12);
   S = symmetric_part(S);
-  Eigen::SelfAdjointEigenSolver<Matrix> ey(Y, Eigen::EigenvaluesOnly), es(S, Eigen::EigenvaluesOnly);
-  if (ey.info() != Eigen::Success || es.info() != Eigen::Success) return false;
-  out.primal_min_eig = n > 0 ? ey.eigenvalues()(0) : 0.0;
-  out.dual_min_eig = n > 0 ? es.eigenvalues()(0) : 0.0;
+  Vector wy, ws;
+  if (!symmetric_eigen(Y, wy) || !symmetric_eigen(S, ws)) return false;
+  out.primal_min_eig = n > 0 ? wy(0) : 0.0;
+  out.dual_min_eig = n > 0 ? ws(0) : 0.0;
   out.complementarity = Y.cwiseProduct(S).sum();
   const double denominator = p.h_max * out.X_s.norm() + p.scale;
   out.duality_gap = denominator > 0.0 ? std::abs(out.complementarity) / denominator : 0.0;

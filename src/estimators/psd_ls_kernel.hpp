@@ -23,10 +23,10 @@ struct PsdLsKernel {
 inline constexpr double kPsdLsTolerance = 1e-12;
 
 /// Minimizes ||R11 X_s - R12||_F over symmetric X_s >= epsilon_s I (epsilon_s >= 0): the
-/// symmetric Procrustes solution when it is feasible, else accelerated projected gradient with
-/// adaptive restarts in the eigenbasis of R11^T R11, diagonally preconditioned by a congruence
-/// (which keeps the cone), and after each iteration an exact solve on the face the iterate
-/// identifies, accepted when its KKT residual is below kPsdLsTolerance. At most max_iterations
+/// symmetric Procrustes solution when it is feasible, else spectral projected gradient
+/// (Barzilai-Borwein steps, non-monotone) in the eigenbasis of R11^T R11, diagonally
+/// preconditioned by a congruence (which keeps the cone), and, once the rank settles, exact
+/// solves on the face the iterate identifies, accepted when its KKT residual is below kPsdLsTolerance. At most max_iterations
 /// iterations; then the feasible point with the smallest KKT residual. Returns false when an
 /// eigensolver fails. O(n^3) per iteration.
 template <int MaxN>

@@ -45,6 +45,26 @@ void svd_large(const Eigen::Ref<const MatrixXd>& A, BasicSvd<MatrixXd>& out, boo
   if (compute_v) out.V = dec.matrixV();
 }
 
+bool symmetric_eigen_large(const Eigen::Ref<const MatrixXd>& M, VectorXd& w, MatrixXd* V) {
+  const Index n = M.rows();
+#ifdef SPDFIT_HAVE_LAPACK
+  if (n > 0) {
+    MatrixXd work = M;  // dsyevd overwrites its input with the eigenvectors
+    w.resize(n);
+    const lapack_int info = LAPACKE_dsyevd(LAPACK_COL_MAJOR, V ? 'V' : 'N', 'L', static_cast<lapack_int>(n),
+                                           work.data(), static_cast<lapack_int>(n), w.data());
+    if (info != 0) return false;
+    if (V) *V = std::move(work);
+    return true;
+  }
+#endif
+  Eigen::SelfAdjointEigenSolver<MatrixXd> eig(M, V ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
+  if (eig.info() != Eigen::Success) return false;
+  w = eig.eigenvalues();
+  if (V) *V = eig.eigenvectors();
+  return true;
+}
+
 void triangular_factor_large(const Eigen::Ref<const MatrixXd>& A, MatrixXd& R) {
   const Index k = std::min(A.rows(), A.cols());
 #ifdef SPDFIT_HAVE_LAPACK

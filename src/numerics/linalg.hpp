@@ -10,6 +10,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 #include <Eigen/SVD>
 #include <algorithm>
@@ -172,6 +173,26 @@ void triangular_factor_into(const Eigen::MatrixBase<Derived>& A, Result& R) {
 /// The upper triangular factor R (cols x cols, zero-padded when rows < cols) of the
 /// Householder QR of A.
 MatrixXd triangular_factor(const Eigen::Ref<const MatrixXd>& A);
+
+/// The eigendecomposition of a dynamic symmetric M (its lower triangle) by LAPACK's dsyevd
+/// (divide and conquer) when spdfit is built with LAPACK, else Eigen's SelfAdjointEigenSolver:
+/// w ascending, V's columns the eigenvectors (when V is given). False when it fails.
+bool symmetric_eigen_large(const Eigen::Ref<const MatrixXd>& M, VectorXd& w, MatrixXd* V);
+
+/// The eigendecomposition M = V diag(w) V^T of a symmetric M, w ascending (V only when given):
+/// symmetric_eigen_large from 64 rows on for dynamic matrices, Eigen's SelfAdjointEigenSolver
+/// below and for bounded sizes. False when it fails.
+template <typename Matrix, typename Vector>
+bool symmetric_eigen(const Matrix& M, Vector& w, Matrix* V = nullptr) {
+  if constexpr (Matrix::MaxRowsAtCompileTime == Eigen::Dynamic) {
+    if (M.rows() >= 64) return symmetric_eigen_large(M, w, V);
+  }
+  Eigen::SelfAdjointEigenSolver<Matrix> eig(M, V ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
+  if (eig.info() != Eigen::Success) return false;
+  w = eig.eigenvalues();
+  if (V) *V = eig.eigenvectors();
+  return true;
+}
 
 /// Copies the lower triangle onto the upper one, making the matrix exactly symmetric.
 template <typename Derived>
