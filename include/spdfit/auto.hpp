@@ -18,7 +18,8 @@ namespace spdfit {
 ///   the scatter of the total least-squares fits (code "few_samples"). Here
 ///   snr = sigma_n(A)^2 / (m sigma^2) - 1 is the signal-to-noise ratio of the weakest direction of
 ///   A (sigma^2 the noise estimate, Diagnostics::noise_sigma); the thresholds come from the
-///   Monte Carlo comparison in docs/guide.md.
+///   Monte Carlo comparison in docs/guide.md. Data consistent to rounding (snr >= 1e10): spde,
+///   exact there (code "noise_free").
 /// - If the chosen method fails or returns a matrix that is not positive definite (the
 ///   criterion's infimum on the boundary), psd-ls with the floor 1e-8 ||X_ls||_F (X_ls the least-squares estimate) (code
 ///   "boundary"); if that fails too, the first failure is returned.

@@ -46,7 +46,7 @@ struct PsdCertificate {
 
 /// Why `auto` chose its method: a stable code for scripts and a sentence for people.
 struct AutoReason {
-  std::string code;  ///< e.g. "few_samples", "many_samples", "errors_in_b_only", "boundary"
+  std::string code;  ///< "few_samples", "many_samples", "noise_free", "rank_deficient_a" or "boundary"
   std::string text;
 };
 

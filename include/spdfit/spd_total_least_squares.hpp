@@ -35,6 +35,11 @@ namespace spdfit {
 /// tls-sym's projection singular, or TLS undefined), or when r 2^(exponent_a - exponent_b) is
 /// out of floating-point range.
 ///
+/// Accuracy: on noisy data the estimate is the criterion's minimizer to the stopping rule. On
+/// noise-free data with an ill-conditioned A (cond(A) ~ 1e8) the iteration can stop where the
+/// criterion is flat along A's weak directions, with relative errors up to ~1e-2 where spde is
+/// exact to cond(A) eps; auto chooses spde for such data.
+///
 /// Preconditions: as least_squares. Cost: O(m n^2) for the factor, then O(n^6) per Newton step
 /// (the Newton system has n (n + 1) / 2 unknowns; typically 3 to 8 steps from SPDE), so it is
 /// meant for the small n of mass and stiffness matrices (n up to a few tens).

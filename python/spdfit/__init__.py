@@ -12,7 +12,9 @@ estimate X (n x n):
 
 Methods (the names of the command line): "ls" (least squares), "procrustes" (symmetric least
 squares), "tls", "tls-sym", "tls-psd" (total least squares and its repairs), "spde" (the
-area-criterion estimate, always symmetric positive definite). Every method works from the
+area-criterion estimate, always symmetric positive definite), "spd-tls" (total least squares over
+the positive definite matrices), "psd-ls" (least squares over X >= min_eig I, with an optimality
+certificate) and "auto" (spde, spd-tls or psd-ls, chosen from the data; fit's default). Every method works from the
 Householder QR of [A B], not from Gram matrices. Numerical failures raise NumericalError; bad
 input raises ValueError (DataError for files); warnings are SpdfitWarning.
 """
@@ -22,18 +24,20 @@ import warnings as _warnings
 import numpy as _np
 
 from . import _spdfit
-from ._spdfit import (DataError, Diagnostics, FitResult, LinearSystemResult, NearestSpdResult, read_matrix,
-                      read_table, write_csv)
+from ._spdfit import (AutoReason, DataError, Diagnostics, FitResult, LinearSystemResult, NearestSpdResult,
+                      PsdCertificate, read_matrix, read_table, write_csv)
 
 __version__ = _spdfit.__version__
 
-METHODS = ("ls", "procrustes", "tls", "tls-sym", "tls-psd", "spde")
+# Every method name fit accepts, from the library: the estimators, then "auto".
+METHODS = _spdfit.METHODS
 
 __all__ = [
     "METHODS", "DataError", "Diagnostics", "FitResult", "NearestSpdResult", "NumericalError",
     "LinearSystemResult", "SpdfitWarning", "area_criterion", "solve", "fit", "fit_all", "fit_files",
     "least_squares", "nearest_spd", "read_matrix",
     "read_table", "spde", "symmetric_procrustes", "total_least_squares", "total_least_squares_psd",
+    "spd_total_least_squares", "psd_least_squares", "auto_fit", "PsdCertificate", "AutoReason",
     "total_least_squares_symmetric", "write_csv",
 ]
 
@@ -72,24 +76,31 @@ def _checked(result, stacklevel=3):
     return result
 
 
-def fit(A, B, method="spde", *, rank_tolerance=None, noise_ratio=None):
+def fit(A, B, method="auto", *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_eig=None):
     """Estimate X in A X ~= B with `method` (one of METHODS); returns a FitResult.
+
+    The default, "auto", chooses spde, spd-tls or psd-ls from the data and always returns a
+    positive definite X; result.method is the method it ran and result.diagnostics.reason says
+    why (the default was "spde" before; docs/changes.md).
 
     rank_tolerance: relative singular-value cut-off for numerical rank (default max(m, n) eps,
     lecture notes 002 section 3.8). noise_ratio: sigma_B / sigma_A, the noise in B relative to
-    the noise in A, for the total least-squares methods (tls, tls-sym, tls-psd; default 1; a
-    ValueError with other methods). Raises ValueError for bad input (shapes, NaN/Inf, m < n,
-    unknown method) and NumericalError when the method has no answer for this data."""
+    the noise in A, for the total least-squares methods (tls, tls-sym, tls-psd, spd-tls) and auto
+    (default 1). max_iter: the iteration limit of spd-tls, psd-ls and auto (default 200).
+    min_eig: psd-ls's floor, X >= min_eig I (default 0). Each of the last three is a ValueError
+    with a method that does not take it. Raises ValueError for bad input (shapes, NaN/Inf,
+    m < n, unknown method) and NumericalError when the method has no answer for this data."""
     A, B = _as_matrix("A", A), _as_matrix("B", B)
-    return _checked(_spdfit.fit(A, B, method, rank_tolerance, noise_ratio))
+    return _checked(_spdfit.fit(A, B, method, rank_tolerance, noise_ratio, max_iter, min_eig))
 
 
 # The streaming defaults are the library's (StreamOptions), not retyped here.
 _STREAM_DEFAULTS = _spdfit.StreamOptions()
 
 
-def fit_files(A_path, B_path, method="spde", *, block_rows=_STREAM_DEFAULTS.block_rows,
-              threads=_STREAM_DEFAULTS.threads, rank_tolerance=None, noise_ratio=None):
+def fit_files(A_path, B_path, method="auto", *, block_rows=_STREAM_DEFAULTS.block_rows,
+              threads=_STREAM_DEFAULTS.threads, rank_tolerance=None, noise_ratio=None, max_iter=None,
+              min_eig=None):
     """Estimate X from A and B in two data files read a block of rows at a time (`spdfit fit
     --stream`): any number of rows in O(threads * block_rows * n + n^2) memory.
 
@@ -97,19 +108,21 @@ def fit_files(A_path, B_path, method="spde", *, block_rows=_STREAM_DEFAULTS.bloc
     is read); each block's triangular QR factor of [A B] is computed on up to `threads` threads
     (0: one per core) and the factors are merged in block order (TSQR), so the estimate is
     fit(read_matrix(A_path), read_matrix(B_path), method)'s to rounding, the same for every
-    thread count. Raises DataError for bad files, ValueError for bad arguments and
-    NumericalError as fit does."""
+    thread count. The other options are fit's. Raises DataError for bad files, ValueError for bad
+    arguments and NumericalError as fit does."""
     return _checked(_spdfit.fit_files(_os.fspath(A_path), _os.fspath(B_path), method, block_rows, threads,
-                                      rank_tolerance, noise_ratio))
+                                      rank_tolerance, noise_ratio, max_iter, min_eig))
 
 
-def fit_all(A, B, *, rank_tolerance=None, noise_ratio=None):
-    """Every method on the same data (one shared QR); a dict {method: FitResult}.
+def fit_all(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_eig=None):
+    """Every estimator (METHODS but "auto") on the same data (one shared QR); a dict
+    {method: FitResult}. noise_ratio applies to the total least-squares methods, max_iter to
+    spd-tls and psd-ls, min_eig to psd-ls.
 
     Failures are not raised here: check `result.ok` and `result.message`."""
     A, B = _as_matrix("A", A), _as_matrix("B", B)
     results = {}
-    for result in _spdfit.fit_all(A, B, rank_tolerance, noise_ratio):
+    for result in _spdfit.fit_all(A, B, rank_tolerance, noise_ratio, max_iter, min_eig):
         for message in result.warnings:
             _warnings.warn(f"{result.method}: {message}", SpdfitWarning, stacklevel=2)
         results[result.method] = result
@@ -158,6 +171,35 @@ def spde(A, B, *, rank_tolerance=None):
     noise-free data. B of rank r < n gives the PSD minimizer of rank r (Corollary III.7, with a
     warning); A rank-deficient raises NumericalError."""
     return fit(A, B, "spde", rank_tolerance=rank_tolerance)
+
+
+def spd_total_least_squares(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None):
+    """Total least squares over the symmetric positive definite matrices (spd-tls).
+
+    Minimizes f(X) = tr((A X - B)^T (A X - B) (r^2 I + X^2)^-1), r = noise_ratio, the TLS
+    criterion ||[dA dB/r]||_F^2, over SPD X by a Riemannian Newton method from spde, until
+    ||X^1/2 grad f X^1/2||_F <= 1e-10 f (diagnostics: iterations, gradient_norm, converged).
+    Consistent (its error keeps falling with m) and positive definite; warns when the infimum
+    is on the boundary (then X is semidefinite) or the iteration limit is reached."""
+    return fit(A, B, "spd-tls", rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter)
+
+
+def psd_least_squares(A, B, *, min_eig=None, rank_tolerance=None, max_iter=None):
+    """The symmetric X >= min_eig I minimizing ||A X - B||_F (psd-ls), with a certificate.
+
+    Symmetric Procrustes when it is feasible; else spectral projected gradient with exact face
+    solves, to a relative KKT residual <= 1e-12. result.diagnostics.certificate holds
+    primal_min_eig, dual_min_eig, complementarity and duality_gap: X is optimal when the first two
+    are >= 0 and the third is 0, to rounding."""
+    return fit(A, B, "psd-ls", rank_tolerance=rank_tolerance, max_iter=max_iter, min_eig=min_eig)
+
+
+def auto_fit(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None):
+    """fit(A, B, "auto"): spde, spd-tls or psd-ls, chosen from the data, always positive definite.
+
+    result.method is the method it ran; result.diagnostics.chosen_method and .reason (code,
+    text) say which and why."""
+    return fit(A, B, "auto", rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter)
 
 
 def nearest_spd(X, min_eig=0.0, *, full_output=False):

@@ -8,13 +8,13 @@ import numpy.typing as npt
 from . import experiment as experiment
 from . import hexapod as hexapod
 from . import linkage as linkage
-from ._spdfit import (DataError as DataError, Diagnostics as Diagnostics, FitResult as FitResult,
+from ._spdfit import (AutoReason as AutoReason, PsdCertificate as PsdCertificate, DataError as DataError, Diagnostics as Diagnostics, FitResult as FitResult,
                       LinearSystemResult as LinearSystemResult, NearestSpdResult as NearestSpdResult,
                       read_matrix as read_matrix, read_table as read_table, write_csv as write_csv)
 
 __version__: str
 METHODS: Tuple[str, ...]
-Method = Literal["ls", "procrustes", "tls", "tls-sym", "tls-psd", "spde"]
+Method = Literal["ls", "procrustes", "tls", "tls-sym", "tls-psd", "spde", "spd-tls", "psd-ls", "auto"]
 
 class NumericalError(RuntimeError):
     result: Optional[object]
@@ -23,12 +23,21 @@ class NumericalError(RuntimeError):
 class SpdfitWarning(UserWarning): ...
 
 def fit(A: npt.ArrayLike, B: npt.ArrayLike, method: Method = ..., *,
-        rank_tolerance: Optional[float] = ..., noise_ratio: Optional[float] = ...) -> FitResult: ...
+        rank_tolerance: Optional[float] = ..., noise_ratio: Optional[float] = ...,
+        max_iter: Optional[int] = ..., min_eig: Optional[float] = ...) -> FitResult: ...
 def fit_files(A_path: Union[str, "os.PathLike[str]"], B_path: Union[str, "os.PathLike[str]"], method: Method = ..., *,
               block_rows: int = ..., threads: int = ..., rank_tolerance: Optional[float] = ...,
-              noise_ratio: Optional[float] = ...) -> FitResult: ...
+              noise_ratio: Optional[float] = ..., max_iter: Optional[int] = ...,
+              min_eig: Optional[float] = ...) -> FitResult: ...
 def fit_all(A: npt.ArrayLike, B: npt.ArrayLike, *, rank_tolerance: Optional[float] = ...,
-            noise_ratio: Optional[float] = ...) -> Dict[str, FitResult]: ...
+            noise_ratio: Optional[float] = ..., max_iter: Optional[int] = ...,
+            min_eig: Optional[float] = ...) -> Dict[str, FitResult]: ...
+def spd_total_least_squares(A: npt.ArrayLike, B: npt.ArrayLike, *, rank_tolerance: Optional[float] = ...,
+                            noise_ratio: Optional[float] = ..., max_iter: Optional[int] = ...) -> FitResult: ...
+def psd_least_squares(A: npt.ArrayLike, B: npt.ArrayLike, *, min_eig: Optional[float] = ...,
+                      rank_tolerance: Optional[float] = ..., max_iter: Optional[int] = ...) -> FitResult: ...
+def auto_fit(A: npt.ArrayLike, B: npt.ArrayLike, *, rank_tolerance: Optional[float] = ...,
+             noise_ratio: Optional[float] = ..., max_iter: Optional[int] = ...) -> FitResult: ...
 def least_squares(A: npt.ArrayLike, B: npt.ArrayLike, *, rank_tolerance: Optional[float] = ...) -> FitResult: ...
 def symmetric_procrustes(A: npt.ArrayLike, B: npt.ArrayLike, *, rank_tolerance: Optional[float] = ...) -> FitResult: ...
 def total_least_squares(A: npt.ArrayLike, B: npt.ArrayLike, *, rank_tolerance: Optional[float] = ...,

@@ -8,6 +8,18 @@ __version__: str
 
 class DataError(ValueError): ...
 
+METHODS: Tuple[str, ...]
+
+class PsdCertificate:
+    primal_min_eig: float
+    dual_min_eig: float
+    complementarity: float
+    duality_gap: float
+
+class AutoReason:
+    code: str
+    text: str
+
 class Diagnostics:
     m: int
     n: int
@@ -31,6 +43,12 @@ class Diagnostics:
     tls_correction_norm: Optional[float]
     tls_v22_min_singular_value: Optional[float]
     noise_sigma: Optional[float]
+    iterations: Optional[int]
+    gradient_norm: Optional[float]
+    converged: Optional[bool]
+    certificate: Optional[PsdCertificate]
+    chosen_method: Optional[str]
+    reason: Optional[AutoReason]
 
 class FitResult:
     method: str
@@ -48,16 +66,19 @@ class NearestSpdResult:
     min_eigenvalue_before: float
 
 def fit(A: npt.ArrayLike, B: npt.ArrayLike, method: str, rank_tolerance: Optional[float] = ...,
-        noise_ratio: Optional[float] = ...) -> FitResult: ...
+        noise_ratio: Optional[float] = ..., max_iter: Optional[int] = ...,
+        min_eig: Optional[float] = ...) -> FitResult: ...
 class StreamOptions:
     block_rows: int
     threads: int
     def __init__(self) -> None: ...
 
 def fit_files(A_path: str, B_path: str, method: str, block_rows: int = ..., threads: int = ...,
-              rank_tolerance: Optional[float] = ..., noise_ratio: Optional[float] = ...) -> FitResult: ...
+              rank_tolerance: Optional[float] = ..., noise_ratio: Optional[float] = ...,
+              max_iter: Optional[int] = ..., min_eig: Optional[float] = ...) -> FitResult: ...
 def fit_all(A: npt.ArrayLike, B: npt.ArrayLike, rank_tolerance: Optional[float] = ...,
-            noise_ratio: Optional[float] = ...) -> List[FitResult]: ...
+            noise_ratio: Optional[float] = ..., max_iter: Optional[int] = ...,
+            min_eig: Optional[float] = ...) -> List[FitResult]: ...
 def nearest_spd(X: npt.ArrayLike, min_eig: float = ...) -> NearestSpdResult: ...
 def area_criterion(A: npt.ArrayLike, B: npt.ArrayLike, X: npt.ArrayLike) -> Optional[float]: ...
 def read_matrix(path: str, *, allow_nonfinite: bool = ...) -> npt.NDArray[np.float64]: ...

@@ -26,19 +26,30 @@ Method method_from(const std::string& name) {
   throw std::invalid_argument("unknown method '" + name + "' (methods: " + known + ")");
 }
 
-// The options of a Python call; noise_ratio is refused (ValueError) for a method that does not
-// take it, as the CLI refuses --noise-ratio.
+// The options of a Python call; noise_ratio, max_iter and min_eig are refused (ValueError) for a
+// method that does not take them, as the CLI refuses --noise-ratio, --max-iter and --min-eig.
 FitOptions options_from(const std::optional<double>& rank_tolerance, const std::optional<double>& noise_ratio = {},
-                        std::optional<Method> method = {}) {
+                        std::optional<Method> method = {}, const std::optional<int>& max_iter = {},
+                        const std::optional<double>& min_eig = {}) {
   FitOptions options;
   if (rank_tolerance) options.rank_tolerance = *rank_tolerance;
+  const std::string name = method ? std::string(to_string(*method)) : std::string();
   if (noise_ratio) {
     if (method && !uses_noise_ratio(*method)) {
       throw std::invalid_argument("noise_ratio applies to the total least-squares methods (tls, tls-sym, "
-                                  "tls-psd), not to " +
-                                  std::string(to_string(*method)));
+                                  "tls-psd, spd-tls) and auto, not to " + name);
     }
     options.noise_ratio = *noise_ratio;
+  }
+  if (max_iter) {
+    if (method && !uses_max_iterations(*method)) {
+      throw std::invalid_argument("max_iter applies to the iterative methods (spd-tls, psd-ls, auto), not to " + name);
+    }
+    options.max_iterations = *max_iter;
+  }
+  if (min_eig) {
+    if (method && !uses_min_eig(*method)) throw std::invalid_argument("min_eig applies to psd-ls, not to " + name);
+    options.min_eig = *min_eig;
   }
   std::string error;
   if (!options.is_valid(&error)) throw std::invalid_argument(error);
@@ -64,6 +75,29 @@ std::string repr(const FitResult& r) {
 }  // namespace
 
 void bind_estimators(py::module_& m) {
+  py::list names;
+  for (Method method : kSelectableMethods) names.append(std::string(to_string(method)));
+  m.attr("METHODS") = py::tuple(names);
+
+  py::class_<PsdCertificate>(m, "PsdCertificate",
+                             "psd-ls's proof of optimality: X is optimal when primal_min_eig >= 0, "
+                             "dual_min_eig >= 0 and complementarity = 0 (to rounding).")
+      .def_readonly("primal_min_eig", &PsdCertificate::primal_min_eig, "lambda_min(X - min_eig I)")
+      .def_readonly("dual_min_eig", &PsdCertificate::dual_min_eig, "lambda_min(S), S = sym(A^T A X - A^T B)")
+      .def_readonly("complementarity", &PsdCertificate::complementarity, "<X - min_eig I, S>")
+      .def_readonly("duality_gap", &PsdCertificate::duality_gap,
+                    "|complementarity| / (||A^T A||_2 ||X||_F + ||A^T B||_F)")
+      .def("__repr__", [](const PsdCertificate& c) {
+        std::ostringstream out;
+        out << "PsdCertificate(primal_min_eig=" << c.primal_min_eig << ", dual_min_eig=" << c.dual_min_eig
+            << ", complementarity=" << c.complementarity << ", duality_gap=" << c.duality_gap << ")";
+        return out.str();
+      });
+  py::class_<AutoReason>(m, "AutoReason", "Why auto chose its method: a stable code and a sentence.")
+      .def_readonly("code", &AutoReason::code)
+      .def_readonly("text", &AutoReason::text)
+      .def("__repr__", [](const AutoReason& r) { return "AutoReason(code='" + r.code + "', text='" + r.text + "')"; });
+
   py::class_<Diagnostics>(m, "Diagnostics",
                           "What an estimate is checked by: ranks and condition numbers of A and B, the "
                           "residual, definiteness, the area criterion and method-specific values "
@@ -95,6 +129,19 @@ void bind_estimators(py::module_& m) {
       .def_readonly("noise_sigma", &Diagnostics::noise_sigma,
                     "noise standard deviation in A under the TLS model (noise_ratio times it in B); "
                     "None when m == n")
+      .def_readonly("iterations", &Diagnostics::iterations, "spd-tls, psd-ls: iterations taken")
+      .def_readonly("gradient_norm", &Diagnostics::gradient_norm,
+                    "spd-tls: ||X^1/2 grad f X^1/2||_F; psd-ls: the relative KKT residual")
+      .def_readonly("converged", &Diagnostics::converged, "spd-tls, psd-ls: the stopping rule held")
+      .def_readonly("certificate", &Diagnostics::certificate, "psd-ls: the optimality certificate")
+      .def_property_readonly(
+          "chosen_method",
+          [](const Diagnostics& d) -> std::optional<std::string> {
+            if (!d.chosen_method) return std::nullopt;
+            return std::string(to_string(*d.chosen_method));
+          },
+          "auto: the method it ran")
+      .def_readonly("reason", &Diagnostics::reason, "auto: why (code, text)")
       .def("__repr__", [](const Diagnostics& d) {
         std::ostringstream out;
         out << "Diagnostics(m=" << d.m << ", n=" << d.n << ", rank_a=" << d.rank_a << ", rank_b=" << d.rank_b
@@ -117,14 +164,15 @@ void bind_estimators(py::module_& m) {
   m.def(
       "fit",
       [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const std::string& method,
-         std::optional<double> rank_tolerance, std::optional<double> noise_ratio) {
+         std::optional<double> rank_tolerance, std::optional<double> noise_ratio, std::optional<int> max_iter,
+         std::optional<double> min_eig) {
         const Method chosen = method_from(method);
-        const FitOptions options = options_from(rank_tolerance, noise_ratio, chosen);
+        const FitOptions options = options_from(rank_tolerance, noise_ratio, chosen, max_iter, min_eig);
         py::gil_scoped_release release;
         return fit(A, B, chosen, options);
       },
       py::arg("A"), py::arg("B"), py::arg("method"), py::arg("rank_tolerance") = py::none(),
-      py::arg("noise_ratio") = py::none());
+      py::arg("noise_ratio") = py::none(), py::arg("max_iter") = py::none(), py::arg("min_eig") = py::none());
   py::class_<StreamOptions>(m, "StreamOptions",
                             "How fit_files streams its files; the defaults are the library's own.")
       .def(py::init<>())
@@ -133,9 +181,10 @@ void bind_estimators(py::module_& m) {
   m.def(
       "fit_files",
       [](const std::string& a_path, const std::string& b_path, const std::string& method, Eigen::Index block_rows,
-         unsigned threads, std::optional<double> rank_tolerance, std::optional<double> noise_ratio) {
+         unsigned threads, std::optional<double> rank_tolerance, std::optional<double> noise_ratio,
+         std::optional<int> max_iter, std::optional<double> min_eig) {
         const Method chosen = method_from(method);
-        const FitOptions options = options_from(rank_tolerance, noise_ratio, chosen);
+        const FitOptions options = options_from(rank_tolerance, noise_ratio, chosen, max_iter, min_eig);
         StreamOptions stream;
         stream.block_rows = block_rows;
         stream.threads = threads;
@@ -144,16 +193,17 @@ void bind_estimators(py::module_& m) {
       },
       py::arg("A_path"), py::arg("B_path"), py::arg("method"), py::arg("block_rows") = StreamOptions{}.block_rows,
       py::arg("threads") = StreamOptions{}.threads, py::arg("rank_tolerance") = py::none(),
-      py::arg("noise_ratio") = py::none());
+      py::arg("noise_ratio") = py::none(), py::arg("max_iter") = py::none(), py::arg("min_eig") = py::none());
   m.def(
       "fit_all",
       [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, std::optional<double> rank_tolerance,
-         std::optional<double> noise_ratio) {
-        const FitOptions options = options_from(rank_tolerance, noise_ratio);
+         std::optional<double> noise_ratio, std::optional<int> max_iter, std::optional<double> min_eig) {
+        const FitOptions options = options_from(rank_tolerance, noise_ratio, std::nullopt, max_iter, min_eig);
         py::gil_scoped_release release;
         return fit_all(A, B, options);
       },
-      py::arg("A"), py::arg("B"), py::arg("rank_tolerance") = py::none(), py::arg("noise_ratio") = py::none());
+      py::arg("A"), py::arg("B"), py::arg("rank_tolerance") = py::none(), py::arg("noise_ratio") = py::none(),
+      py::arg("max_iter") = py::none(), py::arg("min_eig") = py::none());
 
   py::class_<NearestSpdResult>(m, "NearestSpdResult", "The nearest matrix and how far it moved.")
       .def_readonly("X", &NearestSpdResult::X)

@@ -26,6 +26,9 @@ namespace {
 constexpr double kMinExtraRowsPerColumn = 4.0;
 constexpr double kMinEvidence = 30.0;
 constexpr double kFloorRatio = 1e-8;
+// Above this signal-to-noise ratio the data are consistent to rounding: spde, exact there to
+// cond(A) eps (spd-tls is not, on ill-conditioned A; spd_total_least_squares.hpp).
+constexpr double kNoiseFreeSnr = 1e10;
 }  // namespace
 
 template <int MaxN>
@@ -48,6 +51,11 @@ AutoChoice auto_choice(const BasicReduction<MaxN>& data, std::optional<double> n
   const bool enough = extra >= kMinExtraRowsPerColumn * static_cast<double>(n) && std::isfinite(choice.snr)
                           ? extra * choice.snr >= kMinEvidence
                           : extra >= kMinExtraRowsPerColumn * static_cast<double>(n) && choice.snr > 0.0;
+  if (choice.snr >= kNoiseFreeSnr) {
+    choice.method = Method::Spde;
+    choice.code = "noise_free";
+    return choice;
+  }
   choice.method = enough ? Method::SpdTotalLeastSquares : Method::Spde;
   choice.code = enough ? "many_samples" : "few_samples";
   return choice;
@@ -76,6 +84,10 @@ std::string reason_text(const detail::AutoChoice& choice, Index m, Index n) {
   const std::string rows = "m = " + std::to_string(m) + " rows for n = " + std::to_string(n);
   if (std::string(choice.code) == "rank_deficient_a") {
     return "A is rank-deficient, so spde is undefined: spd-tls, started from tls-sym";
+  }
+  if (std::string(choice.code) == "noise_free") {
+    return "the data are consistent to rounding (signal-to-noise ratio " + snr +
+           " in A's weakest direction): spde, exact on such data";
   }
   if (choice.method == Method::SpdTotalLeastSquares) {
     return rows + " and a signal-to-noise ratio of " + snr +

@@ -102,7 +102,7 @@ bool nearest_spd_kernel(const SquareMatrix<MaxN>& X, double min_eig, SquareMatri
 /// What auto (auto.hpp) chooses, and the numbers it chose by.
 struct AutoChoice {
   Method method = Method::Spde;
-  const char* code = "";       ///< "rank_deficient_a", "many_samples" or "few_samples"
+  const char* code = "";  ///< "rank_deficient_a", "noise_free", "many_samples" or "few_samples"
   double snr = 0.0;            ///< signal-to-noise ratio of A's weakest direction (NaN: unknown)
 };
 

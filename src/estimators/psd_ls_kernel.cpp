@@ -173,6 +173,11 @@ bool psd_ls_kernel(const BasicReduction<MaxN>& data, double epsilon_s, int max_i
       best = Yt;
       best_kkt = kkt_residual(p, Yt);
       done = true;
+    } else {
+      // The fallback, whatever happens below: the projection of Procrustes, feasible.
+      if (!project<MaxN>(Yt, best)) return false;
+      const double kkt = kkt_residual(p, best);
+      if (kkt >= 0.0) best_kkt = kkt;  // NaN (no finite residual) stays +inf: not converged
     }
   }
 
