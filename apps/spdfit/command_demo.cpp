@@ -19,7 +19,7 @@ using experiment::ThesisExperimentResult;
 
 Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
   struct Cli {
-    std::size_t trials = 2000, trials_2x2 = 10000, trials_samples = 300;
+    std::size_t trials = 2000, trials_2x2 = 10000, trials_samples = 300, trials_beyond = 200;
     std::uint64_t seed = 1;
     unsigned threads = 0;
   };
@@ -35,6 +35,10 @@ Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str();
   sub->add_option("--trials-samples", cli->trials_samples,
                   "Monte Carlo trials at each of the larger sample sizes (m = 100, 1000)")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{10000000}))
+      ->capture_default_str();
+  sub->add_option("--trials-beyond", cli->trials_beyond,
+                  "Monte Carlo trials at each point of section 5 (the methods beyond the seeds against m)")
       ->check(CLI::Range(std::size_t{1}, std::size_t{10000000}))
       ->capture_default_str();
   sub->add_option("--seed", cli->seed, "Seed of every experiment")->capture_default_str();
@@ -74,6 +78,18 @@ Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
           terminal_progress("demo: 2x2 example, std_a = " + demo::trimmed(std_a), global.quiet);
       paper.push_back(experiment::run_paper_2x2(options, monte_carlo));
     }
+    monte_carlo.trials = cli->trials_beyond;
+    for (double width : demo::beyond_widths()) {
+      for (Eigen::Index m : demo::beyond_sizes()) {
+        experiment::ThesisExperimentOptions options;
+        options.simulation.noise_var = width * width / 12.0;  // uniform of width nm
+        options.simulation.samples = m;
+        options.methods = demo::beyond_methods();
+        monte_carlo.progress = terminal_progress(
+            "demo: nm = " + demo::trimmed(width) + ", m = " + std::to_string(m), global.quiet);
+        results.beyond.push_back(experiment::run_thesis_experiment(options, monte_carlo));
+      }
+    }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     std::ostringstream out;
@@ -83,15 +99,19 @@ Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
         << "Methods: ls (least squares), procrustes (symmetric least squares, thesis eq. 3.15), tls / "
            "tls-sym /\n"
         << "tls-psd (total least squares, eq. 4.37-4.39), spde (the area-criterion estimate, paper Theorem "
-           "III.3).\n\n"
+           "III.3);\n"
+        << "beyond the seeds: spd-tls (total least squares over the SPD matrices), psd-ls (least squares over "
+           "X >= 0)\n"
+        << "and auto (spde or spd-tls, chosen from the data).\n\n"
         << demo::tables(results) << demo::findings(results);
     char line[200];
     std::snprintf(
         line, sizeof line,
-        "(seed %llu; %zu + %zu + %zu trials on %u threads in %.1f s. Reproduce any table with 'spdfit "
-        "experiment ...', see docs/hexapod.md.)",
+        "(seed %llu; %zu + %zu + %zu + %zu trials on %u threads in %.1f s. Reproduce any table with "
+        "'spdfit experiment ...', see docs/hexapod.md.)",
         static_cast<unsigned long long>(cli->seed), 3 * cli->trials,
         demo::sample_sizes().size() * cli->trials_samples, demo::levels_2x2().size() * cli->trials_2x2,
+        demo::beyond_widths().size() * demo::beyond_sizes().size() * cli->trials_beyond,
         experiment::resolve_threads(cli->threads), seconds);
     out << '\n' << demo::wrap(line);
     emit(out.str(), "");

@@ -19,13 +19,22 @@ struct Results {
   std::vector<experiment::ThesisExperimentResult> thesis;   ///< Experiments 1-3 (m = 12)
   std::vector<experiment::ThesisExperimentResult> samples;  ///< Experiment 2 at sample_sizes()
   std::vector<experiment::EntryExperimentResult> paper;     ///< the 2x2 example at levels_2x2()
+  /// Beyond the seeds: every (width, m) of beyond_widths() x beyond_sizes(), widths outer,
+  /// running beyond_methods().
+  std::vector<experiment::ThesisExperimentResult> beyond;
 };
+
+/// Section 5's uniform noise widths nm (variance nm^2 / 12), sample sizes and methods.
+const std::vector<double>& beyond_widths();
+const std::vector<Eigen::Index>& beyond_sizes();
+const std::vector<Method>& beyond_methods();
 
 /// The 2x2 example's noise levels std_a, and the larger sample sizes Experiment 2 is rerun at.
 const std::vector<double>& levels_2x2();
 const std::vector<Eigen::Index>& sample_sizes();
 
-/// Sections 1-4: the built-in hexapod, the thesis' experiments, the 2x2 example, more samples.
+/// Sections 1-5: the built-in hexapod, the thesis' experiments, the 2x2 example, more samples,
+/// and the methods beyond the seeds against m.
 std::string tables(const Results& results);
 
 /// "What the numbers show": each statement chosen by comparing the numbers in `results`.

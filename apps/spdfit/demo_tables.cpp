@@ -1,3 +1,6 @@
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <cstdio>
 #include <sstream>
 
@@ -24,6 +27,23 @@ const std::vector<double>& levels_2x2() {
 const std::vector<Eigen::Index>& sample_sizes() {
   static const std::vector<Eigen::Index> sizes = {100, 1000};
   return sizes;
+}
+
+const std::vector<double>& beyond_widths() {
+  static const std::vector<double> widths = {1.0, 3.2};
+  return widths;
+}
+
+const std::vector<Eigen::Index>& beyond_sizes() {
+  static const std::vector<Eigen::Index> sizes = {12, 30, 100, 1000};
+  return sizes;
+}
+
+const std::vector<Method>& beyond_methods() {
+  static const std::vector<Method> methods = {Method::SymmetricProcrustes, Method::TotalLeastSquaresSymmetric,
+                                              Method::Spde,                Method::SpdTotalLeastSquares,
+                                              Method::PsdLeastSquares,     Method::Auto};
+  return methods;
 }
 
 std::string percent(double fraction) {
@@ -124,7 +144,7 @@ std::string section_thesis(const std::vector<ThesisExperimentResult>& results, s
       << " times each; mean error (standard error below)\n\n";
   std::snprintf(line, sizeof line, "%-4s %6s", "exp", "V");
   out << line;
-  for (Method method : kAllMethods) {
+  for (Method method : kSeedMethods) {
     std::snprintf(line, sizeof line, " %10s", std::string(to_string(method)).c_str());
     out << line;
   }
@@ -134,7 +154,7 @@ std::string section_thesis(const std::vector<ThesisExperimentResult>& results, s
     std::snprintf(line, sizeof line, "%-4d %6.3f", experiment::kThesisReportedRuns[i].experiment,
                   r.options.simulation.noise_var);
     std::string means = line, errors(means.size(), ' ');
-    for (Method method : kAllMethods) {
+    for (Method method : kSeedMethods) {
       const experiment::Summary& s = r.of(method).summary;
       std::snprintf(line, sizeof line, " %10s", fixed(s.mean, 3).c_str());
       means += line;
@@ -189,11 +209,46 @@ std::string section_samples(const std::vector<ThesisExperimentResult>& thesis,
   return out.str();
 }
 
+std::string section_beyond(const std::vector<ThesisExperimentResult>& beyond) {
+  std::ostringstream out;
+  char line[200];
+  out << "== 5. Beyond the thesis: which method for how many samples. The thesis model with uniform noise\n"
+      << "of width nm in A and B (variance nm^2/12); mean error ||M_p - M_hat||_F over "
+      << beyond.front().trials << " trials; * marks the\nlowest mean, auto/best is auto's mean over it\n\n";
+  std::snprintf(line, sizeof line, "%5s %6s", "nm", "m");
+  out << line;
+  for (Method method : beyond_methods()) {
+    std::snprintf(line, sizeof line, " %11s", std::string(to_string(method)).c_str());
+    out << line;
+  }
+  out << "   auto/best\n";
+  for (const ThesisExperimentResult& r : beyond) {
+    const double width = std::sqrt(12.0 * r.options.simulation.noise_var);
+    std::snprintf(line, sizeof line, "%5s %6ld", trimmed(width).c_str(),
+                  static_cast<long>(r.options.simulation.samples));
+    out << line;
+    double best = std::numeric_limits<double>::infinity();
+    for (Method method : beyond_methods()) {
+      if (method != Method::Auto) best = std::min(best, r.of(method).summary.mean);
+    }
+    for (Method method : beyond_methods()) {
+      const double mean = r.of(method).summary.mean;
+      const bool lowest = method != Method::Auto && mean == best;
+      std::snprintf(line, sizeof line, " %11s", (fixed(mean, 3) + (lowest ? "*" : " ")).c_str());
+      out << line;
+    }
+    std::snprintf(line, sizeof line, "   %9s\n", fixed(r.of(Method::Auto).summary.mean / best, 3).c_str());
+    out << line;
+  }
+  out << '\n';
+  return out.str();
+}
+
 }  // namespace
 
 std::string tables(const Results& results) {
   return section_model() + section_thesis(results.thesis, results.seed) + section_2x2(results.paper) +
-         section_samples(results.thesis, results.samples);
+         section_samples(results.thesis, results.samples) + section_beyond(results.beyond);
 }
 
 }  // namespace spdfit::cli::demo

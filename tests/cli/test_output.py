@@ -5,7 +5,7 @@ import numpy as np
 
 from conftest import write_text
 
-METHODS = ["ls", "procrustes", "tls", "tls-sym", "tls-psd", "spde"]
+METHODS = ["ls", "procrustes", "tls", "tls-sym", "tls-psd", "spde", "spd-tls", "psd-ls"]
 
 
 def save(tmp_path, A, B):

@@ -5,7 +5,11 @@ import json
 import numpy as np
 import pytest
 
-METHODS = ["ls", "procrustes", "tls", "tls-sym", "tls-psd", "spde"]
+CLOSED_FORM = ["ls", "procrustes", "tls", "tls-sym", "tls-psd", "spde"]
+# The iterative methods and auto work from the merged factor as from the in-memory one, so they
+# agree to their convergence tolerance (spd-tls: gradient 1e-10 f; psd-ls: KKT residual 1e-12).
+ITERATIVE = ["spd-tls", "psd-ls", "auto"]
+METHODS = CLOSED_FORM + ITERATIVE
 
 
 @pytest.fixture(scope="module")
@@ -34,7 +38,8 @@ def test_stream_gives_the_in_memory_estimate(spdfit, files, method):
         assert a.keys() == b.keys()
         X, Y = np.array(a["X"]), np.array(b["X"])
         # Blocked QR rounds differently: about cond * eps, far below 1e-12 on this data.
-        assert np.linalg.norm(X - Y) <= 1e-12 * np.linalg.norm(X), (method, extra)
+        tolerance = 1e-12 if method in CLOSED_FORM else 1e-9
+        assert np.linalg.norm(X - Y) <= tolerance * np.linalg.norm(X), (method, extra)
         assert b["m"] == 20011
 
 
