@@ -26,6 +26,9 @@ namespace {
 constexpr double kMinExtraRowsPerColumn = 4.0;
 constexpr double kMinEvidence = 30.0;
 constexpr double kFloorRatio = 1e-8;
+// Positive definite beyond rounding: lambda_min > kDefiniteMargin n eps lambda_max (a matrix on
+// the boundary, from spd-tls, has lambda_min at rounding level of either sign).
+constexpr double kDefiniteMargin = 64.0;
 // Above this signal-to-noise ratio the data are consistent to rounding: spde, exact there to
 // cond(A) eps (spd-tls is not, on ill-conditioned A; spd_total_least_squares.hpp).
 constexpr double kNoiseFreeSnr = 1e10;
@@ -61,6 +64,16 @@ AutoChoice auto_choice(const BasicReduction<MaxN>& data, std::optional<double> n
   return choice;
 }
 
+template <typename Matrix>
+bool clearly_positive_definite(const Matrix& X) {
+  if (X.size() == 0 || !X.allFinite()) return false;
+  Eigen::SelfAdjointEigenSolver<Matrix> eig(X, Eigen::EigenvaluesOnly);
+  if (eig.info() != Eigen::Success) return false;
+  const auto& w = eig.eigenvalues();
+  return w(0) > kDefiniteMargin * static_cast<double>(X.rows()) * std::numeric_limits<double>::epsilon() *
+                    w(w.size() - 1);
+}
+
 template <int MaxN>
 double auto_floor(const BasicReduction<MaxN>& data) {
   SquareMatrix<MaxN> X;
@@ -71,7 +84,8 @@ double auto_floor(const BasicReduction<MaxN>& data) {
 
 #define SPDFIT_INSTANTIATE(MaxN)                                                                          \
   template AutoChoice auto_choice<MaxN>(const BasicReduction<MaxN>&, std::optional<double>);           \
-  template double auto_floor<MaxN>(const BasicReduction<MaxN>&);
+  template double auto_floor<MaxN>(const BasicReduction<MaxN>&);                                       \
+  template bool clearly_positive_definite<SquareMatrix<MaxN>>(const SquareMatrix<MaxN>&);
 SPDFIT_FOR_EACH_MAX_N(SPDFIT_INSTANTIATE)
 #undef SPDFIT_INSTANTIATE
 
@@ -109,11 +123,7 @@ FitResult auto_fit(const Reduction& reduction) {
   AutoReason reason{choice.code, reason_text(choice, m, n)};
 
   FitResult result = choice.method == Method::Spde ? spde(reduction) : spd_total_least_squares(reduction);
-  const bool positive_definite =
-      result.ok() && (data.options.diagnostics ? result.diagnostics.positive_definite
-                                               : Eigen::SelfAdjointEigenSolver<MatrixXd>(result.X, Eigen::EigenvaluesOnly)
-                                                         .eigenvalues()(0) > 0.0);
-  if (!positive_definite) {
+  if (!result.ok() || !detail::clearly_positive_definite(result.X)) {
     // The boundary (or no estimate): the least-squares fit over X >= floor I, positive definite.
     const double floor_s = detail::auto_floor(data);
     const double floor = std::ldexp(floor_s, data.exponent_b - data.exponent_a);

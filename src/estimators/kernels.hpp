@@ -111,6 +111,11 @@ struct AutoChoice {
 template <int MaxN>
 AutoChoice auto_choice(const BasicReduction<MaxN>& data, std::optional<double> noise_var);
 
+/// Whether the symmetric X is positive definite beyond rounding (auto's test of its choice):
+/// lambda_min > 64 n eps lambda_max. False for an empty or non-finite X.
+template <typename Matrix>
+bool clearly_positive_definite(const Matrix& X);
+
 /// auto's fallback floor for psd-ls, in scaled units: 1e-8 ||X_ls||_F (its least-squares
 /// estimate), or the smallest normal number when that is 0.
 template <int MaxN>

@@ -120,10 +120,7 @@ bool estimate_bounded(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<cons
         const AutoChoice choice = auto_choice(data, noise_variance(data));
         ok = choice.method == Method::Spde ? (spde_kernel(data, X_s), true)
                                            : spd_tls(data, r_s, defaults.max_iterations, X_s);
-        if (ok) {
-          Eigen::SelfAdjointEigenSolver<Matrix> eig(X_s, Eigen::EigenvaluesOnly);
-          ok = eig.info() == Eigen::Success && eig.eigenvalues()(0) > 0.0;
-        }
+        ok = ok && clearly_positive_definite(X_s);
         if (!ok) {  // the boundary: psd-ls with auto's floor, as auto_fit
           PsdLsKernel<MaxN> k;
           ok = psd_ls_kernel(data, auto_floor(data), defaults.max_iterations, k);
