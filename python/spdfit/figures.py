@@ -12,6 +12,8 @@ draws, into DIR (default ./figures):
   linkage_steering     the steering-condition four-bar: prescribed and generated output angle,
                        structural error before and after Gauss-Newton, the linkage drawn
   hexapod_model        the built-in hexapod's geometry and its mode frequencies
+  error_vs_samples     mean error against the number of samples m (log-log), one line per method,
+                       at two noise levels: which method to choose for how much data
 
 Each plot_* function takes the data its *_data function returns (the experiment functions'
 results, unchanged), so what is drawn is what the library computed.
@@ -32,9 +34,11 @@ import numpy as np  # noqa: E402
 from . import METHODS, SpdfitWarning, experiment, hexapod, linkage  # noqa: E402
 
 COLORS = {"ls": "#7f7f7f", "procrustes": "#1f77b4", "tls": "#d62728", "tls-sym": "#ff7f0e",
-          "tls-psd": "#e377c2", "spde": "#2ca02c"}
+          "tls-psd": "#e377c2", "spde": "#2ca02c", "spd-tls": "#9467bd", "psd-ls": "#17becf",
+          "auto": "#000000"}
 LABELS = {"ls": "least squares", "procrustes": "LS (symmetric Procrustes)", "tls": "TLS",
-          "tls-sym": "TLS, symmetrized", "tls-psd": "TLS, nearest PSD", "spde": "SPDE (area criterion)"}
+          "tls-sym": "TLS, symmetrized", "tls-psd": "TLS, nearest PSD", "spde": "SPDE (area criterion)",
+          "spd-tls": "TLS over SPD matrices", "psd-ls": "LS over PSD matrices", "auto": "auto"}
 
 
 # ---- 1. The thesis' experiments ---------------------------------------------------------------
@@ -213,12 +217,53 @@ def plot_hexapod(model):
     return fig
 
 
+# ---- 6. Error against the number of samples --------------------------------------------------
+
+SAMPLE_SIZES = (12, 30, 100, 300, 1000, 3000)
+NOISE_WIDTHS = (1.0, 3.2)
+COMPARED = ("procrustes", "tls-sym", "spde", "spd-tls", "psd-ls", "auto")
+
+
+def error_vs_samples_data(trials=400, seed=1):
+    """{noise width nm: {m: ThesisExperimentResult}}: the thesis model with uniform noise of width nm
+    (variance nm^2 / 12) in A and B, at each sample size."""
+    return {w: {m: experiment.thesis(w * w / 12, samples=m, trials=trials, seed=seed, methods=list(COMPARED))
+                for m in SAMPLE_SIZES} for w in NOISE_WIDTHS}
+
+
+def plot_error_vs_samples(data):
+    fig, axes = plt.subplots(1, len(data), figsize=(12.5, 4.8), sharey=True)
+    for ax, (width, results) in zip(np.atleast_1d(axes), data.items()):
+        sizes = sorted(results)
+        for index, name in enumerate(COMPARED):
+            means = [next(r for r in results[m].methods if r.method == name).summary.mean for m in sizes]
+            style = {"color": COLORS[name], "marker": "o", "label": LABELS[name]}
+            if name == "auto":  # drawn over the method it chose
+                style.update(marker="x", linestyle=":", linewidth=2)
+            elif name == "psd-ls":  # equal to Procrustes where that is already PSD
+                style.update(marker="s", linestyle="--", markerfacecolor="none")
+            ax.plot(sizes, means, **style)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        trials = next(iter(results.values())).trials
+        ax.set_title(f"uniform noise of width nm = {width:g} in A and B ({trials} trials per point)")
+        ax.set_xlabel("samples m")
+        ax.set_ylabel("mean error ||M_p - M_hat||_F (kg)")
+        ax.grid(which="both", alpha=0.3)
+    np.atleast_1d(axes)[0].legend(loc="lower left", fontsize=8)
+    fig.suptitle("Which method for how much data: spde and Procrustes level off (biased), "
+                 "spd-tls keeps falling; auto follows the best")
+    fig.tight_layout()
+    return fig
+
+
 FIGURES = {
     "thesis_experiments": (thesis_data, plot_thesis),
     "paper_figure2": (paper_figure2_data, plot_paper_figure2),
     "paper_figure3": (paper_figure3_data, plot_paper_figure3),
     "linkage_steering": (linkage_data, plot_linkage),
     "hexapod_model": (hexapod_data, plot_hexapod),
+    "error_vs_samples": (error_vs_samples_data, plot_error_vs_samples),
 }
 
 

@@ -30,7 +30,16 @@ def relative(X, Y):
     return np.linalg.norm(X - Y) / np.linalg.norm(Y)
 
 
-@pytest.mark.parametrize("method", spdfit.METHODS)
+# The source documents' methods, which tests/reference implements; spd-tls, psd-ls and auto
+# have their own references in test_constrained_methods.py.
+SEED_METHODS = ["ls", "procrustes", "tls", "tls-sym", "tls-psd", "spde"]
+
+
+def test_methods_are_the_librarys_with_auto_last():
+    assert list(spdfit.METHODS) == SEED_METHODS + ["spd-tls", "psd-ls", "auto"]
+
+
+@pytest.mark.parametrize("method", SEED_METHODS)
 def test_every_method_matches_the_reference(problem, method):
     A, B = problem
     r = spdfit.fit(A, B, method=method)
@@ -43,7 +52,9 @@ def test_named_functions_are_fit(problem):
     A, B = problem
     pairs = [(spdfit.least_squares, "ls"), (spdfit.symmetric_procrustes, "procrustes"),
              (spdfit.total_least_squares, "tls"), (spdfit.total_least_squares_symmetric, "tls-sym"),
-             (spdfit.total_least_squares_psd, "tls-psd"), (spdfit.spde, "spde")]
+             (spdfit.total_least_squares_psd, "tls-psd"), (spdfit.spde, "spde"),
+             (spdfit.spd_total_least_squares, "spd-tls"), (spdfit.psd_least_squares, "psd-ls"),
+             (spdfit.auto_fit, "auto")]
     for function, method in pairs:
         assert np.array_equal(function(A, B).X, spdfit.fit(A, B, method).X)
 
@@ -63,7 +74,7 @@ def test_spde_identities(problem):
 def test_fit_all_returns_every_method(problem):
     A, B = problem
     results = spdfit.fit_all(A, B)
-    assert list(results) == list(spdfit.METHODS)
+    assert list(results) == [m for m in spdfit.METHODS if m != "auto"]
     for method, r in results.items():
         assert np.array_equal(r.X, spdfit.fit(A, B, method).X)
 
