@@ -11,6 +11,7 @@
 // skips them.
 #include <benchmark/benchmark.h>
 
+#include <Eigen/QR>
 #include <random>
 
 #include "spdfit/experiment/monte_carlo.hpp"
@@ -33,6 +34,23 @@ Data make_data(Index m, Index n) {
   };
   const MatrixXd W = random(n, n);
   const MatrixXd X = W * W.transpose() + n * MatrixXd::Identity(n, n);
+  const MatrixXd A0 = random(m, n);
+  return {A0 + 0.3 * random(m, n), A0 * X + 0.3 * random(m, n)};
+}
+
+// Data whose truth is indefinite (eigenvalues spread over [-n/4, 3n/4]): symmetric Procrustes is
+// then indefinite and psd-ls has to iterate (on make_data it returns Procrustes at once).
+Data make_indefinite_data(Index m, Index n) {
+  std::mt19937_64 engine(43);
+  std::uniform_real_distribution<double> uniform(-5.0, 5.0);
+  auto random = [&](Index rows, Index cols) {
+    return MatrixXd::NullaryExpr(rows, cols, [&]() { return uniform(engine); });
+  };
+  const Eigen::HouseholderQR<MatrixXd> qr(random(n, n));
+  const MatrixXd Q = qr.householderQ();
+  Eigen::VectorXd lambda(n);
+  for (Index i = 0; i < n; ++i) lambda(i) = static_cast<double>(i) - 0.25 * static_cast<double>(n);
+  const MatrixXd X = Q * lambda.asDiagonal() * Q.transpose();
   const MatrixXd A0 = random(m, n);
   return {A0 + 0.3 * random(m, n), A0 * X + 0.3 * random(m, n)};
 }
@@ -60,6 +78,18 @@ void BM_Estimate(benchmark::State& state, spdfit::Method method) {
   for (auto _ : state) {
     spdfit::experiment::estimate(data.A, data.B, methods, X);
     benchmark::DoNotOptimize(X[0].data());
+  }
+}
+
+// The method's own cost, from a Reduction made once (the iterative methods: spd-tls, psd-ls,
+// auto). `indefinite` selects make_indefinite_data, where psd-ls's constraint is active.
+void BM_FromReduction(benchmark::State& state, spdfit::Method method, bool indefinite) {
+  const Data data = indefinite ? make_indefinite_data(state.range(0), state.range(1))
+                               : make_data(state.range(0), state.range(1));
+  const spdfit::Reduction reduced = spdfit::reduce(spdfit::TriangularFactor::from_data(data.A, data.B));
+  for (auto _ : state) {
+    spdfit::FitResult result = spdfit::fit(reduced, method);
+    benchmark::DoNotOptimize(result.X.data());
   }
 }
 
@@ -107,6 +137,21 @@ BENCHMARK_CAPTURE(BM_Estimate, ls, spdfit::Method::LeastSquares)->Apply(estimate
 BENCHMARK_CAPTURE(BM_Estimate, procrustes, spdfit::Method::SymmetricProcrustes)->Apply(estimate_sizes);
 BENCHMARK_CAPTURE(BM_Estimate, tls, spdfit::Method::TotalLeastSquares)->Apply(estimate_sizes);
 BENCHMARK_CAPTURE(BM_Estimate, spde, spdfit::Method::Spde)->Apply(estimate_sizes);
+
+// The iterative methods (issue 14's targets: spd-tls and psd-ls at n = 6 under 50 us, psd-ls at
+// n = 100 under 20 ms and n = 1000 under 10 s). BM_Estimate: X alone on the small-problem path.
+void small_sizes(benchmark::internal::Benchmark* b) {
+  b->Args({12, 6})->Args({100, 6})->Unit(benchmark::kMicrosecond);
+}
+BENCHMARK_CAPTURE(BM_Estimate, spd_tls, spdfit::Method::SpdTotalLeastSquares)->Apply(small_sizes);
+BENCHMARK_CAPTURE(BM_Estimate, psd_ls, spdfit::Method::PsdLeastSquares)->Apply(small_sizes);
+BENCHMARK_CAPTURE(BM_Estimate, auto, spdfit::Method::Auto)->Apply(small_sizes);
+BENCHMARK_CAPTURE(BM_FromReduction, spd_tls, spdfit::Method::SpdTotalLeastSquares, false)
+    ->Args({12, 6})->Args({24, 12})->Args({100, 20})->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_FromReduction, psd_ls_indefinite, spdfit::Method::PsdLeastSquares, true)
+    ->Args({12, 6})->Args({400, 100})->Args({4000, 1000})->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_FromReduction, auto, spdfit::Method::Auto, false)
+    ->Args({12, 6})->Args({1000, 6})->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
