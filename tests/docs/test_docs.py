@@ -47,14 +47,6 @@ def workdir(tmp_path):
     return tmp_path
 
 
-@pytest.fixture(scope="session")
-def cli():
-    path = os.environ.get("SPDFIT_CLI")
-    if not path:
-        pytest.skip("SPDFIT_CLI is not set (ctest sets it)")
-    return path
-
-
 def test_pages_have_examples():
     for page in PAGES:
         assert console_examples(page) or "```python" in (ROOT / page).read_text(), page

@@ -33,14 +33,6 @@ def table():
     return rows
 
 
-@pytest.fixture(scope="module")
-def cli():
-    path = os.environ.get("SPDFIT_CLI")
-    if not path:
-        pytest.skip("SPDFIT_CLI is not set (ctest sets it)")
-    return path
-
-
 def test_the_table_covers_both_noise_levels_and_every_size():
     assert set(table()) == {(w, m) for w in (1.0, 3.2) for m in (12, 30, 100, 1000)}
 
