@@ -25,7 +25,7 @@ import numpy as _np
 
 from . import _spdfit
 from ._spdfit import (AutoReason, DataError, Diagnostics, FitResult, LinearSystemResult, NearestSpdResult,
-                      PsdCertificate, read_matrix, read_table, write_csv)
+                      PsdCertificate)
 
 __version__ = _spdfit.__version__
 
@@ -66,6 +66,24 @@ def _as_matrix(name, value):
     if array.ndim != 2:
         raise ValueError(f"{name} must be a matrix (2-D array), got {array.ndim} dimensions")
     return _np.asarray(array, dtype=_np.float64)
+
+
+def read_matrix(path, *, allow_nonfinite=False):
+    """Read a matrix from delimited text (commas, semicolons, tabs or spaces; '#' comments; an
+    optional header row) or a .npy file. `path` is a str or an os.PathLike (pathlib.Path).
+    Raises DataError (a ValueError) naming the file, line and column on bad input; NaN and Inf
+    are rejected unless allow_nonfinite."""
+    return _spdfit.read_matrix(_os.fspath(path), allow_nonfinite=allow_nonfinite)
+
+
+def read_table(path):
+    """Like read_matrix, but returns (values, column_names from the header row)."""
+    return _spdfit.read_table(_os.fspath(path))
+
+
+def write_csv(path, X):
+    """Write X as CSV with values that read back exactly; `path` a str or os.PathLike."""
+    _spdfit.write_csv(_os.fspath(path), _as_matrix("X", X))
 
 
 def _checked(result, stacklevel=3):

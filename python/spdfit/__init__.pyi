@@ -1,6 +1,6 @@
 """Type stubs for spdfit (see __init__.py for the documentation)."""
 import os
-from typing import Dict, Literal, Optional, Tuple, Union, overload
+from typing import Dict, List, Literal, Optional, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -9,12 +9,17 @@ from . import experiment as experiment
 from . import hexapod as hexapod
 from . import linkage as linkage
 from ._spdfit import (AutoReason as AutoReason, PsdCertificate as PsdCertificate, DataError as DataError, Diagnostics as Diagnostics, FitResult as FitResult,
-                      LinearSystemResult as LinearSystemResult, NearestSpdResult as NearestSpdResult,
-                      read_matrix as read_matrix, read_table as read_table, write_csv as write_csv)
+                      LinearSystemResult as LinearSystemResult, NearestSpdResult as NearestSpdResult)
 
 __version__: str
 METHODS: Tuple[str, ...]
 Method = Literal["ls", "procrustes", "tls", "tls-sym", "tls-psd", "spde", "spd-tls", "psd-ls", "auto"]
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+def read_matrix(path: PathLike, *, allow_nonfinite: bool = ...) -> npt.NDArray[np.float64]: ...
+def read_table(path: PathLike) -> Tuple[npt.NDArray[np.float64], List[str]]: ...
+def write_csv(path: PathLike, X: npt.ArrayLike) -> None: ...
 
 class NumericalError(RuntimeError):
     result: Optional[object]
