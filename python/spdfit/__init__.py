@@ -68,6 +68,24 @@ def _as_matrix(name, value):
     return _np.asarray(array, dtype=_np.float64)
 
 
+def _options(method=None, **values):
+    """The fit options checked for type: a short TypeError naming the argument (instead of
+    pybind11's listing of every signature); None means the library's default. Returns them in
+    the order given."""
+    import numbers
+    if method is not None and not isinstance(method, str):
+        raise TypeError(f"method must be a str (one of {', '.join(METHODS)}), got {type(method).__name__}")
+    for name, value in values.items():
+        if value is None:
+            continue
+        if name == "max_iter":
+            if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+                raise TypeError(f"max_iter must be an int, got {type(value).__name__}")
+        elif isinstance(value, bool) or not isinstance(value, numbers.Real):
+            raise TypeError(f"{name} must be a real number, got {type(value).__name__}")
+    return tuple(None if v is None else (int(v) if k == "max_iter" else float(v)) for k, v in values.items())
+
+
 def read_matrix(path, *, allow_nonfinite=False):
     """Read a matrix from delimited text (commas, semicolons, tabs or spaces; '#' comments; an
     optional header row) or a .npy file. `path` is a str or an os.PathLike (pathlib.Path).
@@ -108,8 +126,10 @@ def fit(A, B, method="auto", *, rank_tolerance=None, noise_ratio=None, max_iter=
     min_eig: psd-ls's floor, X >= min_eig I (default 0). Each of the last three is a ValueError
     with a method that does not take it. Raises ValueError for bad input (shapes, NaN/Inf,
     m < n, unknown method) and NumericalError when the method has no answer for this data."""
+    options = _options(method, rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter,
+                       min_eig=min_eig)
     A, B = _as_matrix("A", A), _as_matrix("B", B)
-    return _checked(_spdfit.fit(A, B, method, rank_tolerance, noise_ratio, max_iter, min_eig))
+    return _checked(_spdfit.fit(A, B, method, *options))
 
 
 # The streaming defaults are the library's (StreamOptions), not retyped here.
@@ -128,8 +148,10 @@ def fit_files(A_path, B_path, method="auto", *, block_rows=_STREAM_DEFAULTS.bloc
     fit(read_matrix(A_path), read_matrix(B_path), method)'s to rounding, the same for every
     thread count. The other options are fit's. Raises DataError for bad files, ValueError for bad
     arguments and NumericalError as fit does."""
+    options = _options(method, rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter,
+                       min_eig=min_eig)
     return _checked(_spdfit.fit_files(_os.fspath(A_path), _os.fspath(B_path), method, block_rows, threads,
-                                      rank_tolerance, noise_ratio, max_iter, min_eig))
+                                      *options))
 
 
 def fit_all(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_eig=None):
@@ -138,9 +160,10 @@ def fit_all(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_e
     spd-tls and psd-ls, min_eig to psd-ls.
 
     Failures are not raised here: check `result.ok` and `result.message`."""
+    options = _options(rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter, min_eig=min_eig)
     A, B = _as_matrix("A", A), _as_matrix("B", B)
     results = {}
-    for result in _spdfit.fit_all(A, B, rank_tolerance, noise_ratio, max_iter, min_eig):
+    for result in _spdfit.fit_all(A, B, *options):
         for message in result.warnings:
             _warnings.warn(f"{result.method}: {message}", SpdfitWarning, stacklevel=2)
         results[result.method] = result

@@ -210,3 +210,13 @@ def test_options_are_refused_for_methods_that_do_not_take_them():
         spdfit.fit(A, A, "psd-ls", max_iter=0)
     with pytest.raises(ValueError, match="min_eig must be"):
         spdfit.fit(A, A, "psd-ls", min_eig=-1.0)
+
+
+@pytest.mark.parametrize("kwargs,name", [({"method": 3}, "method"), ({"method": "tls", "noise_ratio": "x"}, "noise_ratio"),
+                                         ({"method": "psd-ls", "max_iter": 2.5}, "max_iter"),
+                                         ({"rank_tolerance": [1]}, "rank_tolerance"),
+                                         ({"method": "psd-ls", "min_eig": True}, "min_eig")])
+def test_wrong_option_types_are_a_short_type_error(kwargs, name):
+    with pytest.raises(TypeError) as error:
+        spdfit.fit(np.eye(3), np.eye(3), **kwargs)
+    assert str(error.value).startswith(name) and len(str(error.value)) < 200
