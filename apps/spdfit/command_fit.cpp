@@ -61,8 +61,8 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
       ->check(non_negative());
   CLI::Option* stream =
       sub->add_flag("--stream", options->stream,
-                    "Read A and B a block of rows at a time (memory O(n^2) whatever the number of rows; "
-                    "same estimate to rounding)");
+                    "Read A and B a block of rows at a time (memory O(threads x block-rows x n + n^2) whatever the "
+                    "number of rows; same estimate to rounding)");
   sub->add_option("--block-rows", options->stream_options.block_rows, "Rows per block with --stream")
       ->check(CLI::Range(Eigen::Index{1}, Eigen::Index{1} << 24))
       ->needs(stream);
