@@ -82,10 +82,10 @@ void bind_estimators(py::module_& m) {
   py::class_<PsdCertificate>(m, "PsdCertificate",
                              "psd-ls's proof of optimality: X is optimal when primal_min_eig >= 0, "
                              "dual_min_eig >= 0 and complementarity = 0 (to rounding).")
-      .def_readonly("primal_min_eig", &PsdCertificate::primal_min_eig, "lambda_min(X - min_eig I)")
-      .def_readonly("dual_min_eig", &PsdCertificate::dual_min_eig, "lambda_min(S), S = sym(A^T A X - A^T B)")
-      .def_readonly("complementarity", &PsdCertificate::complementarity, "<X - min_eig I, S>")
-      .def_readonly("duality_gap", &PsdCertificate::duality_gap,
+      .def_property_readonly("primal_min_eig", copied(&PsdCertificate::primal_min_eig), "lambda_min(X - min_eig I)")
+      .def_property_readonly("dual_min_eig", copied(&PsdCertificate::dual_min_eig), "lambda_min(S), S = sym(A^T A X - A^T B)")
+      .def_property_readonly("complementarity", copied(&PsdCertificate::complementarity), "<X - min_eig I, S>")
+      .def_property_readonly("duality_gap", copied(&PsdCertificate::duality_gap),
                     "|complementarity| / (||A^T A||_2 ||X||_F + ||A^T B||_F)")
       .def("__repr__", [](const PsdCertificate& c) {
         std::ostringstream out;
@@ -94,46 +94,46 @@ void bind_estimators(py::module_& m) {
         return out.str();
       });
   py::class_<AutoReason>(m, "AutoReason", "Why auto chose its method: a stable code and a sentence.")
-      .def_readonly("code", &AutoReason::code)
-      .def_readonly("text", &AutoReason::text)
+      .def_property_readonly("code", copied(&AutoReason::code))
+      .def_property_readonly("text", copied(&AutoReason::text))
       .def("__repr__", [](const AutoReason& r) { return "AutoReason(code='" + r.code + "', text='" + r.text + "')"; });
 
   py::class_<Diagnostics>(m, "Diagnostics",
                           "What an estimate is checked by: ranks and condition numbers of A and B, the "
                           "residual, definiteness, the area criterion and method-specific values "
                           "(None where not defined).")
-      .def_readonly("m", &Diagnostics::m, "rows (samples)")
-      .def_readonly("n", &Diagnostics::n, "columns; X is n x n")
-      .def_readonly("rank_a", &Diagnostics::rank_a)
-      .def_readonly("rank_b", &Diagnostics::rank_b)
-      .def_readonly("cond_a", &Diagnostics::cond_a, "sigma_max / sigma_min of A (inf when singular)")
-      .def_readonly("cond_b", &Diagnostics::cond_b)
-      .def_readonly("singular_values_a", &Diagnostics::singular_values_a)
-      .def_readonly("singular_values_b", &Diagnostics::singular_values_b)
-      .def_readonly("residual_norm", &Diagnostics::residual_norm, "||A X - B||_F")
-      .def_readonly("symmetric", &Diagnostics::symmetric)
-      .def_readonly("positive_definite", &Diagnostics::positive_definite)
-      .def_readonly("positive_semidefinite", &Diagnostics::positive_semidefinite)
-      .def_readonly("min_eigenvalue", &Diagnostics::min_eigenvalue)
-      .def_readonly("max_eigenvalue", &Diagnostics::max_eigenvalue)
-      .def_readonly("area_criterion", &Diagnostics::area_criterion,
+      .def_property_readonly("m", copied(&Diagnostics::m), "rows (samples)")
+      .def_property_readonly("n", copied(&Diagnostics::n), "columns; X is n x n")
+      .def_property_readonly("rank_a", copied(&Diagnostics::rank_a))
+      .def_property_readonly("rank_b", copied(&Diagnostics::rank_b))
+      .def_property_readonly("cond_a", copied(&Diagnostics::cond_a), "sigma_max / sigma_min of A (inf when singular)")
+      .def_property_readonly("cond_b", copied(&Diagnostics::cond_b))
+      .def_property_readonly("singular_values_a", copied(&Diagnostics::singular_values_a))
+      .def_property_readonly("singular_values_b", copied(&Diagnostics::singular_values_b))
+      .def_property_readonly("residual_norm", copied(&Diagnostics::residual_norm), "||A X - B||_F")
+      .def_property_readonly("symmetric", copied(&Diagnostics::symmetric))
+      .def_property_readonly("positive_definite", copied(&Diagnostics::positive_definite))
+      .def_property_readonly("positive_semidefinite", copied(&Diagnostics::positive_semidefinite))
+      .def_property_readonly("min_eigenvalue", copied(&Diagnostics::min_eigenvalue))
+      .def_property_readonly("max_eigenvalue", copied(&Diagnostics::max_eigenvalue))
+      .def_property_readonly("area_criterion", copied(&Diagnostics::area_criterion),
                     "||A Y - B Y^-T||_F^2 with X = Y Y^T (Chen & McInroy, Definition II.1)")
-      .def_readonly("area_criterion_minimum", &Diagnostics::area_criterion_minimum,
+      .def_property_readonly("area_criterion_minimum", copied(&Diagnostics::area_criterion_minimum),
                     "spde: 2 tr(Sigma_Q~ - A^T B) (Corollary III.4)")
-      .def_readonly("cross_term_positive_definite", &Diagnostics::cross_term_positive_definite,
+      .def_property_readonly("cross_term_positive_definite", copied(&Diagnostics::cross_term_positive_definite),
                     "procrustes: A^T B + B^T A positive definite (thesis Theorem 3.2 (3))")
-      .def_readonly("tls_sigma_n", &Diagnostics::tls_sigma_n)
-      .def_readonly("tls_sigma_n1", &Diagnostics::tls_sigma_n1)
-      .def_readonly("tls_correction_norm", &Diagnostics::tls_correction_norm, "thesis eq. 4.33")
-      .def_readonly("tls_v22_min_singular_value", &Diagnostics::tls_v22_min_singular_value)
-      .def_readonly("noise_sigma", &Diagnostics::noise_sigma,
+      .def_property_readonly("tls_sigma_n", copied(&Diagnostics::tls_sigma_n))
+      .def_property_readonly("tls_sigma_n1", copied(&Diagnostics::tls_sigma_n1))
+      .def_property_readonly("tls_correction_norm", copied(&Diagnostics::tls_correction_norm), "thesis eq. 4.33")
+      .def_property_readonly("tls_v22_min_singular_value", copied(&Diagnostics::tls_v22_min_singular_value))
+      .def_property_readonly("noise_sigma", copied(&Diagnostics::noise_sigma),
                     "noise standard deviation in A under the TLS model (noise_ratio times it in B); "
                     "None when m == n")
-      .def_readonly("iterations", &Diagnostics::iterations, "spd-tls, psd-ls: iterations taken")
-      .def_readonly("gradient_norm", &Diagnostics::gradient_norm,
+      .def_property_readonly("iterations", copied(&Diagnostics::iterations), "spd-tls, psd-ls: iterations taken")
+      .def_property_readonly("gradient_norm", copied(&Diagnostics::gradient_norm),
                     "spd-tls: ||X^1/2 grad f X^1/2||_F; psd-ls: the relative KKT residual")
-      .def_readonly("converged", &Diagnostics::converged, "spd-tls, psd-ls: the stopping rule held")
-      .def_readonly("certificate", &Diagnostics::certificate, "psd-ls: the optimality certificate")
+      .def_property_readonly("converged", copied(&Diagnostics::converged), "spd-tls, psd-ls: the stopping rule held")
+      .def_property_readonly("certificate", copied(&Diagnostics::certificate), "psd-ls: the optimality certificate")
       .def_property_readonly(
           "chosen_method",
           [](const Diagnostics& d) -> std::optional<std::string> {
@@ -141,7 +141,7 @@ void bind_estimators(py::module_& m) {
             return std::string(to_string(*d.chosen_method));
           },
           "auto: the method it ran")
-      .def_readonly("reason", &Diagnostics::reason, "auto: why (code, text)")
+      .def_property_readonly("reason", copied(&Diagnostics::reason), "auto: why (code, text)")
       .def("__repr__", [](const Diagnostics& d) {
         std::ostringstream out;
         out << "Diagnostics(m=" << d.m << ", n=" << d.n << ", rank_a=" << d.rank_a << ", rank_b=" << d.rank_b
@@ -155,10 +155,10 @@ void bind_estimators(py::module_& m) {
       .def_property_readonly("ok", &FitResult::ok)
       .def_property_readonly("status", [](const FitResult& r) { return std::string(to_string(r.status)); },
                              "'success', 'numerical_failure', or 'not_computed' (no estimator filled it)")
-      .def_readonly("message", &FitResult::message, "why it failed ('' on success)")
-      .def_readonly("X", &FitResult::X, "the estimate (n x n ndarray; empty on failure)")
-      .def_readonly("diagnostics", &FitResult::diagnostics)
-      .def_readonly("warnings", &FitResult::warnings)
+      .def_property_readonly("message", copied(&FitResult::message), "why it failed ('' on success)")
+      .def_property_readonly("X", copied(&FitResult::X), "the estimate (n x n ndarray; empty on failure)")
+      .def_property_readonly("diagnostics", copied(&FitResult::diagnostics))
+      .def_property_readonly("warnings", copied(&FitResult::warnings))
       .def("__repr__", &repr);
 
   m.def(
@@ -206,10 +206,10 @@ void bind_estimators(py::module_& m) {
       py::arg("max_iter") = py::none(), py::arg("min_eig") = py::none());
 
   py::class_<NearestSpdResult>(m, "NearestSpdResult", "The nearest matrix and how far it moved.")
-      .def_readonly("X", &NearestSpdResult::X)
-      .def_readonly("distance", &NearestSpdResult::distance, "||X_in - X||_F")
-      .def_readonly("clipped", &NearestSpdResult::clipped, "eigenvalues raised to min_eig")
-      .def_readonly("min_eigenvalue_before", &NearestSpdResult::min_eigenvalue_before)
+      .def_property_readonly("X", copied(&NearestSpdResult::X))
+      .def_property_readonly("distance", copied(&NearestSpdResult::distance), "||X_in - X||_F")
+      .def_property_readonly("clipped", copied(&NearestSpdResult::clipped), "eigenvalues raised to min_eig")
+      .def_property_readonly("min_eigenvalue_before", copied(&NearestSpdResult::min_eigenvalue_before))
       .def("__repr__", [](const NearestSpdResult& r) {
         std::ostringstream out;
         out << "NearestSpdResult(distance=" << r.distance << ", clipped=" << r.clipped << ")\nX =\n" << r.X;

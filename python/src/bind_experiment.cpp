@@ -82,13 +82,13 @@ void bind_experiment(py::module_& parent) {
   m.attr("DEFAULTS") = defaults;
 
   py::class_<Summary>(m, "Summary")
-      .def_readonly("count", &Summary::count)
-      .def_readonly("failures", &Summary::failures)
-      .def_readonly("mean", &Summary::mean)
-      .def_readonly("std", &Summary::std)
-      .def_readonly("median", &Summary::median)
-      .def_readonly("min", &Summary::min)
-      .def_readonly("max", &Summary::max)
+      .def_property_readonly("count", copied(&Summary::count))
+      .def_property_readonly("failures", copied(&Summary::failures))
+      .def_property_readonly("mean", copied(&Summary::mean))
+      .def_property_readonly("std", copied(&Summary::std))
+      .def_property_readonly("median", copied(&Summary::median))
+      .def_property_readonly("min", copied(&Summary::min))
+      .def_property_readonly("max", copied(&Summary::max))
       .def_property_readonly("standard_error", &Summary::standard_error);
 
   py::class_<MethodErrors>(m, "MethodErrors")
@@ -96,29 +96,29 @@ void bind_experiment(py::module_& parent) {
       .def_property_readonly("errors", [](const MethodErrors& e) {
         return Eigen::Map<const Eigen::VectorXd>(e.errors.data(), static_cast<Eigen::Index>(e.errors.size())).eval();
       })
-      .def_readonly("summary", &MethodErrors::summary);
+      .def_property_readonly("summary", copied(&MethodErrors::summary));
 
   py::class_<ThesisExperimentResult>(m, "ThesisExperimentResult")
-      .def_readonly("trials", &ThesisExperimentResult::trials)
-      .def_readonly("seed", &ThesisExperimentResult::seed)
-      .def_readonly("methods", &ThesisExperimentResult::methods)
+      .def_property_readonly("trials", copied(&ThesisExperimentResult::trials))
+      .def_property_readonly("seed", copied(&ThesisExperimentResult::seed))
+      .def_property_readonly("methods", copied(&ThesisExperimentResult::methods))
       .def_property_readonly("truth", [](const ThesisExperimentResult& r) { return r.options.truth; });
 
   py::class_<EntryStatistics>(m, "EntryStatistics")
       .def_property_readonly("method", [](const EntryStatistics& s) { return method_name(s.method); })
-      .def_readonly("count", &EntryStatistics::count)
-      .def_readonly("failures", &EntryStatistics::failures)
-      .def_readonly("mae", &EntryStatistics::mae)
-      .def_readonly("std", &EntryStatistics::std)
-      .def_readonly("bias", &EntryStatistics::bias)
-      .def_readonly("errors", &EntryStatistics::errors);
+      .def_property_readonly("count", copied(&EntryStatistics::count))
+      .def_property_readonly("failures", copied(&EntryStatistics::failures))
+      .def_property_readonly("mae", copied(&EntryStatistics::mae))
+      .def_property_readonly("std", copied(&EntryStatistics::std))
+      .def_property_readonly("bias", copied(&EntryStatistics::bias))
+      .def_property_readonly("errors", copied(&EntryStatistics::errors));
 
   py::class_<EntryExperimentResult>(m, "EntryExperimentResult")
-      .def_readonly("trials", &EntryExperimentResult::trials)
-      .def_readonly("seed", &EntryExperimentResult::seed)
-      .def_readonly("truth", &EntryExperimentResult::truth)
-      .def_readonly("entries", &EntryExperimentResult::entries)
-      .def_readonly("methods", &EntryExperimentResult::methods);
+      .def_property_readonly("trials", copied(&EntryExperimentResult::trials))
+      .def_property_readonly("seed", copied(&EntryExperimentResult::seed))
+      .def_property_readonly("truth", copied(&EntryExperimentResult::truth))
+      .def_property_readonly("entries", copied(&EntryExperimentResult::entries))
+      .def_property_readonly("methods", copied(&EntryExperimentResult::methods));
 
   m.def(
       "thesis",

@@ -21,15 +21,15 @@ void bind_hexapod(py::module_& parent) {
   py::module_ m = parent.def_submodule("hexapod", "Hexapod model, simulation and identification.");
 
   py::class_<Geometry>(m, "Geometry", "A Stewart platform's geometry and masses (SI units).")
-      .def_readonly("base_points", &Geometry::base_points, "3 x 6, one column per strut, in {B} (m)")
-      .def_readonly("payload_points", &Geometry::payload_points, "3 x 6, in {P} (m)")
-      .def_readonly("payload_origin", &Geometry::payload_origin)
-      .def_readonly("payload_rotation", &Geometry::payload_rotation)
-      .def_readonly("payload_mass", &Geometry::payload_mass)
-      .def_readonly("payload_inertia", &Geometry::payload_inertia)
-      .def_readonly("strut_mass", &Geometry::strut_mass)
-      .def_readonly("strut_stiffness", &Geometry::strut_stiffness)
-      .def_readonly("strut_damping", &Geometry::strut_damping)
+      .def_property_readonly("base_points", copied(&Geometry::base_points), "3 x 6, one column per strut, in {B} (m)")
+      .def_property_readonly("payload_points", copied(&Geometry::payload_points), "3 x 6, in {P} (m)")
+      .def_property_readonly("payload_origin", copied(&Geometry::payload_origin))
+      .def_property_readonly("payload_rotation", copied(&Geometry::payload_rotation))
+      .def_property_readonly("payload_mass", copied(&Geometry::payload_mass))
+      .def_property_readonly("payload_inertia", copied(&Geometry::payload_inertia))
+      .def_property_readonly("strut_mass", copied(&Geometry::strut_mass))
+      .def_property_readonly("strut_stiffness", copied(&Geometry::strut_stiffness))
+      .def_property_readonly("strut_damping", copied(&Geometry::strut_damping))
       .def("to_json", &geometry_json, "The geometry in the geometry-file format (JSON text).");
 
   m.def("cubic_geometry", []() { return cubic_geometry(); },
@@ -38,23 +38,23 @@ void bind_hexapod(py::module_& parent) {
   m.def("parse_geometry", &parse_geometry, py::arg("text"), py::arg("source") = "<geometry>");
   m.def("joint_space_mass_matrix", &joint_space_mass_matrix, py::arg("geometry"));
   py::class_<ModelDescription>(m, "ModelDescription", "What hexapod::describe reports about a hexapod.")
-      .def_readonly("jacobian", &ModelDescription::jacobian)
-      .def_readonly("jacobian_condition", &ModelDescription::jacobian_condition)
-      .def_readonly("payload_mass_matrix", &ModelDescription::payload_mass_matrix)
-      .def_readonly("mass_matrix", &ModelDescription::mass_matrix)
-      .def_readonly("mass_matrix_eigenvalues", &ModelDescription::mass_matrix_eigenvalues)
-      .def_readonly("modes_hz", &ModelDescription::modes_hz)
-      .def_readonly("strut_lengths", &ModelDescription::strut_lengths)
-      .def_readonly("strut_directions", &ModelDescription::strut_directions);
+      .def_property_readonly("jacobian", copied(&ModelDescription::jacobian))
+      .def_property_readonly("jacobian_condition", copied(&ModelDescription::jacobian_condition))
+      .def_property_readonly("payload_mass_matrix", copied(&ModelDescription::payload_mass_matrix))
+      .def_property_readonly("mass_matrix", copied(&ModelDescription::mass_matrix))
+      .def_property_readonly("mass_matrix_eigenvalues", copied(&ModelDescription::mass_matrix_eigenvalues))
+      .def_property_readonly("modes_hz", copied(&ModelDescription::modes_hz))
+      .def_property_readonly("strut_lengths", copied(&ModelDescription::strut_lengths))
+      .def_property_readonly("strut_directions", copied(&ModelDescription::strut_directions));
   m.def("describe", &describe, py::arg("geometry"));
   m.def("thesis_mass_matrix", &thesis_mass_matrix, "M_p of thesis eq. 6.1.");
 
   py::class_<SimulationOptions>(m, "SimulationOptions",
                                 "The generator's settings; the defaults are the thesis' chapter-6 set-up.")
       .def(py::init<>())
-      .def_readonly("samples", &SimulationOptions::samples)
-      .def_readonly("noise_var", &SimulationOptions::noise_var)
-      .def_readonly("signal_var", &SimulationOptions::signal_var)
+      .def_property_readonly("samples", copied(&SimulationOptions::samples))
+      .def_property_readonly("noise_var", copied(&SimulationOptions::noise_var))
+      .def_property_readonly("signal_var", copied(&SimulationOptions::signal_var))
       .def_property_readonly("distribution",
                              [](const SimulationOptions& o) { return std::string(to_string(o.distribution)); });
 
@@ -79,10 +79,10 @@ void bind_hexapod(py::module_& parent) {
       py::arg("signal_var"), py::arg("distribution"), py::arg("seed"));
 
   py::class_<MethodIdentification>(m, "MethodIdentification")
-      .def_readonly("result", &MethodIdentification::result)
-      .def_readonly("eigenvalues", &MethodIdentification::eigenvalues)
-      .def_readonly("modes_hz", &MethodIdentification::modes_hz)
-      .def_readonly("error_vs_truth", &MethodIdentification::error_vs_truth);
+      .def_property_readonly("result", copied(&MethodIdentification::result))
+      .def_property_readonly("eigenvalues", copied(&MethodIdentification::eigenvalues))
+      .def_property_readonly("modes_hz", copied(&MethodIdentification::modes_hz))
+      .def_property_readonly("error_vs_truth", copied(&MethodIdentification::error_vs_truth));
   m.def(
       "identify",
       [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, std::optional<Eigen::MatrixXd> truth,

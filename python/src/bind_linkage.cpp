@@ -26,55 +26,55 @@ void bind_linkage(py::module_& parent) {
   py::class_<FourBar>(m, "FourBar", "Link lengths: a1 ground, a2 input, a3 coupler, a4 output.")
       .def(py::init([](double a1, double a2, double a3, double a4) { return FourBar{a1, a2, a3, a4}; }),
            py::arg("a1"), py::arg("a2"), py::arg("a3"), py::arg("a4"))
-      .def_readonly("a1", &FourBar::a1)
-      .def_readonly("a2", &FourBar::a2)
-      .def_readonly("a3", &FourBar::a3)
-      .def_readonly("a4", &FourBar::a4)
+      .def_property_readonly("a1", copied(&FourBar::a1))
+      .def_property_readonly("a2", copied(&FourBar::a2))
+      .def_property_readonly("a3", copied(&FourBar::a3))
+      .def_property_readonly("a4", copied(&FourBar::a4))
       .def("__repr__", [](const FourBar& b) {
         std::ostringstream out;
         out << "FourBar(a1=" << b.a1 << ", a2=" << b.a2 << ", a3=" << b.a3 << ", a4=" << b.a4 << ")";
         return out.str();
       });
 
-  py::class_<AngleRange>(m, "AngleRange").def_readonly("min", &AngleRange::min).def_readonly("max", &AngleRange::max);
-  py::class_<DialZeros>(m, "DialZeros").def_readonly("alpha", &DialZeros::alpha).def_readonly("beta", &DialZeros::beta);
+  py::class_<AngleRange>(m, "AngleRange").def_property_readonly("min", copied(&AngleRange::min)).def_property_readonly("max", copied(&AngleRange::max));
+  py::class_<DialZeros>(m, "DialZeros").def_property_readonly("alpha", copied(&DialZeros::alpha)).def_property_readonly("beta", copied(&DialZeros::beta));
 
   py::class_<MotionCheck>(m, "MotionCheck")
       .def_property_readonly("grashof", [](const MotionCheck& c) { return std::string(to_string(c.grashof)); })
-      .def_readonly("transmission", &MotionCheck::transmission)
-      .def_readonly("dead_points", &MotionCheck::dead_points)
-      .def_readonly("branch_defect", &MotionCheck::branch_defect)
-      .def_readonly("branch_defect_reason", &MotionCheck::branch_defect_reason);
+      .def_property_readonly("transmission", copied(&MotionCheck::transmission))
+      .def_property_readonly("dead_points", copied(&MotionCheck::dead_points))
+      .def_property_readonly("branch_defect", copied(&MotionCheck::branch_defect))
+      .def_property_readonly("branch_defect_reason", copied(&MotionCheck::branch_defect_reason));
 
   py::class_<LinkageSolution>(m, "LinkageSolution")
-      .def_readonly("k", &LinkageSolution::k)
-      .def_readonly("dial_zeros", &LinkageSolution::dial_zeros)
-      .def_readonly("lengths", &LinkageSolution::lengths)
-      .def_readonly("no_linkage_reason", &LinkageSolution::no_linkage_reason)
-      .def_readonly("design_error_norm", &LinkageSolution::design_error_norm)
-      .def_readonly("structural_error_rms", &LinkageSolution::structural_error_rms)
-      .def_readonly("structural_error_max", &LinkageSolution::structural_error_max)
-      .def_readonly("phi_generated", &LinkageSolution::phi_generated)
-      .def_readonly("iterations", &LinkageSolution::iterations)
-      .def_readonly("final_step_norm", &LinkageSolution::final_step_norm)
-      .def_readonly("check", &LinkageSolution::check);
+      .def_property_readonly("k", copied(&LinkageSolution::k))
+      .def_property_readonly("dial_zeros", copied(&LinkageSolution::dial_zeros))
+      .def_property_readonly("lengths", copied(&LinkageSolution::lengths))
+      .def_property_readonly("no_linkage_reason", copied(&LinkageSolution::no_linkage_reason))
+      .def_property_readonly("design_error_norm", copied(&LinkageSolution::design_error_norm))
+      .def_property_readonly("structural_error_rms", copied(&LinkageSolution::structural_error_rms))
+      .def_property_readonly("structural_error_max", copied(&LinkageSolution::structural_error_max))
+      .def_property_readonly("phi_generated", copied(&LinkageSolution::phi_generated))
+      .def_property_readonly("iterations", copied(&LinkageSolution::iterations))
+      .def_property_readonly("final_step_norm", copied(&LinkageSolution::final_step_norm))
+      .def_property_readonly("check", copied(&LinkageSolution::check));
 
   py::class_<SynthesisResult>(m, "SynthesisResult")
       .def_property_readonly("ok", &SynthesisResult::ok)
       .def_property_readonly("status", [](const SynthesisResult& r) { return std::string(to_string(r.status)); })
-      .def_readonly("message", &SynthesisResult::message)
-      .def_readonly("positions", &SynthesisResult::positions)
-      .def_readonly("precision_point", &SynthesisResult::precision_point)
-      .def_readonly("dial_zeros_fitted", &SynthesisResult::dial_zeros_fitted)
-      .def_readonly("branch", &SynthesisResult::branch)
-      .def_readonly("rank", &SynthesisResult::rank)
-      .def_readonly("condition_number", &SynthesisResult::condition_number)
-      .def_readonly("used_svd", &SynthesisResult::used_svd)
-      .def_readonly("psi", &SynthesisResult::psi)
-      .def_readonly("phi", &SynthesisResult::phi)
-      .def_readonly("design", &SynthesisResult::design)
-      .def_readonly("structural", &SynthesisResult::structural)
-      .def_readonly("warnings", &SynthesisResult::warnings);
+      .def_property_readonly("message", copied(&SynthesisResult::message))
+      .def_property_readonly("positions", copied(&SynthesisResult::positions))
+      .def_property_readonly("precision_point", copied(&SynthesisResult::precision_point))
+      .def_property_readonly("dial_zeros_fitted", copied(&SynthesisResult::dial_zeros_fitted))
+      .def_property_readonly("branch", copied(&SynthesisResult::branch))
+      .def_property_readonly("rank", copied(&SynthesisResult::rank))
+      .def_property_readonly("condition_number", copied(&SynthesisResult::condition_number))
+      .def_property_readonly("used_svd", copied(&SynthesisResult::used_svd))
+      .def_property_readonly("psi", copied(&SynthesisResult::psi))
+      .def_property_readonly("phi", copied(&SynthesisResult::phi))
+      .def_property_readonly("design", copied(&SynthesisResult::design))
+      .def_property_readonly("structural", copied(&SynthesisResult::structural))
+      .def_property_readonly("warnings", copied(&SynthesisResult::warnings));
 
   py::class_<GaussNewtonOptions>(m, "GaussNewtonOptions",
                                  "Gauss-Newton on the structural error; the defaults are the library's.")
@@ -127,18 +127,18 @@ void bind_linkage(py::module_& parent) {
   m.def("grashof_type", [](const FourBar& bar) { return std::string(to_string(grashof_type(bar))); });
 
   py::class_<AnalysisSample>(m, "AnalysisSample")
-      .def_readonly("psi", &AnalysisSample::psi)
-      .def_readonly("phi_plus", &AnalysisSample::phi_plus)
-      .def_readonly("phi_minus", &AnalysisSample::phi_minus)
-      .def_readonly("transmission_angle", &AnalysisSample::transmission_angle);
+      .def_property_readonly("psi", copied(&AnalysisSample::psi))
+      .def_property_readonly("phi_plus", copied(&AnalysisSample::phi_plus))
+      .def_property_readonly("phi_minus", copied(&AnalysisSample::phi_minus))
+      .def_property_readonly("transmission_angle", copied(&AnalysisSample::transmission_angle));
   py::class_<Analysis>(m, "Analysis")
-      .def_readonly("bar", &Analysis::bar)
-      .def_readonly("k", &Analysis::k)
+      .def_property_readonly("bar", copied(&Analysis::bar))
+      .def_property_readonly("k", copied(&Analysis::k))
       .def_property_readonly("grashof", [](const Analysis& a) { return std::string(to_string(a.grashof)); })
-      .def_readonly("input_fully_rotates", &Analysis::input_fully_rotates)
-      .def_readonly("dead_points", &Analysis::dead_points)
-      .def_readonly("samples", &Analysis::samples)
-      .def_readonly("transmission", &Analysis::transmission);
+      .def_property_readonly("input_fully_rotates", copied(&Analysis::input_fully_rotates))
+      .def_property_readonly("dead_points", copied(&Analysis::dead_points))
+      .def_property_readonly("samples", copied(&Analysis::samples))
+      .def_property_readonly("transmission", copied(&Analysis::transmission));
   m.def("analyze", &analyze, py::arg("bar"), py::arg("psi"), py::call_guard<py::gil_scoped_release>());
 }
 

@@ -5,6 +5,14 @@
 
 namespace spdfit::python {
 
+/// The getter of a read-only attribute: a copy of the member, so that an Eigen member becomes a
+/// NumPy array the caller owns and may write to (as NumPy's own results are), not pybind11's
+/// read-only view into the C++ object (def_readonly).
+template <typename Class, typename Member>
+auto copied(Member Class::*member) {
+  return [member](const Class& object) -> Member { return object.*member; };
+}
+
 void bind_estimators(pybind11::module_& m);
 void bind_io(pybind11::module_& m);
 void bind_linear_system(pybind11::module_& m);

@@ -1,4 +1,5 @@
-"""pathlib.Path (any os.PathLike) is accepted wherever the module takes a file name (issue 18)."""
+"""pathlib.Path (any os.PathLike) is accepted wherever the module takes a file name, and result
+arrays are writable copies (issue 18)."""
 import pathlib
 
 import numpy as np
@@ -22,3 +23,18 @@ def test_readers_and_writer_take_paths(tmp_path):
 def test_fit_files_takes_paths():
     a, b = ROOT / "examples" / "paper_2x2" / "A.csv", ROOT / "examples" / "paper_2x2" / "B.csv"
     assert np.array_equal(spdfit.fit_files(a, b, "spde").X, spdfit.fit_files(str(a), str(b), "spde").X)
+
+
+def test_result_arrays_are_writable_copies():
+    """Arrays in results are the caller's, as NumPy's are: writable, and writing to one leaves the
+    result unchanged (issue 18)."""
+    A = spdfit.read_matrix(ROOT / "examples" / "paper_2x2" / "A.csv")
+    B = spdfit.read_matrix(ROOT / "examples" / "paper_2x2" / "B.csv")
+    r = spdfit.fit(A, B, "spde")
+    X = r.X
+    assert X.flags.writeable and r.diagnostics.singular_values_a.flags.writeable
+    before = X[0, 0]
+    X[0, 0] = before + 1.0
+    assert r.X[0, 0] == before
+    assert spdfit.solve(A, B).solution.flags.writeable
+    assert spdfit.nearest_spd(np.eye(2), full_output=True).X.flags.writeable
