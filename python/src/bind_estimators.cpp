@@ -56,6 +56,67 @@ FitOptions options_from(const std::optional<double>& rank_tolerance, const std::
   return options;
 }
 
+// Pickling (so that multiprocessing and joblib can return results): each class's state is a
+// tuple of its fields; a state of the wrong length is refused with a message.
+void check_state(const py::tuple& state, std::size_t size, const char* what) {
+  if (state.size() != size) {
+    throw std::runtime_error(std::string("cannot unpickle ") + what + ": expected " + std::to_string(size) +
+                             " fields, got " + std::to_string(state.size()));
+  }
+}
+
+Status status_from(const std::string& name) {
+  for (Status s : {Status::NotComputed, Status::Success, Status::NumericalFailure}) {
+    if (name == to_string(s)) return s;
+  }
+  throw std::runtime_error("cannot unpickle FitResult: unknown status '" + name + "'");
+}
+
+py::tuple diagnostics_state(const Diagnostics& d) {
+  std::optional<std::string> chosen;
+  if (d.chosen_method) chosen = std::string(to_string(*d.chosen_method));
+  return py::make_tuple(d.m, d.n, d.rank_a, d.rank_b, d.cond_a, d.cond_b, d.singular_values_a, d.singular_values_b,
+                        d.residual_norm, d.symmetric, d.min_eigenvalue, d.max_eigenvalue, d.positive_definite,
+                        d.positive_semidefinite, d.area_criterion, d.area_criterion_minimum,
+                        d.cross_term_positive_definite, d.tls_sigma_n, d.tls_sigma_n1, d.tls_correction_norm,
+                        d.tls_v22_min_singular_value, d.noise_sigma, d.iterations, d.gradient_norm, d.converged,
+                        d.certificate, chosen, d.reason);
+}
+
+Diagnostics diagnostics_from(const py::tuple& t) {
+  check_state(t, 28, "Diagnostics");
+  Diagnostics d;
+  d.m = t[0].cast<Eigen::Index>();
+  d.n = t[1].cast<Eigen::Index>();
+  d.rank_a = t[2].cast<Eigen::Index>();
+  d.rank_b = t[3].cast<Eigen::Index>();
+  d.cond_a = t[4].cast<double>();
+  d.cond_b = t[5].cast<double>();
+  d.singular_values_a = t[6].cast<Eigen::VectorXd>();
+  d.singular_values_b = t[7].cast<Eigen::VectorXd>();
+  d.residual_norm = t[8].cast<double>();
+  d.symmetric = t[9].cast<bool>();
+  d.min_eigenvalue = t[10].cast<std::optional<double>>();
+  d.max_eigenvalue = t[11].cast<std::optional<double>>();
+  d.positive_definite = t[12].cast<bool>();
+  d.positive_semidefinite = t[13].cast<bool>();
+  d.area_criterion = t[14].cast<std::optional<double>>();
+  d.area_criterion_minimum = t[15].cast<std::optional<double>>();
+  d.cross_term_positive_definite = t[16].cast<std::optional<bool>>();
+  d.tls_sigma_n = t[17].cast<std::optional<double>>();
+  d.tls_sigma_n1 = t[18].cast<std::optional<double>>();
+  d.tls_correction_norm = t[19].cast<std::optional<double>>();
+  d.tls_v22_min_singular_value = t[20].cast<std::optional<double>>();
+  d.noise_sigma = t[21].cast<std::optional<double>>();
+  d.iterations = t[22].cast<std::optional<int>>();
+  d.gradient_norm = t[23].cast<std::optional<double>>();
+  d.converged = t[24].cast<std::optional<bool>>();
+  d.certificate = t[25].cast<std::optional<PsdCertificate>>();
+  if (auto chosen = t[26].cast<std::optional<std::string>>()) d.chosen_method = method_from(*chosen);
+  d.reason = t[27].cast<std::optional<AutoReason>>();
+  return d;
+}
+
 std::string repr(const FitResult& r) {
   std::ostringstream out;
   out << "FitResult(method='" << to_string(r.method) << "', ";
@@ -87,6 +148,14 @@ void bind_estimators(py::module_& m) {
       .def_property_readonly("complementarity", copied(&PsdCertificate::complementarity), "<X - min_eig I, S>")
       .def_property_readonly("duality_gap", copied(&PsdCertificate::duality_gap),
                     "|complementarity| / (||A^T A||_2 ||X||_F + ||A^T B||_F)")
+      .def(py::pickle(
+          [](const PsdCertificate& c) {
+            return py::make_tuple(c.primal_min_eig, c.dual_min_eig, c.complementarity, c.duality_gap);
+          },
+          [](const py::tuple& t) {
+            check_state(t, 4, "PsdCertificate");
+            return PsdCertificate{t[0].cast<double>(), t[1].cast<double>(), t[2].cast<double>(), t[3].cast<double>()};
+          }))
       .def("__repr__", [](const PsdCertificate& c) {
         std::ostringstream out;
         out << "PsdCertificate(primal_min_eig=" << c.primal_min_eig << ", dual_min_eig=" << c.dual_min_eig
@@ -96,6 +165,11 @@ void bind_estimators(py::module_& m) {
   py::class_<AutoReason>(m, "AutoReason", "Why auto chose its method: a stable code and a sentence.")
       .def_property_readonly("code", copied(&AutoReason::code))
       .def_property_readonly("text", copied(&AutoReason::text))
+      .def(py::pickle([](const AutoReason& r) { return py::make_tuple(r.code, r.text); },
+                      [](const py::tuple& t) {
+                        check_state(t, 2, "AutoReason");
+                        return AutoReason{t[0].cast<std::string>(), t[1].cast<std::string>()};
+                      }))
       .def("__repr__", [](const AutoReason& r) { return "AutoReason(code='" + r.code + "', text='" + r.text + "')"; });
 
   py::class_<Diagnostics>(m, "Diagnostics",
@@ -142,6 +216,7 @@ void bind_estimators(py::module_& m) {
           },
           "auto: the method it ran")
       .def_property_readonly("reason", copied(&Diagnostics::reason), "auto: why (code, text)")
+      .def(py::pickle(&diagnostics_state, &diagnostics_from))
       .def("__repr__", [](const Diagnostics& d) {
         std::ostringstream out;
         out << "Diagnostics(m=" << d.m << ", n=" << d.n << ", rank_a=" << d.rank_a << ", rank_b=" << d.rank_b
@@ -159,6 +234,22 @@ void bind_estimators(py::module_& m) {
       .def_property_readonly("X", copied(&FitResult::X), "the estimate (n x n ndarray; empty on failure)")
       .def_property_readonly("diagnostics", copied(&FitResult::diagnostics))
       .def_property_readonly("warnings", copied(&FitResult::warnings))
+      .def(py::pickle(
+          [](const FitResult& r) {
+            return py::make_tuple(std::string(to_string(r.method)), std::string(to_string(r.status)), r.message, r.X,
+                                  r.diagnostics, r.warnings);
+          },
+          [](const py::tuple& t) {
+            check_state(t, 6, "FitResult");
+            FitResult r;
+            r.method = method_from(t[0].cast<std::string>());
+            r.status = status_from(t[1].cast<std::string>());
+            r.message = t[2].cast<std::string>();
+            r.X = t[3].cast<Eigen::MatrixXd>();
+            r.diagnostics = t[4].cast<Diagnostics>();
+            r.warnings = t[5].cast<std::vector<std::string>>();
+            return r;
+          }))
       .def("__repr__", &repr);
 
   m.def(
