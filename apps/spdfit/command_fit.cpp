@@ -77,24 +77,17 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
     const Method method = *parse_method(options->method);
     FitOptions fit_options;
     fit_options.rank_tolerance = options->rank_tolerance;
-    if (options->noise_ratio) {
-      if (!uses_noise_ratio(method)) {
-        throw UsageError("--noise-ratio applies to the total least-squares methods (tls, tls-sym, tls-psd, "
-                         "spd-tls) and auto, not to " + options->method);
-      }
-      fit_options.noise_ratio = *options->noise_ratio;
-    }
-    if (options->max_iterations) {
-      if (!uses_max_iterations(method)) {
-        throw UsageError("--max-iter applies to the iterative methods (spd-tls, psd-ls, auto), not to " +
-                         options->method);
-      }
-      fit_options.max_iterations = *options->max_iterations;
-    }
-    if (options->min_eig) {
-      if (!uses_min_eig(method)) throw UsageError("--min-eig applies to psd-ls, not to " + options->method);
-      fit_options.min_eig = *options->min_eig;
-    }
+    // Each of these options applies to some methods only: a usage error with the others.
+    auto check = [&](bool given, MethodOption option, const char* spelling) {
+      if (!given) return;
+      if (const auto why = misplaced_option(option, method, spelling)) throw UsageError(*why);
+    };
+    check(options->noise_ratio.has_value(), MethodOption::NoiseRatio, "--noise-ratio");
+    check(options->max_iterations.has_value(), MethodOption::MaxIterations, "--max-iter");
+    check(options->min_eig.has_value(), MethodOption::MinEig, "--min-eig");
+    fit_options.noise_ratio = options->noise_ratio.value_or(fit_options.noise_ratio);
+    fit_options.max_iterations = options->max_iterations.value_or(fit_options.max_iterations);
+    fit_options.min_eig = options->min_eig.value_or(fit_options.min_eig);
     const std::optional<StreamOptions> stream =
         options->stream ? std::optional<StreamOptions>(options->stream_options) : std::nullopt;
     const FitResult result =

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <optional>
+#include <string>
 #include <string_view>
 
 namespace spdfit {
@@ -20,26 +21,30 @@ enum class Method {
   Auto,                        ///< "auto": spde, spd-tls or psd-ls, chosen from the data (auto.hpp)
 };
 
-/// Every estimator, in the order reports list them (auto, which runs one of them, is not listed).
-inline constexpr std::array<Method, 8> kAllMethods = {
-    Method::LeastSquares,         Method::SymmetricProcrustes,
-    Method::TotalLeastSquares,    Method::TotalLeastSquaresSymmetric,
-    Method::TotalLeastSquaresPsd, Method::Spde,
-    Method::SpdTotalLeastSquares, Method::PsdLeastSquares};
-
-/// Every value a method option accepts: the estimators, then auto.
-inline constexpr std::array<Method, 9> kSelectableMethods = {
-    Method::LeastSquares,         Method::SymmetricProcrustes,
-    Method::TotalLeastSquares,    Method::TotalLeastSquaresSymmetric,
-    Method::TotalLeastSquaresPsd, Method::Spde,
-    Method::SpdTotalLeastSquares, Method::PsdLeastSquares,
-    Method::Auto};
-
 /// The six estimators of the source documents (the thesis' comparison), in report order.
 inline constexpr std::array<Method, 6> kSeedMethods = {
     Method::LeastSquares,         Method::SymmetricProcrustes,
     Method::TotalLeastSquares,    Method::TotalLeastSquaresSymmetric,
     Method::TotalLeastSquaresPsd, Method::Spde};
+
+namespace detail {
+template <std::size_t N, std::size_t K>
+constexpr std::array<Method, N + K> append(const std::array<Method, N>& head, const std::array<Method, K>& tail) {
+  std::array<Method, N + K> out{};
+  for (std::size_t i = 0; i < N; ++i) out[i] = head[i];
+  for (std::size_t i = 0; i < K; ++i) out[N + i] = tail[i];
+  return out;
+}
+}  // namespace detail
+
+/// Every estimator, in the order reports list them: the seed methods, then spd-tls and psd-ls
+/// (auto, which runs one of them, is not listed).
+inline constexpr std::array<Method, 8> kAllMethods =
+    detail::append(kSeedMethods, std::array<Method, 2>{Method::SpdTotalLeastSquares, Method::PsdLeastSquares});
+
+/// Every value a method option accepts: the estimators, then auto.
+inline constexpr std::array<Method, 9> kSelectableMethods =
+    detail::append(kAllMethods, std::array<Method, 1>{Method::Auto});
 
 /// The method's command-line name: "ls", "procrustes", "tls", "tls-sym", "tls-psd", "spde",
 /// "spd-tls", "psd-ls" or "auto".
@@ -82,6 +87,42 @@ constexpr bool uses_max_iterations(Method method) {
 
 /// Whether the method takes the eigenvalue floor FitOptions::min_eig: psd-ls.
 constexpr bool uses_min_eig(Method method) { return method == Method::PsdLeastSquares; }
+
+/// The options of FitOptions that apply to some methods only.
+enum class MethodOption {
+  NoiseRatio,     ///< noise_ratio: uses_noise_ratio
+  MaxIterations,  ///< max_iterations: uses_max_iterations
+  MinEig,         ///< min_eig: uses_min_eig
+};
+
+/// Whether `option` applies to `method`.
+constexpr bool applies(MethodOption option, Method method) {
+  switch (option) {
+    case MethodOption::NoiseRatio:
+      return uses_noise_ratio(method);
+    case MethodOption::MaxIterations:
+      return uses_max_iterations(method);
+    case MethodOption::MinEig:
+      return uses_min_eig(method);
+  }
+  return false;
+}
+
+/// The message for `option`, spelled as the caller spells it ("--noise-ratio" on the command
+/// line, "noise_ratio" in Python), given with a method it does not apply to; it names the
+/// methods it applies to. Nothing when it applies.
+inline std::optional<std::string> misplaced_option(MethodOption option, Method method, std::string_view spelling) {
+  if (applies(option, method)) return std::nullopt;
+  std::string names;
+  for (Method m : kSelectableMethods) {
+    if (applies(option, m)) names += (names.empty() ? "" : ", ") + std::string(to_string(m));
+  }
+  const char* kind = option == MethodOption::NoiseRatio      ? "the total least-squares methods and auto ("
+                     : option == MethodOption::MaxIterations ? "the iterative methods ("
+                                                             : "";
+  return std::string(spelling) + " applies to " + kind + names + (*kind ? ")" : "") + ", not to " +
+         std::string(to_string(method));
+}
 
 /// The method with the given command-line name, or nothing if there is none.
 constexpr std::optional<Method> parse_method(std::string_view name) {

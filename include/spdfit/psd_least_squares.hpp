@@ -16,8 +16,8 @@ namespace spdfit {
 /// Method: from the triangular factor (never A^T A), in the eigenbasis of R11^T R11, where the
 /// objective is a diagonal quadratic over the semidefinite cone: symmetric Procrustes if
 /// feasible; else spectral projected gradient (Barzilai-Borwein steps with a non-monotone
-/// safeguard), preconditioned by a diagonal congruence, with an exact solve on the face of the cone each iterate identifies
-/// after every step. It stops when the relative KKT residual
+/// safeguard), preconditioned by a diagonal congruence, and, once the iterates' rank settles, an
+/// exact solve on the face of the cone they identify. It stops when the relative KKT residual
 ///
 ///     ||Y - P(Y - S / ||A^T A||_2)||_F ||A^T A||_2 / (||A^T A||_2 ||X||_F + ||A^T B||_F) <= 1e-12,
 ///

@@ -18,6 +18,7 @@ certificate) and "auto" (spde, spd-tls or psd-ls, chosen from the data; fit's de
 Householder QR of [A B], not from Gram matrices. Numerical failures raise NumericalError; bad
 input raises ValueError (DataError for files); warnings are SpdfitWarning.
 """
+import numbers as _numbers
 import os as _os
 import warnings as _warnings
 
@@ -72,16 +73,15 @@ def _options(method=None, **values):
     """The fit options checked for type: a short TypeError naming the argument (instead of
     pybind11's listing of every signature); None means the library's default. Returns them in
     the order given."""
-    import numbers
     if method is not None and not isinstance(method, str):
         raise TypeError(f"method must be a str (one of {', '.join(METHODS)}), got {type(method).__name__}")
     for name, value in values.items():
         if value is None:
             continue
         if name == "max_iter":
-            if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+            if isinstance(value, bool) or not isinstance(value, _numbers.Integral):
                 raise TypeError(f"max_iter must be an int, got {type(value).__name__}")
-        elif isinstance(value, bool) or not isinstance(value, numbers.Real):
+        elif isinstance(value, bool) or not isinstance(value, _numbers.Real):
             raise TypeError(f"{name} must be a real number, got {type(value).__name__}")
     return tuple(None if v is None else (int(v) if k == "max_iter" else float(v)) for k, v in values.items())
 

@@ -33,24 +33,17 @@ FitOptions options_from(const std::optional<double>& rank_tolerance, const std::
                         const std::optional<double>& min_eig = {}) {
   FitOptions options;
   if (rank_tolerance) options.rank_tolerance = *rank_tolerance;
-  const std::string name = method ? std::string(to_string(*method)) : std::string();
-  if (noise_ratio) {
-    if (method && !uses_noise_ratio(*method)) {
-      throw std::invalid_argument("noise_ratio applies to the total least-squares methods (tls, tls-sym, "
-                                  "tls-psd, spd-tls) and auto, not to " + name);
-    }
-    options.noise_ratio = *noise_ratio;
-  }
-  if (max_iter) {
-    if (method && !uses_max_iterations(*method)) {
-      throw std::invalid_argument("max_iter applies to the iterative methods (spd-tls, psd-ls, auto), not to " + name);
-    }
-    options.max_iterations = *max_iter;
-  }
-  if (min_eig) {
-    if (method && !uses_min_eig(*method)) throw std::invalid_argument("min_eig applies to psd-ls, not to " + name);
-    options.min_eig = *min_eig;
-  }
+  // Each of these options applies to some methods only: a ValueError with the others.
+  auto check = [&](bool given, MethodOption option, const char* spelling) {
+    if (!given || !method) return;
+    if (const auto why = misplaced_option(option, *method, spelling)) throw std::invalid_argument(*why);
+  };
+  check(noise_ratio.has_value(), MethodOption::NoiseRatio, "noise_ratio");
+  check(max_iter.has_value(), MethodOption::MaxIterations, "max_iter");
+  check(min_eig.has_value(), MethodOption::MinEig, "min_eig");
+  options.noise_ratio = noise_ratio.value_or(options.noise_ratio);
+  options.max_iterations = max_iter.value_or(options.max_iterations);
+  options.min_eig = min_eig.value_or(options.min_eig);
   std::string error;
   if (!options.is_valid(&error)) throw std::invalid_argument(error);
   return options;

@@ -8,8 +8,7 @@
 #include "estimators/diagnostics.hpp"
 #include "estimators/kernels.hpp"
 #include "estimators/psd_ls_kernel.hpp"
-#include <Eigen/Eigenvalues>
-#include "spdfit/psd_least_squares.hpp"
+#include "numerics/linalg.hpp"
 #include "spdfit/spd_total_least_squares.hpp"
 #include "spdfit/spde.hpp"
 
@@ -51,14 +50,14 @@ AutoChoice auto_choice(const BasicReduction<MaxN>& data, std::optional<double> n
   } else if (noise_var) {
     choice.snr = std::numeric_limits<double>::infinity();  // noise-free: every method agrees
   }
-  const bool enough = extra >= kMinExtraRowsPerColumn * static_cast<double>(n) && std::isfinite(choice.snr)
-                          ? extra * choice.snr >= kMinEvidence
-                          : extra >= kMinExtraRowsPerColumn * static_cast<double>(n) && choice.snr > 0.0;
   if (choice.snr >= kNoiseFreeSnr) {
     choice.method = Method::Spde;
     choice.code = "noise_free";
     return choice;
   }
+  // An unknown snr (NaN: m <= n) fails the comparison: spde.
+  const bool enough =
+      extra >= kMinExtraRowsPerColumn * static_cast<double>(n) && extra * choice.snr >= kMinEvidence;
   choice.method = enough ? Method::SpdTotalLeastSquares : Method::Spde;
   choice.code = enough ? "many_samples" : "few_samples";
   return choice;
@@ -67,9 +66,8 @@ AutoChoice auto_choice(const BasicReduction<MaxN>& data, std::optional<double> n
 template <typename Matrix>
 bool clearly_positive_definite(const Matrix& X) {
   if (X.size() == 0 || !X.allFinite()) return false;
-  Eigen::SelfAdjointEigenSolver<Matrix> eig(X, Eigen::EigenvaluesOnly);
-  if (eig.info() != Eigen::Success) return false;
-  const auto& w = eig.eigenvalues();
+  Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, Matrix::MaxRowsAtCompileTime, 1> w;
+  if (!symmetric_eigen(X, w)) return false;
   return w(0) > kDefiniteMargin * static_cast<double>(X.rows()) * std::numeric_limits<double>::epsilon() *
                     w(w.size() - 1);
 }

@@ -46,6 +46,22 @@ void reduce_into(const typename BasicReduction<MaxN>::Factor& R, Eigen::Index m,
 template <int MaxN>
 void least_squares_kernel(const BasicReduction<MaxN>& data, SquareMatrix<MaxN>& X_s);
 
+/// Higham's closed form in the eigenbasis of R11^T R11 = V diag(s^2) V^T: the symmetric Xt
+/// minimizing ||diag(s) Xt - C||_F, Xt_ij = (s_i C_ij + s_j C_ji) / (s_i^2 + s_j^2), and 0 where
+/// s_i = s_j = 0 (free entries: the minimum-norm choice). Exactly symmetric.
+template <typename Matrix, typename Vector>
+void procrustes_eigenbasis(const Vector& s, const Matrix& C, Matrix& Xt) {
+  const Eigen::Index n = s.size();
+  Xt.resize(n, n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    for (Eigen::Index i = j; i < n; ++i) {
+      const double denominator = s(i) * s(i) + s(j) * s(j);
+      Xt(i, j) = denominator > 0.0 ? (s(i) * C(i, j) + s(j) * C(j, i)) / denominator : 0.0;
+      Xt(j, i) = Xt(i, j);
+    }
+  }
+}
+
 /// Symmetric Procrustes (Higham's closed form) in scaled units, exactly symmetric.
 template <int MaxN>
 void procrustes_kernel(const BasicReduction<MaxN>& data, SquareMatrix<MaxN>& X_s);

@@ -30,7 +30,8 @@ struct Problem {
   using Matrix = SquareMatrix<MaxN>;
   using Vector = typename BasicReduction<MaxN>::Vector;
   Index n = 0;
-  Vector h;           // curvature of the diagonal, descending
+  Vector s;           // singular values of R11 (those under the rank cut-off edited to 0)
+  Vector h;           // s^2: curvature of the diagonal, descending
   Matrix c, G;        // see above
   double h_max = 0.0;
   double scale = 0.0;  // ||R11^T R12||_F, the data part of the KKT residual's denominator
@@ -38,13 +39,14 @@ struct Problem {
 };
 
 // The positive semidefinite part of the symmetric M (eigenvalues clipped at 0), its number of
-// positive eigenvalues, and their eigenvectors (columns of `range`). False when the eigensolver
-// fails.
+// positive eigenvalues, their eigenvectors (columns of `range`) and all of M's eigenvalues,
+// ascending (`eigenvalues`). False when the eigensolver fails.
 template <int MaxN>
 bool project(const SquareMatrix<MaxN>& M, SquareMatrix<MaxN>& out, SquareMatrix<MaxN>* range = nullptr,
-             Index* rank = nullptr) {
+             Index* rank = nullptr, typename BasicReduction<MaxN>::Vector* eigenvalues = nullptr) {
   using Matrix = SquareMatrix<MaxN>;
-  typename BasicReduction<MaxN>::Vector w;
+  typename BasicReduction<MaxN>::Vector local;
+  auto& w = eigenvalues ? *eigenvalues : local;
   Matrix V;
   if (!symmetric_eigen(M, w, &V)) return false;
   const Index n = M.rows();
@@ -79,9 +81,10 @@ double kkt_residual(const Problem<MaxN>& p, const SquareMatrix<MaxN>& Yt) {
 
 // The minimizer over the face {U Z U^T : Z symmetric} of the cone, U an orthonormal basis of the
 // range of the iterate: (H_U Z + Z H_U) / 2 = U^T G U with H_U = U^T diag(h) U, solved in the
-// eigenbasis of H_U (directions without curvature get 0, the minimum-norm choice). Returns the
-// candidate Yt = U Z+ U^T with Z's rounding-level negative eigenvalues clipped, or false when Z
-// is clearly indefinite (the face is too large) or an eigensolver fails.
+// eigenbasis of H_U, from the SVD of diag(s) U (directions without curvature get 0, the
+// minimum-norm choice). Returns the candidate Yt = U Z+ U^T with Z's rounding-level negative
+// eigenvalues clipped, or false when Z is clearly indefinite (the face is too large) or an
+// eigensolver fails.
 template <int MaxN>
 bool face_solve(const Problem<MaxN>& p, const SquareMatrix<MaxN>& U, SquareMatrix<MaxN>& Yt) {
   using Matrix = SquareMatrix<MaxN>;
@@ -90,10 +93,13 @@ bool face_solve(const Problem<MaxN>& p, const SquareMatrix<MaxN>& U, SquareMatri
     Yt.setZero(n, n);
     return true;
   }
-  const Matrix HU = U.transpose() * p.h.asDiagonal() * U;
-  typename BasicReduction<MaxN>::Vector lambda, z;
-  Matrix Q;
-  if (!symmetric_eigen(HU, lambda, &Q)) return false;
+  // H_U = (diag(s) U)^T (diag(s) U): its eigenpairs from the SVD of diag(s) U, not from the
+  // product (which would square its condition number).
+  BasicSvd<Matrix> su;
+  svd_into(Matrix(p.s.asDiagonal() * U), su, false, true);
+  const Matrix& Q = su.V;
+  const typename BasicReduction<MaxN>::Vector lambda = su.s.cwiseAbs2();
+  typename BasicReduction<MaxN>::Vector z;
   Matrix Zt = Q.transpose() * (U.transpose() * p.G * U) * Q;
   const double floor = static_cast<double>(n) * kEps * p.h_max;
   for (Index j = 0; j < k; ++j)
@@ -103,11 +109,9 @@ bool face_solve(const Problem<MaxN>& p, const SquareMatrix<MaxN>& U, SquareMatri
     }
   Matrix Z = Q * Zt * Q.transpose();
   Z = symmetric_part(Z);
-  if (!symmetric_eigen(Z, z)) return false;
-  const double zmax = z.cwiseAbs().maxCoeff();
-  if (z(0) < -64.0 * static_cast<double>(n) * kEps * zmax) return false;
   Matrix Zp;
-  if (!project<MaxN>(Z, Zp)) return false;
+  if (!project<MaxN>(Z, Zp, nullptr, nullptr, &z)) return false;
+  if (z(0) < -64.0 * static_cast<double>(n) * kEps * z.cwiseAbs().maxCoeff()) return false;
   Yt.noalias() = U * Zp * U.transpose();
   Yt = symmetric_part(Yt);
   return true;
@@ -137,6 +141,7 @@ bool psd_ls_kernel(const BasicReduction<MaxN>& data, double epsilon_s, int max_i
   p.epsilon = epsilon_s;
   Vector s = data.s_a;
   s.tail(n - r).setZero();
+  p.s = s;
   p.h = s.cwiseAbs2();
   p.h_max = n > 0 ? p.h(0) : 0.0;
   const Matrix C0 = data.U_a.transpose() * data.R12 * data.V_a;
@@ -148,10 +153,9 @@ bool psd_ls_kernel(const BasicReduction<MaxN>& data, double epsilon_s, int max_i
   for (Index j = 0; j < n; ++j)
     for (Index i = 0; i < n; ++i) p.c(i, j) = 0.5 * (p.h(i) + p.h(j));
 
-  // The unconstrained symmetric minimizer (symmetric Procrustes for R12 - epsilon R11).
-  Matrix Yt(n, n);
-  for (Index j = 0; j < n; ++j)
-    for (Index i = 0; i < n; ++i) Yt(i, j) = p.c(i, j) > 0.0 ? p.G(i, j) / p.c(i, j) : 0.0;
+  // The unconstrained symmetric minimizer: symmetric Procrustes for R12 - epsilon R11.
+  Matrix Yt;
+  procrustes_eigenbasis(s, Ct, Yt);
 
   Matrix best;
   double best_kkt = std::numeric_limits<double>::infinity();
@@ -171,7 +175,8 @@ bool psd_ls_kernel(const BasicReduction<MaxN>& data, double epsilon_s, int max_i
     if (!symmetric_eigen(Yt, w)) return false;
     if (w(0) >= 0.0) {  // Procrustes is feasible, so it is the minimizer
       best = Yt;
-      best_kkt = kkt_residual(p, Yt);
+      const double kkt = kkt_residual(p, Yt);
+      if (kkt >= 0.0) best_kkt = kkt;  // an eigensolver failure leaves it unconverged
       done = true;
     } else {
       // The fallback, whatever happens below: the projection of Procrustes, feasible.

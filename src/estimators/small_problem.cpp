@@ -4,8 +4,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include <Eigen/Eigenvalues>
-
 #include "estimators/kernels.hpp"
 #include "estimators/psd_ls_kernel.hpp"
 #include "estimators/spd_tls_kernel.hpp"
@@ -47,10 +45,11 @@ void small_factor(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Ma
 
 // spd-tls's estimate, or false where spd_total_least_squares fails (no start, no minimizer).
 template <int MaxN>
-bool spd_tls(const BasicReduction<MaxN>& data, double r_s, int max_iterations, SquareMatrix<MaxN>& X_s) {
-  if (!(r_s > 0.0) || !std::isfinite(r_s * r_s) || r_s * r_s == 0.0) return false;
+bool spd_tls(const BasicReduction<MaxN>& data, int max_iterations, SquareMatrix<MaxN>& X_s) {
+  const std::optional<double> r_s = spd_tls_noise_ratio(data);
+  if (!r_s) return false;
   SpdTlsKernel<MaxN> k;
-  if (!spd_tls_solve(data, r_s, max_iterations, k) || k.unbounded) return false;
+  if (!spd_tls_solve(data, *r_s, max_iterations, k) || k.unbounded) return false;
   X_s = k.X_s;
   return true;
 }
@@ -71,8 +70,6 @@ bool estimate_bounded(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<cons
   }
   const Index n = data.n;
   const FitOptions defaults;
-  // spd-tls's noise ratio in scaled units (see spd_total_least_squares.cpp).
-  const double r_s = std::ldexp(defaults.noise_ratio, ea - eb);
   TlsKernel<MaxN> tls;
   bool tls_done = false;
   Matrix X_s;
@@ -108,7 +105,7 @@ bool estimate_bounded(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<cons
         }
         break;
       case Method::SpdTotalLeastSquares:
-        ok = spd_tls(data, r_s, defaults.max_iterations, X_s);
+        ok = spd_tls(data, defaults.max_iterations, X_s);
         break;
       case Method::PsdLeastSquares: {
         PsdLsKernel<MaxN> k;
@@ -119,7 +116,7 @@ bool estimate_bounded(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<cons
       case Method::Auto: {
         const AutoChoice choice = auto_choice(data, noise_variance(data));
         ok = choice.method == Method::Spde ? (spde_kernel(data, X_s), true)
-                                           : spd_tls(data, r_s, defaults.max_iterations, X_s);
+                                           : spd_tls(data, defaults.max_iterations, X_s);
         ok = ok && clearly_positive_definite(X_s);
         if (!ok) {  // the boundary: psd-ls with auto's floor, as auto_fit
           PsdLsKernel<MaxN> k;

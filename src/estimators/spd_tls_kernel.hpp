@@ -4,6 +4,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
+#include <optional>
 
 #include "estimators/kernels.hpp"
 
@@ -42,6 +44,16 @@ double spd_tls_criterion(const BasicReduction<MaxN>& data, const SquareMatrix<Ma
 template <int MaxN>
 bool spd_tls_kernel(const BasicReduction<MaxN>& data, double r_s, int max_iterations,
                     const SquareMatrix<MaxN>& X0_s, SpdTlsKernel<MaxN>& out);
+
+/// The noise ratio r_s = options.noise_ratio 2^(exponent_a - exponent_b) in the factor's units
+/// (there A_s = A 2^-ea, B_s = B 2^-eb, X_s = X 2^(ea - eb), so r^2 I + X^2 = 2^2(eb-ea)
+/// (r_s^2 I + X_s^2)), or nothing when r_s^2 is out of floating-point range.
+template <int MaxN>
+std::optional<double> spd_tls_noise_ratio(const BasicReduction<MaxN>& data) {
+  const double r_s = std::ldexp(data.options.noise_ratio, data.exponent_a - data.exponent_b);
+  if (!(r_s > 0.0) || !std::isfinite(r_s * r_s) || r_s * r_s == 0.0) return std::nullopt;
+  return r_s;
+}
 
 /// spd-tls from its starts, as spd_total_least_squares and the small-problem path run it: from
 /// SPDE where rank_a == n and SPDE is positive definite, else from the positive semidefinite

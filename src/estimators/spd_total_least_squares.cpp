@@ -17,10 +17,9 @@ FitResult spd_total_least_squares(const Reduction& reduction) {
   const Index n = data.n;
   constexpr Method method = Method::SpdTotalLeastSquares;
 
-  // In the factor's units A_s = A 2^-ea, B_s = B 2^-eb, X_s = X 2^(ea - eb), the criterion is
-  // 2^-2ea f with the noise ratio r_s = r 2^(ea - eb) (r^2 I + X^2 = 2^2(eb-ea) (r_s^2 I + X_s^2)).
-  const double r_s = std::ldexp(data.options.noise_ratio, data.exponent_a - data.exponent_b);
-  if (!(r_s > 0.0) || !std::isfinite(r_s * r_s) || r_s * r_s == 0.0) {
+  // In the factor's units the criterion is 2^-2ea f, with the noise ratio r_s.
+  const std::optional<double> r_s = detail::spd_tls_noise_ratio(data);
+  if (!r_s) {
     return detail::failure(method, data,
                            "spd-tls: the noise ratio " + detail::format_number(data.options.noise_ratio) +
                                " times the ratio of the scales of A and B is out of floating-point range: "
@@ -28,7 +27,7 @@ FitResult spd_total_least_squares(const Reduction& reduction) {
   }
 
   detail::SpdTlsKernel<Eigen::Dynamic> k;
-  if (!detail::spd_tls_solve(data, r_s, data.options.max_iterations, k)) {
+  if (!detail::spd_tls_solve(data, *r_s, data.options.max_iterations, k)) {
     return detail::failure(
         method, data,
         "spd-tls: no positive definite starting point: " +

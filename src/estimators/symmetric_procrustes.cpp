@@ -26,14 +26,8 @@ void procrustes_kernel(const BasicReduction<MaxN>& data, SquareMatrix<MaxN>& X_s
   const Matrix C = data.U_a.transpose() * data.R12 * data.V_a;
   typename BasicReduction<MaxN>::Vector s = data.s_a;
   s.tail(n - r).setZero();
-  Matrix Xt(n, n);
-  for (Index j = 0; j < n; ++j) {
-    for (Index i = j; i < n; ++i) {
-      const double denominator = s(i) * s(i) + s(j) * s(j);
-      Xt(i, j) = denominator > 0.0 ? (s(i) * C(i, j) + s(j) * C(j, i)) / denominator : 0.0;
-    }
-  }
-  make_symmetric_from_lower(Xt);
+  Matrix Xt;
+  procrustes_eigenbasis(s, C, Xt);
   const Matrix X = data.V_a * Xt * data.V_a.transpose();
   X_s = symmetric_part(X);
 }
