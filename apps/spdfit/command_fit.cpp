@@ -1,4 +1,5 @@
-// spdfit fit --method METHOD [--json] [--output FILE] [--stream [--block-rows N] [--threads N]] A B
+// spdfit fit --method METHOD [--json | --report] [--output FILE] [--bootstrap N [--confidence F] [--seed S]]
+//            [--stream [--block-rows N]] [--threads N] A B
 #include <CLI/CLI.hpp>
 #include <memory>
 #include <optional>
@@ -21,6 +22,11 @@ struct FitOptionsCli {
   std::optional<double> noise_ratio;
   std::optional<int> max_iterations;
   std::optional<double> min_eig;
+  bool report = false;
+  int bootstrap = 0;
+  std::optional<double> confidence;
+  std::optional<std::uint64_t> seed;
+  std::optional<unsigned> threads;
   bool stream = false;
   StreamOptions stream_options;
 };
@@ -43,7 +49,12 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
                   "(spde, spd-tls or psd-ls, chosen from the data)")
       ->required()
       ->check(CLI::IsMember(method_names()));
-  sub->add_flag("--json", options->json, "Print the estimate, diagnostics and warnings as JSON");
+  CLI::Option* json =
+      sub->add_flag("--json", options->json, "Print the estimate, diagnostics, warnings and the bootstrap's numbers as JSON");
+  sub->add_flag("--report", options->report,
+                "Print X with its bootstrap standard errors (with --bootstrap), its eigenvalues and the noise "
+                "estimate as a table for people")
+      ->excludes(json);
   sub->add_option("-o,--output", options->output, "Write to FILE instead of stdout");
   sub->add_option("--rank-tol", options->rank_tolerance,
                   "Relative singular-value cut-off for numerical rank (default max(m,n)*eps)")
@@ -59,6 +70,14 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--min-eig", options->min_eig,
                   "psd-ls: the floor epsilon of X >= epsilon I (default 0: positive semidefinite)")
       ->check(non_negative());
+  sub->add_option("--bootstrap", options->bootstrap,
+                  "Resample the rows N times for standard errors, a percentile interval and the bias of every "
+                  "entry of X (with --json or --report)")
+      ->check(CLI::Range(0, 10000000));
+  sub->add_option("--confidence", options->confidence,
+                  "The bootstrap interval's level, a fraction (default 0.95)")
+      ->check(open_fraction());
+  sub->add_option("--seed", options->seed, "The bootstrap's seed (default 1); the numbers depend on nothing else");
   CLI::Option* stream =
       sub->add_flag("--stream", options->stream,
                     "Read A and B a block of rows at a time (memory O(threads x block-rows x n + n^2) whatever the "
@@ -66,10 +85,9 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--block-rows", options->stream_options.block_rows, "Rows per block with --stream")
       ->check(CLI::Range(Eigen::Index{1}, Eigen::Index{1} << 24))
       ->needs(stream);
-  sub->add_option("--threads", options->stream_options.threads,
-                  "Threads with --stream (default: one per core; the result does not depend on it)")
-      ->check(CLI::Range(0u, 1024u))
-      ->needs(stream);
+  sub->add_option("--threads", options->threads,
+                  "Threads for --stream and --bootstrap (default: one per core; the result does not depend on it)")
+      ->check(CLI::Range(0u, 1024u));
   sub->add_option("A", options->a_path, "File of A (m x n): delimited text or .npy")->required();
   sub->add_option("B", options->b_path, "File of B (m x n): delimited text or .npy")->required();
 
@@ -88,13 +106,34 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
     fit_options.noise_ratio = options->noise_ratio.value_or(fit_options.noise_ratio);
     fit_options.max_iterations = options->max_iterations.value_or(fit_options.max_iterations);
     fit_options.min_eig = options->min_eig.value_or(fit_options.min_eig);
-    const std::optional<StreamOptions> stream =
-        options->stream ? std::optional<StreamOptions>(options->stream_options) : std::nullopt;
+    // --threads serves --stream and --bootstrap; --confidence and --seed serve --bootstrap.
+    if (options->threads && !options->stream && options->bootstrap == 0) {
+      throw UsageError("--threads applies to --stream and --bootstrap: give one of them, or leave --threads out");
+    }
+    if (options->bootstrap == 0 && (options->confidence || options->seed)) {
+      throw UsageError(std::string(options->confidence ? "--confidence" : "--seed") +
+                       " applies to the bootstrap: give --bootstrap N as well");
+    }
+    fit_options.bootstrap = options->bootstrap;
+    fit_options.confidence = options->confidence.value_or(fit_options.confidence);
+    fit_options.seed = options->seed.value_or(fit_options.seed);
+    fit_options.threads = options->threads.value_or(fit_options.threads);
+    std::optional<StreamOptions> stream;
+    if (options->stream) {
+      stream = options->stream_options;
+      stream->threads = fit_options.threads;
+    }
     const FitResult result =
         fit_files(options->a_path, options->b_path, method, fit_options, stream);
     for (const std::string& w : result.warnings) warn(global, w);
     if (!result.ok()) throw DataFailure(result.message);
-    emit(options->json ? result_json(result).dump(2) + "\n" : matrix_csv(result.X), options->output);
+    if (result.bootstrap && !options->json && !options->report) {
+      warn(global, "--bootstrap's standard errors and intervals are shown with --json or --report; this prints X only");
+    }
+    const std::string text = options->json     ? result_json(result).dump(2) + "\n"
+                             : options->report ? fit_report(result)
+                                               : matrix_csv(result.X);
+    emit(text, options->output);
   };
   return {sub, run};
 }

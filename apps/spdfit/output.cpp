@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <sstream>
 
@@ -77,6 +78,14 @@ json diagnostics_json(const Diagnostics& d) {
 
 }  // namespace
 
+json spectrum_json(const SpectrumUncertainty& s) {
+  json clusters = json::array();
+  for (const std::vector<Eigen::Index>& c : s.clusters) clusters.push_back(c);
+  return {{"estimate", vector_json(s.estimate)}, {"standard_errors", vector_json(s.standard_errors)},
+          {"lower", vector_json(s.lower)},       {"upper", vector_json(s.upper)},
+          {"clusters", clusters},                {"failed", s.failed}};
+}
+
 json result_json(const FitResult& result) {
   json out;
   out["method"] = std::string(to_string(result.method));
@@ -87,7 +96,122 @@ json result_json(const FitResult& result) {
   out["diagnostics"] = diagnostics_json(result.diagnostics);
   out["warnings"] = result.warnings;
   if (!result.ok()) out["error"] = result.message;
+  if (const auto& b = result.bootstrap) {
+    out["standard_errors"] = matrix_json(b->standard_errors);
+    out["interval"] = {{"level", b->interval.level},
+                       {"lower", matrix_json(b->interval.lower)},
+                       {"upper", matrix_json(b->interval.upper)}};
+    out["bias"] = matrix_json(b->bias);
+    json boot = {{"replicates", b->replicates}, {"failed", b->failed},   {"seed", b->seed},
+                 {"method", to_string(b->method)}, {"scheme", b->scheme}};
+    if (b->scheme == "poisson_groups") {
+      boot["group_rows"] = b->group_rows;
+      boot["groups"] = b->groups;
+    }
+    if (b->eigenvalues) boot["eigenvalues"] = spectrum_json(*b->eigenvalues);
+    out["bootstrap"] = std::move(boot);
+  }
   return out;
+}
+
+namespace {
+
+// Fixed-point decimals that show a standard error to two significant digits.
+int decimals_for(double standard_error) {
+  if (!(standard_error > 0.0) || !std::isfinite(standard_error)) return 4;
+  return std::clamp(1 - static_cast<int>(std::floor(std::log10(standard_error))), 0, 12);
+}
+
+// "95%" for 0.95.
+std::string percent_text(double level) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g%%", 100.0 * level);
+  return text;
+}
+
+std::string format_fixed(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
+}  // namespace
+
+std::string spectrum_text(const SpectrumUncertainty& s, const std::string& indent, const std::string& unit) {
+  std::ostringstream out;
+  for (const std::vector<Eigen::Index>& cluster : s.clusters) {
+    for (Eigen::Index i : cluster) {
+      const int d = decimals_for(s.standard_errors(i));
+      out << indent << std::setw(2) << i + 1 << "  " << std::setw(12) << format_fixed(s.estimate(i), d) << unit
+          << " +- " << format_fixed(s.standard_errors(i), d);
+      if (i == cluster.front()) {
+        out << "   [" << format_fixed(s.lower(i), d) << ", " << format_fixed(s.upper(i), d) << "]";
+        if (cluster.size() > 1) {
+          out << " for " << cluster.front() + 1 << " to " << cluster.back() + 1
+              << " together (closer than their standard errors)";
+        }
+      }
+      out << '\n';
+    }
+  }
+  return out.str();
+}
+
+std::string fit_report(const FitResult& result) {
+  std::ostringstream out;
+  const Diagnostics& d = result.diagnostics;
+  out << to_string(result.method) << " estimate of X (" << d.n << " x " << d.n << ") from m = " << d.m << " rows";
+  if (d.chosen_method) out << " (chosen by auto: " << d.reason->code << ")";
+  out << "\n";
+  const auto& b = result.bootstrap;
+  if (b) {
+    out << "X +- standard error, bootstrap of " << b->replicates << " replicates (" << b->failed
+        << " failed), seed " << b->seed << (b->scheme == "poisson_groups" ? ", Poisson counts on groups of rows" : "")
+        << "\n";
+  } else {
+    out << "X (no standard errors: add --bootstrap N, e.g. 1000)\n";
+  }
+  std::vector<std::string> cells;
+  std::size_t width = 0;
+  for (Eigen::Index i = 0; i < result.X.rows(); ++i) {
+    for (Eigen::Index j = 0; j < result.X.cols(); ++j) {
+      std::string cell;
+      if (b) {
+        const int dec = decimals_for(b->standard_errors(i, j));
+        cell = format_fixed(result.X(i, j), dec) + " +- " + format_fixed(b->standard_errors(i, j), dec);
+      } else {
+        char text[40];
+        std::snprintf(text, sizeof text, "%.6g", result.X(i, j));
+        cell = text;
+      }
+      width = std::max(width, cell.size());
+      cells.push_back(std::move(cell));
+    }
+  }
+  out << "    ";
+  for (Eigen::Index j = 0; j < result.X.cols(); ++j) out << std::setw(static_cast<int>(width) + 2) << j + 1;
+  out << '\n';
+  for (Eigen::Index i = 0; i < result.X.rows(); ++i) {
+    out << std::setw(4) << i + 1;
+    for (Eigen::Index j = 0; j < result.X.cols(); ++j) {
+      out << std::setw(static_cast<int>(width) + 2) << cells[static_cast<std::size_t>(i * result.X.cols() + j)];
+    }
+    out << '\n';
+  }
+  if (b && b->eigenvalues) {
+    out << "\neigenvalues (ascending) +- standard error   [" << percent_text(b->interval.level) << " interval]\n"
+        << spectrum_text(*b->eigenvalues, "  ");
+  } else if (d.min_eigenvalue && d.max_eigenvalue) {
+    out << "\neigenvalues: " << *d.min_eigenvalue << " to " << *d.max_eigenvalue << '\n';
+  }
+  if (b) {
+    out << "\n" << percent_text(b->interval.level)
+        << " percentile intervals of every entry and the bias estimate: --json (interval, bias)\n";
+  }
+  if (d.noise_sigma) {
+    out << "noise estimate: sigma = " << *d.noise_sigma << " in every entry of A (times the noise ratio in B)\n";
+  }
+  return out.str();
 }
 
 std::string matrix_csv(const Eigen::MatrixXd& M) {

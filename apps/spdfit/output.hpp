@@ -21,6 +21,17 @@ nlohmann::json number_json(double value);
 /// {"method", "m", "n", "X", "diagnostics": {...}, "warnings": [...]}: the fit contract.
 nlohmann::json result_json(const FitResult& result);
 
+/// The bootstrap's uncertainty of sorted values (eigenvalues, modes) as JSON: estimate,
+/// standard_errors, lower, upper, clusters (lists of 0-based indices) and failed.
+nlohmann::json spectrum_json(const SpectrumUncertainty& s);
+
+/// fit --report: X with its bootstrap standard errors (when there are any), its eigenvalues with
+/// their intervals, and the noise estimate, as a table for people.
+std::string fit_report(const FitResult& result);
+
+/// Sorted values with their intervals, one line each, clusters marked ("  1  3.6527  [3.61, 3.70]").
+std::string spectrum_text(const SpectrumUncertainty& s, const std::string& indent, const std::string& unit = "");
+
 /// The matrix as CSV text (io::write_csv).
 std::string matrix_csv(const Eigen::MatrixXd& M);
 

@@ -39,6 +39,12 @@ inline CLI::Validator positive() {
                           "NUMBER > 0");
 }
 
+/// A fraction strictly between 0 and 1 (a confidence level).
+inline CLI::Validator open_fraction() {
+  return number_validator([](double v) { return v > 0.0 && v < 1.0; }, "fraction strictly between 0 and 1",
+                          "FRACTION in (0, 1)");
+}
+
 /// A relative rank cut-off given on the command line: a number >= 0 that the library's one rule
 /// accepts (spdfit::is_valid_rank_tolerance: below 1), so that every such option is a usage error
 /// (exit 2) on the same values.

@@ -13,7 +13,11 @@ namespace spdfit {
 /// Runs `method` on the reduced data (see the estimator's own header for what it computes).
 FitResult fit(const Reduction& data, Method method);
 
-/// Runs `method` on A X ~= B. Throws std::invalid_argument on misuse (see least_squares).
+/// Runs `method` on A X ~= B. Throws std::invalid_argument on misuse (see least_squares). With
+/// options.bootstrap = N > 0 the result also carries the bootstrap's standard errors, interval
+/// and bias (FitResult::bootstrap): N multinomial resamples of the rows of [A B], each a
+/// weighted triangular factor (TriangularFactor::append with counts), refitted with the same
+/// method on options.threads threads; cost N times the fit's O(m n^2 + n^3), memory O(N n^2).
 FitResult fit(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
               Method method, const FitOptions& options = {});
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <limits>
 #include <string>
 
@@ -32,6 +33,18 @@ struct FitOptions {
   /// psd-ls: the floor epsilon of X >= epsilon I, in X's units. A finite number >= 0; 0 (the
   /// default) makes the result positive semidefinite, possibly singular.
   double min_eig = 0.0;
+  /// Bootstrap replicates for the uncertainty of X (FitResult::bootstrap): 0 (the default) for
+  /// none. With N > 0, fit(A, B, ...) and fit_files resample the rows of [A B] N times and
+  /// refit each resample with the same method (auto: the method it chose on the full data). An
+  /// integer >= 0. The overloads taking a Reduction have no rows to resample and ignore it.
+  int bootstrap = 0;
+  /// The bootstrap's two-sided percentile interval covers this fraction: in (0, 1), default 0.95.
+  double confidence = 0.95;
+  /// The bootstrap's seed: replicate r draws from a generator keyed by (seed, r), so the numbers
+  /// depend on nothing else (not on the number of threads).
+  std::uint64_t seed = 1;
+  /// Threads for the bootstrap's replicates: 0 (the default) means one per core.
+  unsigned threads = 0;
 
   /// True when the options are usable; otherwise `error` says why.
   bool is_valid(std::string* error = nullptr) const {
@@ -46,6 +59,14 @@ struct FitOptions {
     }
     if (!(min_eig >= 0.0) || !(min_eig < std::numeric_limits<double>::infinity())) {
       if (error) *error = "min_eig must be a finite number >= 0";
+      return false;
+    }
+    if (bootstrap < 0) {
+      if (error) *error = "bootstrap must be a number of replicates >= 0";
+      return false;
+    }
+    if (!(confidence > 0.0 && confidence < 1.0)) {
+      if (error) *error = "confidence must be a fraction strictly between 0 and 1 (0.95 for 95%)";
       return false;
     }
     return true;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -103,6 +104,45 @@ struct Diagnostics {
   std::optional<AutoReason> reason;
 };
 
+/// A two-sided bootstrap percentile interval for each entry: `lower` and `upper` are the
+/// (1 - level) / 2 and (1 + level) / 2 quantiles of the replicates (linear interpolation between
+/// order statistics, as numpy.quantile's default).
+struct Interval {
+  double level = 0.95;
+  Eigen::MatrixXd lower, upper;
+};
+
+/// The bootstrap uncertainty of values sorted in ascending order (the eigenvalues of X, a
+/// hexapod's modes). Values closer than their standard errors swap places between replicates,
+/// so the sorted values' own intervals are biased there: such values form one cluster, and each
+/// member's lower and upper are the cluster's (the lower quantile of its smallest value, the upper
+/// quantile of its largest).
+struct SpectrumUncertainty {
+  Eigen::VectorXd estimate;         ///< the values of the estimate, ascending
+  Eigen::VectorXd standard_errors;  ///< of each sorted value over the replicates
+  Eigen::VectorXd lower, upper;     ///< the interval (the cluster's, for clustered values)
+  /// Consecutive indices of values closer than their standard errors; singletons included.
+  std::vector<std::vector<Eigen::Index>> clusters;
+  int failed = 0;  ///< replicates without the values (not symmetric, not positive definite)
+};
+
+/// How sure the estimate is: the nonparametric bootstrap over the rows of [A B]
+/// (FitOptions::bootstrap).
+struct Bootstrap {
+  int replicates = 0;        ///< requested (FitOptions::bootstrap)
+  int failed = 0;            ///< replicates without an estimate, left out of everything below
+  std::uint64_t seed = 1;    ///< FitOptions::seed
+  Method method = Method::Spde;  ///< the method every replicate ran (auto: the one it chose)
+  /// "multinomial": each replicate draws m rows with replacement (in memory); "poisson_groups":
+  /// each group of group_rows consecutive rows gets a Poisson(1) count per replicate (streaming).
+  std::string scheme = "multinomial";
+  Eigen::Index group_rows = 0, groups = 0;  ///< poisson_groups only
+  Eigen::MatrixXd standard_errors;  ///< per entry: the replicates' standard deviation (divisor N - 1)
+  Eigen::MatrixXd bias;             ///< per entry: the replicates' mean minus the estimate
+  Interval interval;                ///< per entry, at FitOptions::confidence
+  std::optional<SpectrumUncertainty> eigenvalues;  ///< when the estimate is symmetric
+};
+
 /// The result of one estimator on one data set.
 struct FitResult {
   Method method = Method::Spde;
@@ -111,6 +151,9 @@ struct FitResult {
   Eigen::MatrixXd X;    ///< the estimate (empty on failure)
   Diagnostics diagnostics;
   std::vector<std::string> warnings;  ///< conditions the user should know about
+  /// The bootstrap's standard errors, interval and bias, when FitOptions::bootstrap > 0 and the
+  /// estimate succeeded.
+  std::optional<Bootstrap> bootstrap;
 
   bool ok() const { return status == Status::Success; }
 };

@@ -3,8 +3,10 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 #include <string_view>
 
 namespace spdfit {
@@ -44,6 +46,19 @@ class TriangularFactor {
   /// the column counts differ. Cost O(n^3).
   void merge(const TriangularFactor& other);
 
+  /// Adds the rows of A and B, row i counted counts[i] times (frequency weights: R^T R gains
+  /// sum_i counts[i] z_i z_i^T for the rows z_i of [A B], and rows() grows by the counts' sum), as
+  /// a bootstrap resample needs without copies of repeated rows. Rows with count 0 are skipped.
+  /// Throws std::invalid_argument as append does, or when counts.size() != A.rows(). Cost
+  /// O((k + n) n^2), k the rows with a nonzero count.
+  void append(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
+              const std::vector<std::uint32_t>& counts);
+  /// Makes this the factor of its rows and the rows of others[k], each counted counts[k] times
+  /// (its R scaled by sqrt(counts[k])), in one re-triangularization; count 0 leaves a factor
+  /// out. Merging with count 1 is merge(other) to rounding. Throws std::invalid_argument when
+  /// the sizes of others and counts differ or a column count differs. Cost O((k + 1) n^3), k the
+  /// factors with a nonzero count.
+  void merge(const std::vector<const TriangularFactor*>& others, const std::vector<std::uint32_t>& counts);
   /// The factor of the union of both row sets, leaving a and b unchanged (a.merge(b) on a
   /// copy of a). Throws std::invalid_argument when the column counts differ. Cost O(n^3).
   static TriangularFactor merged(const TriangularFactor& a, const TriangularFactor& b);

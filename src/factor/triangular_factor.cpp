@@ -107,4 +107,81 @@ void TriangularFactor::merge(const TriangularFactor& other) {
   rows_ += other.rows_;
 }
 
+void TriangularFactor::append(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
+                              const std::vector<std::uint32_t>& counts) {
+  detail::check_data(A, B, n_);
+  if (counts.size() != static_cast<std::size_t>(A.rows())) {
+    throw std::invalid_argument("append: " + std::to_string(counts.size()) + " counts for " +
+                                std::to_string(A.rows()) + " rows");
+  }
+  Index kept = 0;
+  for (std::uint32_t c : counts) kept += c > 0;
+  if (kept == 0) return;
+  raise_exponents(detail::scale_exponent(A), detail::scale_exponent(B));
+  // The kept rows are scaled by sqrt(count) into chunks of at most kChunk rows, each absorbed in
+  // turn (a TSQR), so the work space stays small however many rows there are.
+  constexpr Index kChunk = 1024;
+  MatrixXd scaled(std::min(kept, kChunk), 2 * n_);
+  Index k = 0;
+  std::uint64_t chunk_rows = 0;  // the chunk's rows, counted with their counts
+  auto absorb_chunk = [&] {
+    auto chunk = scaled.topRows(k);
+    auto chunk_a = chunk.leftCols(n_);
+    auto chunk_b = chunk.rightCols(n_);
+    detail::multiply_by_power_of_two(chunk_a, -exponent_a());
+    detail::multiply_by_power_of_two(chunk_b, -exponent_b());
+    absorb(chunk);
+    rows_ += static_cast<Index>(chunk_rows);
+    k = 0;
+    chunk_rows = 0;
+  };
+  for (Index i = 0; i < A.rows(); ++i) {
+    const std::uint32_t c = counts[static_cast<std::size_t>(i)];
+    if (c == 0) continue;
+    const double w = c == 1 ? 1.0 : std::sqrt(static_cast<double>(c));
+    scaled.row(k).head(n_) = w * A.row(i);
+    scaled.row(k).tail(n_) = w * B.row(i);
+    chunk_rows += c;
+    if (++k == scaled.rows()) absorb_chunk();
+  }
+  if (k > 0) absorb_chunk();
+}
+
+void TriangularFactor::merge(const std::vector<const TriangularFactor*>& others,
+                             const std::vector<std::uint32_t>& counts) {
+  if (others.size() != counts.size()) {
+    throw std::invalid_argument("merge: " + std::to_string(others.size()) + " factors but " +
+                                std::to_string(counts.size()) + " counts");
+  }
+  Index kept = 0;
+  for (std::size_t k = 0; k < others.size(); ++k) {
+    if (others[k]->n_ != n_) {
+      throw std::invalid_argument("cannot merge factors with " + std::to_string(n_) + " and " +
+                                  std::to_string(others[k]->n_) + " columns");
+    }
+    if (counts[k] == 0 || others[k]->rows_ == 0) continue;
+    raise_exponents(others[k]->exponent_a_, others[k]->exponent_b_);
+    ++kept;
+  }
+  if (kept == 0) return;
+  MatrixXd stacked(2 * n_ * kept, 2 * n_);
+  Index at = 0;
+  std::uint64_t total = 0;
+  for (std::size_t k = 0; k < others.size(); ++k) {
+    const TriangularFactor& other = *others[k];
+    if (counts[k] == 0 || other.rows_ == 0) continue;
+    auto block = stacked.middleRows(at, 2 * n_);
+    const double w = counts[k] == 1 ? 1.0 : std::sqrt(static_cast<double>(counts[k]));
+    block = w * other.R_;
+    auto block_a = block.leftCols(n_);
+    auto block_b = block.rightCols(n_);
+    detail::multiply_by_power_of_two(block_a, other.exponent_a() - exponent_a());
+    detail::multiply_by_power_of_two(block_b, other.exponent_b() - exponent_b());
+    at += 2 * n_;
+    total += counts[k] * static_cast<std::uint64_t>(other.rows_);
+  }
+  absorb(stacked);
+  rows_ += static_cast<Index>(total);
+}
+
 }  // namespace spdfit

@@ -11,6 +11,7 @@
 #include "spdfit/spde.hpp"
 #include "spdfit/symmetric_procrustes.hpp"
 #include "spdfit/total_least_squares.hpp"
+#include "uncertainty/bootstrap.hpp"
 
 namespace spdfit {
 
@@ -42,7 +43,10 @@ FitResult fit(const Reduction& data, Method method) {
 
 FitResult fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Method method,
               const FitOptions& options) {
-  return fit(reduce(TriangularFactor::from_data(A, B), options), method);
+  const Reduction data = reduce(TriangularFactor::from_data(A, B), options);
+  FitResult result = fit(data, method);
+  if (options.bootstrap > 0 && result.ok()) detail::bootstrap_in_memory(result, A, B, data);
+  return result;
 }
 
 std::vector<FitResult> fit_all(const Reduction& data) {

@@ -3,12 +3,42 @@
 #include <stdexcept>
 
 #include "pipeline/pair_checks.hpp"
+#include "pipeline/stream_resampling.hpp"
 #include "spdfit/fit.hpp"
+#include "uncertainty/bootstrap.hpp"
 
 namespace spdfit {
 
 namespace {
 std::string shape(const Eigen::MatrixXd& M) { return std::to_string(M.rows()) + "x" + std::to_string(M.cols()); }
+// The streaming bootstrap: Poisson counts on fixed row groups, all in the one pass.
+FitResult fit_stream_bootstrap(const std::string& a_path, const std::string& b_path, Method method,
+                               const FitOptions& options, const StreamOptions& stream) {
+  const detail::ResampledFactors factors =
+      detail::stream_resampled_factors(a_path, b_path, stream, options.bootstrap, options.seed);
+  const Reduction data = reduce(factors.total, options);
+  FitResult result = fit(data, method);
+  if (!result.ok()) return result;
+  std::vector<detail::Replicate> replicates(factors.replicates.size());
+  detail::parallel_for(options.bootstrap, options.threads, [&](int r) {
+    replicates[static_cast<std::size_t>(r)] =
+        detail::refit(factors.replicates[static_cast<std::size_t>(r)], options, result);
+  });
+  detail::attach_bootstrap(result, replicates, options, data);
+  result.bootstrap->scheme = "poisson_groups";
+  result.bootstrap->group_rows = detail::kBootstrapGroupRows;
+  result.bootstrap->groups = static_cast<Eigen::Index>(factors.groups);
+  if (factors.groups < static_cast<std::uint64_t>(detail::kBootstrapMinGroups)) {
+    result.warnings.push_back("the streaming bootstrap cut the " + std::to_string(data.m()) + " rows into only " +
+                              std::to_string(factors.groups) + " groups of " +
+                              std::to_string(detail::kBootstrapGroupRows) + " (about " +
+                              std::to_string(detail::kBootstrapMinGroups) +
+                              " or more are needed for its standard errors to be reliable): without --stream, the "
+                              "in-memory bootstrap resamples single rows");
+  }
+  return result;
+}
+
 }  // namespace
 
 DataPair read_pair(const std::string& a_path, const std::string& b_path, const io::ReadOptions& options) {
@@ -31,6 +61,7 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
                     const std::optional<StreamOptions>& stream) {
   std::string error;
   if (!options.is_valid(&error)) throw std::invalid_argument("fit_files: " + error);
+  if (stream && options.bootstrap > 0) return fit_stream_bootstrap(a_path, b_path, method, options, *stream);
   if (stream) return fit(reduce(stream_factor(a_path, b_path, *stream), options), method);
   const DataPair data = read_pair(a_path, b_path);
   return fit(data.A, data.B, method, options);

@@ -8,8 +8,10 @@
 #include <utility>
 
 #include "pipeline/pair_checks.hpp"
+#include "pipeline/stream_resampling.hpp"
 #include "spdfit/row_reader.hpp"
 #include "spdfit/threads.hpp"
+#include "uncertainty/bootstrap.hpp"
 
 namespace spdfit {
 
@@ -131,5 +133,74 @@ TriangularFactor stream_factor(const std::string& a_path, const std::string& b_p
   // m >= n was checked there, and m >= 1 (an empty file is an error): there is a factor.
   return std::move(*total);
 }
+
+namespace detail {
+
+ResampledFactors stream_resampled_factors(const std::string& a_path, const std::string& b_path,
+                                          const StreamOptions& options, int replicates, std::uint64_t seed) {
+  if (options.block_rows < 1) throw std::invalid_argument("block_rows must be at least 1");
+  const unsigned threads = resolve_threads(options.threads);
+  PairReader reader(a_path, b_path, options, threads > 1);
+  // Rows are copied into whole groups; a batch of groups is factored on the threads, then merged
+  // into the total and into every replicate (replicates spread over the threads), each factor
+  // in group order, so the result does not depend on the threads or the block size.
+  constexpr std::size_t kBatchGroups = 32;
+  const Index g_rows = kBootstrapGroupRows;
+  ResampledFactors out;
+  bool started = false;
+  std::vector<Block> batch;  // full groups, then possibly a short last one
+  Index filled = 0;          // rows in batch.back() when it is being filled
+
+  auto flush = [&] {
+    if (batch.empty()) return;
+    std::vector<TriangularFactor> factors(batch.size(), TriangularFactor(out.total.n()));
+    parallel_for(static_cast<int>(batch.size()), threads, [&](int k) {
+      const Block& group = batch[static_cast<std::size_t>(k)];
+      factors[static_cast<std::size_t>(k)] = TriangularFactor::from_data(group.A, group.B);
+    });
+    std::vector<const TriangularFactor*> pointers;
+    for (const TriangularFactor& f : factors) pointers.push_back(&f);
+    out.total.merge(pointers, std::vector<std::uint32_t>(factors.size(), 1));
+    const std::uint64_t first_group = out.groups;
+    parallel_for(replicates, threads, [&](int r) {
+      std::vector<std::uint32_t> counts(factors.size());
+      for (std::size_t k = 0; k < factors.size(); ++k) counts[k] = poisson_count(seed, r, first_group + k);
+      out.replicates[static_cast<std::size_t>(r)].merge(pointers, counts);
+    });
+    out.groups += factors.size();
+    batch.clear();
+  };
+
+  Block block;
+  while (reader.next(&block)) {
+    const Index n = block.A.cols();
+    if (!started) {
+      out.total = TriangularFactor(n);
+      out.replicates.assign(static_cast<std::size_t>(replicates), TriangularFactor(n));
+      started = true;
+    }
+    Index offset = 0;
+    while (offset < block.A.rows()) {
+      if (batch.empty() || filled == g_rows) {
+        if (batch.size() == kBatchGroups) flush();
+        batch.push_back(Block{MatrixXd(g_rows, n), MatrixXd(g_rows, n)});
+        filled = 0;
+      }
+      const Index take = std::min(block.A.rows() - offset, g_rows - filled);
+      batch.back().A.middleRows(filled, take) = block.A.middleRows(offset, take);
+      batch.back().B.middleRows(filled, take) = block.B.middleRows(offset, take);
+      filled += take;
+      offset += take;
+    }
+  }
+  if (!batch.empty() && filled < g_rows) {
+    batch.back().A.conservativeResize(filled, Eigen::NoChange);
+    batch.back().B.conservativeResize(filled, Eigen::NoChange);
+  }
+  flush();
+  return out;
+}
+
+}  // namespace detail
 
 }  // namespace spdfit

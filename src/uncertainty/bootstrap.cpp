@@ -1,0 +1,283 @@
+#include "uncertainty/bootstrap.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "estimators/diagnostics.hpp"
+#include "estimators/kernels.hpp"
+#include "estimators/psd_ls_kernel.hpp"
+#include "factor/basic_reduction.hpp"
+#include "spdfit/fit.hpp"
+#include "spdfit/random.hpp"
+#include "spdfit/threads.hpp"
+
+namespace spdfit::detail {
+
+using Eigen::Index;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+void multinomial_counts(std::uint64_t seed, int replicate, Index m, std::vector<std::uint32_t>& counts) {
+  counts.assign(static_cast<std::size_t>(m), 0);
+  Random random(trial_seed(seed, static_cast<std::uint64_t>(replicate)));
+  const double rows = static_cast<double>(m);
+  for (Index draw = 0; draw < m; ++draw) {
+    const auto row = std::min(static_cast<Index>(random.uniform() * rows), m - 1);
+    ++counts[static_cast<std::size_t>(row)];
+  }
+}
+
+std::uint32_t poisson_count(std::uint64_t seed, int replicate, std::uint64_t group) {
+  // One uniform from the key (seed, replicate, group), then inversion of the Poisson(1)
+  // distribution function: P(k) = e^-1 / k!.
+  const std::uint64_t bits = trial_seed(trial_seed(seed, static_cast<std::uint64_t>(replicate)), group);
+  const double u = static_cast<double>(bits >> 11) * 0x1.0p-53;
+  double p = 0.36787944117144233;  // e^-1
+  double cdf = p;
+  std::uint32_t k = 0;
+  while (u >= cdf && k < 64) {
+    ++k;
+    p /= k;
+    cdf += p;
+  }
+  return k;
+}
+
+void parallel_for(int count, unsigned threads, const std::function<void(int)>& fn) {
+  const unsigned workers = std::min<unsigned>(resolve_threads(threads), static_cast<unsigned>(std::max(count, 1)));
+  std::atomic<int> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  auto work = [&] {
+    for (int i = next++; i < count; i = next++) {
+      try {
+        fn(i);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(failure_mutex);
+        if (!failure) failure = std::current_exception();
+        next = count;  // stop handing out work
+      }
+    }
+  };
+  if (workers <= 1) {
+    work();
+  } else {
+    std::vector<std::thread> pool;
+    pool.reserve(workers - 1);
+    for (unsigned t = 1; t < workers; ++t) pool.emplace_back(work);
+    work();
+    for (std::thread& thread : pool) thread.join();
+  }
+  if (failure) std::rethrow_exception(failure);
+}
+
+FitResult fit_replicate(const Reduction& data, const FitResult& full) {
+  const bool boundary = full.diagnostics.reason && full.diagnostics.reason->code == "boundary";
+  if (!boundary) return fit(data, full.method);
+  const DynamicReduction& reduced = data_of(data);
+  return psd_least_squares_scaled(reduced, auto_floor(reduced));
+}
+
+Replicate refit(const TriangularFactor& factor, const FitOptions& options, const FitResult& full) {
+  FitOptions quiet = options;
+  quiet.diagnostics = false;
+  quiet.bootstrap = 0;
+  Replicate out;
+  try {
+    FitResult fitted = fit_replicate(reduce(factor, quiet), full);
+    if (fitted.ok() && fitted.X.allFinite()) {
+      out.X = std::move(fitted.X);
+    } else {
+      out.message = fitted.ok() ? "the estimate is not finite" : fitted.message;
+    }
+  } catch (const std::invalid_argument& e) {
+    out.message = e.what();  // a resample with fewer rows than columns
+  }
+  return out;
+}
+
+namespace {
+
+// The q-quantile of sorted values, interpolating linearly between order statistics
+// (numpy.quantile's default, Hyndman & Fan's definition 7).
+double quantile(const std::vector<double>& sorted, double q) {
+  const double h = (static_cast<double>(sorted.size()) - 1.0) * q;
+  const auto lo = static_cast<std::size_t>(std::floor(h));
+  const std::size_t hi = std::min(lo + 1, sorted.size() - 1);
+  return sorted[lo] + (h - static_cast<double>(lo)) * (sorted[hi] - sorted[lo]);
+}
+
+struct Moments {
+  double mean = 0.0, standard_error = 0.0, lower = 0.0, upper = 0.0;
+};
+
+// Mean, standard deviation (divisor N - 1) and the central `level` interval of the values;
+// NaN for all of them with fewer than two values.
+Moments moments(std::vector<double> values, double level) {
+  Moments out;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (values.size() < 2) return {nan, nan, nan, nan};
+  double sum = 0.0;
+  for (double v : values) sum += v;
+  out.mean = sum / static_cast<double>(values.size());
+  double squares = 0.0;
+  for (double v : values) squares += (v - out.mean) * (v - out.mean);
+  out.standard_error = std::sqrt(squares / static_cast<double>(values.size() - 1));
+  std::sort(values.begin(), values.end());
+  out.lower = quantile(values, 0.5 * (1.0 - level));
+  out.upper = quantile(values, 0.5 * (1.0 + level));
+  return out;
+}
+
+std::string percent(double fraction) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g%%", 100.0 * fraction);
+  return text;
+}
+
+}  // namespace
+
+SpectrumUncertainty summarize_spectrum(const VectorXd& estimate, const std::vector<std::optional<VectorXd>>& replicates,
+                                       double level) {
+  SpectrumUncertainty out;
+  const Index n = estimate.size();
+  out.estimate = estimate;
+  out.standard_errors.resize(n);
+  out.lower.resize(n);
+  out.upper.resize(n);
+  std::vector<const VectorXd*> present;
+  for (const auto& values : replicates) {
+    if (values && values->size() == n && values->allFinite()) {
+      present.push_back(&*values);
+    } else {
+      ++out.failed;
+    }
+  }
+  std::vector<double> column(present.size());
+  for (Index i = 0; i < n; ++i) {
+    for (std::size_t r = 0; r < present.size(); ++r) column[r] = (*present[r])(i);
+    const Moments mo = moments(column, level);
+    out.standard_errors(i) = mo.standard_error;
+    out.lower(i) = mo.lower;
+    out.upper(i) = mo.upper;
+  }
+  // Clusters: neighbours closer than the sum of their standard errors.
+  for (Index i = 0; i < n; ++i) {
+    const bool joins = i > 0 && estimate(i) - estimate(i - 1) < out.standard_errors(i) + out.standard_errors(i - 1);
+    if (!joins) out.clusters.emplace_back();
+    out.clusters.back().push_back(i);
+  }
+  for (const std::vector<Index>& cluster : out.clusters) {
+    if (cluster.size() < 2 || present.size() < 2) continue;
+    std::vector<double> smallest(present.size()), largest(present.size());
+    for (std::size_t r = 0; r < present.size(); ++r) {
+      smallest[r] = (*present[r])(cluster.front());
+      largest[r] = (*present[r])(cluster.back());
+    }
+    const double lower = moments(smallest, level).lower;
+    const double upper = moments(largest, level).upper;
+    for (Index i : cluster) {
+      out.lower(i) = lower;
+      out.upper(i) = upper;
+    }
+  }
+  return out;
+}
+
+void attach_bootstrap(FitResult& result, const std::vector<Replicate>& replicates, const FitOptions& options,
+                      const Reduction& full_data) {
+  Bootstrap boot;
+  boot.replicates = static_cast<int>(replicates.size());
+  boot.seed = options.seed;
+  boot.method = result.method;
+  boot.interval.level = options.confidence;
+  const Index rows = result.X.rows(), cols = result.X.cols();
+  std::vector<const MatrixXd*> present;
+  const std::string* first_failure = nullptr;
+  for (const Replicate& r : replicates) {
+    if (r.X.rows() == rows && r.X.cols() == cols) {
+      present.push_back(&r.X);
+    } else {
+      ++boot.failed;
+      if (!first_failure) first_failure = &r.message;
+    }
+  }
+  boot.standard_errors.resize(rows, cols);
+  boot.bias.resize(rows, cols);
+  boot.interval.lower.resize(rows, cols);
+  boot.interval.upper.resize(rows, cols);
+  std::vector<double> values(present.size());
+  for (Index j = 0; j < cols; ++j) {
+    for (Index i = 0; i < rows; ++i) {
+      for (std::size_t r = 0; r < present.size(); ++r) values[r] = (*present[r])(i, j);
+      const Moments mo = moments(values, options.confidence);
+      boot.standard_errors(i, j) = mo.standard_error;
+      boot.bias(i, j) = mo.mean - result.X(i, j);
+      boot.interval.lower(i, j) = mo.lower;
+      boot.interval.upper(i, j) = mo.upper;
+    }
+  }
+  if (result.diagnostics.symmetric || result.X.isApprox(result.X.transpose(), 0.0)) {
+    std::vector<std::optional<VectorXd>> spectra(replicates.size());
+    for (std::size_t r = 0; r < replicates.size(); ++r) {
+      const MatrixXd& X = replicates[r].X;
+      if (X.rows() != rows || X.cols() != cols || X != X.transpose()) continue;
+      spectra[r] = Eigen::SelfAdjointEigenSolver<MatrixXd>(X, Eigen::EigenvaluesOnly).eigenvalues();
+    }
+    const VectorXd estimate = Eigen::SelfAdjointEigenSolver<MatrixXd>(result.X, Eigen::EigenvaluesOnly).eigenvalues();
+    boot.eigenvalues = summarize_spectrum(estimate, spectra, options.confidence);
+  }
+
+  if (present.size() < 2) {
+    result.warnings.push_back("the bootstrap has no standard errors: " + std::to_string(boot.failed) + " of " +
+                              std::to_string(boot.replicates) + " replicates had no estimate" +
+                              (first_failure ? " (" + *first_failure + ")" : std::string()));
+  } else if (boot.failed > 0 && boot.failed * 100 > boot.replicates) {
+    result.warnings.push_back(
+        std::to_string(boot.failed) + " of " + std::to_string(boot.replicates) + " bootstrap replicates (" +
+        percent(static_cast<double>(boot.failed) / boot.replicates) + ") had no estimate (the first: " +
+        *first_failure + ") and were left out: the standard errors and intervals describe the others");
+  }
+  // Noise in A biases the least-squares-type estimators towards zero by a margin that does not
+  // shrink with m, so an interval around them can miss the truth; auto's rule says when the
+  // data carry enough rows for the consistent spd-tls to do better.
+  const Method m = result.method;
+  const bool biased_kind = m == Method::LeastSquares || m == Method::SymmetricProcrustes || m == Method::Spde ||
+                           m == Method::PsdLeastSquares;
+  if (biased_kind) {
+    const DynamicReduction& data = data_of(full_data);
+    const std::optional<double> noise_var = data.noise_var ? data.noise_var : noise_variance(data);
+    const AutoChoice choice = auto_choice(data, noise_var);
+    if (std::string(choice.code) == "many_samples") {
+      result.warnings.push_back(
+          std::string(to_string(m)) + " is biased by noise in A (m = " + std::to_string(data.m) +
+          " rows, signal-to-noise ratio " + format_number(choice.snr) +
+          " in A's weakest direction): the bootstrap interval is centred on the biased estimate and can miss "
+          "the truth; spd-tls (or auto) is consistent here");
+    }
+  }
+  result.bootstrap = std::move(boot);
+}
+
+void bootstrap_in_memory(FitResult& result, const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
+                         const Reduction& full_data) {
+  const FitOptions& options = full_data.options();
+  std::vector<Replicate> replicates(static_cast<std::size_t>(options.bootstrap));
+  parallel_for(options.bootstrap, options.threads, [&](int r) {
+    std::vector<std::uint32_t> counts;
+    multinomial_counts(options.seed, r, A.rows(), counts);
+    TriangularFactor factor(A.cols());
+    factor.append(A, B, counts);
+    replicates[static_cast<std::size_t>(r)] = refit(factor, options, result);
+  });
+  attach_bootstrap(result, replicates, options, full_data);
+}
+
+}  // namespace spdfit::detail
