@@ -78,12 +78,17 @@ def _options(method=None, **values):
     for name, value in values.items():
         if value is None:
             continue
-        if name == "max_iter":
+        if name in _INT_OPTIONS:
             if isinstance(value, bool) or not isinstance(value, _numbers.Integral):
-                raise TypeError(f"max_iter must be an int, got {type(value).__name__}")
+                raise TypeError(f"{name} must be an int, got {type(value).__name__}")
+            if value < 0 and name != "max_iter":
+                raise ValueError(f"{name} must be >= 0, got {value}")
         elif isinstance(value, bool) or not isinstance(value, _numbers.Real):
             raise TypeError(f"{name} must be a real number, got {type(value).__name__}")
-    return tuple(None if v is None else (int(v) if k == "max_iter" else float(v)) for k, v in values.items())
+    return tuple(None if v is None else (int(v) if k in _INT_OPTIONS else float(v)) for k, v in values.items())
+
+
+_INT_OPTIONS = ("max_iter", "bootstrap", "seed", "threads")
 
 
 def read_matrix(path, *, allow_nonfinite=False):
@@ -112,7 +117,8 @@ def _checked(result, stacklevel=3):
     return result
 
 
-def fit(A, B, method="auto", *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_eig=None):
+def fit(A, B, method="auto", *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_eig=None,
+        bootstrap=0, confidence=None, seed=None, threads=0):
     """Estimate X in A X ~= B with `method` (one of METHODS); returns a FitResult.
 
     The default, "auto", chooses spde, spd-tls or psd-ls from the data and always returns a
@@ -124,10 +130,19 @@ def fit(A, B, method="auto", *, rank_tolerance=None, noise_ratio=None, max_iter=
     the noise in A, for the total least-squares methods (tls, tls-sym, tls-psd, spd-tls) and auto
     (default 1). max_iter: the iteration limit of spd-tls, psd-ls and auto (default 200).
     min_eig: psd-ls's floor, X >= min_eig I (default 0). Each of the last three is a ValueError
-    with a method that does not take it. Raises ValueError for bad input (shapes, NaN/Inf,
-    m < n, unknown method) and NumericalError when the method has no answer for this data."""
+    with a method that does not take it.
+
+    bootstrap: N > 0 resamples the rows of [A B] N times and refits each resample with the same
+    method (auto: the one it chose), on `threads` threads (0: one per core; the numbers do not
+    depend on it). The result then has standard_errors (n x n), interval (level, lower, upper:
+    the central `confidence` fraction, default 0.95, of the replicates), bias (their mean minus
+    X) and bootstrap (replicates, failed, seed, eigenvalues with their intervals); `seed`
+    (default 1) makes them reproducible. Without bootstrap these attributes are None.
+
+    Raises ValueError for bad input (shapes, NaN/Inf, m < n, unknown method) and NumericalError
+    when the method has no answer for this data."""
     options = _options(method, rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter,
-                       min_eig=min_eig)
+                       min_eig=min_eig, bootstrap=bootstrap, confidence=confidence, seed=seed, threads=threads)
     A, B = _as_matrix("A", A), _as_matrix("B", B)
     return _checked(_spdfit.fit(A, B, method, *options))
 
@@ -138,7 +153,7 @@ _STREAM_DEFAULTS = _spdfit.StreamOptions()
 
 def fit_files(A_path, B_path, method="auto", *, block_rows=_STREAM_DEFAULTS.block_rows,
               threads=_STREAM_DEFAULTS.threads, rank_tolerance=None, noise_ratio=None, max_iter=None,
-              min_eig=None):
+              min_eig=None, bootstrap=0, confidence=None, seed=None):
     """Estimate X from A and B in two data files read a block of rows at a time (`spdfit fit
     --stream`): any number of rows in O(threads * block_rows * n + n^2) memory.
 
@@ -146,12 +161,21 @@ def fit_files(A_path, B_path, method="auto", *, block_rows=_STREAM_DEFAULTS.bloc
     is read); each block's triangular QR factor of [A B] is computed on up to `threads` threads
     (0: one per core) and the factors are merged in block order (TSQR), so the estimate is
     fit(read_matrix(A_path), read_matrix(B_path), method)'s to rounding, the same for every
-    thread count. The other options are fit's. Raises DataError for bad files, ValueError for bad
-    arguments and NumericalError as fit does."""
-    options = _options(method, rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter,
-                       min_eig=min_eig)
+    thread count. The other options are fit's.
+
+    bootstrap: the streaming bootstrap, in the same one pass: the rows are cut into groups of
+    4096, each group gets a Poisson(1) count per replicate (keyed by seed, replicate and group),
+    and the groups' factors are merged, so weighted, into the replicates' factors. It needs about
+    100 groups (409,600 rows) or more, and warns below that; its numbers agree with fit's
+    in-memory bootstrap within Monte Carlo error, not exactly.
+
+    Raises DataError for bad files, ValueError for bad arguments and NumericalError as fit does."""
+    rank_tolerance, noise_ratio, max_iter, min_eig, bootstrap, confidence, seed, threads = _options(
+        method, rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter, min_eig=min_eig,
+        bootstrap=bootstrap, confidence=confidence, seed=seed, threads=threads)
     return _checked(_spdfit.fit_files(_os.fspath(A_path), _os.fspath(B_path), method, block_rows, threads,
-                                      *options))
+                                      rank_tolerance, noise_ratio, max_iter, min_eig, bootstrap, confidence,
+                                      seed))
 
 
 def fit_all(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_eig=None):

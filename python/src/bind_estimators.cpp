@@ -26,12 +26,24 @@ Method method_from(const std::string& name) {
   throw std::invalid_argument("unknown method '" + name + "' (methods: " + known + ")");
 }
 
+// The bootstrap's options of a Python call (None: the library's default).
+struct BootstrapArgs {
+  int replicates = 0;
+  std::optional<double> confidence;
+  std::optional<std::uint64_t> seed;
+  unsigned threads = 0;
+};
+
 // The options of a Python call; noise_ratio, max_iter and min_eig are refused (ValueError) for a
 // method that does not take them, as the CLI refuses --noise-ratio, --max-iter and --min-eig.
 FitOptions options_from(const std::optional<double>& rank_tolerance, const std::optional<double>& noise_ratio = {},
                         std::optional<Method> method = {}, const std::optional<int>& max_iter = {},
-                        const std::optional<double>& min_eig = {}) {
+                        const std::optional<double>& min_eig = {}, const BootstrapArgs& boot = {}) {
   FitOptions options;
+  options.bootstrap = boot.replicates;
+  options.confidence = boot.confidence.value_or(options.confidence);
+  options.seed = boot.seed.value_or(options.seed);
+  options.threads = boot.threads;
   if (rank_tolerance) options.rank_tolerance = *rank_tolerance;
   // Each of these options applies to some methods only: a ValueError with the others.
   auto check = [&](bool given, MethodOption option, const char* spelling) {
@@ -218,6 +230,91 @@ void bind_estimators(py::module_& m) {
         return out.str();
       });
 
+  py::class_<Interval>(m, "Interval", "A bootstrap percentile interval: the central `level` fraction of the replicates.")
+      .def_property_readonly("level", copied(&Interval::level))
+      .def_property_readonly("lower", copied(&Interval::lower))
+      .def_property_readonly("upper", copied(&Interval::upper))
+      .def(py::pickle([](const Interval& i) { return py::make_tuple(i.level, i.lower, i.upper); },
+                      [](const py::tuple& t) {
+                        check_state(t, 3, "Interval");
+                        return Interval{t[0].cast<double>(), t[1].cast<Eigen::MatrixXd>(), t[2].cast<Eigen::MatrixXd>()};
+                      }))
+      .def("__repr__", [](const Interval& i) {
+        std::ostringstream out;
+        out << "Interval(level=" << i.level << ")\nlower =\n" << i.lower << "\nupper =\n" << i.upper;
+        return out.str();
+      });
+  py::class_<SpectrumUncertainty>(m, "SpectrumUncertainty",
+                                  "Bootstrap uncertainty of sorted values (eigenvalues, modes); values closer than "
+                                  "their standard errors form a cluster that shares one interval.")
+      .def_property_readonly("estimate", copied(&SpectrumUncertainty::estimate), "the values, ascending")
+      .def_property_readonly("standard_errors", copied(&SpectrumUncertainty::standard_errors))
+      .def_property_readonly("lower", copied(&SpectrumUncertainty::lower), "the interval (the cluster's)")
+      .def_property_readonly("upper", copied(&SpectrumUncertainty::upper))
+      .def_property_readonly("clusters", copied(&SpectrumUncertainty::clusters), "lists of 0-based indices")
+      .def_property_readonly("failed", copied(&SpectrumUncertainty::failed), "replicates without the values")
+      .def(py::pickle(
+          [](const SpectrumUncertainty& s) {
+            return py::make_tuple(s.estimate, s.standard_errors, s.lower, s.upper, s.clusters, s.failed);
+          },
+          [](const py::tuple& t) {
+            check_state(t, 6, "SpectrumUncertainty");
+            SpectrumUncertainty s;
+            s.estimate = t[0].cast<Eigen::VectorXd>();
+            s.standard_errors = t[1].cast<Eigen::VectorXd>();
+            s.lower = t[2].cast<Eigen::VectorXd>();
+            s.upper = t[3].cast<Eigen::VectorXd>();
+            s.clusters = t[4].cast<std::vector<std::vector<Eigen::Index>>>();
+            s.failed = t[5].cast<int>();
+            return s;
+          }))
+      .def("__repr__", [](const SpectrumUncertainty& s) {
+        std::ostringstream out;
+        out << "SpectrumUncertainty(estimate=" << s.estimate.transpose()
+            << ", standard_errors=" << s.standard_errors.transpose() << ")";
+        return out.str();
+      });
+  py::class_<Bootstrap>(m, "Bootstrap", "How the bootstrap ran and what it found (FitResult.bootstrap).")
+      .def_property_readonly("replicates", copied(&Bootstrap::replicates), "requested")
+      .def_property_readonly("failed", copied(&Bootstrap::failed), "replicates without an estimate, left out")
+      .def_property_readonly("seed", copied(&Bootstrap::seed))
+      .def_property_readonly("method", [](const Bootstrap& b) { return std::string(to_string(b.method)); },
+                             "the method every replicate ran")
+      .def_property_readonly("scheme", copied(&Bootstrap::scheme), "'multinomial' (rows) or 'poisson_groups' (streaming)")
+      .def_property_readonly("group_rows", copied(&Bootstrap::group_rows), "poisson_groups: rows per group")
+      .def_property_readonly("groups", copied(&Bootstrap::groups), "poisson_groups: groups")
+      .def_property_readonly("standard_errors", copied(&Bootstrap::standard_errors))
+      .def_property_readonly("bias", copied(&Bootstrap::bias))
+      .def_property_readonly("interval", copied(&Bootstrap::interval))
+      .def_property_readonly("eigenvalues", copied(&Bootstrap::eigenvalues), "SpectrumUncertainty, when X is symmetric")
+      .def(py::pickle(
+          [](const Bootstrap& b) {
+            return py::make_tuple(b.replicates, b.failed, b.seed, std::string(to_string(b.method)), b.scheme,
+                                  b.group_rows, b.groups, b.standard_errors, b.bias, b.interval, b.eigenvalues);
+          },
+          [](const py::tuple& t) {
+            check_state(t, 11, "Bootstrap");
+            Bootstrap b;
+            b.replicates = t[0].cast<int>();
+            b.failed = t[1].cast<int>();
+            b.seed = t[2].cast<std::uint64_t>();
+            b.method = method_from(t[3].cast<std::string>());
+            b.scheme = t[4].cast<std::string>();
+            b.group_rows = t[5].cast<Eigen::Index>();
+            b.groups = t[6].cast<Eigen::Index>();
+            b.standard_errors = t[7].cast<Eigen::MatrixXd>();
+            b.bias = t[8].cast<Eigen::MatrixXd>();
+            b.interval = t[9].cast<Interval>();
+            b.eigenvalues = t[10].cast<std::optional<SpectrumUncertainty>>();
+            return b;
+          }))
+      .def("__repr__", [](const Bootstrap& b) {
+        std::ostringstream out;
+        out << "Bootstrap(replicates=" << b.replicates << ", failed=" << b.failed << ", seed=" << b.seed
+            << ", method='" << to_string(b.method) << "', scheme='" << b.scheme << "')";
+        return out.str();
+      });
+
   py::class_<FitResult>(m, "FitResult", "An estimate of X in A X ~= B with its diagnostics and warnings.")
       .def_property_readonly("method", [](const FitResult& r) { return std::string(to_string(r.method)); })
       .def_property_readonly("ok", &FitResult::ok)
@@ -227,13 +324,36 @@ void bind_estimators(py::module_& m) {
       .def_property_readonly("X", copied(&FitResult::X), "the estimate (n x n ndarray; empty on failure)")
       .def_property_readonly("diagnostics", copied(&FitResult::diagnostics))
       .def_property_readonly("warnings", copied(&FitResult::warnings))
+      .def_property_readonly(
+          "standard_errors",
+          [](const FitResult& r) -> std::optional<Eigen::MatrixXd> {
+            if (!r.bootstrap) return std::nullopt;
+            return r.bootstrap->standard_errors;
+          },
+          "the bootstrap standard error of every entry of X (n x n), or None without bootstrap=N")
+      .def_property_readonly(
+          "interval",
+          [](const FitResult& r) -> std::optional<Interval> {
+            if (!r.bootstrap) return std::nullopt;
+            return r.bootstrap->interval;
+          },
+          "the bootstrap percentile interval (level, lower, upper), or None")
+      .def_property_readonly(
+          "bias",
+          [](const FitResult& r) -> std::optional<Eigen::MatrixXd> {
+            if (!r.bootstrap) return std::nullopt;
+            return r.bootstrap->bias;
+          },
+          "the bootstrap bias estimate (mean of the replicates minus X), or None")
+      .def_property_readonly("bootstrap", copied(&FitResult::bootstrap),
+                             "the bootstrap's details (replicates, failed, seed, eigenvalues, ...), or None")
       .def(py::pickle(
           [](const FitResult& r) {
             return py::make_tuple(std::string(to_string(r.method)), std::string(to_string(r.status)), r.message, r.X,
-                                  r.diagnostics, r.warnings);
+                                  r.diagnostics, r.warnings, r.bootstrap);
           },
           [](const py::tuple& t) {
-            check_state(t, 6, "FitResult");
+            check_state(t, 7, "FitResult");
             FitResult r;
             r.method = method_from(t[0].cast<std::string>());
             r.status = status_from(t[1].cast<std::string>());
@@ -241,6 +361,7 @@ void bind_estimators(py::module_& m) {
             r.X = t[3].cast<Eigen::MatrixXd>();
             r.diagnostics = t[4].cast<Diagnostics>();
             r.warnings = t[5].cast<std::vector<std::string>>();
+            r.bootstrap = t[6].cast<std::optional<Bootstrap>>();
             return r;
           }))
       .def("__repr__", &repr);
@@ -249,14 +370,18 @@ void bind_estimators(py::module_& m) {
       "fit",
       [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const std::string& method,
          std::optional<double> rank_tolerance, std::optional<double> noise_ratio, std::optional<int> max_iter,
-         std::optional<double> min_eig) {
+         std::optional<double> min_eig, int bootstrap, std::optional<double> confidence,
+         std::optional<std::uint64_t> seed, unsigned threads) {
         const Method chosen = method_from(method);
-        const FitOptions options = options_from(rank_tolerance, noise_ratio, chosen, max_iter, min_eig);
+        const FitOptions options = options_from(rank_tolerance, noise_ratio, chosen, max_iter, min_eig,
+                                                BootstrapArgs{bootstrap, confidence, seed, threads});
         py::gil_scoped_release release;
         return fit(A, B, chosen, options);
       },
       py::arg("A"), py::arg("B"), py::arg("method"), py::arg("rank_tolerance") = py::none(),
-      py::arg("noise_ratio") = py::none(), py::arg("max_iter") = py::none(), py::arg("min_eig") = py::none());
+      py::arg("noise_ratio") = py::none(), py::arg("max_iter") = py::none(), py::arg("min_eig") = py::none(),
+      py::arg("bootstrap") = 0, py::arg("confidence") = py::none(), py::arg("seed") = py::none(),
+      py::arg("threads") = 0u);
   py::class_<StreamOptions>(m, "StreamOptions",
                             "How fit_files streams its files; the defaults are the library's own.")
       .def(py::init<>())
@@ -266,9 +391,11 @@ void bind_estimators(py::module_& m) {
       "fit_files",
       [](const std::string& a_path, const std::string& b_path, const std::string& method, Eigen::Index block_rows,
          unsigned threads, std::optional<double> rank_tolerance, std::optional<double> noise_ratio,
-         std::optional<int> max_iter, std::optional<double> min_eig) {
+         std::optional<int> max_iter, std::optional<double> min_eig, int bootstrap,
+         std::optional<double> confidence, std::optional<std::uint64_t> seed) {
         const Method chosen = method_from(method);
-        const FitOptions options = options_from(rank_tolerance, noise_ratio, chosen, max_iter, min_eig);
+        const FitOptions options = options_from(rank_tolerance, noise_ratio, chosen, max_iter, min_eig,
+                                                BootstrapArgs{bootstrap, confidence, seed, threads});
         StreamOptions stream;
         stream.block_rows = block_rows;
         stream.threads = threads;
@@ -277,7 +404,8 @@ void bind_estimators(py::module_& m) {
       },
       py::arg("A_path"), py::arg("B_path"), py::arg("method"), py::arg("block_rows") = StreamOptions{}.block_rows,
       py::arg("threads") = StreamOptions{}.threads, py::arg("rank_tolerance") = py::none(),
-      py::arg("noise_ratio") = py::none(), py::arg("max_iter") = py::none(), py::arg("min_eig") = py::none());
+      py::arg("noise_ratio") = py::none(), py::arg("max_iter") = py::none(), py::arg("min_eig") = py::none(),
+      py::arg("bootstrap") = 0, py::arg("confidence") = py::none(), py::arg("seed") = py::none());
   m.def(
       "fit_all",
       [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, std::optional<double> rank_tolerance,

@@ -257,10 +257,11 @@ void attach_bootstrap(FitResult& result, const std::vector<Replicate>& replicate
     const AutoChoice choice = auto_choice(data, noise_var);
     if (std::string(choice.code) == "many_samples") {
       result.warnings.push_back(
-          std::string(to_string(m)) + " is biased by noise in A (m = " + std::to_string(data.m) +
-          " rows, signal-to-noise ratio " + format_number(choice.snr) +
-          " in A's weakest direction): the bootstrap interval is centred on the biased estimate and can miss "
-          "the truth; spd-tls (or auto) is consistent here");
+          "if A carries noise (the noise estimate cannot tell A's from B's), " + std::string(to_string(m)) +
+          " is biased by it at m = " + std::to_string(data.m) + " rows (signal-to-noise ratio " +
+          format_number(choice.snr) +
+          " in A's weakest direction), and the bootstrap interval, centred on the biased estimate, can miss the "
+          "truth; spd-tls (or auto) is consistent here");
     }
   }
   result.bootstrap = std::move(boot);

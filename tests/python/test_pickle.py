@@ -31,6 +31,23 @@ def same(a, b):
                (cb.primal_min_eig, cb.dual_min_eig, cb.complementarity, cb.duality_gap)
     ra, rb = a.diagnostics.reason, b.diagnostics.reason
     assert (ra is None and rb is None) or (ra.code, ra.text) == (rb.code, rb.text)
+    ba, bb = a.bootstrap, b.bootstrap
+    assert (ba is None) == (bb is None)
+    if ba is not None:
+        for name in ("replicates", "failed", "seed", "method", "scheme", "group_rows", "groups"):
+            assert getattr(ba, name) == getattr(bb, name), name
+        for name in ("standard_errors", "bias"):
+            assert np.array_equal(getattr(ba, name), getattr(bb, name)), name
+            assert np.array_equal(getattr(a, name), getattr(b, name)), name
+        assert ba.interval.level == bb.interval.level
+        assert np.array_equal(ba.interval.lower, bb.interval.lower)
+        assert np.array_equal(ba.interval.upper, bb.interval.upper)
+        ea, eb = ba.eigenvalues, bb.eigenvalues
+        assert (ea is None) == (eb is None)
+        if ea is not None:
+            for name in ("estimate", "standard_errors", "lower", "upper"):
+                assert np.array_equal(getattr(ea, name), getattr(eb, name)), name
+            assert (ea.clusters, ea.failed) == (eb.clusters, eb.failed)
 
 
 @pytest.mark.parametrize("method", list(spdfit.METHODS))
@@ -40,6 +57,16 @@ def test_every_method_round_trips(method):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", spdfit.SpdfitWarning)
         result = spdfit.fit(A, B, method)
+    same(pickle.loads(pickle.dumps(result)), result)
+
+
+@pytest.mark.parametrize("method", ["spde", "tls"])
+def test_bootstrap_round_trips(method):
+    A, B, _ = ref.thesis_generator(40, 6, 3.2, np.random.default_rng(4))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", spdfit.SpdfitWarning)
+        result = spdfit.fit(A, B, method, bootstrap=30)
+    assert result.bootstrap is not None
     same(pickle.loads(pickle.dumps(result)), result)
 
 
@@ -66,5 +93,5 @@ def test_results_come_back_from_a_process_pool():
 
 
 def test_a_truncated_state_is_refused():
-    with pytest.raises(RuntimeError, match="expected 6 fields"):
+    with pytest.raises(RuntimeError, match="expected 7 fields"):
         spdfit.FitResult.__new__(spdfit.FitResult).__setstate__(("spde",))

@@ -1,0 +1,101 @@
+"""`spdfit fit --bootstrap N`: the JSON contract (standard_errors, interval, bias, bootstrap), the
+--report table, reproducibility across threads, and the options' checks."""
+import json
+
+import numpy as np
+import pytest
+
+METHODS = ["ls", "procrustes", "tls", "tls-sym", "tls-psd", "spde", "spd-tls", "psd-ls", "auto"]
+
+
+@pytest.fixture(scope="module")
+def files(tmp_path_factory):
+    d = tmp_path_factory.mktemp("bootstrap")
+    rng = np.random.default_rng(3)
+    X = np.array([[3.0, 1.0, 0.5], [1.0, 2.0, 0.2], [0.5, 0.2, 1.5]])
+    A0 = rng.uniform(-5, 5, (200, 3))
+    np.savetxt(d / "A.csv", A0 + 0.2 * rng.standard_normal(A0.shape), delimiter=",", fmt="%.17g")
+    np.savetxt(d / "B.csv", A0 @ X + 0.2 * rng.standard_normal(A0.shape), delimiter=",", fmt="%.17g")
+    return str(d / "A.csv"), str(d / "B.csv")
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_json_has_the_bootstrap_fields_for_every_method(spdfit, files, method):
+    out = spdfit("fit", "-m", method, "--bootstrap", "60", "--json", *files)
+    assert out.returncode == 0, out.stderr
+    j = json.loads(out.stdout)
+    X = np.array(j["X"])
+    se = np.array(j["standard_errors"])
+    assert se.shape == X.shape == (3, 3) and np.all(se > 0)
+    assert j["interval"]["level"] == 0.95
+    lower, upper = np.array(j["interval"]["lower"]), np.array(j["interval"]["upper"])
+    assert np.all(lower <= upper)
+    assert np.array(j["bias"]).shape == (3, 3)
+    boot = j["bootstrap"]
+    assert boot["replicates"] == 60 and boot["seed"] == 1 and boot["failed"] == 0
+    assert boot["scheme"] == "multinomial"
+    assert boot["method"] == j["method"]  # auto: the method it chose
+    if method not in ("ls", "tls"):
+        eig = boot["eigenvalues"]
+        assert len(eig["estimate"]) == 3 and sorted(sum(eig["clusters"], [])) == [0, 1, 2]
+
+
+def test_text_output_stays_x_only(spdfit, files):
+    plain = spdfit("fit", "-m", "spde", *files)
+    boot = spdfit("fit", "-m", "spde", "--bootstrap", "20", *files)
+    assert boot.returncode == 0 and boot.stdout == plain.stdout
+    assert "--json or --report" in boot.stderr
+
+
+def test_report_shows_standard_errors_and_the_noise_estimate(spdfit, files):
+    out = spdfit("fit", "-m", "spd-tls", "--bootstrap", "100", "--report", *files)
+    assert out.returncode == 0, out.stderr
+    j = json.loads(spdfit("fit", "-m", "spd-tls", "--bootstrap", "100", "--json", *files).stdout)
+    assert "bootstrap of 100 replicates (0 failed), seed 1" in out.stdout
+    assert out.stdout.count("+-") >= 9 + 3
+    assert "noise estimate: sigma = " in out.stdout
+    assert "eigenvalues (ascending)" in out.stdout and "[95% interval]" in out.stdout
+    first = out.stdout.splitlines()[3].split()
+    # Row 1, column 1: "value +- se" as JSON has them, to the digits shown.
+    assert float(first[1]) == pytest.approx(j["X"][0][0], abs=10 ** -len(first[1].split(".")[1]))
+    assert float(first[3]) == pytest.approx(j["standard_errors"][0][0], rel=0.05)
+    without = spdfit("fit", "-m", "spd-tls", "--report", *files)
+    assert without.returncode == 0 and "add --bootstrap N" in without.stdout
+
+
+def test_same_numbers_for_one_and_two_threads_and_seed_matters(spdfit, files):
+    runs = [spdfit("fit", "-m", "spde", "--bootstrap", "200", "--json", "--threads", t, *files).stdout
+            for t in ("1", "2")]
+    assert runs[0] == runs[1]
+    other = spdfit("fit", "-m", "spde", "--bootstrap", "200", "--json", "--seed", "7", *files).stdout
+    assert json.loads(other)["bootstrap"]["seed"] == 7
+    assert json.loads(other)["standard_errors"] != json.loads(runs[0])["standard_errors"]
+
+
+def test_confidence_sets_the_level(spdfit, files):
+    j = json.loads(spdfit("fit", "-m", "spde", "--bootstrap", "100", "--confidence", "0.5", "--json",
+                          *files).stdout)
+    wide = json.loads(spdfit("fit", "-m", "spde", "--bootstrap", "100", "--json", *files).stdout)
+    assert j["interval"]["level"] == 0.5
+    width = np.array(j["interval"]["upper"]) - np.array(j["interval"]["lower"])
+    assert np.all(width < np.array(wide["interval"]["upper"]) - np.array(wide["interval"]["lower"]))
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--bootstrap", "-1"], "--bootstrap"),
+    (["--bootstrap", "10", "--confidence", "1"], "fraction strictly between 0 and 1"),
+    (["--bootstrap", "10", "--confidence", "95"], "fraction strictly between 0 and 1"),
+    (["--seed", "3"], "--seed applies to the bootstrap"),
+    (["--confidence", "0.9"], "--confidence applies to the bootstrap"),
+    (["--threads", "2"], "--threads applies to --stream and --bootstrap"),
+    (["--bootstrap", "10", "--json", "--report"], "excludes"),
+])
+def test_usage_errors(spdfit, files, args, message):
+    out = spdfit("fit", "-m", "spde", *args, *files)
+    assert out.returncode == 2, out.stdout
+    assert message in out.stderr
+
+
+def test_threads_with_bootstrap_alone_is_accepted(spdfit, files):
+    out = spdfit("fit", "-m", "spde", "--bootstrap", "10", "--threads", "2", *files)
+    assert out.returncode == 0, out.stderr
