@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
@@ -225,6 +226,26 @@ Eigen::MatrixXd parse_stiffness(const std::string& text, Eigen::Index n) {
   return Eigen::Map<const Eigen::VectorXd>(values.data(), n).asDiagonal();
 }
 
+// Each symmetric estimate's eigenvalues and modes with their bootstrap intervals.
+std::string bootstrap_report(const std::vector<hexapod::MethodIdentification>& methods,
+                             const hexapod::IdentifyOptions& options) {
+  std::ostringstream out;
+  char level[32];
+  std::snprintf(level, sizeof level, "%.4g%%", 100.0 * options.fit.confidence);
+  out << "\nbootstrap: " << options.fit.bootstrap << " resamples of the rows (seed " << options.fit.seed
+      << "); value +- standard error   [" << level
+      << " interval]; values closer than their standard errors share one interval\n";
+  for (const hexapod::MethodIdentification& m : methods) {
+    const auto& b = m.result.bootstrap;
+    if (!b || !b->eigenvalues) continue;
+    out << to_string(m.result.method) << " (" << b->failed << " of " << b->replicates << " resamples failed)\n"
+        << "  eigenvalues (kg)\n"
+        << spectrum_text(*b->eigenvalues, "    ");
+    if (m.modes_uncertainty) out << "  modes (Hz)\n" << spectrum_text(*m.modes_uncertainty, "    ");
+  }
+  return out.str();
+}
+
 std::string identify_report(const std::vector<hexapod::MethodIdentification>& methods,
                             const hexapod::IdentifyOptions& options) {
   std::ostringstream out;
@@ -283,6 +304,7 @@ std::string identify_report(const std::vector<hexapod::MethodIdentification>& me
           << (m.modes_hz ? vector_text(*m.modes_hz, 2) + " Hz" : "not positive definite: no modes") << '\n';
     }
   }
+  if (options.fit.bootstrap > 0) out << bootstrap_report(methods, options);
   if (options.truth) {
     const hexapod::MethodIdentification* best = nullptr;
     for (const hexapod::MethodIdentification& m : methods) {
@@ -299,6 +321,10 @@ Command add_identify(CLI::App& parent, const GlobalOptions& global) {
   struct Cli {
     std::string a_path, b_path, truth, geometry, stiffness, output;
     bool json = false;
+    int bootstrap = 0;
+    std::optional<double> confidence;
+    std::optional<std::uint64_t> seed;
+    std::optional<unsigned> threads;
   };
   auto cli = std::make_shared<Cli>();
   CLI::App* sub = parent.add_subcommand(
@@ -314,11 +340,28 @@ Command add_identify(CLI::App& parent, const GlobalOptions& global) {
   stiffness->excludes(geometry);
   sub->add_flag("--json", cli->json, "Print every result as JSON");
   sub->add_option("-o,--output", cli->output, "Write to FILE instead of stdout");
+  sub->add_option("--bootstrap", cli->bootstrap,
+                  "Resample the rows N times for each method's standard errors and the intervals of its "
+                  "eigenvalues and modes")
+      ->check(CLI::Range(0, 10000000));
+  sub->add_option("--confidence", cli->confidence, "The bootstrap intervals' level, a fraction (default 0.95)")
+      ->check(open_fraction());
+  sub->add_option("--seed", cli->seed, "The bootstrap's seed (default 1)");
+  sub->add_option("--threads", cli->threads, "Threads for --bootstrap (default: one per core)")
+      ->check(CLI::Range(0u, 1024u));
 
   auto run = [cli, &global]() {
+    if (cli->bootstrap == 0 && (cli->confidence || cli->seed || cli->threads)) {
+      throw UsageError(std::string(cli->confidence ? "--confidence" : cli->seed ? "--seed" : "--threads") +
+                       " applies to the bootstrap: give --bootstrap N as well");
+    }
     const DataPair data = read_pair(cli->a_path, cli->b_path);
     const Eigen::Index n = data.A.cols();
     hexapod::IdentifyOptions options;
+    options.fit.bootstrap = cli->bootstrap;
+    options.fit.confidence = cli->confidence.value_or(options.fit.confidence);
+    options.fit.seed = cli->seed.value_or(options.fit.seed);
+    options.fit.threads = cli->threads.value_or(options.fit.threads);
     if (!cli->truth.empty()) {
       options.truth = load_matrix(cli->truth);
       if (options.truth->rows() != n || options.truth->cols() != n) {
@@ -354,6 +397,7 @@ Command add_identify(CLI::App& parent, const GlobalOptions& global) {
       if (m.eigenvalues) j["eigenvalues"] = vector_json(*m.eigenvalues);
       if (m.modes_hz) j["modes_hz"] = vector_json(*m.modes_hz);
       if (m.error_vs_truth) j["error_vs_truth"] = number_json(*m.error_vs_truth);
+      if (m.modes_uncertainty) j["bootstrap"]["modes_hz"] = spectrum_json(*m.modes_uncertainty);
       out["methods"][std::string(to_string(m.result.method))] = std::move(j);
     }
     emit(out.dump(2) + "\n", cli->output);

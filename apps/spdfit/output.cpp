@@ -147,7 +147,7 @@ std::string spectrum_text(const SpectrumUncertainty& s, const std::string& inden
       if (i == cluster.front()) {
         out << "   [" << format_fixed(s.lower(i), d) << ", " << format_fixed(s.upper(i), d) << "]";
         if (cluster.size() > 1) {
-          out << " for " << cluster.front() + 1 << " to " << cluster.back() + 1
+          out << " for " << cluster.front() + 1 << (cluster.size() == 2 ? " and " : " to ") << cluster.back() + 1
               << " together (closer than their standard errors)";
         }
       }

@@ -13,7 +13,7 @@ from collections import namedtuple as _namedtuple
 
 import numpy as _np
 
-from . import _as_matrix
+from . import _as_matrix, _options
 from ._spdfit import hexapod as _core
 
 Geometry = _core.Geometry
@@ -80,11 +80,19 @@ def simulate(samples=_SIMULATION.samples, noise_var=0.86, *, seed=1, truth="thes
     return Simulation(A, B, M, A_true, B_true)
 
 
-def identify(A, B, *, truth=None, stiffness=None):
+def identify(A, B, *, truth=None, stiffness=None, bootstrap=0, confidence=None, seed=None, threads=0):
     """Every estimator on accelerations A and forces B; a dict {method: MethodIdentification} with
     the FitResult, the eigenvalues, the modes (with a stiffness matrix K) and the error against
-    a known truth."""
+    a known truth.
+
+    bootstrap=N (with confidence, seed and threads as in spdfit.fit) adds each method's bootstrap
+    to its result (result.standard_errors, result.bootstrap.eigenvalues) and, with a stiffness,
+    the modes' intervals (modes_uncertainty): N resamples of the rows, each refitted by every
+    estimator."""
+    bootstrap, confidence, seed, threads = _options(bootstrap=bootstrap, confidence=confidence, seed=seed,
+                                                    threads=threads)
     results = _core.identify(_as_matrix("A", A), _as_matrix("B", B),
                              None if truth is None else _as_matrix("truth", truth),
-                             None if stiffness is None else _as_matrix("stiffness", stiffness))
+                             None if stiffness is None else _as_matrix("stiffness", stiffness),
+                             bootstrap, confidence, seed, threads)
     return {r.result.method: r for r in results}

@@ -82,18 +82,29 @@ void bind_hexapod(py::module_& parent) {
       .def_property_readonly("result", copied(&MethodIdentification::result))
       .def_property_readonly("eigenvalues", copied(&MethodIdentification::eigenvalues))
       .def_property_readonly("modes_hz", copied(&MethodIdentification::modes_hz))
-      .def_property_readonly("error_vs_truth", copied(&MethodIdentification::error_vs_truth));
+      .def_property_readonly("error_vs_truth", copied(&MethodIdentification::error_vs_truth))
+      .def_property_readonly("modes_uncertainty", copied(&MethodIdentification::modes_uncertainty),
+                             "with bootstrap=N and a stiffness: the modes' SpectrumUncertainty");
   m.def(
       "identify",
       [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, std::optional<Eigen::MatrixXd> truth,
-         std::optional<Eigen::MatrixXd> stiffness) {
+         std::optional<Eigen::MatrixXd> stiffness, int bootstrap, std::optional<double> confidence,
+         std::optional<std::uint64_t> seed, unsigned threads) {
         IdentifyOptions options;
         options.truth = std::move(truth);
         options.stiffness = std::move(stiffness);
+        options.fit.bootstrap = bootstrap;
+        options.fit.confidence = confidence.value_or(options.fit.confidence);
+        options.fit.seed = seed.value_or(options.fit.seed);
+        options.fit.threads = threads;
+        std::string error;
+        if (!options.fit.is_valid(&error)) throw std::invalid_argument(error);
         py::gil_scoped_release release;
         return identify(A, B, options);
       },
-      py::arg("A"), py::arg("B"), py::arg("truth") = py::none(), py::arg("stiffness") = py::none());
+      py::arg("A"), py::arg("B"), py::arg("truth") = py::none(), py::arg("stiffness") = py::none(),
+      py::arg("bootstrap") = 0, py::arg("confidence") = py::none(), py::arg("seed") = py::none(),
+      py::arg("threads") = 0u);
 }
 
 }  // namespace spdfit::python

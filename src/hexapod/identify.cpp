@@ -7,8 +7,69 @@
 
 #include "spdfit/fit.hpp"
 #include "spdfit/hexapod/model.hpp"
+#include "uncertainty/bootstrap.hpp"
 
 namespace spdfit::hexapod {
+
+namespace {
+
+// The modes of a replicate's estimate, when it is positive definite.
+std::optional<Eigen::VectorXd> replicate_modes(const Eigen::MatrixXd& X, const Eigen::MatrixXd& stiffness) {
+  if (X.size() == 0 || X != X.transpose()) return std::nullopt;
+  try {
+    Eigen::VectorXd modes = modal_frequencies_hz(X, stiffness);
+    if (modes.allFinite()) return modes;
+  } catch (const std::invalid_argument&) {
+    // not positive definite: no modes
+  }
+  return std::nullopt;
+}
+
+// Every estimator on each of N resamples (one factor and reduction per resample, shared).
+void bootstrap(std::vector<MethodIdentification>& methods, const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
+               const IdentifyOptions& options, const Reduction& data) {
+  const FitOptions& fit_options = options.fit;
+  const auto replicates = static_cast<std::size_t>(fit_options.bootstrap);
+  std::vector<std::vector<detail::Replicate>> per_method(methods.size(), std::vector<detail::Replicate>(replicates));
+  FitOptions quiet = fit_options;
+  quiet.diagnostics = false;
+  quiet.bootstrap = 0;
+  detail::parallel_for(fit_options.bootstrap, fit_options.threads, [&](int r) {
+    std::vector<std::uint32_t> counts;
+    detail::multinomial_counts(fit_options.seed, r, A.rows(), counts);
+    TriangularFactor factor(A.cols());
+    factor.append(A, B, counts);
+    std::vector<FitResult> results;
+    std::string failure;
+    try {
+      results = fit_all(reduce(factor, quiet));
+    } catch (const std::invalid_argument& e) {
+      failure = e.what();
+    }
+    for (std::size_t k = 0; k < methods.size(); ++k) {
+      detail::Replicate& slot = per_method[k][static_cast<std::size_t>(r)];
+      if (k >= results.size()) {
+        slot.message = failure;
+      } else if (results[k].ok() && results[k].X.allFinite()) {
+        slot.X = std::move(results[k].X);
+      } else {
+        slot.message = results[k].ok() ? "the estimate is not finite" : results[k].message;
+      }
+    }
+  });
+  for (std::size_t k = 0; k < methods.size(); ++k) {
+    MethodIdentification& m = methods[k];
+    if (!m.result.ok()) continue;
+    detail::attach_bootstrap(m.result, per_method[k], fit_options, data);
+    if (options.stiffness && m.modes_hz) {
+      std::vector<std::optional<Eigen::VectorXd>> modes(replicates);
+      for (std::size_t r = 0; r < replicates; ++r) modes[r] = replicate_modes(per_method[k][r].X, *options.stiffness);
+      m.modes_uncertainty = detail::summarize_spectrum(*m.modes_hz, modes, fit_options.confidence);
+    }
+  }
+}
+
+}  // namespace
 
 std::vector<MethodIdentification> identify(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
                                            const IdentifyOptions& options) {
@@ -27,7 +88,8 @@ std::vector<MethodIdentification> identify(const Eigen::MatrixXd& A, const Eigen
   }
 
   std::vector<MethodIdentification> out;
-  for (FitResult& result : fit_all(A, B, options.fit)) {
+  const Reduction data = reduce(TriangularFactor::from_data(A, B), options.fit);
+  for (FitResult& result : fit_all(data)) {
     MethodIdentification m;
     m.result = std::move(result);
     const FitResult& r = m.result;
@@ -48,6 +110,7 @@ std::vector<MethodIdentification> identify(const Eigen::MatrixXd& A, const Eigen
     }
     out.push_back(std::move(m));
   }
+  if (options.fit.bootstrap > 0) bootstrap(out, A, B, options, data);
   return out;
 }
 

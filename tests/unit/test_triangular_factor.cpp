@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include "spdfit/triangular_factor.hpp"
 #include "test_support.hpp"
@@ -140,6 +142,63 @@ TEST(TriangularFactor, RejectsMisuse) {
   EXPECT_THROW(TriangularFactor::from_data(MatrixXd::Ones(4, 2), bad), std::invalid_argument);
   TriangularFactor f(2);
   EXPECT_THROW(f.merge(TriangularFactor(3)), std::invalid_argument);
+}
+
+// Frequency weights: rows counted c times are the factor of the data with those rows repeated
+// (what a bootstrap resample is), without the copies.
+TEST(TriangularFactor, CountedRowsAreRepeatedRows) {
+  Generator g(31);
+  const Index m = 2500;  // more than one internal chunk of counted rows
+  const MatrixXd A = g.gaussian(m, 3) * 1e5, B = g.gaussian(m, 3) * 1e-7;
+  std::vector<std::uint32_t> counts(static_cast<std::size_t>(m));
+  Index repeated = 0;
+  for (Index i = 0; i < m; ++i) {
+    counts[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(i % 4);  // 0, 1, 2, 3
+    repeated += i % 4;
+  }
+  MatrixXd Ar(repeated, 3), Br(repeated, 3);
+  Index at = 0;
+  for (Index i = 0; i < m; ++i) {
+    for (Index c = 0; c < i % 4; ++c, ++at) {
+      Ar.row(at) = A.row(i);
+      Br.row(at) = B.row(i);
+    }
+  }
+  TriangularFactor counted(3);
+  counted.append(A, B, counts);
+  EXPECT_EQ(counted.rows(), repeated);
+  const MatrixXd G = gram_of_data(Ar, Br);
+  const MatrixXd scale = G.diagonal().cwiseSqrt() * G.diagonal().cwiseSqrt().transpose();
+  EXPECT_LT((gram_from_factor(counted) - G).cwiseQuotient(scale).cwiseAbs().maxCoeff(), kGramTolerance);
+  // All zero counts: nothing added.
+  TriangularFactor empty(3);
+  empty.append(A, B, std::vector<std::uint32_t>(static_cast<std::size_t>(m), 0));
+  EXPECT_EQ(empty.rows(), 0);
+  EXPECT_THROW(empty.append(A, B, std::vector<std::uint32_t>(3, 1)), std::invalid_argument);
+}
+
+TEST(TriangularFactor, WeightedMergeCountsEachFactorsRows) {
+  Generator g(32);
+  std::vector<MatrixXd> As, Bs;
+  std::vector<TriangularFactor> parts;
+  for (int k = 0; k < 4; ++k) {
+    As.push_back(g.gaussian(30, 2) * std::ldexp(1.0, 40 * k));
+    Bs.push_back(g.gaussian(30, 2));
+    parts.push_back(TriangularFactor::from_data(As.back(), Bs.back()));
+  }
+  const std::vector<std::uint32_t> counts = {2, 0, 1, 3};
+  TriangularFactor merged(2);
+  std::vector<const TriangularFactor*> pointers;
+  for (const TriangularFactor& p : parts) pointers.push_back(&p);
+  merged.merge(pointers, counts);
+  EXPECT_EQ(merged.rows(), 30 * (2 + 0 + 1 + 3));
+  MatrixXd G = MatrixXd::Zero(4, 4);
+  for (int k = 0; k < 4; ++k) G += counts[static_cast<std::size_t>(k)] * gram_of_data(As[k], Bs[k]);
+  const MatrixXd scale = G.diagonal().cwiseSqrt() * G.diagonal().cwiseSqrt().transpose();
+  EXPECT_LT((gram_from_factor(merged) - G).cwiseQuotient(scale).cwiseAbs().maxCoeff(), kGramTolerance);
+  EXPECT_THROW(merged.merge(pointers, {1, 2}), std::invalid_argument);
+  const TriangularFactor other(3);
+  EXPECT_THROW(merged.merge({&other}, {1}), std::invalid_argument);
 }
 
 }  // namespace

@@ -20,6 +20,9 @@ struct MethodIdentification {
   /// definite and a stiffness was given (an indefinite "mass matrix" has no modes).
   std::optional<Eigen::VectorXd> modes_hz;
   std::optional<double> error_vs_truth;  ///< ||X - truth||_F, when a truth was given
+  /// With options.fit.bootstrap > 0: the bootstrap uncertainty of modes_hz (the eigenvalues' is
+  /// result.bootstrap->eigenvalues), when modes_hz is present.
+  std::optional<SpectrumUncertainty> modes_uncertainty;
 };
 
 /// Options of identify.
@@ -33,6 +36,12 @@ struct IdentifyOptions {
 /// (m x n each, one sample per row: B ~= A M_p, thesis eq. 3.1 in row form), with each
 /// estimate's eigenvalues, the modes it implies with stiffness K (thesis section 2.2), and its
 /// error against a known truth. Failed estimators are reported with their message.
+///
+/// With options.fit.bootstrap = N > 0, every estimator's result also carries its bootstrap
+/// (FitResult::bootstrap: standard errors, intervals, bias, eigenvalue intervals) and, with a
+/// stiffness, the modes' intervals: N multinomial resamples of the rows, each refitted by every
+/// estimator (one shared factor per resample), on options.fit.threads threads. Cost N times the
+/// estimators' O(m n^2 + n^3).
 ///
 /// Preconditions: as fit_all; truth and stiffness n x n (else std::invalid_argument).
 /// Cost: O(m n^2 + n^3).

@@ -1,0 +1,86 @@
+// FitOptions::bootstrap: the fields are filled for every method, the numbers depend on the seed
+// and not on the threads, failed replicates are counted, and the options are checked. (The
+// numbers themselves are checked against independent references in tests/python/test_bootstrap.py.)
+#include <gtest/gtest.h>
+
+#include "spdfit/fit.hpp"
+#include "test_support.hpp"
+
+namespace spdfit {
+namespace {
+
+using test::Generator;
+
+struct Data {
+  MatrixXd A, B;
+};
+
+Data noisy(std::uint64_t seed, Index m, Index n) {
+  Generator g(seed);
+  const MatrixXd W = g.gaussian(n, n);
+  const MatrixXd X = W * W.transpose() + MatrixXd::Identity(n, n) * static_cast<double>(n);
+  const MatrixXd A0 = g.gaussian(m, n) * 3.0;
+  return {A0 + 0.2 * g.gaussian(m, n), A0 * X + 0.2 * g.gaussian(m, n)};
+}
+
+TEST(Bootstrap, EveryMethodFillsTheFields) {
+  const Data d = noisy(1, 80, 3);
+  FitOptions options;
+  options.bootstrap = 50;
+  for (Method method : kSelectableMethods) {
+    const FitResult r = fit(d.A, d.B, method, options);
+    ASSERT_TRUE(r.ok()) << to_string(method);
+    ASSERT_TRUE(r.bootstrap.has_value()) << to_string(method);
+    const Bootstrap& b = *r.bootstrap;
+    EXPECT_EQ(b.replicates, 50);
+    EXPECT_EQ(b.failed, 0);
+    EXPECT_EQ(b.method, r.method);
+    EXPECT_EQ(b.standard_errors.rows(), 3);
+    EXPECT_TRUE((b.standard_errors.array() > 0).all()) << to_string(method);
+    EXPECT_TRUE((b.interval.lower.array() <= b.interval.upper.array()).all());
+    EXPECT_EQ(b.eigenvalues.has_value(), r.diagnostics.symmetric) << to_string(method);
+  }
+}
+
+TEST(Bootstrap, SameNumbersForAnyThreadCountAndTheSeedMatters) {
+  const Data d = noisy(2, 60, 4);
+  FitOptions options;
+  options.bootstrap = 64;
+  options.threads = 1;
+  const FitResult one = fit(d.A, d.B, Method::SpdTotalLeastSquares, options);
+  options.threads = 3;
+  const FitResult three = fit(d.A, d.B, Method::SpdTotalLeastSquares, options);
+  EXPECT_EQ(one.bootstrap->standard_errors, three.bootstrap->standard_errors);
+  EXPECT_EQ(one.bootstrap->interval.lower, three.bootstrap->interval.lower);
+  EXPECT_EQ(one.bootstrap->bias, three.bootstrap->bias);
+  options.seed = 2;
+  const FitResult other = fit(d.A, d.B, Method::SpdTotalLeastSquares, options);
+  EXPECT_NE(one.bootstrap->standard_errors, other.bootstrap->standard_errors);
+  // X itself does not depend on the bootstrap.
+  EXPECT_EQ(one.X, fit(d.A, d.B, Method::SpdTotalLeastSquares).X);
+}
+
+TEST(Bootstrap, AReductionHasNoRowsToResample) {
+  const Data d = noisy(3, 30, 2);
+  FitOptions options;
+  options.bootstrap = 10;
+  EXPECT_FALSE(fit(reduce(TriangularFactor::from_data(d.A, d.B), options), Method::Spde).bootstrap.has_value());
+  EXPECT_FALSE(fit(d.A, d.B, Method::Spde).bootstrap.has_value());
+}
+
+TEST(Bootstrap, OptionsAreChecked) {
+  FitOptions options;
+  options.bootstrap = -1;
+  std::string why;
+  EXPECT_FALSE(options.is_valid(&why));
+  EXPECT_NE(why.find("bootstrap"), std::string::npos);
+  options.bootstrap = 10;
+  for (double level : {0.0, 1.0, -0.5, 95.0}) {
+    options.confidence = level;
+    EXPECT_FALSE(options.is_valid(&why)) << level;
+    EXPECT_NE(why.find("confidence"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace spdfit
