@@ -26,7 +26,7 @@ import numpy as _np
 
 from . import _spdfit
 from ._spdfit import (AutoReason, DataError, Diagnostics, FitResult, LinearSystemResult, NearestSpdResult,
-                      PsdCertificate)
+                      PsdCertificate, Bootstrap, Interval, SpectrumUncertainty)
 
 __version__ = _spdfit.__version__
 
@@ -38,7 +38,7 @@ __all__ = [
     "LinearSystemResult", "SpdfitWarning", "area_criterion", "solve", "fit", "fit_all", "fit_files",
     "least_squares", "nearest_spd", "read_matrix",
     "read_table", "spde", "symmetric_procrustes", "total_least_squares", "total_least_squares_psd",
-    "spd_total_least_squares", "psd_least_squares", "auto_fit", "PsdCertificate", "AutoReason",
+    "spd_total_least_squares", "psd_least_squares", "auto_fit", "PsdCertificate", "AutoReason", "Bootstrap", "Interval", "SpectrumUncertainty",
     "total_least_squares_symmetric", "write_csv",
 ]
 

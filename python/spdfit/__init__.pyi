@@ -9,7 +9,8 @@ from . import experiment as experiment
 from . import hexapod as hexapod
 from . import linkage as linkage
 from ._spdfit import (AutoReason as AutoReason, PsdCertificate as PsdCertificate, DataError as DataError, Diagnostics as Diagnostics, FitResult as FitResult,
-                      LinearSystemResult as LinearSystemResult, NearestSpdResult as NearestSpdResult)
+                      LinearSystemResult as LinearSystemResult, NearestSpdResult as NearestSpdResult,
+                      Bootstrap as Bootstrap, Interval as Interval, SpectrumUncertainty as SpectrumUncertainty)
 
 __version__: str
 METHODS: Tuple[str, ...]
@@ -29,11 +30,13 @@ class SpdfitWarning(UserWarning): ...
 
 def fit(A: npt.ArrayLike, B: npt.ArrayLike, method: Method = ..., *,
         rank_tolerance: Optional[float] = ..., noise_ratio: Optional[float] = ...,
-        max_iter: Optional[int] = ..., min_eig: Optional[float] = ...) -> FitResult: ...
+        max_iter: Optional[int] = ..., min_eig: Optional[float] = ..., bootstrap: int = ...,
+        confidence: Optional[float] = ..., seed: Optional[int] = ..., threads: int = ...) -> FitResult: ...
 def fit_files(A_path: Union[str, "os.PathLike[str]"], B_path: Union[str, "os.PathLike[str]"], method: Method = ..., *,
               block_rows: int = ..., threads: int = ..., rank_tolerance: Optional[float] = ...,
               noise_ratio: Optional[float] = ..., max_iter: Optional[int] = ...,
-              min_eig: Optional[float] = ...) -> FitResult: ...
+              min_eig: Optional[float] = ..., bootstrap: int = ..., confidence: Optional[float] = ...,
+              seed: Optional[int] = ...) -> FitResult: ...
 def fit_all(A: npt.ArrayLike, B: npt.ArrayLike, *, rank_tolerance: Optional[float] = ...,
             noise_ratio: Optional[float] = ..., max_iter: Optional[int] = ...,
             min_eig: Optional[float] = ...) -> Dict[str, FitResult]: ...

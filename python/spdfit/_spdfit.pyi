@@ -50,6 +50,32 @@ class Diagnostics:
     chosen_method: Optional[str]
     reason: Optional[AutoReason]
 
+class Interval:
+    level: float
+    lower: npt.NDArray[np.float64]
+    upper: npt.NDArray[np.float64]
+
+class SpectrumUncertainty:
+    estimate: npt.NDArray[np.float64]
+    standard_errors: npt.NDArray[np.float64]
+    lower: npt.NDArray[np.float64]
+    upper: npt.NDArray[np.float64]
+    clusters: List[List[int]]
+    failed: int
+
+class Bootstrap:
+    replicates: int
+    failed: int
+    seed: int
+    method: str
+    scheme: str
+    group_rows: int
+    groups: int
+    standard_errors: npt.NDArray[np.float64]
+    bias: npt.NDArray[np.float64]
+    interval: Interval
+    eigenvalues: Optional[SpectrumUncertainty]
+
 class FitResult:
     method: str
     ok: bool
@@ -58,6 +84,10 @@ class FitResult:
     X: npt.NDArray[np.float64]
     diagnostics: Diagnostics
     warnings: List[str]
+    standard_errors: Optional[npt.NDArray[np.float64]]
+    interval: Optional[Interval]
+    bias: Optional[npt.NDArray[np.float64]]
+    bootstrap: Optional[Bootstrap]
 
 class NearestSpdResult:
     X: npt.NDArray[np.float64]
@@ -67,7 +97,8 @@ class NearestSpdResult:
 
 def fit(A: npt.ArrayLike, B: npt.ArrayLike, method: str, rank_tolerance: Optional[float] = ...,
         noise_ratio: Optional[float] = ..., max_iter: Optional[int] = ...,
-        min_eig: Optional[float] = ...) -> FitResult: ...
+        min_eig: Optional[float] = ..., bootstrap: int = ..., confidence: Optional[float] = ...,
+        seed: Optional[int] = ..., threads: int = ...) -> FitResult: ...
 class StreamOptions:
     block_rows: int
     threads: int
@@ -75,7 +106,8 @@ class StreamOptions:
 
 def fit_files(A_path: str, B_path: str, method: str, block_rows: int = ..., threads: int = ...,
               rank_tolerance: Optional[float] = ..., noise_ratio: Optional[float] = ...,
-              max_iter: Optional[int] = ..., min_eig: Optional[float] = ...) -> FitResult: ...
+              max_iter: Optional[int] = ..., min_eig: Optional[float] = ..., bootstrap: int = ...,
+              confidence: Optional[float] = ..., seed: Optional[int] = ...) -> FitResult: ...
 def fit_all(A: npt.ArrayLike, B: npt.ArrayLike, rank_tolerance: Optional[float] = ...,
             noise_ratio: Optional[float] = ..., max_iter: Optional[int] = ...,
             min_eig: Optional[float] = ...) -> List[FitResult]: ...

@@ -24,6 +24,7 @@ class MethodIdentification:
     eigenvalues: Optional[Array]
     modes_hz: Optional[Array]
     error_vs_truth: Optional[float]
+    modes_uncertainty: Any  # Optional[spdfit.SpectrumUncertainty]
 
 class Model(NamedTuple):
     geometry: Geometry
@@ -53,4 +54,5 @@ def simulate(samples: int = ..., noise_var: float = ..., *, seed: int = ...,
              truth: Union[str, npt.ArrayLike, GeometrySource] = ..., signal_var: float = ...,
              distribution: str = ..., force_noise_var: Optional[float] = ...) -> Simulation: ...
 def identify(A: npt.ArrayLike, B: npt.ArrayLike, *, truth: Optional[npt.ArrayLike] = ...,
-             stiffness: Optional[npt.ArrayLike] = ...) -> Dict[str, MethodIdentification]: ...
+             stiffness: Optional[npt.ArrayLike] = ..., bootstrap: int = ..., confidence: Optional[float] = ...,
+             seed: Optional[int] = ..., threads: int = ...) -> Dict[str, MethodIdentification]: ...
