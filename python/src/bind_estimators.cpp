@@ -122,6 +122,15 @@ Diagnostics diagnostics_from(const py::tuple& t) {
   return d;
 }
 
+// The getter of a FitResult attribute that is a field of its bootstrap: a copy, or None without one.
+template <typename Member>
+auto from_bootstrap(Member Bootstrap::*member) {
+  return [member](const FitResult& r) -> std::optional<Member> {
+    if (!r.bootstrap) return std::nullopt;
+    return (*r.bootstrap).*member;
+  };
+}
+
 std::string repr(const FitResult& r) {
   std::ostringstream out;
   out << "FitResult(method='" << to_string(r.method) << "', ";
@@ -324,27 +333,12 @@ void bind_estimators(py::module_& m) {
       .def_property_readonly("X", copied(&FitResult::X), "the estimate (n x n ndarray; empty on failure)")
       .def_property_readonly("diagnostics", copied(&FitResult::diagnostics))
       .def_property_readonly("warnings", copied(&FitResult::warnings))
-      .def_property_readonly(
-          "standard_errors",
-          [](const FitResult& r) -> std::optional<Eigen::MatrixXd> {
-            if (!r.bootstrap) return std::nullopt;
-            return r.bootstrap->standard_errors;
-          },
-          "the bootstrap standard error of every entry of X (n x n), or None without bootstrap=N")
-      .def_property_readonly(
-          "interval",
-          [](const FitResult& r) -> std::optional<Interval> {
-            if (!r.bootstrap) return std::nullopt;
-            return r.bootstrap->interval;
-          },
-          "the bootstrap percentile interval (level, lower, upper), or None")
-      .def_property_readonly(
-          "bias",
-          [](const FitResult& r) -> std::optional<Eigen::MatrixXd> {
-            if (!r.bootstrap) return std::nullopt;
-            return r.bootstrap->bias;
-          },
-          "the bootstrap bias estimate (mean of the replicates minus X), or None")
+      .def_property_readonly("standard_errors", from_bootstrap(&Bootstrap::standard_errors),
+                             "the bootstrap standard error of every entry of X (n x n), or None without bootstrap=N")
+      .def_property_readonly("interval", from_bootstrap(&Bootstrap::interval),
+                             "the bootstrap percentile interval (level, lower, upper), or None")
+      .def_property_readonly("bias", from_bootstrap(&Bootstrap::bias),
+                             "the bootstrap bias estimate (mean of the replicates minus X), or None")
       .def_property_readonly("bootstrap", copied(&FitResult::bootstrap),
                              "the bootstrap's details (replicates, failed, seed, eigenvalues, ...), or None")
       .def(py::pickle(

@@ -81,7 +81,7 @@ def test_least_squares_standard_errors_match_the_closed_form():
     A = rng.standard_normal((m, 3))
     X = rng.standard_normal((3, 3))
     B = A @ X + 0.5 * rng.standard_normal((m, 3))
-    r = spdfit.fit(A, B, "ls", bootstrap=2000)
+    r = quiet_fit(A, B, "ls", bootstrap=2000)
     residual = B - A @ r.X
     sigma = np.sqrt((residual**2).sum(axis=0) / (m - 3))
     closed = np.sqrt(np.diag(np.linalg.inv(A.T @ A)))[:, None] * sigma[None, :]
