@@ -143,6 +143,7 @@ std::string repr(const FitResult& r) {
   if (d.symmetric) out << ", positive_definite=" << (d.positive_definite ? "True" : "False");
   if (d.area_criterion) out << ", area_criterion=" << *d.area_criterion;
   if (!r.warnings.empty()) out << ", warnings=" << r.warnings.size();
+  if (r.bootstrap) out << ", bootstrap=" << r.bootstrap->replicates - r.bootstrap->failed << " replicates";
   out << ")\nX =\n" << r.X;
   return out.str();
 }

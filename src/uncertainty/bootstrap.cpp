@@ -224,7 +224,7 @@ void attach_bootstrap(FitResult& result, const std::vector<Replicate>& replicate
       boot.interval.upper(i, j) = mo.upper;
     }
   }
-  if (result.diagnostics.symmetric || result.X.isApprox(result.X.transpose(), 0.0)) {
+  if (result.diagnostics.symmetric || result.X == result.X.transpose()) {
     std::vector<std::optional<VectorXd>> spectra(replicates.size());
     for (std::size_t r = 0; r < replicates.size(); ++r) {
       const MatrixXd& X = replicates[r].X;
