@@ -31,6 +31,7 @@
 #include "spdfit/linkage/synthesis.hpp"
 #include "spdfit/method.hpp"
 #include "spdfit/nearest_spd.hpp"
+#include "spdfit/nearest_correlation.hpp"
 #include "spdfit/psd_least_squares.hpp"
 #include "spdfit/random.hpp"
 #include "spdfit/rank.hpp"

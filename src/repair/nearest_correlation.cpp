@@ -1,0 +1,225 @@
+#include "spdfit/nearest_correlation.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "estimators/diagnostics.hpp"
+#include "numerics/linalg.hpp"
+
+namespace spdfit {
+
+using Eigen::Index;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+namespace {
+
+void check(const Eigen::Ref<const MatrixXd>& C, const NearestCorrelationOptions& o) {
+  if (C.rows() == 0 || C.rows() != C.cols()) {
+    throw std::invalid_argument("nearest_correlation: C must be a non-empty square matrix, not " +
+                                std::to_string(C.rows()) + "x" + std::to_string(C.cols()));
+  }
+  if (!C.allFinite()) throw std::invalid_argument("nearest_correlation: C contains NaN or Inf");
+  if (o.weights.size() != 0) {
+    if (o.weights.size() != C.rows()) {
+      throw std::invalid_argument("nearest_correlation: " + std::to_string(o.weights.size()) + " weights for a " +
+                                  std::to_string(C.rows()) + "x" + std::to_string(C.rows()) +
+                                  " matrix: give one per row");
+    }
+    for (Index i = 0; i < o.weights.size(); ++i) {
+      if (!(o.weights(i) > 0.0) || !std::isfinite(o.weights(i))) {
+        throw std::invalid_argument("nearest_correlation: weight " + std::to_string(i + 1) + " is " +
+                                    detail::format_number(o.weights(i)) + ": weights must be finite and > 0");
+      }
+    }
+  }
+  if (!(o.alpha >= 0.0 && o.alpha < 1.0)) {
+    throw std::invalid_argument("nearest_correlation: alpha must be in [0, 1)");
+  }
+  if (o.max_iterations < 1) throw std::invalid_argument("nearest_correlation: max_iterations must be >= 1");
+  if (!(o.tolerance > 0.0) || !std::isfinite(o.tolerance)) {
+    throw std::invalid_argument("nearest_correlation: tolerance must be a finite number > 0");
+  }
+}
+
+// The dual of min ||X - G||_F^2 / 2 over X >= 0 with diag(X) = b (Qi & Sun 2006):
+// theta(y) = ||(G + diag y)_+||_F^2 / 2 - b^T y, gradient F(y) = diag((G + diag y)_+) - b.
+struct Dual {
+  const MatrixXd& G;
+  const VectorXd& b;
+  MatrixXd P;      // eigenvectors of G + diag(y)
+  VectorXd lambda;  // its eigenvalues, ascending
+  double theta = 0.0;
+  VectorXd F;
+
+  // Evaluates theta at y; with vectors, also the eigenvectors and the gradient. False when the
+  // eigensolver fails.
+  bool evaluate(const VectorXd& y, bool vectors) {
+    MatrixXd M = G;
+    M.diagonal() += y;
+    if (!detail::symmetric_eigen(M, lambda, vectors ? &P : nullptr)) return false;
+    const VectorXd positive = lambda.cwiseMax(0.0);
+    theta = 0.5 * positive.squaredNorm() - b.dot(y);
+    if (vectors) {
+      // diag(P diag(lambda_+) P^T)
+      F = (P.array().square().matrix() * positive) - b;
+    }
+    return true;
+  }
+};
+
+// The generalized Jacobian of F at the current eigendecomposition (Qi & Sun 2006, eq. (20)):
+// V h = diag(P (Omega o (P^T diag(h) P)) P^T), with Omega_ij = 1 when lambda_i, lambda_j > 0,
+// lambda_i / (lambda_i - lambda_j) when lambda_i > 0 >= lambda_j, 0 when both <= 0.
+class Jacobian {
+ public:
+  explicit Jacobian(const Dual& dual) : P_(dual.P) {
+    const VectorXd& l = dual.lambda;
+    const Index n = l.size();
+    omega_.resize(n, n);
+    for (Index j = 0; j < n; ++j) {
+      for (Index i = 0; i < n; ++i) {
+        const bool pi = l(i) > 0.0, pj = l(j) > 0.0;
+        if (pi && pj) {
+          omega_(i, j) = 1.0;
+        } else if (pi) {
+          omega_(i, j) = l(i) / (l(i) - l(j));
+        } else if (pj) {
+          omega_(i, j) = l(j) / (l(j) - l(i));
+        } else {
+          omega_(i, j) = 0.0;
+        }
+      }
+    }
+    // The diagonal of V (Borsdorf & Higham's preconditioner): V_kk = sum_ij P_ki^2 Omega_ij P_kj^2.
+    const MatrixXd Q = P_.array().square().matrix();
+    diagonal_ = (Q.cwiseProduct(Q * omega_)).rowwise().sum();
+  }
+
+  VectorXd apply(const VectorXd& h) const {
+    const MatrixXd inner = P_.transpose() * (h.asDiagonal() * P_);
+    const MatrixXd scaled = omega_.cwiseProduct(inner);
+    return (P_.cwiseProduct(P_ * scaled)).rowwise().sum();
+  }
+
+  const VectorXd& diagonal() const { return diagonal_; }
+
+ private:
+  const MatrixXd& P_;
+  MatrixXd omega_;
+  VectorXd diagonal_;
+};
+
+// Preconditioned conjugate gradients for (V + mu I) d = rhs, to a relative residual `tol`.
+VectorXd pcg(const Jacobian& V, double mu, const VectorXd& rhs, double tol, int max_iterations) {
+  const Index n = rhs.size();
+  VectorXd d = VectorXd::Zero(n);
+  VectorXd r = rhs;
+  const VectorXd precondition = (V.diagonal().array() + mu).max(1e-12).inverse().matrix();
+  VectorXd z = precondition.cwiseProduct(r);
+  VectorXd p = z;
+  double rz = r.dot(z);
+  const double stop = tol * rhs.norm();
+  for (int k = 0; k < max_iterations && r.norm() > stop; ++k) {
+    const VectorXd w = V.apply(p) + mu * p;
+    const double pw = p.dot(w);
+    if (!(pw > 0.0)) break;
+    const double step = rz / pw;
+    d += step * p;
+    r -= step * w;
+    z = precondition.cwiseProduct(r);
+    const double rz_next = r.dot(z);
+    p = z + (rz_next / rz) * p;
+    rz = rz_next;
+  }
+  return d;
+}
+
+}  // namespace
+
+NearestCorrelationResult nearest_correlation(const Eigen::Ref<const MatrixXd>& C,
+                                             const NearestCorrelationOptions& options) {
+  check(C, options);
+  const Index n = C.rows();
+  NearestCorrelationResult out;
+  const MatrixXd S = detail::symmetric_part(MatrixXd(C));
+  const double asymmetry = (C - C.transpose()).norm();
+  if (asymmetry > 1e-10 * std::max(C.norm(), std::numeric_limits<double>::min())) {
+    out.warnings.push_back("C is not symmetric (||C - C^T||_F / ||C||_F = " +
+                           detail::format_number(asymmetry / C.norm()) +
+                           ", more than rounding): its symmetric part (C + C^T) / 2 was used; is it the right file?");
+  }
+  const VectorXd w = options.weights.size() ? options.weights : VectorXd::Ones(n);
+  const VectorXd root = w.cwiseSqrt();
+  const double alpha = options.alpha;
+
+  // The weighted problem in X~ = W^1/2 X W^1/2: min ||X~ - G||_F with diag(X~) = w.
+  MatrixXd shifted = S;
+  if (alpha > 0.0) {
+    shifted.diagonal().array() -= alpha;
+    shifted /= 1.0 - alpha;
+  }
+  const MatrixXd G = root.asDiagonal() * shifted * root.asDiagonal();
+  const VectorXd& b = w;
+
+  Dual dual{G, b, {}, {}, 0.0, {}};
+  VectorXd y = b - G.diagonal();
+  if (!dual.evaluate(y, true)) throw std::runtime_error("nearest_correlation: the eigensolver did not converge");
+  const double stop = options.tolerance * std::sqrt(static_cast<double>(n));
+  constexpr double kArmijo = 1e-4;
+  for (; out.iterations < options.max_iterations; ++out.iterations) {
+    const double gradient = dual.F.norm();
+    if (gradient <= stop) break;
+    const Jacobian V(dual);
+    const double mu = std::min(1e-2, gradient) * 1e-6;
+    const VectorXd d = pcg(V, mu, -dual.F, std::min(1e-2, gradient), 200);
+    // Armijo backtracking on theta (convex, so the Newton step is a descent direction).
+    const double slope = dual.F.dot(d);
+    const double theta0 = dual.theta;
+    double t = 1.0;
+    VectorXd trial = y + d;
+    Dual probe{G, b, {}, {}, 0.0, {}};
+    for (int k = 0; k < 40; ++k) {
+      if (!probe.evaluate(trial, false)) throw std::runtime_error("nearest_correlation: the eigensolver did not converge");
+      if (probe.theta <= theta0 + kArmijo * t * slope) break;
+      t *= 0.5;
+      trial = y + t * d;
+    }
+    y = trial;
+    if (!dual.evaluate(y, true)) throw std::runtime_error("nearest_correlation: the eigensolver did not converge");
+  }
+  out.gradient_norm = dual.F.norm();
+  out.converged = out.gradient_norm <= stop;
+  if (!out.converged) {
+    out.warnings.push_back("not converged within " + std::to_string(options.max_iterations) +
+                           " iterations (||diag(X) - 1|| = " + detail::format_number(out.gradient_norm) +
+                           "): the best iterate, rescaled to a unit diagonal");
+  }
+
+  // X~ = (G + diag y)_+, back to X, then the diagonal scaled to 1 (which keeps X semidefinite).
+  const VectorXd positive = dual.lambda.cwiseMax(0.0);
+  for (Index i = 0; i < n; ++i) out.clipped += dual.lambda(i) <= 0.0;
+  MatrixXd X(n, n);
+  X.triangularView<Eigen::Lower>() = dual.P * positive.asDiagonal() * dual.P.transpose();
+  detail::make_symmetric_from_lower(X);
+  const VectorXd unweight = root.cwiseInverse();
+  X = unweight.asDiagonal() * X * unweight.asDiagonal();
+  const VectorXd diagonal = X.diagonal().cwiseMax(std::numeric_limits<double>::min());
+  const VectorXd scale = diagonal.cwiseSqrt().cwiseInverse();
+  X = scale.asDiagonal() * X * scale.asDiagonal();
+  if (alpha > 0.0) {
+    X *= 1.0 - alpha;
+    X.diagonal().array() += alpha;
+  }
+  X.diagonal().setOnes();
+  detail::make_symmetric_from_lower(X);
+  out.X = std::move(X);
+  out.distance = (root.asDiagonal() * (out.X - S) * root.asDiagonal()).norm();
+  out.cholesky_ok = Eigen::LLT<MatrixXd>(out.X).info() == Eigen::Success;
+  return out;
+}
+
+}  // namespace spdfit
