@@ -26,6 +26,7 @@ import numpy as _np
 
 from . import _spdfit
 from ._spdfit import (AutoReason, DataError, Diagnostics, FitResult, LinearSystemResult, NearestSpdResult,
+                      NearestCorrelationResult,
                       PsdCertificate, Bootstrap, Interval, SpectrumUncertainty)
 
 __version__ = _spdfit.__version__
@@ -36,7 +37,7 @@ METHODS = _spdfit.METHODS
 __all__ = [
     "METHODS", "DataError", "Diagnostics", "FitResult", "NearestSpdResult", "NumericalError",
     "LinearSystemResult", "SpdfitWarning", "area_criterion", "solve", "fit", "fit_all", "fit_files",
-    "least_squares", "nearest_spd", "read_matrix",
+    "least_squares", "nearest_spd", "nearest_correlation", "read_matrix",
     "read_table", "spde", "symmetric_procrustes", "total_least_squares", "total_least_squares_psd",
     "spd_total_least_squares", "psd_least_squares", "auto_fit", "PsdCertificate", "AutoReason", "Bootstrap", "Interval", "SpectrumUncertainty",
     "total_least_squares_symmetric", "write_csv",
@@ -275,6 +276,28 @@ def nearest_spd(X, min_eig=0.0, *, full_output=False):
     covariance repair needs). Returns the matrix, or a NearestSpdResult (X, distance, clipped,
     min_eigenvalue_before) with full_output=True."""
     result = _spdfit.nearest_spd(_as_matrix("X", X), float(min_eig))
+    return result if full_output else result.X
+
+
+def nearest_correlation(C, *, weights=None, alpha=None, max_iter=None, tol=None, full_output=False):
+    """The nearest correlation matrix to C: minimizes ||W^1/2 (X - C) W^1/2||_F over symmetric
+    positive semidefinite X with unit diagonal (Higham 2002), W = diag(weights) (default all
+    ones), by Qi and Sun's quadratically convergent Newton method on the dual (with Borsdorf and
+    Higham's preconditioned conjugate gradients), not alternating projections.
+
+    alpha in [0, 1) (default 0) is a floor that keeps the unit diagonal (NAG g02ab): X = (1 - alpha) X~ +
+    alpha I, so every eigenvalue is >= alpha and X is positive definite for alpha > 0. max_iter
+    and tol bound the Newton iterations (stop at ||diag(X) - 1||_2 <= tol sqrt(n); defaults 200 and
+    1e-10, the library's); not converging
+    is a SpdfitWarning, with the best iterate. The diagonal is exactly 1. Returns the matrix, or a
+    NearestCorrelationResult (X, distance, iterations, gradient_norm, converged, clipped,
+    cholesky_ok, warnings) with full_output=True."""
+    given = dict(zip(("alpha", "max_iter", "tol"), _options(alpha=alpha, max_iter=max_iter, tol=tol)))
+    options = {name: value for name, value in given.items() if value is not None}
+    w = None if weights is None else _as_matrix("weights", weights).ravel()
+    result = _spdfit.nearest_correlation(_as_matrix("C", C), w, **options)
+    for message in result.warnings:
+        _warnings.warn(f"nearest_correlation: {message}", SpdfitWarning, stacklevel=2)
     return result if full_output else result.X
 
 

@@ -11,6 +11,7 @@
 #include "spdfit/area_criterion.hpp"
 #include "spdfit/fit.hpp"
 #include "spdfit/fit_files.hpp"
+#include "spdfit/nearest_correlation.hpp"
 #include "spdfit/nearest_spd.hpp"
 
 namespace py = pybind11;
@@ -424,6 +425,39 @@ void bind_estimators(py::module_& m) {
       });
   m.def("nearest_spd", &nearest_spd, py::arg("X"), py::arg("min_eig") = 0.0,
         py::call_guard<py::gil_scoped_release>());
+
+  py::class_<NearestCorrelationResult>(m, "NearestCorrelationResult",
+                                       "The nearest correlation matrix and how the Newton method went.")
+      .def_property_readonly("X", copied(&NearestCorrelationResult::X), "unit diagonal, positive semidefinite")
+      .def_property_readonly("distance", copied(&NearestCorrelationResult::distance), "||W^1/2 (X - C) W^1/2||_F")
+      .def_property_readonly("iterations", copied(&NearestCorrelationResult::iterations))
+      .def_property_readonly("gradient_norm", copied(&NearestCorrelationResult::gradient_norm),
+                             "||diag(X) - 1||_2 of the last iterate, before the diagonal rescaling")
+      .def_property_readonly("converged", copied(&NearestCorrelationResult::converged))
+      .def_property_readonly("clipped", copied(&NearestCorrelationResult::clipped), "zero eigenvalues of the answer")
+      .def_property_readonly("cholesky_ok", copied(&NearestCorrelationResult::cholesky_ok),
+                             "whether X has a Cholesky factorization")
+      .def_property_readonly("warnings", copied(&NearestCorrelationResult::warnings))
+      .def("__repr__", [](const NearestCorrelationResult& r) {
+        std::ostringstream out;
+        out << "NearestCorrelationResult(distance=" << r.distance << ", iterations=" << r.iterations
+            << ", converged=" << (r.converged ? "True" : "False") << ")\nX =\n" << r.X;
+        return out.str();
+      });
+  m.def(
+      "nearest_correlation",
+      [](const Eigen::MatrixXd& C, std::optional<Eigen::VectorXd> weights, double alpha, int max_iter, double tol) {
+        NearestCorrelationOptions options;
+        if (weights) options.weights = *weights;
+        options.alpha = alpha;
+        options.max_iterations = max_iter;
+        options.tolerance = tol;
+        py::gil_scoped_release release;
+        return nearest_correlation(C, options);
+      },
+      py::arg("C"), py::arg("weights") = py::none(), py::arg("alpha") = NearestCorrelationOptions{}.alpha,
+      py::arg("max_iter") = NearestCorrelationOptions{}.max_iterations,
+      py::arg("tol") = NearestCorrelationOptions{}.tolerance);
 
   m.def(
       "area_criterion",
