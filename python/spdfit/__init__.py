@@ -40,6 +40,7 @@ __all__ = [
     "least_squares", "nearest_spd", "nearest_correlation", "read_matrix",
     "read_table", "spde", "symmetric_procrustes", "total_least_squares", "total_least_squares_psd",
     "spd_total_least_squares", "psd_least_squares", "auto_fit", "PsdCertificate", "AutoReason", "Bootstrap", "Interval", "SpectrumUncertainty",
+    "NearestCorrelationResult",
     "total_least_squares_symmetric", "write_csv",
 ]
 

@@ -10,7 +10,8 @@ from . import hexapod as hexapod
 from . import linkage as linkage
 from ._spdfit import (AutoReason as AutoReason, PsdCertificate as PsdCertificate, DataError as DataError, Diagnostics as Diagnostics, FitResult as FitResult,
                       LinearSystemResult as LinearSystemResult, NearestSpdResult as NearestSpdResult,
-                      Bootstrap as Bootstrap, Interval as Interval, SpectrumUncertainty as SpectrumUncertainty)
+                      Bootstrap as Bootstrap, Interval as Interval, SpectrumUncertainty as SpectrumUncertainty,
+                      NearestCorrelationResult as NearestCorrelationResult)
 
 __version__: str
 METHODS: Tuple[str, ...]
@@ -60,5 +61,13 @@ def spde(A: npt.ArrayLike, B: npt.ArrayLike, *, rank_tolerance: Optional[float] 
 def nearest_spd(X: npt.ArrayLike, min_eig: float = ..., *, full_output: Literal[False] = ...) -> npt.NDArray[np.float64]: ...
 @overload
 def nearest_spd(X: npt.ArrayLike, min_eig: float = ..., *, full_output: Literal[True]) -> NearestSpdResult: ...
+@overload
+def nearest_correlation(C: npt.ArrayLike, *, weights: Optional[npt.ArrayLike] = ..., alpha: Optional[float] = ...,
+                        max_iter: Optional[int] = ..., tol: Optional[float] = ...,
+                        full_output: Literal[False] = ...) -> npt.NDArray[np.float64]: ...
+@overload
+def nearest_correlation(C: npt.ArrayLike, *, weights: Optional[npt.ArrayLike] = ..., alpha: Optional[float] = ...,
+                        max_iter: Optional[int] = ..., tol: Optional[float] = ...,
+                        full_output: Literal[True]) -> NearestCorrelationResult: ...
 def area_criterion(A: npt.ArrayLike, B: npt.ArrayLike, X: npt.ArrayLike) -> Optional[float]: ...
 def solve(A: npt.ArrayLike, b: npt.ArrayLike, *, threshold: Optional[float] = ...) -> LinearSystemResult: ...

@@ -112,6 +112,19 @@ def fit_all(A: npt.ArrayLike, B: npt.ArrayLike, rank_tolerance: Optional[float] 
             noise_ratio: Optional[float] = ..., max_iter: Optional[int] = ...,
             min_eig: Optional[float] = ...) -> List[FitResult]: ...
 def nearest_spd(X: npt.ArrayLike, min_eig: float = ...) -> NearestSpdResult: ...
+
+class NearestCorrelationResult:
+    X: npt.NDArray[np.float64]
+    distance: float
+    iterations: int
+    gradient_norm: float
+    converged: bool
+    clipped: int
+    cholesky_ok: bool
+    warnings: List[str]
+
+def nearest_correlation(C: npt.ArrayLike, weights: Optional[npt.ArrayLike] = ..., alpha: float = ...,
+                        max_iter: int = ..., tol: float = ...) -> NearestCorrelationResult: ...
 def area_criterion(A: npt.ArrayLike, B: npt.ArrayLike, X: npt.ArrayLike) -> Optional[float]: ...
 def read_matrix(path: str, *, allow_nonfinite: bool = ...) -> npt.NDArray[np.float64]: ...
 def read_table(path: str) -> Tuple[npt.NDArray[np.float64], List[str]]: ...
