@@ -74,42 +74,47 @@ struct Dual {
 // The generalized Jacobian of F at the current eigendecomposition (Qi & Sun 2006, eq. (20)):
 // V h = diag(P (Omega o (P^T diag(h) P)) P^T), with Omega_ij = 1 when lambda_i, lambda_j > 0,
 // lambda_i / (lambda_i - lambda_j) when lambda_i > 0 >= lambda_j, 0 when both <= 0.
+//
+// With the r positive eigenvalues last (P = [P2 P1], P1 their eigenvectors) Omega has the blocks
+// [0, Omega21; Omega12, 1], so with B = Omega12 o (P1^T diag(h) P2):
+//   V h = diag(P1 (P1^T diag(h) P1) P1^T) + 2 diag(P1 B P2^T),
+// O(n^2 r) instead of O(n^3). (Qi & Sun's complement form, O(n^2 (n - r)) for r > n/2, computes
+// h - (...) and loses the semidefiniteness of V to cancellation; the conjugate gradients then
+// stall, so it is not used.)
 class Jacobian {
  public:
-  explicit Jacobian(const Dual& dual) : P_(dual.P) {
+  explicit Jacobian(const Dual& dual) {
     const VectorXd& l = dual.lambda;
     const Index n = l.size();
-    omega_.resize(n, n);
-    for (Index j = 0; j < n; ++j) {
-      for (Index i = 0; i < n; ++i) {
-        const bool pi = l(i) > 0.0, pj = l(j) > 0.0;
-        if (pi && pj) {
-          omega_(i, j) = 1.0;
-        } else if (pi) {
-          omega_(i, j) = l(i) / (l(i) - l(j));
-        } else if (pj) {
-          omega_(i, j) = l(j) / (l(j) - l(i));
-        } else {
-          omega_(i, j) = 0.0;
-        }
+    Index r = 0;
+    while (r < n && l(n - 1 - r) > 0.0) ++r;
+    P1_ = dual.P.rightCols(r);
+    P2_ = dual.P.leftCols(n - r);
+    omega12_.resize(r, n - r);
+    for (Index j = 0; j < n - r; ++j) {
+      for (Index i = 0; i < r; ++i) {
+        const double li = l(n - r + i), lj = l(j);
+        omega12_(i, j) = li / (li - lj);
       }
     }
-    // The diagonal of V (Borsdorf & Higham's preconditioner): V_kk = sum_ij P_ki^2 Omega_ij P_kj^2.
-    const MatrixXd Q = P_.array().square().matrix();
-    diagonal_ = (Q.cwiseProduct(Q * omega_)).rowwise().sum();
+    // The diagonal of V (Borsdorf & Higham's preconditioner): V_kk = sum_ij P_ki^2 Omega_ij P_kj^2,
+    // a sum of non-negative terms (no cancellation).
+    const MatrixXd Q1 = P1_.array().square().matrix(), Q2 = P2_.array().square().matrix();
+    const VectorXd s1 = Q1.rowwise().sum();
+    diagonal_ = s1.cwiseProduct(s1) + 2.0 * Q1.cwiseProduct(Q2 * omega12_.transpose()).rowwise().sum();
   }
 
   VectorXd apply(const VectorXd& h) const {
-    const MatrixXd inner = P_.transpose() * (h.asDiagonal() * P_);
-    const MatrixXd scaled = omega_.cwiseProduct(inner);
-    return (P_.cwiseProduct(P_ * scaled)).rowwise().sum();
+    const MatrixXd hP1 = h.asDiagonal() * P1_;
+    const MatrixXd square = P1_.transpose() * hP1;  // P1^T diag(h) P1
+    const MatrixXd B = omega12_.cwiseProduct(hP1.transpose() * P2_);
+    return P1_.cwiseProduct(P1_ * square).rowwise().sum() + 2.0 * P1_.cwiseProduct(P2_ * B.transpose()).rowwise().sum();
   }
 
   const VectorXd& diagonal() const { return diagonal_; }
 
  private:
-  const MatrixXd& P_;
-  MatrixXd omega_;
+  MatrixXd P1_, P2_, omega12_;
   VectorXd diagonal_;
 };
 
@@ -182,9 +187,12 @@ NearestCorrelationResult nearest_correlation(const Eigen::Ref<const MatrixXd>& C
     double t = 1.0;
     VectorXd trial = y + d;
     Dual probe{G, b, {}, {}, 0.0, {}};
+    // Near the solution the decrease (about ||F||^2) falls below theta's own rounding: there the
+    // comparison allows that rounding, or the full Newton step would be refused forever.
+    const double rounding = 16.0 * std::numeric_limits<double>::epsilon() * (std::abs(theta0) + 1.0);
     for (int k = 0; k < 40; ++k) {
       if (!probe.evaluate(trial, false)) throw std::runtime_error("nearest_correlation: the eigensolver did not converge");
-      if (probe.theta <= theta0 + kArmijo * t * slope) break;
+      if (probe.theta <= theta0 + kArmijo * t * slope + rounding) break;
       t *= 0.5;
       trial = y + t * d;
     }
