@@ -4,6 +4,7 @@
 #include <memory>
 #include <optional>
 
+#include "bootstrap_options.hpp"
 #include "cli.hpp"
 #include "input.hpp"
 #include "output.hpp"
@@ -23,10 +24,7 @@ struct FitOptionsCli {
   std::optional<int> max_iterations;
   std::optional<double> min_eig;
   bool report = false;
-  int bootstrap = 0;
-  std::optional<double> confidence;
-  std::optional<std::uint64_t> seed;
-  std::optional<unsigned> threads;
+  BootstrapCli bootstrap;
   bool stream = false;
   StreamOptions stream_options;
 };
@@ -70,14 +68,10 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--min-eig", options->min_eig,
                   "psd-ls: the floor epsilon of X >= epsilon I (default 0: positive semidefinite)")
       ->check(non_negative());
-  sub->add_option("--bootstrap", options->bootstrap,
-                  "Resample the rows N times for standard errors, a percentile interval and the bias of every "
-                  "entry of X (with --json or --report)")
-      ->check(CLI::Range(0, 10000000));
-  sub->add_option("--confidence", options->confidence,
-                  "The bootstrap interval's level, a fraction (default 0.95)")
-      ->check(open_fraction());
-  sub->add_option("--seed", options->seed, "The bootstrap's seed (default 1); the numbers depend on nothing else");
+  add_bootstrap_options(*sub, options->bootstrap,
+                        "standard errors, a percentile interval and the bias of every entry of X (with --json or "
+                        "--report)",
+                        "Threads for --stream and --bootstrap (default: one per core; the result does not depend on it)");
   CLI::Option* stream =
       sub->add_flag("--stream", options->stream,
                     "Read A and B a block of rows at a time (memory O(threads x block-rows x n + n^2) whatever the "
@@ -85,9 +79,6 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--block-rows", options->stream_options.block_rows, "Rows per block with --stream")
       ->check(CLI::Range(Eigen::Index{1}, Eigen::Index{1} << 24))
       ->needs(stream);
-  sub->add_option("--threads", options->threads,
-                  "Threads for --stream and --bootstrap (default: one per core; the result does not depend on it)")
-      ->check(CLI::Range(0u, 1024u));
   sub->add_option("A", options->a_path, "File of A (m x n): delimited text or .npy")->required();
   sub->add_option("B", options->b_path, "File of B (m x n): delimited text or .npy")->required();
 
@@ -106,18 +97,7 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
     fit_options.noise_ratio = options->noise_ratio.value_or(fit_options.noise_ratio);
     fit_options.max_iterations = options->max_iterations.value_or(fit_options.max_iterations);
     fit_options.min_eig = options->min_eig.value_or(fit_options.min_eig);
-    // --threads serves --stream and --bootstrap; --confidence and --seed serve --bootstrap.
-    if (options->threads && !options->stream && options->bootstrap == 0) {
-      throw UsageError("--threads applies to --stream and --bootstrap: give one of them, or leave --threads out");
-    }
-    if (options->bootstrap == 0 && (options->confidence || options->seed)) {
-      throw UsageError(std::string(options->confidence ? "--confidence" : "--seed") +
-                       " applies to the bootstrap: give --bootstrap N as well");
-    }
-    fit_options.bootstrap = options->bootstrap;
-    fit_options.confidence = options->confidence.value_or(fit_options.confidence);
-    fit_options.seed = options->seed.value_or(fit_options.seed);
-    fit_options.threads = options->threads.value_or(fit_options.threads);
+    apply_bootstrap_options(options->bootstrap, fit_options, "--stream", options->stream);
     std::optional<StreamOptions> stream;
     if (options->stream) {
       stream = options->stream_options;

@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "bootstrap_options.hpp"
 #include "cli.hpp"
 #include "experiment_output.hpp"
 #include "input.hpp"
@@ -230,10 +231,8 @@ Eigen::MatrixXd parse_stiffness(const std::string& text, Eigen::Index n) {
 std::string bootstrap_report(const std::vector<hexapod::MethodIdentification>& methods,
                              const hexapod::IdentifyOptions& options) {
   std::ostringstream out;
-  char level[32];
-  std::snprintf(level, sizeof level, "%.4g%%", 100.0 * options.fit.confidence);
   out << "\nbootstrap: " << options.fit.bootstrap << " resamples of the rows (seed " << options.fit.seed
-      << "); value +- standard error   [" << level
+      << "); value +- standard error   [" << percent_text(options.fit.confidence)
       << " interval]; values closer than their standard errors share one interval\n";
   for (const hexapod::MethodIdentification& m : methods) {
     const auto& b = m.result.bootstrap;
@@ -321,10 +320,7 @@ Command add_identify(CLI::App& parent, const GlobalOptions& global) {
   struct Cli {
     std::string a_path, b_path, truth, geometry, stiffness, output;
     bool json = false;
-    int bootstrap = 0;
-    std::optional<double> confidence;
-    std::optional<std::uint64_t> seed;
-    std::optional<unsigned> threads;
+    BootstrapCli bootstrap;
   };
   auto cli = std::make_shared<Cli>();
   CLI::App* sub = parent.add_subcommand(
@@ -340,28 +336,15 @@ Command add_identify(CLI::App& parent, const GlobalOptions& global) {
   stiffness->excludes(geometry);
   sub->add_flag("--json", cli->json, "Print every result as JSON");
   sub->add_option("-o,--output", cli->output, "Write to FILE instead of stdout");
-  sub->add_option("--bootstrap", cli->bootstrap,
-                  "Resample the rows N times for each method's standard errors and the intervals of its "
-                  "eigenvalues and modes")
-      ->check(CLI::Range(0, 10000000));
-  sub->add_option("--confidence", cli->confidence, "The bootstrap intervals' level, a fraction (default 0.95)")
-      ->check(open_fraction());
-  sub->add_option("--seed", cli->seed, "The bootstrap's seed (default 1)");
-  sub->add_option("--threads", cli->threads, "Threads for --bootstrap (default: one per core)")
-      ->check(CLI::Range(0u, 1024u));
+  add_bootstrap_options(*sub, cli->bootstrap,
+                        "each method's standard errors and the intervals of its eigenvalues and modes",
+                        "Threads for --bootstrap (default: one per core)");
 
   auto run = [cli, &global]() {
-    if (cli->bootstrap == 0 && (cli->confidence || cli->seed || cli->threads)) {
-      throw UsageError(std::string(cli->confidence ? "--confidence" : cli->seed ? "--seed" : "--threads") +
-                       " applies to the bootstrap: give --bootstrap N as well");
-    }
     const DataPair data = read_pair(cli->a_path, cli->b_path);
     const Eigen::Index n = data.A.cols();
     hexapod::IdentifyOptions options;
-    options.fit.bootstrap = cli->bootstrap;
-    options.fit.confidence = cli->confidence.value_or(options.fit.confidence);
-    options.fit.seed = cli->seed.value_or(options.fit.seed);
-    options.fit.threads = cli->threads.value_or(options.fit.threads);
+    apply_bootstrap_options(cli->bootstrap, options.fit);
     if (!cli->truth.empty()) {
       options.truth = load_matrix(cli->truth);
       if (options.truth->rows() != n || options.truth->cols() != n) {

@@ -23,29 +23,26 @@ struct NearestOptionsCli {
   NearestCorrelationOptions correlation;
 };
 
-// The weights file: n positive numbers, as one column or one row.
-Eigen::VectorXd read_weights(const std::string& path, Eigen::Index n) {
+// The weights file: n numbers as one column or one row, checked by the library's rule
+// (NearestCorrelationOptions::is_valid) with the file named.
+Eigen::VectorXd read_weights(const std::string& path, const NearestCorrelationOptions& options, Eigen::Index n) {
   const Eigen::MatrixXd W = load_matrix(path);
   if (W.size() != n || (W.rows() != 1 && W.cols() != 1)) {
     throw io::DataError(path, 0, 0,
                         "the weights are " + std::to_string(W.rows()) + "x" + std::to_string(W.cols()) + ": give " +
                             std::to_string(n) + " numbers (one per row of X) as one column or one row");
   }
-  const Eigen::VectorXd w = Eigen::Map<const Eigen::VectorXd>(W.data(), n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (!(w(i) > 0.0)) {
-      throw io::DataError(path, 0, 0,
-                          "weight " + std::to_string(i + 1) + " is " + io::format_double(w(i)) +
-                              ": weights must be > 0");
-    }
-  }
-  return w;
+  NearestCorrelationOptions weighted = options;
+  weighted.weights = Eigen::Map<const Eigen::VectorXd>(W.data(), n);
+  std::string error;
+  if (!weighted.is_valid(n, &error)) throw io::DataError(path, 0, 0, error);
+  return weighted.weights;
 }
 
 // nearest --corr: the nearest correlation matrix.
 void run_correlation(const NearestOptionsCli& options, const GlobalOptions& global, const Eigen::MatrixXd& X) {
   NearestCorrelationOptions o = options.correlation;
-  if (!options.weights.empty()) o.weights = read_weights(options.weights, X.rows());
+  if (!options.weights.empty()) o.weights = read_weights(options.weights, o, X.rows());
   const NearestCorrelationResult result = nearest_correlation(X, o);
   for (const std::string& w : result.warnings) warn(global, w);
   if (!options.json) {

@@ -15,13 +15,6 @@ namespace spdfit::cli {
 
 using nlohmann::json;
 
-std::string fixed(double value, int digits) {
-  if (std::isnan(value)) return "-";
-  char buffer[48];
-  std::snprintf(buffer, sizeof buffer, std::abs(value) < 1e5 ? "%.*f" : "%.*e", digits, value);
-  return buffer;
-}
-
 json summary_json(const experiment::Summary& s) {
   return {{"mean", number_json(s.mean)},
           {"std", number_json(s.std)},

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "output.hpp"
 #include "spdfit/experiment/paper.hpp"
 #include "spdfit/experiment/thesis.hpp"
 
@@ -54,8 +55,5 @@ std::string sweep_table(const std::vector<double>& levels,
 /// A progress callback for MonteCarloOptions that shows "LABEL: done/total trials" on stderr,
 /// only when stderr is a terminal (and not when `quiet`), and clears it when the run ends.
 std::function<void(std::size_t, std::size_t)> terminal_progress(const std::string& label, bool quiet);
-
-/// "%.*f"-style text with `digits` decimals, or "-" for NaN.
-std::string fixed(double value, int digits = 4);
 
 }  // namespace spdfit::cli

@@ -122,30 +122,30 @@ int decimals_for(double standard_error) {
   return std::clamp(1 - static_cast<int>(std::floor(std::log10(standard_error))), 0, 12);
 }
 
-// "95%" for 0.95.
+}  // namespace
+
+std::string fixed(double value, int digits) {
+  if (std::isnan(value)) return "-";
+  char buffer[48];
+  std::snprintf(buffer, sizeof buffer, std::abs(value) < 1e5 ? "%.*f" : "%.*e", digits, value);
+  return buffer;
+}
+
 std::string percent_text(double level) {
   char text[32];
   std::snprintf(text, sizeof text, "%.4g%%", 100.0 * level);
   return text;
 }
 
-std::string format_fixed(double value, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
-
-}  // namespace
-
-std::string spectrum_text(const SpectrumUncertainty& s, const std::string& indent, const std::string& unit) {
+std::string spectrum_text(const SpectrumUncertainty& s, const std::string& indent) {
   std::ostringstream out;
   for (const std::vector<Eigen::Index>& cluster : s.clusters) {
     for (Eigen::Index i : cluster) {
       const int d = decimals_for(s.standard_errors(i));
-      out << indent << std::setw(2) << i + 1 << "  " << std::setw(12) << format_fixed(s.estimate(i), d) << unit
-          << " +- " << format_fixed(s.standard_errors(i), d);
+      out << indent << std::setw(2) << i + 1 << "  " << std::setw(12) << fixed(s.estimate(i), d)
+          << " +- " << fixed(s.standard_errors(i), d);
       if (i == cluster.front()) {
-        out << "   [" << format_fixed(s.lower(i), d) << ", " << format_fixed(s.upper(i), d) << "]";
+        out << "   [" << fixed(s.lower(i), d) << ", " << fixed(s.upper(i), d) << "]";
         if (cluster.size() > 1) {
           out << " for " << cluster.front() + 1 << (cluster.size() == 2 ? " and " : " to ") << cluster.back() + 1
               << " together (closer than their standard errors)";
@@ -178,7 +178,7 @@ std::string fit_report(const FitResult& result) {
       std::string cell;
       if (b) {
         const int dec = decimals_for(b->standard_errors(i, j));
-        cell = format_fixed(result.X(i, j), dec) + " +- " + format_fixed(b->standard_errors(i, j), dec);
+        cell = fixed(result.X(i, j), dec) + " +- " + fixed(b->standard_errors(i, j), dec);
       } else {
         char text[40];
         std::snprintf(text, sizeof text, "%.6g", result.X(i, j));

@@ -30,7 +30,13 @@ nlohmann::json spectrum_json(const SpectrumUncertainty& s);
 std::string fit_report(const FitResult& result);
 
 /// Sorted values with their intervals, one line each, clusters marked ("  1  3.6527  [3.61, 3.70]").
-std::string spectrum_text(const SpectrumUncertainty& s, const std::string& indent, const std::string& unit = "");
+std::string spectrum_text(const SpectrumUncertainty& s, const std::string& indent);
+
+/// "%.*f"-style text with `digits` decimals (scientific from 1e5 on), or "-" for NaN.
+std::string fixed(double value, int digits = 4);
+
+/// A confidence level as a percentage: "95%" for 0.95.
+std::string percent_text(double level);
 
 /// The matrix as CSV text (io::write_csv).
 std::string matrix_csv(const Eigen::MatrixXd& M);

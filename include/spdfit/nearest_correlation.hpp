@@ -22,6 +22,9 @@ struct NearestCorrelationOptions {
   /// Stop when the dual gradient ||diag(X) - 1||_2 (in the weighted problem) is at most
   /// tolerance * sqrt(n). > 0.
   double tolerance = 1e-10;
+
+  /// True when the options are usable for an n x n matrix; otherwise `error` says why.
+  bool is_valid(Eigen::Index n, std::string* error = nullptr) const;
 };
 
 /// The result of nearest_correlation.

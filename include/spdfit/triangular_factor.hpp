@@ -93,6 +93,8 @@ class TriangularFactor {
   void raise_exponents(std::optional<int> ea, std::optional<int> eb);
   // Stacks R on top of the (already scaled) rows and re-triangularizes.
   void absorb(const Eigen::Ref<const Eigen::MatrixXd>& scaled_rows);
+  // Scales rows of [A B] by the stored exponents (in place), absorbs them, and counts `count` rows.
+  void absorb_rows(Eigen::Ref<Eigen::MatrixXd> rows, Eigen::Index count);
 
   Eigen::Index n_ = 0;
   Eigen::Index rows_ = 0;

@@ -18,28 +18,9 @@ namespace py = pybind11;
 
 namespace spdfit::python {
 
-namespace {
-
-Method method_from(const std::string& name) {
-  if (const auto method = parse_method(name)) return *method;
-  std::string known;
-  for (Method m : kSelectableMethods) known += (known.empty() ? "" : ", ") + std::string(to_string(m));
-  throw std::invalid_argument("unknown method '" + name + "' (methods: " + known + ")");
-}
-
-// The bootstrap's options of a Python call (None: the library's default).
-struct BootstrapArgs {
-  int replicates = 0;
-  std::optional<double> confidence;
-  std::optional<std::uint64_t> seed;
-  unsigned threads = 0;
-};
-
-// The options of a Python call; noise_ratio, max_iter and min_eig are refused (ValueError) for a
-// method that does not take them, as the CLI refuses --noise-ratio, --max-iter and --min-eig.
-FitOptions options_from(const std::optional<double>& rank_tolerance, const std::optional<double>& noise_ratio = {},
-                        std::optional<Method> method = {}, const std::optional<int>& max_iter = {},
-                        const std::optional<double>& min_eig = {}, const BootstrapArgs& boot = {}) {
+FitOptions options_from(const std::optional<double>& rank_tolerance, const std::optional<double>& noise_ratio,
+                        std::optional<Method> method, const std::optional<int>& max_iter,
+                        const std::optional<double>& min_eig, const BootstrapArgs& boot) {
   FitOptions options;
   options.bootstrap = boot.replicates;
   options.confidence = boot.confidence.value_or(options.confidence);
@@ -60,6 +41,15 @@ FitOptions options_from(const std::optional<double>& rank_tolerance, const std::
   std::string error;
   if (!options.is_valid(&error)) throw std::invalid_argument(error);
   return options;
+}
+
+namespace {
+
+Method method_from(const std::string& name) {
+  if (const auto method = parse_method(name)) return *method;
+  std::string known;
+  for (Method m : kSelectableMethods) known += (known.empty() ? "" : ", ") + std::string(to_string(m));
+  throw std::invalid_argument("unknown method '" + name + "' (methods: " + known + ")");
 }
 
 // Pickling (so that multiprocessing and joblib can return results): each class's state is a

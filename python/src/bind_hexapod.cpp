@@ -93,12 +93,8 @@ void bind_hexapod(py::module_& parent) {
         IdentifyOptions options;
         options.truth = std::move(truth);
         options.stiffness = std::move(stiffness);
-        options.fit.bootstrap = bootstrap;
-        options.fit.confidence = confidence.value_or(options.fit.confidence);
-        options.fit.seed = seed.value_or(options.fit.seed);
-        options.fit.threads = threads;
-        std::string error;
-        if (!options.fit.is_valid(&error)) throw std::invalid_argument(error);
+        options.fit = options_from(std::nullopt, std::nullopt, std::nullopt, std::nullopt, std::nullopt,
+                                   BootstrapArgs{bootstrap, confidence, seed, threads});
         py::gil_scoped_release release;
         return identify(A, B, options);
       },

@@ -82,30 +82,21 @@ void TriangularFactor::append(const Eigen::Ref<const MatrixXd>& A, const Eigen::
   detail::check_data(A, B, n_);
   if (A.rows() == 0) return;
   raise_exponents(detail::scale_exponent(A), detail::scale_exponent(B));
-  MatrixXd scaled(A.rows(), 2 * n_);
-  auto scaled_a = scaled.leftCols(n_);
-  auto scaled_b = scaled.rightCols(n_);
-  scaled_a = A;
-  scaled_b = B;
-  detail::multiply_by_power_of_two(scaled_a, -exponent_a());
-  detail::multiply_by_power_of_two(scaled_b, -exponent_b());
-  absorb(scaled);
-  rows_ += A.rows();
+  MatrixXd rows(A.rows(), 2 * n_);
+  rows << A, B;
+  absorb_rows(rows, A.rows());
 }
 
-void TriangularFactor::merge(const TriangularFactor& other) {
-  if (other.n_ != n_) {
-    throw std::invalid_argument("cannot merge factors with " + std::to_string(n_) + " and " +
-                                std::to_string(other.n_) + " columns");
-  }
-  if (other.rows_ == 0) return;
-  raise_exponents(other.exponent_a_, other.exponent_b_);
-  MatrixXd theirs = other.R_;
-  theirs.leftCols(n_) = detail::times_power_of_two(theirs.leftCols(n_), other.exponent_a() - exponent_a());
-  theirs.rightCols(n_) = detail::times_power_of_two(theirs.rightCols(n_), other.exponent_b() - exponent_b());
-  absorb(theirs);
-  rows_ += other.rows_;
+void TriangularFactor::absorb_rows(Eigen::Ref<MatrixXd> rows, Index count) {
+  auto rows_a = rows.leftCols(n_);
+  auto rows_b = rows.rightCols(n_);
+  detail::multiply_by_power_of_two(rows_a, -exponent_a());
+  detail::multiply_by_power_of_two(rows_b, -exponent_b());
+  absorb(rows);
+  rows_ += count;
 }
+
+void TriangularFactor::merge(const TriangularFactor& other) { merge({&other}, {1}); }
 
 void TriangularFactor::append(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
                               const std::vector<std::uint32_t>& counts) {
@@ -124,17 +115,6 @@ void TriangularFactor::append(const Eigen::Ref<const MatrixXd>& A, const Eigen::
   MatrixXd scaled(std::min(kept, kChunk), 2 * n_);
   Index k = 0;
   std::uint64_t chunk_rows = 0;  // the chunk's rows, counted with their counts
-  auto absorb_chunk = [&] {
-    auto chunk = scaled.topRows(k);
-    auto chunk_a = chunk.leftCols(n_);
-    auto chunk_b = chunk.rightCols(n_);
-    detail::multiply_by_power_of_two(chunk_a, -exponent_a());
-    detail::multiply_by_power_of_two(chunk_b, -exponent_b());
-    absorb(chunk);
-    rows_ += static_cast<Index>(chunk_rows);
-    k = 0;
-    chunk_rows = 0;
-  };
   for (Index i = 0; i < A.rows(); ++i) {
     const std::uint32_t c = counts[static_cast<std::size_t>(i)];
     if (c == 0) continue;
@@ -142,9 +122,16 @@ void TriangularFactor::append(const Eigen::Ref<const MatrixXd>& A, const Eigen::
     scaled.row(k).head(n_) = w * A.row(i);
     scaled.row(k).tail(n_) = w * B.row(i);
     chunk_rows += c;
-    if (++k == scaled.rows()) absorb_chunk();
+    if (++k == scaled.rows()) {
+      absorb_rows(scaled, static_cast<Index>(chunk_rows));
+      k = 0;
+      chunk_rows = 0;
+    }
   }
-  if (k > 0) absorb_chunk();
+  if (k > 0) {
+    auto last = scaled.topRows(k);
+    absorb_rows(last, static_cast<Index>(chunk_rows));
+  }
 }
 
 void TriangularFactor::merge(const std::vector<const TriangularFactor*>& others,

@@ -7,6 +7,7 @@
 
 #include "spdfit/fit.hpp"
 #include "spdfit/hexapod/model.hpp"
+#include "numerics/parallel.hpp"
 #include "uncertainty/bootstrap.hpp"
 
 namespace spdfit::hexapod {
@@ -31,30 +32,18 @@ void bootstrap(std::vector<MethodIdentification>& methods, const Eigen::MatrixXd
   const FitOptions& fit_options = options.fit;
   const auto replicates = static_cast<std::size_t>(fit_options.bootstrap);
   std::vector<std::vector<detail::Replicate>> per_method(methods.size(), std::vector<detail::Replicate>(replicates));
-  FitOptions quiet = fit_options;
-  quiet.diagnostics = false;
-  quiet.bootstrap = 0;
-  detail::parallel_for(fit_options.bootstrap, fit_options.threads, [&](int r) {
-    std::vector<std::uint32_t> counts;
-    detail::multinomial_counts(fit_options.seed, r, A.rows(), counts);
-    TriangularFactor factor(A.cols());
-    factor.append(A, B, counts);
+  const FitOptions quiet = detail::replicate_options(fit_options);
+  detail::parallel_for(replicates, fit_options.threads, [&](std::size_t r) {
+    const TriangularFactor factor = detail::resample_rows(A, B, fit_options.seed, r);
     std::vector<FitResult> results;
     std::string failure;
     try {
       results = fit_all(reduce(factor, quiet));
     } catch (const std::invalid_argument& e) {
-      failure = e.what();
+      failure = e.what();  // a resample with fewer rows than columns
     }
     for (std::size_t k = 0; k < methods.size(); ++k) {
-      detail::Replicate& slot = per_method[k][static_cast<std::size_t>(r)];
-      if (k >= results.size()) {
-        slot.message = failure;
-      } else if (results[k].ok() && results[k].X.allFinite()) {
-        slot.X = std::move(results[k].X);
-      } else {
-        slot.message = results[k].ok() ? "the estimate is not finite" : results[k].message;
-      }
+      per_method[k][r] = k < results.size() ? detail::replicate_of(std::move(results[k])) : detail::Replicate{{}, failure};
     }
   });
   for (std::size_t k = 0; k < methods.size(); ++k) {

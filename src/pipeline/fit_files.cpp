@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "numerics/parallel.hpp"
 #include "pipeline/pair_checks.hpp"
 #include "pipeline/stream_resampling.hpp"
 #include "spdfit/fit.hpp"
@@ -20,9 +21,8 @@ FitResult fit_stream_bootstrap(const std::string& a_path, const std::string& b_p
   FitResult result = fit(data, method);
   if (!result.ok()) return result;
   std::vector<detail::Replicate> replicates(factors.replicates.size());
-  detail::parallel_for(options.bootstrap, options.threads, [&](int r) {
-    replicates[static_cast<std::size_t>(r)] =
-        detail::refit(factors.replicates[static_cast<std::size_t>(r)], options, result);
+  detail::parallel_for(replicates.size(), options.threads, [&](std::size_t r) {
+    replicates[r] = detail::refit(factors.replicates[r], options, result);
   });
   detail::attach_bootstrap(result, replicates, options, data);
   result.bootstrap->scheme = "poisson_groups";

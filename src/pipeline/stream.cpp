@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include "numerics/parallel.hpp"
 #include "pipeline/pair_checks.hpp"
 #include "pipeline/stream_resampling.hpp"
 #include "spdfit/row_reader.hpp"
@@ -146,26 +147,24 @@ ResampledFactors stream_resampled_factors(const std::string& a_path, const std::
   // in group order, so the result does not depend on the threads or the block size.
   constexpr std::size_t kBatchGroups = 32;
   const Index g_rows = kBootstrapGroupRows;
-  ResampledFactors out;
-  bool started = false;
+  ResampledFactors out;  // its replicates are allocated at the first block, when n is known
   std::vector<Block> batch;  // full groups, then possibly a short last one
   Index filled = 0;          // rows in batch.back() when it is being filled
 
   auto flush = [&] {
     if (batch.empty()) return;
     std::vector<TriangularFactor> factors(batch.size(), TriangularFactor(out.total.n()));
-    parallel_for(static_cast<int>(batch.size()), threads, [&](int k) {
-      const Block& group = batch[static_cast<std::size_t>(k)];
-      factors[static_cast<std::size_t>(k)] = TriangularFactor::from_data(group.A, group.B);
+    parallel_for(batch.size(), threads, [&](std::size_t k) {
+      factors[k] = TriangularFactor::from_data(batch[k].A, batch[k].B);
     });
     std::vector<const TriangularFactor*> pointers;
     for (const TriangularFactor& f : factors) pointers.push_back(&f);
     out.total.merge(pointers, std::vector<std::uint32_t>(factors.size(), 1));
     const std::uint64_t first_group = out.groups;
-    parallel_for(replicates, threads, [&](int r) {
+    parallel_for(out.replicates.size(), threads, [&](std::size_t r) {
       std::vector<std::uint32_t> counts(factors.size());
       for (std::size_t k = 0; k < factors.size(); ++k) counts[k] = poisson_count(seed, r, first_group + k);
-      out.replicates[static_cast<std::size_t>(r)].merge(pointers, counts);
+      out.replicates[r].merge(pointers, counts);
     });
     out.groups += factors.size();
     batch.clear();
@@ -174,10 +173,9 @@ ResampledFactors stream_resampled_factors(const std::string& a_path, const std::
   Block block;
   while (reader.next(&block)) {
     const Index n = block.A.cols();
-    if (!started) {
+    if (out.replicates.empty()) {
       out.total = TriangularFactor(n);
       out.replicates.assign(static_cast<std::size_t>(replicates), TriangularFactor(n));
-      started = true;
     }
     Index offset = 0;
     while (offset < block.A.rows()) {

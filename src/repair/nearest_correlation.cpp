@@ -23,26 +23,8 @@ void check(const Eigen::Ref<const MatrixXd>& C, const NearestCorrelationOptions&
                                 std::to_string(C.rows()) + "x" + std::to_string(C.cols()));
   }
   if (!C.allFinite()) throw std::invalid_argument("nearest_correlation: C contains NaN or Inf");
-  if (o.weights.size() != 0) {
-    if (o.weights.size() != C.rows()) {
-      throw std::invalid_argument("nearest_correlation: " + std::to_string(o.weights.size()) + " weights for a " +
-                                  std::to_string(C.rows()) + "x" + std::to_string(C.rows()) +
-                                  " matrix: give one per row");
-    }
-    for (Index i = 0; i < o.weights.size(); ++i) {
-      if (!(o.weights(i) > 0.0) || !std::isfinite(o.weights(i))) {
-        throw std::invalid_argument("nearest_correlation: weight " + std::to_string(i + 1) + " is " +
-                                    detail::format_number(o.weights(i)) + ": weights must be finite and > 0");
-      }
-    }
-  }
-  if (!(o.alpha >= 0.0 && o.alpha < 1.0)) {
-    throw std::invalid_argument("nearest_correlation: alpha must be in [0, 1)");
-  }
-  if (o.max_iterations < 1) throw std::invalid_argument("nearest_correlation: max_iterations must be >= 1");
-  if (!(o.tolerance > 0.0) || !std::isfinite(o.tolerance)) {
-    throw std::invalid_argument("nearest_correlation: tolerance must be a finite number > 0");
-  }
+  std::string error;
+  if (!o.is_valid(C.rows(), &error)) throw std::invalid_argument("nearest_correlation: " + error);
 }
 
 // The dual of min ||X - G||_F^2 / 2 over X >= 0 with diag(X) = b (Qi & Sun 2006):
@@ -145,6 +127,29 @@ VectorXd pcg(const Jacobian& V, double mu, const VectorXd& rhs, double tol, int 
 
 }  // namespace
 
+bool NearestCorrelationOptions::is_valid(Index n, std::string* error) const {
+  auto fail = [error](std::string why) {
+    if (error) *error = std::move(why);
+    return false;
+  };
+  if (weights.size() != 0) {
+    if (weights.size() != n) {
+      return fail(std::to_string(weights.size()) + " weights for a " + std::to_string(n) + "x" + std::to_string(n) +
+                  " matrix: give one per row");
+    }
+    for (Index i = 0; i < n; ++i) {
+      if (!(weights(i) > 0.0) || !std::isfinite(weights(i))) {
+        return fail("weight " + std::to_string(i + 1) + " is " + detail::format_number(weights(i)) +
+                    ": weights must be finite and > 0");
+      }
+    }
+  }
+  if (!(alpha >= 0.0 && alpha < 1.0)) return fail("alpha must be in [0, 1)");
+  if (max_iterations < 1) return fail("max_iterations must be >= 1");
+  if (!(tolerance > 0.0) || !std::isfinite(tolerance)) return fail("tolerance must be a finite number > 0");
+  return true;
+}
+
 NearestCorrelationResult nearest_correlation(const Eigen::Ref<const MatrixXd>& C,
                                              const NearestCorrelationOptions& options) {
   check(C, options);
@@ -190,14 +195,23 @@ NearestCorrelationResult nearest_correlation(const Eigen::Ref<const MatrixXd>& C
     // Near the solution the decrease (about ||F||^2) falls below theta's own rounding: there the
     // comparison allows that rounding, or the full Newton step would be refused forever.
     const double rounding = 16.0 * std::numeric_limits<double>::epsilon() * (std::abs(theta0) + 1.0);
+    // The full step, usually taken, is evaluated with eigenvectors so that the next iteration
+    // reuses its eigendecomposition; shorter ones with eigenvalues only.
     for (int k = 0; k < 40; ++k) {
-      if (!probe.evaluate(trial, false)) throw std::runtime_error("nearest_correlation: the eigensolver did not converge");
+      if (!probe.evaluate(trial, k == 0)) throw std::runtime_error("nearest_correlation: the eigensolver did not converge");
       if (probe.theta <= theta0 + kArmijo * t * slope + rounding) break;
       t *= 0.5;
       trial = y + t * d;
     }
     y = trial;
-    if (!dual.evaluate(y, true)) throw std::runtime_error("nearest_correlation: the eigensolver did not converge");
+    if (t == 1.0) {
+      dual.P = std::move(probe.P);
+      dual.lambda = std::move(probe.lambda);
+      dual.theta = probe.theta;
+      dual.F = std::move(probe.F);
+    } else if (!dual.evaluate(y, true)) {
+      throw std::runtime_error("nearest_correlation: the eigensolver did not converge");
+    }
   }
   out.gradient_norm = dual.F.norm();
   out.converged = out.gradient_norm <= stop;

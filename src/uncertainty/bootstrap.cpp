@@ -1,22 +1,20 @@
 #include "uncertainty/bootstrap.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <limits>
-#include <mutex>
+#include <stdexcept>
 #include <string>
-#include <thread>
 
 #include "estimators/diagnostics.hpp"
 #include "estimators/kernels.hpp"
 #include "estimators/psd_ls_kernel.hpp"
 #include "factor/basic_reduction.hpp"
+#include "numerics/linalg.hpp"
+#include "numerics/parallel.hpp"
+#include "spdfit/experiment/statistics.hpp"
 #include "spdfit/fit.hpp"
 #include "spdfit/random.hpp"
-#include "spdfit/threads.hpp"
 
 namespace spdfit::detail {
 
@@ -24,20 +22,25 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
-void multinomial_counts(std::uint64_t seed, int replicate, Index m, std::vector<std::uint32_t>& counts) {
-  counts.assign(static_cast<std::size_t>(m), 0);
-  Random random(trial_seed(seed, static_cast<std::uint64_t>(replicate)));
+TriangularFactor resample_rows(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
+                               std::uint64_t seed, std::size_t replicate) {
+  const Index m = A.rows();
+  std::vector<std::uint32_t> counts(static_cast<std::size_t>(m), 0);
+  Random random(trial_seed(seed, replicate));
   const double rows = static_cast<double>(m);
   for (Index draw = 0; draw < m; ++draw) {
     const auto row = std::min(static_cast<Index>(random.uniform() * rows), m - 1);
     ++counts[static_cast<std::size_t>(row)];
   }
+  TriangularFactor factor(A.cols());
+  factor.append(A, B, counts);
+  return factor;
 }
 
-std::uint32_t poisson_count(std::uint64_t seed, int replicate, std::uint64_t group) {
+std::uint32_t poisson_count(std::uint64_t seed, std::size_t replicate, std::uint64_t group) {
   // One uniform from the key (seed, replicate, group), then inversion of the Poisson(1)
   // distribution function: P(k) = e^-1 / k!.
-  const std::uint64_t bits = trial_seed(trial_seed(seed, static_cast<std::uint64_t>(replicate)), group);
+  const std::uint64_t bits = trial_seed(trial_seed(seed, replicate), group);
   const double u = static_cast<double>(bits >> 11) * 0x1.0p-53;
   double p = 0.36787944117144233;  // e^-1
   double cdf = p;
@@ -50,32 +53,21 @@ std::uint32_t poisson_count(std::uint64_t seed, int replicate, std::uint64_t gro
   return k;
 }
 
-void parallel_for(int count, unsigned threads, const std::function<void(int)>& fn) {
-  const unsigned workers = std::min<unsigned>(resolve_threads(threads), static_cast<unsigned>(std::max(count, 1)));
-  std::atomic<int> next{0};
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
-  auto work = [&] {
-    for (int i = next++; i < count; i = next++) {
-      try {
-        fn(i);
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(failure_mutex);
-        if (!failure) failure = std::current_exception();
-        next = count;  // stop handing out work
-      }
-    }
-  };
-  if (workers <= 1) {
-    work();
+FitOptions replicate_options(const FitOptions& options) {
+  FitOptions quiet = options;
+  quiet.diagnostics = false;
+  quiet.bootstrap = 0;
+  return quiet;
+}
+
+Replicate replicate_of(FitResult&& fitted) {
+  Replicate out;
+  if (fitted.ok() && fitted.X.allFinite()) {
+    out.X = std::move(fitted.X);
   } else {
-    std::vector<std::thread> pool;
-    pool.reserve(workers - 1);
-    for (unsigned t = 1; t < workers; ++t) pool.emplace_back(work);
-    work();
-    for (std::thread& thread : pool) thread.join();
+    out.message = fitted.ok() ? "the estimate is not finite" : std::move(fitted.message);
   }
-  if (failure) std::rethrow_exception(failure);
+  return out;
 }
 
 FitResult fit_replicate(const Reduction& data, const FitResult& full) {
@@ -86,21 +78,11 @@ FitResult fit_replicate(const Reduction& data, const FitResult& full) {
 }
 
 Replicate refit(const TriangularFactor& factor, const FitOptions& options, const FitResult& full) {
-  FitOptions quiet = options;
-  quiet.diagnostics = false;
-  quiet.bootstrap = 0;
-  Replicate out;
   try {
-    FitResult fitted = fit_replicate(reduce(factor, quiet), full);
-    if (fitted.ok() && fitted.X.allFinite()) {
-      out.X = std::move(fitted.X);
-    } else {
-      out.message = fitted.ok() ? "the estimate is not finite" : fitted.message;
-    }
+    return replicate_of(fit_replicate(reduce(factor, replicate_options(options)), full));
   } catch (const std::invalid_argument& e) {
-    out.message = e.what();  // a resample with fewer rows than columns
+    return Replicate{{}, e.what()};  // a resample with fewer rows than columns
   }
-  return out;
 }
 
 namespace {
@@ -118,22 +100,14 @@ struct Moments {
   double mean = 0.0, standard_error = 0.0, lower = 0.0, upper = 0.0;
 };
 
-// Mean, standard deviation (divisor N - 1) and the central `level` interval of the values;
-// NaN for all of them with fewer than two values.
+// Mean, standard deviation (divisor N - 1; experiment::summarize) and the central `level`
+// interval of the values; NaN for all of them with fewer than two values.
 Moments moments(std::vector<double> values, double level) {
-  Moments out;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   if (values.size() < 2) return {nan, nan, nan, nan};
-  double sum = 0.0;
-  for (double v : values) sum += v;
-  out.mean = sum / static_cast<double>(values.size());
-  double squares = 0.0;
-  for (double v : values) squares += (v - out.mean) * (v - out.mean);
-  out.standard_error = std::sqrt(squares / static_cast<double>(values.size() - 1));
+  const experiment::Summary summary = experiment::summarize(values);
   std::sort(values.begin(), values.end());
-  out.lower = quantile(values, 0.5 * (1.0 - level));
-  out.upper = quantile(values, 0.5 * (1.0 + level));
-  return out;
+  return {summary.mean, summary.std, quantile(values, 0.5 * (1.0 - level)), quantile(values, 0.5 * (1.0 + level))};
 }
 
 std::string percent(double fraction) {
@@ -226,12 +200,13 @@ void attach_bootstrap(FitResult& result, const std::vector<Replicate>& replicate
   }
   if (result.diagnostics.symmetric || result.X == result.X.transpose()) {
     std::vector<std::optional<VectorXd>> spectra(replicates.size());
-    for (std::size_t r = 0; r < replicates.size(); ++r) {
+    parallel_for(replicates.size(), options.threads, [&](std::size_t r) {
       const MatrixXd& X = replicates[r].X;
-      if (X.rows() != rows || X.cols() != cols || X != X.transpose()) continue;
-      spectra[r] = Eigen::SelfAdjointEigenSolver<MatrixXd>(X, Eigen::EigenvaluesOnly).eigenvalues();
-    }
-    const VectorXd estimate = Eigen::SelfAdjointEigenSolver<MatrixXd>(result.X, Eigen::EigenvaluesOnly).eigenvalues();
+      VectorXd w;
+      if (X.rows() == rows && X.cols() == cols && X == X.transpose() && symmetric_eigen(X, w)) spectra[r] = w;
+    });
+    VectorXd estimate;
+    if (!symmetric_eigen(result.X, estimate)) throw std::runtime_error("bootstrap: the eigensolver did not converge");
     boot.eigenvalues = summarize_spectrum(estimate, spectra, options.confidence);
   }
 
@@ -271,12 +246,8 @@ void bootstrap_in_memory(FitResult& result, const Eigen::Ref<const MatrixXd>& A,
                          const Reduction& full_data) {
   const FitOptions& options = full_data.options();
   std::vector<Replicate> replicates(static_cast<std::size_t>(options.bootstrap));
-  parallel_for(options.bootstrap, options.threads, [&](int r) {
-    std::vector<std::uint32_t> counts;
-    multinomial_counts(options.seed, r, A.rows(), counts);
-    TriangularFactor factor(A.cols());
-    factor.append(A, B, counts);
-    replicates[static_cast<std::size_t>(r)] = refit(factor, options, result);
+  parallel_for(replicates.size(), options.threads, [&](std::size_t r) {
+    replicates[r] = refit(resample_rows(A, B, options.seed, r), options, result);
   });
   attach_bootstrap(result, replicates, options, full_data);
 }

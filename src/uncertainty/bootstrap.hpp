@@ -5,7 +5,6 @@
 
 #include <Eigen/Core>
 #include <cstdint>
-#include <functional>
 #include <optional>
 #include <vector>
 
@@ -22,30 +21,34 @@ constexpr Eigen::Index kBootstrapGroupRows = 4096;
 /// Below this many groups the Poisson bootstrap is too coarse: a warning.
 constexpr Eigen::Index kBootstrapMinGroups = 100;
 
-/// Replicate r's multinomial resample of m rows: counts[i] is how often row i is drawn
-/// (the counts sum to m).
-void multinomial_counts(std::uint64_t seed, int replicate, Eigen::Index m, std::vector<std::uint32_t>& counts);
+/// The factor of replicate r's multinomial resample of the rows of A, B: m rows drawn with
+/// replacement by a generator keyed by (seed, r), each row counted as often as it was drawn
+/// (TriangularFactor::append with counts).
+TriangularFactor resample_rows(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
+                               std::uint64_t seed, std::size_t replicate);
 
 /// Replicate r's Poisson(1) count for the group with global index `group`.
-std::uint32_t poisson_count(std::uint64_t seed, int replicate, std::uint64_t group);
+std::uint32_t poisson_count(std::uint64_t seed, std::size_t replicate, std::uint64_t group);
 
-/// Runs fn(i) for i in [0, count) on up to `threads` threads (0: one per core). The first
-/// exception thrown by fn is rethrown here after every thread has stopped.
-void parallel_for(int count, unsigned threads, const std::function<void(int)>& fn);
+/// The options of a replicate's fit: `options` without the diagnostics and the bootstrap.
+FitOptions replicate_options(const FitOptions& options);
 
-/// What one replicate gave: the estimate (empty when it failed) and the first failure's message.
+/// What one replicate gave: the estimate (empty when it failed) and the failure's message.
 struct Replicate {
   Eigen::MatrixXd X;
   std::string message;
 };
+
+/// A replicate's fit as a Replicate: X when it succeeded with a finite estimate, else the message.
+Replicate replicate_of(FitResult&& fitted);
 
 /// The method the replicates of `full` run, as `fit` runs it on each replicate's reduction:
 /// `full.method`, and for auto's boundary fallback psd-ls with auto's floor of the replicate's
 /// own data. X only (the reduction's options should turn the diagnostics off).
 FitResult fit_replicate(const Reduction& data, const FitResult& full);
 
-/// One replicate: fit_replicate on the reduction of its factor (options without diagnostics);
-/// a failure, or a factor with fewer rows than columns, is the message.
+/// One replicate: fit_replicate on the reduction of its factor (replicate_options); a failure, or
+/// a factor with fewer rows than columns, is the message.
 Replicate refit(const TriangularFactor& factor, const FitOptions& options, const FitResult& full);
 
 /// The uncertainty of sorted values (SpectrumUncertainty): `replicates` holds each replicate's
