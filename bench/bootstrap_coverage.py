@@ -13,7 +13,6 @@ Set-ups:
 
     PYTHONPATH=build/python /usr/bin/python3 bench/bootstrap_coverage.py [trials] [replicates]
 """
-import platform
 import sys
 import time
 import warnings
@@ -22,6 +21,8 @@ import numpy as np
 
 import spdfit
 import spdfit.hexapod as hx
+
+from machine import cpu_model
 
 warnings.simplefilter("ignore", spdfit.SpdfitWarning)
 METHODS = ["ls", "procrustes", "tls", "tls-sym", "tls-psd", "spde", "spd-tls", "psd-ls"]
@@ -63,8 +64,7 @@ def paper(m):
 def main():
     trials = int(sys.argv[1]) if len(sys.argv) > 1 else 400
     replicates = int(sys.argv[2]) if len(sys.argv) > 2 else 500
-    cpu = next((line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo") if line.startswith("model name")),
-               platform.processor())
+    cpu = cpu_model()
     print(f"# Bootstrap coverage: {time.strftime('%Y-%m-%d')}, {cpu}\n")
     print(f"`PYTHONPATH=build/python /usr/bin/python3 bench/bootstrap_coverage.py {trials} {replicates}`: "
           f"{trials} trials per set-up, {replicates} bootstrap replicates per trial, nominal level 95%. "

@@ -9,12 +9,13 @@
 """
 import os
 import pathlib
-import platform
 import subprocess
 import sys
 import time
 
 import numpy as np
+
+from machine import cpu_model
 
 
 def best(command, repeats):
@@ -31,8 +32,7 @@ def main():
     scratch = pathlib.Path(sys.argv[2] if len(sys.argv) > 2 else "/tmp/spdfit-bootstrap-bench")
     repeats = int(sys.argv[3]) if len(sys.argv) > 3 else 5
     scratch.mkdir(parents=True, exist_ok=True)
-    cpu = next((line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo") if line.startswith("model name")),
-               platform.processor())
+    cpu = cpu_model()
     print(f"# Bootstrap speed: {time.strftime('%Y-%m-%d')}, {cpu}, {os.cpu_count()} cores\n")
     print(f"`/usr/bin/python3 bench/bootstrap_speed.py {cli} {scratch} {repeats}`: wall time, best of "
           f"{repeats} runs of the CLI (process start and file reading included).\n")

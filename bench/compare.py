@@ -50,6 +50,8 @@ import numpy as np
 import scipy
 import scipy.linalg
 
+from machine import cpu_model
+
 try:
     import spdfit
 except ImportError:
@@ -226,17 +228,6 @@ def fmt_time(seconds):
 
 
 # ---- The report ------------------------------------------------------------------------------
-
-def cpu_model():
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown"
-
 
 def linear_algebra_libraries():
     """The BLAS/LAPACK files NumPy has loaded (reference BLAS and OpenBLAS differ tenfold)."""

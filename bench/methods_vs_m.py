@@ -7,10 +7,11 @@ noise of width nm in every entry of A and B (variance nm^2 / 12), nm = 1 and 3.2
     /usr/bin/python3 bench/methods_vs_m.py build/apps/spdfit [trials]
 """
 import json
-import platform
 import subprocess
 import sys
 import time
+
+from machine import cpu_model
 
 METHODS = ["procrustes", "tls-sym", "spde", "spd-tls", "psd-ls", "auto"]
 WIDTHS = [1.0, 3.2]
@@ -20,8 +21,7 @@ SIZES = [12, 30, 100, 1000]
 def main():
     cli = sys.argv[1]
     trials = int(sys.argv[2]) if len(sys.argv) > 2 else 2000
-    cpu = next((line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo") if line.startswith("model name")),
-               platform.processor())
+    cpu = cpu_model()
     print(f"# Estimators against m: {time.strftime('%Y-%m-%d')}, {cpu}\n")
     print(f"`/usr/bin/python3 bench/methods_vs_m.py {cli} {trials}`; each point is `spdfit experiment thesis "
           f"--noise-var nm^2/12 --samples m --trials {trials} --seed 1 --methods {','.join(METHODS)}`.\n")

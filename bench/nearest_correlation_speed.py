@@ -7,13 +7,14 @@ The test matrices: symmetric, unit diagonal, off-diagonal entries (M + M^T)/2 wi
     PYTHONPATH=build/python /usr/bin/python3 bench/nearest_correlation_speed.py [repeats]
 """
 import os
-import platform
 import sys
 import time
 
 import numpy as np
 
 import spdfit
+
+from machine import cpu_model
 
 
 def best(fn, repeats):
@@ -27,8 +28,7 @@ def best(fn, repeats):
 
 def main():
     repeats = int(sys.argv[1]) if len(sys.argv) > 1 else 3
-    cpu = next((line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo") if line.startswith("model name")),
-               platform.processor())
+    cpu = cpu_model()
     print(f"# nearest_correlation speed: {time.strftime('%Y-%m-%d')}, {cpu}, {os.cpu_count()} cores\n")
     print(f"`PYTHONPATH=build/python /usr/bin/python3 bench/nearest_correlation_speed.py {repeats}`; "
           f"OPENBLAS_CORETYPE={os.environ.get('OPENBLAS_CORETYPE', '(unset)')}\n")

@@ -286,13 +286,13 @@ def nearest_correlation(C, *, weights=None, alpha=None, max_iter=None, tol=None,
     ones), by Qi and Sun's quadratically convergent Newton method on the dual (with Borsdorf and
     Higham's preconditioned conjugate gradients), not alternating projections.
 
-    alpha in [0, 1) (default 0) is a floor that keeps the unit diagonal (NAG g02ab): X = (1 - alpha) X~ +
-    alpha I, so every eigenvalue is >= alpha and X is positive definite for alpha > 0. max_iter
-    and tol bound the Newton iterations (stop at ||diag(X) - 1||_2 <= tol sqrt(n); defaults 200 and
-    1e-10, the library's); not converging
-    is a SpdfitWarning, with the best iterate. The diagonal is exactly 1. Returns the matrix, or a
-    NearestCorrelationResult (X, distance, iterations, gradient_norm, converged, clipped,
-    cholesky_ok, warnings) with full_output=True."""
+    alpha in [0, 1) (default 0) is a floor that keeps the unit diagonal (NAG g02ab):
+    X = (1 - alpha) X~ + alpha I, so every eigenvalue is >= alpha and X is positive definite for
+    alpha > 0. max_iter and tol bound the Newton iterations (stop at ||diag(X) - 1||_2 <= tol
+    sqrt(n); defaults 200 and 1e-10, the library's); not converging is a SpdfitWarning, with the
+    best iterate. The diagonal is exactly 1. Returns the matrix, or a NearestCorrelationResult (X,
+    distance, iterations, gradient_norm, converged, clipped, cholesky_ok, warnings) with
+    full_output=True."""
     given = dict(zip(("alpha", "max_iter", "tol"), _options(alpha=alpha, max_iter=max_iter, tol=tol)))
     options = {name: value for name, value in given.items() if value is not None}
     w = None if weights is None else _as_matrix("weights", weights).ravel()
