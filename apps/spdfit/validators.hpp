@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "spdfit/nearest_spd.hpp"
 #include "spdfit/rank.hpp"
 
 namespace spdfit::cli {
@@ -50,6 +51,12 @@ inline CLI::Validator open_fraction() {
 /// (exit 2) on the same values.
 inline CLI::Validator rank_tolerance() {
   return number_validator([](double v) { return v >= 0.0 && is_valid_rank_tolerance(v, ""); },
+                          "number in [0, 1)", "NUMBER in [0, 1)");
+}
+
+/// A relative eigenvalue floor as the library's rule accepts it (EigenvalueFloor::is_valid: [0, 1)).
+inline CLI::Validator relative_floor() {
+  return number_validator([](double v) { return EigenvalueFloor::relative_to_largest(v).is_valid(); },
                           "number in [0, 1)", "NUMBER in [0, 1)");
 }
 

@@ -1,55 +1,69 @@
-// The nearest correlation matrix: positive semidefinite with unit diagonal.
+// The nearest correlation matrix (positive semidefinite, unit diagonal) and the nearest
+// covariance with a fixed diagonal.
 #pragma once
 
 #include <Eigen/Core>
 #include <string>
-#include <vector>
+
+#include "spdfit/nearest_spd.hpp"
 
 namespace spdfit {
 
-/// Options of nearest_correlation.
+/// Options of nearest_correlation, nearest_keep_diagonal and nearest_via_correlation.
 struct NearestCorrelationOptions {
   /// Diagonal weights w (n positive finite numbers): the distance is ||W^1/2 (X - C) W^1/2||_F with
   /// W = diag(w). Empty (the default): all ones, the Frobenius norm.
   Eigen::VectorXd weights;
-  /// A floor that keeps the unit diagonal (NAG g02ab's alpha): the result is (1 - alpha) X~ + alpha I
-  /// with X~ the nearest correlation matrix to (C - alpha I) / (1 - alpha), so every eigenvalue is
-  /// >= alpha. In [0, 1); 0 (the default) gives the plain nearest correlation matrix.
+  /// The smallest eigenvalue allowed: X >= floor I exactly (the constraint is part of the
+  /// problem, not a clip afterwards). A relative floor is relative to the largest eigenvalue of
+  /// the input's symmetric part (nearest_via_correlation: of the correlation matrix it repairs).
+  /// It must stay below every diagonal entry of the result. Default 0: semidefinite.
+  EigenvalueFloor floor;
+  /// NAG g02ab's name for a unit diagonal's floor: the result is (1 - alpha) X~ + alpha I with
+  /// X~ the nearest correlation matrix to (C - alpha I) / (1 - alpha), so every eigenvalue is
+  /// >= alpha. That is exactly the absolute floor alpha (the same minimizer). In [0, 1); not
+  /// together with a floor, and not for nearest_keep_diagonal.
   double alpha = 0.0;
   /// Newton iterations at most (each one symmetric eigendecomposition plus a conjugate-gradient
   /// solve); then the best iterate with converged = false and a warning. >= 1.
   int max_iterations = 200;
-  /// Stop when the dual gradient ||diag(X) - 1||_2 (in the weighted problem) is at most
-  /// tolerance * sqrt(n). > 0.
+  /// Stop when the dual gradient ||diag(X) - d||_2 (in the weighted problem) is at most
+  /// tolerance * sqrt(n) * max(d). > 0.
   double tolerance = 1e-10;
 
   /// True when the options are usable for an n x n matrix; otherwise `error` says why.
   bool is_valid(Eigen::Index n, std::string* error = nullptr) const;
 };
 
-/// The result of nearest_correlation.
-struct NearestCorrelationResult {
-  Eigen::MatrixXd X;            ///< symmetric, unit diagonal (exactly 1), positive semidefinite
-  double distance = 0.0;        ///< ||W^1/2 (X - sym(C)) W^1/2||_F
-  int iterations = 0;           ///< Newton iterations taken
-  double gradient_norm = 0.0;   ///< the final ||diag(X) - 1||_2 before the diagonal rescaling
-  bool converged = false;       ///< gradient_norm <= tolerance sqrt(n)
-  Eigen::Index clipped = 0;     ///< eigenvalues of the final dual matrix set to zero (the rank deficit)
-  bool cholesky_ok = false;     ///< whether X has a Cholesky factorization (positive definite)
-  std::vector<std::string> warnings;
-};
+using NearestCorrelationResult = NearestResult;
 
-/// The nearest correlation matrix to C: minimizes ||W^1/2 (X - C) W^1/2||_F over symmetric
-/// positive semidefinite X with unit diagonal (Higham 2002), by the quadratically convergent
+/// The nearest correlation matrix to C: minimizes ||W^1/2 (X - C) W^1/2||_F over symmetric X with
+/// unit diagonal and eigenvalues >= the floor (Higham 2002), by the quadratically convergent
 /// Newton method on the dual of Qi & Sun (2006), with Borsdorf & Higham's (2010) improvements:
 /// the Newton equation solved by preconditioned conjugate gradients (Jacobi preconditioner) and
-/// a line search on the dual function. A final diagonal scaling D^-1/2 X D^-1/2 makes the
-/// diagonal 1 to rounding. C's symmetric part is used, with a warning when C is not symmetric to
-/// rounding (more often a wrong file than noise).
+/// a line search on the dual function. A final diagonal scaling makes the diagonal exactly 1.
+/// C's symmetric part is used, with a warning when C is not symmetric to rounding (more often a
+/// wrong file than noise).
 ///
 /// Preconditions (else std::invalid_argument): C square, non-empty, finite; options as
-/// documented. Cost: O(n^3) per Newton iteration; typically under ten iterations.
-NearestCorrelationResult nearest_correlation(const Eigen::Ref<const Eigen::MatrixXd>& C,
-                                             const NearestCorrelationOptions& options = {});
+/// documented; the floor below 1. Cost: O(n^3) per Newton iteration; typically under ten
+/// iterations.
+NearestResult nearest_correlation(const Eigen::Ref<const Eigen::MatrixXd>& C,
+                                  const NearestCorrelationOptions& options = {});
+
+/// The nearest symmetric matrix to C with C's diagonal and eigenvalues >= the floor (the same
+/// Newton method): a covariance repair that keeps the variances. Preconditions as
+/// nearest_correlation, and C's diagonal entries > 0 and above the floor; alpha 0.
+NearestResult nearest_keep_diagonal(const Eigen::Ref<const Eigen::MatrixXd>& C,
+                                    const NearestCorrelationOptions& options = {});
+
+/// statsmodels' cov_nearest route: with D = diag(C)^1/2, repair the correlation D^-1 C D^-1 by
+/// nearest_correlation (options, floor and weights apply to it) and return D X D. It keeps C's
+/// diagonal, and is the nearest such matrix in the norm ||D^-1 (X - C) D^-1||_F (nearest_keep_diagonal
+/// with weights 1 / diag(C)), not in C's Frobenius norm. `distance` is ||X - C||_F in C's units all
+/// the same (with W^1/2 on both sides when weights are given), comparable with the other repairs'.
+/// Preconditions as nearest_correlation, and C's diagonal entries > 0.
+NearestResult nearest_via_correlation(const Eigen::Ref<const Eigen::MatrixXd>& C,
+                                      const NearestCorrelationOptions& options = {});
 
 }  // namespace spdfit

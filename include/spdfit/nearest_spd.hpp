@@ -1,32 +1,62 @@
-// Higham's nearest symmetric positive (semi)definite matrix.
+// Higham's nearest symmetric positive (semi)definite matrix, and what every repair reports.
 #pragma once
 
 #include <Eigen/Core>
+#include <string>
+#include <vector>
 
 namespace spdfit {
 
-/// The result of nearest_spd.
-struct NearestSpdResult {
-  Eigen::MatrixXd X;                   ///< the nearest matrix; exactly symmetric
-  double distance = 0.0;               ///< ||X_in - X||_F
-  Eigen::Index clipped = 0;            ///< eigenvalues of the symmetric part raised to min_eig
-  double min_eigenvalue_before = 0.0;  ///< of the symmetric part of the input
+/// The smallest eigenvalue a repair allows: `value` itself, or with `relative` set, value times
+/// the largest eigenvalue of the input's symmetric part (so that repairing s C gives s X).
+struct EigenvalueFloor {
+  double value = 0.0;
+  bool relative = false;
+
+  /// The relative floor that spdfit's `nearest` command and Python's nearest_spd and
+  /// nearest_correlation use when none is given (as R's nearPD's posd.tol): the result is then
+  /// positive definite, so that its Cholesky factorization succeeds.
+  static constexpr double kRepairDefault = 1e-8;
+  static EigenvalueFloor absolute(double value) { return {value, false}; }
+  static EigenvalueFloor relative_to_largest(double value) { return {value, true}; }
+
+  /// True when value is finite and >= 0 (and < 1 when relative); otherwise `error` says why.
+  bool is_valid(std::string* error = nullptr) const;
 };
 
+/// What a repair returns: the nearest matrix and how it was reached.
+struct NearestResult {
+  Eigen::MatrixXd X;                   ///< the nearest matrix; exactly symmetric
+  double distance = 0.0;               ///< from the input: ||X_in - X||_F (weighted where weights are given)
+  Eigen::Index clipped = 0;            ///< eigenvalues raised to the floor (the Newton methods: those at it)
+  double min_eigenvalue_before = 0.0;  ///< of the symmetric part of the input
+  double min_eig = 0.0;                ///< the floor applied, in the input's units (a relative floor resolved)
+  int iterations = 0;                  ///< Newton iterations (0: the direct eigenvalue clip)
+  double gradient_norm = 0.0;          ///< the Newton methods' final ||diag(X) - d||_2 before the rescaling
+  bool converged = true;               ///< the Newton methods: gradient_norm <= tolerance sqrt(n)
+  bool cholesky_ok = false;            ///< whether X has a Cholesky factorization (positive definite)
+  std::vector<std::string> warnings;   ///< asymmetric input, a floor that moved X more than the repair, ...
+};
+using NearestSpdResult = NearestResult;
+
 /// The nearest symmetric matrix to X (n x n) in the Frobenius norm whose eigenvalues are all
-/// >= min_eig (Higham, "Computing a nearest symmetric positive semidefinite matrix", 1988;
+/// >= the floor (Higham, "Computing a nearest symmetric positive semidefinite matrix", 1988;
 /// thesis 000 section 3.3 and eq. 4.39). With S = (X + X^T)/2 = W diag(lambda) W^T, the answer is
-/// W diag(max(lambda_i, min_eig)) W^T. With min_eig = 0 this is Higham's X_F = (S + H)/2, H the
-/// symmetric polar factor of S: positive semidefinite. With min_eig > 0 it is strictly
+/// W diag(max(lambda_i, floor)) W^T. With floor 0 this is Higham's X_F = (S + H)/2, H the
+/// symmetric polar factor of S: positive semidefinite. With a floor > 0 it is strictly
 /// positive definite, which is what covariance repair needs.
 ///
 /// Computed in units where the largest entry is of order one (an exact power-of-two scaling), so
-/// that entries anywhere from denormal to near the largest double work.
+/// that entries anywhere from denormal to near the largest double work. Warns (in `warnings`)
+/// when X is not symmetric to rounding, and when the floor moves X by more than the repair itself
+/// (a floor too large for the matrix's scale).
 ///
-/// Preconditions: X square, non-empty, finite; min_eig finite and >= 0 (else
-/// std::invalid_argument). Failure: std::runtime_error when the eigensolver does not converge or
-/// the answer does not fit in a double (entries or min_eig within a factor n of the largest
-/// double). Cost: one symmetric eigendecomposition, O(n^3).
-NearestSpdResult nearest_spd(const Eigen::Ref<const Eigen::MatrixXd>& X, double min_eig = 0.0);
+/// Preconditions: X square, non-empty, finite; min_eig finite and >= 0; a relative floor < 1 and
+/// a largest eigenvalue > 0 (else std::invalid_argument). Failure: std::runtime_error when the
+/// eigensolver does not converge or the answer does not fit in a double (entries or min_eig
+/// within a factor n of the largest double). Cost: one symmetric eigendecomposition, O(n^3).
+NearestResult nearest_spd(const Eigen::Ref<const Eigen::MatrixXd>& X, EigenvalueFloor floor);
+/// nearest_spd with the absolute floor min_eig (the default 0: the nearest semidefinite matrix).
+NearestResult nearest_spd(const Eigen::Ref<const Eigen::MatrixXd>& X, double min_eig = 0.0);
 
 }  // namespace spdfit

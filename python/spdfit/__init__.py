@@ -25,9 +25,11 @@ import warnings as _warnings
 import numpy as _np
 
 from . import _spdfit
-from ._spdfit import (AutoReason, DataError, Diagnostics, FitResult, LinearSystemResult, NearestSpdResult,
-                      NearestCorrelationResult,
+from ._spdfit import (AutoReason, DataError, Diagnostics, FitResult, LinearSystemResult, NearestResult,
                       PsdCertificate, Bootstrap, Interval, SpectrumUncertainty)
+
+# The repairs' one result class, under the names each function's documentation uses.
+NearestSpdResult = NearestCorrelationResult = NearestResult
 
 __version__ = _spdfit.__version__
 
@@ -40,7 +42,7 @@ __all__ = [
     "least_squares", "nearest_spd", "nearest_correlation", "read_matrix",
     "read_table", "spde", "symmetric_procrustes", "total_least_squares", "total_least_squares_psd",
     "spd_total_least_squares", "psd_least_squares", "auto_fit", "PsdCertificate", "AutoReason", "Bootstrap", "Interval", "SpectrumUncertainty",
-    "NearestCorrelationResult",
+    "NearestCorrelationResult", "NearestResult", "REPAIR_FLOOR_DEFAULT",
     "total_least_squares_symmetric", "write_csv",
 ]
 
@@ -269,37 +271,71 @@ def auto_fit(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None):
     return fit(A, B, "auto", rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter)
 
 
-def nearest_spd(X, min_eig=0.0, *, full_output=False):
-    """The nearest symmetric matrix to X (Frobenius norm) with every eigenvalue >= min_eig.
-
-    Higham 1988 (thesis section 3.3): clip the eigenvalues of (X + X^T)/2 at min_eig. With
-    min_eig = 0 the result is positive semidefinite; with min_eig > 0 positive definite (what
-    covariance repair needs). Returns the matrix, or a NearestSpdResult (X, distance, clipped,
-    min_eigenvalue_before) with full_output=True."""
-    result = _spdfit.nearest_spd(_as_matrix("X", X), float(min_eig))
-    return result if full_output else result.X
+# The relative eigenvalue floor the repairs use when none is given (the library's, as the
+# `nearest` command's): 1e-8 times the largest eigenvalue, as R's nearPD's posd.tol.
+REPAIR_FLOOR_DEFAULT = _spdfit.REPAIR_FLOOR_DEFAULT
 
 
-def nearest_correlation(C, *, weights=None, alpha=None, max_iter=None, tol=None, full_output=False):
-    """The nearest correlation matrix to C: minimizes ||W^1/2 (X - C) W^1/2||_F over symmetric
-    positive semidefinite X with unit diagonal (Higham 2002), W = diag(weights) (default all
-    ones), by Qi and Sun's quadratically convergent Newton method on the dual (with Borsdorf and
-    Higham's preconditioned conjugate gradients), not alternating projections.
-
-    alpha in [0, 1) (default 0) is a floor that keeps the unit diagonal (NAG g02ab):
-    X = (1 - alpha) X~ + alpha I, so every eigenvalue is >= alpha and X is positive definite for
-    alpha > 0. max_iter and tol bound the Newton iterations (stop at ||diag(X) - 1||_2 <= tol
-    sqrt(n); defaults 200 and 1e-10, the library's); not converging is a SpdfitWarning, with the
-    best iterate. The diagonal is exactly 1. Returns the matrix, or a NearestCorrelationResult (X,
-    distance, iterations, gradient_norm, converged, clipped, cholesky_ok, warnings) with
-    full_output=True."""
-    given = dict(zip(("alpha", "max_iter", "tol"), _options(alpha=alpha, max_iter=max_iter, tol=tol)))
-    options = {name: value for name, value in given.items() if value is not None}
+def _repair(kind, C, *, min_eig, min_eig_rel, alpha=None, weights=None, max_iter=None, tol=None, full_output,
+            caller):
+    """The one path of nearest_spd and nearest_correlation: options checked for type, the
+    library's repair, its warnings as SpdfitWarning."""
+    given = dict(zip(("min_eig", "min_eig_rel", "alpha", "max_iter", "tol"),
+                     _options(min_eig=min_eig, min_eig_rel=min_eig_rel, alpha=alpha, max_iter=max_iter, tol=tol)))
     w = None if weights is None else _as_matrix("weights", weights).ravel()
-    result = _spdfit.nearest_correlation(_as_matrix("C", C), w, **options)
+    result = _spdfit.nearest(_as_matrix("X" if kind == "spd" else "C", C), kind, weights=w, **given)
     for message in result.warnings:
-        _warnings.warn(f"nearest_correlation: {message}", SpdfitWarning, stacklevel=2)
+        _warnings.warn(f"{caller}: {message}", SpdfitWarning, stacklevel=3)
     return result if full_output else result.X
+
+
+def nearest_spd(X, min_eig=None, *, min_eig_rel=None, keep_diag=False, via_corr=False, weights=None,
+                max_iter=None, tol=None, full_output=False):
+    """Repair a covariance: the nearest symmetric matrix to X (Frobenius norm) with every
+    eigenvalue >= a floor (`spdfit nearest`).
+
+    The floor is min_eig (absolute) or min_eig_rel (relative: times the largest eigenvalue of
+    X's symmetric part); by default the relative REPAIR_FLOOR_DEFAULT = 1e-8, so the result is
+    positive definite and its Cholesky factorization succeeds. min_eig=0 is the plain positive
+    semidefinite projection. Without a diagonal constraint this is Higham's (1988) eigenvalue clip
+    of (X + X^T)/2 (thesis section 3.3).
+
+    keep_diag=True keeps X's diagonal (trusted variances): the nearest matrix with that diagonal
+    and the floor, by Qi and Sun's Newton method (as nearest_correlation). via_corr=True is
+    statsmodels' cov_nearest route: scale to a correlation, repair it (the floor applies to the
+    correlation), scale back. Both take weights (n positive numbers: the distance
+    ||W^1/2 (X - C) W^1/2||_F, W = diag(weights)), max_iter and tol.
+
+    Warnings (a non-symmetric X, a floor that moved X more than the repair itself, no
+    convergence) are SpdfitWarnings. Returns the matrix, or a NearestResult (X, distance, clipped,
+    min_eigenvalue_before, min_eig, iterations, gradient_norm, converged, cholesky_ok, warnings)
+    with full_output=True."""
+    if keep_diag and via_corr:
+        raise ValueError("give keep_diag=True or via_corr=True, not both")
+    kind = "keep_diag" if keep_diag else "via_corr" if via_corr else "spd"
+    return _repair(kind, X, min_eig=min_eig, min_eig_rel=min_eig_rel, weights=weights, max_iter=max_iter, tol=tol,
+                   full_output=full_output, caller="nearest_spd")
+
+
+def nearest_correlation(C, *, weights=None, alpha=None, min_eig=None, min_eig_rel=None, max_iter=None, tol=None,
+                        full_output=False):
+    """The nearest correlation matrix to C (`spdfit nearest --corr`): minimizes
+    ||W^1/2 (X - C) W^1/2||_F over symmetric X with unit diagonal and every eigenvalue >= a floor
+    (Higham 2002), W = diag(weights) (default all ones), by Qi and Sun's quadratically convergent
+    Newton method on the dual (with Borsdorf and Higham's preconditioned conjugate gradients), not
+    alternating projections.
+
+    The floor is an exact constraint: min_eig (absolute, below 1), min_eig_rel (relative to the
+    largest eigenvalue of C's symmetric part) or alpha (NAG g02ab's name: X = (1 - alpha) X~ +
+    alpha I, the same minimizer as min_eig=alpha); by default the relative REPAIR_FLOOR_DEFAULT =
+    1e-8, so X is positive definite. min_eig=0 gives the plain nearest correlation matrix.
+    max_iter and tol bound the Newton iterations (stop at ||diag(X) - 1||_2 <= tol sqrt(n);
+    defaults 200 and 1e-10, the library's); not converging is a SpdfitWarning, with the best
+    iterate. The diagonal is exactly 1. Returns the matrix, or a NearestResult (X, distance,
+    iterations, gradient_norm, converged, clipped, min_eig, cholesky_ok, warnings) with
+    full_output=True."""
+    return _repair("corr", C, min_eig=min_eig, min_eig_rel=min_eig_rel, alpha=alpha, weights=weights,
+                   max_iter=max_iter, tol=tol, full_output=full_output, caller="nearest_correlation")
 
 
 def area_criterion(A, B, X):

@@ -403,51 +403,94 @@ void bind_estimators(py::module_& m) {
       py::arg("A"), py::arg("B"), py::arg("rank_tolerance") = py::none(), py::arg("noise_ratio") = py::none(),
       py::arg("max_iter") = py::none(), py::arg("min_eig") = py::none());
 
-  py::class_<NearestSpdResult>(m, "NearestSpdResult", "The nearest matrix and how far it moved.")
-      .def_property_readonly("X", copied(&NearestSpdResult::X))
-      .def_property_readonly("distance", copied(&NearestSpdResult::distance), "||X_in - X||_F")
-      .def_property_readonly("clipped", copied(&NearestSpdResult::clipped), "eigenvalues raised to min_eig")
-      .def_property_readonly("min_eigenvalue_before", copied(&NearestSpdResult::min_eigenvalue_before))
-      .def("__repr__", [](const NearestSpdResult& r) {
-        std::ostringstream out;
-        out << "NearestSpdResult(distance=" << r.distance << ", clipped=" << r.clipped << ")\nX =\n" << r.X;
-        return out.str();
-      });
-  m.def("nearest_spd", &nearest_spd, py::arg("X"), py::arg("min_eig") = 0.0,
-        py::call_guard<py::gil_scoped_release>());
-
-  py::class_<NearestCorrelationResult>(m, "NearestCorrelationResult",
-                                       "The nearest correlation matrix and how the Newton method went.")
-      .def_property_readonly("X", copied(&NearestCorrelationResult::X), "unit diagonal, positive semidefinite")
-      .def_property_readonly("distance", copied(&NearestCorrelationResult::distance), "||W^1/2 (X - C) W^1/2||_F")
-      .def_property_readonly("iterations", copied(&NearestCorrelationResult::iterations))
-      .def_property_readonly("gradient_norm", copied(&NearestCorrelationResult::gradient_norm),
-                             "||diag(X) - 1||_2 of the last iterate, before the diagonal rescaling")
-      .def_property_readonly("converged", copied(&NearestCorrelationResult::converged))
-      .def_property_readonly("clipped", copied(&NearestCorrelationResult::clipped), "zero eigenvalues of the answer")
-      .def_property_readonly("cholesky_ok", copied(&NearestCorrelationResult::cholesky_ok),
-                             "whether X has a Cholesky factorization")
-      .def_property_readonly("warnings", copied(&NearestCorrelationResult::warnings))
-      .def("__repr__", [](const NearestCorrelationResult& r) {
-        std::ostringstream out;
-        out << "NearestCorrelationResult(distance=" << r.distance << ", iterations=" << r.iterations
-            << ", converged=" << (r.converged ? "True" : "False") << ")\nX =\n" << r.X;
-        return out.str();
-      });
+  py::class_<NearestResult>(m, "NearestResult",
+                            "A repaired matrix and how it was reached (nearest_spd, nearest_correlation).")
+      .def_property_readonly("X", copied(&NearestResult::X), "the nearest matrix, exactly symmetric")
+      .def_property_readonly("distance", copied(&NearestResult::distance),
+                             "||X_in - X||_F (||W^1/2 (X_in - X) W^1/2||_F with weights)")
+      .def_property_readonly("clipped", copied(&NearestResult::clipped), "eigenvalues raised to the floor")
+      .def_property_readonly("min_eigenvalue_before", copied(&NearestResult::min_eigenvalue_before),
+                             "of the input's symmetric part")
+      .def_property_readonly("min_eig", copied(&NearestResult::min_eig),
+                             "the floor applied, in the input's units (a relative floor resolved)")
+      .def_property_readonly("iterations", copied(&NearestResult::iterations), "Newton iterations (0: direct)")
+      .def_property_readonly("gradient_norm", copied(&NearestResult::gradient_norm),
+                             "||diag(X) - d||_2 of the last Newton iterate, before the diagonal rescaling")
+      .def_property_readonly("converged", copied(&NearestResult::converged))
+      .def_property_readonly("cholesky_ok", copied(&NearestResult::cholesky_ok),
+                             "whether X has a Cholesky factorization (positive definite)")
+      .def_property_readonly("warnings", copied(&NearestResult::warnings))
+      .def("__repr__",
+           [](const NearestResult& r) {
+             std::ostringstream out;
+             out << "NearestResult(distance=" << r.distance << ", clipped=" << r.clipped << ", min_eig=" << r.min_eig
+                 << ", iterations=" << r.iterations << ", converged=" << (r.converged ? "True" : "False")
+                 << ", cholesky_ok=" << (r.cholesky_ok ? "True" : "False") << ")\nX =\n"
+                 << r.X;
+             return out.str();
+           })
+      .def(py::pickle(
+          [](const NearestResult& r) {
+            return py::make_tuple(r.X, r.distance, r.clipped, r.min_eigenvalue_before, r.min_eig, r.iterations,
+                                  r.gradient_norm, r.converged, r.cholesky_ok, r.warnings);
+          },
+          [](const py::tuple& t) {
+            check_state(t, 10, "NearestResult");
+            NearestResult r;
+            r.X = t[0].cast<Eigen::MatrixXd>();
+            r.distance = t[1].cast<double>();
+            r.clipped = t[2].cast<Eigen::Index>();
+            r.min_eigenvalue_before = t[3].cast<double>();
+            r.min_eig = t[4].cast<double>();
+            r.iterations = t[5].cast<int>();
+            r.gradient_norm = t[6].cast<double>();
+            r.converged = t[7].cast<bool>();
+            r.cholesky_ok = t[8].cast<bool>();
+            r.warnings = t[9].cast<std::vector<std::string>>();
+            return r;
+          }));
+  m.attr("REPAIR_FLOOR_DEFAULT") = EigenvalueFloor::kRepairDefault;
+  // One entry for every repair: `kind` is "spd" (the eigenvalue clip), "corr", "keep_diag" or
+  // "via_corr"; the floor is min_eig (absolute), min_eig_rel (relative) or alpha, else the relative
+  // default, as the nearest command's.
   m.def(
-      "nearest_correlation",
-      [](const Eigen::MatrixXd& C, std::optional<Eigen::VectorXd> weights, double alpha, int max_iter, double tol) {
+      "nearest",
+      [](const Eigen::MatrixXd& C, const std::string& kind, std::optional<double> min_eig,
+         std::optional<double> min_eig_rel, std::optional<double> alpha, std::optional<Eigen::VectorXd> weights,
+         std::optional<int> max_iter, std::optional<double> tol) {
+        if (min_eig && min_eig_rel) throw std::invalid_argument("give min_eig or min_eig_rel, not both");
+        if (alpha && (min_eig || min_eig_rel)) {
+          throw std::invalid_argument("alpha is the unit diagonal's floor: give it or min_eig/min_eig_rel, not both");
+        }
+        const EigenvalueFloor floor = min_eig ? EigenvalueFloor::absolute(*min_eig)
+                                      : alpha ? EigenvalueFloor{}
+                                              : EigenvalueFloor::relative_to_largest(
+                                                    min_eig_rel.value_or(EigenvalueFloor::kRepairDefault));
+        if (kind == "spd") {
+          for (const auto& [given, name] : {std::pair{bool(weights), "weights"}, std::pair{bool(alpha), "alpha"},
+                                            std::pair{bool(max_iter), "max_iter"}, std::pair{bool(tol), "tol"}}) {
+            if (given) throw std::invalid_argument(std::string(name) + " needs keep_diag=True or via_corr=True");
+          }
+          py::gil_scoped_release release;
+          return nearest_spd(C, floor);
+        }
         NearestCorrelationOptions options;
+        options.floor = floor;
         if (weights) options.weights = *weights;
-        options.alpha = alpha;
-        options.max_iterations = max_iter;
-        options.tolerance = tol;
+        options.alpha = alpha.value_or(options.alpha);
+        options.max_iterations = max_iter.value_or(options.max_iterations);
+        options.tolerance = tol.value_or(options.tolerance);
+        if (kind != "corr" && kind != "keep_diag" && kind != "via_corr") {
+          throw std::invalid_argument("unknown repair '" + kind + "'");
+        }
         py::gil_scoped_release release;
-        return nearest_correlation(C, options);
+        return kind == "corr"        ? nearest_correlation(C, options)
+               : kind == "keep_diag" ? nearest_keep_diagonal(C, options)
+                                     : nearest_via_correlation(C, options);
       },
-      py::arg("C"), py::arg("weights") = py::none(), py::arg("alpha") = NearestCorrelationOptions{}.alpha,
-      py::arg("max_iter") = NearestCorrelationOptions{}.max_iterations,
-      py::arg("tol") = NearestCorrelationOptions{}.tolerance);
+      py::arg("C"), py::arg("kind"), py::arg("min_eig") = py::none(), py::arg("min_eig_rel") = py::none(),
+      py::arg("alpha") = py::none(), py::arg("weights") = py::none(), py::arg("max_iter") = py::none(),
+      py::arg("tol") = py::none());
 
   m.def(
       "area_criterion",

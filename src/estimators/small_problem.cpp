@@ -101,7 +101,7 @@ bool estimate_bounded(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<cons
         } else if (methods[i] == Method::TotalLeastSquaresSymmetric) {
           X_s = symmetric_part(tls.X_s);
         } else {
-          ok = tls.X_s.allFinite() && nearest_spd_kernel<MaxN>(tls.X_s, 0.0, X_s);
+          ok = tls.X_s.allFinite() && nearest_spd_kernel<MaxN>(tls.X_s, EigenvalueFloor{}, X_s);
         }
         break;
       case Method::SpdTotalLeastSquares:

@@ -371,7 +371,7 @@ bool spd_tls_solve(const BasicReduction<MaxN>& data, double r_s, int max_iterati
   TlsKernel<MaxN> tls;
   tls_kernel(data, tls);
   const bool started = tls.exists && tls.X_s.allFinite() &&
-                       nearest_spd_kernel<MaxN>(symmetric_part(tls.X_s), 0.0, X0) &&
+                       nearest_spd_kernel<MaxN>(symmetric_part(tls.X_s), EigenvalueFloor{}, X0) &&
                        spd_tls_kernel(data, r_s, max_iterations, X0, out);
   out.iterations += iterations;
   return started;

@@ -1,5 +1,6 @@
 #include "numerics/linalg.hpp"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -7,6 +8,7 @@
 #include <string>
 
 #ifdef SPDFIT_HAVE_LAPACK
+#include <cblas.h>
 #include <lapacke.h>
 #endif
 
@@ -43,6 +45,46 @@ void svd_large(const Eigen::Ref<const MatrixXd>& A, BasicSvd<MatrixXd>& out, boo
   out.s = dec.singularValues();
   if (compute_u) out.U = dec.matrixU();
   if (compute_v) out.V = dec.matrixV();
+}
+
+void multiply(const Eigen::Ref<const MatrixXd>& A, bool transpose_a, const Eigen::Ref<const MatrixXd>& B,
+              bool transpose_b, MatrixXd& C) {
+  const Index m = transpose_a ? A.cols() : A.rows(), k = transpose_a ? A.rows() : A.cols();
+  const Index n = transpose_b ? B.rows() : B.cols();
+  if ((transpose_b ? B.cols() : B.rows()) != k) throw std::invalid_argument("multiply: the shapes do not match");
+  C.resize(m, n);
+#ifdef SPDFIT_HAVE_LAPACK
+  constexpr double kBlasMinProduct = 64.0 * 64.0 * 64.0;
+  if (static_cast<double>(m) * static_cast<double>(n) * static_cast<double>(k) >= kBlasMinProduct) {
+    cblas_dgemm(CblasColMajor, transpose_a ? CblasTrans : CblasNoTrans, transpose_b ? CblasTrans : CblasNoTrans,
+                static_cast<blasint>(m), static_cast<blasint>(n), static_cast<blasint>(k), 1.0, A.data(),
+                static_cast<blasint>(A.outerStride()), B.data(), static_cast<blasint>(B.outerStride()), 0.0, C.data(),
+                static_cast<blasint>(C.outerStride()));
+    return;
+  }
+#endif
+  if (k == 0) {
+    C.setZero();
+  } else if (transpose_a && transpose_b) {
+    C.noalias() = A.transpose() * B.transpose();
+  } else if (transpose_a) {
+    C.noalias() = A.transpose() * B;
+  } else if (transpose_b) {
+    C.noalias() = A * B.transpose();
+  } else {
+    C.noalias() = A * B;
+  }
+}
+
+bool has_cholesky(const Eigen::Ref<const MatrixXd>& X) {
+#ifdef SPDFIT_HAVE_LAPACK
+  if (X.rows() >= 64) {
+    MatrixXd work = X;
+    const lapack_int n = static_cast<lapack_int>(X.rows());
+    return LAPACKE_dpotrf(LAPACK_COL_MAJOR, 'L', n, work.data(), n) == 0;
+  }
+#endif
+  return Eigen::LLT<MatrixXd>(X).info() == Eigen::Success;
 }
 
 bool symmetric_eigen_large(const Eigen::Ref<const MatrixXd>& M, VectorXd& w, MatrixXd* V) {

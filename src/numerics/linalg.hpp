@@ -174,6 +174,17 @@ void triangular_factor_into(const Eigen::MatrixBase<Derived>& A, Result& R) {
 /// Householder QR of A.
 MatrixXd triangular_factor(const Eigen::Ref<const MatrixXd>& A);
 
+/// C = op(A) op(B), op the transpose where asked: BLAS dgemm (multithreaded) when spdfit is built
+/// with LAPACK and the product is large (from 64^3 multiply-adds on), else Eigen. A and B may be
+/// column blocks of a matrix (any outer stride).
+void multiply(const Eigen::Ref<const MatrixXd>& A, bool transpose_a, const Eigen::Ref<const MatrixXd>& B,
+              bool transpose_b, MatrixXd& C);
+
+/// Whether the symmetric X (its lower triangle) has a Cholesky factorization X = L L^T, i.e. is
+/// numerically positive definite: LAPACK's dpotrf from 64 rows on when built with LAPACK, else
+/// Eigen's LLT.
+bool has_cholesky(const Eigen::Ref<const MatrixXd>& X);
+
 /// The eigendecomposition of a dynamic symmetric M (its lower triangle) by LAPACK's dsyevd
 /// (divide and conquer) when spdfit is built with LAPACK, else Eigen's SelfAdjointEigenSolver:
 /// w ascending, V's columns the eigenvectors (when V is given). False when it fails.

@@ -1,6 +1,5 @@
 #include "spdfit/nearest_correlation.hpp"
 
-#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -8,6 +7,7 @@
 
 #include "estimators/diagnostics.hpp"
 #include "numerics/linalg.hpp"
+#include "repair/repair.hpp"
 
 namespace spdfit {
 
@@ -17,15 +17,13 @@ using Eigen::VectorXd;
 
 namespace {
 
-void check(const Eigen::Ref<const MatrixXd>& C, const NearestCorrelationOptions& o) {
-  if (C.rows() == 0 || C.rows() != C.cols()) {
-    throw std::invalid_argument("nearest_correlation: C must be a non-empty square matrix, not " +
-                                std::to_string(C.rows()) + "x" + std::to_string(C.cols()));
-  }
-  if (!C.allFinite()) throw std::invalid_argument("nearest_correlation: C contains NaN or Inf");
-  std::string error;
-  if (!o.is_valid(C.rows(), &error)) throw std::invalid_argument("nearest_correlation: " + error);
-}
+// min ||W^1/2 (X - C) W^1/2||_F over symmetric X with diag(X) = d and X >= floor I, W = diag(w).
+struct FixedDiagonalProblem {
+  MatrixXd S;  // the symmetric part of C
+  VectorXd d;  // every entry > floor
+  VectorXd w;  // every entry > 0
+  double floor = 0.0;
+};
 
 // The dual of min ||X - G||_F^2 / 2 over X >= 0 with diag(X) = b (Qi & Sun 2006):
 // theta(y) = ||(G + diag y)_+||_F^2 / 2 - b^T y, gradient F(y) = diag((G + diag y)_+) - b.
@@ -43,14 +41,25 @@ struct Dual {
     MatrixXd M = G;
     M.diagonal() += y;
     if (!detail::symmetric_eigen(M, lambda, vectors ? &P : nullptr)) return false;
+    finish(y, vectors);
+    return true;
+  }
+
+  // theta (and with vectors F) at y from lambda (and P), the eigendecomposition of G + diag(y).
+  void finish(const VectorXd& y, bool vectors) {
     const VectorXd positive = lambda.cwiseMax(0.0);
     theta = 0.5 * positive.squaredNorm() - b.dot(y);
     if (vectors) {
       // diag(P diag(lambda_+) P^T)
       F = (P.array().square().matrix() * positive) - b;
     }
-    return true;
   }
+};
+
+// The eigendecomposition S = P diag(lambda) P^T of the input's symmetric part, when computed.
+struct Spectrum {
+  VectorXd lambda;
+  MatrixXd P;
 };
 
 // The generalized Jacobian of F at the current eigendecomposition (Qi & Sun 2006, eq. (20)):
@@ -60,9 +69,9 @@ struct Dual {
 // With the r positive eigenvalues last (P = [P2 P1], P1 their eigenvectors) Omega has the blocks
 // [0, Omega21; Omega12, 1], so with B = Omega12 o (P1^T diag(h) P2):
 //   V h = diag(P1 (P1^T diag(h) P1) P1^T) + 2 diag(P1 B P2^T),
-// O(n^2 r) instead of O(n^3). (Qi & Sun's complement form, O(n^2 (n - r)) for r > n/2, computes
-// h - (...) and loses the semidefiniteness of V to cancellation; the conjugate gradients then
-// stall, so it is not used.)
+// O(n^2 r) instead of O(n^3), in four matrix products (BLAS, multithreaded, for large n).
+// (Qi & Sun's complement form, O(n^2 (n - r)) for r > n/2, computes h - (...) and loses the
+// semidefiniteness of V to cancellation; the conjugate gradients then stall, so it is not used.)
 class Jacobian {
  public:
   explicit Jacobian(const Dual& dual) {
@@ -83,14 +92,20 @@ class Jacobian {
     // a sum of non-negative terms (no cancellation).
     const MatrixXd Q1 = P1_.array().square().matrix(), Q2 = P2_.array().square().matrix();
     const VectorXd s1 = Q1.rowwise().sum();
-    diagonal_ = s1.cwiseProduct(s1) + 2.0 * Q1.cwiseProduct(Q2 * omega12_.transpose()).rowwise().sum();
+    MatrixXd Q2_omega;
+    detail::multiply(Q2, false, omega12_, true, Q2_omega);
+    diagonal_ = s1.cwiseProduct(s1) + 2.0 * Q1.cwiseProduct(Q2_omega).rowwise().sum();
   }
 
   VectorXd apply(const VectorXd& h) const {
     const MatrixXd hP1 = h.asDiagonal() * P1_;
-    const MatrixXd square = P1_.transpose() * hP1;  // P1^T diag(h) P1
-    const MatrixXd B = omega12_.cwiseProduct(hP1.transpose() * P2_);
-    return P1_.cwiseProduct(P1_ * square).rowwise().sum() + 2.0 * P1_.cwiseProduct(P2_ * B.transpose()).rowwise().sum();
+    MatrixXd square, B, left, right;
+    detail::multiply(P1_, true, hP1, false, square);  // P1^T diag(h) P1
+    detail::multiply(hP1, true, P2_, false, B);
+    B = omega12_.cwiseProduct(B);
+    detail::multiply(P1_, false, square, false, left);
+    detail::multiply(P2_, false, B, true, right);
+    return P1_.cwiseProduct(left + 2.0 * right).rowwise().sum();
   }
 
   const VectorXd& diagonal() const { return diagonal_; }
@@ -125,6 +140,219 @@ VectorXd pcg(const Jacobian& V, double mu, const VectorXd& rhs, double tol, int 
   return d;
 }
 
+// The Newton method's answer to a FixedDiagonalProblem.
+struct Solution {
+  MatrixXd X;
+  int iterations = 0;
+  double gradient_norm = 0.0;  // ||diag(X~) - b||_2 in the weighted problem, the input's units
+  bool converged = false;
+  Index clipped = 0;
+};
+
+// Qi & Sun's Newton method on the dual, in X~ = W^1/2 (X - floor I) W^1/2: min ||X~ - G||_F over
+// X~ >= 0 with diag(X~) = b, G = W^1/2 (S - floor I) W^1/2, b = w o (d - floor). The floor is thus
+// an exact constraint (X >= floor I), not a clip afterwards. Computed in units where max(b) is
+// in [0.5, 1) (an exact power-of-two scaling), so that repairing s C gives s X. With unit weights
+// and diag(S) = d, the first dual matrix G + diag(y0) is (S - floor I) scaled: `spectrum`, S's
+// eigendecomposition when given, then serves for it.
+Solution solve(const FixedDiagonalProblem& p, const NearestCorrelationOptions& options,
+               const Spectrum* spectrum = nullptr) {
+  const Index n = p.S.rows();
+  const VectorXd root = p.w.cwiseSqrt();
+  const VectorXd target = p.d.array() - p.floor;
+  const int e = detail::scale_exponent(p.w.cwiseProduct(target).maxCoeff()).value_or(0);
+  MatrixXd G = p.S;
+  G.diagonal().array() -= p.floor;
+  G = root.asDiagonal() * G * root.asDiagonal();
+  detail::multiply_by_power_of_two(G, -e);
+  const VectorXd b = detail::times_power_of_two(p.w.cwiseProduct(target), -e);
+
+  Solution out;
+  Dual dual{G, b, {}, {}, 0.0, {}};
+  VectorXd y = b - G.diagonal();
+  if (spectrum && spectrum->P.size() && y.isZero(0.0)) {
+    dual.lambda = detail::times_power_of_two((spectrum->lambda.array() - p.floor).matrix(), -e);
+    dual.P = spectrum->P;
+    dual.finish(y, true);
+  } else if (!dual.evaluate(y, true)) {
+    throw std::runtime_error("the eigensolver did not converge");
+  }
+  const double stop = options.tolerance * std::sqrt(static_cast<double>(n)) * b.maxCoeff();
+  constexpr double kArmijo = 1e-4;
+  for (; out.iterations < options.max_iterations; ++out.iterations) {
+    const double gradient = dual.F.norm();
+    if (gradient <= stop) break;
+    const Jacobian V(dual);
+    const double mu = std::min(1e-2, gradient) * 1e-6;
+    const VectorXd step = pcg(V, mu, -dual.F, std::min(1e-2, gradient), 200);
+    // Armijo backtracking on theta (convex, so the Newton step is a descent direction).
+    const double slope = dual.F.dot(step);
+    const double theta0 = dual.theta;
+    double t = 1.0;
+    VectorXd trial = y + step;
+    Dual probe{G, b, {}, {}, 0.0, {}};
+    // Near the solution the decrease (about ||F||^2) falls below theta's own rounding: there the
+    // comparison allows that rounding, or the full Newton step would be refused forever.
+    const double rounding = 16.0 * std::numeric_limits<double>::epsilon() * (std::abs(theta0) + 1.0);
+    // The full step, usually taken, is evaluated with eigenvectors so that the next iteration
+    // reuses its eigendecomposition; shorter ones with eigenvalues only.
+    for (int k = 0; k < 40; ++k) {
+      if (!probe.evaluate(trial, k == 0)) throw std::runtime_error("the eigensolver did not converge");
+      if (probe.theta <= theta0 + kArmijo * t * slope + rounding) break;
+      t *= 0.5;
+      trial = y + t * step;
+    }
+    y = trial;
+    if (t == 1.0) {
+      dual.P = std::move(probe.P);
+      dual.lambda = std::move(probe.lambda);
+      dual.theta = probe.theta;
+      dual.F = std::move(probe.F);
+    } else if (!dual.evaluate(y, true)) {
+      throw std::runtime_error("the eigensolver did not converge");
+    }
+  }
+  const double gradient = dual.F.norm();
+  out.converged = gradient <= stop;
+  out.gradient_norm = std::ldexp(gradient, e);
+
+  // X~ = (G + diag y)_+ = Q Q^T with Q = P1 diag(lambda_+)^1/2 (BLAS for large n), back to X.
+  Index r = 0;
+  while (r < n && dual.lambda(n - 1 - r) > 0.0) ++r;
+  out.clipped = n - r;
+  const MatrixXd Q = dual.P.rightCols(r) * dual.lambda.tail(r).cwiseSqrt().asDiagonal();
+  MatrixXd X;
+  detail::multiply(Q, false, Q, true, X);
+  detail::make_symmetric_from_lower(X);
+  detail::multiply_by_power_of_two(X, e);
+  const VectorXd unweight = root.cwiseInverse();
+  X = unweight.asDiagonal() * X * unweight.asDiagonal();
+  // The diagonal scaled to d - floor exactly (a congruence: X stays semidefinite), then the floor.
+  const VectorXd diagonal = X.diagonal().cwiseMax(std::numeric_limits<double>::min());
+  const VectorXd scale = target.cwiseQuotient(diagonal).cwiseSqrt();
+  X = scale.asDiagonal() * X * scale.asDiagonal();
+  X.diagonal().array() += p.floor;
+  X.diagonal() = p.d;
+  detail::make_symmetric_from_lower(X);
+  out.X = std::move(X);
+  return out;
+}
+
+double weighted_distance(const MatrixXd& X, const Eigen::Ref<const MatrixXd>& C, const VectorXd& w) {
+  const VectorXd root = w.cwiseSqrt();
+  return (root.asDiagonal() * (X - C) * root.asDiagonal()).norm();
+}
+
+// The input's symmetric part, its extreme eigenvalues and the warnings about it, shared by the
+// repairs.
+struct Prepared {
+  MatrixXd S;
+  VectorXd w;
+  double lambda_min = 0.0, lambda_max = 0.0;
+  Spectrum spectrum;  // with eigenvectors when the Newton method's first step can use them
+  std::vector<std::string> warnings;
+};
+
+// `d` the diagonal the repair keeps (empty: C's own).
+Prepared prepare(const char* function, const Eigen::Ref<const MatrixXd>& C, const NearestCorrelationOptions& options,
+                 const VectorXd& d) {
+  detail::check_repair_input(function, C, options.floor);
+  std::string error;
+  if (!options.is_valid(C.rows(), &error)) throw std::invalid_argument(std::string(function) + ": " + error);
+  Prepared out;
+  out.S = detail::symmetric_part(MatrixXd(C));
+  out.w = options.weights.size() ? options.weights : VectorXd::Ones(C.rows());
+  const bool vectors = options.weights.size() == 0 && (d.size() == 0 || out.S.diagonal() == d);
+  if (!detail::symmetric_eigen(out.S, out.spectrum.lambda, vectors ? &out.spectrum.P : nullptr)) {
+    throw std::runtime_error(std::string(function) + ": the eigensolver did not converge");
+  }
+  out.lambda_min = out.spectrum.lambda(0);
+  out.lambda_max = out.spectrum.lambda(out.spectrum.lambda.size() - 1);
+  if (auto w = detail::asymmetry_warning(C)) out.warnings.push_back(*w);
+  return out;
+}
+
+// Whether the floor's own change ||X - X0|| (X0 the answer without it, all in the W-norm) can
+// exceed the repair r = ||X0 - C||, judged without X0. X and X0 are projections of C onto nested
+// convex sets, so ||X - X0||^2 <= D^2 - r^2 (D = ||X - C||), and the floor dominates only if
+// r < D / sqrt 2. Z = (1 - a) X0 + a diag(d), a = floor / min(d), is admissible, so D <= r + delta
+// with delta = a (sum w_i d_i + ||w o d||) >= a ||X0 - diag(d)||_W, and the floor dominates only if
+// r < delta / (sqrt 2 - 1). r is at least C's distance to the semidefinite matrices and to those
+// with diagonal d: when that bound passes either test the floor cannot dominate.
+bool floor_may_dominate(const FixedDiagonalProblem& p, const Prepared& prepared, double distance) {
+  VectorXd lambda = prepared.spectrum.lambda;
+  if (p.w != VectorXd::Ones(p.w.size())) {
+    const VectorXd root = p.w.cwiseSqrt();
+    const MatrixXd weighted = root.asDiagonal() * p.S * root.asDiagonal();
+    if (!detail::symmetric_eigen(weighted, lambda)) return true;
+  }
+  const double to_cone = lambda.cwiseMin(0.0).norm();
+  const double to_diagonal = p.w.cwiseProduct(p.S.diagonal() - p.d).norm();
+  const double repair_bound = std::max(to_cone, to_diagonal);
+  const double a = p.floor / p.d.minCoeff();
+  const double delta = a * (p.w.dot(p.d) + p.w.cwiseProduct(p.d).norm());
+  return repair_bound < distance / std::sqrt(2.0) && repair_bound < delta / (std::sqrt(2.0) - 1.0);
+}
+
+// Solves the problem (C's symmetric part S already in it) and reports as NearestResult does:
+// the shortcut when S is already admissible, the warnings (not converged; a floor that moved X
+// more than the repair itself, measured by solving once more without it when floor_may_dominate
+// cannot rule it out).
+NearestResult repair(const char* function, const Eigen::Ref<const MatrixXd>& C, const FixedDiagonalProblem& p,
+                     const Prepared& prepared, const NearestCorrelationOptions& options) {
+  NearestResult out;
+  out.min_eigenvalue_before = prepared.lambda_min;
+  out.min_eig = p.floor;
+  out.warnings = prepared.warnings;
+  for (Index i = 0; i < p.d.size(); ++i) {
+    if (!(p.d(i) > p.floor)) {
+      throw std::invalid_argument(std::string(function) + ": the eigenvalue floor " + detail::format_number(p.floor) +
+                                  " is not below diagonal entry " + std::to_string(i + 1) + " (" +
+                                  detail::format_number(p.d(i)) + "): no matrix with that diagonal has all its "
+                                  "eigenvalues above it");
+    }
+  }
+  if (prepared.lambda_min >= p.floor && p.S.diagonal() == p.d) {
+    out.X = p.S;  // already admissible
+  } else {
+    Solution s;
+    try {
+      s = solve(p, options, &prepared.spectrum);
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error(std::string(function) + ": " + e.what());
+    }
+    out.X = std::move(s.X);
+    out.iterations = s.iterations;
+    out.gradient_norm = s.gradient_norm;
+    out.converged = s.converged;
+    out.clipped = s.clipped;
+    if (!out.converged) {
+      out.warnings.push_back("not converged within " + std::to_string(options.max_iterations) +
+                             " iterations (||diag(X) - d|| = " + detail::format_number(out.gradient_norm) +
+                             "): the best iterate, rescaled to the diagonal");
+    }
+  }
+  out.distance = weighted_distance(out.X, C, p.w);
+  out.cholesky_ok = detail::has_cholesky(out.X);
+  if (p.floor > 0.0 && out.clipped > 0 && floor_may_dominate(p, prepared, out.distance)) {
+    // What the floor alone moved, measured: the problem solved once more without it.
+    FixedDiagonalProblem plain = p;
+    plain.floor = 0.0;
+    const MatrixXd X0 = solve(plain, options, &prepared.spectrum).X;
+    if (auto w = detail::floor_warning(p.floor, weighted_distance(out.X, X0, p.w), weighted_distance(X0, C, p.w),
+                                       weighted_distance(MatrixXd::Zero(C.rows(), C.cols()), C, p.w),
+                                       prepared.lambda_max)) {
+      out.warnings.push_back(*w);
+    }
+  }
+  return out;
+}
+
+// The absolute floor of the options: alpha, or the floor resolved against lambda_max.
+double floor_of(const char* function, const NearestCorrelationOptions& options, double lambda_max) {
+  return options.alpha > 0.0 ? options.alpha : detail::resolve_floor(function, options.floor, lambda_max);
+}
+
 }  // namespace
 
 bool NearestCorrelationOptions::is_valid(Index n, std::string* error) const {
@@ -144,103 +372,60 @@ bool NearestCorrelationOptions::is_valid(Index n, std::string* error) const {
       }
     }
   }
+  if (!floor.is_valid(error)) return false;
   if (!(alpha >= 0.0 && alpha < 1.0)) return fail("alpha must be in [0, 1)");
+  if (alpha > 0.0 && floor.value > 0.0) return fail("alpha is the unit diagonal's eigenvalue floor: give it or a floor, not both");
   if (max_iterations < 1) return fail("max_iterations must be >= 1");
   if (!(tolerance > 0.0) || !std::isfinite(tolerance)) return fail("tolerance must be a finite number > 0");
   return true;
 }
 
-NearestCorrelationResult nearest_correlation(const Eigen::Ref<const MatrixXd>& C,
-                                             const NearestCorrelationOptions& options) {
-  check(C, options);
+NearestResult nearest_correlation(const Eigen::Ref<const MatrixXd>& C, const NearestCorrelationOptions& options) {
+  constexpr const char* kName = "nearest_correlation";
   const Index n = C.rows();
-  NearestCorrelationResult out;
+  Prepared prepared = prepare(kName, C, options, VectorXd::Ones(n));
+  const double floor = floor_of(kName, options, prepared.lambda_max);
+  FixedDiagonalProblem p{std::move(prepared.S), VectorXd::Ones(n), prepared.w, floor};
+  return repair(kName, C, p, prepared, options);
+}
+
+NearestResult nearest_keep_diagonal(const Eigen::Ref<const MatrixXd>& C, const NearestCorrelationOptions& options) {
+  constexpr const char* kName = "nearest_keep_diagonal";
+  if (options.alpha > 0.0) {
+    throw std::invalid_argument(std::string(kName) + ": alpha is for a unit diagonal: give a floor instead");
+  }
+  Prepared prepared = prepare(kName, C, options, VectorXd());
+  const double floor = floor_of(kName, options, prepared.lambda_max);
+  VectorXd d = prepared.S.diagonal();
+  FixedDiagonalProblem p{std::move(prepared.S), std::move(d), prepared.w, floor};
+  return repair(kName, C, p, prepared, options);
+}
+
+NearestResult nearest_via_correlation(const Eigen::Ref<const MatrixXd>& C, const NearestCorrelationOptions& options) {
+  constexpr const char* kName = "nearest_via_correlation";
+  detail::check_repair_input(kName, C, options.floor);
   const MatrixXd S = detail::symmetric_part(MatrixXd(C));
-  const double asymmetry = (C - C.transpose()).norm();
-  if (asymmetry > 1e-10 * std::max(C.norm(), std::numeric_limits<double>::min())) {
-    out.warnings.push_back("C is not symmetric (||C - C^T||_F / ||C||_F = " +
-                           detail::format_number(asymmetry / C.norm()) +
-                           ", more than rounding): its symmetric part (C + C^T) / 2 was used; is it the right file?");
-  }
-  const VectorXd w = options.weights.size() ? options.weights : VectorXd::Ones(n);
-  const VectorXd root = w.cwiseSqrt();
-  const double alpha = options.alpha;
-
-  // The weighted problem in X~ = W^1/2 X W^1/2: min ||X~ - G||_F with diag(X~) = w.
-  MatrixXd shifted = S;
-  if (alpha > 0.0) {
-    shifted.diagonal().array() -= alpha;
-    shifted /= 1.0 - alpha;
-  }
-  const MatrixXd G = root.asDiagonal() * shifted * root.asDiagonal();
-  const VectorXd& b = w;
-
-  Dual dual{G, b, {}, {}, 0.0, {}};
-  VectorXd y = b - G.diagonal();
-  if (!dual.evaluate(y, true)) throw std::runtime_error("nearest_correlation: the eigensolver did not converge");
-  const double stop = options.tolerance * std::sqrt(static_cast<double>(n));
-  constexpr double kArmijo = 1e-4;
-  for (; out.iterations < options.max_iterations; ++out.iterations) {
-    const double gradient = dual.F.norm();
-    if (gradient <= stop) break;
-    const Jacobian V(dual);
-    const double mu = std::min(1e-2, gradient) * 1e-6;
-    const VectorXd d = pcg(V, mu, -dual.F, std::min(1e-2, gradient), 200);
-    // Armijo backtracking on theta (convex, so the Newton step is a descent direction).
-    const double slope = dual.F.dot(d);
-    const double theta0 = dual.theta;
-    double t = 1.0;
-    VectorXd trial = y + d;
-    Dual probe{G, b, {}, {}, 0.0, {}};
-    // Near the solution the decrease (about ||F||^2) falls below theta's own rounding: there the
-    // comparison allows that rounding, or the full Newton step would be refused forever.
-    const double rounding = 16.0 * std::numeric_limits<double>::epsilon() * (std::abs(theta0) + 1.0);
-    // The full step, usually taken, is evaluated with eigenvectors so that the next iteration
-    // reuses its eigendecomposition; shorter ones with eigenvalues only.
-    for (int k = 0; k < 40; ++k) {
-      if (!probe.evaluate(trial, k == 0)) throw std::runtime_error("nearest_correlation: the eigensolver did not converge");
-      if (probe.theta <= theta0 + kArmijo * t * slope + rounding) break;
-      t *= 0.5;
-      trial = y + t * d;
-    }
-    y = trial;
-    if (t == 1.0) {
-      dual.P = std::move(probe.P);
-      dual.lambda = std::move(probe.lambda);
-      dual.theta = probe.theta;
-      dual.F = std::move(probe.F);
-    } else if (!dual.evaluate(y, true)) {
-      throw std::runtime_error("nearest_correlation: the eigensolver did not converge");
+  for (Index i = 0; i < S.rows(); ++i) {
+    if (!(S(i, i) > 0.0)) {
+      throw std::invalid_argument(std::string(kName) + ": diagonal entry " + std::to_string(i + 1) + " is " +
+                                  detail::format_number(S(i, i)) + ": a covariance's variances must be > 0");
     }
   }
-  out.gradient_norm = dual.F.norm();
-  out.converged = out.gradient_norm <= stop;
-  if (!out.converged) {
-    out.warnings.push_back("not converged within " + std::to_string(options.max_iterations) +
-                           " iterations (||diag(X) - 1|| = " + detail::format_number(out.gradient_norm) +
-                           "): the best iterate, rescaled to a unit diagonal");
-  }
-
-  // X~ = (G + diag y)_+, back to X, then the diagonal scaled to 1 (which keeps X semidefinite).
-  const VectorXd positive = dual.lambda.cwiseMax(0.0);
-  for (Index i = 0; i < n; ++i) out.clipped += dual.lambda(i) <= 0.0;
-  MatrixXd X(n, n);
-  X.triangularView<Eigen::Lower>() = dual.P * positive.asDiagonal() * dual.P.transpose();
-  detail::make_symmetric_from_lower(X);
-  const VectorXd unweight = root.cwiseInverse();
-  X = unweight.asDiagonal() * X * unweight.asDiagonal();
-  const VectorXd diagonal = X.diagonal().cwiseMax(std::numeric_limits<double>::min());
-  const VectorXd scale = diagonal.cwiseSqrt().cwiseInverse();
-  X = scale.asDiagonal() * X * scale.asDiagonal();
-  if (alpha > 0.0) {
-    X *= 1.0 - alpha;
-    X.diagonal().array() += alpha;
-  }
-  X.diagonal().setOnes();
-  detail::make_symmetric_from_lower(X);
-  out.X = std::move(X);
-  out.distance = (root.asDiagonal() * (out.X - S) * root.asDiagonal()).norm();
-  out.cholesky_ok = Eigen::LLT<MatrixXd>(out.X).info() == Eigen::Success;
+  const VectorXd D = S.diagonal().cwiseSqrt();
+  const VectorXd inverse = D.cwiseInverse();
+  MatrixXd R = inverse.asDiagonal() * S * inverse.asDiagonal();
+  detail::make_symmetric_from_lower(R);
+  R.diagonal().setOnes();
+  NearestResult out = nearest_correlation(R, options);
+  out.X = D.asDiagonal() * out.X * D.asDiagonal();
+  out.X.diagonal() = S.diagonal();
+  detail::make_symmetric_from_lower(out.X);
+  VectorXd lambda;
+  if (!detail::symmetric_eigen(S, lambda)) throw std::runtime_error(std::string(kName) + ": the eigensolver did not converge");
+  out.min_eigenvalue_before = lambda(0);
+  out.distance = weighted_distance(out.X, C, options.weights.size() ? options.weights : VectorXd::Ones(C.rows()));
+  out.cholesky_ok = detail::has_cholesky(out.X);
+  if (auto w = detail::asymmetry_warning(C)) out.warnings.insert(out.warnings.begin(), *w);
   return out;
 }
 

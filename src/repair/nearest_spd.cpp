@@ -1,12 +1,13 @@
 #include "spdfit/nearest_spd.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "estimators/kernels.hpp"
 #include "numerics/linalg.hpp"
+#include "repair/repair.hpp"
 
 namespace spdfit {
 
@@ -16,80 +17,98 @@ using Eigen::MatrixXd;
 namespace detail {
 
 template <int MaxN>
-bool nearest_spd_kernel(const SquareMatrix<MaxN>& X, double min_eig, SquareMatrix<MaxN>& y,
+bool nearest_spd_kernel(const SquareMatrix<MaxN>& X, EigenvalueFloor floor, SquareMatrix<MaxN>& y,
                         NearestSpdInfo* info) {
   using Matrix = SquareMatrix<MaxN>;
-  // Work in units where the largest entry (or min_eig) is in [0.5, 1) (exact: a power of two), so
-  // that the eigenvalues, which can exceed the largest entry n times, do not overflow for entries
-  // near the double range, and denormal input keeps its digits.
-  const int e = scale_exponent(std::max(X.cwiseAbs().maxCoeff(), min_eig)).value_or(0);
+  using Vector = typename BasicReduction<MaxN>::Vector;
+  // Work in units where the largest entry (or an absolute floor) is in [0.5, 1) (exact: a power
+  // of two), so that the eigenvalues, which can exceed the largest entry n times, do not overflow
+  // for entries near the double range, and denormal input keeps its digits.
+  const double absolute = floor.relative ? 0.0 : floor.value;
+  const int e = scale_exponent(std::max(X.cwiseAbs().maxCoeff(), absolute)).value_or(0);
   const Matrix x = times_power_of_two(X, -e);
-  const double floor = std::ldexp(min_eig, -e);
 
   // Higham 1988: the nearest symmetric matrix is S = (X + X^T)/2, and the nearest one with
-  // eigenvalues >= min_eig clips the eigenvalues of S = W diag(lambda) W^T. For min_eig = 0 this
+  // eigenvalues >= the floor clips the eigenvalues of S = W diag(lambda) W^T. For the floor 0 this
   // is (S + H)/2 with H the symmetric polar factor of S (thesis eq. 4.39).
   const Matrix S = symmetric_part(x);
-  Eigen::SelfAdjointEigenSolver<Matrix> eig(S);
-  if (eig.info() != Eigen::Success) return false;
-  typename BasicReduction<MaxN>::Vector lambda = eig.eigenvalues();
-  const double min_before = lambda(0);
+  Vector lambda;
+  Matrix W;
+  if (!symmetric_eigen(S, lambda, &W)) return false;
+  const Index n = lambda.size();
+  const double min_before = lambda(0), max_before = lambda(n - 1);
+  if (info) {
+    info->min_before = std::ldexp(min_before, e);
+    info->max_before = std::ldexp(max_before, e);
+  }
+  if (floor.relative && floor.value > 0.0 && !(max_before > 0.0)) return false;
+  const double scaled_floor = floor.relative ? floor.value * max_before : std::ldexp(floor.value, -e);
   Index clipped = 0;
-  for (Index i = 0; i < lambda.size(); ++i) {
-    if (lambda(i) < floor) {
-      lambda(i) = floor;
+  double repair = 0.0, floor_change = 0.0;  // squared, the parts of the clip below 0 and above
+  for (Index i = 0; i < n; ++i) {
+    if (lambda(i) < scaled_floor) {
+      repair += std::pow(std::min(lambda(i), 0.0), 2);
+      floor_change += std::pow(scaled_floor - std::max(lambda(i), 0.0), 2);
+      lambda(i) = scaled_floor;
       ++clipped;
     }
   }
   if (clipped == 0) {
     y = S;  // already admissible: no rounding from re-assembly
   } else {
-    const Matrix& W = eig.eigenvectors();
     y.setZero(S.rows(), S.cols());
     // Lower triangle of W diag(lambda) W^T, mirrored: exactly symmetric.
     y.template triangularView<Eigen::Lower>() = W * lambda.asDiagonal() * W.transpose();
     make_symmetric_from_lower(y);
   }
   if (info) {
+    const double asymmetry_squared = (x - S).squaredNorm();
     info->clipped = clipped;
-    info->min_before = std::ldexp(min_before, e);
+    info->min_eig = std::ldexp(scaled_floor, e);
     info->distance = std::ldexp((x - y).stableNorm(), e);
+    info->repair = std::ldexp(std::sqrt(asymmetry_squared + repair), e);
+    info->floor_change = std::ldexp(std::sqrt(floor_change), e);
   }
   multiply_by_power_of_two(y, e);
   return true;
 }
 
-#define SPDFIT_INSTANTIATE(MaxN)                                                                 \
-  template bool nearest_spd_kernel<MaxN>(const SquareMatrix<MaxN>&, double, SquareMatrix<MaxN>&, \
+#define SPDFIT_INSTANTIATE(MaxN)                                                                          \
+  template bool nearest_spd_kernel<MaxN>(const SquareMatrix<MaxN>&, EigenvalueFloor, SquareMatrix<MaxN>&, \
                                          NearestSpdInfo*);
 SPDFIT_FOR_EACH_MAX_N(SPDFIT_INSTANTIATE)
 #undef SPDFIT_INSTANTIATE
 
 }  // namespace detail
 
-NearestSpdResult nearest_spd(const Eigen::Ref<const MatrixXd>& X, double min_eig) {
-  if (X.rows() != X.cols() || X.size() == 0) {
-    throw std::invalid_argument("nearest_spd needs a non-empty square matrix, got " +
-                                std::to_string(X.rows()) + "x" + std::to_string(X.cols()));
-  }
-  if (!X.allFinite()) throw std::invalid_argument("nearest_spd: the matrix contains NaN or Inf");
-  if (!std::isfinite(min_eig) || min_eig < 0.0) {
-    throw std::invalid_argument("nearest_spd: min_eig must be a finite number >= 0");
-  }
-  NearestSpdResult out;
+NearestResult nearest_spd(const Eigen::Ref<const MatrixXd>& X, EigenvalueFloor floor) {
+  detail::check_repair_input("nearest_spd", X, floor);
+  NearestResult out;
   detail::NearestSpdInfo info;
-  if (!detail::nearest_spd_kernel<Eigen::Dynamic>(X, min_eig, out.X, &info)) {
+  info.max_before = std::numeric_limits<double>::quiet_NaN();  // set once the eigenvalues are known
+  if (!detail::nearest_spd_kernel<Eigen::Dynamic>(X, floor, out.X, &info)) {
+    // A relative floor without a positive eigenvalue to be relative to: resolve_floor says so.
+    if (!std::isnan(info.max_before)) detail::resolve_floor("nearest_spd", floor, info.max_before);
     throw std::runtime_error("nearest_spd: the symmetric eigensolver did not converge");
+  }
+  if (!out.X.allFinite()) {
+    // Possible only for a min_eig or entries within a factor n of the largest double.
+    throw std::runtime_error("nearest_spd: the nearest matrix overflows the range of double precision numbers");
   }
   out.clipped = info.clipped;
   out.min_eigenvalue_before = info.min_before;
+  out.min_eig = info.min_eig;
   out.distance = info.distance;
-  if (!out.X.allFinite()) {
-    // Possible only for a min_eig or entries within a factor n of the largest double.
-    throw std::runtime_error(
-        "nearest_spd: the nearest matrix overflows the range of double precision numbers");
+  out.cholesky_ok = detail::has_cholesky(out.X);
+  if (auto w = detail::asymmetry_warning(X)) out.warnings.push_back(*w);
+  if (auto w = detail::floor_warning(info.min_eig, info.floor_change, info.repair, X.norm(), info.max_before)) {
+    out.warnings.push_back(*w);
   }
   return out;
+}
+
+NearestResult nearest_spd(const Eigen::Ref<const MatrixXd>& X, double min_eig) {
+  return nearest_spd(X, EigenvalueFloor::absolute(min_eig));
 }
 
 }  // namespace spdfit

@@ -51,8 +51,11 @@ def test_bad_weights_are_data_errors(spdfit, higham, tmp_path, text, message):
     assert out.returncode == 1 and message in out.stderr and "w.csv" in out.stderr
 
 
-@pytest.mark.parametrize("args", [["--corr", "--min-eig", "0.1"], ["--alpha", "0.1"], ["--corr", "--alpha", "1"],
-                                  ["--corr", "--tol", "0"], ["--corr", "--max-iter", "0"], ["--weights", "w.csv"]])
+@pytest.mark.parametrize("args", [["--corr", "--alpha", "0.1", "--min-eig", "0.1"], ["--alpha", "0.1"],
+                                  ["--corr", "--alpha", "1"], ["--corr", "--tol", "0"], ["--corr", "--max-iter", "0"],
+                                  ["--weights", "w.csv"], ["--min-eig", "0.1", "--min-eig-rel", "1e-6"],
+                                  ["--min-eig-rel", "1"], ["--keep-diag", "--alpha", "0.1"],
+                                  ["--keep-diag", "--via-corr"], ["--corr", "--via-corr"], ["--max-iter", "5"]])
 def test_usage_errors(spdfit, higham, args):
     out = spdfit("nearest", *args, higham)
     assert out.returncode == 2, out.stdout

@@ -105,8 +105,13 @@ def test_one_dimensional_input_is_one_column():
 
 def test_nearest_spd():
     C = np.array([[1.0, 0.9, 0.7], [0.9, 1.0, -0.4], [0.7, -0.4, 1.0]])
-    X = spdfit.nearest_spd(C)
+    X = spdfit.nearest_spd(C, min_eig=0)
     assert np.allclose(X, ref.nearest_spd(C), rtol=0, atol=1e-14)
+    # The default floor: 1e-8 times the largest eigenvalue, so the result is positive definite.
+    default = spdfit.nearest_spd(C, full_output=True)
+    assert default.min_eig == pytest.approx(1e-8 * np.linalg.eigvalsh(C)[-1], rel=1e-14)
+    assert np.allclose(default.X, ref.nearest_spd(C, default.min_eig), rtol=0, atol=1e-14)
+    assert default.cholesky_ok and np.linalg.cholesky(default.X).shape == (3, 3)
     full = spdfit.nearest_spd(C, min_eig=0.05, full_output=True)
     assert np.linalg.eigvalsh(full.X)[0] >= 0.05 * (1 - 1e-12)
     assert full.clipped == 1 and full.distance == pytest.approx(np.linalg.norm(C - full.X))

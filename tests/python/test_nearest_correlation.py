@@ -10,22 +10,24 @@ import pytest
 import spdfit
 
 
-def dykstra(C, w=None, tol=1e-13, max_iter=200_000):
-    """Higham 2002, Algorithm 3.3: alternating projections onto the PSD matrices (in the
-    W-norm, W = diag(w)) and the unit-diagonal matrices, with Dykstra's correction."""
+def dykstra(C, w=None, d=None, floor=0.0, tol=1e-13, max_iter=200_000):
+    """Higham 2002, Algorithm 3.3: alternating projections onto {X >= floor I} (in the W-norm,
+    W = diag(w)) and the matrices with diagonal d (default ones), with Dykstra's correction."""
     n = C.shape[0]
     w = np.ones(n) if w is None else np.asarray(w, float)
+    d = np.ones(n) if d is None else np.asarray(d, float)
     root = np.sqrt(w)
     Y = (C + C.T) / 2
     dS = np.zeros_like(Y)
     for _ in range(max_iter):
         R = Y - dS
-        M = root[:, None] * R * root[None, :]
+        # The W-norm projection onto X >= floor I: X - floor I = W^-1/2 (W^1/2 (R - floor I) W^1/2)_+ W^-1/2.
+        M = root[:, None] * (R - floor * np.eye(n)) * root[None, :]
         lam, V = np.linalg.eigh(M)
-        X = (V * np.maximum(lam, 0)) @ V.T / (root[:, None] * root[None, :])
+        X = (V * np.maximum(lam, 0)) @ V.T / (root[:, None] * root[None, :]) + floor * np.eye(n)
         dS = X - R
         Y_next = X.copy()
-        np.fill_diagonal(Y_next, 1.0)
+        np.fill_diagonal(Y_next, d)
         if np.linalg.norm(Y_next - Y) <= tol * np.linalg.norm(Y):
             return Y_next
         Y = Y_next
@@ -44,7 +46,7 @@ def random_indefinite(n, seed):
 def test_agrees_with_dykstra_alternating_projections(n, seed):
     C = random_indefinite(n, seed)
     assert np.linalg.eigvalsh(C)[0] < 0
-    r = spdfit.nearest_correlation(C, full_output=True)
+    r = spdfit.nearest_correlation(C, min_eig=0, full_output=True)
     assert r.converged
     np.testing.assert_allclose(r.X, dykstra(C), atol=1e-8)
     np.testing.assert_array_equal(np.diag(r.X), np.ones(n))
@@ -54,10 +56,10 @@ def test_agrees_with_dykstra_alternating_projections(n, seed):
 def test_weighted_agrees_with_weighted_dykstra():
     C = random_indefinite(8, 4)
     w = np.linspace(0.5, 4.0, 8)
-    X = spdfit.nearest_correlation(C, weights=w)
+    X = spdfit.nearest_correlation(C, weights=w, min_eig=0)
     np.testing.assert_allclose(X, dykstra(C, w), atol=1e-8)
     # The weights change the answer: heavier rows move less.
-    plain = spdfit.nearest_correlation(C)
+    plain = spdfit.nearest_correlation(C, min_eig=0)
     assert not np.allclose(X, plain, atol=1e-6)
 
 
@@ -67,7 +69,7 @@ def test_statsmodels_corr_nearest_on_a_unit_diagonal_input():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # its iteration limit: it stops short of our tolerance
         theirs = statsmodels.corr_nearest(C, threshold=1e-15, n_fact=10000)
-    ours = spdfit.nearest_correlation(C)
+    ours = spdfit.nearest_correlation(C, min_eig=0)
     # corr_nearest clips at a positive threshold and rescales; it is close, not identical.
     np.testing.assert_allclose(ours, theirs, atol=1e-4)
 
@@ -79,6 +81,32 @@ def test_alpha_gives_a_cholesky_factorable_unit_diagonal_matrix():
     np.linalg.cholesky(r.X)
     assert np.linalg.eigvalsh(r.X)[0] >= 1e-3 - 1e-12
     assert np.max(np.abs(np.diag(r.X) - 1)) <= 1e-14
+    # NAG's alpha and the floor are one constraint (X >= alpha I): the same minimizer.
+    np.testing.assert_allclose(r.X, spdfit.nearest_correlation(C, min_eig=1e-3), atol=1e-10)
+
+
+@pytest.mark.parametrize("floor", [0.05, 0.3])
+def test_floor_is_an_exact_constraint_as_dykstra_finds_it(floor):
+    C = random_indefinite(12, 8)
+    r = spdfit.nearest_correlation(C, min_eig=floor, full_output=True)
+    np.testing.assert_allclose(r.X, dykstra(C, floor=floor), atol=1e-8)
+    assert r.min_eig == floor and np.linalg.eigvalsh(r.X)[0] >= floor - 1e-12
+    # Between the unconstrained optimum and a feasible point built from it, (1 - f) X0 + f I.
+    X0 = dykstra(C)
+    assert np.linalg.norm(C - X0) <= r.distance <= np.linalg.norm(C - ((1 - floor) * X0 + floor * np.eye(12)))
+
+
+@pytest.mark.parametrize("n,seed", [(5, 1), (40, 2), (150, 3)])
+def test_default_is_a_relative_floor_and_cholesky_succeeds(n, seed):
+    C = random_indefinite(n, seed)
+    r = spdfit.nearest_correlation(C, full_output=True)
+    assert r.min_eig == pytest.approx(spdfit.REPAIR_FLOOR_DEFAULT * np.linalg.eigvalsh(C)[-1], rel=1e-12)
+    assert r.cholesky_ok and r.converged
+    np.linalg.cholesky(r.X)
+    assert np.all(np.diag(r.X) == 1.0)
+    assert np.max(np.abs(r.X - r.X.T)) == 0
+    if n <= 40:
+        np.testing.assert_allclose(r.X, dykstra(C, floor=r.min_eig), atol=1e-8)
 
 
 def test_argument_checks_and_warnings():
@@ -88,6 +116,12 @@ def test_argument_checks_and_warnings():
         spdfit.nearest_correlation(np.eye(3), weights=[1, -1, 1])
     with pytest.raises(ValueError, match="alpha"):
         spdfit.nearest_correlation(np.eye(3), alpha=1.0)
+    with pytest.raises(ValueError, match="not both"):
+        spdfit.nearest_correlation(np.eye(3), min_eig=0.1, min_eig_rel=1e-3)
+    with pytest.raises(ValueError, match="not both"):
+        spdfit.nearest_correlation(np.eye(3), alpha=0.1, min_eig=0.1)
+    with pytest.raises(ValueError, match="not below diagonal entry 1"):
+        spdfit.nearest_correlation(np.eye(3), min_eig=1.0)
     with pytest.raises(TypeError, match="max_iter must be an int"):
         spdfit.nearest_correlation(np.eye(3), max_iter=2.5)
     C = random_indefinite(20, 7)

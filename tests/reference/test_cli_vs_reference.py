@@ -10,6 +10,7 @@ import json
 import numpy as np
 import pytest
 
+import spdfit_testing
 import thesis_reference as ref
 from cases import CASES, make_case
 
@@ -147,20 +148,29 @@ def test_fit_csv_round_trips_json(fit, case, method):
     assert np.array_equal(X_csv, X_json), "CSV output must print X with round-trip precision"
 
 
-@pytest.mark.parametrize("min_eig", [None, 0.5])
+@pytest.mark.parametrize("min_eig", [None, 0.0, 0.5])
 @pytest.mark.parametrize("n", [1, 2, 6])
-def test_nearest_matches_reference(run_cli, write_csv, n, min_eig):
+def test_nearest_matches_reference(spdfit_cli, run_cli, write_csv, n, min_eig):
     rng = np.random.default_rng(100 + n)
     X_in = 3.0 * rng.standard_normal((n, n)) - (1.0 if n == 1 else 0.0)  # indefinite input
     path = write_csv(f"nearest-{n}", X_in)
     flags = [] if min_eig is None else ["--min-eig", repr(min_eig)]
+    largest = np.linalg.eigvalsh(0.5 * (X_in + X_in.T))[-1]
+    # The default floor is relative: 1e-8 times the largest eigenvalue of the symmetric part.
+    floor = 1e-8 * largest if min_eig is None else min_eig
+    if floor < 0:
+        # No positive eigenvalue to be relative to (the negative 1x1 input): a data error.
+        proc = spdfit_testing.run_cli(spdfit_cli, "nearest", path, timeout_s=60)
+        assert proc.returncode == 1 and "no positive eigenvalue" in proc.stderr and str(path) in proc.stderr
+        return
     out = json.loads(run_cli("nearest", *flags, "--json", path))
     X = np.array(out["X"], dtype=float)
-    X_ref = ref.nearest_spd(X_in, 0.0 if min_eig is None else min_eig)
+    X_ref = ref.nearest_spd(X_in, floor)
     # relative to the input: X_ref is 0 for a negative 1x1 input (the projection is 1-Lipschitz)
     assert X.shape == (n, n) and np.linalg.norm(X - X_ref) <= X_RTOL * np.linalg.norm(X_in)
     assert np.linalg.norm(X - X.T) <= SYM_RTOL * np.linalg.norm(X)
-    floor = 0.0 if min_eig is None else min_eig
     assert np.linalg.eigvalsh(0.5 * (X + X.T))[0] >= floor - SYM_RTOL * np.linalg.norm(X)
+    assert out["min_eig"] == pytest.approx(floor, rel=1e-12)
+    assert out["cholesky"] == (floor > 0)
     X_csv = parse_csv(run_cli("nearest", *flags, path))
     assert np.array_equal(X_csv, X)

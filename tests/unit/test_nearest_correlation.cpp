@@ -1,9 +1,12 @@
-// nearest_correlation: Higham's (2002) published example, the optimality conditions of the
-// correlation problem, the unit diagonal, the floor alpha, weights, and the input checks.
+// nearest_correlation, nearest_keep_diagonal and nearest_via_correlation: Higham's (2002)
+// published example, the optimality conditions of the fixed-diagonal problem with and without a
+// floor, the unit diagonal, alpha as the floor, scaling, the via-correlation identity, the floor
+// warning, and the input checks.
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
 
+#include "numerics/linalg.hpp"
 #include "spdfit/nearest_correlation.hpp"
 #include "test_support.hpp"
 
@@ -85,6 +88,135 @@ TEST(NearestCorrelation, AValidCorrelationMatrixIsItsOwnAnswer) {
   const NearestCorrelationResult r = nearest_correlation(K);
   EXPECT_LT((r.X - K).norm(), 1e-12);
   EXPECT_EQ(r.clipped, 0);
+}
+
+// An indefinite symmetric matrix with variances from 0.25 to 4 (a covariance gone wrong).
+MatrixXd indefinite_covariance(Generator& g, Index n) {
+  const MatrixXd M = g.gaussian(n, n);
+  MatrixXd R = (M + M.transpose()) / (2.0 * std::sqrt(static_cast<double>(n)));
+  R.diagonal().setOnes();
+  const VectorXd sd = VectorXd::LinSpaced(n, 0.5, 2.0);
+  return sd.asDiagonal() * R * sd.asDiagonal();
+}
+
+double smallest_eigenvalue(const MatrixXd& X) { return Eigen::SelfAdjointEigenSolver<MatrixXd>(X).eigenvalues()(0); }
+
+// The fixed-diagonal problem with a floor: X minimizes ||X - C||_F over the convex set
+// {X >= floor I, diag(X) = diag(C)} exactly when <X - C, K - X> >= 0 for every K in it. K: random
+// low-rank correlations scaled to the diagonal diag(C) - floor, plus floor I (on the boundary).
+TEST(NearestKeepDiagonal, OptimalityWithAndWithoutAFloor) {
+  Generator g(11);
+  for (Index n : {6, 40, 90}) {
+    const MatrixXd C = indefinite_covariance(g, n);
+    for (double floor : {0.0, 0.1}) {
+      NearestCorrelationOptions o;
+      o.floor = EigenvalueFloor::absolute(floor);
+      const NearestResult r = nearest_keep_diagonal(C, o);
+      ASSERT_TRUE(r.converged) << n;
+      EXPECT_EQ(r.X.diagonal(), C.diagonal());
+      EXPECT_EQ(r.X, r.X.transpose());
+      EXPECT_GT(smallest_eigenvalue(r.X), floor - 1e-12) << n;
+      EXPECT_EQ(r.min_eig, floor);
+      EXPECT_NEAR(r.distance, (r.X - C).norm(), 1e-12 * r.distance);
+      const MatrixXd D = r.X - C;
+      const VectorXd target = (C.diagonal().array() - floor).sqrt().matrix();
+      for (int k = 0; k < 20; ++k) {
+        const MatrixXd F = g.gaussian(n, 2);
+        MatrixXd K = F * F.transpose();
+        const VectorXd s = K.diagonal().cwiseSqrt().cwiseInverse().cwiseProduct(target);
+        K = (s.asDiagonal() * K * s.asDiagonal()).eval();
+        K.diagonal().array() += floor;
+        EXPECT_GT(D.cwiseProduct(K - r.X).sum(), -1e-9 * static_cast<double>(n)) << n << " " << floor;
+      }
+    }
+  }
+}
+
+// NAG's alpha and the absolute floor are the same constraint X >= alpha I: the same minimizer.
+TEST(NearestCorrelation, AlphaIsTheAbsoluteFloor) {
+  Generator g(12);
+  MatrixXd C = indefinite_covariance(g, 20);
+  C.diagonal().setOnes();
+  NearestCorrelationOptions a, f;
+  a.alpha = 0.05;
+  f.floor = EigenvalueFloor::absolute(0.05);
+  EXPECT_LT((nearest_correlation(C, a).X - nearest_correlation(C, f).X).cwiseAbs().maxCoeff(), 1e-10);
+  a.floor = f.floor;
+  EXPECT_THROW(nearest_correlation(C, a), std::invalid_argument);  // both
+  EXPECT_THROW(nearest_keep_diagonal(C, NearestCorrelationOptions{{}, {}, 0.1}), std::invalid_argument);
+}
+
+// Repairing s C gives s X: exactly for a power of two (every step scales exactly), to rounding
+// otherwise; the relative floor follows.
+TEST(NearestKeepDiagonal, RepairingSCGivesSX) {
+  Generator g(13);
+  const MatrixXd C = indefinite_covariance(g, 15);
+  NearestCorrelationOptions o;
+  o.floor = EigenvalueFloor::relative_to_largest(1e-3);
+  const NearestResult r = nearest_keep_diagonal(C, o);
+  EXPECT_EQ(nearest_keep_diagonal(C * 1024.0, o).X, r.X * 1024.0);
+  EXPECT_EQ(nearest_keep_diagonal(C * std::ldexp(1.0, -600), o).X, r.X * std::ldexp(1.0, -600));
+  const MatrixXd scaled = nearest_keep_diagonal(C * 3.7, o).X;
+  EXPECT_LT((scaled - 3.7 * r.X).cwiseAbs().maxCoeff(), 1e-12 * 3.7 * C.cwiseAbs().maxCoeff());
+  EXPECT_NEAR(r.min_eig, 1e-3 * Eigen::SelfAdjointEigenSolver<MatrixXd>(C).eigenvalues().maxCoeff(), 1e-15);
+  EXPECT_TRUE(r.cholesky_ok);
+}
+
+// statsmodels' route is the fixed-diagonal problem in the norm ||D^-1 (X - C) D^-1||_F, i.e. with
+// weights 1 / diag(C).
+TEST(NearestViaCorrelation, IsKeepDiagonalWithWeightsOneOverTheVariances) {
+  Generator g(14);
+  const MatrixXd C = indefinite_covariance(g, 25);
+  const NearestResult via = nearest_via_correlation(C);
+  NearestCorrelationOptions o;
+  o.weights = C.diagonal().cwiseInverse();
+  const NearestResult kept = nearest_keep_diagonal(C, o);
+  EXPECT_LT((via.X - kept.X).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_EQ(via.X.diagonal(), C.diagonal());
+  EXPECT_NEAR(via.distance, (via.X - C).norm(), 1e-12 * via.distance);
+  MatrixXd bad = C;
+  bad(3, 3) = 0.0;
+  EXPECT_THROW(nearest_via_correlation(bad), std::invalid_argument);
+  EXPECT_THROW(nearest_keep_diagonal(C, NearestCorrelationOptions{{}, EigenvalueFloor::absolute(0.25)}),
+               std::invalid_argument);  // not below the smallest variance, 0.25
+}
+
+// A floor that moves the matrix more than the repair itself is named in a warning; the default
+// relative floor does not trip it.
+TEST(NearestCorrelation, WarnsWhenTheFloorDominates) {
+  MatrixXd R = MatrixXd::Ones(4, 4);  // a rank-one correlation, made indefinite by 1e-9
+  R(0, 1) = R(1, 0) = 1.0 + 1e-9;
+  R(0, 2) = R(2, 0) = 1.0 - 1e-9;
+  NearestCorrelationOptions o;
+  o.floor = EigenvalueFloor::absolute(0.5);
+  const NearestResult r = nearest_correlation(R, o);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("more than the repair itself"), std::string::npos);
+  o.floor = EigenvalueFloor::relative_to_largest(EigenvalueFloor::kRepairDefault);
+  EXPECT_TRUE(nearest_correlation(R, o).warnings.empty());
+  EXPECT_TRUE(nearest_correlation(R, o).cholesky_ok);
+}
+
+// The BLAS products behind the Jacobian agree with Eigen's, for every transpose and for column
+// blocks (an outer stride).
+TEST(Linalg, MultiplyAgreesWithEigen) {
+  Generator g(15);
+  for (Index n : {5, 70, 130}) {
+    const MatrixXd A = g.gaussian(n, n + 7), B = g.gaussian(n + 7, n);
+    MatrixXd C;
+    detail::multiply(A, false, B, false, C);
+    EXPECT_LT((C - A * B).norm(), 1e-13 * A.norm() * B.norm());
+    detail::multiply(A, true, A, false, C);
+    EXPECT_LT((C - A.transpose() * A).norm(), 1e-13 * A.squaredNorm());
+    detail::multiply(B, true, B.leftCols(n - 2), false, C);
+    EXPECT_LT((C - B.transpose() * B.leftCols(n - 2)).norm(), 1e-13 * B.squaredNorm());
+    detail::multiply(A.rightCols(n), false, B.bottomRows(n), true, C);
+    EXPECT_LT((C - A.rightCols(n) * B.bottomRows(n).transpose()).norm(), 1e-13 * A.norm() * B.norm());
+    detail::multiply(B, true, A, true, C);
+    EXPECT_LT((C - B.transpose() * A.transpose()).norm(), 1e-13 * A.norm() * B.norm());
+  }
+  MatrixXd C;
+  EXPECT_THROW(detail::multiply(MatrixXd(3, 4), false, MatrixXd(3, 4), false, C), std::invalid_argument);
 }
 
 TEST(NearestCorrelation, InputChecks) {

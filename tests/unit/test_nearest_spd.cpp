@@ -117,6 +117,44 @@ TEST(NearestSpd, AnswerBeyondTheDoubleRangeIsAnError) {
   EXPECT_THROW(nearest_spd(X), std::runtime_error);
 }
 
+// The relative floor: r times the largest eigenvalue of the symmetric part, so that repairing s X
+// gives s Y, and a Cholesky factorization succeeds. The closed form: the clip at that floor.
+TEST(NearestSpd, RelativeFloorFollowsTheScale) {
+  Generator g(57);
+  const MatrixXd X = Generator::symmetrize(g.gaussian(70, 70));  // 70: the LAPACK path
+  Eigen::SelfAdjointEigenSolver<MatrixXd> eig(X);
+  const double floor = 1e-8 * eig.eigenvalues().maxCoeff();
+  const NearestSpdResult r = nearest_spd(X, EigenvalueFloor::relative_to_largest(1e-8));
+  EXPECT_NEAR(r.min_eig, floor, 1e-13 * floor);
+  const MatrixXd expected =
+      eig.eigenvectors() * eig.eigenvalues().cwiseMax(floor).asDiagonal() * eig.eigenvectors().transpose();
+  EXPECT_LT((r.X - expected).norm(), 1e-13 * X.norm());
+  EXPECT_TRUE(r.cholesky_ok);
+  EXPECT_TRUE(r.warnings.empty());
+  const NearestSpdResult tiny = nearest_spd(X * std::ldexp(1.0, -40), EigenvalueFloor::relative_to_largest(1e-8));
+  EXPECT_EQ(tiny.X, r.X * std::ldexp(1.0, -40));
+  // Nothing positive to be relative to: an error, not a silent zero matrix.
+  EXPECT_THROW(nearest_spd(-MatrixXd::Identity(3, 3), EigenvalueFloor::relative_to_largest(1e-8)),
+               std::invalid_argument);
+  EXPECT_THROW(nearest_spd(X, EigenvalueFloor::relative_to_largest(1.0)), std::invalid_argument);
+  EXPECT_FALSE(EigenvalueFloor::absolute(-1.0).is_valid());
+  EXPECT_TRUE(EigenvalueFloor::absolute(2.0).is_valid());
+}
+
+// An absolute floor far above a small-scale matrix moves it more than the repair: a warning.
+TEST(NearestSpd, WarnsWhenTheFloorMovesMoreThanTheRepair) {
+  Generator g(58);
+  const MatrixXd X = Generator::symmetrize(g.gaussian(6, 6)) * 1e-8;
+  const NearestSpdResult r = nearest_spd(X, 1e-6);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("more than the repair itself"), std::string::npos);
+  EXPECT_TRUE(nearest_spd(X).warnings.empty());  // floor 0: no floor, no warning
+  MatrixXd asymmetric = MatrixXd::Identity(3, 3);
+  asymmetric(0, 1) = 0.1;
+  ASSERT_EQ(nearest_spd(asymmetric).warnings.size(), 1u);
+  EXPECT_NE(nearest_spd(asymmetric).warnings[0].find("not symmetric"), std::string::npos);
+}
+
 TEST(NearestSpd, RejectsMisuse) {
   EXPECT_THROW(nearest_spd(MatrixXd::Ones(2, 3)), std::invalid_argument);
   EXPECT_THROW(nearest_spd(MatrixXd(0, 0)), std::invalid_argument);

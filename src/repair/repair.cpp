@@ -1,0 +1,60 @@
+#include "repair/repair.hpp"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "estimators/diagnostics.hpp"
+
+namespace spdfit {
+
+bool EigenvalueFloor::is_valid(std::string* error) const {
+  auto fail = [error](std::string why) {
+    if (error) *error = std::move(why);
+    return false;
+  };
+  if (!std::isfinite(value) || value < 0.0) return fail("the eigenvalue floor must be a finite number >= 0");
+  if (relative && value >= 1.0) return fail("a relative eigenvalue floor must be below 1");
+  return true;
+}
+
+namespace detail {
+
+void check_repair_input(const char* function, const Eigen::Ref<const Eigen::MatrixXd>& C, EigenvalueFloor floor) {
+  if (C.rows() == 0 || C.rows() != C.cols()) {
+    throw std::invalid_argument(std::string(function) + " needs a non-empty square matrix, not " +
+                                std::to_string(C.rows()) + "x" + std::to_string(C.cols()));
+  }
+  if (!C.allFinite()) throw std::invalid_argument(std::string(function) + ": the matrix contains NaN or Inf");
+  std::string error;
+  if (!floor.is_valid(&error)) throw std::invalid_argument(std::string(function) + ": " + error);
+}
+
+std::optional<std::string> asymmetry_warning(const Eigen::Ref<const Eigen::MatrixXd>& C) {
+  const double norm = C.norm();
+  const double asymmetry = (C - C.transpose()).norm();
+  if (!(asymmetry > 1e-10 * norm)) return std::nullopt;
+  return "the matrix is not symmetric (||C - C^T||_F / ||C||_F = " + format_number(asymmetry / norm) +
+         ", more than rounding): its symmetric part (C + C^T) / 2 was used; is it the right file?";
+}
+
+double resolve_floor(const char* function, EigenvalueFloor floor, double lambda_max) {
+  if (!floor.relative || floor.value == 0.0) return floor.value;
+  if (!(lambda_max > 0.0)) {
+    throw std::invalid_argument(std::string(function) + ": the matrix has no positive eigenvalue (the largest is " +
+                                format_number(lambda_max) +
+                                "), so a floor relative to it is undefined (the nearest semidefinite matrix is 0): give an absolute floor");
+  }
+  return floor.value * lambda_max;
+}
+
+std::optional<std::string> floor_warning(double floor, double floor_change, double repair, double scale,
+                                         double lambda_max) {
+  if (!(floor_change > repair) || !(floor_change > 1e-6 * scale)) return std::nullopt;
+  return "the eigenvalue floor " + format_number(floor) + " moved the matrix by " + format_number(floor_change) +
+         ", more than the repair itself (" + format_number(repair) + "): is it right for this matrix's scale " +
+         "(largest eigenvalue " + format_number(lambda_max) + ")? A relative floor follows the scale";
+}
+
+}  // namespace detail
+}  // namespace spdfit

@@ -1,0 +1,31 @@
+// What the repairs (nearest_spd, nearest_correlation and its fixed-diagonal variants) share: the
+// checks of their input and floor, and their warnings.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+
+#include "spdfit/nearest_spd.hpp"
+
+namespace spdfit::detail {
+
+/// Throws std::invalid_argument, naming `function`, unless C is square, non-empty and finite and
+/// the floor is valid.
+void check_repair_input(const char* function, const Eigen::Ref<const Eigen::MatrixXd>& C, EigenvalueFloor floor);
+
+/// A warning when C is not symmetric to rounding (more often a wrong file than noise).
+std::optional<std::string> asymmetry_warning(const Eigen::Ref<const Eigen::MatrixXd>& C);
+
+/// A floor resolved to an absolute one: a relative floor times the largest eigenvalue
+/// `lambda_max` of the input's symmetric part. Throws std::invalid_argument, naming `function`,
+/// when a relative floor meets lambda_max <= 0 (nothing to be relative to).
+double resolve_floor(const char* function, EigenvalueFloor floor, double lambda_max);
+
+/// Whether the floor's own change of the matrix (`floor_change`, in the distance's norm) calls for a
+/// warning: more than the repair itself (`repair`) and more than rounding of `scale` (the input's
+/// norm). The warning then names the floor and the input's largest eigenvalue.
+std::optional<std::string> floor_warning(double floor, double floor_change, double repair, double scale,
+                                         double lambda_max);
+
+}  // namespace spdfit::detail
