@@ -6,8 +6,10 @@ The files are committed; this script documents exactly how they were made:
               nm = 3.2, i.e. variance 0.86, in accelerations A and forces B = A M_p)
   paper_2x2/  the paper's second example (001, section IV): X = [3 1; 1 1], A0 4x2,
               Gaussian noise of std 1.5 in A and 1 in B
-  covariance/ a correlation matrix estimated from incomplete data (pairwise deletion),
-              which is indefinite: repair it with `spdfit nearest --min-eig ...`
+  covariance/ C.csv: a correlation matrix estimated from incomplete data (pairwise deletion),
+              which is indefinite: repair it with `spdfit nearest --corr`; S.csv: the same
+              sensors' covariance in their own units (standard deviations 1e-4 to 2e-3):
+              `spdfit nearest` or `spdfit nearest --keep-diag`
 """
 import os
 import pathlib
@@ -67,6 +69,9 @@ def covariance(rng):
     C[0, 1] = C[1, 0] = np.clip(C[0, 1] + 0.6 * np.sign(C[0, 1] or 1.0), -0.99, 0.99)
     assert np.linalg.eigvalsh(C)[0] < 0, "the example must be indefinite"
     save(HERE / "covariance/C.csv", C, "correlation matrix from pairwise deletion (indefinite)")
+    sd = np.array([1e-3, 2e-3, 1e-4, 3e-4, 5e-4])
+    save(HERE / "covariance/S.csv", sd[:, None] * C * sd[None, :],
+         "covariance of 5 sensors in their units (standard deviations 1e-4 to 2e-3), pairwise deletion (indefinite)")
 
 
 if __name__ == "__main__":

@@ -75,7 +75,7 @@ Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
       experiment::Paper2x2Options options;
       options.std_a = std_a;
       monte_carlo.progress =
-          terminal_progress("demo: 2x2 example, std_a = " + demo::trimmed(std_a), global.quiet);
+          terminal_progress("demo: 2x2 example, std_a = " + trimmed(std_a), global.quiet);
       paper.push_back(experiment::run_paper_2x2(options, monte_carlo));
     }
     monte_carlo.trials = cli->trials_beyond;
@@ -86,7 +86,7 @@ Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
         options.simulation.samples = m;
         options.methods = demo::beyond_methods();
         monte_carlo.progress = terminal_progress(
-            "demo: nm = " + demo::trimmed(width) + ", m = " + std::to_string(m), global.quiet);
+            "demo: nm = " + trimmed(width) + ", m = " + std::to_string(m), global.quiet);
         results.beyond.push_back(experiment::run_thesis_experiment(options, monte_carlo));
       }
     }

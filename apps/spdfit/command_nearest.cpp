@@ -151,7 +151,9 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
     for (const std::string& w : result.warnings) warn(global, w);
     if (!newton && result.clipped > 0) {
       warn(global, std::to_string(result.clipped) + " eigenvalue(s) of the symmetric part were below " +
-                       io::format_double(result.min_eig) + " and were raised to it");
+                       trimmed(result.min_eig) +
+                       (relative ? " (" + trimmed(options->min_eig_rel) + " x the largest eigenvalue)" : "") +
+                       " and were raised to it");
     }
     if (!options->json) {
       emit(matrix_csv(result.X), options->output);

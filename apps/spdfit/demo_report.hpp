@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "output.hpp"
 #include "spdfit/experiment/paper.hpp"
 #include "spdfit/experiment/thesis.hpp"
 
@@ -41,11 +42,10 @@ std::string tables(const Results& results);
 std::string findings(const Results& results);
 
 /// Text helpers shared by both: `text` wrapped at kWidth columns (the first line starting with
-/// `first`, the others with `rest`); a "* " bullet; "12%"; "%.3g".
+/// `first`, the others with `rest`); a "* " bullet; "12%" (and output.hpp's trimmed, "%.3g").
 inline constexpr std::size_t kWidth = 98;
 std::string wrap(const std::string& text, const std::string& first = "", const std::string& rest = "");
 std::string bullet(const std::string& text);
 std::string percent(double fraction);
-std::string trimmed(double value);
 
 }  // namespace spdfit::cli::demo

@@ -52,12 +52,6 @@ std::string percent(double fraction) {
   return buffer;
 }
 
-std::string trimmed(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3g", value);
-  return buffer;
-}
-
 std::string wrap(const std::string& text, const std::string& first, const std::string& rest) {
   std::istringstream words(text);
   std::string word, out, line = first;

@@ -131,6 +131,12 @@ std::string fixed(double value, int digits) {
   return buffer;
 }
 
+std::string trimmed(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3g", value);
+  return buffer;
+}
+
 std::string percent_text(double level) {
   char text[32];
   std::snprintf(text, sizeof text, "%.4g%%", 100.0 * level);

@@ -35,6 +35,9 @@ std::string spectrum_text(const SpectrumUncertainty& s, const std::string& inden
 /// "%.*f"-style text with `digits` decimals (scientific from 1e5 on), or "-" for NaN.
 std::string fixed(double value, int digits = 4);
 
+/// A number in three significant digits ("%.3g"), for messages and prose.
+std::string trimmed(double value);
+
 /// A confidence level as a percentage: "95%" for 0.95.
 std::string percent_text(double level);
 

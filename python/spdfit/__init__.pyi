@@ -9,9 +9,12 @@ from . import experiment as experiment
 from . import hexapod as hexapod
 from . import linkage as linkage
 from ._spdfit import (AutoReason as AutoReason, PsdCertificate as PsdCertificate, DataError as DataError, Diagnostics as Diagnostics, FitResult as FitResult,
-                      LinearSystemResult as LinearSystemResult, NearestSpdResult as NearestSpdResult,
-                      Bootstrap as Bootstrap, Interval as Interval, SpectrumUncertainty as SpectrumUncertainty,
-                      NearestCorrelationResult as NearestCorrelationResult)
+                      LinearSystemResult as LinearSystemResult, NearestResult as NearestResult,
+                      Bootstrap as Bootstrap, Interval as Interval, SpectrumUncertainty as SpectrumUncertainty)
+
+NearestSpdResult = NearestResult
+NearestCorrelationResult = NearestResult
+REPAIR_FLOOR_DEFAULT: float
 
 __version__: str
 METHODS: Tuple[str, ...]
@@ -58,16 +61,24 @@ def total_least_squares_psd(A: npt.ArrayLike, B: npt.ArrayLike, *, rank_toleranc
                             noise_ratio: Optional[float] = ...) -> FitResult: ...
 def spde(A: npt.ArrayLike, B: npt.ArrayLike, *, rank_tolerance: Optional[float] = ...) -> FitResult: ...
 @overload
-def nearest_spd(X: npt.ArrayLike, min_eig: float = ..., *, full_output: Literal[False] = ...) -> npt.NDArray[np.float64]: ...
+def nearest_spd(X: npt.ArrayLike, min_eig: Optional[float] = ..., *, min_eig_rel: Optional[float] = ...,
+                keep_diag: bool = ..., via_corr: bool = ..., weights: Optional[npt.ArrayLike] = ...,
+                max_iter: Optional[int] = ..., tol: Optional[float] = ...,
+                full_output: Literal[False] = ...) -> npt.NDArray[np.float64]: ...
 @overload
-def nearest_spd(X: npt.ArrayLike, min_eig: float = ..., *, full_output: Literal[True]) -> NearestSpdResult: ...
+def nearest_spd(X: npt.ArrayLike, min_eig: Optional[float] = ..., *, min_eig_rel: Optional[float] = ...,
+                keep_diag: bool = ..., via_corr: bool = ..., weights: Optional[npt.ArrayLike] = ...,
+                max_iter: Optional[int] = ..., tol: Optional[float] = ...,
+                full_output: Literal[True]) -> NearestResult: ...
 @overload
 def nearest_correlation(C: npt.ArrayLike, *, weights: Optional[npt.ArrayLike] = ..., alpha: Optional[float] = ...,
+                        min_eig: Optional[float] = ..., min_eig_rel: Optional[float] = ...,
                         max_iter: Optional[int] = ..., tol: Optional[float] = ...,
                         full_output: Literal[False] = ...) -> npt.NDArray[np.float64]: ...
 @overload
 def nearest_correlation(C: npt.ArrayLike, *, weights: Optional[npt.ArrayLike] = ..., alpha: Optional[float] = ...,
+                        min_eig: Optional[float] = ..., min_eig_rel: Optional[float] = ...,
                         max_iter: Optional[int] = ..., tol: Optional[float] = ...,
-                        full_output: Literal[True]) -> NearestCorrelationResult: ...
+                        full_output: Literal[True]) -> NearestResult: ...
 def area_criterion(A: npt.ArrayLike, B: npt.ArrayLike, X: npt.ArrayLike) -> Optional[float]: ...
 def solve(A: npt.ArrayLike, b: npt.ArrayLike, *, threshold: Optional[float] = ...) -> LinearSystemResult: ...

@@ -89,11 +89,19 @@ class FitResult:
     bias: Optional[npt.NDArray[np.float64]]
     bootstrap: Optional[Bootstrap]
 
-class NearestSpdResult:
+class NearestResult:
     X: npt.NDArray[np.float64]
     distance: float
     clipped: int
     min_eigenvalue_before: float
+    min_eig: float
+    iterations: int
+    gradient_norm: float
+    converged: bool
+    cholesky_ok: bool
+    warnings: List[str]
+
+REPAIR_FLOOR_DEFAULT: float
 
 def fit(A: npt.ArrayLike, B: npt.ArrayLike, method: str, rank_tolerance: Optional[float] = ...,
         noise_ratio: Optional[float] = ..., max_iter: Optional[int] = ...,
@@ -111,20 +119,9 @@ def fit_files(A_path: str, B_path: str, method: str, block_rows: int = ..., thre
 def fit_all(A: npt.ArrayLike, B: npt.ArrayLike, rank_tolerance: Optional[float] = ...,
             noise_ratio: Optional[float] = ..., max_iter: Optional[int] = ...,
             min_eig: Optional[float] = ...) -> List[FitResult]: ...
-def nearest_spd(X: npt.ArrayLike, min_eig: float = ...) -> NearestSpdResult: ...
-
-class NearestCorrelationResult:
-    X: npt.NDArray[np.float64]
-    distance: float
-    iterations: int
-    gradient_norm: float
-    converged: bool
-    clipped: int
-    cholesky_ok: bool
-    warnings: List[str]
-
-def nearest_correlation(C: npt.ArrayLike, weights: Optional[npt.ArrayLike] = ..., alpha: float = ...,
-                        max_iter: int = ..., tol: float = ...) -> NearestCorrelationResult: ...
+def nearest(C: npt.ArrayLike, kind: str, min_eig: Optional[float] = ..., min_eig_rel: Optional[float] = ...,
+            alpha: Optional[float] = ..., weights: Optional[npt.ArrayLike] = ..., max_iter: Optional[int] = ...,
+            tol: Optional[float] = ...) -> NearestResult: ...
 def area_criterion(A: npt.ArrayLike, B: npt.ArrayLike, X: npt.ArrayLike) -> Optional[float]: ...
 def read_matrix(path: str, *, allow_nonfinite: bool = ...) -> npt.NDArray[np.float64]: ...
 def read_table(path: str) -> Tuple[npt.NDArray[np.float64], List[str]]: ...

@@ -385,6 +385,16 @@ NearestResult nearest_correlation(const Eigen::Ref<const MatrixXd>& C, const Nea
   const Index n = C.rows();
   Prepared prepared = prepare(kName, C, options, VectorXd::Ones(n));
   const double floor = floor_of(kName, options, prepared.lambda_max);
+  // A covariance given for a correlation: its variances would be thrown away (and a small-scale
+  // one becomes about I), more often a wrong option than intended.
+  const double off = (prepared.S.diagonal().array() - 1.0).abs().maxCoeff();
+  if (off > 1e-6) {
+    prepared.warnings.push_back("the diagonal is not 1 (it ranges from " +
+                                detail::format_number(prepared.S.diagonal().minCoeff()) + " to " +
+                                detail::format_number(prepared.S.diagonal().maxCoeff()) +
+                                "): it was repaired to a correlation matrix; a covariance's variances are kept "
+                                "by the keep-diagonal and via-correlation repairs");
+  }
   FixedDiagonalProblem p{std::move(prepared.S), VectorXd::Ones(n), prepared.w, floor};
   return repair(kName, C, p, prepared, options);
 }
