@@ -74,13 +74,13 @@ struct Spectrum {
 // semidefiniteness of V to cancellation; the conjugate gradients then stall, so it is not used.)
 class Jacobian {
  public:
-  explicit Jacobian(const Dual& dual) {
+  // Refers to dual's eigenvectors (no copies of n x n matrices): dual must outlive it.
+  explicit Jacobian(const Dual& dual)
+      : r_(positive_count(dual.lambda)),
+        P1_(dual.P.rightCols(r_)),
+        P2_(dual.P.leftCols(dual.P.cols() - r_)) {
     const VectorXd& l = dual.lambda;
-    const Index n = l.size();
-    Index r = 0;
-    while (r < n && l(n - 1 - r) > 0.0) ++r;
-    P1_ = dual.P.rightCols(r);
-    P2_ = dual.P.leftCols(n - r);
+    const Index n = l.size(), r = r_;
     omega12_.resize(r, n - r);
     for (Index j = 0; j < n - r; ++j) {
       for (Index i = 0; i < r; ++i) {
@@ -111,7 +111,16 @@ class Jacobian {
   const VectorXd& diagonal() const { return diagonal_; }
 
  private:
-  MatrixXd P1_, P2_, omega12_;
+  static Index positive_count(const VectorXd& lambda) {
+    const Index n = lambda.size();
+    Index r = 0;
+    while (r < n && lambda(n - 1 - r) > 0.0) ++r;
+    return r;
+  }
+
+  Index r_;
+  Eigen::Ref<const MatrixXd> P1_, P2_;
+  MatrixXd omega12_;
   VectorXd diagonal_;
 };
 
