@@ -6,16 +6,7 @@ import json
 import numpy as np
 import pytest
 
-
-def covariance(n, seed, scale=1.0):
-    rng = np.random.default_rng(seed)
-    sd = np.linspace(0.5, 2.0, n)
-    R = rng.uniform(-1, 1, (n, n))
-    R = (R + R.T) / 2
-    np.fill_diagonal(R, 1.0)
-    C = scale * sd[:, None] * R * sd[None, :]
-    assert np.linalg.eigvalsh(C)[0] < 0
-    return C
+from spdfit_testing import indefinite_covariance
 
 
 def save(tmp_path, name, M):
@@ -34,7 +25,7 @@ def clip(C, floor):
 
 
 def test_default_floor_is_relative_and_the_output_factors(spdfit, tmp_path):
-    C = covariance(12, 1)
+    C = indefinite_covariance(12, 1)
     path = save(tmp_path, "C.csv", C)
     j = json.loads(spdfit("nearest", "--json", path).stdout)
     floor = 1e-8 * np.linalg.eigvalsh(C)[-1]
@@ -53,7 +44,7 @@ def test_default_floor_is_relative_and_the_output_factors(spdfit, tmp_path):
 
 @pytest.mark.parametrize("flag", ["--keep-diag", "--via-corr", "--corr"])
 def test_every_repair_reports_the_same_keys_and_factors(spdfit, tmp_path, flag):
-    C = covariance(15, 2)
+    C = indefinite_covariance(15, 2)
     j = json.loads(spdfit("nearest", flag, "--json", save(tmp_path, "C.csv", C)).stdout)
     for key in ("n", "corr", "keep_diag", "via_corr", "min_eig", "min_eig_rel", "alpha", "X", "distance", "clipped",
                 "min_eigenvalue_before", "iterations", "gradient_norm", "converged", "cholesky", "warnings"):
@@ -76,7 +67,7 @@ def test_every_repair_reports_the_same_keys_and_factors(spdfit, tmp_path, flag):
 def test_keep_diag_is_nearer_than_the_clip_with_the_diagonal_restored(spdfit, tmp_path):
     """Optimality against a feasible competitor: the clip of C rescaled to C's diagonal (what a
     user would do by hand) is admissible, so --keep-diag's answer is at least as near."""
-    C = covariance(20, 3)
+    C = indefinite_covariance(20, 3)
     X = parse(spdfit("nearest", "--keep-diag", "--min-eig", "0", save(tmp_path, "C.csv", C)).stdout)
     P = clip(C, 0.0)
     s = np.sqrt(np.diag(C) / np.diag(P))
@@ -86,7 +77,7 @@ def test_keep_diag_is_nearer_than_the_clip_with_the_diagonal_restored(spdfit, tm
 
 
 def test_via_corr_equals_keep_diag_weighted_by_the_inverse_variances(spdfit, tmp_path):
-    C = covariance(10, 4)
+    C = indefinite_covariance(10, 4)
     path = save(tmp_path, "C.csv", C)
     weights = save(tmp_path, "w.csv", 1 / np.diag(C))
     via = parse(spdfit("nearest", "--via-corr", "--min-eig", "0", path).stdout)
@@ -95,7 +86,7 @@ def test_via_corr_equals_keep_diag_weighted_by_the_inverse_variances(spdfit, tmp
 
 
 def test_scaling_the_input_scales_the_answer(spdfit, tmp_path):
-    C = covariance(9, 5)
+    C = indefinite_covariance(9, 5)
     for flag in ([], ["--keep-diag"], ["--via-corr"]):
         X = parse(spdfit("nearest", *flag, save(tmp_path, "C.csv", C)).stdout)
         X4 = parse(spdfit("nearest", *flag, save(tmp_path, "C4.csv", 4 * C)).stdout)
@@ -103,14 +94,14 @@ def test_scaling_the_input_scales_the_answer(spdfit, tmp_path):
 
 
 def test_an_absolute_floor_far_above_the_matrix_warns(spdfit, tmp_path):
-    path = save(tmp_path, "C.csv", covariance(6, 6, scale=1e-8))
+    path = save(tmp_path, "C.csv", indefinite_covariance(6, 6, scale=1e-8))
     out = spdfit("nearest", "--min-eig", "1e-6", path)
     assert out.returncode == 0 and "more than the repair itself" in out.stderr
     assert "more than the repair itself" not in spdfit("nearest", path).stderr
 
 
 def test_asymmetric_input_warns(spdfit, tmp_path):
-    C = covariance(5, 8)
+    C = indefinite_covariance(5, 8)
     C[0, 1] += 0.3
     out = spdfit("nearest", "--json", save(tmp_path, "C.csv", C))
     assert out.returncode == 0 and "not symmetric" in out.stderr

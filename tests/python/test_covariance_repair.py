@@ -4,25 +4,14 @@ fixed-diagonal problem, weighted and with a floor), the closed-form eigenvalue c
 cov_nearest, and the properties users rely on (Cholesky succeeds, the diagonal is kept exactly,
 repairing s C gives s X)."""
 import pickle
+import warnings
 
 import numpy as np
 import pytest
 
 import spdfit
+from spdfit_testing import indefinite_covariance
 from test_nearest_correlation import dykstra
-
-
-def covariance(n, seed, scale=1.0):
-    """An indefinite 'covariance': a sample covariance of correlated data with some entries
-    perturbed (as pairwise-complete estimates are), variances from 0.5 to 4, times scale."""
-    rng = np.random.default_rng(seed)
-    sd = np.linspace(0.5, 2.0, n)
-    R = rng.uniform(-1, 1, (n, n))
-    R = (R + R.T) / 2
-    np.fill_diagonal(R, 1.0)
-    C = scale * sd[:, None] * R * sd[None, :]
-    assert np.linalg.eigvalsh(C)[0] < 0
-    return C
 
 
 def clip(C, floor):
@@ -31,7 +20,7 @@ def clip(C, floor):
 
 
 def test_default_floor_is_relative_and_the_result_factors():
-    C = covariance(30, 1)
+    C = indefinite_covariance(30, 1)
     r = spdfit.nearest_spd(C, full_output=True)
     floor = spdfit.REPAIR_FLOOR_DEFAULT * np.linalg.eigvalsh(C)[-1]
     assert r.min_eig == pytest.approx(floor, rel=1e-13)
@@ -44,7 +33,7 @@ def test_default_floor_is_relative_and_the_result_factors():
 
 
 def test_relative_floor_follows_the_scale_and_an_absolute_one_warns():
-    C = covariance(8, 2, scale=1e-8)
+    C = indefinite_covariance(8, 2, scale=1e-8)
     # Relative: the same repair at any scale.
     X = spdfit.nearest_spd(C)
     np.testing.assert_allclose(X * 1e8, spdfit.nearest_spd(C * 1e8), rtol=1e-12, atol=1e-20)
@@ -63,7 +52,7 @@ def test_relative_floor_follows_the_scale_and_an_absolute_one_warns():
 @pytest.mark.parametrize("weighted", [False, True])
 @pytest.mark.parametrize("floor", [0.0, 0.05])
 def test_keep_diag_agrees_with_dykstra(weighted, floor):
-    C = covariance(10, 3)
+    C = indefinite_covariance(10, 3)
     w = np.linspace(0.5, 3.0, 10) if weighted else None
     r = spdfit.nearest_spd(C, floor, keep_diag=True, weights=w, full_output=True)
     assert r.converged
@@ -76,7 +65,7 @@ def test_keep_diag_agrees_with_dykstra(weighted, floor):
 
 @pytest.mark.parametrize("s", [8.0, 3.7, 1e-6])
 def test_keep_diag_and_relative_floor_scale(s):
-    C = covariance(12, 4)
+    C = indefinite_covariance(12, 4)
     X = spdfit.nearest_spd(C, keep_diag=True)
     Xs = spdfit.nearest_spd(s * C, keep_diag=True)
     if s == 8.0:  # a power of two: exactly
@@ -86,7 +75,7 @@ def test_keep_diag_and_relative_floor_scale(s):
 
 
 def test_via_corr_is_keep_diag_in_the_correlation_norm():
-    C = covariance(9, 5)
+    C = indefinite_covariance(9, 5)
     via = spdfit.nearest_spd(C, 0, via_corr=True, full_output=True)
     # statsmodels' cov_nearest route = the fixed-diagonal problem with weights 1 / diag(C).
     kept = spdfit.nearest_spd(C, 0, keep_diag=True, weights=1 / np.diag(C))
@@ -100,28 +89,28 @@ def test_via_corr_is_keep_diag_in_the_correlation_norm():
 
 def test_via_corr_against_statsmodels_cov_nearest():
     from statsmodels.stats import correlation_tools as statsmodels
-    C = covariance(6, 6)
-    import warnings
+    C = indefinite_covariance(6, 6)
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        theirs = statsmodels.cov_nearest(C, method="nearest", threshold=1e-15, n_fact=10000)
+        warnings.simplefilter("ignore")  # its iteration limit
+        theirs = statsmodels.cov_nearest(C, method="nearest", threshold=1e-15, n_fact=100)
     ours = spdfit.nearest_spd(C, 0, via_corr=True)
-    # cov_nearest clips at a threshold and stops at its iteration limit: close, not identical.
-    np.testing.assert_allclose(ours, theirs, atol=1e-4 * np.abs(C).max())
+    # Its alternating projections, run long enough, reach the same matrix.
+    np.testing.assert_allclose(ours, theirs, rtol=0, atol=1e-9 * np.abs(C).max())
 
 
 def test_every_default_output_factors():
     for seed in range(10):
-        C = covariance(25, 100 + seed)
+        C = indefinite_covariance(25, 100 + seed)
         for kwargs in ({}, {"keep_diag": True}, {"via_corr": True}):
             r = spdfit.nearest_spd(C, full_output=True, **kwargs)
             assert r.cholesky_ok, (seed, kwargs)
             np.linalg.cholesky(r.X)
-        np.linalg.cholesky(spdfit.nearest_correlation(C))
+        with pytest.warns(spdfit.SpdfitWarning, match="the diagonal is not 1"):
+            np.linalg.cholesky(spdfit.nearest_correlation(C))
 
 
 def test_argument_checks():
-    C = covariance(4, 8)
+    C = indefinite_covariance(4, 8)
     with pytest.raises(ValueError, match="not both"):
         spdfit.nearest_spd(C, keep_diag=True, via_corr=True)
     with pytest.raises(ValueError, match="not both"):
@@ -143,7 +132,7 @@ def test_argument_checks():
 
 
 def test_result_pickles():
-    r = spdfit.nearest_spd(covariance(5, 8), keep_diag=True, full_output=True)
+    r = spdfit.nearest_spd(indefinite_covariance(5, 8), keep_diag=True, full_output=True)
     back = pickle.loads(pickle.dumps(r))
     assert np.array_equal(back.X, r.X) and back.iterations == r.iterations and back.min_eig == r.min_eig
     assert back.warnings == r.warnings and back.cholesky_ok == r.cholesky_ok

@@ -57,3 +57,16 @@ def doc_commands(page):
         elif commands and line.strip() != "...":
             commands[-1][1].append(line.rstrip())
     return commands
+
+
+def indefinite_covariance(n, seed, scale=1.0):
+    """A covariance gone wrong, as pairwise-complete estimates are: variances (0.5 to 2)^2 times
+    scale, correlations uniform in [-1, 1] (seeded), so that it is indefinite."""
+    rng = np.random.default_rng(seed)
+    sd = np.linspace(0.5, 2.0, n)
+    R = rng.uniform(-1, 1, (n, n))
+    R = (R + R.T) / 2
+    np.fill_diagonal(R, 1.0)
+    C = scale * sd[:, None] * R * sd[None, :]
+    assert np.linalg.eigvalsh(C)[0] < 0, "the test matrix must be indefinite"
+    return C
