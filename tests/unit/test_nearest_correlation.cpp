@@ -29,6 +29,25 @@ TEST(NearestCorrelation, HighamsExample) {
   EXPECT_LT(r.iterations, 20);
 }
 
+// NAG's documented example of g02ab (nearest correlation matrix with weights and a bound on the
+// eigenvalues): Higham's matrix, alpha = 0.02, g02ab's w = (100, 20, 20, 20), which are the square
+// roots of W's diagonal (g02ab's convention), so our weights are their squares; the published
+// answer to 4 decimals.
+TEST(NearestCorrelation, NagG02abExample) {
+  MatrixXd C(4, 4);
+  C << 2, -1, 0, 0, -1, 2, -1, 0, 0, -1, 2, -1, 0, 0, -1, 2;
+  MatrixXd expected(4, 4);
+  expected << 1, -0.9371, 0.0262, 0.0087, -0.9371, 1, -0.3069, 0.2315, 0.0262, -0.3069, 1, -0.9037, 0.0087,
+      0.2315, -0.9037, 1;
+  NearestCorrelationOptions o;
+  o.alpha = 0.02;
+  o.weights = (VectorXd(4) << 100, 20, 20, 20).finished().cwiseAbs2();
+  const NearestResult r = nearest_correlation(C, o);
+  EXPECT_TRUE(r.converged);
+  EXPECT_LT((r.X - expected).cwiseAbs().maxCoeff(), 6e-5);
+  EXPECT_GT(Eigen::SelfAdjointEigenSolver<MatrixXd>(r.X).eigenvalues()(0), 0.02 - 1e-12);
+}
+
 // Optimality: the feasible set (PSD, unit diagonal) is convex, so X minimizes ||X - C||_F^2 / 2
 // exactly when the variational inequality <X - C, K - X> >= 0 holds for every correlation matrix
 // K; checked on random ones, of low rank so that they reach the boundary.
