@@ -15,11 +15,17 @@ namespace {
 
 using test::Generator;
 
+// Higham's (2002) tridiagonal test matrix, also NAG's g02aa/g02ab example: 2 on the diagonal, -1 beside it.
+MatrixXd highams_matrix() {
+  MatrixXd C(4, 4);
+  C << 2, -1, 0, 0, -1, 2, -1, 0, 0, -1, 2, -1, 0, 0, -1, 2;
+  return C;
+}
+
 // Higham, "Computing the nearest correlation matrix - a problem from finance", IMA J. Numer.
 // Anal. 22 (2002), section 4: the tridiagonal matrix and its nearest correlation matrix (4 decimals).
 TEST(NearestCorrelation, HighamsExample) {
-  MatrixXd C(4, 4);
-  C << 2, -1, 0, 0, -1, 2, -1, 0, 0, -1, 2, -1, 0, 0, -1, 2;
+  const MatrixXd C = highams_matrix();
   MatrixXd expected(4, 4);
   expected << 1, -0.8084, 0.1916, 0.1068, -0.8084, 1, -0.6562, 0.1916, 0.1916, -0.6562, 1, -0.8084, 0.1068,
       0.1916, -0.8084, 1;
@@ -34,8 +40,7 @@ TEST(NearestCorrelation, HighamsExample) {
 // roots of W's diagonal (g02ab's convention), so our weights are their squares; the published
 // answer to 4 decimals.
 TEST(NearestCorrelation, NagG02abExample) {
-  MatrixXd C(4, 4);
-  C << 2, -1, 0, 0, -1, 2, -1, 0, 0, -1, 2, -1, 0, 0, -1, 2;
+  const MatrixXd C = highams_matrix();
   MatrixXd expected(4, 4);
   expected << 1, -0.9371, 0.0262, 0.0087, -0.9371, 1, -0.3069, 0.2315, 0.0262, -0.3069, 1, -0.9037, 0.0087,
       0.2315, -0.9037, 1;
@@ -88,8 +93,7 @@ TEST(NearestCorrelation, WarnsWhenCIsNotSymmetric) {
 }
 
 TEST(NearestCorrelation, AlphaIsAFloorThatKeepsTheUnitDiagonal) {
-  MatrixXd C(4, 4);
-  C << 2, -1, 0, 0, -1, 2, -1, 0, 0, -1, 2, -1, 0, 0, -1, 2;
+  const MatrixXd C = highams_matrix();
   NearestCorrelationOptions o;
   o.alpha = 0.1;
   const NearestCorrelationResult r = nearest_correlation(C, o);
