@@ -44,7 +44,7 @@ nlohmann::json result_json(const NearestOptionsCli& options, const NearestResult
   nlohmann::json out;
   out["n"] = n;
   out["corr"] = options.corr;
-  out["keep_diag"] = options.keep_diag && !options.corr;
+  out["keep_diag"] = options.keep_diag;
   out["via_corr"] = options.via_corr;
   out["min_eig"] = number_json(result.min_eig);
   out["min_eig_rel"] = relative ? nlohmann::json(options.min_eig_rel) : nlohmann::json(nullptr);
@@ -114,14 +114,14 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
 
   auto run = [options, &global, min_eig, alpha, weights, max_iter, tol]() {
     const bool newton = options->corr || options->keep_diag || options->via_corr;
+    if (alpha->count() > 0 && !options->corr && !options->via_corr) {
+      throw UsageError("--alpha is the unit diagonal's floor: it needs --corr or --via-corr (otherwise give "
+                       "--min-eig)");
+    }
     if (!newton) {
-      for (const CLI::Option* o : {weights, alpha, max_iter, tol}) {
+      for (const CLI::Option* o : {weights, max_iter, tol}) {
         if (o->count() > 0) throw UsageError(o->get_name() + " needs --corr, --keep-diag or --via-corr");
       }
-    }
-    if (alpha->count() > 0 && !options->corr && !options->via_corr) {
-      throw UsageError("--alpha is the unit diagonal's floor: it needs --corr or --via-corr (give --min-eig with "
-                       "--keep-diag)");
     }
     const Eigen::MatrixXd X = load_matrix(options->path);
     if (X.rows() != X.cols()) {
@@ -148,13 +148,14 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
     } catch (const std::invalid_argument& e) {
       throw io::DataError(options->path, 0, 0, e.what());
     }
-    for (const std::string& w : result.warnings) warn(global, w);
     if (!newton && result.clipped > 0) {
-      warn(global, std::to_string(result.clipped) + " eigenvalue(s) of the symmetric part were below " +
-                       trimmed(result.min_eig) +
-                       (relative ? " (" + trimmed(options->min_eig_rel) + " x the largest eigenvalue)" : "") +
-                       " and were raised to it");
+      // The clip's note, as the command has always printed it (the library leaves it to `clipped`).
+      result.warnings.push_back(std::to_string(result.clipped) + " eigenvalue(s) of the symmetric part were below " +
+                                trimmed(result.min_eig) +
+                                (relative ? " (" + trimmed(options->min_eig_rel) + " x the largest eigenvalue)" : "") +
+                                " and were raised to it");
     }
+    for (const std::string& w : result.warnings) warn(global, w);
     if (!options->json) {
       emit(matrix_csv(result.X), options->output);
       return;

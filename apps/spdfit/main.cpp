@@ -30,7 +30,10 @@ int main(int argc, char** argv) {
       "Run 'spdfit COMMAND --help' for a command's options.");
 
   GlobalOptions global;
-  app.add_flag("-q,--quiet", global.quiet, "Do not print warnings on stderr");
+  app.add_flag("-q,--quiet", global.quiet, "Do not print warnings on stderr (before or after the command)");
+  // The global options are accepted after the command too (`spdfit fit -q ...`): the commands,
+  // added below, inherit this and pass an option they do not know on to the top level.
+  app.fallthrough();
 
   const std::vector<Command> commands = {
       add_fit_command(app, global),
@@ -63,7 +66,8 @@ int main(int argc, char** argv) {
     if (argc > 1 && argv[1][0] != '-' && !is_command) {
       message = std::string("unknown command '") + argv[1] + "' (commands: " + known + ")";
     }
-    std::cerr << "spdfit: error: " << message << "\nRun 'spdfit --help' for usage.\n";
+    const std::string help = is_command ? std::string("spdfit ") + argv[1] + " --help" : "spdfit --help";
+    std::cerr << "spdfit: error: " << message << "\nRun '" << help << "' for usage.\n";
     return kExitUsageError;
   }
 
@@ -73,7 +77,11 @@ int main(int argc, char** argv) {
     }
     return kExitSuccess;
   } catch (const UsageError& e) {
-    std::cerr << "spdfit: error: " << e.what() << "\nRun 'spdfit --help' for usage.\n";
+    std::string command;
+    for (const Command& c : commands) {
+      if (c.app->parsed()) command = c.app->get_name() + " ";
+    }
+    std::cerr << "spdfit: error: " << e.what() << "\nRun 'spdfit " << command << "--help' for usage.\n";
     return kExitUsageError;
   } catch (const spdfit::io::DataError& e) {
     std::cerr << "spdfit: error: " << e.what() << '\n';

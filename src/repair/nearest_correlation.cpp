@@ -249,7 +249,7 @@ Solution solve(const FixedDiagonalProblem& p, const NearestCorrelationOptions& o
 
 double weighted_distance(const MatrixXd& X, const Eigen::Ref<const MatrixXd>& C, const VectorXd& w) {
   const VectorXd root = w.cwiseSqrt();
-  return (root.asDiagonal() * (X - C) * root.asDiagonal()).norm();
+  return (root.asDiagonal() * (X - C) * root.asDiagonal()).stableNorm();  // any scale
 }
 
 // The input's symmetric part, its extreme eigenvalues and the warnings about it, shared by the
@@ -316,9 +316,10 @@ NearestResult repair(const char* function, const Eigen::Ref<const MatrixXd>& C, 
   for (Index i = 0; i < p.d.size(); ++i) {
     if (!(p.d(i) > p.floor)) {
       throw std::invalid_argument(std::string(function) + ": the eigenvalue floor " + detail::format_number(p.floor) +
-                                  " is not below diagonal entry " + std::to_string(i + 1) + " (" +
-                                  detail::format_number(p.d(i)) + "): no matrix with that diagonal has all its "
-                                  "eigenvalues above it");
+                                  " is not below diagonal entry " + std::to_string(i + 1) + ", which is " +
+                                  detail::format_number(p.d(i)) +
+                                  (p.d(i) == 0.0 ? " (a zero variance: drop that variable, or give it a variance)"
+                                                 : ": lower the floor, or the diagonal cannot be kept"));
     }
   }
   if (prepared.lambda_min >= p.floor && p.S.diagonal() == p.d) {
@@ -401,8 +402,9 @@ NearestResult nearest_correlation(const Eigen::Ref<const MatrixXd>& C, const Nea
     prepared.warnings.push_back("the diagonal is not 1 (it ranges from " +
                                 detail::format_number(prepared.S.diagonal().minCoeff()) + " to " +
                                 detail::format_number(prepared.S.diagonal().maxCoeff()) +
-                                "): it was repaired to a correlation matrix; a covariance's variances are kept "
-                                "by the keep-diagonal and via-correlation repairs");
+                                "): it was repaired to a correlation matrix (unit diagonal); to keep a covariance's variances "
+                                "instead, repair it with its diagonal kept (spdfit nearest --keep-diag or --via-corr; "
+                                "Python keep_diag=True or via_corr=True)");
   }
   FixedDiagonalProblem p{std::move(prepared.S), VectorXd::Ones(n), prepared.w, floor};
   return repair(kName, C, p, prepared, options);
@@ -413,9 +415,15 @@ NearestResult nearest_keep_diagonal(const Eigen::Ref<const MatrixXd>& C, const N
   if (options.alpha > 0.0) {
     throw std::invalid_argument(std::string(kName) + ": alpha is for a unit diagonal: give a floor instead");
   }
+  for (Index i = 0; i < C.rows(); ++i) {
+    if (C(i, i) < 0.0) {
+      throw std::invalid_argument(std::string(kName) + ": diagonal entry " + std::to_string(i + 1) + " is " +
+                                  detail::format_number(C(i, i)) + ": a covariance's variances must be >= 0");
+    }
+  }
   Prepared prepared = prepare(kName, C, options, VectorXd());
   const double floor = floor_of(kName, options, prepared.lambda_max);
-  VectorXd d = prepared.S.diagonal();
+  VectorXd d = C.diagonal();  // the variances exactly as given (S's diagonal can differ for subnormals)
   FixedDiagonalProblem p{std::move(prepared.S), std::move(d), prepared.w, floor};
   return repair(kName, C, p, prepared, options);
 }

@@ -34,8 +34,8 @@ std::optional<std::string> asymmetry_warning(const Eigen::Ref<const Eigen::Matri
   const double norm = C.norm();
   const double asymmetry = (C - C.transpose()).norm();
   if (!(asymmetry > 1e-10 * norm)) return std::nullopt;
-  return "the matrix is not symmetric (||C - C^T||_F / ||C||_F = " + format_number(asymmetry / norm) +
-         ", more than rounding): its symmetric part (C + C^T) / 2 was used; is it the right file?";
+  return "the matrix is not symmetric (||X - X^T||_F / ||X||_F = " + format_number(asymmetry / norm) +
+         ", more than rounding): its symmetric part (X + X^T) / 2 was used; is it the right file?";
 }
 
 double resolve_floor(const char* function, EigenvalueFloor floor, double lambda_max) {
@@ -52,8 +52,8 @@ std::optional<std::string> floor_warning(double floor, double floor_change, doub
                                          double lambda_max) {
   if (!(floor_change > repair) || !(floor_change > 1e-6 * scale)) return std::nullopt;
   return "the eigenvalue floor " + format_number(floor) + " moved the matrix by " + format_number(floor_change) +
-         ", more than the repair itself (" + format_number(repair) + "): is it right for this matrix's scale " +
-         "(largest eigenvalue " + format_number(lambda_max) + ")? A relative floor follows the scale";
+         ", more than the repair itself (" + format_number(repair) + "); the matrix repaired has largest eigenvalue " +
+         format_number(lambda_max) + ": a floor meant for another scale does this (a relative floor follows the scale)";
 }
 
 }  // namespace detail

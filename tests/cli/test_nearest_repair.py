@@ -118,3 +118,21 @@ def test_data_errors_name_the_file(spdfit, tmp_path, matrix, args, message):
     path = save(tmp_path, "bad.csv", matrix)
     out = spdfit("nearest", *args, path)
     assert out.returncode == 1 and message in out.stderr and "bad.csv" in out.stderr
+
+
+def test_quiet_after_the_command_and_the_usage_hint_names_it(spdfit, tmp_path):
+    path = save(tmp_path, "C.csv", indefinite_covariance(5, 9, scale=1e-8))
+    loud = spdfit("nearest", "--min-eig", "1e-6", path)
+    assert "warning" in loud.stderr
+    for args in (["-q", "nearest", "--min-eig", "1e-6", path], ["nearest", "--min-eig", "1e-6", "-q", path]):
+        out = spdfit(*args)
+        assert out.returncode == 0 and out.stderr == "" and out.stdout == loud.stdout
+    usage = spdfit("nearest", "--alpha", "0.1", path)
+    assert usage.returncode == 2 and "Run 'spdfit nearest --help' for usage." in usage.stderr
+    assert "Run 'spdfit nearest --help'" in spdfit("nearest", "--bogus", path).stderr
+
+
+def test_json_warnings_match_what_is_printed(spdfit, tmp_path):
+    out = spdfit("nearest", "--json", save(tmp_path, "C.csv", indefinite_covariance(6, 10)))
+    j = json.loads(out.stdout)
+    assert j["warnings"] and all(f"spdfit: warning: {w}" in out.stderr for w in j["warnings"])

@@ -2,8 +2,9 @@
 directory, and prints the lines the page shows ("..." elides lines). `spdfit` is the built CLI;
 other commands (printf, mkfifo, python3 ...) are set-up and must succeed. The exit status of a
 spdfit command is what the page's contract says its output implies: 2 for an error followed by
-"Run 'spdfit --help' for usage.", 1 for any other error, 0 otherwise."""
+"Run 'spdfit [COMMAND] --help' for usage.", 1 for any other error, 0 otherwise."""
 import os
+import re
 import pathlib
 import subprocess
 import sys
@@ -22,7 +23,8 @@ def doc_commands():
 
 def expected_status(lines):
     if any(line.startswith("spdfit: error:") for line in lines):
-        return 2 if "Run 'spdfit --help' for usage." in lines else 1
+        usage = any(re.fullmatch(r"Run 'spdfit ([a-z]+ )?--help' for usage\.", line) for line in lines)
+        return 2 if usage else 1
     return 0
 
 
