@@ -53,7 +53,7 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
                 "Print X with its bootstrap standard errors (with --bootstrap), its eigenvalues and the noise "
                 "estimate as a table for people")
       ->excludes(json);
-  sub->add_option("-o,--output", options->output, "Write to FILE instead of stdout");
+  sub->add_option("-o,--output", options->output, "Write to FILE instead of stdout (X.npy: X as a NumPy file)");
   sub->add_option("--rank-tol", options->rank_tolerance,
                   "Relative singular-value cut-off for numerical rank (default max(m,n)*eps)")
       ->check(rank_tolerance());
@@ -84,6 +84,8 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
 
   auto run = [options, &global]() {
     const Method method = *parse_method(options->method);
+    if (options->json) check_text_output(options->output, "--json");
+    if (options->report) check_text_output(options->output, "--report");
     FitOptions fit_options;
     fit_options.rank_tolerance = options->rank_tolerance;
     // Each of these options applies to some methods only: a usage error with the others.
@@ -110,10 +112,11 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
     if (result.bootstrap && !options->json && !options->report) {
       warn(global, "--bootstrap's standard errors and intervals are shown with --json or --report; this prints X only");
     }
-    const std::string text = options->json     ? result_json(result).dump(2) + "\n"
-                             : options->report ? fit_report(result)
-                                               : matrix_csv(result.X);
-    emit(text, options->output);
+    if (options->json || options->report) {
+      emit(options->json ? result_json(result).dump(2) + "\n" : fit_report(result), options->output);
+    } else {
+      emit_matrix(result.X, options->output);
+    }
   };
   return {sub, run};
 }

@@ -109,11 +109,12 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
                                      "tol sqrt(n) max(d) (default 1e-10)")
                          ->check(positive());
   sub->add_flag("--json", options->json, "Print the result and its diagnostics as JSON");
-  sub->add_option("-o,--output", options->output, "Write to FILE instead of stdout");
+  sub->add_option("-o,--output", options->output, "Write to FILE instead of stdout (X.npy: X as a NumPy file)");
   sub->add_option("X", options->path, "File of X (n x n): delimited text or .npy")->required();
 
   auto run = [options, &global, min_eig, alpha, weights, max_iter, tol]() {
     const bool newton = options->corr || options->keep_diag || options->via_corr;
+    if (options->json) check_text_output(options->output, "--json");
     if (alpha->count() > 0 && !options->corr && !options->via_corr) {
       throw UsageError("--alpha is the unit diagonal's floor: it needs --corr or --via-corr (otherwise give "
                        "--min-eig)");
@@ -157,7 +158,7 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
     }
     for (const std::string& w : result.warnings) warn(global, w);
     if (!options->json) {
-      emit(matrix_csv(result.X), options->output);
+      emit_matrix(result.X, options->output);
       return;
     }
     emit(result_json(*options, result, X.rows(), relative).dump(2) + "\n", options->output);

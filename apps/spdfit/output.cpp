@@ -1,6 +1,7 @@
 #include "output.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -8,6 +9,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "cli.hpp"
 #include "spdfit/io.hpp"
 
 namespace spdfit::cli {
@@ -236,6 +238,30 @@ void emit(const std::string& text, const std::string& path) {
   file << text;
   file.close();
   if (!file) throw io::DataError(path, 0, 0, "cannot write the output file");
+}
+
+namespace {
+bool names_npy(const std::string& path) {
+  if (path.size() < 4) return false;
+  std::string tail = path.substr(path.size() - 4);
+  std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char c) { return std::tolower(c); });
+  return tail == ".npy";
+}
+}  // namespace
+
+void emit_matrix(const Eigen::MatrixXd& X, const std::string& path) {
+  if (names_npy(path)) {
+    io::write_npy(path, X);
+    return;
+  }
+  emit(matrix_csv(X), path);
+}
+
+void check_text_output(const std::string& path, const std::string& what) {
+  if (names_npy(path)) {
+    throw UsageError("--output " + path + " names a .npy file, which holds a matrix only, not " + what +
+                     ": write " + what + " to another file name, or drop it to save X as .npy");
+  }
 }
 
 std::string side_by_side(const std::vector<std::string>& titles, const std::vector<Eigen::MatrixXd>& matrices,

@@ -48,6 +48,14 @@ std::string matrix_csv(const Eigen::MatrixXd& M);
 /// when the file cannot be written.
 void emit(const std::string& text, const std::string& path);
 
+/// Writes the matrix X to `path` in the format its extension names (.npy: float64 NumPy; anything
+/// else: CSV), or as CSV to stdout when `path` is empty.
+void emit_matrix(const Eigen::MatrixXd& X, const std::string& path);
+
+/// A usage error when `path` names a binary matrix format (.npy) that cannot hold the text output
+/// `what` (e.g. "--json").
+void check_text_output(const std::string& path, const std::string& what);
+
 /// Matrices printed side by side under their titles (`digits` decimals), wrapped to `width`.
 std::string side_by_side(const std::vector<std::string>& titles, const std::vector<Eigen::MatrixXd>& matrices,
                          int digits = 4, std::size_t width = 120);

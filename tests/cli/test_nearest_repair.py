@@ -136,3 +136,21 @@ def test_json_warnings_match_what_is_printed(spdfit, tmp_path):
     out = spdfit("nearest", "--json", save(tmp_path, "C.csv", indefinite_covariance(6, 10)))
     j = json.loads(out.stdout)
     assert j["warnings"] and all(f"spdfit: warning: {w}" in out.stderr for w in j["warnings"])
+
+
+def test_output_by_extension(spdfit, tmp_path):
+    """-o X.npy writes a NumPy file (fit and nearest), the same numbers as the CSV; --json cannot go
+    into one (usage error)."""
+    path = save(tmp_path, "C.csv", indefinite_covariance(6, 10))
+    assert spdfit("nearest", "-o", tmp_path / "X.npy", path).returncode == 0
+    assert np.array_equal(np.load(tmp_path / "X.npy"), parse(spdfit("nearest", path).stdout))
+    A, B = tmp_path / "A.csv", tmp_path / "B.csv"
+    rng = np.random.default_rng(3)
+    np.savetxt(A, rng.standard_normal((8, 2)), delimiter=",")
+    np.savetxt(B, rng.standard_normal((8, 2)), delimiter=",")
+    assert spdfit("fit", "--method", "ls", "-o", tmp_path / "F.npy", A, B).returncode == 0
+    assert np.array_equal(np.load(tmp_path / "F.npy"), parse(spdfit("fit", "--method", "ls", A, B).stdout))
+    for args in (["nearest", "--json", "-o", tmp_path / "J.npy", path],
+                 ["fit", "--method", "ls", "--report", "-o", tmp_path / "R.npy", A, B]):
+        out = spdfit(*args)
+        assert out.returncode == 2 and "holds a matrix only" in out.stderr
