@@ -56,6 +56,14 @@ struct Dual {
   }
 };
 
+// How many of the ascending eigenvalues are positive (they come last).
+Index positive_count(const VectorXd& lambda) {
+  const Index n = lambda.size();
+  Index r = 0;
+  while (r < n && lambda(n - 1 - r) > 0.0) ++r;
+  return r;
+}
+
 // The eigendecomposition S = P diag(lambda) P^T of the input's symmetric part, when computed.
 struct Spectrum {
   VectorXd lambda;
@@ -111,13 +119,6 @@ class Jacobian {
   const VectorXd& diagonal() const { return diagonal_; }
 
  private:
-  static Index positive_count(const VectorXd& lambda) {
-    const Index n = lambda.size();
-    Index r = 0;
-    while (r < n && lambda(n - 1 - r) > 0.0) ++r;
-    return r;
-  }
-
   Index r_;
   Eigen::Ref<const MatrixXd> P1_, P2_;
   MatrixXd omega12_;
@@ -226,8 +227,7 @@ Solution solve(const FixedDiagonalProblem& p, const NearestCorrelationOptions& o
   out.gradient_norm = std::ldexp(gradient, e);
 
   // X~ = (G + diag y)_+ = Q Q^T with Q = P1 diag(lambda_+)^1/2 (BLAS for large n), back to X.
-  Index r = 0;
-  while (r < n && dual.lambda(n - 1 - r) > 0.0) ++r;
+  const Index r = positive_count(dual.lambda);
   out.clipped = n - r;
   const MatrixXd Q = dual.P.rightCols(r) * dual.lambda.tail(r).cwiseSqrt().asDiagonal();
   MatrixXd X;
@@ -252,6 +252,23 @@ double weighted_distance(const MatrixXd& X, const Eigen::Ref<const MatrixXd>& C,
   return (root.asDiagonal() * (X - C) * root.asDiagonal()).stableNorm();  // any scale
 }
 
+// Throws std::invalid_argument, naming `function`, when a variance (diagonal entry) is negative,
+// or zero where `zero_allowed` is false.
+void check_variances(const char* function, const VectorXd& d, bool zero_allowed) {
+  for (Index i = 0; i < d.size(); ++i) {
+    if (d(i) < 0.0 || (!zero_allowed && d(i) == 0.0)) {
+      throw std::invalid_argument(std::string(function) + ": diagonal entry " + std::to_string(i + 1) + " is " +
+                                  detail::format_number(d(i)) + ": a covariance's variances must be " +
+                                  (zero_allowed ? ">= 0" : "> 0"));
+    }
+  }
+}
+
+// The weights of the options, or all ones.
+VectorXd weights_or_ones(const NearestCorrelationOptions& options, Index n) {
+  return options.weights.size() ? options.weights : VectorXd::Ones(n);
+}
+
 // The input's symmetric part, its extreme eigenvalues and the warnings about it, shared by the
 // repairs.
 struct Prepared {
@@ -270,7 +287,7 @@ Prepared prepare(const char* function, const Eigen::Ref<const MatrixXd>& C, cons
   if (!options.is_valid(C.rows(), &error)) throw std::invalid_argument(std::string(function) + ": " + error);
   Prepared out;
   out.S = detail::symmetric_part(MatrixXd(C));
-  out.w = options.weights.size() ? options.weights : VectorXd::Ones(C.rows());
+  out.w = weights_or_ones(options, C.rows());
   const bool vectors = options.weights.size() == 0 && (d.size() == 0 || out.S.diagonal() == d);
   if (!detail::symmetric_eigen(out.S, out.spectrum.lambda, vectors ? &out.spectrum.P : nullptr)) {
     throw std::runtime_error(std::string(function) + ": the eigensolver did not converge");
@@ -415,12 +432,7 @@ NearestResult nearest_keep_diagonal(const Eigen::Ref<const MatrixXd>& C, const N
   if (options.alpha > 0.0) {
     throw std::invalid_argument(std::string(kName) + ": alpha is for a unit diagonal: give a floor instead");
   }
-  for (Index i = 0; i < C.rows(); ++i) {
-    if (C(i, i) < 0.0) {
-      throw std::invalid_argument(std::string(kName) + ": diagonal entry " + std::to_string(i + 1) + " is " +
-                                  detail::format_number(C(i, i)) + ": a covariance's variances must be >= 0");
-    }
-  }
+  check_variances(kName, C.diagonal(), true);
   Prepared prepared = prepare(kName, C, options, VectorXd());
   const double floor = floor_of(kName, options, prepared.lambda_max);
   VectorXd d = C.diagonal();  // the variances exactly as given (S's diagonal can differ for subnormals)
@@ -432,12 +444,7 @@ NearestResult nearest_via_correlation(const Eigen::Ref<const MatrixXd>& C, const
   constexpr const char* kName = "nearest_via_correlation";
   detail::check_repair_input(kName, C, options.floor);
   const MatrixXd S = detail::symmetric_part(MatrixXd(C));
-  for (Index i = 0; i < S.rows(); ++i) {
-    if (!(S(i, i) > 0.0)) {
-      throw std::invalid_argument(std::string(kName) + ": diagonal entry " + std::to_string(i + 1) + " is " +
-                                  detail::format_number(S(i, i)) + ": a covariance's variances must be > 0");
-    }
-  }
+  check_variances(kName, S.diagonal(), false);
   const VectorXd D = S.diagonal().cwiseSqrt();
   const VectorXd inverse = D.cwiseInverse();
   MatrixXd R = inverse.asDiagonal() * S * inverse.asDiagonal();
@@ -450,7 +457,7 @@ NearestResult nearest_via_correlation(const Eigen::Ref<const MatrixXd>& C, const
   VectorXd lambda;
   if (!detail::symmetric_eigen(S, lambda)) throw std::runtime_error(std::string(kName) + ": the eigensolver did not converge");
   out.min_eigenvalue_before = lambda(0);
-  out.distance = weighted_distance(out.X, C, options.weights.size() ? options.weights : VectorXd::Ones(C.rows()));
+  out.distance = weighted_distance(out.X, C, weights_or_ones(options, C.rows()));
   out.cholesky_ok = detail::has_cholesky(out.X);
   if (auto w = detail::asymmetry_warning(C)) out.warnings.insert(out.warnings.begin(), *w);
   return out;
