@@ -1,6 +1,7 @@
 // spdfit nearest [--min-eig E | --min-eig-rel R] [--corr | --keep-diag | --via-corr] [--weights W]
 //                [--alpha A] [--max-iter N] [--tol T] [--json] [--output FILE] X
 #include <memory>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 
@@ -17,7 +18,7 @@ namespace spdfit::cli {
 namespace {
 struct NearestOptionsCli {
   std::string path, output;
-  double min_eig = 0.0, min_eig_rel = EigenvalueFloor::kRepairDefault;
+  double min_eig = 0.0, min_eig_rel = 0.0;
   bool json = false, corr = false, keep_diag = false, via_corr = false;
   std::string weights;
   NearestCorrelationOptions newton;
@@ -40,14 +41,14 @@ Eigen::VectorXd read_weights(const std::string& path, const NearestCorrelationOp
 }
 
 nlohmann::json result_json(const NearestOptionsCli& options, const NearestResult& result, Eigen::Index n,
-                           bool relative) {
+                           EigenvalueFloor floor) {
   nlohmann::json out;
   out["n"] = n;
   out["corr"] = options.corr;
   out["keep_diag"] = options.keep_diag;
   out["via_corr"] = options.via_corr;
   out["min_eig"] = number_json(result.min_eig);
-  out["min_eig_rel"] = relative ? nlohmann::json(options.min_eig_rel) : nlohmann::json(nullptr);
+  out["min_eig_rel"] = floor.relative ? nlohmann::json(floor.value) : nlohmann::json(nullptr);
   out["alpha"] = options.newton.alpha;
   out["X"] = matrix_json(result.X);
   out["distance"] = number_json(result.distance);
@@ -112,7 +113,7 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("-o,--output", options->output, "Write to FILE instead of stdout (X.npy: X as a NumPy file)");
   sub->add_option("X", options->path, "File of X (n x n): delimited text or .npy")->required();
 
-  auto run = [options, &global, min_eig, alpha, weights, max_iter, tol]() {
+  auto run = [options, &global, min_eig, min_eig_rel, alpha, weights, max_iter, tol]() {
     const bool newton = options->corr || options->keep_diag || options->via_corr;
     if (options->json) check_text_output(options->output, "--json");
     if (alpha->count() > 0 && !options->corr && !options->via_corr) {
@@ -131,9 +132,11 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
                               ": a square matrix is needed");
     }
     // The floor: --min-eig, --min-eig-rel, --alpha, or by default the relative 1e-8.
-    const bool relative = min_eig->count() == 0 && alpha->count() == 0;
-    const EigenvalueFloor floor = relative ? EigenvalueFloor::relative_to_largest(options->min_eig_rel)
-                                           : EigenvalueFloor::absolute(alpha->count() > 0 ? 0.0 : options->min_eig);
+    const auto given = [](const CLI::Option* o, double value) {
+      return o->count() > 0 ? std::optional<double>(value) : std::nullopt;
+    };
+    const EigenvalueFloor floor = EigenvalueFloor::chosen(
+        given(min_eig, options->min_eig), given(min_eig_rel, options->min_eig_rel), alpha->count() > 0);
     NearestResult result;
     try {
       if (newton) {
@@ -153,7 +156,7 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
       // The clip's note, as the command has always printed it (the library leaves it to `clipped`).
       result.warnings.push_back(std::to_string(result.clipped) + " eigenvalue(s) of the symmetric part were below " +
                                 trimmed(result.min_eig) +
-                                (relative ? " (" + trimmed(options->min_eig_rel) + " x the largest eigenvalue)" : "") +
+                                (floor.relative ? " (" + trimmed(floor.value) + " x the largest eigenvalue)" : "") +
                                 " and were raised to it");
     }
     for (const std::string& w : result.warnings) warn(global, w);
@@ -161,7 +164,7 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
       emit_matrix(result.X, options->output);
       return;
     }
-    emit(result_json(*options, result, X.rows(), relative).dump(2) + "\n", options->output);
+    emit(result_json(*options, result, X.rows(), floor).dump(2) + "\n", options->output);
   };
   return {sub, run};
 }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,11 @@ struct EigenvalueFloor {
   static constexpr double kRepairDefault = 1e-8;
   static EigenvalueFloor absolute(double value) { return {value, false}; }
   static EigenvalueFloor relative_to_largest(double value) { return {value, true}; }
+  /// The floor of a repair from what its user gave (the `nearest` command and Python share this
+  /// rule): `min_eig` absolute, `min_eig_rel` relative, neither the relative kRepairDefault; with
+  /// `alpha_given` (NAG's alpha is the floor itself) the floor 0. std::invalid_argument when more
+  /// than one is given.
+  static EigenvalueFloor chosen(std::optional<double> min_eig, std::optional<double> min_eig_rel, bool alpha_given);
 
   /// True when value is finite and >= 0 (and < 1 when relative); otherwise `error` says why.
   bool is_valid(std::string* error = nullptr) const;

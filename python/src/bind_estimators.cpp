@@ -451,21 +451,13 @@ void bind_estimators(py::module_& m) {
           }));
   m.attr("REPAIR_FLOOR_DEFAULT") = EigenvalueFloor::kRepairDefault;
   // One entry for every repair: `kind` is "spd" (the eigenvalue clip), "corr", "keep_diag" or
-  // "via_corr"; the floor is min_eig (absolute), min_eig_rel (relative) or alpha, else the relative
-  // default, as the nearest command's.
+  // "via_corr"; the floor by EigenvalueFloor::chosen, as the nearest command's.
   m.def(
       "nearest",
       [](const Eigen::MatrixXd& C, const std::string& kind, std::optional<double> min_eig,
          std::optional<double> min_eig_rel, std::optional<double> alpha, std::optional<Eigen::VectorXd> weights,
          std::optional<int> max_iter, std::optional<double> tol) {
-        if (min_eig && min_eig_rel) throw std::invalid_argument("give min_eig or min_eig_rel, not both");
-        if (alpha && (min_eig || min_eig_rel)) {
-          throw std::invalid_argument("alpha is the unit diagonal's floor: give it or min_eig/min_eig_rel, not both");
-        }
-        const EigenvalueFloor floor = min_eig ? EigenvalueFloor::absolute(*min_eig)
-                                      : alpha ? EigenvalueFloor{}
-                                              : EigenvalueFloor::relative_to_largest(
-                                                    min_eig_rel.value_or(EigenvalueFloor::kRepairDefault));
+        const EigenvalueFloor floor = EigenvalueFloor::chosen(min_eig, min_eig_rel, alpha.has_value());
         if (kind == "spd") {
           for (const auto& [given, name] : {std::pair{bool(weights), "weights"}, std::pair{bool(alpha), "alpha"},
                                             std::pair{bool(max_iter), "max_iter"}, std::pair{bool(tol), "tol"}}) {

@@ -18,6 +18,17 @@ bool EigenvalueFloor::is_valid(std::string* error) const {
   return true;
 }
 
+EigenvalueFloor EigenvalueFloor::chosen(std::optional<double> min_eig, std::optional<double> min_eig_rel,
+                                        bool alpha_given) {
+  if (min_eig && min_eig_rel) throw std::invalid_argument("give min_eig or min_eig_rel, not both");
+  if (alpha_given && (min_eig || min_eig_rel)) {
+    throw std::invalid_argument("alpha is the unit diagonal's floor: give it or min_eig/min_eig_rel, not both");
+  }
+  if (min_eig) return absolute(*min_eig);
+  if (alpha_given) return {};
+  return relative_to_largest(min_eig_rel.value_or(kRepairDefault));
+}
+
 namespace detail {
 
 void check_repair_input(const char* function, const Eigen::Ref<const Eigen::MatrixXd>& C, EigenvalueFloor floor) {

@@ -155,6 +155,19 @@ TEST(NearestSpd, WarnsWhenTheFloorMovesMoreThanTheRepair) {
   EXPECT_NE(nearest_spd(asymmetric).warnings[0].find("not symmetric"), std::string::npos);
 }
 
+// The one rule for which floor a repair uses (the CLI's nearest and Python share it).
+TEST(EigenvalueFloor, ChosenFromWhatWasGiven) {
+  const EigenvalueFloor none = EigenvalueFloor::chosen(std::nullopt, std::nullopt, false);
+  EXPECT_TRUE(none.relative);
+  EXPECT_EQ(none.value, EigenvalueFloor::kRepairDefault);
+  EXPECT_FALSE(EigenvalueFloor::chosen(0.5, std::nullopt, false).relative);
+  EXPECT_EQ(EigenvalueFloor::chosen(0.5, std::nullopt, false).value, 0.5);
+  EXPECT_EQ(EigenvalueFloor::chosen(std::nullopt, 1e-3, false).value, 1e-3);
+  EXPECT_EQ(EigenvalueFloor::chosen(std::nullopt, std::nullopt, true).value, 0.0);
+  EXPECT_THROW(EigenvalueFloor::chosen(0.5, 1e-3, false), std::invalid_argument);
+  EXPECT_THROW(EigenvalueFloor::chosen(0.5, std::nullopt, true), std::invalid_argument);
+}
+
 TEST(NearestSpd, RejectsMisuse) {
   EXPECT_THROW(nearest_spd(MatrixXd::Ones(2, 3)), std::invalid_argument);
   EXPECT_THROW(nearest_spd(MatrixXd(0, 0)), std::invalid_argument);
