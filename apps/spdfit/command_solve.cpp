@@ -61,6 +61,10 @@ nlohmann::json solve_json(const LinearSystemResult& r) {
   out["threshold"] = r.threshold;
   out["reciprocal_condition_number"] = number_json(r.reciprocal_condition_number);
   out["effective_condition_number"] = number_json(r.effective_condition_number);
+  out["scaled_singular_values"] = vector_json(r.scaled_singular_values);
+  out["scaled_condition_number"] = number_json(r.scaled_condition_number);
+  out["rank_decided_on"] = "column-scaled";
+  out["refinement_steps"] = r.refinement_steps;
   nlohmann::json columns = nlohmann::json::array();
   for (Eigen::Index j = 0; j < r.p; ++j) {
     const ColumnClassification& c = r.columns[j];
@@ -83,7 +87,9 @@ std::string solve_text(const LinearSystemResult& r) {
   out << r.explanation << "\n\n";
   out << "rank " << r.rank << ", nullity " << r.nullity << ", condition number " << g(r.condition_number)
       << " (reciprocal " << g(r.reciprocal_condition_number) << ")\n";
-  out << "singular values: " << vector_text(r.singular_values) << " (cut-off " << g(r.threshold) << " * sigma_max)\n";
+  out << "singular values: " << vector_text(r.singular_values) << "\n";
+  out << "with unit-norm columns: " << vector_text(r.scaled_singular_values) << ", condition number "
+      << g(r.scaled_condition_number) << " (the rank's cut-off: " << g(r.threshold) << " * sigma_max)\n";
   out << "finite solutions: dimension " << r.finite_solution_dimension << "; at infinity: dimension "
       << r.at_infinity_dimension << " (-1: none)\n";
   for (Eigen::Index j = 0; j < r.p; ++j) {

@@ -127,6 +127,8 @@ nlohmann::json synthesis_json(const SynthesisResult& r, const Prescribed& p) {
   out["design"] = solution_json(r.design, false);
   out["structural"] = solution_json(r.structural, true);
   out["condition_number"] = number_json(r.condition_number);
+  out["scaled_condition_number"] = number_json(r.scaled_condition_number);
+  out["rank_decided_on"] = "column-scaled";
   const MotionCheck& check = *r.structural.check;
   out["grashof"] = to_string(check.grashof);
   out["transmission_angle_deg"] = range_json(check.transmission);
@@ -151,7 +153,8 @@ std::string synthesis_text(const SynthesisResult& r, const Prescribed& p, bool p
   out << "Four-bar function generator, " << r.positions << " prescribed positions: " << p.source
       << (p.weights.size() ? ", weighted" : "") << "\n";
   out << "synthesis matrix S: condition number " << g(r.condition_number) << ", rank " << r.rank
-      << (r.used_svd ? " (edited SVD)" : " (Householder QR)") << (r.precision_point ? "; precision points: exact" : "")
+      << (r.used_svd ? " (edited SVD, minimum norm)" : "") << " (column-scaled: condition number "
+      << g(r.scaled_condition_number) << ")" << (r.precision_point ? "; precision points: exact" : "")
       << "\nassembly branch followed: " << (r.branch > 0 ? "+1" : "-1") << "\n\n";
   char line[200];
   const std::string structural_title =

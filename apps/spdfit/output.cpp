@@ -45,6 +45,9 @@ json diagnostics_json(const Diagnostics& d) {
   out["rank_b"] = d.rank_b;
   out["cond_a"] = number_json(d.cond_a);
   out["cond_b"] = number_json(d.cond_b);
+  out["cond_a_scaled"] = number_json(d.cond_a_scaled);
+  out["cond_b_scaled"] = number_json(d.cond_b_scaled);
+  out["rank_decided_on"] = "column-scaled";
   out["singular_values_a"] = vector_json(d.singular_values_a);
   out["singular_values_b"] = vector_json(d.singular_values_b);
   out["residual_norm"] = number_json(d.residual_norm);

@@ -57,8 +57,13 @@ struct AutoReason {
 struct Diagnostics {
   Eigen::Index m = 0;                                    ///< rows (samples)
   Eigen::Index n = 0;                                    ///< columns; X is n x n
-  Eigen::Index rank_a = 0, rank_b = 0;                   ///< numerical ranks (FitOptions::rank_tolerance)
+  /// Numerical ranks (FitOptions::rank_tolerance), decided on A and B with their columns scaled
+  /// to unit norm (by powers of two), so that they do not depend on each column's units.
+  Eigen::Index rank_a = 0, rank_b = 0;
   double cond_a = 0.0, cond_b = 0.0;                     ///< sigma_max / sigma_min; +inf when singular
+  /// The condition numbers of A and B with unit-norm columns: those the ranks are decided on,
+  /// and the ones that bound the estimate's loss of accuracy. 0 when not computed.
+  double cond_a_scaled = 0.0, cond_b_scaled = 0.0;
   Eigen::VectorXd singular_values_a, singular_values_b;  ///< descending
 
   double residual_norm = 0.0;            ///< ||A X - B||_F

@@ -12,8 +12,10 @@ namespace spdfit {
 
 /// Options for solve().
 struct LinearSystemOptions {
-  /// Relative singular-value cut-off: sigma_i is treated as zero when sigma_i < threshold *
-  /// sigma_max (and always when sigma_i == 0). A negative value (the default) means
+  /// Relative singular-value cut-off: sigma_i is treated as zero when sigma_i <= threshold *
+  /// sigma_max (and always when sigma_i == 0), for the singular values of A with its columns
+  /// scaled to unit norm (so that the rank does not depend on the units of the unknowns; see
+  /// solve()). A negative value (the default) means
   /// max(m, n) * machine epsilon, the editing rule of the lecture notes (shared/seeds/
   /// 002_fe976fdf53be9def.txt, section 3.8).
   double threshold = -1.0;
@@ -86,11 +88,21 @@ struct LinearSystemResult {
 
   Eigen::VectorXd singular_values;   ///< of A, descending (min(m, n) of them)
   double threshold = 0.0;            ///< the relative cut-off that was used
-  Eigen::Index rank = 0;             ///< number of singular values kept
+  /// Number of singular values kept: decided on scaled_singular_values, those of A D with the
+  /// columns of A D of about unit norm (D = diag of powers of two), not on singular_values.
+  Eigen::Index rank = 0;
   Eigen::Index nullity = 0;          ///< n - rank
-  double condition_number = 0.0;     ///< sigma_max / sigma_min (unedited); +inf when singular
+  double condition_number = 0.0;     ///< sigma_max / sigma_min of A (unedited); +inf when singular
   double reciprocal_condition_number = 0.0;  ///< sigma_min / sigma_max (notes 3.7.2); 0 when singular
-  double effective_condition_number = 0.0;  ///< sigma_max / sigma_rank: of the edited A
+  double effective_condition_number = 0.0;  ///< sigma_max / sigma_rank of A: of the edited A
+  /// The singular values of A D, descending: A with its columns scaled by powers of two to norms
+  /// in [0.5, 1). The same whatever the units of the unknowns; the rank is decided on these.
+  Eigen::VectorXd scaled_singular_values;
+  /// Their ratio sigma_max / sigma_min: the condition number that bounds the solution's error
+  /// (van der Sluis: within sqrt(n) of the smallest over all column scalings); +inf when singular.
+  double scaled_condition_number = 0.0;
+  /// Steps of iterative refinement taken on the solution (full column rank only; 0 otherwise).
+  int refinement_steps = 0;
 
   /// The classification of the set A X = B: consistent when every column is; the dimensions
   /// are per column (they depend only on rank A, so they are the same for every consistent
@@ -125,13 +137,20 @@ struct LinearSystemResult {
 ///
 /// A and B are first scaled by powers of two (exactly) so that their largest entries are of order
 /// one, and every result is scaled back: the answer does not depend on the units, from denormal
-/// data to 1e300.
+/// data to 1e300. The rank is decided on A D, A's columns scaled by powers of two to about unit
+/// norm, so that it does not depend on the units of each unknown either (a polynomial basis
+/// x^0 ... x^10 is not declared singular because its columns differ in size). At full column
+/// rank the solution is computed in the scaled unknowns and refined by Bjorck's iterative
+/// refinement with residuals in twice double precision: it is then as accurate as the data
+/// allow, and scaling a column of A by a power of two scales the solution's entry by exactly the
+/// inverse factor. When the rank is lower the minimum-norm solution, the range and the null
+/// space come from the SVD of A itself, as eq. 3.21 defines them.
 ///
 /// Preconditions: A non-empty with at most options.max_unknowns columns, B with A's number of
 /// rows and at least one column, all entries finite; valid options (else std::invalid_argument).
 /// A singular A is an answer, not an error; the one numerical failure is a solution beyond the
-/// range of double (status NumericalFailure). Cost: O(m n min(m, n)) for the SVD of A plus
-/// O(m n^2) per column of B for the augmented matrix; memory O(n^2) for V.
+/// range of double (status NumericalFailure). Cost: O(m n min(m, n)) for the SVDs of A D and of
+/// A plus O(m n^2) per column of B for the augmented matrix; memory O(n^2) for V.
 LinearSystemResult solve(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
                          const LinearSystemOptions& options = {});
 

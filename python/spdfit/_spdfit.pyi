@@ -27,6 +27,8 @@ class Diagnostics:
     rank_b: int
     cond_a: float
     cond_b: float
+    cond_a_scaled: float
+    cond_b_scaled: float
     singular_values_a: npt.NDArray[np.float64]
     singular_values_b: npt.NDArray[np.float64]
     residual_norm: float
@@ -99,6 +101,42 @@ class NearestResult:
     gradient_norm: float
     converged: bool
     cholesky_ok: bool
+    warnings: List[str]
+
+class ColumnClassification:
+    consistent: bool
+    finite_solution_dimension: int
+    at_infinity_dimension: int
+    augmented_rank: int
+    residual_norm: float
+    backward_error: float
+
+class LinearSystemResult:
+    ok: bool
+    message: str
+    m: int
+    n: int
+    p: int
+    shape: str
+    singular_values: npt.NDArray[np.float64]
+    threshold: float
+    rank: int
+    nullity: int
+    condition_number: float
+    reciprocal_condition_number: float
+    effective_condition_number: float
+    scaled_singular_values: npt.NDArray[np.float64]
+    scaled_condition_number: float
+    refinement_steps: int
+    consistent: bool
+    finite_solution_dimension: int
+    at_infinity_dimension: int
+    columns: List[ColumnClassification]
+    solution: npt.NDArray[np.float64]
+    residual_norm: float
+    null_space: npt.NDArray[np.float64]
+    range: npt.NDArray[np.float64]
+    explanation: str
     warnings: List[str]
 
 REPAIR_FLOOR_DEFAULT: float

@@ -52,6 +52,7 @@ class SynthesisResult:
     branch: int
     rank: int
     condition_number: float
+    scaled_condition_number: float
     used_svd: bool
     psi: Array
     phi: Array

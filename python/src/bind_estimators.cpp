@@ -76,11 +76,11 @@ py::tuple diagnostics_state(const Diagnostics& d) {
                         d.positive_semidefinite, d.area_criterion, d.area_criterion_minimum,
                         d.cross_term_positive_definite, d.tls_sigma_n, d.tls_sigma_n1, d.tls_correction_norm,
                         d.tls_v22_min_singular_value, d.noise_sigma, d.iterations, d.gradient_norm, d.converged,
-                        d.certificate, chosen, d.reason);
+                        d.certificate, chosen, d.reason, d.cond_a_scaled, d.cond_b_scaled);
 }
 
 Diagnostics diagnostics_from(const py::tuple& t) {
-  check_state(t, 28, "Diagnostics");
+  check_state(t, 30, "Diagnostics");
   Diagnostics d;
   d.m = t[0].cast<Eigen::Index>();
   d.n = t[1].cast<Eigen::Index>();
@@ -110,6 +110,8 @@ Diagnostics diagnostics_from(const py::tuple& t) {
   d.certificate = t[25].cast<std::optional<PsdCertificate>>();
   if (auto chosen = t[26].cast<std::optional<std::string>>()) d.chosen_method = method_from(*chosen);
   d.reason = t[27].cast<std::optional<AutoReason>>();
+  d.cond_a_scaled = t[28].cast<double>();
+  d.cond_b_scaled = t[29].cast<double>();
   return d;
 }
 
@@ -188,6 +190,9 @@ void bind_estimators(py::module_& m) {
       .def_property_readonly("rank_b", copied(&Diagnostics::rank_b))
       .def_property_readonly("cond_a", copied(&Diagnostics::cond_a), "sigma_max / sigma_min of A (inf when singular)")
       .def_property_readonly("cond_b", copied(&Diagnostics::cond_b))
+      .def_property_readonly("cond_a_scaled", copied(&Diagnostics::cond_a_scaled),
+                             "cond(A) with A's columns scaled to unit norm: the rank is decided on it")
+      .def_property_readonly("cond_b_scaled", copied(&Diagnostics::cond_b_scaled))
       .def_property_readonly("singular_values_a", copied(&Diagnostics::singular_values_a))
       .def_property_readonly("singular_values_b", copied(&Diagnostics::singular_values_b))
       .def_property_readonly("residual_norm", copied(&Diagnostics::residual_norm), "||A X - B||_F")

@@ -69,6 +69,7 @@ void bind_linkage(py::module_& parent) {
       .def_property_readonly("branch", copied(&SynthesisResult::branch))
       .def_property_readonly("rank", copied(&SynthesisResult::rank))
       .def_property_readonly("condition_number", copied(&SynthesisResult::condition_number))
+      .def_property_readonly("scaled_condition_number", copied(&SynthesisResult::scaled_condition_number))
       .def_property_readonly("used_svd", copied(&SynthesisResult::used_svd))
       .def_property_readonly("psi", copied(&SynthesisResult::psi))
       .def_property_readonly("phi", copied(&SynthesisResult::phi))

@@ -44,10 +44,14 @@ void fill_data_diagnostics(const DynamicReduction& data, Diagnostics& d, std::ve
   d.singular_values_b = times_power_of_two(data.s_b, data.exponent_b);
   d.cond_a = condition_number(data.s_a);
   d.cond_b = condition_number(data.s_b);
-  if (data.rank_a == data.n && d.cond_a * kIllConditionedRcond > 1.0) {
-    warnings.push_back("A is ill-conditioned (cond(A) = " + format_number(d.cond_a) +
-                       "): the estimate may have lost about " +
-                       format_number(std::floor(std::log10(d.cond_a))) + " significant digits");
+  d.cond_a_scaled = data.cond_a_scaled;
+  d.cond_b_scaled = data.cond_b_scaled;
+  // Judged on the column-scaled A, as the rank is: columns in different units are not
+  // ill-conditioning.
+  if (data.rank_a == data.n && d.cond_a_scaled * kIllConditionedRcond > 1.0) {
+    warnings.push_back("A is ill-conditioned (cond(A) = " + format_number(d.cond_a_scaled) +
+                       " with its columns scaled to unit norm): the estimate may have lost about " +
+                       format_number(std::floor(std::log10(d.cond_a_scaled))) + " significant digits");
   }
   if (data.noise_var) {
     d.noise_sigma = std::sqrt(*data.noise_var);
@@ -123,6 +127,10 @@ FitResult finish(Method method, const DynamicReduction& data, const MatrixXd& X_
     return checked(method, times_power_of_two(X_s, eb - ea), std::move(d), std::move(warnings));
   }
   fill_data_diagnostics(data, d, warnings);
+  // An estimate beyond the double range even in the scaled units (a column of A 1e300 times
+  // smaller than another, independent of it) is a failure checked() reports; nothing below is
+  // defined for it.
+  if (!X_s.allFinite()) return checked(method, X_s, std::move(d), std::move(warnings));
 
   // ||A X - B||_F^2 = ||R11 X - R12||_F^2 + ||R22||_F^2, in B's units.
   const double fit_part = (data.R11 * X_s - data.R12).norm();

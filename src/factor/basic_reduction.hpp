@@ -13,7 +13,8 @@ namespace spdfit::detail {
 
 /// The data reduced to small matrices, all in the scaled units of the triangular factor:
 ///
-///   R11 = U_a diag(s_a) V_a^T        the SVD of R11: singular values of A, rank_a, cond_a
+///   R11 = U_a diag(s_a) V_a^T        the SVD of R11: singular values of A, cond_a (rank_a is
+///                                    decided on R11 with unit-norm columns, as A D)
 ///   [R12; R22] = Q_b R_b              R_b (n x n): B^T B = R_b^T R_b; singular values of B
 ///
 /// Built by reduce_into (kernels.hpp) in O(n^3) from a triangular factor.
@@ -36,7 +37,10 @@ struct BasicReduction {
   Vector s_a;                           ///< descending
   Matrix R_b;                           ///< triangular factor of B
   Vector s_b;                           ///< singular values of B, descending
-  Eigen::Index rank_a = 0, rank_b = 0;  ///< numerical ranks under the options' cut-off
+  /// Numerical ranks under the options' cut-off, decided on A and B with unit-norm columns.
+  Eigen::Index rank_a = 0, rank_b = 0;
+  /// cond(A D), cond(B D) with unit-norm columns: set when options.diagnostics, else 0.
+  double cond_a_scaled = 0.0, cond_b_scaled = 0.0;
   FitOptions options;
   /// The noise estimate sigma^2 (noise_variance, kernels.hpp), in A's units: set by reduce when
   /// options.diagnostics and m > n, for every method's diagnostics to report.

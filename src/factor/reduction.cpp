@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "estimators/kernels.hpp"
+#include "numerics/least_squares.hpp"
 #include "numerics/linalg.hpp"
 
 namespace spdfit {
@@ -42,9 +43,13 @@ void reduce_into(const typename BasicReduction<MaxN>::Factor& R, Eigen::Index m,
   svd_into(out.R_b, b, false, false);
   out.s_b = std::move(b.s);
 
+  // The ranks are decided on A and B with their columns scaled to unit norm (the columns of R11
+  // and R_b have the norms of A's and B's), so that they do not depend on the units of each
+  // column (numerics/least_squares.hpp). The scaled condition numbers are diagnostics.
   const double cutoff = out.options.rank_cutoff(m, n);
-  out.rank_a = numerical_rank(out.s_a, cutoff);
-  out.rank_b = numerical_rank(out.s_b, cutoff);
+  const bool report = out.options.diagnostics;
+  out.rank_a = equilibrated_rank(out.R11, out.s_a, cutoff, report ? &out.cond_a_scaled : nullptr);
+  out.rank_b = equilibrated_rank(out.R_b, out.s_b, cutoff, report ? &out.cond_b_scaled : nullptr);
 }
 
 template <int MaxN>

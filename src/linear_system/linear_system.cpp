@@ -7,6 +7,7 @@
 
 #include <Eigen/SVD>
 
+#include "numerics/least_squares.hpp"
 #include "numerics/linalg.hpp"
 #include "spdfit/rank.hpp"
 #include "linear_system/linear_system_explanation.hpp"
@@ -96,39 +97,54 @@ LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A_in, const Eigen::Re
                       : (r.m == r.n ? SystemShape::Determined : SystemShape::Overdetermined);
   r.threshold = options.cutoff(r.m, r.n);
 
-  const detail::FullSvd dec = detail::svd_full_v(A);
-  r.rank = numerical_rank(dec.s, r.threshold);
+  // The solution and the rank decision, made on A with its columns scaled to unit norm so that
+  // it does not depend on the units of the unknowns (numerics/least_squares.hpp).
+  const detail::LeastSquaresSolution ls = detail::equilibrated_least_squares(A, B, r.threshold);
+  r.rank = ls.rank;
   r.nullity = r.n - r.rank;
-  const double smax = dec.s(0);
-  const double smin = dec.s(dec.s.size() - 1);
+  r.refinement_steps = ls.refinement_steps;
+  const VectorXd& s = ls.unscaled.s;
+  const double smax = s(0);
+  const double smin = s(s.size() - 1);
   const double inf = std::numeric_limits<double>::infinity();
   // A wide matrix (m < n) always has a null space: its condition number is that of its
   // min(m, n) singular values, as MATLAB's cond() reports, and the nullity says the rest.
   r.condition_number = smin > 0.0 ? smax / smin : inf;
   r.reciprocal_condition_number = smax > 0.0 ? smin / smax : 0.0;
-  r.effective_condition_number = r.rank > 0 ? smax / dec.s(r.rank - 1) : inf;
+  r.effective_condition_number = r.rank > 0 && s(r.rank - 1) > 0.0 ? smax / s(r.rank - 1) : inf;
+  r.scaled_singular_values = ls.scaled.s;
+  r.scaled_condition_number = detail::condition_number(ls.scaled.s);
 
   const Index k = r.rank;
-  r.range = dec.U.leftCols(k);
-  r.null_space = dec.V.rightCols(r.nullity);
+  if (k == r.n) {
+    // Full column rank: the scaled A's left singular vectors span the same range.
+    r.range = ls.scaled.U;
+    r.null_space.resize(r.n, 0);
+  } else {
+    r.range = ls.unscaled.U.leftCols(k);
+    r.null_space = ls.unscaled.V.rightCols(r.nullity);
+  }
   orient_columns(r.range);
   orient_columns(r.null_space);
 
-  // Minimum-norm least-squares solution with the small singular values edited (eq. 3.21).
-  const MatrixXd x = dec.V.leftCols(k) * (dec.s.head(k).cwiseInverse().asDiagonal() * (dec.U.leftCols(k).transpose() * B));
-  const MatrixXd residual = A * x - B;
+  const MatrixXd& x = ls.X;
+  const MatrixXd residual = detail::accurate_residual(A, x, B);
   r.residual_norm = std::ldexp(residual.stableNorm(), eb);
 
   // The projective view, one right-hand side at a time: [A | -b_j] [x; w] = 0.
   r.consistent = true;
+  // The rank of [A | -b_j] is decided as that of A, on its columns scaled to unit norm.
+  MatrixXd As = A;
+  detail::scale_columns(As, ls.exponents, -1);
   for (Index j = 0; j < r.p; ++j) {
     ColumnClassification c;
     const double bnorm = B.col(j).stableNorm();
     MatrixXd M(r.m, r.n + 1);
-    M.leftCols(r.n) = A;
+    M.leftCols(r.n) = As;
     // Scaling the homogeneous coordinate w changes nothing in the solution set, and putting
     // b_j on the scale of A keeps the rank decision from depending on the units of b.
-    const double scale = bnorm > 0.0 ? (smax > 0.0 ? smax : 1.0) / bnorm : 0.0;
+    const double scaled_max = ls.scaled.s(0);
+    const double scale = bnorm > 0.0 ? (scaled_max > 0.0 ? scaled_max : 1.0) / bnorm : 0.0;
     M.col(r.n) = -scale * B.col(j);
     c.augmented_rank = numerical_rank(detail::singular_values(M), r.threshold);
     // Appending a column cannot lower the rank; a count below rank A only happens when a
@@ -148,7 +164,7 @@ LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A_in, const Eigen::Re
   r.at_infinity_dimension = r.nullity - 1;
 
   // Back to the data's units: A = 2^ea (units), b = 2^eb (units), x = 2^(eb - ea) (units).
-  r.singular_values = detail::times_power_of_two(dec.s, ea);
+  r.singular_values = detail::times_power_of_two(s, ea);
   r.solution = detail::times_power_of_two(x, eb - ea);
   if (!r.solution.allFinite()) {
     r.status = SolveStatus::NumericalFailure;

@@ -123,18 +123,20 @@ std::string explain(const LinearSystemResult& r) {
                     "): " + std::to_string(r.m) + " " + objects(r.n, r.m) + ". Rank " + std::to_string(r.rank) +
                     ", nullity " + std::to_string(r.nullity) + ".";
   Index edited_nonzero = 0;
-  for (Index i = r.rank; i < r.singular_values.size(); ++i) edited_nonzero += r.singular_values(i) > 0.0;
+  // The rank is decided on the column-scaled A (see solve()), so the values cut are its.
+  const Eigen::VectorXd& s = r.scaled_singular_values;
+  for (Index i = r.rank; i < s.size(); ++i) edited_nonzero += s(i) > 0.0;
   if (edited_nonzero > 0) {
     // Only the default cut-off, max(m, n) eps, marks a value as roundoff; a threshold the user
     // chose cuts values that may be real (issue 18).
     const bool roundoff = r.threshold == default_rank_tolerance(r.m, r.n);
     const std::string was = edited_nonzero == 1 ? "was" : "were";
     if (roundoff) {
-      out += " (" + plural(edited_nonzero, "nonzero singular value") + " below " + short_number(r.threshold) +
+      out += " (" + plural(edited_nonzero, "nonzero singular value") + " of the column-scaled A below " + short_number(r.threshold) +
              " * sigma_max " + (edited_nonzero == 1 ? "is" : "are") + " roundoff and " + was +
              " edited to zero, notes 002 section 3.8.)";
     } else {
-      out += " (" + plural(edited_nonzero, "nonzero singular value") + " below the chosen threshold " +
+      out += " (" + plural(edited_nonzero, "nonzero singular value") + " of the column-scaled A below the chosen threshold " +
              short_number(r.threshold) + " * sigma_max " + was +
              " edited to zero, notes 002 section 3.8: not roundoff, so check that the threshold suits the data.)";
     }

@@ -23,6 +23,7 @@ DesignErrorSolution design_error_synthesis(const Eigen::Ref<const VectorXd>& psi
   out.design_error_norm = (bw - Sw * out.k).norm();
   out.rank = ls.rank;
   out.condition_number = ls.condition_number;
+  out.scaled_condition_number = ls.scaled_condition_number;
   out.used_svd = ls.used_svd;
   return out;
 }

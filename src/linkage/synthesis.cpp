@@ -154,6 +154,7 @@ SynthesisResult synthesize(const Eigen::Ref<const VectorXd>& delta_psi_in,
   if (!options.fit_dial_zeros) k_design = design.k;
   r.rank = design.rank;
   r.condition_number = design.condition_number;
+  r.scaled_condition_number = design.scaled_condition_number;
   r.used_svd = design.used_svd;
   if (r.used_svd) {
     r.warnings.push_back(

@@ -88,8 +88,10 @@ def test_random_systems_against_numpy(spdfit_json, write_csv, m, n, r):
 
 
 def test_threshold_option_edits_singular_values(spdfit_json, write_csv):
+    # Nearly dependent columns of equal size: the small singular value is not a matter of units
+    # (U diag(1, 1e-9) alone would be, and column scaling would give it rank 2 at any threshold).
     U, _ = np.linalg.qr(np.random.default_rng(3).standard_normal((5, 2)))
-    A = U @ np.diag([1.0, 1e-9])
+    A = U @ np.diag([1.0, 1e-9]) @ np.array([[0.6, 0.8], [-0.8, 0.6]])
     b = write_csv("b.csv", np.ones((5, 1)))
     a = write_csv("A.csv", A)
     assert spdfit_json("solve", a, b)["rank"] == 2
@@ -149,7 +151,7 @@ def test_a_chosen_threshold_is_not_called_roundoff(spdfit):
     # cut-off max(m, n) eps says so.
     chosen = spdfit("solve", "--threshold", "0.7", "examples/linkage/notes_ex1_A.csv", "examples/linkage/notes_ex1_b.csv")
     assert chosen.returncode == 0
-    assert "below the chosen threshold 0.7 * sigma_max was edited to zero" in chosen.stdout
+    assert "of the column-scaled A below the chosen threshold 0.7 * sigma_max were edited to zero" in chosen.stdout
     assert "roundoff" not in chosen.stdout.replace("not roundoff", "")
     default = spdfit("solve", "examples/linkage/notes_ex5_A.csv", "examples/linkage/notes_ex5_b.csv")
     assert "is roundoff and was edited to zero" in default.stdout

@@ -1,7 +1,8 @@
 // The one numerical-rank rule (spdfit/rank.hpp): sigma_i counts iff sigma_i > tolerance * sigma_1,
 // strictly, as NumPy's matrix_rank; checked AT exact ties through every caller: fit's reduction
-// (rank_tolerance), solve (threshold) and the linkage least-squares solve (threshold). Diagonal
-// data with power-of-two entries keep the singular values exact through the QR and the SVD.
+// (rank_tolerance), solve (threshold) and the linkage least-squares solve (threshold), each of
+// which decides on its matrix with the columns scaled to norms in [0.5, 1). Diagonal data with
+// entries in [0.5, 1) keep the singular values exact through the scaling, the QR and the SVD.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -48,35 +49,49 @@ TEST(Rank, DefaultToleranceAndValidation) {
 }
 
 TEST(Rank, FitsReductionUsesTheStrictRuleAtATie) {
+  // The rank is decided with the columns scaled to norms in [0.5, 1) (numerics/least_squares.hpp):
+  // diagonal entries there already stay as they are, so the singular values are exactly 0.75 and
+  // 0.5625 = 0.75 * 0.75, a tie at 0.75.
   MatrixXd A = MatrixXd::Zero(2, 2);
-  A.diagonal() << 1.0, 0.5;  // singular values exactly 1 and 0.5
+  A.diagonal() << 0.75, 0.5625;
   const MatrixXd B = MatrixXd::Identity(2, 2);
   FitOptions at_tie, below_tie;
-  at_tie.rank_tolerance = 0.5;
-  below_tie.rank_tolerance = 0.4999999;
+  at_tie.rank_tolerance = 0.75;
+  below_tie.rank_tolerance = 0.7499999;
   EXPECT_EQ(reduce(TriangularFactor::from_data(A, B), at_tie).rank_a(), 1);
   EXPECT_EQ(reduce(TriangularFactor::from_data(A, B), below_tie).rank_a(), 2);
   EXPECT_EQ(fit(A, B, Method::LeastSquares, at_tie).diagnostics.rank_a, 1);
 }
 
 TEST(Rank, SolveUsesTheStrictRuleAtATie) {
-  MatrixXd A = MatrixXd::Zero(2, 2);
-  A.diagonal() << 1.0, 0.5;
+  // Columns of equal norm (so the column scaling is one power of two for both), singular values
+  // sqrt(2) and sqrt(2) / 2. The cut-off t with t * sigma_max == sigma_min exactly, in the scaled
+  // values solve reports, counts sigma_min as zero; the next double below keeps it.
+  MatrixXd A(2, 2);
+  A << 1.0, 1.0, 0.5, -0.5;
   const MatrixXd b = MatrixXd::Ones(2, 1);
+  const Eigen::VectorXd s = solve(A, b).scaled_singular_values;
+  double t = s(1) / s(0);
+  while (t * s(0) > s(1)) t = std::nextafter(t, 0.0);
+  while (t * s(0) < s(1)) t = std::nextafter(t, 1.0);
+  ASSERT_EQ(t * s(0), s(1));
   LinearSystemOptions at_tie, below_tie;
-  at_tie.threshold = 0.5;
-  below_tie.threshold = 0.4999999;
+  at_tie.threshold = t;
+  below_tie.threshold = std::nextafter(t, 0.0);
+  ASSERT_LT(below_tie.threshold * s(0), s(1));
   EXPECT_EQ(solve(A, b, at_tie).rank, 1);
   EXPECT_EQ(solve(A, b, below_tie).rank, 2);
 }
 
 TEST(Rank, TheLinkageSolveUsesTheStrictRuleAtATie) {
+  // Norms in [0.5, 1), untouched by the column scaling: 0.65625 = 0.75 * 0.875 and
+  // 0.546875 = 0.625 * 0.875 exactly, ties at 0.75 and 0.625.
   MatrixXd M = MatrixXd::Zero(3, 3);
-  M.diagonal() << 1.0, 0.5, 0.25;
+  M.diagonal() << 0.875, 0.65625, 0.546875;
   const VectorXd rhs = VectorXd::Ones(3);
-  EXPECT_EQ(linkage::detail::small_least_squares(M, rhs, 0.5).rank, 1);
-  EXPECT_EQ(linkage::detail::small_least_squares(M, rhs, 0.25).rank, 2);
-  EXPECT_EQ(linkage::detail::small_least_squares(M, rhs, 0.2).rank, 3);
+  EXPECT_EQ(linkage::detail::small_least_squares(M, rhs, 0.75).rank, 1);
+  EXPECT_EQ(linkage::detail::small_least_squares(M, rhs, 0.625).rank, 2);
+  EXPECT_EQ(linkage::detail::small_least_squares(M, rhs, 0.5).rank, 3);
 }
 
 }  // namespace

@@ -12,6 +12,8 @@ struct DesignErrorSolution {
   double design_error_norm = 0.0;  ///< (d^T W d)^(1/2), d = b - S k (eq. 3.8, 3.10)
   Eigen::Index rank = 0;           ///< numerical rank of W^(1/2) S (cut-off as in notes 3.8)
   double condition_number = 0.0;   ///< sigma_max / sigma_min of W^(1/2) S; +inf when singular
+  /// The same for W^(1/2) S with its columns scaled to unit norm: the rank is decided on it.
+  double scaled_condition_number = 0.0;
   bool used_svd = false;           ///< rank-deficient: the edited-SVD minimum-norm k (eq. 3.21)
 };
 

@@ -63,6 +63,7 @@ struct SynthesisResult {
   int branch = 1;                   ///< the assembly branch followed (+1 or -1, output_angle)
   Eigen::Index rank = 0;            ///< of W^(1/2) S at the design solution
   double condition_number = 0.0;    ///< of W^(1/2) S at the design solution
+  double scaled_condition_number = 0.0;  ///< of W^(1/2) S with unit-norm columns (decides the rank)
   bool used_svd = false;            ///< S was rank-deficient: edited SVD
   Eigen::VectorXd psi, phi;         ///< prescribed absolute angles (radians) at the design dial zeros
   LinkageSolution design;           ///< minimizes the design error (section 3.4)
