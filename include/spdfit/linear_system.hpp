@@ -21,7 +21,8 @@ struct LinearSystemOptions {
   double threshold = -1.0;
 
   /// The reciprocal condition number below which A counts as ill-conditioned and a warning is
-  /// added (notes 002, section 3.7.2: "if lambda(A) < 1e-12, A is ill-conditioned").
+  /// added (notes 002, section 3.7.2: "if lambda(A) < 1e-12, A is ill-conditioned"), judged on
+  /// A with its columns scaled to unit norm (1 / scaled_condition_number), as the rank is.
   double rcond_warning = 1e-12;
 
   /// The most unknowns (columns of A) solve() accepts. It computes the full n x n V of the SVD and

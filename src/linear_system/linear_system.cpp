@@ -173,10 +173,14 @@ LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A_in, const Eigen::Re
     r.solution.resize(0, 0);
   }
 
-  if (r.reciprocal_condition_number < options.rcond_warning) {
-    r.warnings.push_back("A is ill-conditioned: reciprocal condition number " +
-                         detail::short_number(r.reciprocal_condition_number) + " < " +
-                         detail::short_number(options.rcond_warning) + " (notes 002, section 3.7.2)");
+  // Judged with A's columns scaled to unit norm, as the rank is: columns of different sizes
+  // (units) are not ill-conditioning, and the scaled condition number is the one that bounds the
+  // solution's error.
+  const double scaled_rcond = 1.0 / r.scaled_condition_number;
+  if (scaled_rcond < options.rcond_warning) {
+    r.warnings.push_back("A is ill-conditioned: reciprocal condition number " + detail::short_number(scaled_rcond) +
+                         " < " + detail::short_number(options.rcond_warning) +
+                         " with its columns scaled to unit norm (notes 002, section 3.7.2)");
   }
   r.explanation = detail::explain(r);
   return r;
