@@ -17,7 +17,7 @@ import subprocess
 import pytest
 
 ROOT = pathlib.Path(os.environ.get("SPDFIT_SOURCE_DIR", pathlib.Path(__file__).resolve().parents[2]))
-PAGES = ["README.md", "docs/guide.md", "docs/cli.md", "docs/python.md"]
+PAGES = ["README.md", "docs/guide.md", "docs/cli.md", "docs/python.md", "docs/accuracy.md"]
 EXIT = re.compile(r"^\[exit status (\d+)\]$")
 # The README's command lines include full-size experiments and the demo, which the plain build
 # runs; under the sanitizers (SPDFIT_SANITIZED=1) they took minutes of CI for no new coverage.
@@ -76,7 +76,7 @@ def test_readme_command_lines_run(cli, workdir):
         assert result.returncode == 0, f"README: {command}\n{result.stderr}"
 
 
-@pytest.mark.parametrize("page", ["README.md", "docs/python.md"])
+@pytest.mark.parametrize("page", ["README.md", "docs/python.md", "docs/accuracy.md"])
 def test_python_examples(workdir, page, monkeypatch):
     blocks = re.findall(r"```python\n(.*?)```", (ROOT / page).read_text(), flags=re.S)
     if not blocks:
