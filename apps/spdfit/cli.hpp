@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "spdfit/io.hpp"
+
 namespace CLI {
 class App;
 }
@@ -30,6 +32,8 @@ struct DataFailure : std::runtime_error {
 /// Options every command shares.
 struct GlobalOptions {
   bool quiet = false;  ///< suppress warnings on stderr
+  /// How every data file is read: --index-col / --no-index-col set read.index_column.
+  io::ReadOptions read;
 };
 
 /// A subcommand and its action, run after the whole command line has parsed.

@@ -92,10 +92,11 @@ Command add_compare_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("B", options->b_path, "File of B (m x n): delimited text or .npy")->required();
 
   auto run = [options, &global]() {
-    const DataPair data = read_pair(options->a_path, options->b_path);
+    const DataPair data = read_pair(options->a_path, options->b_path, global.read);
+    for (const std::string& w : data.warnings) warn(global, w);
     std::optional<Eigen::MatrixXd> truth;
     if (!options->truth_path.empty()) {
-      truth = load_matrix(options->truth_path);
+      truth = load_matrix(options->truth_path, global);
       if (truth->rows() != data.A.cols() || truth->cols() != data.A.cols()) {
         throw io::DataError(options->truth_path, 0, 0, "the true X must be " + std::to_string(data.A.cols()) +
                                                            "x" + std::to_string(data.A.cols()));

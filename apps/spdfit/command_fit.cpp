@@ -104,9 +104,10 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
     if (options->stream) {
       stream = options->stream_options;
       stream->threads = fit_options.threads;
+      stream->read = global.read;
     }
     const FitResult result =
-        fit_files(options->a_path, options->b_path, method, fit_options, stream);
+        fit_files(options->a_path, options->b_path, method, fit_options, stream, global.read);
     for (const std::string& w : result.warnings) warn(global, w);
     if (!result.ok()) throw DataFailure(result.message);
     if (result.bootstrap && !options->json && !options->report) {

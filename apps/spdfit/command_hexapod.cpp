@@ -149,7 +149,7 @@ Command add_simulate(CLI::App& parent, const GlobalOptions& global) {
       M = hexapod::thesis_mass_matrix();
       truth_source = "thesis eq. 6.1";
     } else {
-      M = load_matrix(cli->truth);
+      M = load_matrix(cli->truth, global);
       if (M.rows() != M.cols()) {
         throw io::DataError(
             cli->truth, 0, 0,
@@ -341,12 +341,13 @@ Command add_identify(CLI::App& parent, const GlobalOptions& global) {
                         "Threads for --bootstrap (default: one per core)");
 
   auto run = [cli, &global]() {
-    const DataPair data = read_pair(cli->a_path, cli->b_path);
+    const DataPair data = read_pair(cli->a_path, cli->b_path, global.read);
+    for (const std::string& w : data.warnings) warn(global, w);
     const Eigen::Index n = data.A.cols();
     hexapod::IdentifyOptions options;
     apply_bootstrap_options(cli->bootstrap, options.fit);
     if (!cli->truth.empty()) {
-      options.truth = load_matrix(cli->truth);
+      options.truth = load_matrix(cli->truth, global);
       if (options.truth->rows() != n || options.truth->cols() != n) {
         throw io::DataError(cli->truth, 0, 0,
                             "the true M_p must be " + std::to_string(n) + "x" + std::to_string(n));

@@ -26,8 +26,9 @@ struct NearestOptionsCli {
 
 // The weights file: n numbers as one column or one row, checked by the library's rule
 // (NearestCorrelationOptions::is_valid) with the file named.
-Eigen::VectorXd read_weights(const std::string& path, const NearestCorrelationOptions& options, Eigen::Index n) {
-  const Eigen::MatrixXd W = load_matrix(path);
+Eigen::VectorXd read_weights(const std::string& path, const NearestCorrelationOptions& options, Eigen::Index n,
+                             const GlobalOptions& global) {
+  const Eigen::MatrixXd W = load_matrix(path, global);
   if (W.size() != n || (W.rows() != 1 && W.cols() != 1)) {
     throw io::DataError(path, 0, 0,
                         "the weights are " + std::to_string(W.rows()) + "x" + std::to_string(W.cols()) + ": give " +
@@ -125,7 +126,7 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
         if (o->count() > 0) throw UsageError(o->get_name() + " needs --corr, --keep-diag or --via-corr");
       }
     }
-    const Eigen::MatrixXd X = load_matrix(options->path);
+    const Eigen::MatrixXd X = load_matrix(options->path, global);
     if (X.rows() != X.cols()) {
       throw io::DataError(options->path, 0, 0,
                           "X is " + std::to_string(X.rows()) + "x" + std::to_string(X.cols()) +
@@ -142,7 +143,7 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
       if (newton) {
         NearestCorrelationOptions o = options->newton;
         o.floor = floor;
-        if (!options->weights.empty()) o.weights = read_weights(options->weights, o, X.rows());
+        if (!options->weights.empty()) o.weights = read_weights(options->weights, o, X.rows(), global);
         result = options->corr       ? nearest_correlation(X, o)
                  : options->keep_diag ? nearest_keep_diagonal(X, o)
                                       : nearest_via_correlation(X, o);

@@ -124,13 +124,13 @@ Command add_solve_command(CLI::App& app, const GlobalOptions& global) {
     if (options->threshold >= 1.0) throw UsageError("--threshold must be below 1");
     LinearSystemOptions solve_options;
     solve_options.threshold = options->threshold;
-    const Eigen::MatrixXd A = load_matrix(options->a_path);
+    const Eigen::MatrixXd A = load_matrix(options->a_path, global);
     if (A.cols() > solve_options.max_unknowns) {
       throw io::DataError(options->a_path, 0, 0,
                           "A has " + std::to_string(A.cols()) + " columns: solve supports at most " +
                               std::to_string(solve_options.max_unknowns) + " unknowns");
     }
-    Eigen::MatrixXd b = load_matrix(options->b_path);
+    Eigen::MatrixXd b = load_matrix(options->b_path, global);
     if (b.rows() != A.rows() && b.rows() == 1 && b.cols() == A.rows()) b.transposeInPlace();
     if (b.rows() != A.rows()) {
       throw io::DataError(options->b_path, 0, 0,

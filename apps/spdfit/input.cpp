@@ -4,6 +4,10 @@
 
 namespace spdfit::cli {
 
-Eigen::MatrixXd load_matrix(const std::string& path) { return io::read_matrix(path); }
+Eigen::MatrixXd load_matrix(const std::string& path, const GlobalOptions& global) {
+  io::Table table = io::read_table(path, global.read);
+  for (const std::string& w : table.warnings) warn(global, w);
+  return std::move(table.values);
+}
 
 }  // namespace spdfit::cli

@@ -6,9 +6,12 @@
 
 #include <Eigen/Core>
 
+#include "cli.hpp"
+
 namespace spdfit::cli {
 
-/// One matrix (see io::read_matrix).
-Eigen::MatrixXd load_matrix(const std::string& path);
+/// One matrix (see io::read_table), read as the global options say; the reader's warnings (a
+/// first column of row labels dropped) are printed.
+Eigen::MatrixXd load_matrix(const std::string& path, const GlobalOptions& global);
 
 }  // namespace spdfit::cli

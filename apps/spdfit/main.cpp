@@ -34,6 +34,15 @@ int main(int argc, char** argv) {
   // The global options are accepted after the command too (`spdfit fit -q ...`): the commands,
   // added below, inherit this and pass an option they do not know on to the top level.
   app.fallthrough();
+  auto* index_col = app.add_flag_callback(
+      "--index-col", [&global] { global.read.index_column = spdfit::io::IndexColumn::kDrop; },
+      "The first column of each data file holds row labels (an index, as pandas' to_csv and R's write.csv "
+      "write one): drop it. Without this, a header whose first cell is empty says so, and a first column "
+      "0, 1, 2, ... is refused");
+  auto* no_index_col = app.add_flag_callback(
+      "--no-index-col", [&global] { global.read.index_column = spdfit::io::IndexColumn::kKeep; },
+      "The first column of each data file is data, whatever its header or values");
+  index_col->excludes(no_index_col);
 
   const std::vector<Command> commands = {
       add_fit_command(app, global),

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "spdfit/fit_options.hpp"
 #include "spdfit/fit_result.hpp"
@@ -17,6 +18,7 @@ namespace spdfit {
 /// A and B as read from their files.
 struct DataPair {
   Eigen::MatrixXd A, B;
+  std::vector<std::string> warnings;  ///< the readers' (io::Table::warnings), A's then B's
 };
 
 /// Reads A and B from `a_path` and `b_path` (the formats of io::read_table) and checks that they
@@ -30,8 +32,11 @@ DataPair read_pair(const std::string& a_path, const std::string& b_path, const i
 /// O(threads * block_rows * n + n^2) for any m); then fit(reduce(factor, options), method). The two
 /// paths give the same estimate to rounding. Throws io::DataError on bad data (see read_pair and
 /// stream_factor) and std::invalid_argument on invalid options; a numerical failure is the
-/// result's status. Cost O(m n^2) plus the method's O(n^3).
+/// result's status. `read` says how the files are read when they are read whole (streaming uses
+/// stream->read); the readers' warnings come first in the result's warnings. Cost O(m n^2) plus
+/// the method's O(n^3).
 FitResult fit_files(const std::string& a_path, const std::string& b_path, Method method,
-                    const FitOptions& options = {}, const std::optional<StreamOptions>& stream = std::nullopt);
+                    const FitOptions& options = {}, const std::optional<StreamOptions>& stream = std::nullopt,
+                    const io::ReadOptions& read = {});
 
 }  // namespace spdfit

@@ -30,22 +30,39 @@ class DataError : public std::runtime_error {
   std::string problem_;
 };
 
+/// What a first column of row labels (an index, as pandas' to_csv and R's write.csv write one)
+/// in delimited text is taken for.
+enum class IndexColumn {
+  /// Decided from the file: a header whose first cell is empty (",Fx,Fy"; R's "","x") marks the
+  /// first column as row labels, which are dropped with a warning; without that mark, a first
+  /// column that is exactly 0, 1, 2, ... (row numbers: at least 3 rows and 2 columns, decided on
+  /// the first piece of text read) is refused with a DataError, since fitting it as data is
+  /// never what was meant. Otherwise the first column is data.
+  kAuto,
+  kDrop,  ///< the first column holds row labels (text or numbers): dropped, never parsed
+  kKeep,  ///< the first column is data, whatever its header or values
+};
+
 /// Options for reading.
 struct ReadOptions {
   bool allow_nonfinite = false;  ///< NaN and Inf are rejected unless this is set
+  IndexColumn index_column = IndexColumn::kAuto;  ///< delimited text only (.npy has no labels)
 };
 
 /// A matrix with the column names of its header row (empty when the file had none).
 struct Table {
   Eigen::MatrixXd values;
   std::vector<std::string> column_names;
+  /// What the reader decided for the user to know: a first column of row labels dropped.
+  std::vector<std::string> warnings;
 };
 
 /// Reads a matrix from `path`: a .npy file (recognized by its magic bytes, float64, C or Fortran
 /// order, 1-D read as a column) or delimited text. Text: fields separated by commas, semicolons,
 /// tabs or runs of spaces; CRLF or LF line ends; an optional UTF-8 byte-order mark; lines whose
 /// first non-blank character is '#' or '%' are comments; blank lines are skipped; an optional
-/// header row (a first data line in which no field is a number) gives the column names.
+/// header row (a first data line in which no field is a number) gives the column names; a first
+/// column of row labels is dropped or refused as ReadOptions::index_column says.
 /// Throws DataError (naming the file, and for text the line and column) on: a missing,
 /// unreadable or empty file, a directory, binary garbage, ragged rows, empty fields, a token
 /// that is not a number, NaN or Inf (unless allowed), no data rows, a malformed .npy.

@@ -40,6 +40,9 @@ class RowReader {
   Eigen::Index columns() const;
   /// The header row's column names (text files with a header; empty otherwise).
   const std::vector<std::string>& column_names() const;
+  /// What the reader decided for the user to know (see Table::warnings), known after the first
+  /// read that returned rows.
+  const std::vector<std::string>& warnings() const;
   /// Rows returned so far.
   std::uint64_t rows_read() const;
 

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "spdfit/io.hpp"
 #include "spdfit/triangular_factor.hpp"
@@ -31,8 +32,9 @@ struct StreamOptions {
 ///
 /// Throws io::DataError (naming the file, line and column) on bad data, when A and B differ in
 /// their numbers of rows or columns, or when m < n. Throws std::invalid_argument when
-/// block_rows < 1. Cost O(m n^2) flops, spread over the threads.
+/// block_rows < 1. Cost O(m n^2) flops, spread over the threads. When `warnings` is given it
+/// receives the readers' warnings (io::Table::warnings: a first column of row labels dropped).
 TriangularFactor stream_factor(const std::string& a_path, const std::string& b_path,
-                               const StreamOptions& options = {});
+                               const StreamOptions& options = {}, std::vector<std::string>* warnings = nullptr);
 
 }  // namespace spdfit

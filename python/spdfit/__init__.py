@@ -95,17 +95,26 @@ def _options(method=None, **values):
 _INT_OPTIONS = ("max_iter", "bootstrap", "seed", "threads")
 
 
-def read_matrix(path, *, allow_nonfinite=False):
+def read_matrix(path, *, allow_nonfinite=False, index_col=None):
     """Read a matrix from delimited text (commas, semicolons, tabs or spaces; '#' comments; an
     optional header row) or a .npy file. `path` is a str or an os.PathLike (pathlib.Path).
     Raises DataError (a ValueError) naming the file, line and column on bad input; NaN and Inf
-    are rejected unless allow_nonfinite."""
-    return _spdfit.read_matrix(_os.fspath(path), allow_nonfinite=allow_nonfinite)
+    are rejected unless allow_nonfinite.
+
+    index_col: True when the first column holds row labels (an index, as pandas' to_csv and R's
+    write.csv write one): it is dropped. False: the first column is data. None (the default):
+    a header whose first cell is empty marks an index, which is dropped with a SpdfitWarning,
+    and a first column 0, 1, 2, ... under any other header raises DataError."""
+    return read_table(path, allow_nonfinite=allow_nonfinite, index_col=index_col)[0]
 
 
-def read_table(path):
+def read_table(path, *, allow_nonfinite=False, index_col=None):
     """Like read_matrix, but returns (values, column_names from the header row)."""
-    return _spdfit.read_table(_os.fspath(path))
+    values, names, messages = _spdfit.read_table(_os.fspath(path), allow_nonfinite=allow_nonfinite,
+                                                 index_col=index_col)
+    for message in messages:
+        _warnings.warn(message, SpdfitWarning, stacklevel=3)
+    return values, names
 
 
 def write_csv(path, X):

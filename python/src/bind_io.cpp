@@ -21,23 +21,23 @@ void bind_io(py::module_& m) {
     }
   });
 
+  // (values, column_names, warnings); index_col None: decided from the file, True: drop the
+  // first column (row labels), False: it is data (io::IndexColumn).
   m.def(
-      "read_matrix", [](const std::string& path, bool allow_nonfinite) {
+      "read_table",
+      [](const std::string& path, bool allow_nonfinite, std::optional<bool> index_col) {
         io::ReadOptions options;
         options.allow_nonfinite = allow_nonfinite;
-        return io::read_matrix(path, options);
+        if (index_col) options.index_column = *index_col ? io::IndexColumn::kDrop : io::IndexColumn::kKeep;
+        io::Table table;
+        {
+          py::gil_scoped_release release;
+          table = io::read_table(path, options);
+        }
+        return py::make_tuple(table.values, table.column_names, table.warnings);
       },
-      py::arg("path"), py::kw_only(), py::arg("allow_nonfinite") = false,
-      py::call_guard<py::gil_scoped_release>(),
-      "Read a matrix from delimited text (commas, semicolons, tabs or spaces; '#' comments; an "
-      "optional header row) or a .npy file (float64). Raises DataError (a ValueError) naming the "
-      "file, line and column on bad input; NaN and Inf are rejected unless allow_nonfinite.");
-  m.def(
-      "read_table", [](const std::string& path) {
-        io::Table table = io::read_table(path);
-        return py::make_tuple(table.values, table.column_names);
-      },
-      py::arg("path"), "Like read_matrix, but returns (values, column_names from the header row).");
+      py::arg("path"), py::kw_only(), py::arg("allow_nonfinite") = false, py::arg("index_col") = py::none(),
+      "The matrix, column names and reader warnings of a data file (spdfit.read_table).");
   m.def(
       "write_csv", [](const std::string& path, const Eigen::MatrixXd& X) { io::write_csv(path, X); },
       py::arg("path"), py::arg("X"), "Write X as CSV with values that read back exactly.");

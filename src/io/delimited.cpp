@@ -37,6 +37,25 @@ void DelimitedParser::feed(std::string_view text) {
   pos_ = 0;
   Line line;
   while (next_line(&line)) parse_line(line);
+  decide_index_column();
+}
+
+// Row numbers 0, 1, 2, ... in the first column, under a header without pandas' and R's mark of
+// an index: fitting them as data is never what was meant, and dropping them unasked could drop
+// real data, so the user says which (decided on the first piece of text: the whole file for
+// read_table, the first block when streaming).
+constexpr std::size_t kIndexDecisionRows = 3;
+
+void DelimitedParser::decide_index_column() {
+  if (index_decided_ || rows_ < kIndexDecisionRows) return;
+  index_decided_ = true;
+  if (options_.index_column != IndexColumn::kAuto || drop_first_ || columns_ < 2 || !first_column_counts_rows_) {
+    return;
+  }
+  throw DataError(source_, first_data_line_, 1,
+                  "the first column is 0, 1, 2, ...: row numbers (an index, as pandas' to_csv writes one), not "
+                  "data? Drop it with --index-col (Python: index_col=True), or read it as data with "
+                  "--no-index-col (index_col=False)");
 }
 
 void DelimitedParser::parse_line(const Line& line) {
@@ -45,14 +64,28 @@ void DelimitedParser::parse_line(const Line& line) {
     seen_content_ = true;
     separator_ = detect_separator(line.content);
     separator_line_ = line.number;
-    if (is_header(line, separator_)) {
+    // pandas' to_csv and R's write.csv leave the index column's header cell empty; their
+    // column names may be numbers (pandas' default names 0, 1, ...), and the line is still a header.
+    const bool index_mark = options_.index_column == IndexColumn::kAuto && header_first_cell_empty(line);
+    if (index_mark || is_header(line, separator_)) {
       keep_header(line);
+      if (index_mark) {
+        drop_first_ = true;
+        warnings_.push_back(source_ + ": the first column holds row labels (its header cell is empty, as pandas and "
+                            "R write an index): dropped; --no-index-col reads it as data (Python: "
+                            "index_col=False)");
+      }
       return;
     }
   }
   if (have_header_ && rows_ == 0) choose_separator_after_header(line);
 
   const std::size_t fields = parse_row(line);
+  if (rows_ == 0) first_data_line_ = line.number;
+  if (!index_decided_ && !drop_first_ && fields > 0) {
+    first_column_counts_rows_ =
+        first_column_counts_rows_ && values_[values_.size() - fields] == static_cast<double>(rows_);
+  }
   if (rows_ == 0) {
     columns_ = fields;
     columns_line_ = line.number;
@@ -80,8 +113,12 @@ void DelimitedParser::keep_header(const Line& line) {
   header_.number = line.number;
 }
 
-void DelimitedParser::finish() const {
-  if (rows_ > 0) return;
+void DelimitedParser::finish() {
+  if (rows_ > 0) {
+    // A file shorter than the decision's rows has nothing to decide.
+    index_decided_ = true;
+    return;
+  }
   std::string problem = "no data rows";
   if (have_header_) {
     problem += " (only a header row, line " + std::to_string(header_.number) + ")";
@@ -164,6 +201,24 @@ bool DelimitedParser::is_header(const Line& line, Separator separator) const {
   return any_name;
 }
 
+// ",Fx,Fy" or R's "","x1": two or more cells, the first empty (quoted or not), the others not.
+bool DelimitedParser::header_first_cell_empty(const Line& line) const {
+  if (separator_ == Separator::kNone || separator_ == Separator::kSpaces) return false;  // runs of spaces: no empty cells
+  FieldSplitter splitter(line.content, separator_);
+  Field field;
+  std::size_t count = 0;
+  bool first_empty = false;
+  while (next_field(line, &splitter, &field)) {
+    if (count == 0) {
+      first_empty = field.text.empty();
+    } else if (field.text.empty()) {
+      return false;  // ",,," is a line of separators, not a header
+    }
+    ++count;
+  }
+  return count >= 2 && first_empty;
+}
+
 // The header's own separator may be unknown (a single name, perhaps with spaces, as in
 // "Force (N)") and the first data line may be a single number; otherwise the two must agree.
 void DelimitedParser::choose_separator_after_header(const Line& data) {
@@ -189,6 +244,7 @@ std::vector<std::string> DelimitedParser::header_names(std::size_t data_fields) 
     names.push_back(unquote(field));
     any_quoted |= field.quoted;
   }
+  if (drop_first_ && !names.empty()) names.erase(names.begin());
   // A single column of numbers under a header with spaces ("Force (N)"): the spaces belong to
   // the name, since there are no other columns for them to separate.
   const bool by_spaces = separator_ == Separator::kSpaces || separator_ == Separator::kNone;
@@ -202,7 +258,12 @@ std::size_t DelimitedParser::parse_row(const Line& line) {
   FieldSplitter splitter(line.content, separator_);
   Field field;
   std::size_t count = 0;
+  bool label = drop_first_;  // the row's label: skipped, whatever it says
   while (next_field(line, &splitter, &field)) {
+    if (label) {
+      label = false;
+      continue;
+    }
     if (field.quoted) {
       const std::string_view quoted = line.content.substr(field.offset, field.text.size() + 2);
       fail(line, field.offset, quote_token(quoted) + " is quoted text, not a number");
@@ -302,6 +363,7 @@ Table parse_delimited(std::string_view text, const std::string& source, const Re
   parser.finish();
   Table table;
   table.column_names = parser.column_names();
+  table.warnings = parser.warnings();
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   table.values = Eigen::Map<const RowMajor>(parser.values().data(), static_cast<Eigen::Index>(parser.rows()),
                                             static_cast<Eigen::Index>(parser.columns()));

@@ -15,7 +15,8 @@ namespace spdfit::io::detail {
 
 class DelimitedParser {
  public:
-  DelimitedParser(std::string source, ReadOptions options) : source_(std::move(source)), options_(options) {}
+  DelimitedParser(std::string source, ReadOptions options)
+      : source_(std::move(source)), options_(options), drop_first_(options.index_column == IndexColumn::kDrop) {}
 
   /// Parses the next piece of the text: it starts where the previous piece ended, at the start
   /// of a line, and ends with a line end or at the end of the input (no line, and no CR LF
@@ -24,11 +25,13 @@ class DelimitedParser {
   void feed(std::string_view text);
 
   /// Ends the input: throws DataError ("no data rows ...") when there were no data rows.
-  void finish() const;
+  void finish();
 
   std::size_t rows() const { return rows_; }        ///< data rows parsed so far
   std::size_t columns() const { return columns_; }  ///< 0 until the first data row
   const std::vector<std::string>& column_names() const { return column_names_; }
+  /// What the parser decided for the user to know (a first column of row labels dropped).
+  const std::vector<std::string>& warnings() const { return warnings_; }
   /// The values of the rows parsed since the caller last cleared them, row-major.
   std::vector<double>& values() { return values_; }
   const std::vector<double>& values() const { return values_; }
@@ -46,8 +49,10 @@ class DelimitedParser {
   bool next_line(Line* line);
   void parse_line(const Line& line);
   void keep_header(const Line& line);
+  void decide_index_column();
   bool next_field(const Line& line, FieldSplitter* splitter, Field* field) const;
   bool is_header(const Line& line, Separator separator) const;
+  bool header_first_cell_empty(const Line& line) const;
   void choose_separator_after_header(const Line& data);
   std::vector<std::string> header_names(std::size_t data_fields) const;
   std::size_t parse_row(const Line& line);
@@ -78,6 +83,14 @@ class DelimitedParser {
   std::size_t columns_line_ = 0;
   std::vector<std::string> column_names_;
   std::vector<double> values_;  // row-major
+
+  // The first column as row labels (ReadOptions::index_column): dropped when drop_first_; in
+  // kAuto mode, whether the first column has been 0, 1, 2, ... so far, until decided.
+  bool drop_first_ = false;
+  bool index_decided_ = false;
+  bool first_column_counts_rows_ = true;
+  std::size_t first_data_line_ = 0;
+  std::vector<std::string> warnings_;
 };
 
 }  // namespace spdfit::io::detail

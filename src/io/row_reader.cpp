@@ -30,6 +30,7 @@ struct RowReader::Source {
   virtual Index read(Index max_rows, Eigen::MatrixXd* rows) = 0;
   virtual Index columns() const = 0;
   virtual const std::vector<std::string>& column_names() const { return no_names; }
+  virtual const std::vector<std::string>& warnings() const { return no_names; }
 
   std::string path;
   std::uint64_t rows_read = 0;
@@ -136,6 +137,7 @@ class RowReader::TextSource final : public RowReader::Source {
   }
   Index columns() const override { return static_cast<Index>(parser_.columns()); }
   const std::vector<std::string>& column_names() const override { return parser_.column_names(); }
+  const std::vector<std::string>& warnings() const override { return parser_.warnings(); }
 
  private:
   // Rows parsed but not yet handed out.
@@ -223,6 +225,7 @@ Index RowReader::read(Index max_rows, Eigen::MatrixXd* rows) { return source_->r
 const std::string& RowReader::path() const { return source_->path; }
 Index RowReader::columns() const { return source_->columns(); }
 const std::vector<std::string>& RowReader::column_names() const { return source_->column_names(); }
+const std::vector<std::string>& RowReader::warnings() const { return source_->warnings(); }
 std::uint64_t RowReader::rows_read() const { return source_->rows_read; }
 
 }  // namespace spdfit::io

@@ -43,12 +43,16 @@ FitResult fit_stream_bootstrap(const std::string& a_path, const std::string& b_p
 
 DataPair read_pair(const std::string& a_path, const std::string& b_path, const io::ReadOptions& options) {
   DataPair data;
-  data.A = io::read_matrix(a_path, options);
+  io::Table a = io::read_table(a_path, options);
+  data.A = std::move(a.values);
+  data.warnings = std::move(a.warnings);
   if (data.A.rows() < data.A.cols()) {
     throw detail::fewer_samples_than_columns(a_path, static_cast<std::uint64_t>(data.A.rows()),
                                              static_cast<std::uint64_t>(data.A.cols()));
   }
-  data.B = io::read_matrix(b_path, options);
+  io::Table b = io::read_table(b_path, options);
+  data.B = std::move(b.values);
+  data.warnings.insert(data.warnings.end(), b.warnings.begin(), b.warnings.end());
   if (data.A.rows() != data.B.rows() || data.A.cols() != data.B.cols()) {
     throw io::DataError(b_path, 0, 0,
                         "B is " + shape(data.B) + " but A (" + a_path + ") is " + shape(data.A) +
@@ -58,13 +62,21 @@ DataPair read_pair(const std::string& a_path, const std::string& b_path, const i
 }
 
 FitResult fit_files(const std::string& a_path, const std::string& b_path, Method method, const FitOptions& options,
-                    const std::optional<StreamOptions>& stream) {
+                    const std::optional<StreamOptions>& stream, const io::ReadOptions& read) {
   std::string error;
   if (!options.is_valid(&error)) throw std::invalid_argument("fit_files: " + error);
   if (stream && options.bootstrap > 0) return fit_stream_bootstrap(a_path, b_path, method, options, *stream);
-  if (stream) return fit(reduce(stream_factor(a_path, b_path, *stream), options), method);
-  const DataPair data = read_pair(a_path, b_path);
-  return fit(data.A, data.B, method, options);
+  std::vector<std::string> read_warnings;
+  FitResult result;
+  if (stream) {
+    result = fit(reduce(stream_factor(a_path, b_path, *stream, &read_warnings), options), method);
+  } else {
+    DataPair data = read_pair(a_path, b_path, read);
+    read_warnings = std::move(data.warnings);
+    result = fit(data.A, data.B, method, options);
+  }
+  result.warnings.insert(result.warnings.begin(), read_warnings.begin(), read_warnings.end());
+  return result;
 }
 
 }  // namespace spdfit

@@ -37,6 +37,13 @@ class PairReader {
         block_rows_(options.block_rows),
         side_by_side_(side_by_side) {}
 
+  /// The readers' warnings (a first column of row labels dropped), A's then B's.
+  std::vector<std::string> warnings() const {
+    std::vector<std::string> out = a_.warnings();
+    out.insert(out.end(), b_.warnings().begin(), b_.warnings().end());
+    return out;
+  }
+
   // The next block of both files; false at the end of both. The two files are read side by
   // side on two threads when asked to (parsing text is the expensive part of streaming), except
   // the first block: A's is read alone, so that a hostile A (one row of millions of columns) is
@@ -101,7 +108,7 @@ class PairReader {
 }  // namespace
 
 TriangularFactor stream_factor(const std::string& a_path, const std::string& b_path,
-                               const StreamOptions& options) {
+                               const StreamOptions& options, std::vector<std::string>* warnings) {
   if (options.block_rows < 1) throw std::invalid_argument("block_rows must be at least 1");
   const unsigned threads = resolve_threads(options.threads);
   PairReader reader(a_path, b_path, options, threads > 1);
@@ -129,6 +136,7 @@ TriangularFactor stream_factor(const std::string& a_path, const std::string& b_p
     if (in_flight.size() >= threads) merge_oldest();
   }
   while (!in_flight.empty()) merge_oldest();
+  if (warnings) *warnings = reader.warnings();
 
   // The last next() read a short block of A (0 rows when m is a multiple of block_rows), so
   // m >= n was checked there, and m >= 1 (an empty file is an error): there is a factor.

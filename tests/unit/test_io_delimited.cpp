@@ -143,10 +143,46 @@ TEST(IoDelimited, SingleNameHeaderOverSeparatedData) {
 }
 
 TEST(IoDelimited, HeaderWithEmptyIndexName) {
-  // pandas' DataFrame.to_csv() writes the index with an empty name.
+  // pandas' DataFrame.to_csv() writes the index with an empty name: the first column is row
+  // labels, dropped with a warning (issue 18: it was read as data, a 3-column A for 2 columns).
   const Table table = parse_delimited(",a,b\n0,1.5,2.5\n1,3.5,4.5\n", "A.csv");
-  EXPECT_EQ(table.column_names, (std::vector<std::string>{"", "a", "b"}));
-  EXPECT_EQ(table.values, (MatrixXd(2, 3) << 0, 1.5, 2.5, 1, 3.5, 4.5).finished());
+  EXPECT_EQ(table.column_names, (std::vector<std::string>{"a", "b"}));
+  EXPECT_EQ(table.values, (MatrixXd(2, 2) << 1.5, 2.5, 3.5, 4.5).finished());
+  ASSERT_EQ(table.warnings.size(), 1u);
+  EXPECT_NE(table.warnings[0].find("A.csv: the first column holds row labels"), std::string::npos);
+}
+
+TEST(IoDelimited, IndexColumnsOfPandasAndR) {
+  // pandas' default column names are numbers; df.cov().to_csv() labels rows with text; R's
+  // write.csv quotes the labels and the header, whose first cell is "".
+  const Table numbered = parse_delimited(",0,1\n0,1.5,2.5\n1,3.5,4.5\n", "A.csv");
+  EXPECT_EQ(numbered.column_names, (std::vector<std::string>{"0", "1"}));
+  EXPECT_EQ(numbered.values, (MatrixXd(2, 2) << 1.5, 2.5, 3.5, 4.5).finished());
+  const Table cov = parse_delimited(",x1,x2\nx1,2.0,0.5\nx2,0.5,1.0\n", "C.csv");
+  EXPECT_EQ(cov.values, (MatrixXd(2, 2) << 2.0, 0.5, 0.5, 1.0).finished());
+  const Table r = parse_delimited("\"\",\"x1\",\"x2\"\n\"1\",2.0,0.5\n\"2\",0.5,1.0\n", "C.csv");
+  EXPECT_EQ(r.column_names, (std::vector<std::string>{"x1", "x2"}));
+  EXPECT_EQ(r.values, cov.values);
+  // Said explicitly: labels dropped without a header, or the first column kept as data.
+  ReadOptions drop, keep;
+  drop.index_column = spdfit::io::IndexColumn::kDrop;
+  keep.index_column = spdfit::io::IndexColumn::kKeep;
+  EXPECT_EQ(parse_delimited("a,1,2\nb,3,4\n", "A.csv", drop).values, (MatrixXd(2, 2) << 1, 2, 3, 4).finished());
+  EXPECT_EQ(parse_delimited("0,1\n1,2\n2,3\n", "A.csv", keep).values.cols(), 2);
+  EXPECT_TRUE(parse_delimited("0,1\n1,2\n2,3\n", "A.csv", keep).warnings.empty());
+}
+
+TEST(IoDelimited, RowNumbersInTheFirstColumnAreRefused) {
+  // Under a header without the empty first cell (index_label='i'), or no header at all.
+  ExpectError("i,a,b\n0,1.5,2.5\n1,3.5,4.5\n2,5.5,6.5\n", 2, 1,
+              "the first column is 0, 1, 2, ...: row numbers (an index, as pandas' to_csv writes one), not "
+              "data? Drop it with --index-col (Python: index_col=True), or read it as data with "
+              "--no-index-col (index_col=False)");
+  EXPECT_THROW(parse_delimited("0,7\n1,8\n2,9\n", "A.csv"), DataError);
+  // Fewer than three rows, one column, or any other first column: data as before.
+  EXPECT_EQ(parse_delimited("0,7\n1,8\n", "A.csv").values.cols(), 2);
+  EXPECT_EQ(parse_delimited("0\n1\n2\n", "A.csv").values.rows(), 3);
+  EXPECT_EQ(parse_delimited("1,7\n2,8\n3,9\n", "A.csv").values.cols(), 2);
 }
 
 TEST(IoDelimited, NumberSpellings) {
@@ -198,7 +234,8 @@ TEST(IoDelimited, LongLine) {
 
 TEST(IoDelimited, ManyRows) {
   std::string text;
-  for (int i = 0; i < 50000; ++i) text += std::to_string(i) + "\t" + std::to_string(-i) + "\n";
+  // (The first column starts at 1: 0, 1, 2, ... would be row numbers, which are refused.)
+  for (int i = 0; i < 50000; ++i) text += std::to_string(i + 1) + "\t" + std::to_string(-i) + "\n";
   const MatrixXd X = Parse(text);
   ASSERT_EQ(X.rows(), 50000);
   EXPECT_EQ(X(49999, 1), -49999);
