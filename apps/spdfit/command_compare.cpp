@@ -92,8 +92,7 @@ Command add_compare_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("B", options->b_path, "File of B (m x n): delimited text or .npy")->required();
 
   auto run = [options, &global]() {
-    const DataPair data = read_pair(options->a_path, options->b_path, global.read);
-    for (const std::string& w : data.warnings) warn(global, w);
+    const DataPair data = load_pair(options->a_path, options->b_path, global);
     std::optional<Eigen::MatrixXd> truth;
     if (!options->truth_path.empty()) {
       truth = load_matrix(options->truth_path, global);

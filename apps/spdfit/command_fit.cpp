@@ -104,7 +104,6 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
     if (options->stream) {
       stream = options->stream_options;
       stream->threads = fit_options.threads;
-      stream->read = global.read;
     }
     const FitResult result =
         fit_files(options->a_path, options->b_path, method, fit_options, stream, global.read);

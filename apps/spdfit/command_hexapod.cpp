@@ -341,8 +341,7 @@ Command add_identify(CLI::App& parent, const GlobalOptions& global) {
                         "Threads for --bootstrap (default: one per core)");
 
   auto run = [cli, &global]() {
-    const DataPair data = read_pair(cli->a_path, cli->b_path, global.read);
-    for (const std::string& w : data.warnings) warn(global, w);
+    const DataPair data = load_pair(cli->a_path, cli->b_path, global);
     const Eigen::Index n = data.A.cols();
     hexapod::IdentifyOptions options;
     apply_bootstrap_options(cli->bootstrap, options.fit);

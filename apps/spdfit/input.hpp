@@ -1,5 +1,5 @@
-// Loading the command line's data files, with errors that name the files (pairs A, B: read_pair
-// in spdfit/fit_files.hpp).
+// Loading the command line's data files, with errors that name the files, read as the global
+// options say and with the readers' warnings printed.
 #pragma once
 
 #include <string>
@@ -7,11 +7,16 @@
 #include <Eigen/Core>
 
 #include "cli.hpp"
+#include "spdfit/fit_files.hpp"
 
 namespace spdfit::cli {
 
 /// One matrix (see io::read_table), read as the global options say; the reader's warnings (a
 /// first column of row labels dropped) are printed.
 Eigen::MatrixXd load_matrix(const std::string& path, const GlobalOptions& global);
+
+/// A and B (see read_pair in spdfit/fit_files.hpp), read as the global options say; the readers'
+/// warnings are printed.
+DataPair load_pair(const std::string& a_path, const std::string& b_path, const GlobalOptions& global);
 
 }  // namespace spdfit::cli

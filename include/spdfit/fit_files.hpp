@@ -32,7 +32,7 @@ DataPair read_pair(const std::string& a_path, const std::string& b_path, const i
 /// O(threads * block_rows * n + n^2) for any m); then fit(reduce(factor, options), method). The two
 /// paths give the same estimate to rounding. Throws io::DataError on bad data (see read_pair and
 /// stream_factor) and std::invalid_argument on invalid options; a numerical failure is the
-/// result's status. `read` says how the files are read when they are read whole (streaming uses
+/// result's status. `read` says how the files are read, on either path (it takes the place of
 /// stream->read); the readers' warnings come first in the result's warnings. Cost O(m n^2) plus
 /// the method's O(n^3).
 FitResult fit_files(const std::string& a_path, const std::string& b_path, Method method,

@@ -113,12 +113,8 @@ void DelimitedParser::keep_header(const Line& line) {
   header_.number = line.number;
 }
 
-void DelimitedParser::finish() {
-  if (rows_ > 0) {
-    // A file shorter than the decision's rows has nothing to decide.
-    index_decided_ = true;
-    return;
-  }
+void DelimitedParser::finish() const {
+  if (rows_ > 0) return;
   std::string problem = "no data rows";
   if (have_header_) {
     problem += " (only a header row, line " + std::to_string(header_.number) + ")";

@@ -25,7 +25,7 @@ class DelimitedParser {
   void feed(std::string_view text);
 
   /// Ends the input: throws DataError ("no data rows ...") when there were no data rows.
-  void finish();
+  void finish() const;
 
   std::size_t rows() const { return rows_; }        ///< data rows parsed so far
   std::size_t columns() const { return columns_; }  ///< 0 until the first data row

@@ -133,14 +133,11 @@ LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A_in, const Eigen::Re
 
   // The projective view, one right-hand side at a time: [A | -b_j] [x; w] = 0.
   r.consistent = true;
-  // The rank of [A | -b_j] is decided as that of A, on its columns scaled to unit norm.
-  MatrixXd As = A;
-  detail::scale_columns(As, ls.exponents, -1);
   for (Index j = 0; j < r.p; ++j) {
     ColumnClassification c;
     const double bnorm = B.col(j).stableNorm();
     MatrixXd M(r.m, r.n + 1);
-    M.leftCols(r.n) = As;
+    M.leftCols(r.n) = ls.scaled_A;  // decided as rank A is, on the unit-norm columns
     // Scaling the homogeneous coordinate w changes nothing in the solution set, and putting
     // b_j on the scale of A keeps the rank decision from depending on the units of b.
     const double scaled_max = ls.scaled.s(0);

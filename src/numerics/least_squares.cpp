@@ -33,6 +33,15 @@ inline void two_product(double a, double b, double& p, double& e) {
   e = std::fma(a, b, -p);
 }
 
+// One step of Dot2: the running sum s with its compensation t becomes s - a x, exactly carried.
+inline void subtract_product(double a, double x, double& s, double& t) {
+  double p, ep, q, eq;
+  two_product(a, x, p, ep);
+  two_sum(s, -p, q, eq);
+  s = q;
+  t += eq - ep;
+}
+
 // b - c - A x for one column, as if in twice the working precision (Dot2): the running sums s
 // and their compensations t are kept per row, so that A is read column by column.
 void residual_column(const Eigen::Ref<const MatrixXd>& A, const double* x, const double* b, const double* c,
@@ -51,13 +60,7 @@ void residual_column(const Eigen::Ref<const MatrixXd>& A, const double* x, const
     const double xk = x[k];
     if (xk == 0.0) continue;
     const double* a = A.col(k).data();
-    for (Index i = 0; i < m; ++i) {
-      double p, ep, q, eq;
-      two_product(a[i], xk, p, ep);
-      two_sum(s(i), -p, q, eq);
-      s(i) = q;
-      t(i) += eq - ep;
-    }
+    for (Index i = 0; i < m; ++i) subtract_product(a[i], xk, s(i), t(i));
   }
   for (Index i = 0; i < m; ++i) out[i] = s(i) + t(i);
 }
@@ -68,13 +71,7 @@ VectorXd minus_transpose_times(const Eigen::Ref<const MatrixXd>& A, const Vector
   for (Index j = 0; j < A.cols(); ++j) {
     const double* a = A.col(j).data();
     double s = 0.0, t = 0.0;
-    for (Index i = 0; i < A.rows(); ++i) {
-      double p, ep, q, eq;
-      two_product(a[i], r(i), p, ep);
-      two_sum(s, -p, q, eq);
-      s = q;
-      t += eq - ep;
-    }
+    for (Index i = 0; i < A.rows(); ++i) subtract_product(a[i], r(i), s, t);
     g(j) = s + t;
   }
   return g;
@@ -98,8 +95,8 @@ int refine_column(const Eigen::Ref<const MatrixXd>& A, const FullSvd& dec, const
     const VectorXd d = dec.U.transpose() * f;
     const VectorXd dy = dec.V * (d - h).cwiseQuotient(dec.s);
     const double size = dy.norm();
-    if (!(size < kContraction * previous) && steps > 0) break;  // no longer converging
-    if (!std::isfinite(size)) break;
+    // No longer converging (the first step only needs to be finite: previous is +inf).
+    if (!(size < kContraction * previous)) break;
     y += dy;
     r += dec.U * h + (f - dec.U * d);
     previous = size;
@@ -119,13 +116,6 @@ VectorXi column_exponents(const Eigen::Ref<const MatrixXd>& A) {
   return e;
 }
 
-void scale_columns(MatrixXd& M, const VectorXi& e, int sign) {
-  for (Index j = 0; j < M.cols(); ++j) {
-    auto column = M.col(j);
-    multiply_by_power_of_two(column, sign * e(j));
-  }
-}
-
 void scale_rows(MatrixXd& M, const VectorXi& e, int sign) {
   for (Index i = 0; i < M.rows(); ++i) {
     auto row = M.row(i);
@@ -135,10 +125,9 @@ void scale_rows(MatrixXd& M, const VectorXi& e, int sign) {
 
 MatrixXd accurate_residual(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& X,
                            const Eigen::Ref<const MatrixXd>& B) {
+  // The columns of a Ref are contiguous (inner stride 1).
   MatrixXd R(B.rows(), B.cols());
-  const MatrixXd Xc = X;  // contiguous columns
-  const MatrixXd Bc = B;
-  for (Index j = 0; j < B.cols(); ++j) residual_column(A, Xc.col(j).data(), Bc.col(j).data(), nullptr, R.col(j).data());
+  for (Index j = 0; j < B.cols(); ++j) residual_column(A, X.col(j).data(), B.col(j).data(), nullptr, R.col(j).data());
   return R;
 }
 
@@ -147,17 +136,17 @@ LeastSquaresSolution equilibrated_least_squares(const Eigen::Ref<const MatrixXd>
   LeastSquaresSolution out;
   const Index n = A.cols();
   out.exponents = column_exponents(A);
-  MatrixXd As = A;
-  scale_columns(As, out.exponents, -1);
-  out.scaled = svd_full_v(As);
+  out.scaled_A = A;
+  scale_columns(out.scaled_A, out.exponents, -1);
+  out.scaled = svd_full_v(out.scaled_A);
   out.rank = numerical_rank(out.scaled.s, cutoff);
   if (out.rank == n) {
     // Full column rank (so m >= n): the unique solution, in the scaled unknowns y = D^-1 x.
     out.unscaled.s = singular_values(A);
     out.X = out.scaled.V * (out.scaled.s.cwiseInverse().asDiagonal() * (out.scaled.U.transpose() * B));
-    const MatrixXd Bc = B;
     for (Index j = 0; j < B.cols(); ++j) {
-      out.refinement_steps = std::max(out.refinement_steps, refine_column(As, out.scaled, Bc.col(j).data(), out.X.col(j).data()));
+      out.refinement_steps =
+          std::max(out.refinement_steps, refine_column(out.scaled_A, out.scaled, B.col(j).data(), out.X.col(j).data()));
     }
     scale_rows(out.X, out.exponents, -1);
     return out;

@@ -16,8 +16,15 @@ namespace spdfit::detail {
 /// its exponent by k and leaves A diag(2^-e) bit for bit the same (bar underflow). Cost O(m n).
 Eigen::VectorXi column_exponents(const Eigen::Ref<const MatrixXd>& A);
 
-/// Column j of M times 2^(sign * e_j), exactly (bar overflow and underflow).
-void scale_columns(MatrixXd& M, const Eigen::VectorXi& e, int sign);
+/// Column j of M times 2^(sign * e_j), exactly (bar overflow and underflow). Any matrix type:
+/// bounded sizes stay on the stack.
+template <typename Derived, typename Exponents>
+void scale_columns(Eigen::MatrixBase<Derived>& M, const Exponents& e, int sign) {
+  for (Index j = 0; j < M.cols(); ++j) {
+    auto column = M.col(j);
+    multiply_by_power_of_two(column, sign * e(j));
+  }
+}
 /// Row i of M times 2^(sign * e_i), exactly (x = D y: rows of a solution).
 void scale_rows(MatrixXd& M, const Eigen::VectorXi& e, int sign);
 
@@ -50,10 +57,7 @@ Eigen::Index equilibrated_rank(const Matrix& A, const Vector& s, double cutoff, 
     return n;
   }
   Matrix As = A;
-  for (Index j = 0; j < n; ++j) {
-    auto column = As.col(j);
-    multiply_by_power_of_two(column, -e(j));
-  }
+  scale_columns(As, e, -1);
   BasicSvd<Matrix> dec;
   svd_into(As, dec, false, false);
   if (scaled_condition) *scaled_condition = condition_number(dec.s);
@@ -81,6 +85,7 @@ MatrixXd accurate_residual(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref
 ///    from the SVD of A itself (notes 002, eq. 3.21) with the rank decided above.
 struct LeastSquaresSolution {
   Eigen::VectorXi exponents;  ///< the column scaling D = diag(2^-exponents)
+  MatrixXd scaled_A;          ///< A D, exactly
   FullSvd scaled;             ///< SVD of A D (full V)
   Eigen::Index rank = 0;      ///< decided on scaled.s
   FullSvd unscaled;           ///< SVD of A: full when rank < n, else only its singular values

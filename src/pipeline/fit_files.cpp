@@ -65,11 +65,13 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
                     const std::optional<StreamOptions>& stream, const io::ReadOptions& read) {
   std::string error;
   if (!options.is_valid(&error)) throw std::invalid_argument("fit_files: " + error);
-  if (stream && options.bootstrap > 0) return fit_stream_bootstrap(a_path, b_path, method, options, *stream);
+  std::optional<StreamOptions> streamed = stream;
+  if (streamed) streamed->read = read;  // one way of reading, whichever path
+  if (streamed && options.bootstrap > 0) return fit_stream_bootstrap(a_path, b_path, method, options, *streamed);
   std::vector<std::string> read_warnings;
   FitResult result;
-  if (stream) {
-    result = fit(reduce(stream_factor(a_path, b_path, *stream, &read_warnings), options), method);
+  if (streamed) {
+    result = fit(reduce(stream_factor(a_path, b_path, *streamed, &read_warnings), options), method);
   } else {
     DataPair data = read_pair(a_path, b_path, read);
     read_warnings = std::move(data.warnings);
