@@ -2,6 +2,8 @@
 empty drops it with a warning; row numbers 0, 1, 2, ... under another header are refused with a
 message naming --index-col; --index-col and --no-index-col say it explicitly (also after the
 command, and with --stream); Python's read_matrix(index_col=...) does the same."""
+import json
+
 import numpy as np
 import pytest
 
@@ -62,6 +64,7 @@ def test_no_index_col_keeps_the_first_column_as_data(spdfit, pandas_files):
     # Asked for, the index is data: a 3-column A against 3 columns of B is what the user gets.
     result = spdfit("solve", "--no-index-col", "--json", pandas_files["A_labelled"], pandas_files["B_plain"])
     assert result.returncode == 0, result.stderr
+    assert json.loads(result.stdout)["n"] == 3 and "row labels" not in result.stderr
     both = spdfit("--index-col", "--no-index-col", "fit", pandas_files["A"], pandas_files["B"])
     assert both.returncode == 2
 
