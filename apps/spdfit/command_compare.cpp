@@ -36,11 +36,13 @@ std::string report(const std::vector<FitResult>& results, const std::optional<Ei
   std::ostringstream out;
   const Diagnostics& data = results.front().diagnostics;
   char line[256];
-  std::snprintf(line, sizeof line, "data: m = %ld samples, n = %ld; rank(A) = %ld, cond(A) = %.3g; "
+  const std::string d_text = data.d == data.n ? "" : ", d = " + std::to_string(data.d);
+  std::snprintf(line, sizeof line, "data: m = %ld samples, n = %ld%s; rank(A) = %ld, cond(A) = %.3g; "
                 "rank(B) = %ld, cond(B) = %.3g\n\n",
-                static_cast<long>(data.m), static_cast<long>(data.n), static_cast<long>(data.rank_a),
+                static_cast<long>(data.m), static_cast<long>(data.n), d_text.c_str(), static_cast<long>(data.rank_a),
                 data.cond_a, static_cast<long>(data.rank_b), data.cond_b);
   out << line;
+  if (data.d != data.n) out << "(X is " << data.n << " x " << data.d << ": only ls and tls fit a non-square X)\n\n";
 
   std::vector<std::string> titles;
   std::vector<Eigen::MatrixXd> estimates;
@@ -89,16 +91,16 @@ Command add_compare_command(CLI::App& app, const GlobalOptions& global) {
                   "sigma_B / sigma_A for the total least-squares methods and the noise estimate (default 1)")
       ->check(positive());
   sub->add_option("A", options->a_path, "File of A (m x n): delimited text or .npy")->required();
-  sub->add_option("B", options->b_path, "File of B (m x n): delimited text or .npy")->required();
+  sub->add_option("B", options->b_path, "File of B (m x n; m x d for ls and tls, X n x d): delimited text or .npy")->required();
 
   auto run = [options, &global]() {
     const DataPair data = load_pair(options->a_path, options->b_path, global);
     std::optional<Eigen::MatrixXd> truth;
     if (!options->truth_path.empty()) {
       truth = load_matrix(options->truth_path, global);
-      if (truth->rows() != data.A.cols() || truth->cols() != data.A.cols()) {
+      if (truth->rows() != data.A.cols() || truth->cols() != data.B.cols()) {
         throw io::DataError(options->truth_path, 0, 0, "the true X must be " + std::to_string(data.A.cols()) +
-                                                           "x" + std::to_string(data.A.cols()));
+                                                           "x" + std::to_string(data.B.cols()));
       }
     }
     FitOptions fit_options;
@@ -114,6 +116,7 @@ Command add_compare_command(CLI::App& app, const GlobalOptions& global) {
     nlohmann::json out;
     out["m"] = data.A.rows();
     out["n"] = data.A.cols();
+    out["d"] = data.B.cols();
     out["results"] = nlohmann::json::array();
     for (const FitResult& r : results) {
       nlohmann::json j = result_json(r);

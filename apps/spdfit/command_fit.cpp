@@ -80,7 +80,7 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
       ->check(CLI::Range(Eigen::Index{1}, Eigen::Index{1} << 24))
       ->needs(stream);
   sub->add_option("A", options->a_path, "File of A (m x n): delimited text or .npy")->required();
-  sub->add_option("B", options->b_path, "File of B (m x n): delimited text or .npy")->required();
+  sub->add_option("B", options->b_path, "File of B (m x n; m x d for ls and tls, X n x d): delimited text or .npy")->required();
 
   auto run = [options, &global]() {
     const Method method = *parse_method(options->method);

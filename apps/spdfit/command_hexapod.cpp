@@ -343,6 +343,12 @@ Command add_identify(CLI::App& parent, const GlobalOptions& global) {
   auto run = [cli, &global]() {
     const DataPair data = load_pair(cli->a_path, cli->b_path, global);
     const Eigen::Index n = data.A.cols();
+    if (data.B.cols() != n) {
+      throw io::DataError(cli->b_path, 0, 0,
+                          "B has " + std::to_string(data.B.cols()) + " columns but A (" + cli->a_path + ") has " +
+                              std::to_string(n) + ": the mass-inertia matrix is square, so forces and "
+                                                   "accelerations need the same struts");
+    }
     hexapod::IdentifyOptions options;
     apply_bootstrap_options(cli->bootstrap, options.fit);
     if (!cli->truth.empty()) {

@@ -97,6 +97,7 @@ json result_json(const FitResult& result) {
   out["status"] = to_string(result.status);
   out["m"] = result.diagnostics.m;
   out["n"] = result.diagnostics.n;
+  out["d"] = result.diagnostics.d;
   out["X"] = matrix_json(result.X);
   out["diagnostics"] = diagnostics_json(result.diagnostics);
   out["warnings"] = result.warnings;
@@ -171,7 +172,7 @@ std::string spectrum_text(const SpectrumUncertainty& s, const std::string& inden
 std::string fit_report(const FitResult& result) {
   std::ostringstream out;
   const Diagnostics& d = result.diagnostics;
-  out << to_string(result.method) << " estimate of X (" << d.n << " x " << d.n << ") from m = " << d.m << " rows";
+  out << to_string(result.method) << " estimate of X (" << d.n << " x " << d.d << ") from m = " << d.m << " rows";
   if (d.chosen_method) out << " (chosen by auto: " << d.reason->code << ")";
   out << "\n";
   const auto& b = result.bootstrap;

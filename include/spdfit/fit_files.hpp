@@ -22,16 +22,18 @@ struct DataPair {
 };
 
 /// Reads A and B from `a_path` and `b_path` (the formats of io::read_table) and checks that they
-/// have the same shape m x n with m >= n. Throws io::DataError naming the file on bad data, when
-/// A has fewer rows than columns (checked before B is read, so that a hostile A with millions of
-/// columns costs one file, not two) or when the shapes differ. Memory O(m n).
+/// have the same number of rows m, with m >= n, A's columns (B's, d, may differ: the n x d X of ls
+/// and tls). Throws io::DataError naming the file on bad data, when A has fewer rows than columns
+/// (checked before B is read, so that a hostile A with millions of columns costs one file, not
+/// two) or when the row counts differ. Memory O(m (n + d)).
 DataPair read_pair(const std::string& a_path, const std::string& b_path, const io::ReadOptions& options = {});
 
 /// Runs `method` on A X ~= B with A and B in files: read whole with read_pair when `stream` is
 /// empty, else a block of rows at a time with stream_factor (memory
 /// O(threads * block_rows * n + n^2) for any m); then fit(reduce(factor, options), method). The two
 /// paths give the same estimate to rounding. Throws io::DataError on bad data (see read_pair and
-/// stream_factor) and std::invalid_argument on invalid options; a numerical failure is the
+/// stream_factor), naming B's file when B's d != n columns meet a method that needs a square X
+/// (non_square_refusal), and std::invalid_argument on invalid options; a numerical failure is the
 /// result's status. `read` says how the files are read, on either path (it takes the place of
 /// stream->read); the readers' warnings come first in the result's warnings. Cost O(m n^2) plus
 /// the method's O(n^3).

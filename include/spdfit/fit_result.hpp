@@ -56,7 +56,8 @@ struct AutoReason {
 /// Optional entries are present only where they are defined for the method and estimate.
 struct Diagnostics {
   Eigen::Index m = 0;                                    ///< rows (samples)
-  Eigen::Index n = 0;                                    ///< columns; X is n x n
+  Eigen::Index n = 0;                                    ///< A's columns; X is n x d
+  Eigen::Index d = 0;                                    ///< B's columns (d = n but for ls and tls)
   /// Numerical ranks (FitOptions::rank_tolerance), decided on A and B with their columns scaled
   /// to unit norm (by powers of two), so that they do not depend on each column's units.
   Eigen::Index rank_a = 0, rank_b = 0;
@@ -91,9 +92,9 @@ struct Diagnostics {
 
   /// The noise estimate: the standard deviation sigma of independent noise in every entry of A
   /// (noise_ratio * sigma in B, FitOptions::noise_ratio) under the TLS model A_true X = B_true,
-  /// from sigma^2 = sum_{i>n} s_i^2 / (n (m - n)), s_i the singular values of [A, B / noise_ratio]
+  /// from sigma^2 = sum_{i>n} s_i^2 / (d (m - n)), s_i the singular values of [A, B / noise_ratio]
   /// (unbiased for sigma^2). Present whenever m > n, for every method; its relative standard
-  /// error is about sqrt(2 / (n (m - n))), and a warning says so when m - n < n.
+  /// error is about sqrt(2 / (d (m - n))), and a warning says so when m - n < n.
   std::optional<double> noise_sigma;
 
   /// The iterative methods (spd-tls, psd-ls): iterations taken, the final stopping quantity

@@ -15,10 +15,11 @@ namespace spdfit {
 /// R11 X = R12 from the Householder QR of [A B]. When A is rank-deficient (rank r < n under
 /// the options' cut-off), X is the minimum-norm solution V diag(1/sigma_i) U^T R12 from the SVD
 /// of R11 with the small singular values edited to zero (notes 002, eq. 3.21), and a warning
-/// says so. The estimate is in general neither symmetric nor definite.
+/// says so. The estimate is in general neither symmetric nor definite. B may have d != n columns
+/// (several right-hand sides, as numpy.linalg.lstsq): X is then n x d.
 ///
-/// Preconditions: A, B m x n with m >= n >= 1 and finite entries (else std::invalid_argument).
-/// Cost: O(m n^2) for the factor, O(n^3) after it.
+/// Preconditions: A m x n, B m x d with m >= n >= 1, d >= 1, and finite entries (else
+/// std::invalid_argument). Cost: O(m (n + d)^2) for the factor, O((n + d)^3) after it.
 FitResult least_squares(const Reduction& data);
 FitResult least_squares(const Eigen::Ref<const Eigen::MatrixXd>& A,
                         const Eigen::Ref<const Eigen::MatrixXd>& B, const FitOptions& options = {});

@@ -88,6 +88,30 @@ constexpr bool uses_max_iterations(Method method) {
 /// Whether the method takes the eigenvalue floor FitOptions::min_eig: psd-ls.
 constexpr bool uses_min_eig(Method method) { return method == Method::PsdLeastSquares; }
 
+/// Whether the method fits a non-square X (n x d, from B with d != n columns): ls and tls. Every
+/// other method estimates a symmetric X and needs d = n.
+constexpr bool fits_non_square(Method method) {
+  return method == Method::LeastSquares || method == Method::TotalLeastSquares;
+}
+
+/// The message for `method` given A with n columns and B with d != n (a non-square X it does not
+/// fit); it names ls and tls. Nothing when the method fits it.
+inline std::optional<std::string> non_square_refusal(Method method, long long n, long long d) {
+  if (d == n || fits_non_square(method)) return std::nullopt;
+  return std::string(to_string(method)) + " estimates a symmetric X, so B needs as many columns as A, but A has " +
+         std::to_string(n) + " and B " + std::to_string(d) + ": for the " + std::to_string(n) + "x" +
+         std::to_string(d) + " X of A X ~= B use ls or tls";
+}
+
+/// The message for `method` given m rows of A (n columns) and B (d columns) that are too few for
+/// it beyond the m >= n every method needs: tls with a non-square X needs m >= n + d (it corrects
+/// [A B] to rank n, which needs the matrix to be tall). Nothing when there are enough.
+inline std::optional<std::string> too_few_rows_refusal(Method method, long long m, long long n, long long d) {
+  if (method != Method::TotalLeastSquares || d == n || m >= n + d) return std::nullopt;
+  return "tls: the data has " + std::to_string(m) + " rows but [A B] has n + d = " + std::to_string(n + d) +
+         " columns: a non-square X needs at least as many rows as that";
+}
+
 /// The options of FitOptions that apply to some methods only.
 enum class MethodOption {
   NoiseRatio,     ///< noise_ratio: uses_noise_ratio

@@ -33,7 +33,8 @@ class Reduction {
   Reduction() = default;
 
   Eigen::Index m() const;       ///< rows (samples) accumulated
-  Eigen::Index n() const;       ///< columns; X is n x n
+  Eigen::Index n() const;       ///< A's columns; X is n x d
+  Eigen::Index d() const;       ///< B's columns (d = n: X square, as every method but ls and tls needs)
   Eigen::Index rank_a() const;  ///< numerical rank of A under the options' cut-off
   Eigen::Index rank_b() const;  ///< numerical rank of B
   const FitOptions& options() const;

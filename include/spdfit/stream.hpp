@@ -23,15 +23,15 @@ struct StreamOptions {
 };
 
 /// The triangular factor of [A B] for A and B in the files `a_path` and `b_path` (the formats
-/// of io::read_table; m x n each, m >= n), read a block of rows at a time: each block's factor
+/// of io::read_table; A m x n, B m x d, m >= n), read a block of rows at a time: each block's factor
 /// is computed on its own, and the factors are merged in the order of the blocks (the TSQR
 /// merge of TriangularFactor), so the numerically careful path of the in-memory estimators is
-/// kept (no Gram matrices) and memory stays O(threads * block_rows * n + n^2) for any m.
+/// kept (no Gram matrices) and memory stays O(threads * block_rows * (n + d) + (n + d)^2) for any m.
 /// Then `fit(reduce(factor), method)` gives the estimate, equal to the in-memory one to
 /// rounding.
 ///
 /// Throws io::DataError (naming the file, line and column) on bad data, when A and B differ in
-/// their numbers of rows or columns, or when m < n. Throws std::invalid_argument when
+/// their numbers of rows, or when m < n. Throws std::invalid_argument when
 /// block_rows < 1. Cost O(m n^2) flops, spread over the threads. When `warnings` is given it
 /// receives the readers' warnings (io::Table::warnings: a first column of row labels dropped).
 TriangularFactor stream_factor(const std::string& a_path, const std::string& b_path,

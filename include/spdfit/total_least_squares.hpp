@@ -9,9 +9,10 @@
 namespace spdfit {
 
 /// The multidimensional total least-squares estimate X = -V12 V22^-1 (thesis 000, eq. 4.37),
-/// where [V12; V22] are the right singular vectors of [A B] belonging to its n smallest
-/// singular values. Computed from the SVD of the 2n x 2n triangular factor R of [A B], which
-/// has the same singular values and right singular vectors.
+/// where [V12; V22] are the right singular vectors of [A B] belonging to its d smallest
+/// singular values (V12 n x d, V22 d x d; B has d columns, d = n for a square X). Computed from
+/// the SVD of the (n + d) x (n + d) triangular factor R of [A B], which has the same singular
+/// values and right singular vectors.
 ///
 /// Failure (Status::NumericalFailure): V22 numerically singular (no TLS solution exists).
 /// Warning: sigma_n and sigma_{n+1} of [A B] equal to within the rank cut-off, so that the
@@ -19,13 +20,15 @@ namespace spdfit {
 /// TLS is not invariant under scaling A and B by different factors: scale them to comparable
 /// noise levels first.
 ///
-/// Preconditions: as least_squares. Cost: O(m n^2) for the factor, O(n^3) after it.
+/// Preconditions: as least_squares; a non-square X (d != n) also needs m >= n + d rows (else
+/// std::invalid_argument). Cost: O(m (n + d)^2) for the factor, O((n + d)^3) after it.
 FitResult total_least_squares(const Reduction& data);
 FitResult total_least_squares(const Eigen::Ref<const Eigen::MatrixXd>& A,
                               const Eigen::Ref<const Eigen::MatrixXd>& B, const FitOptions& options = {});
 
 /// The symmetric part (X_TLS + X_TLS^T) / 2 of the TLS estimate (thesis eq. 4.38): the nearest
-/// symmetric matrix to it in the Frobenius norm. Fails where total_least_squares fails.
+/// symmetric matrix to it in the Frobenius norm. Fails where total_least_squares fails; needs
+/// d = n (std::invalid_argument otherwise), as the repair below does.
 FitResult total_least_squares_symmetric(const Reduction& data);
 FitResult total_least_squares_symmetric(const Eigen::Ref<const Eigen::MatrixXd>& A,
                                         const Eigen::Ref<const Eigen::MatrixXd>& B,

@@ -11,9 +11,10 @@
 
 namespace spdfit {
 
-/// R, the 2n x 2n upper triangular factor of the Householder QR of [A B] (m x 2n),
+/// R, the (n + d) x (n + d) upper triangular factor of the Householder QR of [A B] (A m x n,
+/// B m x d; d = n for the square X of every method, d != n for the n x d X of ls and tls),
 ///
-///     [A B] = Q R,   R = [R11 R12; 0 R22],
+///     [A B] = Q R,   R = [R11 R12; 0 R22],   R11 n x n, R12 n x d, R22 d x d,
 ///
 /// accumulated from the data in one piece or chunk by chunk. R carries every estimator's
 /// input: A^T A = R11^T R11, A^T B = R11^T R12, ||A X - B||_F^2 = ||R11 X - R12||_F^2 +
@@ -24,26 +25,29 @@ namespace spdfit {
 /// To keep every estimate unchanged under scaling of the data by any factor between 1e-300 and
 /// 1e300, A and B are stored scaled by powers of two (exact): R is the factor of
 /// [A 2^-exponent_a(), B 2^-exponent_b()], with the exponents chosen so that every scaled
-/// entry has magnitude below 1. When m < 2n the bottom rows of R are zero.
+/// entry has magnitude below 1. When m < n + d the bottom rows of R are zero.
 ///
-/// Cost: O(m n^2) for m rows; memory O(n^2) beyond the chunk being added.
+/// Cost: O(m (n + d)^2) for m rows; memory O((n + d)^2) beyond the chunk being added.
 class TriangularFactor {
  public:
-  /// An empty factor for data with n columns (no rows yet). Throws std::invalid_argument
-  /// when n < 1.
+  /// An empty factor for data A and B with n columns each (no rows yet). Throws
+  /// std::invalid_argument when n < 1.
   explicit TriangularFactor(Eigen::Index n);
+  /// An empty factor for A with n columns and B with d columns. Throws std::invalid_argument
+  /// when n < 1 or d < 1.
+  TriangularFactor(Eigen::Index n, Eigen::Index d);
 
-  /// The factor of the data A, B (both m x n, finite). Throws std::invalid_argument when the
-  /// shapes differ, n < 1, or an entry is NaN or Inf.
+  /// The factor of the data A (m x n) and B (m x d), finite. Throws std::invalid_argument when
+  /// the row counts differ, n < 1, d < 1, or an entry is NaN or Inf.
   static TriangularFactor from_data(const Eigen::Ref<const Eigen::MatrixXd>& A,
                                     const Eigen::Ref<const Eigen::MatrixXd>& B);
 
-  /// Adds the rows of A and B (k x n each, finite). Throws std::invalid_argument as
-  /// from_data does. Cost O((k + n) n^2).
+  /// Adds the rows of A (k x n) and B (k x d), finite. Throws std::invalid_argument as
+  /// from_data does, or when the column counts are not the factor's. Cost O((k + n + d) (n + d)^2).
   void append(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B);
 
   /// Makes this the factor of the union of both row sets. Throws std::invalid_argument when
-  /// the column counts differ. Cost O(n^3).
+  /// the column counts differ. Cost O((n + d)^3).
   void merge(const TriangularFactor& other);
 
   /// Adds the rows of A and B, row i counted counts[i] times (frequency weights: R^T R gains
@@ -64,29 +68,33 @@ class TriangularFactor {
   static TriangularFactor merged(const TriangularFactor& a, const TriangularFactor& b);
 
   /// The factor's whole state as bytes, to send to another process (MPI) or to store (pickling):
-  /// the 8-byte magic "spdfitR\0", a little-endian uint32 layout version (1), int64 n, uint64 rows,
-  /// for A then B one byte (1 when the block's exponent is set, 0 while its data were all zero)
-  /// and an int32 exponent, then the upper triangle of R column by column as little-endian IEEE
-  /// doubles. deserialize(serialize()) is the same factor, bit for bit. Cost O(n^2).
+  /// the 8-byte magic "spdfitR\0", a little-endian uint32 layout version, int64 n, in layout 2
+  /// only int64 d, then uint64 rows, for A then B one byte (1 when the block's exponent is set, 0
+  /// while its data were all zero) and an int32 exponent, then the upper triangle of R column by
+  /// column as little-endian IEEE doubles. A factor with d = n is written in layout 1 (no d), as
+  /// before non-square factors existed; one with d != n in layout 2. deserialize(serialize()) is
+  /// the same factor, bit for bit. Cost O((n + d)^2).
   std::string serialize() const;
 
-  /// The factor serialize() wrote. Throws std::invalid_argument, saying what is wrong, for bytes
-  /// that are not such a factor: a wrong magic or version, a size that does not match n, n < 1,
-  /// an exponent flag other than 0 or 1, an exponent outside the range of double, a NaN or Inf
-  /// entry, or rows of R beyond the rows accumulated (m < 2n) that are not zero. Cost O(n^2).
+  /// The factor serialize() wrote (layout 1 or 2). Throws std::invalid_argument, saying what is
+  /// wrong, for bytes that are not such a factor: a wrong magic or version, a size that does not
+  /// match n and d, n < 1, d < 1, an exponent flag other than 0 or 1, an exponent outside the
+  /// range of double, a NaN or Inf entry, or rows of R beyond the rows accumulated (m < n + d)
+  /// that are not zero. Cost O((n + d)^2).
   static TriangularFactor deserialize(std::string_view bytes);
 
-  Eigen::Index n() const { return n_; }
+  Eigen::Index n() const { return n_; }  ///< A's columns: X has n rows
+  Eigen::Index d() const { return d_; }  ///< B's columns: X has d columns (d = n: X square)
   Eigen::Index rows() const { return rows_; }  ///< m, the number of rows accumulated
   /// A is stored as A 2^-exponent_a() (0 while A has been all zero); likewise B.
   int exponent_a() const { return exponent_a_.value_or(0); }
   int exponent_b() const { return exponent_b_.value_or(0); }
 
-  /// The 2n x 2n upper triangular factor of the scaled data.
+  /// The (n + d) x (n + d) upper triangular factor of the scaled data.
   const Eigen::MatrixXd& R() const { return R_; }
   auto R11() const { return R_.topLeftCorner(n_, n_); }
-  auto R12() const { return R_.topRightCorner(n_, n_); }
-  auto R22() const { return R_.bottomRightCorner(n_, n_); }
+  auto R12() const { return R_.topRightCorner(n_, d_); }
+  auto R22() const { return R_.bottomRightCorner(d_, d_); }
 
  private:
   // Raises the stored exponents to at least (ea, eb), rescaling R exactly.
@@ -97,6 +105,7 @@ class TriangularFactor {
   void absorb_rows(Eigen::Ref<Eigen::MatrixXd> rows, Eigen::Index count);
 
   Eigen::Index n_ = 0;
+  Eigen::Index d_ = 0;
   Eigen::Index rows_ = 0;
   std::optional<int> exponent_a_;
   std::optional<int> exponent_b_;

@@ -14,7 +14,8 @@ Methods (the names of the command line): "ls" (least squares), "procrustes" (sym
 squares), "tls", "tls-sym", "tls-psd" (total least squares and its repairs), "spde" (the
 area-criterion estimate, always symmetric positive definite), "spd-tls" (total least squares over
 the positive definite matrices), "psd-ls" (least squares over X >= min_eig I, with an optimality
-certificate) and "auto" (spde, spd-tls or psd-ls, chosen from the data; fit's default). Every method works from the
+certificate) and "auto" (spde, spd-tls or psd-ls, chosen from the data; fit's default). "ls" and
+"tls" also take B with d != n columns and return an n x d X. Every method works from the
 Householder QR of [A B], not from Gram matrices. Numerical failures raise NumericalError; bad
 input raises ValueError (DataError for files); warnings are SpdfitWarning.
 """
@@ -147,10 +148,14 @@ def fit(A, B, method="auto", *, rank_tolerance=None, noise_ratio=None, max_iter=
 
     bootstrap: N > 0 resamples the rows of [A B] N times and refits each resample with the same
     method (auto: the one it chose), on `threads` threads (0: one per core; the numbers do not
-    depend on it). The result then has standard_errors (n x n), interval (level, lower, upper:
+    depend on it). The result then has standard_errors (the shape of X), interval (level, lower, upper:
     the central `confidence` fraction, default 0.95, of the replicates), bias (their mean minus
     X) and bootstrap (replicates, failed, seed, eigenvalues with their intervals); `seed`
     (default 1) makes them reproducible. Without bootstrap these attributes are None.
+
+    "ls" and "tls" also take B with d != n columns (X n x d, as numpy.linalg.lstsq returns for
+    several right-hand sides; tls then needs m >= n + d); the other methods estimate a symmetric X
+    and raise ValueError for it.
 
     Raises ValueError for bad input (shapes, NaN/Inf, m < n, unknown method) and NumericalError
     when the method has no answer for this data."""
@@ -193,7 +198,7 @@ def fit_files(A_path, B_path, method="auto", *, block_rows=_STREAM_DEFAULTS.bloc
 
 def fit_all(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_eig=None):
     """Every estimator (METHODS but "auto") on the same data (one shared QR); a dict
-    {method: FitResult}. noise_ratio applies to the total least-squares methods, max_iter to
+    {method: FitResult}; for B with d != n columns only "ls" and "tls", which fit a non-square X. noise_ratio applies to the total least-squares methods, max_iter to
     spd-tls and psd-ls, min_eig to psd-ls.
 
     Failures are not raised here: check `result.ok` and `result.message`."""

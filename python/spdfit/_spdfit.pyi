@@ -23,6 +23,7 @@ class AutoReason:
 class Diagnostics:
     m: int
     n: int
+    d: int
     rank_a: int
     rank_b: int
     cond_a: float

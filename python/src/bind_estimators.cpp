@@ -76,11 +76,12 @@ py::tuple diagnostics_state(const Diagnostics& d) {
                         d.positive_semidefinite, d.area_criterion, d.area_criterion_minimum,
                         d.cross_term_positive_definite, d.tls_sigma_n, d.tls_sigma_n1, d.tls_correction_norm,
                         d.tls_v22_min_singular_value, d.noise_sigma, d.iterations, d.gradient_norm, d.converged,
-                        d.certificate, chosen, d.reason, d.cond_a_scaled, d.cond_b_scaled);
+                        d.certificate, chosen, d.reason, d.cond_a_scaled, d.cond_b_scaled, d.d);
 }
 
 Diagnostics diagnostics_from(const py::tuple& t) {
-  check_state(t, 30, "Diagnostics");
+  // 30 fields: pickled before B could have d != n columns (then d = n).
+  if (t.size() != 30) check_state(t, 31, "Diagnostics");
   Diagnostics d;
   d.m = t[0].cast<Eigen::Index>();
   d.n = t[1].cast<Eigen::Index>();
@@ -112,6 +113,7 @@ Diagnostics diagnostics_from(const py::tuple& t) {
   d.reason = t[27].cast<std::optional<AutoReason>>();
   d.cond_a_scaled = t[28].cast<double>();
   d.cond_b_scaled = t[29].cast<double>();
+  d.d = t.size() > 30 ? t[30].cast<Eigen::Index>() : d.n;
   return d;
 }
 
@@ -185,7 +187,9 @@ void bind_estimators(py::module_& m) {
                           "residual, definiteness, the area criterion and method-specific values "
                           "(None where not defined).")
       .def_property_readonly("m", copied(&Diagnostics::m), "rows (samples)")
-      .def_property_readonly("n", copied(&Diagnostics::n), "columns; X is n x n")
+      .def_property_readonly("n", copied(&Diagnostics::n), "A's columns; X is n x d")
+      .def_property_readonly("d", copied(&Diagnostics::d),
+                             "B's columns; d = n (a square X) for every method but ls and tls")
       .def_property_readonly("rank_a", copied(&Diagnostics::rank_a))
       .def_property_readonly("rank_b", copied(&Diagnostics::rank_b))
       .def_property_readonly("cond_a", copied(&Diagnostics::cond_a), "sigma_max / sigma_min of A (inf when singular)")

@@ -12,6 +12,10 @@ using Eigen::MatrixXd;
 
 std::optional<double> area_criterion(const Reduction& reduction, const Eigen::Ref<const MatrixXd>& X) {
   const detail::DynamicReduction& data = detail::data_of(reduction);
+  if (!data.square()) {
+    throw std::invalid_argument("area_criterion: A has " + std::to_string(data.n) + " columns but B has " +
+                                std::to_string(data.d) + ": the area criterion needs a square X");
+  }
   if (X.rows() != data.n || X.cols() != data.n) {
     throw std::invalid_argument("area_criterion: X must be " + std::to_string(data.n) + "x" +
                                 std::to_string(data.n));

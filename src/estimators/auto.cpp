@@ -114,7 +114,7 @@ std::string reason_text(const detail::AutoChoice& choice, Index m, Index n) {
 }  // namespace
 
 FitResult auto_fit(const Reduction& reduction) {
-  const detail::DynamicReduction& data = detail::data_of(reduction);
+  const detail::DynamicReduction& data = detail::data_of(reduction, Method::Auto);
   const Index n = data.n, m = data.m;
   const std::optional<double> noise_var = data.noise_var ? data.noise_var : detail::noise_variance(data);
   const detail::AutoChoice choice = detail::auto_choice(data, noise_var);

@@ -30,12 +30,13 @@ constexpr double kSemidefiniteSlack = 4.0;
 void fill_shape_and_ranks(const DynamicReduction& data, Diagnostics& d) {
   d.m = data.m;
   d.n = data.n;
+  d.d = data.d;
   d.rank_a = data.rank_a;
   d.rank_b = data.rank_b;
 }
 
 // The data's diagnostics. The noise estimate's relative standard error is about sqrt(2 / dof),
-// dof = n (m - n) (a chi-squared sum); below n rows beyond the n the fit uses (m - n < n) it is
+// dof = d (m - n) (a chi-squared sum); below n rows beyond the n the fit uses (m - n < n) it is
 // worth a warning, unless the estimate failed anyway.
 void fill_data_diagnostics(const DynamicReduction& data, Diagnostics& d, std::vector<std::string>& warnings,
                            bool warn_thin_noise_estimate = true) {
@@ -56,8 +57,9 @@ void fill_data_diagnostics(const DynamicReduction& data, Diagnostics& d, std::ve
   if (data.noise_var) {
     d.noise_sigma = std::sqrt(*data.noise_var);
     if (warn_thin_noise_estimate && data.m - data.n < data.n) {
-      const double dof = static_cast<double>(data.n) * static_cast<double>(data.m - data.n);
-      warnings.push_back("the noise estimate (noise_sigma) rests on n (m - n) = " + format_number(dof) +
+      const double dof = static_cast<double>(data.d) * static_cast<double>(data.m - data.n);
+      warnings.push_back("the noise estimate (noise_sigma) rests on " +
+                         std::string(data.square() ? "n" : "d") + " (m - n) = " + format_number(dof) +
                          " degrees of freedom (m - n < n), so its relative standard error is about " +
                          format_number(100.0 * std::sqrt(2.0 / dof)) + "%: more samples make it reliable");
     }
@@ -136,7 +138,8 @@ FitResult finish(Method method, const DynamicReduction& data, const MatrixXd& X_
   const double fit_part = (data.R11 * X_s - data.R12).norm();
   d.residual_norm = std::ldexp(std::hypot(fit_part, data.R22.norm()), eb);
 
-  d.symmetric = X_s == X_s.transpose();
+  // A non-square X (ls, tls) is never symmetric: no eigenvalues, no area criterion.
+  d.symmetric = data.square() && X_s == X_s.transpose();
   if (d.symmetric) {
     Eigen::SelfAdjointEigenSolver<MatrixXd> eig(X_s, Eigen::EigenvaluesOnly);
     if (eig.info() == Eigen::Success) {

@@ -20,10 +20,10 @@
 
 namespace spdfit::detail {
 
-/// Throws std::invalid_argument unless A and B are both k x n and finite (the data checks of
-/// TriangularFactor, shared with the small-problem path).
+/// Throws std::invalid_argument unless A is k x n, B is k x d, and both are finite (the data
+/// checks of TriangularFactor, shared with the small-problem path).
 void check_data(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
-                Eigen::Index n);
+                Eigen::Index n, Eigen::Index d);
 
 /// The message for data with fewer rows m than columns n.
 std::string too_few_rows(Eigen::Index m, Eigen::Index n);
@@ -35,11 +35,12 @@ std::string too_few_rows(Eigen::Index m, Eigen::Index n);
 template <int MaxN>
 using SquareMatrix = typename BasicReduction<MaxN>::Matrix;
 
-/// Fills `out` (all but `options`, which the caller sets) from the 2n x 2n triangular factor R of
-/// the data scaled by 2^-exponent_a, 2^-exponent_b, accumulated from m >= n rows: the SVD of
-/// R11, the triangular factor of B and its singular values, the ranks. Cost O(n^3).
+/// Fills `out` (all but `options`, which the caller sets) from the (n + d) x (n + d) triangular
+/// factor R of the data (A with n columns, B with d = R.cols() - n) scaled by 2^-exponent_a,
+/// 2^-exponent_b, accumulated from m >= n rows: the SVD of R11, the triangular factor of B and
+/// its singular values, the ranks. Cost O((n + d)^3).
 template <int MaxN>
-void reduce_into(const typename BasicReduction<MaxN>::Factor& R, Eigen::Index m, int exponent_a,
+void reduce_into(const typename BasicReduction<MaxN>::Factor& R, Eigen::Index m, Eigen::Index n, int exponent_a,
                  int exponent_b, BasicReduction<MaxN>& out);
 
 /// Least squares in scaled units: back substitution in R11 for full-rank A, else the
@@ -73,30 +74,30 @@ void procrustes_kernel(const BasicReduction<MaxN>& data, SquareMatrix<MaxN>& X_s
 template <int MaxN>
 double spde_kernel(const BasicReduction<MaxN>& data, SquareMatrix<MaxN>& X_s);
 
-/// Total least squares: X = -V12 V22^-1 from the SVD of R, in the scaled units of the other
-/// estimators, and the quantities its diagnostics report (unscaled).
+/// Total least squares: X = -V12 V22^-1 from the SVD of R (V12 n x d, V22 d x d), in the scaled
+/// units of the other estimators, and the quantities its diagnostics report (unscaled).
 template <int MaxN>
 struct TlsKernel {
-  SquareMatrix<MaxN> X_s;   ///< when exists
+  SquareMatrix<MaxN> X_s;   ///< when exists; n x d
   double sigma_n = 0.0;     ///< sigma_n of [A B]
   double sigma_n1 = 0.0;    ///< sigma_{n+1}
   double correction = 0.0;  ///< sqrt(sum_{i>n} sigma_i^2)
-  double v22_min = 0.0;     ///< smallest singular value of V22
+  double v22_min = 0.0;     ///< smallest singular value of V22 (d x d)
   bool exists = false;      ///< V22 nonsingular
   bool unique = false;      ///< sigma_n > sigma_{n+1} beyond rounding
 };
 template <int MaxN>
 void tls_kernel(const BasicReduction<MaxN>& data, TlsKernel<MaxN>& out);
 
-/// The 2n x 2n factor of [A, B / noise_ratio] in a common scaling 2^-e of A and B (what TLS and
-/// the noise estimate decompose).
+/// The (n + d) x (n + d) factor of [A, B / noise_ratio] in a common scaling 2^-e of A and B (what
+/// TLS and the noise estimate decompose).
 template <int MaxN>
 void tls_factor(const BasicReduction<MaxN>& data, typename BasicReduction<MaxN>::Factor& R, int& e);
 
-/// The noise estimate sigma^2 = sum_{i>n} s_i^2 / (n (m - n)), s_i the singular values of
+/// The noise estimate sigma^2 = sum_{i>n} s_i^2 / (d (m - n)), s_i the singular values of
 /// [A, B / noise_ratio] in the data's units (of A): unbiased for independent noise of variance
 /// sigma^2 in every entry of A (and noise_ratio^2 sigma^2 in B) when A_true X = B_true. Nothing
-/// when m <= n. Cost O(n^3).
+/// when m <= n. Cost O((n + d)^3).
 template <int MaxN>
 std::optional<double> noise_variance(const BasicReduction<MaxN>& data);
 

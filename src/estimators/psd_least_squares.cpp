@@ -53,7 +53,7 @@ FitResult psd_least_squares_scaled(const DynamicReduction& data, double epsilon_
 }  // namespace detail
 
 FitResult psd_least_squares(const Reduction& reduction) {
-  const detail::DynamicReduction& data = detail::data_of(reduction);
+  const detail::DynamicReduction& data = detail::data_of(reduction, Method::PsdLeastSquares);
   // X_s = X 2^(ea - eb): the floor in the factor's units.
   return detail::psd_least_squares_scaled(data, std::ldexp(data.options.min_eig, data.exponent_a - data.exponent_b));
 }

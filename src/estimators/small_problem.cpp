@@ -66,7 +66,7 @@ bool estimate_bounded(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<cons
   {
     typename BasicReduction<MaxN>::Factor R;
     small_factor<MaxN>(A, B, ea, eb, R);
-    reduce_into(R, A.rows(), ea, eb, data);
+    reduce_into(R, A.rows(), A.cols(), ea, eb, data);
   }
   const Index n = data.n;
   const FitOptions defaults;
@@ -142,7 +142,7 @@ bool estimate_small(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const 
   const Index n = A.cols();
   if (n > kSmallProblemMaxN) return false;
   if (n < 1) throw std::invalid_argument("the data must have at least one column");
-  check_data(A, B, n);
+  check_data(A, B, n, n);  // the experiments' X is square
   if (A.rows() < n) throw std::invalid_argument(too_few_rows(A.rows(), n));
   if (n <= 2) return estimate_bounded<2>(A, B, methods, X);
   return estimate_bounded<kSmallProblemMaxN>(A, B, methods, X);

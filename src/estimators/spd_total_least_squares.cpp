@@ -13,7 +13,7 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 
 FitResult spd_total_least_squares(const Reduction& reduction) {
-  const detail::DynamicReduction& data = detail::data_of(reduction);
+  const detail::DynamicReduction& data = detail::data_of(reduction, Method::SpdTotalLeastSquares);
   const Index n = data.n;
   constexpr Method method = Method::SpdTotalLeastSquares;
 

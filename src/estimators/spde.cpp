@@ -49,7 +49,7 @@ SPDFIT_FOR_EACH_MAX_N(SPDFIT_INSTANTIATE)
 }  // namespace detail
 
 FitResult spde(const Reduction& reduction) {
-  const detail::DynamicReduction& data = detail::data_of(reduction);
+  const detail::DynamicReduction& data = detail::data_of(reduction, Method::Spde);
   const Index n = data.n;
   if (data.rank_a < n) {
     return detail::failure(Method::Spde, data,

@@ -40,7 +40,7 @@ SPDFIT_FOR_EACH_MAX_N(SPDFIT_INSTANTIATE)
 }  // namespace detail
 
 FitResult symmetric_procrustes(const Reduction& reduction) {
-  const detail::DynamicReduction& data = detail::data_of(reduction);
+  const detail::DynamicReduction& data = detail::data_of(reduction, Method::SymmetricProcrustes);
   const Index n = data.n;
   const Index r = data.rank_a;
   std::vector<std::string> warnings;

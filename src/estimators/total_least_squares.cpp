@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "estimators/diagnostics.hpp"
 #include "estimators/kernels.hpp"
@@ -21,7 +23,7 @@ template <int MaxN>
 void tls_kernel(const BasicReduction<MaxN>& data, TlsKernel<MaxN>& out) {
   using Factor = typename BasicReduction<MaxN>::Factor;
   using Matrix = SquareMatrix<MaxN>;
-  const Index n = data.n;
+  const Index n = data.n, d = data.d;
 
   int e = 0;
   Factor R;
@@ -34,15 +36,15 @@ void tls_kernel(const BasicReduction<MaxN>& data, TlsKernel<MaxN>& out) {
   const auto& sigma = dec.s;
   out.sigma_n = std::ldexp(sigma(n - 1), e);
   out.sigma_n1 = std::ldexp(sigma(n), e);
-  out.correction = std::ldexp(sigma.tail(n).norm(), e);  // thesis eq. 4.33
+  out.correction = std::ldexp(sigma.tail(d).norm(), e);  // thesis eq. 4.33
 
-  const Matrix V12 = dec.V.topRightCorner(n, n);
-  const Matrix V22 = dec.V.bottomRightCorner(n, n);
+  const Matrix V12 = dec.V.topRightCorner(n, d);
+  const Matrix V22 = dec.V.bottomRightCorner(d, d);
   BasicSvd<Matrix> v22;
   svd_into(V22, v22, false, false);
-  out.v22_min = v22.s(n - 1);
+  out.v22_min = v22.s(d - 1);
 
-  const double cutoff = data.options.rank_cutoff(data.m, 2 * n);
+  const double cutoff = data.options.rank_cutoff(data.m, n + d);
   out.exists = out.v22_min > cutoff;
   if (!out.exists) return;
   out.unique = sigma(n - 1) - sigma(n) > cutoff * sigma(0);
@@ -112,8 +114,17 @@ FitResult finish_tls(Method method, const detail::DynamicReduction& data, const 
   return detail::finish(method, data, X_s, core.diagnostics, core.warnings);
 }
 
+// The data for `method`, refused when it does not apply (non_square_refusal), or when a non-square
+// X meets fewer rows than the n + d columns of [A B] (too_few_rows_refusal). Square data keep the
+// rule of every method, m >= n.
+const detail::DynamicReduction& tls_data(const Reduction& reduction, Method method) {
+  const detail::DynamicReduction& data = detail::data_of(reduction, method);
+  if (auto refusal = too_few_rows_refusal(method, data.m, data.n, data.d)) throw std::invalid_argument(*refusal);
+  return data;
+}
+
 FitResult run(Method method, const Reduction& reduction) {
-  const detail::DynamicReduction& data = detail::data_of(reduction);
+  const detail::DynamicReduction& data = tls_data(reduction, method);
   return finish_tls(method, data, tls_core(data));
 }
 
@@ -122,7 +133,7 @@ FitResult run(Method method, const Reduction& reduction) {
 namespace detail {
 
 std::array<FitResult, 3> total_least_squares_family(const Reduction& reduction) {
-  const DynamicReduction& data = data_of(reduction);
+  const DynamicReduction& data = data_of(reduction, Method::TotalLeastSquaresSymmetric);
   const TlsCore core = tls_core(data);
   return {finish_tls(Method::TotalLeastSquares, data, core),
           finish_tls(Method::TotalLeastSquaresSymmetric, data, core),

@@ -15,7 +15,9 @@ namespace spdfit::detail {
 ///
 ///   R11 = U_a diag(s_a) V_a^T        the SVD of R11: singular values of A, cond_a (rank_a is
 ///                                    decided on R11 with unit-norm columns, as A D)
-///   [R12; R22] = Q_b R_b              R_b (n x n): B^T B = R_b^T R_b; singular values of B
+///   [R12; R22] = Q_b R_b              R_b (d x d): B^T B = R_b^T R_b; singular values of B
+///
+/// B has d columns: d = n except for the n x d X of ls and tls (only they accept d != n).
 ///
 /// Built by reduce_into (kernels.hpp) in O(n^3) from a triangular factor.
 ///
@@ -26,16 +28,18 @@ template <int MaxN = Eigen::Dynamic>
 struct BasicReduction {
   using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, MaxN, MaxN>;
   using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, MaxN, 1>;
-  /// The 2n x 2n triangular factor R of [A B].
+  /// The (n + d) x (n + d) triangular factor R of [A B].
   static constexpr int kMaxFactor = MaxN == Eigen::Dynamic ? Eigen::Dynamic : 2 * MaxN;
   using Factor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kMaxFactor, kMaxFactor>;
 
   Eigen::Index m = 0, n = 0;
+  Eigen::Index d = 0;                   ///< B's columns: X is n x d
+  bool square() const { return d == n; }
   int exponent_a = 0, exponent_b = 0;   ///< data scaled by 2^-exponent (TriangularFactor)
-  Matrix R11, R12, R22;                 ///< n x n blocks of R (R22 zero-padded)
+  Matrix R11, R12, R22;                 ///< blocks of R: n x n, n x d, d x d (R22 zero-padded)
   Matrix U_a, V_a;                      ///< SVD of R11
   Vector s_a;                           ///< descending
-  Matrix R_b;                           ///< triangular factor of B
+  Matrix R_b;                           ///< triangular factor of B (d x d)
   Vector s_b;                           ///< singular values of B, descending
   /// Numerical ranks under the options' cut-off, decided on A and B with unit-norm columns.
   Eigen::Index rank_a = 0, rank_b = 0;
@@ -55,6 +59,14 @@ using DynamicReduction = BasicReduction<Eigen::Dynamic>;
 inline const DynamicReduction& data_of(const Reduction& reduction) {
   if (!reduction.data_) throw std::invalid_argument("this Reduction is empty: make one with spdfit::reduce");
   return *reduction.data_;
+}
+
+/// data_of for `method`: also throws std::invalid_argument when B's columns differ from A's and
+/// the method does not fit a non-square X (non_square_refusal).
+inline const DynamicReduction& data_of(const Reduction& reduction, Method method) {
+  const DynamicReduction& data = data_of(reduction);
+  if (auto refusal = non_square_refusal(method, data.n, data.d)) throw std::invalid_argument(*refusal);
+  return data;
 }
 
 }  // namespace spdfit::detail

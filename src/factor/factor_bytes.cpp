@@ -6,6 +6,7 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "spdfit/triangular_factor.hpp"
 
@@ -14,7 +15,12 @@ namespace spdfit {
 namespace {
 
 constexpr char kMagic[8] = {'s', 'p', 'd', 'f', 'i', 't', 'R', '\0'};
-constexpr std::uint32_t kLayoutVersion = 1;
+// Layout 1: a square factor (d = n), as every factor was written before non-square ones existed;
+// layout 2 adds d after n.
+constexpr std::uint32_t kSquareLayout = 1;
+constexpr std::uint32_t kRectangularLayout = 2;
+// Columns a factor can have: far beyond what memory holds, small enough that sizes cannot overflow.
+constexpr std::uint64_t kMaxColumns = std::uint64_t{1} << 28;
 // Binary exponents a factor of finite data can carry: the doubles' range, denormals included.
 constexpr int kMaxExponent = 1100;
 
@@ -59,10 +65,11 @@ TriangularFactor TriangularFactor::merged(const TriangularFactor& a, const Trian
 }
 
 std::string TriangularFactor::serialize() const {
-  const Eigen::Index size = 2 * n_;
+  const Eigen::Index size = n_ + d_;
   std::string out(kMagic, sizeof kMagic);
-  put(out, kLayoutVersion, 4);
+  put(out, d_ == n_ ? kSquareLayout : kRectangularLayout, 4);
   put(out, static_cast<std::uint64_t>(n_), 8);
+  if (d_ != n_) put(out, static_cast<std::uint64_t>(d_), 8);
   put(out, static_cast<std::uint64_t>(rows_), 8);
   for (const std::optional<int>& e : {exponent_a_, exponent_b_}) {
     put(out, e ? 1 : 0, 1);
@@ -86,14 +93,22 @@ TriangularFactor TriangularFactor::deserialize(std::string_view bytes) {
   }
   in.rest(sizeof kMagic);
   const std::uint64_t version = in.take(4, "the layout version");
-  if (version != kLayoutVersion) bad("layout version " + std::to_string(version) + " is not 1");
+  if (version != kSquareLayout && version != kRectangularLayout) {
+    bad("layout version " + std::to_string(version) + " is not 1 or 2");
+  }
   const auto n = static_cast<std::int64_t>(in.take(8, "n"));
+  const auto d = version == kSquareLayout ? n : static_cast<std::int64_t>(in.take(8, "d"));
   const std::uint64_t rows = in.take(8, "the row count");
-  if (n < 1) bad("n = " + std::to_string(n) + " is not at least 1");
+  for (auto [name, value] : {std::pair{"n", n}, std::pair{"d", d}}) {
+    if (value < 1) bad(std::string(name) + " = " + std::to_string(value) + " is not at least 1");
+    // The size must match before anything of size O((n + d)^2) is allocated.
+    if (static_cast<std::uint64_t>(value) > kMaxColumns) {
+      bad(std::string(name) + " = " + std::to_string(value) + " is out of range");
+    }
+  }
+  if (version == kRectangularLayout && d == n) bad("layout 2 with d = n (a square factor is layout 1)");
   if (rows > static_cast<std::uint64_t>(INT64_MAX)) bad("the row count is out of range");
-  // The size must match before anything of size O(n^2) is allocated.
-  const auto size = static_cast<std::uint64_t>(2 * n);
-  if (static_cast<std::uint64_t>(n) > (std::uint64_t{1} << 28)) bad("n = " + std::to_string(n) + " is out of range");
+  const auto size = static_cast<std::uint64_t>(n + d);
   std::optional<int> exponents[2];
   for (std::optional<int>& e : exponents) {
     const std::uint64_t flag = in.take(1, "an exponent flag");
@@ -104,10 +119,10 @@ TriangularFactor TriangularFactor::deserialize(std::string_view bytes) {
   }
   const std::uint64_t entries = size * (size + 1) / 2;
   if (in.left() != entries * 8) {
-    bad(std::to_string(in.left()) + " bytes of R where n = " + std::to_string(n) + " needs " +
-        std::to_string(entries * 8));
+    bad(std::to_string(in.left()) + " bytes of R where n = " + std::to_string(n) + ", d = " + std::to_string(d) +
+        " needs " + std::to_string(entries * 8));
   }
-  TriangularFactor out(static_cast<Eigen::Index>(n));
+  TriangularFactor out(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(d));
   out.rows_ = static_cast<Eigen::Index>(rows);
   out.exponent_a_ = exponents[0];
   out.exponent_b_ = exponents[1];
@@ -126,7 +141,7 @@ TriangularFactor TriangularFactor::deserialize(std::string_view bytes) {
   }
   // A block whose data were all zero has no exponent and only zero columns in R.
   if (!out.exponent_a_ && !out.R_.leftCols(n).isZero(0.0)) bad("A's columns of R are nonzero but A has no exponent");
-  if (!out.exponent_b_ && !out.R_.rightCols(n).isZero(0.0)) bad("B's columns of R are nonzero but B has no exponent");
+  if (!out.exponent_b_ && !out.R_.rightCols(d).isZero(0.0)) bad("B's columns of R are nonzero but B has no exponent");
   return out;
 }
 

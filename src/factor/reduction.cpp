@@ -16,17 +16,18 @@ namespace spdfit {
 namespace detail {
 
 template <int MaxN>
-void reduce_into(const typename BasicReduction<MaxN>::Factor& R, Eigen::Index m, int exponent_a,
+void reduce_into(const typename BasicReduction<MaxN>::Factor& R, Eigen::Index m, Eigen::Index n, int exponent_a,
                  int exponent_b, BasicReduction<MaxN>& out) {
   using Matrix = typename BasicReduction<MaxN>::Matrix;
-  const Eigen::Index n = R.cols() / 2;
+  const Eigen::Index d = R.cols() - n;
   out.m = m;
   out.n = n;
+  out.d = d;
   out.exponent_a = exponent_a;
   out.exponent_b = exponent_b;
   out.R11 = R.topLeftCorner(n, n);
-  out.R12 = R.topRightCorner(n, n);
-  out.R22 = R.bottomRightCorner(n, n);
+  out.R12 = R.topRightCorner(n, d);
+  out.R22 = R.bottomRightCorner(d, d);
 
   // A = Q1 R11, so A and R11 share their singular values and right singular vectors.
   BasicSvd<Matrix> a;
@@ -38,7 +39,7 @@ void reduce_into(const typename BasicReduction<MaxN>::Factor& R, Eigen::Index m,
   // B = Q [R12; R22]: its triangular factor R_b has B^T B = R_b^T R_b without forming B^T B.
   using Stacked = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor,
                                 BasicReduction<MaxN>::kMaxFactor, MaxN>;
-  triangular_factor_into<Stacked>(R.rightCols(n), out.R_b);
+  triangular_factor_into<Stacked>(R.rightCols(d), out.R_b);
   BasicSvd<Matrix> b;
   svd_into(out.R_b, b, false, false);
   out.s_b = std::move(b.s);
@@ -46,45 +47,47 @@ void reduce_into(const typename BasicReduction<MaxN>::Factor& R, Eigen::Index m,
   // The ranks are decided on A and B with their columns scaled to unit norm (the columns of R11
   // and R_b have the norms of A's and B's), so that they do not depend on the units of each
   // column (numerics/least_squares.hpp). The scaled condition numbers are diagnostics.
-  const double cutoff = out.options.rank_cutoff(m, n);
   const bool report = out.options.diagnostics;
-  out.rank_a = equilibrated_rank(out.R11, out.s_a, cutoff, report ? &out.cond_a_scaled : nullptr);
-  out.rank_b = equilibrated_rank(out.R_b, out.s_b, cutoff, report ? &out.cond_b_scaled : nullptr);
+  out.rank_a = equilibrated_rank(out.R11, out.s_a, out.options.rank_cutoff(m, n),
+                                 report ? &out.cond_a_scaled : nullptr);
+  out.rank_b = equilibrated_rank(out.R_b, out.s_b, out.options.rank_cutoff(m, d),
+                                 report ? &out.cond_b_scaled : nullptr);
 }
 
 template <int MaxN>
 void tls_factor(const BasicReduction<MaxN>& data, typename BasicReduction<MaxN>::Factor& R, int& e) {
-  const Index n = data.n;
+  const Index n = data.n, d = data.d;
   // TLS is only invariant under a common scaling of A and B, so undo the separate scalings
   // of the factor into a common one, 2^-max(ea, eb) (exact: powers of two); then B / r.
   e = std::max(data.exponent_a, data.exponent_b);
-  R.setZero(2 * n, 2 * n);
+  R.setZero(n + d, n + d);
   R.topLeftCorner(n, n) = times_power_of_two(data.R11, data.exponent_a - e);
-  R.topRightCorner(n, n) = times_power_of_two(data.R12, data.exponent_b - e);
-  R.bottomRightCorner(n, n) = times_power_of_two(data.R22, data.exponent_b - e);
+  R.topRightCorner(n, d) = times_power_of_two(data.R12, data.exponent_b - e);
+  R.bottomRightCorner(d, d) = times_power_of_two(data.R22, data.exponent_b - e);
   const double r = data.options.noise_ratio;
-  if (r != 1.0) R.rightCols(n) /= r;
+  if (r != 1.0) R.rightCols(d) /= r;
 }
 
 template <int MaxN>
 std::optional<double> noise_variance(const BasicReduction<MaxN>& data) {
   using Factor = typename BasicReduction<MaxN>::Factor;
-  const Index n = data.n, m = data.m;
+  const Index n = data.n, d = data.d, m = data.m;
   if (m <= n) return std::nullopt;
   int e = 0;
   Factor R;
   tls_factor(data, R, e);
   BasicSvd<Factor> dec;
   svd_into(R, dec, false, false);
-  // Under the TLS model the n smallest singular values of [A, B / r] carry only noise: their
-  // squares sum to sigma^2 times n (m - n) in expectation (issue 14's unbiased estimate). At
-  // m < 2n the factor's bottom rows are zero, and so are the trailing singular values.
-  const double tail = dec.s.tail(n).norm();
-  return std::ldexp(tail * tail / (static_cast<double>(n) * static_cast<double>(m - n)), 2 * e);
+  // Under the TLS model the d smallest singular values of [A, B / r] carry only noise: their
+  // squares sum to sigma^2 times d (m - n) in expectation (issue 14's unbiased estimate). At
+  // m < n + d the factor's bottom rows are zero, and so are the trailing singular values.
+  const double tail = dec.s.tail(d).norm();
+  return std::ldexp(tail * tail / (static_cast<double>(d) * static_cast<double>(m - n)), 2 * e);
 }
 
 #define SPDFIT_INSTANTIATE(MaxN)                                                                  \
-  template void reduce_into<MaxN>(const typename BasicReduction<MaxN>::Factor&, Eigen::Index, int, int, \
+  template void reduce_into<MaxN>(const typename BasicReduction<MaxN>::Factor&, Eigen::Index, Eigen::Index, int, \
+                                  int,                                                          \
                                   BasicReduction<MaxN>&);                                               \
   template void tls_factor<MaxN>(const BasicReduction<MaxN>&, typename BasicReduction<MaxN>::Factor&, int&); \
   template std::optional<double> noise_variance<MaxN>(const BasicReduction<MaxN>&);
@@ -102,7 +105,7 @@ Reduction reduce(const TriangularFactor& factor, const FitOptions& options) {
   }
   auto r = std::make_shared<detail::DynamicReduction>();
   r->options = options;
-  detail::reduce_into(factor.R(), factor.rows(), factor.exponent_a(), factor.exponent_b(), *r);
+  detail::reduce_into(factor.R(), factor.rows(), n, factor.exponent_a(), factor.exponent_b(), *r);
   // A property of the data, computed once for every method that reports it.
   if (options.diagnostics) r->noise_var = detail::noise_variance(*r);
   return Reduction(std::move(r));
@@ -110,6 +113,7 @@ Reduction reduce(const TriangularFactor& factor, const FitOptions& options) {
 
 Eigen::Index Reduction::m() const { return data_ ? data_->m : 0; }
 Eigen::Index Reduction::n() const { return data_ ? data_->n : 0; }
+Eigen::Index Reduction::d() const { return data_ ? data_->d : 0; }
 Eigen::Index Reduction::rank_a() const { return data_ ? data_->rank_a : 0; }
 Eigen::Index Reduction::rank_b() const { return data_ ? data_->rank_b : 0; }
 const FitOptions& Reduction::options() const {

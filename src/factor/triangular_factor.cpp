@@ -15,15 +15,15 @@ using Eigen::MatrixXd;
 
 namespace detail {
 
-void check_data(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Index n) {
-  if (A.rows() != B.rows() || A.cols() != B.cols()) {
+void check_data(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Index n, Index d) {
+  if (A.rows() != B.rows()) {
     throw std::invalid_argument("A is " + std::to_string(A.rows()) + "x" + std::to_string(A.cols()) +
                                 " but B is " + std::to_string(B.rows()) + "x" + std::to_string(B.cols()) +
-                                ": they must have the same shape");
+                                ": they must have the same numbers of rows (samples)");
   }
-  if (A.cols() != n) {
-    throw std::invalid_argument("data has " + std::to_string(A.cols()) + " columns, expected " +
-                                std::to_string(n));
+  if (A.cols() != n || B.cols() != d) {
+    throw std::invalid_argument("A and B have " + std::to_string(A.cols()) + " and " + std::to_string(B.cols()) +
+                                " columns, expected " + std::to_string(n) + " and " + std::to_string(d));
   }
   if (!A.allFinite()) throw std::invalid_argument("A contains NaN or Inf");
   if (!B.allFinite()) throw std::invalid_argument("B contains NaN or Inf");
@@ -36,36 +36,38 @@ std::string too_few_rows(Index m, Index n) {
 
 }  // namespace detail
 
-TriangularFactor::TriangularFactor(Index n) : n_(n) {
-  if (n < 1) throw std::invalid_argument("the data must have at least one column");
-  R_ = MatrixXd::Zero(2 * n, 2 * n);
+TriangularFactor::TriangularFactor(Index n) : TriangularFactor(n, n) {}
+
+TriangularFactor::TriangularFactor(Index n, Index d) : n_(n), d_(d) {
+  if (n < 1 || d < 1) throw std::invalid_argument("A and B must each have at least one column");
+  R_ = MatrixXd::Zero(n + d, n + d);
 }
 
 TriangularFactor TriangularFactor::from_data(const Eigen::Ref<const MatrixXd>& A,
                                              const Eigen::Ref<const MatrixXd>& B) {
-  TriangularFactor factor(A.cols());
+  TriangularFactor factor(A.cols(), B.cols());
   factor.append(A, B);
   return factor;
 }
 
 void TriangularFactor::raise_exponents(std::optional<int> ea, std::optional<int> eb) {
-  // R = [R11 R12; 0 R22]: the first n columns come from A, the last n from B, so a column
+  // R = [R11 R12; 0 R22]: the first n columns come from A, the last d from B, so a column
   // block scales with its own exponent. Powers of two make this exact (bar underflow of
   // entries that are negligible next to the new data). A block whose data so far was all
   // zero has no exponent yet and its columns of R are zero, so the first nonzero data sets it.
-  auto raise = [this](std::optional<int>& current, std::optional<int> wanted, Index first_col) {
+  auto raise = [this](std::optional<int>& current, std::optional<int> wanted, Index first_col, Index cols) {
     if (!wanted) return;
     if (!current) {
       current = wanted;
       return;
     }
     if (*wanted <= *current) return;
-    R_.middleCols(first_col, n_) =
-        detail::times_power_of_two(R_.middleCols(first_col, n_), *current - *wanted);
+    R_.middleCols(first_col, cols) =
+        detail::times_power_of_two(R_.middleCols(first_col, cols), *current - *wanted);
     current = wanted;
   };
-  raise(exponent_a_, ea, 0);
-  raise(exponent_b_, eb, n_);
+  raise(exponent_a_, ea, 0, n_);
+  raise(exponent_b_, eb, n_, d_);
 }
 
 void TriangularFactor::absorb(const Eigen::Ref<const MatrixXd>& scaled_rows) {
@@ -73,23 +75,23 @@ void TriangularFactor::absorb(const Eigen::Ref<const MatrixXd>& scaled_rows) {
     R_ = detail::triangular_factor(scaled_rows);
     return;
   }
-  MatrixXd stacked(2 * n_ + scaled_rows.rows(), 2 * n_);
+  MatrixXd stacked(n_ + d_ + scaled_rows.rows(), n_ + d_);
   stacked << R_, scaled_rows;
   R_ = detail::triangular_factor(stacked);
 }
 
 void TriangularFactor::append(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B) {
-  detail::check_data(A, B, n_);
+  detail::check_data(A, B, n_, d_);
   if (A.rows() == 0) return;
   raise_exponents(detail::scale_exponent(A), detail::scale_exponent(B));
-  MatrixXd rows(A.rows(), 2 * n_);
+  MatrixXd rows(A.rows(), n_ + d_);
   rows << A, B;
   absorb_rows(rows, A.rows());
 }
 
 void TriangularFactor::absorb_rows(Eigen::Ref<MatrixXd> rows, Index count) {
   auto rows_a = rows.leftCols(n_);
-  auto rows_b = rows.rightCols(n_);
+  auto rows_b = rows.rightCols(d_);
   detail::multiply_by_power_of_two(rows_a, -exponent_a());
   detail::multiply_by_power_of_two(rows_b, -exponent_b());
   absorb(rows);
@@ -100,7 +102,7 @@ void TriangularFactor::merge(const TriangularFactor& other) { merge({&other}, {1
 
 void TriangularFactor::append(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
                               const std::vector<std::uint32_t>& counts) {
-  detail::check_data(A, B, n_);
+  detail::check_data(A, B, n_, d_);
   if (counts.size() != static_cast<std::size_t>(A.rows())) {
     throw std::invalid_argument("append: " + std::to_string(counts.size()) + " counts for " +
                                 std::to_string(A.rows()) + " rows");
@@ -112,7 +114,7 @@ void TriangularFactor::append(const Eigen::Ref<const MatrixXd>& A, const Eigen::
   // The kept rows are scaled by sqrt(count) into chunks of at most kChunk rows, each absorbed in
   // turn (a TSQR), so the work space stays small however many rows there are.
   constexpr Index kChunk = 1024;
-  MatrixXd scaled(std::min(kept, kChunk), 2 * n_);
+  MatrixXd scaled(std::min(kept, kChunk), n_ + d_);
   Index k = 0;
   std::uint64_t chunk_rows = 0;  // the chunk's rows, counted with their counts
   for (Index i = 0; i < A.rows(); ++i) {
@@ -120,7 +122,7 @@ void TriangularFactor::append(const Eigen::Ref<const MatrixXd>& A, const Eigen::
     if (c == 0) continue;
     const double w = c == 1 ? 1.0 : std::sqrt(static_cast<double>(c));
     scaled.row(k).head(n_) = w * A.row(i);
-    scaled.row(k).tail(n_) = w * B.row(i);
+    scaled.row(k).tail(d_) = w * B.row(i);
     chunk_rows += c;
     if (++k == scaled.rows()) {
       absorb_rows(scaled, static_cast<Index>(chunk_rows));
@@ -142,29 +144,31 @@ void TriangularFactor::merge(const std::vector<const TriangularFactor*>& others,
   }
   Index kept = 0;
   for (std::size_t k = 0; k < others.size(); ++k) {
-    if (others[k]->n_ != n_) {
-      throw std::invalid_argument("cannot merge factors with " + std::to_string(n_) + " and " +
-                                  std::to_string(others[k]->n_) + " columns");
+    if (others[k]->n_ != n_ || others[k]->d_ != d_) {
+      throw std::invalid_argument("cannot merge factors of A and B with " + std::to_string(n_) + " and " +
+                                  std::to_string(d_) + " columns and with " + std::to_string(others[k]->n_) +
+                                  " and " + std::to_string(others[k]->d_) + " columns");
     }
     if (counts[k] == 0 || others[k]->rows_ == 0) continue;
     raise_exponents(others[k]->exponent_a_, others[k]->exponent_b_);
     ++kept;
   }
   if (kept == 0) return;
-  MatrixXd stacked(2 * n_ * kept, 2 * n_);
+  const Index size = n_ + d_;
+  MatrixXd stacked(size * kept, size);
   Index at = 0;
   std::uint64_t total = 0;
   for (std::size_t k = 0; k < others.size(); ++k) {
     const TriangularFactor& other = *others[k];
     if (counts[k] == 0 || other.rows_ == 0) continue;
-    auto block = stacked.middleRows(at, 2 * n_);
+    auto block = stacked.middleRows(at, size);
     const double w = counts[k] == 1 ? 1.0 : std::sqrt(static_cast<double>(counts[k]));
     block = w * other.R_;
     auto block_a = block.leftCols(n_);
-    auto block_b = block.rightCols(n_);
+    auto block_b = block.rightCols(d_);
     detail::multiply_by_power_of_two(block_a, other.exponent_a() - exponent_a());
     detail::multiply_by_power_of_two(block_b, other.exponent_b() - exponent_b());
-    at += 2 * n_;
+    at += size;
     total += counts[k] * static_cast<std::uint64_t>(other.rows_);
   }
   absorb(stacked);

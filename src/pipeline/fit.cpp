@@ -51,6 +51,12 @@ FitResult fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Matrix
 
 std::vector<FitResult> fit_all(const Reduction& data) {
   std::vector<FitResult> results;
+  if (data.d() != data.n()) {  // a non-square X: the methods that fit one
+    for (Method method : kAllMethods) {
+      if (fits_non_square(method)) results.push_back(fit(data, method));
+    }
+    return results;
+  }
   results.reserve(kAllMethods.size());
   // The TLS family shares one SVD of [A B]; every other method shares the reduction.
   std::optional<std::array<FitResult, 3>> tls_family;

@@ -16,7 +16,8 @@ std::string shape(const Eigen::MatrixXd& M) { return std::to_string(M.rows()) + 
 FitResult fit_stream_bootstrap(const std::string& a_path, const std::string& b_path, Method method,
                                const FitOptions& options, const StreamOptions& stream) {
   const detail::ResampledFactors factors =
-      detail::stream_resampled_factors(a_path, b_path, stream, options.bootstrap, options.seed);
+      detail::stream_resampled_factors(method, a_path, b_path, stream, options.bootstrap, options.seed);
+  detail::check_enough_rows_for(method, a_path, factors.total.rows(), factors.total.n(), factors.total.d());
   const Reduction data = reduce(factors.total, options);
   FitResult result = fit(data, method);
   if (!result.ok()) return result;
@@ -53,10 +54,10 @@ DataPair read_pair(const std::string& a_path, const std::string& b_path, const i
   io::Table b = io::read_table(b_path, options);
   data.B = std::move(b.values);
   data.warnings.insert(data.warnings.end(), b.warnings.begin(), b.warnings.end());
-  if (data.A.rows() != data.B.rows() || data.A.cols() != data.B.cols()) {
+  if (data.A.rows() != data.B.rows()) {
     throw io::DataError(b_path, 0, 0,
                         "B is " + shape(data.B) + " but A (" + a_path + ") is " + shape(data.A) +
-                            ": A and B must have the same numbers of rows (samples) and columns");
+                            ": A and B must have the same numbers of rows (samples)");
   }
   return data;
 }
@@ -71,9 +72,13 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
   std::vector<std::string> read_warnings;
   FitResult result;
   if (streamed) {
-    result = fit(reduce(stream_factor(a_path, b_path, *streamed, &read_warnings), options), method);
+    const TriangularFactor factor = detail::stream_factor_for(method, a_path, b_path, *streamed, &read_warnings);
+    detail::check_enough_rows_for(method, a_path, factor.rows(), factor.n(), factor.d());
+    result = fit(reduce(factor, options), method);
   } else {
     DataPair data = read_pair(a_path, b_path, read);
+    detail::check_method_fits(method, b_path, data.A.cols(), data.B.cols());
+    detail::check_enough_rows_for(method, a_path, data.A.rows(), data.A.cols(), data.B.cols());
     read_warnings = std::move(data.warnings);
     result = fit(data.A, data.B, method, options);
   }

@@ -31,11 +31,12 @@ struct Block {
 class PairReader {
  public:
   PairReader(const std::string& a_path, const std::string& b_path, const StreamOptions& options,
-             bool side_by_side)
+             bool side_by_side, std::optional<Method> method)
       : a_(a_path, options.read),
         b_(b_path, options.read),
         block_rows_(options.block_rows),
-        side_by_side_(side_by_side) {}
+        side_by_side_(side_by_side),
+        method_(method) {}
 
   /// The readers' warnings (a first column of row labels dropped), A's then B's.
   std::vector<std::string> warnings() const {
@@ -83,14 +84,9 @@ class PairReader {
   }
 
   // Blocks are full until a file ends, so a difference in rows shows as blocks of different
-  // sizes; the columns are compared at the first block.
+  // sizes; the columns are checked against the method at the first block.
   void check(Index got_a, Index got_b) const {
-    if (got_a > 0 && got_b > 0 && a_.columns() != b_.columns()) {
-      throw io::DataError(b_.path(), 0, 0,
-                          "B has " + std::to_string(b_.columns()) + " columns but A (" + a_.path() +
-                              ") has " + std::to_string(a_.columns()) +
-                              ": A and B must have the same numbers of rows (samples) and columns");
-    }
+    if (got_a > 0 && got_b > 0) detail::check_method_fits(method_, b_.path(), a_.columns(), b_.columns());
     if (got_a == got_b) return;
     const std::string problem =
         got_a < got_b ? "B has more than " + rows_text(a_.rows_read()) + " but A (" + a_.path() + ") has " +
@@ -102,6 +98,7 @@ class PairReader {
   io::RowReader a_, b_;
   Index block_rows_;
   bool side_by_side_;
+  std::optional<Method> method_;
   bool started_ = false;
 };
 
@@ -109,9 +106,17 @@ class PairReader {
 
 TriangularFactor stream_factor(const std::string& a_path, const std::string& b_path,
                                const StreamOptions& options, std::vector<std::string>* warnings) {
+  return detail::stream_factor_for(std::nullopt, a_path, b_path, options, warnings);
+}
+
+namespace detail {
+
+TriangularFactor stream_factor_for(const std::optional<Method>& method, const std::string& a_path,
+                                   const std::string& b_path, const StreamOptions& options,
+                                   std::vector<std::string>* warnings) {
   if (options.block_rows < 1) throw std::invalid_argument("block_rows must be at least 1");
   const unsigned threads = resolve_threads(options.threads);
-  PairReader reader(a_path, b_path, options, threads > 1);
+  PairReader reader(a_path, b_path, options, threads > 1, method);
 
   // Blocks' factors are computed on up to `threads` threads while the next blocks are read, and
   // merged strictly in block order, so the result is the same for every thread count.
@@ -143,13 +148,11 @@ TriangularFactor stream_factor(const std::string& a_path, const std::string& b_p
   return std::move(*total);
 }
 
-namespace detail {
-
-ResampledFactors stream_resampled_factors(const std::string& a_path, const std::string& b_path,
+ResampledFactors stream_resampled_factors(Method method, const std::string& a_path, const std::string& b_path,
                                           const StreamOptions& options, int replicates, std::uint64_t seed) {
   if (options.block_rows < 1) throw std::invalid_argument("block_rows must be at least 1");
   const unsigned threads = resolve_threads(options.threads);
-  PairReader reader(a_path, b_path, options, threads > 1);
+  PairReader reader(a_path, b_path, options, threads > 1, method);
   // Rows are copied into whole groups; a batch of groups is factored on the threads, then merged
   // into the total and into every replicate (replicates spread over the threads), each factor
   // in group order, so the result does not depend on the threads or the block size.
@@ -161,7 +164,7 @@ ResampledFactors stream_resampled_factors(const std::string& a_path, const std::
 
   auto flush = [&] {
     if (batch.empty()) return;
-    std::vector<TriangularFactor> factors(batch.size(), TriangularFactor(out.total.n()));
+    std::vector<TriangularFactor> factors(batch.size(), TriangularFactor(out.total.n(), out.total.d()));
     parallel_for(batch.size(), threads, [&](std::size_t k) {
       factors[k] = TriangularFactor::from_data(batch[k].A, batch[k].B);
     });
@@ -180,16 +183,16 @@ ResampledFactors stream_resampled_factors(const std::string& a_path, const std::
 
   Block block;
   while (reader.next(&block)) {
-    const Index n = block.A.cols();
+    const Index n = block.A.cols(), d = block.B.cols();
     if (out.replicates.empty()) {
-      out.total = TriangularFactor(n);
-      out.replicates.assign(static_cast<std::size_t>(replicates), TriangularFactor(n));
+      out.total = TriangularFactor(n, d);
+      out.replicates.assign(static_cast<std::size_t>(replicates), TriangularFactor(n, d));
     }
     Index offset = 0;
     while (offset < block.A.rows()) {
       if (batch.empty() || filled == g_rows) {
         if (batch.size() == kBatchGroups) flush();
-        batch.push_back(Block{MatrixXd(g_rows, n), MatrixXd(g_rows, n)});
+        batch.push_back(Block{MatrixXd(g_rows, n), MatrixXd(g_rows, d)});
         filled = 0;
       }
       const Index take = std::min(block.A.rows() - offset, g_rows - filled);

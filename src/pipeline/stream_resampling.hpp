@@ -1,14 +1,23 @@
-// Internal: the streaming (Poisson) bootstrap's factors, read in the one pass of stream_factor.
+// Internal: streaming for a method known in advance, and the streaming (Poisson) bootstrap's
+// factors, read in the one pass of stream_factor.
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "spdfit/method.hpp"
 #include "spdfit/stream.hpp"
 #include "spdfit/triangular_factor.hpp"
 
 namespace spdfit::detail {
+
+/// stream_factor for data that `method` (when given) will fit: B with a column count the method
+/// does not fit (check_method_fits) is refused at the first block, not after the whole pass.
+TriangularFactor stream_factor_for(const std::optional<Method>& method, const std::string& a_path,
+                                   const std::string& b_path, const StreamOptions& options,
+                                   std::vector<std::string>* warnings);
 
 /// The factor of all the rows and of each replicate's resample.
 struct ResampledFactors {
@@ -20,8 +29,8 @@ struct ResampledFactors {
 /// Reads A and B as stream_factor does and cuts the rows into consecutive groups of
 /// kBootstrapGroupRows (bootstrap.hpp), whatever the block size; each group's factor is merged
 /// into `total` and, counted poisson_count(seed, r, group) times, into replicate r's factor, on
-/// options.threads threads. Throws as stream_factor does.
-ResampledFactors stream_resampled_factors(const std::string& a_path, const std::string& b_path,
+/// options.threads threads. Throws as stream_factor_for does.
+ResampledFactors stream_resampled_factors(Method method, const std::string& a_path, const std::string& b_path,
                                           const StreamOptions& options, int replicates, std::uint64_t seed);
 
 }  // namespace spdfit::detail

@@ -32,7 +32,7 @@ TriangularFactor resample_rows(const Eigen::Ref<const MatrixXd>& A, const Eigen:
     const auto row = std::min(static_cast<Index>(random.uniform() * rows), m - 1);
     ++counts[static_cast<std::size_t>(row)];
   }
-  TriangularFactor factor(A.cols());
+  TriangularFactor factor(A.cols(), B.cols());
   factor.append(A, B, counts);
   return factor;
 }
@@ -236,7 +236,8 @@ void attach_bootstrap(FitResult& result, const std::vector<Replicate>& replicate
           " is biased by it at m = " + std::to_string(data.m) + " rows (signal-to-noise ratio " +
           format_number(choice.snr) +
           " in A's weakest direction), and the bootstrap interval, centred on the biased estimate, can miss the "
-          "truth; spd-tls (or auto) is consistent here");
+          "truth; " +
+          std::string(data.square() ? "spd-tls (or auto) is" : "tls (for a non-square X) is") + " consistent here");
     }
   }
   result.bootstrap = std::move(boot);

@@ -64,8 +64,14 @@ def test_different_row_counts(spdfit, tmp_path, good):
 
 
 def test_different_column_counts(spdfit, tmp_path, good):
+    # B with d != n columns: a non-square X, which only ls and tls fit; the other methods are
+    # refused naming B's file and the methods that do fit it, in memory and streamed.
     other = write_text(tmp_path / "wide.csv", "1,2,3\n3,4,5\n5,6,7\n")
-    fails(spdfit("fit", "--method", "tls", good, other), 1, "wide.csv", "3x3")
+    for stream in ([], ["--stream"]):
+        fails(spdfit("fit", "--method", "spde", *stream, good, other), 1, "wide.csv", "A has 2 and B 3",
+              "use ls or tls")
+        # tls needs m >= n + d = 5 rows for a 2x3 X; there are 3.
+        fails(spdfit("fit", "--method", "tls", *stream, good, other), 1, str(good), "3 rows", "n + d = 5")
 
 
 def test_fewer_rows_than_columns(spdfit, tmp_path):

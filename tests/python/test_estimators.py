@@ -118,7 +118,7 @@ def test_nearest_spd():
 
 
 @pytest.mark.parametrize("A, B, fragment", [
-    (np.ones((4, 2)), np.ones((3, 2)), "same shape"),
+    (np.ones((4, 2)), np.ones((3, 2)), "same numbers of rows"),
     (np.ones((2, 3)), np.ones((2, 3)), "at least as many rows"),
     (np.array([[1.0, np.nan], [1, 2], [3, 4]]), np.ones((3, 2)), "NaN"),
     (np.ones((3, 2)) * (1 + 1j), np.ones((3, 2)), "real numeric"),

@@ -78,13 +78,13 @@ TEST(FactorValue, DeserializeRefusesWhatIsNotAFactor) {
   expect_refused("", "wrong magic");
   expect_refused("not a factor at all", "wrong magic");
   std::string bytes = good;
-  bytes[8] = 2;  // layout version 2
-  expect_refused(bytes, "layout version 2");
+  bytes[8] = 3;  // layout version 3
+  expect_refused(bytes, "layout version 3 is not 1 or 2");
   bytes = good;
   bytes[12] = 0;  // n = 0
   expect_refused(bytes, "n = 0");
-  expect_refused(good.substr(0, good.size() - 1), "bytes of R where n = 2 needs");
-  expect_refused(good + "x", "bytes of R where n = 2 needs");
+  expect_refused(good.substr(0, good.size() - 1), "bytes of R where n = 2, d = 2 needs");
+  expect_refused(good + "x", "bytes of R where n = 2, d = 2 needs");
   bytes = good;
   bytes[28] = 7;  // A's exponent flag
   expect_refused(bytes, "exponent flag is 7");
@@ -97,6 +97,42 @@ TEST(FactorValue, DeserializeRefusesWhatIsNotAFactor) {
   bytes = good;
   bytes.replace(38 + 2 * 8, 8, std::string("\0\0\0\0\0\0\xf0\x3f", 8));  // 1.0
   expect_refused(bytes, "nonzero entry in row 1 beyond the 1 rows");
+
+  // Layout 2: a non-square factor (A 1 x 2, B 1 x 3) carries d after n.
+  const std::string wide = TriangularFactor::from_data(g.gaussian(1, 2), g.gaussian(1, 3)).serialize();
+  ASSERT_EQ(wide[8], 2);
+  bytes = wide;
+  bytes[20] = 0;  // d = 0
+  expect_refused(bytes, "d = 0 is not at least 1");
+  bytes = wide;
+  bytes[20] = 2;  // d = n = 2 in layout 2
+  expect_refused(bytes, "layout 2 with d = n");
+  expect_refused(wide.substr(0, wide.size() - 8), "bytes of R where n = 2, d = 3 needs");
+}
+
+TEST(FactorValue, NonSquareFactorsRoundTripAndMerge) {
+  // A factor of A (n = 3 columns) and B (d = 2): the bytes come back bit for bit, a square factor
+  // is still written in layout 1 (readable by spdfit before non-square factors), and merging
+  // keeps the shape and equals the factor of all the rows (the Gram matrix, to rounding).
+  Generator g(11);
+  const MatrixXd A1 = g.gaussian(7, 3), B1 = g.gaussian(7, 2), A2 = g.gaussian(5, 3), B2 = g.gaussian(5, 2);
+  const TriangularFactor f1 = TriangularFactor::from_data(A1, B1), f2 = TriangularFactor::from_data(A2, B2);
+  const std::string bytes = f1.serialize();
+  EXPECT_EQ(bytes[8], 2);
+  const TriangularFactor back = TriangularFactor::deserialize(bytes);
+  EXPECT_EQ(back.n(), 3);
+  EXPECT_EQ(back.d(), 2);
+  EXPECT_EQ(back.serialize(), bytes);
+  EXPECT_EQ(TriangularFactor::from_data(A1, A1).serialize()[8], 1);
+
+  const TriangularFactor merged = TriangularFactor::merged(back, f2);
+  EXPECT_EQ(merged.rows(), 12);
+  MatrixXd all(12, 5);
+  all << A1, B1, A2, B2;
+  const TriangularFactor whole = TriangularFactor::from_data(all.leftCols(3), all.rightCols(2));
+  const MatrixXd gram = whole.R().transpose() * whole.R();
+  EXPECT_LT((merged.R().transpose() * merged.R() - gram).norm() / gram.norm(), 1e-14);
+  EXPECT_THROW(TriangularFactor::merged(f1, TriangularFactor(3)), std::invalid_argument);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 
 #include "file_test_support.hpp"
 #include "spdfit/fit.hpp"
+#include "spdfit/fit_files.hpp"
 #include "spdfit/io.hpp"
 #include "spdfit/spde.hpp"
 #include "spdfit/stream.hpp"
@@ -97,10 +98,18 @@ TEST_F(StreamTest, MismatchedFilesAreRefusedByName) {
       StreamError(longer, a).problem(),
       "B has 3 rows but A (" + longer + ") has more: A and B must have the same numbers of rows (samples)");
   EXPECT_EQ(StreamError(longer, a, 2).problem(), StreamError(longer, a, 100).problem());
-  EXPECT_EQ(StreamError(a, wide).problem(),
-            "B has 3 columns but A (" + a +
-                ") has 2: A and B must have the same numbers of rows (samples) "
-                "and columns");
+  // B with other columns than A is a non-square X (ls and tls): stream_factor accepts it, and
+  // fit_files refuses it for a method that needs a square X, naming B's file, at the first block.
+  const TriangularFactor non_square = stream_factor(a, wide);
+  EXPECT_EQ(non_square.n(), 2);
+  EXPECT_EQ(non_square.d(), 3);
+  try {
+    fit_files(a, wide, Method::Spde, {}, StreamOptions{});
+    ADD_FAILURE() << "spde accepted a non-square X";
+  } catch (const DataError& e) {
+    EXPECT_EQ(e.source(), wide);
+    EXPECT_NE(e.problem().find("use ls or tls"), std::string::npos) << e.problem();
+  }
   EXPECT_EQ(StreamError(flat, flat).problem(),
             "A has 1 rows (samples) but 3 columns: at least as many samples as columns are needed");
   const DataError bad = StreamError(a, Write("bad.csv", "1,2\n3,x\n5,6\n"));

@@ -131,8 +131,10 @@ TEST(TriangularFactor, LaterLargerChunkRaisesTheScale) {
 
 TEST(TriangularFactor, RejectsMisuse) {
   EXPECT_THROW(TriangularFactor(0), std::invalid_argument);
-  EXPECT_THROW(TriangularFactor::from_data(MatrixXd::Ones(4, 2), MatrixXd::Ones(4, 3)),
-               std::invalid_argument);
+  EXPECT_THROW(TriangularFactor(2, 0), std::invalid_argument);
+  TriangularFactor wide(2, 3);  // B may have other columns than A, but always the factor's
+  EXPECT_THROW(wide.append(MatrixXd::Ones(4, 2), MatrixXd::Ones(4, 2)), std::invalid_argument);
+  EXPECT_NO_THROW(wide.append(MatrixXd::Ones(4, 2), MatrixXd::Ones(4, 3)));
   EXPECT_THROW(TriangularFactor::from_data(MatrixXd::Ones(4, 2), MatrixXd::Ones(3, 2)),
                std::invalid_argument);
   MatrixXd bad = MatrixXd::Ones(4, 2);
