@@ -10,6 +10,10 @@ The files are committed; this script documents exactly how they were made:
               which is indefinite: repair it with `spdfit nearest --corr`; S.csv: the same
               sensors' covariance in their own units (standard deviations 1e-4 to 2e-3):
               `spdfit nearest` or `spdfit nearest --keep-diag`
+  load_cell/  a non-square X: m = 20 loads (Fx, Fy, Fz in N) applied to a load cell, measured by
+              a reference cell with noise of std 0.5 N, and the cell's 4 strain-gauge readings
+              (mV, noise of std 0.05 mV); readings = loads X with X 3 x 4, which `spdfit fit
+              --method ls` or `--method tls` estimates
 """
 import os
 import pathlib
@@ -74,7 +78,20 @@ def covariance(rng):
          "covariance of 5 sensors in their units (standard deviations 1e-4 to 2e-3), pairwise deletion (indefinite)")
 
 
+def load_cell(rng):
+    m = 20
+    sensitivity = np.array([[0.80, -0.10, 0.05, 0.30],    # mV per N of Fx on each gauge
+                            [0.05, 0.75, -0.20, 0.25],
+                            [0.10, 0.10, 0.90, -0.40]])
+    loads = rng.uniform(-50.0, 50.0, (m, 3))
+    A = loads + 0.5 * rng.standard_normal((m, 3))
+    B = loads @ sensitivity + 0.05 * rng.standard_normal((m, 4))
+    save(HERE / "load_cell/loads.csv", A, "applied loads measured by a reference cell (N)", ["Fx", "Fy", "Fz"])
+    save(HERE / "load_cell/readings.csv", B, "strain-gauge readings (mV)", ["g1", "g2", "g3", "g4"])
+
+
 if __name__ == "__main__":
     hexapod(np.random.default_rng(2))
     paper_2x2(np.random.default_rng(7))
     covariance(np.random.default_rng(11))
+    load_cell(np.random.default_rng(17))
