@@ -141,8 +141,8 @@ void DelimitedParser::check_is_text(std::string_view text, bool first_piece) con
   const TextPosition position = locate(text, offset);
   // The piece starts at a line start, after the lines of the earlier pieces.
   throw DataError(source_, line_number_ + position.line, position.column,
-                  "looks like a binary file, not text (" + description + " at byte offset " +
-                      std::to_string(piece_offset_ + offset) + ")");
+                  non_text_problem(text, offset, description, piece_offset_ + offset,
+                                   first_piece && piece_offset_ == 0));
 }
 
 // Lines end at LF, CRLF, or a lone CR (the line end of old Mac spreadsheets).
@@ -261,8 +261,23 @@ std::size_t DelimitedParser::parse_row(const Line& line) {
       continue;
     }
     if (field.quoted) {
-      const std::string_view quoted = line.content.substr(field.offset, field.text.size() + 2);
-      fail(line, field.offset, quote_token(quoted) + " is quoted text, not a number");
+      // A quoted number in a data row ("1.5", as some spreadsheets and exporters write every
+      // cell) reads as the number; quoted text is still not one. (In the first line quoted
+      // tokens count as names: R's header "","1","2" stays a header; see is_header.)
+      const std::string text = unquote(field);
+      Field inner = field;
+      inner.text = text;
+      const std::size_t first = inner.text.find_first_not_of(" \t");  // spaces, as around unquoted fields
+      inner.text = first == std::string_view::npos ? std::string_view()
+                                                   : inner.text.substr(first, inner.text.find_last_not_of(" \t") - first + 1);
+      if (inner.text.empty()) fail_empty_field(line, field, count);
+      if (parse_number(inner.text).kind == NumberKind::kNotANumber) {
+        const std::string_view quoted = line.content.substr(field.offset, field.text.size() + 2);
+        fail(line, field.offset, quote_token(quoted) + " is quoted text, not a number");
+      }
+      values_.push_back(parse_value(line, inner));
+      ++count;
+      continue;
     }
     if (field.text.empty()) fail_empty_field(line, field, count);
     values_.push_back(parse_value(line, field));

@@ -109,9 +109,9 @@ void refuse_binary_early(std::string_view first, const std::string& path) {
   const std::size_t offset = detail::find_non_text_byte(first, &description);
   // A multi-byte UTF-8 character may be cut at the end of the block: only judge well inside it.
   if (offset == std::string_view::npos || offset + 4 >= first.size()) return;
-  // The delimited reader checks the bytes before anything else, so the prefix up to the first
-  // non-text byte fails exactly as the whole file would.
-  parse_delimited(first.substr(0, offset + 1), path);
+  // The delimited reader checks the bytes before anything else, so these first bytes fail as
+  // the whole file would.
+  parse_delimited(first, path);
 }
 
 }  // namespace

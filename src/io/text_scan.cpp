@@ -1,5 +1,6 @@
 #include "text_scan.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -101,7 +102,87 @@ bool is_overflow(std::string_view token) {
   return magnitude + exponent > 0;
 }
 
+// Windows-1252's characters for the bytes 0x80-0x9F (0 where it defines none); from 0xA0 on it
+// is Latin-1, whose byte b is the code point U+00b.
+constexpr char32_t kCp1252High[32] = {
+    0x20AC, 0,      0x201A, 0x0192, 0x201E, 0x2026, 0x2020, 0x2021, 0x02C6, 0x2030, 0x0160,
+    0x2039, 0x0152, 0,      0x017D, 0,      0,      0x2018, 0x2019, 0x201C, 0x201D, 0x2022,
+    0x2013, 0x2014, 0x02DC, 0x2122, 0x0161, 0x203A, 0x0153, 0,      0x017E, 0x0178};
+
+std::string utf8_of(char32_t c) {
+  std::string out;
+  if (c < 0x80) {
+    out += static_cast<char>(c);
+  } else if (c < 0x800) {
+    out += static_cast<char>(0xC0 | (c >> 6));
+    out += static_cast<char>(0x80 | (c & 0x3F));
+  } else {
+    out += static_cast<char>(0xE0 | (c >> 12));
+    out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
+    out += static_cast<char>(0x80 | (c & 0x3F));
+  }
+  return out;
+}
+
+// Whether `text` (a window of a file) holds no control character but tab, CR and LF, and no
+// NUL: text, whatever its encoding.
+bool no_control_characters(std::string_view text) {
+  for (const char ch : text) {
+    const auto c = static_cast<unsigned char>(ch);
+    if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7F) return false;
+  }
+  return true;
+}
+
+// Whether `text` looks like UTF-16 without a byte-order mark: in its first bytes every other
+// byte is NUL and the others are printable ASCII or line ends (the digits, separators and names
+// of a data file).
+bool looks_like_utf16(std::string_view text) {
+  const std::size_t n = std::min<std::size_t>(text.size(), 256) & ~std::size_t{1};
+  if (n < 4) return false;
+  for (std::size_t zero_at : {std::size_t{0}, std::size_t{1}}) {
+    bool all = true;
+    for (std::size_t i = 0; i < n && all; ++i) {
+      const auto c = static_cast<unsigned char>(text[i]);
+      all = (i % 2 == zero_at) ? c == 0 : (c >= 0x20 && c < 0x7F) || c == '\t' || c == '\n' || c == '\r';
+    }
+    if (all) return true;
+  }
+  return false;
+}
+
 }  // namespace
+
+std::string non_text_problem(std::string_view text, std::size_t offset, const std::string& description,
+                             std::size_t file_offset, bool at_start) {
+  const std::string where = " at byte offset " + std::to_string(file_offset);
+  const std::string binary = "looks like a binary file, not text (" + description + where + ")";
+  if (at_start) {
+    if (text.substr(0, 4) == std::string_view("PK\x03\x04", 4)) {
+      return binary + ": a ZIP archive, such as an Excel .xlsx workbook; save the sheet as CSV UTF-8";
+    }
+    if (text.substr(0, 8) == std::string_view("\xD0\xCF\x11\xE0\xA1\xB1\x1A\xE1", 8)) {
+      return binary + ": an Excel 97-2003 .xls workbook (or another OLE file); save the sheet as CSV UTF-8";
+    }
+    if (text.substr(0, 6) == "\x93NUMPY") return binary + ": a .npy file with a damaged header";
+    if (looks_like_utf16(text)) {
+      return "looks like UTF-16 text without a byte-order mark (a NUL byte every other byte" + where +
+             "); save it as UTF-8 or plain CSV";
+    }
+  }
+  const auto c = static_cast<unsigned char>(text[offset]);
+  // A byte that is not UTF-8 amid text (no control characters around it): a Windows code page.
+  const std::size_t window_start = offset > 4096 ? offset - 4096 : 0;
+  if (c >= 0x80 && no_control_characters(text.substr(window_start, offset - window_start + 4096))) {
+    const char32_t character = c >= 0xA0 ? char32_t{c} : kCp1252High[c - 0x80];
+    const std::string shown = character == 0 ? std::string()
+                              : " ('" + utf8_of(character) + "' in Windows-1252" + (c >= 0xA0 ? " and Latin-1)" : ")");
+    return "is not UTF-8 text: byte " + hex_byte(c) + where + shown +
+           " is not valid UTF-8, so the file is probably in a Windows code page (Excel's plain \"CSV\" "
+           "saves in one); save it as UTF-8 (Excel: \"CSV UTF-8\")";
+  }
+  return binary;
+}
 
 std::size_t find_non_text_byte(std::string_view text, std::string* description) {
   const auto* p = reinterpret_cast<const unsigned char*>(text.data());

@@ -13,6 +13,15 @@ namespace spdfit::io::detail {
 /// is none; otherwise `description` says what was found (e.g. "NUL byte").
 std::size_t find_non_text_byte(std::string_view text, std::string* description);
 
+/// What text that find_non_text_byte stopped at `offset` most likely is, as an error message
+/// that says what to do: UTF-16 without a byte-order mark, or text in a Windows code page
+/// (Windows-1252 / Latin-1, as Excel's plain "CSV" saves: the byte shown as that character)
+/// say "save it as UTF-8"; anything else "looks like a binary file, not text (`description`
+/// at byte offset `file_offset`)", naming a ZIP archive (.xlsx) or an old .xls workbook by their
+/// signatures when `at_start` (text begins at the file's first byte).
+std::string non_text_problem(std::string_view text, std::size_t offset, const std::string& description,
+                             std::size_t file_offset, bool at_start);
+
 /// A 1-based line and character column.
 struct TextPosition {
   std::size_t line;

@@ -360,7 +360,24 @@ TEST(IoDelimited, MixedSeparators) {
 }
 
 TEST(IoDelimited, Quotes) {
-  ExpectError("1,\"2\"\n", 1, 3, "'\"2\"' is quoted text, not a number");
+  // Quoted numbers in data rows read as numbers (issue 18: this reverses the earlier refusal of
+  // '"2"'); quoted text, or nothing between the quotes, is still an error naming the column.
+  const Table quoted = parse_delimited("1,\"2\"\n\" -3.5e2 \",\"4\"\n", "A.csv", {});
+  ASSERT_EQ(quoted.values.rows(), 2);
+  EXPECT_EQ(quoted.values(0, 1), 2.0);
+  EXPECT_EQ(quoted.values(1, 0), -350.0);
+  ExpectError("1,\"x\"\n", 1, 3, "'\"x\"' is quoted text, not a number");
+  const DataError empty = ParseError("1,2\n3,\"\"\n");
+  EXPECT_EQ(empty.line(), 2u);
+  EXPECT_NE(empty.problem().find("empty field"), std::string::npos) << empty.what();
+  ExpectError("1,2\n\"NaN\",4\n", 2, 1, "NaN is not allowed");
+  // In the first line quoted tokens are names: R's write.csv header "","1","2" is a header, and
+  // its first empty cell marks a column of row labels.
+  const Table r = parse_delimited("\"\",\"1\",\"2\"\n\"a\",\"3\",4\n\"b\",5,6\n", "A.csv", {});
+  ASSERT_EQ(r.values.rows(), 2);
+  ASSERT_EQ(r.values.cols(), 2);
+  EXPECT_EQ(r.column_names, (std::vector<std::string>{"1", "2"}));
+  EXPECT_EQ(r.values(0, 0), 3.0);
   ExpectError("\"a,b\n1,2\n", 1, 1, "missing closing quote");
   ExpectError("\"a\"x,b\n1,2\n", 1, 4, "unexpected text after closing quote");
   ExpectError("\"a\"x b\n1 2\n", 1, 4, "unexpected text after closing quote");

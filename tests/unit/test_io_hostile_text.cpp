@@ -42,6 +42,10 @@ TEST(IoHostileText, BinaryGarbage) {
   EXPECT_EQ(ParseError(std::string("abc\n1,x\n\0", 9)).line(), 3u);
   // A zip file, such as an .xlsx workbook.
   EXPECT_NE(ParseError(std::string("PK\x03\x04\x14\0\x06\0", 8)).problem().find("binary"), std::string::npos);
+  EXPECT_NE(ParseError(std::string("PK\x03\x04\x14\0\x06\0", 8)).problem().find("Excel .xlsx workbook"),
+            std::string::npos);
+  EXPECT_NE(ParseError(std::string("\xD0\xCF\x11\xE0\xA1\xB1\x1A\xE1\0", 9)).problem().find(".xls workbook"),
+            std::string::npos);
 }
 
 TEST(IoHostileText, InvalidUtf8) {
@@ -49,7 +53,6 @@ TEST(IoHostileText, InvalidUtf8) {
     const DataError e = ParseError(text);
     EXPECT_EQ(e.line(), line) << text;
     EXPECT_EQ(e.column(), column) << text;
-    EXPECT_NE(e.problem().find("looks like a binary file"), std::string::npos) << e.what();
     EXPECT_NE(e.problem().find("not valid UTF-8"), std::string::npos) << e.what();
   };
   expect_invalid("Temp\xE9rature,x\n1,2\n", 1, 5);  // Latin-1
@@ -59,9 +62,18 @@ TEST(IoHostileText, InvalidUtf8) {
   expect_invalid("1,2\n\xF4\x90\x80\x80\n", 2, 1);  // beyond U+10FFFF
   expect_invalid("1,2\nx\xE2\x82", 2, 2);           // cut off at the end
   expect_invalid("\x93NUMPY", 1, 1);                // a broken .npy
+  // Amid text, a byte that is not UTF-8 is a Windows code page (issue 18: say what to do, not
+  // "binary"), shown as the character it is there.
   EXPECT_EQ(ParseError("Temp\xE9rature").problem(),
-            "looks like a binary file, not text (byte 0xE9 that is not valid UTF-8 at byte "
-            "offset 4)");
+            "is not UTF-8 text: byte 0xE9 at byte offset 4 ('\xC3\xA9' in Windows-1252 and Latin-1) is not "
+            "valid UTF-8, so the file is probably in a Windows code page (Excel's plain \"CSV\" saves in one); "
+            "save it as UTF-8 (Excel: \"CSV UTF-8\")");
+  EXPECT_NE(ParseError("a,b\n1,\x80\n").problem().find("('\xE2\x82\xAC' in Windows-1252)"), std::string::npos);
+  EXPECT_NE(ParseError("a,b\n1,\x81\n").problem().find("save it as UTF-8"), std::string::npos);
+  // Next to control characters it is binary, and a damaged .npy header says so.
+  EXPECT_EQ(ParseError("1,2\n\xE9\x01\n").problem(),
+            "looks like a binary file, not text (byte 0xE9 that is not valid UTF-8 at byte offset 4)");
+  EXPECT_NE(ParseError("\x93NUMPY").problem().find("a .npy file with a damaged header"), std::string::npos);
 }
 
 TEST(IoHostileText, Utf16) {
@@ -72,6 +84,11 @@ TEST(IoHostileText, Utf16) {
                              8));
   EXPECT_EQ(e.line(), 0u);
   EXPECT_NE(e.problem().find("UTF-16"), std::string::npos) << e.what();
+  // Without a byte-order mark: a NUL every other byte, ASCII between.
+  for (const std::string text : {std::string("1\0,\0002\0\n\0", 8), std::string("\0001\0,\0002\0\n", 8)}) {
+    EXPECT_NE(ParseError(text).problem().find("looks like UTF-16 text without a byte-order mark"), std::string::npos)
+        << ParseError(text).what();
+  }
 }
 
 // ---- Hostile input -----------------------------------------------------------------------------
