@@ -1,4 +1,6 @@
-// Reading .npy files (NumPy's binary format) holding a 1-D or 2-D float64 array.
+// Reading .npy files (NumPy's binary format) holding a 1-D or 2-D numeric array: float64 as it
+// is, float32, integers and booleans converted to double (as NumPy's astype(float) does;
+// integers beyond 2^53 in magnitude round to the nearest double).
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -32,6 +34,37 @@ double decode_double(const char* bytes, bool big_endian) {
   return value;
 }
 
+// One value of any supported dtype, as a double.
+double decode_value(const char* bytes, char kind, std::size_t size, bool big_endian) {
+  std::uint64_t bits = 0;
+  for (std::size_t k = 0; k < size; ++k) {
+    const auto byte = static_cast<std::uint64_t>(static_cast<unsigned char>(bytes[k]));
+    bits |= byte << (8 * (big_endian ? size - 1 - k : k));
+  }
+  switch (kind) {
+    case 'f':
+      if (size == 4) {
+        float value;
+        const auto narrow = static_cast<std::uint32_t>(bits);
+        std::memcpy(&value, &narrow, sizeof(value));
+        return value;
+      } else {
+        double value;
+        std::memcpy(&value, &bits, sizeof(value));
+        return value;
+      }
+    case 'i': {
+      // Sign-extend from `size` bytes.
+      const unsigned shift = static_cast<unsigned>(64 - 8 * size);
+      return static_cast<double>(static_cast<std::int64_t>(bits << shift) >> shift);
+    }
+    case 'b':
+      return bits != 0 ? 1.0 : 0.0;
+    default:  // 'u'
+      return static_cast<double>(bits);
+  }
+}
+
 bool host_is_little_endian() {
   const std::uint16_t one = 1;
   unsigned char first;
@@ -45,15 +78,25 @@ namespace detail {
 
 NpyLayout npy_layout(const NpyHeader& header, std::size_t file_bytes, const std::string& source) {
   NpyLayout layout;
-  layout.big_endian = header.descr == ">f8";
   layout.fortran_order = header.fortran_order;
   layout.data_offset = header.data_offset;
   if (header.structured) {
-    fail(source, "structured dtypes are not supported; save a plain float64 array");
+    fail(source, "structured dtypes are not supported; save a plain numeric array");
   }
-  if (header.descr != "<f8" && !layout.big_endian) {
-    fail(source, "dtype " + quote_token(header.descr) + " is not supported; save as float64");
+  // descr: a byte order ('<', '>', or '|' where it does not matter), a kind and a size in bytes.
+  const std::string& d = header.descr;
+  const bool known = d.size() == 3 && (d[0] == '<' || d[0] == '>' || d[0] == '|') &&
+                     ((d[1] == 'f' && (d[2] == '4' || d[2] == '8')) ||
+                      ((d[1] == 'i' || d[1] == 'u') && (d[2] == '1' || d[2] == '2' || d[2] == '4' || d[2] == '8')) ||
+                      (d[1] == 'b' && d[2] == '1'));
+  // '|' (no byte order) is what NumPy writes for one-byte types only.
+  if (!known || ((d[0] == '|') != (d[2] == '1'))) {
+    fail(source, "dtype " + quote_token(d) +
+                     " is not supported; save as float64 (float32, integers and booleans are read too)");
   }
+  layout.big_endian = d[0] == '>';
+  layout.kind = d[1];
+  layout.item_size = static_cast<std::size_t>(d[2] - '0');
   const std::string shape = format_shape(header.shape);
   if (header.shape.empty()) fail(source, "shape () is a single number; save a 1-D or 2-D array");
   if (header.shape.size() > 2) {
@@ -67,17 +110,18 @@ NpyLayout npy_layout(const NpyHeader& header, std::size_t file_bytes, const std:
   layout.rows = header.shape[0];
   layout.cols = header.shape.size() == 2 ? header.shape[1] : 1;
   const std::size_t data_bytes = file_bytes - header.data_offset;
-  const std::uint64_t held = data_bytes / 8;
+  const std::size_t size = layout.item_size;
+  const std::uint64_t held = data_bytes / size;
   std::string holds = std::to_string(held);
-  if (data_bytes % 8 != 0) {
-    holds += " values and " + std::to_string(data_bytes % 8) +
-             (data_bytes % 8 == 1 ? " stray byte" : " stray bytes");
+  if (data_bytes % size != 0) {
+    holds += " values and " + std::to_string(data_bytes % size) +
+             (data_bytes % size == 1 ? " stray byte" : " stray bytes");
   }
   if (layout.rows != 0 && layout.cols > std::numeric_limits<std::uint64_t>::max() / layout.rows) {
     fail(source, "shape " + shape + " is impossibly large; the file holds " + holds);
   }
   const std::uint64_t count = layout.rows * layout.cols;
-  if (count != held || data_bytes % 8 != 0) {
+  if (count != held || data_bytes % size != 0) {
     fail(source, "header claims " + std::to_string(count) + " values, file holds " + holds + " (shape is " +
                      shape + ")");
   }
@@ -91,6 +135,19 @@ void decode_npy_rows(const NpyLayout& layout, const char* data, std::uint64_t fi
   const auto n = static_cast<Eigen::Index>(layout.cols);
   out->resize(count, n);
   if (count == 0) return;  // past the end: an empty block has no storage for memcpy to write to
+  if (layout.kind != 'f' || layout.item_size != 8) {
+    // Other dtypes, converted value by value.
+    const std::size_t size = layout.item_size;
+    for (Eigen::Index j = 0; j < n; ++j) {
+      for (Eigen::Index i = 0; i < count; ++i) {
+        const std::uint64_t index = layout.fortran_order
+                                        ? static_cast<std::uint64_t>(j) * layout.rows + first + static_cast<std::uint64_t>(i)
+                                        : (first + static_cast<std::uint64_t>(i)) * layout.cols + static_cast<std::uint64_t>(j);
+        (*out)(i, j) = decode_value(data + size * index, layout.kind, size, layout.big_endian);
+      }
+    }
+    return;
+  }
   const bool native = !layout.big_endian && host_is_little_endian();
   if (layout.fortran_order) {
     // Column j's rows are contiguous: copy each column's run of `count` rows.

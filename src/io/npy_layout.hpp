@@ -1,5 +1,5 @@
-// The float64 array that a .npy header describes, checked against the file's size, and
-// decoding it a block of rows at a time (internal to src/io: parse_npy decodes all rows at
+// The numeric array that a .npy header describes (float64, float32, integers or booleans, all
+// read as double), checked against the file's size, and decoding it a block of rows at a time (internal to src/io: parse_npy decodes all rows at
 // once, the streaming RowReader a block at a time from the memory-mapped file).
 #pragma once
 
@@ -17,11 +17,14 @@ struct NpyLayout {
   std::uint64_t cols = 0;  ///< 1 for a 1-D array (read as a column)
   bool fortran_order = false;
   bool big_endian = false;
+  char kind = 'f';             ///< 'f' float, 'i' signed integer, 'u' unsigned integer, 'b' boolean
+  std::size_t item_size = 8;   ///< bytes per value: 4 or 8 for floats, 1, 2, 4 or 8 for integers, 1 for booleans
   std::size_t data_offset = 0;
 };
 
-/// Checks that the header describes a non-empty 1-D or 2-D float64 array whose values fill the
-/// `file_bytes` bytes after the header exactly. Throws DataError naming `source` otherwise,
+/// Checks that the header describes a non-empty 1-D or 2-D array of float64, float32, signed or
+/// unsigned integers or booleans (NumPy's <f8, <f4, <i1 ... <i8, <u1 ... <u8, |b1, either byte
+/// order) whose values fill the `file_bytes` bytes after the header exactly. Throws DataError naming `source` otherwise,
 /// before anything is allocated, so that a hostile shape costs nothing.
 NpyLayout npy_layout(const NpyHeader& header, std::size_t file_bytes, const std::string& source);
 

@@ -87,10 +87,11 @@ class RowReader::NpySource final : public RowReader::Source {
     const std::uint64_t runs = fortran ? layout_.cols : 1;
     const std::uint64_t run_values = fortran ? layout_.rows : layout_.rows * layout_.cols;
     const std::uint64_t per_row = fortran ? 1 : layout_.cols;
+    const std::size_t size = layout_.item_size;
     for (std::uint64_t j = 0; j < runs; ++j) {
-      const std::size_t start = layout_.data_offset + 8 * j * run_values;
-      const std::size_t from = (start + 8 * dropped_rows_ * per_row) / page * page;
-      const std::size_t to = (start + 8 * rows_read * per_row) / page * page;
+      const std::size_t start = layout_.data_offset + size * j * run_values;
+      const std::size_t from = (start + size * dropped_rows_ * per_row) / page * page;
+      const std::size_t to = (start + size * rows_read * per_row) / page * page;
       if (to > from) ::madvise(const_cast<char*>(map_) + from, to - from, MADV_DONTNEED);
     }
     dropped_rows_ = rows_read;

@@ -80,8 +80,25 @@ def test_fewer_rows_than_columns(spdfit, tmp_path):
 
 
 def test_npy_with_wrong_dtype(spdfit, tmp_path, good):
-    np.save(tmp_path / "ints.npy", np.arange(6, dtype=np.int64).reshape(3, 2))
-    fails(spdfit("fit", "--method", "spde", tmp_path / "ints.npy", good), 1, "ints.npy", "dtype")
+    np.save(tmp_path / "complex.npy", np.ones((3, 2), complex))
+    fails(spdfit("fit", "--method", "spde", tmp_path / "complex.npy", good), 1, "complex.npy", "dtype '<c16'")
+
+
+@pytest.mark.parametrize("dtype", ["float32", "int8", "int16", "int32", "int64", "uint8", "uint16", "uint32",
+                                   "uint64", "bool", ">f8", ">i4"])
+def test_npy_numeric_dtypes_are_read_as_numpy_converts_them(spdfit, tmp_path, dtype):
+    # Issue 18: what numpy's astype(float) gives, in memory and streamed (before: refused).
+    rng = np.random.default_rng(3)
+    normal = rng.standard_normal((40, 2))
+    values = (normal > 0) if dtype == "bool" else (normal * 50).astype(dtype)
+    np.save(tmp_path / "A.npy", values)
+    X = np.array([[1.0, 2.0], [3.0, 4.0]])
+    np.save(tmp_path / "B.npy", values.astype(float) @ X)  # exact: small integers or float32 values
+    out = tmp_path / "X.npy"
+    for stream in ([], ["--stream", "--block-rows", "7"]):
+        result = spdfit("fit", "--method", "ls", *stream, "-o", out, tmp_path / "A.npy", tmp_path / "B.npy")
+        assert result.returncode == 0, result.stderr
+        np.testing.assert_allclose(np.load(out), X, rtol=1e-12)
 
 
 def test_truncated_npy(spdfit, tmp_path, good):

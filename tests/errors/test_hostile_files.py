@@ -76,10 +76,13 @@ NPY_CASES = {
     "claims a little more than it holds": (
         npy("{'descr': '<f8', 'fortran_order': False, 'shape': (3, 2), }", b"\0" * 40),
         ["header claims 6 values, file holds 5"]),
-    "int64": (npy("{'descr': '<i8', 'fortran_order': False, 'shape': (2, 2), }", b"\0" * 32),
-              ["dtype '<i8' is not supported; save as float64"]),
-    "float32": (npy("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 2), }", b"\0" * 16),
-                ["dtype '<f4' is not supported"]),
+    # int64 and float32 are read (issue 18); their sizes are checked as float64's are.
+    "int64 short": (npy("{'descr': '<i8', 'fortran_order': False, 'shape': (2, 2), }", b"\0" * 24),
+                    ["header claims 4 values, file holds 3"]),
+    "float32 stray bytes": (npy("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 2), }", b"\0" * 18),
+                            ["header claims 4 values, file holds 4 values and 2 stray bytes"]),
+    "float16": (npy("{'descr': '<f2', 'fortran_order': False, 'shape': (2, 2), }", b"\0" * 8),
+                ["dtype '<f2' is not supported; save as float64 (float32, integers and booleans are read too)"]),
     "complex": (npy("{'descr': '<c16', 'fortran_order': False, 'shape': (2,), }", b"\0" * 32),
                 ["dtype '<c16' is not supported"]),
     "unicode strings": (npy("{'descr': '<U5', 'fortran_order': False, 'shape': (2,), }", b"\0" * 40),

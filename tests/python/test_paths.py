@@ -3,6 +3,7 @@ arrays are writable copies (issue 18)."""
 import pathlib
 
 import numpy as np
+import pytest
 
 import spdfit
 
@@ -38,3 +39,15 @@ def test_result_arrays_are_writable_copies():
     assert r.X[0, 0] == before
     assert spdfit.solve(A, B).solution.flags.writeable
     assert spdfit.nearest_spd(np.eye(2), full_output=True).X.flags.writeable
+
+
+@pytest.mark.parametrize("dtype", ["float32", "int8", "int64", "uint16", "uint64", "bool", ">f4", ">i8"])
+def test_read_matrix_converts_numeric_npy_as_numpy_does(tmp_path, dtype):
+    # Issue 18: float32, integer and boolean .npy files read as numpy's astype(float) gives them.
+    rng = np.random.default_rng(8)
+    normal = rng.standard_normal((7, 3))
+    values = (normal > 0) if dtype == "bool" else (normal * 1000).astype(dtype)
+    np.save(tmp_path / "v.npy", values)
+    np.testing.assert_array_equal(spdfit.read_matrix(tmp_path / "v.npy"), values.astype(float))
+    np.save(tmp_path / "f.npy", np.asfortranarray(values))
+    np.testing.assert_array_equal(spdfit.read_matrix(tmp_path / "f.npy"), values.astype(float))

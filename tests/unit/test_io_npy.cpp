@@ -263,20 +263,62 @@ TEST(IoNpy, TooMuchData) {
                  "header claims 6 values, file holds 6 values and 1 stray byte (shape is (2, 3))");
 }
 
+// float32, integers and booleans are converted to double (issue 18: before, only float64 was
+// read). The bytes are written here by hand, little- and big-endian, in both orders.
+TEST(IoNpy, OtherNumericDtypesAreConverted) {
+  const auto bytes_of = [](std::uint64_t bits, int size, bool big) {
+    std::string out;
+    for (int k = 0; k < size; ++k) out += static_cast<char>((bits >> (8 * (big ? size - 1 - k : k))) & 0xff);
+    return out;
+  };
+  for (const bool big : {false, true}) {
+    const std::string order = big ? ">" : "<";
+    // int16 -2, 300, -32768, 7 as a 2 x 2 C-order array.
+    std::string data;
+    for (std::int64_t v : {-2, 300, -32768, 7}) data += bytes_of(static_cast<std::uint64_t>(v), 2, big);
+    EXPECT_EQ(parse_npy(MakeNpy(Dict(order + "i2", false, "(2, 2)"), data), "X.npy"),
+              (MatrixXd(2, 2) << -2, 300, -32768, 7).finished());
+    // The same values in Fortran order: columns first.
+    EXPECT_EQ(parse_npy(MakeNpy(Dict(order + "i2", true, "(2, 2)"), data), "X.npy"),
+              (MatrixXd(2, 2) << -2, -32768, 300, 7).finished());
+    // uint32 4294967295 and int64 -(2^53) read exactly; float32 0.1f widens to 0.1f, not 0.1.
+    EXPECT_EQ(parse_npy(MakeNpy(Dict(order + "u4", false, "(1,)"), bytes_of(0xFFFFFFFFu, 4, big)), "X.npy")(0, 0),
+              4294967295.0);
+    EXPECT_EQ(parse_npy(MakeNpy(Dict(order + "i8", false, "(1,)"),
+                                bytes_of(static_cast<std::uint64_t>(-(std::int64_t{1} << 53)), 8, big)),
+                        "X.npy")(0, 0),
+              -9007199254740992.0);
+    std::uint32_t tenth_bits;
+    const float tenth = 0.1f;
+    std::memcpy(&tenth_bits, &tenth, 4);
+    EXPECT_EQ(parse_npy(MakeNpy(Dict(order + "f4", false, "(1,)"), bytes_of(tenth_bits, 4, big)), "X.npy")(0, 0),
+              static_cast<double>(tenth));
+  }
+  EXPECT_EQ(parse_npy(MakeNpy(Dict("|u1", false, "(3,)"), std::string("\x00\x7f\xff", 3)), "X.npy"),
+            (MatrixXd(3, 1) << 0, 127, 255).finished());
+  EXPECT_EQ(parse_npy(MakeNpy(Dict("|i1", false, "(2,)"), std::string("\x80\x01", 2)), "X.npy"),
+            (MatrixXd(2, 1) << -128, 1).finished());
+  EXPECT_EQ(parse_npy(MakeNpy(Dict("|b1", false, "(2,)"), std::string("\x01\x00", 2)), "X.npy"),
+            (MatrixXd(2, 1) << 1, 0).finished());
+  // Sizes are checked in the dtype's own bytes.
+  ExpectNpyError(MakeNpy(Dict("<i4", false, "(3,)"), std::string(10, '\0')),
+                 "header claims 3 values, file holds 2 values and 2 stray bytes (shape is (3,))");
+}
+
 TEST(IoNpy, UnsupportedDtype) {
   const std::string data = EncodeAll({1, 2});
-  ExpectNpyError(MakeNpy(Dict("<f4", false, "(4,)"), data), "dtype '<f4' is not supported; save as float64");
-  ExpectNpyError(MakeNpy(Dict("<i8", false, "(2,)"), data), "dtype '<i8' is not supported; save as float64");
-  ExpectNpyError(MakeNpy(Dict("|b1", false, "(16,)"), data), "dtype '|b1' is not supported; save as float64");
-  ExpectNpyError(MakeNpy(Dict("|f8", false, "(2,)"), data), "dtype '|f8' is not supported; save as float64");
-  ExpectNpyError(MakeNpy(Dict("<c16", false, "(1,)"), data),
-                 "dtype '<c16' is not supported; save as float64");
+  const std::string also = " is not supported; save as float64 (float32, integers and booleans are read too)";
+  ExpectNpyError(MakeNpy(Dict("<f2", false, "(8,)"), data), "dtype '<f2'" + also);
+  ExpectNpyError(MakeNpy(Dict("|f8", false, "(2,)"), data), "dtype '|f8'" + also);
+  ExpectNpyError(MakeNpy(Dict("<i1", false, "(16,)"), data), "dtype '<i1'" + also);
+  ExpectNpyError(MakeNpy(Dict("<c16", false, "(1,)"), data), "dtype '<c16'" + also);
+  ExpectNpyError(MakeNpy(Dict("<M8[s]", false, "(2,)"), data), "dtype '<M8[s]'" + also);
   ExpectNpyError(MakeNpy(Dict(std::string(1000, 'f'), false, "(1,)"), data),
-                 "dtype '" + std::string(40, 'f') + "...' is not supported; save as float64");
+                 "dtype '" + std::string(40, 'f') + "...'" + also);
   ExpectNpyError(MakeNpy("{'descr': [('x', '<f8'), ('y', '<f8')], 'fortran_order': False, "
                          "'shape': (1,), }",
                          data),
-                 "structured dtypes are not supported; save a plain float64 array");
+                 "structured dtypes are not supported; save a plain numeric array");
 }
 
 TEST(IoNpy, UnsupportedShape) {

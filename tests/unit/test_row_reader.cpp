@@ -2,6 +2,8 @@
 // into blocks of rows and pieces of text.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <sstream>
 #include <string>
@@ -154,6 +156,30 @@ TEST_F(RowReaderTest, NpyInBothOrdersGivesReadTablesRows) {
     EXPECT_EQ(io::read_matrix(path), M) << path;
     for (Index block : {1, 999, 20000}) EXPECT_EQ(ReadAll(path, block), M) << path << " block " << block;
   }
+  // int32 (C order) and float32 (Fortran order) stream as they read whole: converted to double.
+  std::string ints, floats;
+  MatrixXd int_values(10007, 4), float_values(10007, 4);
+  for (Index i = 0; i < 10007; ++i) {
+    for (Index j = 0; j < 4; ++j) {
+      const auto v = static_cast<std::int32_t>(std::lround(M(i, j) * 1e6));
+      ints.append(reinterpret_cast<const char*>(&v), 4);
+      int_values(i, j) = v;
+    }
+  }
+  for (Index j = 0; j < 4; ++j) {
+    for (Index i = 0; i < 10007; ++i) {
+      const auto v = static_cast<float>(M(i, j));
+      floats.append(reinterpret_cast<const char*>(&v), 4);
+      float_values(i, j) = v;
+    }
+  }
+  const std::string i4 = Write("i4.npy", NpyBytes("{'descr': '<i4', 'fortran_order': False, 'shape': (10007, 4), }", ints));
+  const std::string f4 = Write("f4.npy", NpyBytes("{'descr': '<f4', 'fortran_order': True, 'shape': (10007, 4), }", floats));
+  for (Index block : {1, 999, 20000}) {
+    EXPECT_EQ(ReadAll(i4, block), int_values) << block;
+    EXPECT_EQ(ReadAll(f4, block), float_values) << block;
+  }
+  EXPECT_EQ(io::read_matrix(f4), float_values);
 }
 
 TEST_F(RowReaderTest, BadNpyFailsAsReadTableDoes) {
@@ -169,8 +195,11 @@ TEST_F(RowReaderTest, BadNpyFailsAsReadTableDoes) {
       Write("short.npy", NpyBytes("{'descr': '<f8', 'fortran_order': False, 'shape': (1000, 3), }",
                                   std::string(8 * 2999, '\0'))),
       100);
-  ExpectSameError(Write("int.npy", NpyBytes("{'descr': '<i8', 'fortran_order': False, 'shape': (2, 2), }",
-                                            std::string(32, '\0'))),
+  ExpectSameError(Write("complex.npy", NpyBytes("{'descr': '<c16', 'fortran_order': False, 'shape': (2, 2), }",
+                                                std::string(64, '\0'))),
+                  100);
+  ExpectSameError(Write("int.npy", NpyBytes("{'descr': '<i4', 'fortran_order': False, 'shape': (2, 2), }",
+                                            std::string(15, '\0'))),
                   100);
   ExpectSameError(Write("huge.npy", NpyBytes("{'descr': '<f8', 'fortran_order': False, "
                                              "'shape': (1000000000000, 1000000000000), }",
