@@ -1,7 +1,8 @@
 """Regenerates the example data sets in examples/ (run with Debian's /usr/bin/python3).
 
 The files are committed; this script documents exactly how they were made:
-  hexapod/    the thesis' appendix-B generator (000, chapter 6, experiment 2 set-up: m = 12
+  hexapod/    (A.csv, B.csv, truth.csv; log.mat holds A and B as the MATLAB variables accel and
+              force) the thesis' appendix-B generator (000, chapter 6, experiment 2 set-up: m = 12
               samples of n = 6 strut accelerations uniform on [-5, 5], uniform noise with
               nm = 3.2, i.e. variance 0.86, in accelerations A and forces B = A M_p)
   paper_2x2/  the paper's second example (001, section IV): X = [3 1; 1 1], A0 4x2,
@@ -46,6 +47,9 @@ def hexapod(rng):
     save(HERE / "hexapod/A.csv", A, "payload accelerations along the struts (m/s^2)", names)
     save(HERE / "hexapod/B.csv", B, "base forces along the struts (N)", names)
     save(HERE / "hexapod/truth.csv", M_P, "true joint-space mass-inertia matrix M_p, thesis eq. 6.1 (kg)")
+    # The same log as MATLAB keeps it: one .mat file with named variables (scipy writes level 5).
+    import scipy.io
+    scipy.io.savemat(HERE / "hexapod/log.mat", {"accel": A, "force": B, "note": "hexapod log, thesis set-up"})
 
 
 def paper_2x2(rng):

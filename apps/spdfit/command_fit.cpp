@@ -27,7 +27,13 @@ struct FitOptionsCli {
   BootstrapCli bootstrap;
   bool stream = false;
   StreamOptions stream_options;
+  std::string var_a, var_b;
 };
+
+// "A.mat:accel" for --var-a accel: the library's one way of naming an array in a file.
+std::string with_variable(const std::string& path, const std::string& variable) {
+  return variable.empty() ? path : path + ":" + variable;
+}
 
 std::vector<std::string> method_names() {
   std::vector<std::string> names;
@@ -53,7 +59,8 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
                 "Print X with its bootstrap standard errors (with --bootstrap), its eigenvalues and the noise "
                 "estimate as a table for people")
       ->excludes(json);
-  sub->add_option("-o,--output", options->output, "Write to FILE instead of stdout (X.npy: X as a NumPy file)");
+  sub->add_option("-o,--output", options->output,
+                  "Write to FILE instead of stdout (X.npy: a NumPy file; X.mat: a MATLAB file with the variable X)");
   sub->add_option("--rank-tol", options->rank_tolerance,
                   "Relative singular-value cut-off for numerical rank (default max(m,n)*eps)")
       ->check(rank_tolerance());
@@ -79,8 +86,15 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--block-rows", options->stream_options.block_rows, "Rows per block with --stream")
       ->check(CLI::Range(Eigen::Index{1}, Eigen::Index{1} << 24))
       ->needs(stream);
-  sub->add_option("A", options->a_path, "File of A (m x n): delimited text or .npy")->required();
-  sub->add_option("B", options->b_path, "File of B (m x n; m x d for ls and tls, X n x d): delimited text or .npy")->required();
+  sub->add_option("--var-a", options->var_a, "The variable of A's .mat or .npz file (as A.mat:NAME)");
+  sub->add_option("--var-b", options->var_b, "The variable of B's .mat or .npz file (as B.mat:NAME)");
+  sub->add_option("A", options->a_path,
+                  "File of A (m x n): delimited text, .npy, .mat or .npz (FILE:NAME names an array), - for "
+                  "standard input")
+      ->required();
+  sub->add_option("B", options->b_path,
+                  "File of B (m x n; m x d for ls and tls, X n x d): as A")
+      ->required();
 
   auto run = [options, &global]() {
     const Method method = *parse_method(options->method);
@@ -105,8 +119,12 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
       stream = options->stream_options;
       stream->threads = fit_options.threads;
     }
-    const FitResult result =
-        fit_files(options->a_path, options->b_path, method, fit_options, stream, global.read);
+    if (options->a_path == "-" && options->b_path == "-") {
+      throw UsageError("A and B cannot both be standard input (-)");
+    }
+    const FitResult result = fit_files(with_variable(options->a_path, options->var_a),
+                                       with_variable(options->b_path, options->var_b), method, fit_options, stream,
+                                       global.read);
     for (const std::string& w : result.warnings) warn(global, w);
     if (!result.ok()) throw DataFailure(result.message);
     if (result.bootstrap && !options->json && !options->report) {

@@ -245,26 +245,31 @@ void emit(const std::string& text, const std::string& path) {
 }
 
 namespace {
-bool names_npy(const std::string& path) {
-  if (path.size() < 4) return false;
+// ".npy" or ".mat" (any case) when the path ends so: the binary formats X is written in.
+std::string binary_extension(const std::string& path) {
+  if (path.size() < 4) return "";
   std::string tail = path.substr(path.size() - 4);
   std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char c) { return std::tolower(c); });
-  return tail == ".npy";
+  return tail == ".npy" || tail == ".mat" ? tail : "";
 }
 }  // namespace
 
 void emit_matrix(const Eigen::MatrixXd& X, const std::string& path) {
-  if (names_npy(path)) {
+  const std::string binary = binary_extension(path);
+  if (binary == ".npy") {
     io::write_npy(path, X);
-    return;
+  } else if (binary == ".mat") {
+    io::write_mat(path, X);
+  } else {
+    emit(matrix_csv(X), path);
   }
-  emit(matrix_csv(X), path);
 }
 
 void check_text_output(const std::string& path, const std::string& what) {
-  if (names_npy(path)) {
-    throw UsageError("--output " + path + " names a .npy file, which holds a matrix only, not " + what +
-                     ": write " + what + " to another file name, or drop it to save X as .npy");
+  const std::string binary = binary_extension(path);
+  if (!binary.empty()) {
+    throw UsageError("--output " + path + " names a " + binary + " file, which holds a matrix only, not " + what +
+                     ": write " + what + " to another file name, or drop it to save X as " + binary);
   }
 }
 

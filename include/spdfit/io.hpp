@@ -57,8 +57,11 @@ struct Table {
   std::vector<std::string> warnings;
 };
 
-/// Reads a matrix from `path`: a .npy file (recognized by its magic bytes, float64, C or Fortran
-/// order, 1-D read as a column) or delimited text. Text: fields separated by commas, semicolons,
+/// Reads a matrix from `path`: a .npy file (recognized by its magic bytes; float64, float32,
+/// integers or booleans, C or Fortran order, 1-D read as a column), a MATLAB .mat file (levels 5
+/// and 7.3) or a NumPy .npz archive, whose array "file.mat:name" names (without a name: the
+/// file's only 2-D numeric array; a file whose own name holds the colon wins when it exists),
+/// "-" for standard input, or delimited text. Text: fields separated by commas, semicolons,
 /// tabs or runs of spaces; CRLF or LF line ends; an optional UTF-8 byte-order mark; lines whose
 /// first non-blank character is '#' or '%' are comments; blank lines are skipped; an optional
 /// header row (a first data line in which no field is a number) gives the column names; a first
@@ -79,5 +82,8 @@ void write_csv(std::ostream& out, const Eigen::Ref<const Eigen::MatrixXd>& X);
 void write_csv(const std::string& path, const Eigen::Ref<const Eigen::MatrixXd>& X);
 /// Writes X to `path` as a .npy file (float64, C order). Throws DataError on failure.
 void write_npy(const std::string& path, const Eigen::Ref<const Eigen::MatrixXd>& X);
+/// Writes X to `path` as a MATLAB level-5 .mat file holding the double matrix `name` (load(path)
+/// in MATLAB or scipy.io.loadmat gives it back). Throws DataError on failure.
+void write_mat(const std::string& path, const Eigen::Ref<const Eigen::MatrixXd>& X, const std::string& name = "X");
 
 }  // namespace spdfit::io

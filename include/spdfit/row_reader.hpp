@@ -50,6 +50,7 @@ class RowReader {
   struct Source;  // the format-specific part, one kind per file format (row_reader.cpp)
   class NpySource;
   class TextSource;
+  class TableSource;
   std::unique_ptr<Source> source_;
 };
 

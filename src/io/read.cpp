@@ -13,6 +13,7 @@
 #include "file_error.hpp"
 #include "parse.hpp"
 #include "npy_header.hpp"
+#include "containers.hpp"
 #include "read_file.hpp"
 #include "spdfit/io.hpp"
 #include "text_scan.hpp"
@@ -128,9 +129,21 @@ Table parse_table(std::string_view bytes, const std::string& source, const ReadO
 }
 
 Table read_table(const std::string& path, const ReadOptions& options) {
+  if (path == "-") return parse_table(detail::read_standard_input(), "<stdin>", options);
+  const detail::FileSpec spec = detail::split_spec(path);
+  // The content decides, not the name: .mat and .npz files hold named arrays, and their
+  // libraries read them from the file.
+  const std::string head = detail::first_bytes(spec.file, 128);
+  if (detail::is_mat(head)) return detail::read_mat(spec.file, spec.variable, options);
+  if (detail::is_zip(head) && detail::holds_npy(spec.file)) return detail::read_npz(spec.file, spec.variable, options);
   const std::string bytes =
-      detail::read_file(path, std::numeric_limits<std::size_t>::max(), "a data file",
-                        [&path](std::string_view first) { refuse_binary_early(first, path); });
+      detail::read_file(spec.file, std::numeric_limits<std::size_t>::max(), "a data file",
+                        [&spec](std::string_view first) { refuse_binary_early(first, spec.file); });
+  if (!spec.variable.empty()) {
+    throw DataError(spec.file, 0, 0,
+                    "holds one array, not named ones (only .mat and .npz files do): '" + path +
+                        "' names the array '" + spec.variable + "' in it");
+  }
   return parse_table(bytes, path, options);
 }
 

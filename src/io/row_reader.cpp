@@ -12,7 +12,9 @@
 #include <cstdio>
 #include <cstring>
 #include <string_view>
+#include <utility>
 
+#include "containers.hpp"
 #include "delimited_parser.hpp"
 #include "file_error.hpp"
 #include "npy_layout.hpp"
@@ -187,7 +189,39 @@ class RowReader::TextSource final : public RowReader::Source {
   bool at_end_ = false;
 };
 
+// A .mat or .npz file, or standard input, read whole (their libraries read whole arrays; a
+// pipe cannot be mapped) and handed out a block at a time, with a warning on memory.
+class RowReader::TableSource final : public RowReader::Source {
+ public:
+  TableSource(const std::string& path, Table table) : Source(path), table_(std::move(table)) {
+    table_.warnings.push_back(
+        (path == "-" ? std::string("standard input") : path) +
+        " is read whole, not a block at a time (only .npy files and text files are streamed): memory grows "
+        "with its rows");
+  }
+  Index read(Index max_rows, Eigen::MatrixXd* rows) override {
+    const Index left = table_.values.rows() - static_cast<Index>(rows_read);
+    const Index count = std::min(max_rows, left);
+    *rows = table_.values.middleRows(static_cast<Index>(rows_read), count);
+    rows_read += static_cast<std::uint64_t>(count);
+    return count;
+  }
+  Index columns() const override { return table_.values.cols(); }
+  const std::vector<std::string>& column_names() const override { return table_.column_names; }
+  const std::vector<std::string>& warnings() const override { return table_.warnings; }
+
+ private:
+  Table table_;
+};
+
 RowReader::RowReader(const std::string& path, const ReadOptions& options) {
+  const detail::FileSpec spec = detail::split_spec(path);
+  const std::string head = path == "-" ? std::string() : detail::first_bytes(spec.file, 128);
+  if (path == "-" || !spec.variable.empty() || detail::is_mat(head) ||
+      (detail::is_zip(head) && detail::holds_npy(spec.file))) {
+    source_ = std::make_unique<TableSource>(path, read_table(path, options));
+    return;
+  }
   detail::check_regular_file(path);
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) fail_errno(path, "cannot be opened");

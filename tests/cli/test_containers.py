@@ -1,0 +1,103 @@
+"""Issue 18: MATLAB .mat files (written here by scipy.io.savemat, an independent writer), NumPy
+.npz archives and standard input, in memory and streamed; FILE:NAME, --var-a/--var-b and the
+messages that say what to do; --output X.mat read back by scipy.io.loadmat."""
+import json
+import pathlib
+
+import numpy as np
+import pytest
+import scipy.io
+
+X_TRUE = np.array([[2.0, 0.5, 0.0], [0.5, 1.0, 0.2], [0.0, 0.2, 3.0]])
+
+
+@pytest.fixture
+def data(tmp_path):
+    rng = np.random.default_rng(18)
+    A = rng.standard_normal((30, 3))
+    B = A @ X_TRUE + 1e-3 * rng.standard_normal((30, 3))
+    scipy.io.savemat(tmp_path / "log.mat", {"accel": A, "force": B, "note": "test rig 3"})
+    scipy.io.savemat(tmp_path / "A.mat", {"A": A.astype(np.float32)})
+    scipy.io.savemat(tmp_path / "Bc.mat", {"B": B}, do_compression=True)
+    np.savez(tmp_path / "log.npz", accel=A, force=B)
+    np.savez_compressed(tmp_path / "B.npz", B)
+    np.savetxt(tmp_path / "A.csv", A, delimiter=",")
+    np.savetxt(tmp_path / "B.csv", B, delimiter=",")
+    return tmp_path, A, B
+
+
+def estimate(spdfit, *args, stdin=None):
+    result = spdfit("fit", "--method", "ls", "--json", *args, input=stdin)
+    assert result.returncode == 0, result.stderr
+    return np.array(json.loads(result.stdout)["X"]), result.stderr
+
+
+@pytest.mark.parametrize("stream", [[], ["--stream", "--block-rows", "7"]])
+def test_every_container_gives_the_csv_estimate(spdfit, data, stream):
+    path, A, B = data
+    expected, _ = estimate(spdfit, path / "A.csv", path / "B.csv")
+    for a, b in [(f"{path}/log.mat:accel", f"{path}/log.mat:force"),
+                 (f"{path}/log.npz:accel", f"{path}/log.npz:force.npy"),
+                 (f"{path}/log.mat:accel", path / "Bc.mat"),         # the only 2-D array, compressed
+                 (path / "A.csv", path / "B.npz")]:                  # savez_compressed's arr_0
+        X, stderr = estimate(spdfit, *stream, a, b)
+        np.testing.assert_allclose(X, expected, rtol=1e-12, atol=1e-13, err_msg=f"{a} {b}")
+        if stream and str(b).endswith((".mat", ".npz", "force", "force.npy")):
+            assert "is read whole, not a block at a time" in stderr
+    X, _ = estimate(spdfit, *stream, "--var-a", "accel", "--var-b", "force", path / "log.mat", path / "log.mat")
+    np.testing.assert_allclose(X, expected, rtol=1e-12, atol=1e-13)
+    # float32 in a .mat file is converted, as scipy gives it back.
+    X, _ = estimate(spdfit, *stream, path / "A.mat", path / "B.csv")
+    A32 = scipy.io.loadmat(path / "A.mat")["A"].astype(float)
+    np.testing.assert_allclose(X, np.linalg.lstsq(A32, B, rcond=None)[0], rtol=1e-10)
+
+
+@pytest.mark.parametrize("stream", [[], ["--stream"]])
+def test_standard_input(spdfit, data, stream):
+    path, _, _ = data
+    expected, _ = estimate(spdfit, path / "A.csv", path / "B.csv")
+    X, _ = estimate(spdfit, *stream, "-", path / "B.csv", stdin=(path / "A.csv").read_text())
+    np.testing.assert_allclose(X, expected, rtol=1e-12, atol=1e-13)
+    both = spdfit("fit", "--method", "ls", "-", "-", input="1,2\n")
+    assert both.returncode == 2 and "cannot both be standard input" in both.stderr
+
+
+def test_a_file_whose_name_has_the_colon_wins(spdfit, data):
+    path, A, B = data
+    np.savetxt(path / "odd.csv:accel", A[:, :2] * 0, delimiter=",")  # a real file of that name
+    result = spdfit("nearest", "--min-eig", "0", f"{path}/odd.csv:accel")
+    assert result.returncode == 1 and "square" in result.stderr  # the 30x2 file, not a variable
+
+
+@pytest.mark.parametrize("spec, fragments", [
+    ("log.mat", ["holds 2 2-D numeric arrays (accel, force)", "its variables: accel, force, note",
+                 "name one as", "log.mat:NAME"]),
+    ("log.mat:nope", ["has no variable 'nope'; its variables: accel, force, note"]),
+    ("log.mat:note", ["log.mat:note: is a char array, not a numeric matrix"]),
+    ("log.npz", ["holds 2 arrays (accel, force): name one as", "log.npz:accel"]),
+    ("log.npz:nope", ["has no array 'nope'; its arrays: accel, force"]),
+    ("A.csv:x", ["holds one array, not named ones (only .mat and .npz files do)"]),
+])
+def test_messages_say_what_to_do(spdfit, data, spec, fragments):
+    path, _, _ = data
+    result = spdfit("fit", "--method", "ls", path / spec if ":" not in spec else f"{path}/{spec}", path / "B.csv")
+    assert result.returncode == 1 and result.stdout == ""
+    for fragment in fragments:
+        assert fragment in result.stderr, (fragment, result.stderr)
+
+
+def test_complex_and_3d_arrays_are_refused(spdfit, tmp_path):
+    scipy.io.savemat(tmp_path / "c.mat", {"Z": np.ones((4, 2)) * (1 + 1j), "T": np.ones((2, 2, 2))})
+    for name, fragment in [("Z", "is complex"), ("T", "has 3 dimensions")]:
+        result = spdfit("fit", "--method", "ls", f"{tmp_path}/c.mat:{name}", f"{tmp_path}/c.mat:{name}")
+        assert result.returncode == 1 and fragment in result.stderr, result.stderr
+
+
+def test_output_mat_reads_back_in_scipy(spdfit, data):
+    path, _, _ = data
+    expected, _ = estimate(spdfit, path / "A.csv", path / "B.csv")
+    result = spdfit("fit", "--method", "ls", "-o", path / "X.mat", path / "A.csv", path / "B.csv")
+    assert result.returncode == 0, result.stderr
+    np.testing.assert_array_equal(scipy.io.loadmat(path / "X.mat")["X"], expected)
+    usage = spdfit("fit", "--method", "ls", "--json", "-o", path / "X.mat", path / "A.csv", path / "B.csv")
+    assert usage.returncode == 2 and "names a .mat file" in usage.stderr
