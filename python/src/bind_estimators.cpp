@@ -14,6 +14,7 @@
 #include "spdfit/fit_files.hpp"
 #include "spdfit/nearest_correlation.hpp"
 #include "spdfit/nearest_spd.hpp"
+#include "spdfit/stream.hpp"
 
 namespace py = pybind11;
 
@@ -116,6 +117,27 @@ auto from_bootstrap(Member Bootstrap::*member) {
     if (!r.bootstrap) return std::nullopt;
     return (*r.bootstrap).*member;
   };
+}
+
+// StreamOptions' read options (not a Python class of their own) in its state: allow_nonfinite and
+// the index column as read_table's index_col spells it (None: decided from the file, True: drop,
+// False: keep).
+auto stream_read_field() {
+  return state_field(
+      [](const StreamOptions& o) {
+        const io::IndexColumn index = o.read.index_column;
+        const py::object index_col = index == io::IndexColumn::kAuto ? py::object(py::none())
+                                                                     : py::bool_(index == io::IndexColumn::kDrop);
+        return py::make_tuple(o.read.allow_nonfinite, index_col);
+      },
+      [](StreamOptions& o, const py::object& value) {
+        const auto read = value.cast<py::tuple>();
+        check_state(read, 2, "StreamOptions' read options");
+        o.read.allow_nonfinite = read[0].cast<bool>();
+        const auto index_col = read[1].cast<std::optional<bool>>();
+        o.read.index_column = !index_col ? io::IndexColumn::kAuto : *index_col ? io::IndexColumn::kDrop
+                                                                               : io::IndexColumn::kKeep;
+      });
 }
 
 std::string repr(const FitResult& r) {
@@ -324,7 +346,9 @@ void bind_estimators(py::module_& m) {
                             "How fit_files streams its files; the defaults are the library's own.")
       .def(py::init<>())
       .def_readwrite("block_rows", &StreamOptions::block_rows, "rows per block")
-      .def_readwrite("threads", &StreamOptions::threads, "threads; 0 means one per core");
+      .def_readwrite("threads", &StreamOptions::threads, "threads; 0 means one per core")
+      .def(pickle_fields<StreamOptions>("StreamOptions", state_field(&StreamOptions::block_rows),
+                                        state_field(&StreamOptions::threads), stream_read_field()));
   m.def(
       "fit_files",
       [](const std::string& a_path, const std::string& b_path, const std::string& method, Eigen::Index block_rows,

@@ -6,11 +6,33 @@
 #include <sstream>
 
 #include "bindings.hpp"
+#include "pickle.hpp"
 #include "spdfit/linear_system.hpp"
 
 namespace py = pybind11;
 
 namespace spdfit::python {
+
+namespace {
+
+// The enumerators of the enums pickled by name (pickle.hpp).
+constexpr std::array<SystemShape, 3> kSystemShapes = {SystemShape::Underdetermined, SystemShape::Determined,
+                                                      SystemShape::Overdetermined};
+
+// The status in a state: the library has no name for it, so the names are FitResult's.
+auto solve_status_field() {
+  return state_field(
+      [](const LinearSystemResult& r) { return std::string(r.ok() ? "success" : "numerical_failure"); },
+      [](LinearSystemResult& r, const py::object& value) {
+        const auto name = value.cast<std::string>();
+        if (name != "success" && name != "numerical_failure") {
+          throw std::runtime_error("cannot unpickle LinearSystemResult: unknown status '" + name + "'");
+        }
+        r.status = name == "success" ? SolveStatus::Success : SolveStatus::NumericalFailure;
+      });
+}
+
+}  // namespace
 
 void bind_linear_system(py::module_& m) {
   py::class_<ColumnClassification>(m, "ColumnClassification", "The classification of one right-hand side.")
@@ -19,7 +41,12 @@ void bind_linear_system(py::module_& m) {
       .def_property_readonly("at_infinity_dimension", copied(&ColumnClassification::at_infinity_dimension))
       .def_property_readonly("augmented_rank", copied(&ColumnClassification::augmented_rank))
       .def_property_readonly("residual_norm", copied(&ColumnClassification::residual_norm))
-      .def_property_readonly("backward_error", copied(&ColumnClassification::backward_error));
+      .def_property_readonly("backward_error", copied(&ColumnClassification::backward_error))
+      .def(pickle_fields<ColumnClassification>(
+          "ColumnClassification", state_field(&ColumnClassification::consistent),
+          state_field(&ColumnClassification::finite_solution_dimension),
+          state_field(&ColumnClassification::at_infinity_dimension), state_field(&ColumnClassification::augmented_rank),
+          state_field(&ColumnClassification::residual_norm), state_field(&ColumnClassification::backward_error)));
 
   py::class_<LinearSystemResult>(m, "LinearSystemResult",
                                  "Rank, consistency, solution sets and the minimum-norm least-squares "
@@ -50,6 +77,22 @@ void bind_linear_system(py::module_& m) {
       .def_property_readonly("range", copied(&LinearSystemResult::range), "orthonormal columns")
       .def_property_readonly("explanation", copied(&LinearSystemResult::explanation))
       .def_property_readonly("warnings", copied(&LinearSystemResult::warnings))
+      .def(pickle_fields<LinearSystemResult>(
+          "LinearSystemResult", solve_status_field(), state_field(&LinearSystemResult::message),
+          state_field(&LinearSystemResult::m), state_field(&LinearSystemResult::n), state_field(&LinearSystemResult::p),
+          enum_field(&LinearSystemResult::shape, kSystemShapes, "LinearSystemResult", "shape"),
+          state_field(&LinearSystemResult::singular_values), state_field(&LinearSystemResult::threshold),
+          state_field(&LinearSystemResult::rank), state_field(&LinearSystemResult::nullity),
+          state_field(&LinearSystemResult::condition_number),
+          state_field(&LinearSystemResult::reciprocal_condition_number),
+          state_field(&LinearSystemResult::effective_condition_number),
+          state_field(&LinearSystemResult::scaled_singular_values),
+          state_field(&LinearSystemResult::scaled_condition_number), state_field(&LinearSystemResult::refinement_steps),
+          state_field(&LinearSystemResult::consistent), state_field(&LinearSystemResult::finite_solution_dimension),
+          state_field(&LinearSystemResult::at_infinity_dimension), state_field(&LinearSystemResult::columns),
+          state_field(&LinearSystemResult::solution), state_field(&LinearSystemResult::residual_norm),
+          state_field(&LinearSystemResult::null_space), state_field(&LinearSystemResult::range),
+          state_field(&LinearSystemResult::explanation), state_field(&LinearSystemResult::warnings)))
       .def("__repr__", [](const LinearSystemResult& r) {
         std::ostringstream out;
         out << "LinearSystemResult(rank=" << r.rank << ", nullity=" << r.nullity
