@@ -218,6 +218,7 @@ EXAMPLES = {
     "solve, rank-deficient": lambda: quiet(spdfit.solve, gaussian(7, 2) @ gaussian(2, 4, seed=6),
                                            gaussian(7, 2, seed=7)),
     "solve, underdetermined": lambda: spdfit.solve(gaussian(3, 5), gaussian(3, 2, seed=6)),
+    "solve, 1-D b": lambda: spdfit.solve(gaussian(7, 4), gaussian(7, seed=6)),
     "solve, failed": lambda: numerical_failure(spdfit.solve, np.eye(2) * 1e-300, np.full((2, 1), 1e300)),
     "synthesize, steering": lambda: quiet(lk.synthesize, steering=0.5),
     "synthesize, dial zeros fitted": lambda: quiet(lk.synthesize, steering=0.5, fit_dial_zeros=True),
@@ -272,6 +273,7 @@ def test_the_examples_have_their_optional_parts_present_and_absent():
     assert example("identify, no truth")["spde"].error_vs_truth is None
     assert example("identify, no truth")["spde"].modes_hz is None
     assert not example("solve, failed").ok and example("solve, rank-deficient").nullity == 2
+    assert example("solve, 1-D b").solution.shape == (4,)
 
 
 def round_trip(obj):
