@@ -369,8 +369,14 @@ def solve(A, b, *, threshold=None):
     at infinity (the homogeneous [A | -b][x; w] = 0 with w = 0), the minimum-norm least-squares
     solution, the residual, bases of the null space and range, and an explanation in words.
     b may have several columns (each is classified on its own). Raises NumericalError when the
-    solution does not fit in a double (b huge against A)."""
-    result = _spdfit.solve(_as_matrix("A", A), _as_matrix("b", b), threshold)
+    solution does not fit in a double (b huge against A).
+
+    Shapes follow numpy.linalg.lstsq: result.solution has shape (n,) for b of shape (m,) and
+    (n, k) for b of shape (m, k), (m, 1) included. The per-right-hand-side classification keeps
+    one entry per column of b whatever its dimensionality, as lstsq's residuals do: result.columns
+    is a list of one ColumnClassification for a 1-D b, result.p is 1, and result.residual_norm
+    (||A X - b||_F, a scalar) is ||A x - b||_2. A pickled result keeps the solution's shape."""
+    result = _spdfit.solve(_as_matrix("A", A), _as_matrix("b", b), threshold, _np.ndim(b) == 1)
     for message in result.warnings:
         _warnings.warn(message, SpdfitWarning, stacklevel=2)
     if not result.ok:

@@ -133,7 +133,7 @@ class LinearSystemResult:
     finite_solution_dimension: int
     at_infinity_dimension: int
     columns: List[ColumnClassification]
-    solution: npt.NDArray[np.float64]
+    solution: npt.NDArray[np.float64]  # shape (n,) for a 1-D b, (n, p) for an m x p b
     residual_norm: float
     null_space: npt.NDArray[np.float64]
     range: npt.NDArray[np.float64]

@@ -40,6 +40,7 @@ class LinkageSolution:
     phi_generated: Array
     iterations: int
     final_step_norm: float
+    rounding_limited: bool
     check: Optional[MotionCheck]
 
 class SynthesisResult:

@@ -8,11 +8,13 @@
 #include <sstream>
 
 #include "bindings.hpp"
+#include "pickle.hpp"
 #include "spdfit/area_criterion.hpp"
 #include "spdfit/fit.hpp"
 #include "spdfit/fit_files.hpp"
 #include "spdfit/nearest_correlation.hpp"
 #include "spdfit/nearest_spd.hpp"
+#include "spdfit/stream.hpp"
 
 namespace py = pybind11;
 
@@ -52,22 +54,11 @@ Method method_from(const std::string& name) {
   throw std::invalid_argument("unknown method '" + name + "' (methods: " + known + ")");
 }
 
-// Pickling (so that multiprocessing and joblib can return results): each class's state is a
-// tuple of its fields; a state of the wrong length is refused with a message.
-void check_state(const py::tuple& state, std::size_t size, const char* what) {
-  if (state.size() != size) {
-    throw std::runtime_error(std::string("cannot unpickle ") + what + ": expected " + std::to_string(size) +
-                             " fields, got " + std::to_string(state.size()));
-  }
-}
+// Every Status, for unpickling it by name (pickle.hpp).
+constexpr std::array<Status, 3> kStatuses = {Status::NotComputed, Status::Success, Status::NumericalFailure};
 
-Status status_from(const std::string& name) {
-  for (Status s : {Status::NotComputed, Status::Success, Status::NumericalFailure}) {
-    if (name == to_string(s)) return s;
-  }
-  throw std::runtime_error("cannot unpickle FitResult: unknown status '" + name + "'");
-}
-
+// Diagnostics has its own pickle, not pickle_fields: it also reads the 30-field state pickled
+// before B could have d != n columns.
 py::tuple diagnostics_state(const Diagnostics& d) {
   std::optional<std::string> chosen;
   if (d.chosen_method) chosen = std::string(to_string(*d.chosen_method));
@@ -109,7 +100,9 @@ Diagnostics diagnostics_from(const py::tuple& t) {
   d.gradient_norm = t[23].cast<std::optional<double>>();
   d.converged = t[24].cast<std::optional<bool>>();
   d.certificate = t[25].cast<std::optional<PsdCertificate>>();
-  if (auto chosen = t[26].cast<std::optional<std::string>>()) d.chosen_method = method_from(*chosen);
+  if (auto chosen = t[26].cast<std::optional<std::string>>()) {
+    d.chosen_method = enum_from(*chosen, kSelectableMethods, "Diagnostics", "method");
+  }
   d.reason = t[27].cast<std::optional<AutoReason>>();
   d.cond_a_scaled = t[28].cast<double>();
   d.cond_b_scaled = t[29].cast<double>();
@@ -124,6 +117,27 @@ auto from_bootstrap(Member Bootstrap::*member) {
     if (!r.bootstrap) return std::nullopt;
     return (*r.bootstrap).*member;
   };
+}
+
+// StreamOptions' read options (not a Python class of their own) in its state: allow_nonfinite and
+// the index column as read_table's index_col spells it (None: decided from the file, True: drop,
+// False: keep).
+auto stream_read_field() {
+  return state_field(
+      [](const StreamOptions& o) {
+        const io::IndexColumn index = o.read.index_column;
+        const py::object index_col = index == io::IndexColumn::kAuto ? py::object(py::none())
+                                                                     : py::bool_(index == io::IndexColumn::kDrop);
+        return py::make_tuple(o.read.allow_nonfinite, index_col);
+      },
+      [](StreamOptions& o, const py::object& value) {
+        const auto read = value.cast<py::tuple>();
+        check_state(read, 2, "StreamOptions' read options");
+        o.read.allow_nonfinite = read[0].cast<bool>();
+        const auto index_col = read[1].cast<std::optional<bool>>();
+        o.read.index_column = !index_col ? io::IndexColumn::kAuto : *index_col ? io::IndexColumn::kDrop
+                                                                               : io::IndexColumn::kKeep;
+      });
 }
 
 std::string repr(const FitResult& r) {
@@ -158,14 +172,9 @@ void bind_estimators(py::module_& m) {
       .def_property_readonly("complementarity", copied(&PsdCertificate::complementarity), "<X - min_eig I, S>")
       .def_property_readonly("duality_gap", copied(&PsdCertificate::duality_gap),
                     "|complementarity| / (||A^T A||_2 ||X||_F + ||A^T B||_F)")
-      .def(py::pickle(
-          [](const PsdCertificate& c) {
-            return py::make_tuple(c.primal_min_eig, c.dual_min_eig, c.complementarity, c.duality_gap);
-          },
-          [](const py::tuple& t) {
-            check_state(t, 4, "PsdCertificate");
-            return PsdCertificate{t[0].cast<double>(), t[1].cast<double>(), t[2].cast<double>(), t[3].cast<double>()};
-          }))
+      .def(pickle_fields<PsdCertificate>(
+          "PsdCertificate", state_field(&PsdCertificate::primal_min_eig), state_field(&PsdCertificate::dual_min_eig),
+          state_field(&PsdCertificate::complementarity), state_field(&PsdCertificate::duality_gap)))
       .def("__repr__", [](const PsdCertificate& c) {
         std::ostringstream out;
         out << "PsdCertificate(primal_min_eig=" << c.primal_min_eig << ", dual_min_eig=" << c.dual_min_eig
@@ -175,11 +184,7 @@ void bind_estimators(py::module_& m) {
   py::class_<AutoReason>(m, "AutoReason", "Why auto chose its method: a stable code and a sentence.")
       .def_property_readonly("code", copied(&AutoReason::code))
       .def_property_readonly("text", copied(&AutoReason::text))
-      .def(py::pickle([](const AutoReason& r) { return py::make_tuple(r.code, r.text); },
-                      [](const py::tuple& t) {
-                        check_state(t, 2, "AutoReason");
-                        return AutoReason{t[0].cast<std::string>(), t[1].cast<std::string>()};
-                      }))
+      .def(pickle_fields<AutoReason>("AutoReason", state_field(&AutoReason::code), state_field(&AutoReason::text)))
       .def("__repr__", [](const AutoReason& r) { return "AutoReason(code='" + r.code + "', text='" + r.text + "')"; });
 
   py::class_<Diagnostics>(m, "Diagnostics",
@@ -244,11 +249,8 @@ void bind_estimators(py::module_& m) {
       .def_property_readonly("level", copied(&Interval::level))
       .def_property_readonly("lower", copied(&Interval::lower))
       .def_property_readonly("upper", copied(&Interval::upper))
-      .def(py::pickle([](const Interval& i) { return py::make_tuple(i.level, i.lower, i.upper); },
-                      [](const py::tuple& t) {
-                        check_state(t, 3, "Interval");
-                        return Interval{t[0].cast<double>(), t[1].cast<Eigen::MatrixXd>(), t[2].cast<Eigen::MatrixXd>()};
-                      }))
+      .def(pickle_fields<Interval>("Interval", state_field(&Interval::level), state_field(&Interval::lower),
+                                   state_field(&Interval::upper)))
       .def("__repr__", [](const Interval& i) {
         std::ostringstream out;
         out << "Interval(level=" << i.level << ")\nlower =\n" << i.lower << "\nupper =\n" << i.upper;
@@ -263,21 +265,11 @@ void bind_estimators(py::module_& m) {
       .def_property_readonly("upper", copied(&SpectrumUncertainty::upper))
       .def_property_readonly("clusters", copied(&SpectrumUncertainty::clusters), "lists of 0-based indices")
       .def_property_readonly("failed", copied(&SpectrumUncertainty::failed), "replicates without the values")
-      .def(py::pickle(
-          [](const SpectrumUncertainty& s) {
-            return py::make_tuple(s.estimate, s.standard_errors, s.lower, s.upper, s.clusters, s.failed);
-          },
-          [](const py::tuple& t) {
-            check_state(t, 6, "SpectrumUncertainty");
-            SpectrumUncertainty s;
-            s.estimate = t[0].cast<Eigen::VectorXd>();
-            s.standard_errors = t[1].cast<Eigen::VectorXd>();
-            s.lower = t[2].cast<Eigen::VectorXd>();
-            s.upper = t[3].cast<Eigen::VectorXd>();
-            s.clusters = t[4].cast<std::vector<std::vector<Eigen::Index>>>();
-            s.failed = t[5].cast<int>();
-            return s;
-          }))
+      .def(pickle_fields<SpectrumUncertainty>(
+          "SpectrumUncertainty", state_field(&SpectrumUncertainty::estimate),
+          state_field(&SpectrumUncertainty::standard_errors), state_field(&SpectrumUncertainty::lower),
+          state_field(&SpectrumUncertainty::upper), state_field(&SpectrumUncertainty::clusters),
+          state_field(&SpectrumUncertainty::failed)))
       .def("__repr__", [](const SpectrumUncertainty& s) {
         std::ostringstream out;
         out << "SpectrumUncertainty(estimate=" << s.estimate.transpose()
@@ -297,27 +289,12 @@ void bind_estimators(py::module_& m) {
       .def_property_readonly("bias", copied(&Bootstrap::bias))
       .def_property_readonly("interval", copied(&Bootstrap::interval))
       .def_property_readonly("eigenvalues", copied(&Bootstrap::eigenvalues), "SpectrumUncertainty, when X is symmetric")
-      .def(py::pickle(
-          [](const Bootstrap& b) {
-            return py::make_tuple(b.replicates, b.failed, b.seed, std::string(to_string(b.method)), b.scheme,
-                                  b.group_rows, b.groups, b.standard_errors, b.bias, b.interval, b.eigenvalues);
-          },
-          [](const py::tuple& t) {
-            check_state(t, 11, "Bootstrap");
-            Bootstrap b;
-            b.replicates = t[0].cast<int>();
-            b.failed = t[1].cast<int>();
-            b.seed = t[2].cast<std::uint64_t>();
-            b.method = method_from(t[3].cast<std::string>());
-            b.scheme = t[4].cast<std::string>();
-            b.group_rows = t[5].cast<Eigen::Index>();
-            b.groups = t[6].cast<Eigen::Index>();
-            b.standard_errors = t[7].cast<Eigen::MatrixXd>();
-            b.bias = t[8].cast<Eigen::MatrixXd>();
-            b.interval = t[9].cast<Interval>();
-            b.eigenvalues = t[10].cast<std::optional<SpectrumUncertainty>>();
-            return b;
-          }))
+      .def(pickle_fields<Bootstrap>(
+          "Bootstrap", state_field(&Bootstrap::replicates), state_field(&Bootstrap::failed),
+          state_field(&Bootstrap::seed), enum_field(&Bootstrap::method, kSelectableMethods, "Bootstrap", "method"),
+          state_field(&Bootstrap::scheme), state_field(&Bootstrap::group_rows), state_field(&Bootstrap::groups),
+          state_field(&Bootstrap::standard_errors), state_field(&Bootstrap::bias), state_field(&Bootstrap::interval),
+          state_field(&Bootstrap::eigenvalues)))
       .def("__repr__", [](const Bootstrap& b) {
         std::ostringstream out;
         out << "Bootstrap(replicates=" << b.replicates << ", failed=" << b.failed << ", seed=" << b.seed
@@ -342,23 +319,11 @@ void bind_estimators(py::module_& m) {
                              "the bootstrap bias estimate (mean of the replicates minus X), or None")
       .def_property_readonly("bootstrap", copied(&FitResult::bootstrap),
                              "the bootstrap's details (replicates, failed, seed, eigenvalues, ...), or None")
-      .def(py::pickle(
-          [](const FitResult& r) {
-            return py::make_tuple(std::string(to_string(r.method)), std::string(to_string(r.status)), r.message, r.X,
-                                  r.diagnostics, r.warnings, r.bootstrap);
-          },
-          [](const py::tuple& t) {
-            check_state(t, 7, "FitResult");
-            FitResult r;
-            r.method = method_from(t[0].cast<std::string>());
-            r.status = status_from(t[1].cast<std::string>());
-            r.message = t[2].cast<std::string>();
-            r.X = t[3].cast<Eigen::MatrixXd>();
-            r.diagnostics = t[4].cast<Diagnostics>();
-            r.warnings = t[5].cast<std::vector<std::string>>();
-            r.bootstrap = t[6].cast<std::optional<Bootstrap>>();
-            return r;
-          }))
+      .def(pickle_fields<FitResult>(
+          "FitResult", enum_field(&FitResult::method, kSelectableMethods, "FitResult", "method"),
+          enum_field(&FitResult::status, kStatuses, "FitResult", "status"), state_field(&FitResult::message),
+          state_field(&FitResult::X), state_field(&FitResult::diagnostics), state_field(&FitResult::warnings),
+          state_field(&FitResult::bootstrap)))
       .def("__repr__", &repr);
 
   m.def(
@@ -381,7 +346,9 @@ void bind_estimators(py::module_& m) {
                             "How fit_files streams its files; the defaults are the library's own.")
       .def(py::init<>())
       .def_readwrite("block_rows", &StreamOptions::block_rows, "rows per block")
-      .def_readwrite("threads", &StreamOptions::threads, "threads; 0 means one per core");
+      .def_readwrite("threads", &StreamOptions::threads, "threads; 0 means one per core")
+      .def(pickle_fields<StreamOptions>("StreamOptions", state_field(&StreamOptions::block_rows),
+                                        state_field(&StreamOptions::threads), stream_read_field()));
   m.def(
       "fit_files",
       [](const std::string& a_path, const std::string& b_path, const std::string& method, Eigen::Index block_rows,
@@ -438,26 +405,12 @@ void bind_estimators(py::module_& m) {
                  << r.X;
              return out.str();
            })
-      .def(py::pickle(
-          [](const NearestResult& r) {
-            return py::make_tuple(r.X, r.distance, r.clipped, r.min_eigenvalue_before, r.min_eig, r.iterations,
-                                  r.gradient_norm, r.converged, r.cholesky_ok, r.warnings);
-          },
-          [](const py::tuple& t) {
-            check_state(t, 10, "NearestResult");
-            NearestResult r;
-            r.X = t[0].cast<Eigen::MatrixXd>();
-            r.distance = t[1].cast<double>();
-            r.clipped = t[2].cast<Eigen::Index>();
-            r.min_eigenvalue_before = t[3].cast<double>();
-            r.min_eig = t[4].cast<double>();
-            r.iterations = t[5].cast<int>();
-            r.gradient_norm = t[6].cast<double>();
-            r.converged = t[7].cast<bool>();
-            r.cholesky_ok = t[8].cast<bool>();
-            r.warnings = t[9].cast<std::vector<std::string>>();
-            return r;
-          }));
+      .def(pickle_fields<NearestResult>(
+          "NearestResult", state_field(&NearestResult::X), state_field(&NearestResult::distance),
+          state_field(&NearestResult::clipped), state_field(&NearestResult::min_eigenvalue_before),
+          state_field(&NearestResult::min_eig), state_field(&NearestResult::iterations),
+          state_field(&NearestResult::gradient_norm), state_field(&NearestResult::converged),
+          state_field(&NearestResult::cholesky_ok), state_field(&NearestResult::warnings)));
   m.attr("REPAIR_FLOOR_DEFAULT") = EigenvalueFloor::kRepairDefault;
   // One entry for every repair: `kind` is "spd" (the eigenvalue clip), "corr", "keep_diag" or
   // "via_corr"; the floor by EigenvalueFloor::chosen, as the nearest command's.

@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "pickle.hpp"
 #include "spdfit/experiment/monte_carlo.hpp"
 #include "spdfit/experiment/paper.hpp"
 #include "spdfit/experiment/statistics.hpp"
@@ -59,6 +60,27 @@ std::vector<Method> methods_from(const std::optional<std::vector<std::string>>& 
   return methods;
 }
 
+// ThesisExperimentResult's options (not a Python class of their own) in its state: the simulation
+// options (pickled as SimulationOptions), the truth and the methods' names.
+auto thesis_options_field() {
+  return state_field(
+      [](const ThesisExperimentResult& r) {
+        std::vector<std::string> methods;
+        for (Method method : r.options.methods) methods.push_back(method_name(method));
+        return py::make_tuple(r.options.simulation, r.options.truth, methods);
+      },
+      [](ThesisExperimentResult& r, const py::object& value) {
+        const auto options = value.cast<py::tuple>();
+        check_state(options, 3, "ThesisExperimentResult's options");
+        r.options.simulation = options[0].cast<hexapod::SimulationOptions>();
+        r.options.truth = options[1].cast<Eigen::MatrixXd>();
+        r.options.methods.clear();
+        for (const std::string& name : options[2].cast<std::vector<std::string>>()) {
+          r.options.methods.push_back(enum_from(name, kSelectableMethods, "ThesisExperimentResult", "method"));
+        }
+      });
+}
+
 }  // namespace
 
 void bind_experiment(py::module_& parent) {
@@ -89,20 +111,30 @@ void bind_experiment(py::module_& parent) {
       .def_property_readonly("median", copied(&Summary::median))
       .def_property_readonly("min", copied(&Summary::min))
       .def_property_readonly("max", copied(&Summary::max))
-      .def_property_readonly("standard_error", &Summary::standard_error);
+      .def_property_readonly("standard_error", &Summary::standard_error)
+      .def(pickle_fields<Summary>("Summary", state_field(&Summary::count), state_field(&Summary::failures),
+                                  state_field(&Summary::mean), state_field(&Summary::std),
+                                  state_field(&Summary::median), state_field(&Summary::min),
+                                  state_field(&Summary::max)));
 
   py::class_<MethodErrors>(m, "MethodErrors")
       .def_property_readonly("method", [](const MethodErrors& e) { return method_name(e.method); })
       .def_property_readonly("errors", [](const MethodErrors& e) {
         return Eigen::Map<const Eigen::VectorXd>(e.errors.data(), static_cast<Eigen::Index>(e.errors.size())).eval();
       })
-      .def_property_readonly("summary", copied(&MethodErrors::summary));
+      .def_property_readonly("summary", copied(&MethodErrors::summary))
+      .def(pickle_fields<MethodErrors>(
+          "MethodErrors", enum_field(&MethodErrors::method, kSelectableMethods, "MethodErrors", "method"),
+          state_field(&MethodErrors::errors), state_field(&MethodErrors::summary)));
 
   py::class_<ThesisExperimentResult>(m, "ThesisExperimentResult")
       .def_property_readonly("trials", copied(&ThesisExperimentResult::trials))
       .def_property_readonly("seed", copied(&ThesisExperimentResult::seed))
       .def_property_readonly("methods", copied(&ThesisExperimentResult::methods))
-      .def_property_readonly("truth", [](const ThesisExperimentResult& r) { return r.options.truth; });
+      .def_property_readonly("truth", [](const ThesisExperimentResult& r) { return r.options.truth; })
+      .def(pickle_fields<ThesisExperimentResult>(
+          "ThesisExperimentResult", thesis_options_field(), state_field(&ThesisExperimentResult::trials),
+          state_field(&ThesisExperimentResult::seed), state_field(&ThesisExperimentResult::methods)));
 
   py::class_<EntryStatistics>(m, "EntryStatistics")
       .def_property_readonly("method", [](const EntryStatistics& s) { return method_name(s.method); })
@@ -111,14 +143,23 @@ void bind_experiment(py::module_& parent) {
       .def_property_readonly("mae", copied(&EntryStatistics::mae))
       .def_property_readonly("std", copied(&EntryStatistics::std))
       .def_property_readonly("bias", copied(&EntryStatistics::bias))
-      .def_property_readonly("errors", copied(&EntryStatistics::errors));
+      .def_property_readonly("errors", copied(&EntryStatistics::errors))
+      .def(pickle_fields<EntryStatistics>(
+          "EntryStatistics", enum_field(&EntryStatistics::method, kSelectableMethods, "EntryStatistics", "method"),
+          state_field(&EntryStatistics::count), state_field(&EntryStatistics::failures),
+          state_field(&EntryStatistics::mae), state_field(&EntryStatistics::std), state_field(&EntryStatistics::bias),
+          state_field(&EntryStatistics::errors)));
 
   py::class_<EntryExperimentResult>(m, "EntryExperimentResult")
       .def_property_readonly("trials", copied(&EntryExperimentResult::trials))
       .def_property_readonly("seed", copied(&EntryExperimentResult::seed))
       .def_property_readonly("truth", copied(&EntryExperimentResult::truth))
       .def_property_readonly("entries", copied(&EntryExperimentResult::entries))
-      .def_property_readonly("methods", copied(&EntryExperimentResult::methods));
+      .def_property_readonly("methods", copied(&EntryExperimentResult::methods))
+      .def(pickle_fields<EntryExperimentResult>(
+          "EntryExperimentResult", state_field(&EntryExperimentResult::trials),
+          state_field(&EntryExperimentResult::seed), state_field(&EntryExperimentResult::truth),
+          state_field(&EntryExperimentResult::entries), state_field(&EntryExperimentResult::methods)));
 
   m.def(
       "thesis",

@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "pickle.hpp"
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/hexapod/identify.hpp"
 #include "spdfit/hexapod/model.hpp"
@@ -16,6 +17,14 @@ namespace py = pybind11;
 namespace spdfit::python {
 
 using namespace spdfit::hexapod;
+
+namespace {
+
+// Every NoiseDistribution, for unpickling it by name (pickle.hpp).
+constexpr std::array<NoiseDistribution, 2> kNoiseDistributions = {NoiseDistribution::Uniform,
+                                                                  NoiseDistribution::Gaussian};
+
+}  // namespace
 
 void bind_hexapod(py::module_& parent) {
   py::module_ m = parent.def_submodule("hexapod", "Hexapod model, simulation and identification.");
@@ -30,7 +39,13 @@ void bind_hexapod(py::module_& parent) {
       .def_property_readonly("strut_mass", copied(&Geometry::strut_mass))
       .def_property_readonly("strut_stiffness", copied(&Geometry::strut_stiffness))
       .def_property_readonly("strut_damping", copied(&Geometry::strut_damping))
-      .def("to_json", &geometry_json, "The geometry in the geometry-file format (JSON text).");
+      .def("to_json", &geometry_json, "The geometry in the geometry-file format (JSON text).")
+      .def(pickle_fields<Geometry>(
+          "Geometry", state_field(&Geometry::base_points), state_field(&Geometry::payload_points),
+          state_field(&Geometry::payload_origin), state_field(&Geometry::payload_rotation),
+          state_field(&Geometry::payload_mass), state_field(&Geometry::payload_inertia),
+          state_field(&Geometry::strut_mass), state_field(&Geometry::strut_stiffness),
+          state_field(&Geometry::strut_damping)));
 
   m.def("cubic_geometry", []() { return cubic_geometry(); },
         "The built-in cubic-configuration hexapod (mutually orthogonal struts).");
@@ -45,7 +60,13 @@ void bind_hexapod(py::module_& parent) {
       .def_property_readonly("mass_matrix_eigenvalues", copied(&ModelDescription::mass_matrix_eigenvalues))
       .def_property_readonly("modes_hz", copied(&ModelDescription::modes_hz))
       .def_property_readonly("strut_lengths", copied(&ModelDescription::strut_lengths))
-      .def_property_readonly("strut_directions", copied(&ModelDescription::strut_directions));
+      .def_property_readonly("strut_directions", copied(&ModelDescription::strut_directions))
+      .def(pickle_fields<ModelDescription>(
+          "ModelDescription", state_field(&ModelDescription::jacobian),
+          state_field(&ModelDescription::jacobian_condition), state_field(&ModelDescription::payload_mass_matrix),
+          state_field(&ModelDescription::mass_matrix), state_field(&ModelDescription::mass_matrix_eigenvalues),
+          state_field(&ModelDescription::modes_hz), state_field(&ModelDescription::strut_lengths),
+          state_field(&ModelDescription::strut_directions)));
   m.def("describe", &describe, py::arg("geometry"));
   m.def("thesis_mass_matrix", &thesis_mass_matrix, "M_p of thesis eq. 6.1.");
 
@@ -54,9 +75,15 @@ void bind_hexapod(py::module_& parent) {
       .def(py::init<>())
       .def_property_readonly("samples", copied(&SimulationOptions::samples))
       .def_property_readonly("noise_var", copied(&SimulationOptions::noise_var))
+      .def_property_readonly("force_noise_var", copied(&SimulationOptions::force_noise_var),
+                             "the noise variance in B when it differs from A's (None: noise_var)")
       .def_property_readonly("signal_var", copied(&SimulationOptions::signal_var))
       .def_property_readonly("distribution",
-                             [](const SimulationOptions& o) { return std::string(to_string(o.distribution)); });
+                             [](const SimulationOptions& o) { return std::string(to_string(o.distribution)); })
+      .def(pickle_fields<SimulationOptions>(
+          "SimulationOptions", state_field(&SimulationOptions::samples), state_field(&SimulationOptions::noise_var),
+          state_field(&SimulationOptions::force_noise_var), state_field(&SimulationOptions::signal_var),
+          enum_field(&SimulationOptions::distribution, kNoiseDistributions, "SimulationOptions", "distribution")));
 
   m.def(
       "simulate",
@@ -84,7 +111,11 @@ void bind_hexapod(py::module_& parent) {
       .def_property_readonly("modes_hz", copied(&MethodIdentification::modes_hz))
       .def_property_readonly("error_vs_truth", copied(&MethodIdentification::error_vs_truth))
       .def_property_readonly("modes_uncertainty", copied(&MethodIdentification::modes_uncertainty),
-                             "with bootstrap=N and a stiffness: the modes' SpectrumUncertainty");
+                             "with bootstrap=N and a stiffness: the modes' SpectrumUncertainty")
+      .def(pickle_fields<MethodIdentification>(
+          "MethodIdentification", state_field(&MethodIdentification::result),
+          state_field(&MethodIdentification::eigenvalues), state_field(&MethodIdentification::modes_hz),
+          state_field(&MethodIdentification::error_vs_truth), state_field(&MethodIdentification::modes_uncertainty)));
   m.def(
       "identify",
       [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, std::optional<Eigen::MatrixXd> truth,

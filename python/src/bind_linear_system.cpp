@@ -6,11 +6,46 @@
 #include <sstream>
 
 #include "bindings.hpp"
+#include "pickle.hpp"
 #include "spdfit/linear_system.hpp"
 
 namespace py = pybind11;
 
 namespace spdfit::python {
+
+namespace {
+
+// The Python class LinearSystemResult: the library's result and whether b was 1-D, so that
+// `solution` has b's dimensionality, as numpy.linalg.lstsq's x has: shape (n,) for b of shape
+// (m,), (n, p) for (m, p). The library itself takes and returns matrices (B m x p, X n x p).
+struct SolveResult : LinearSystemResult {
+  bool vector_b = false;
+};
+
+// The getter of a field of the library's result: a copy, as copied() (bindings.hpp) gives.
+template <typename Member>
+auto result_field(Member LinearSystemResult::*member) {
+  return [member](const SolveResult& r) -> Member { return r.*member; };
+}
+
+// The enumerators of the enums pickled by name (pickle.hpp).
+constexpr std::array<SystemShape, 3> kSystemShapes = {SystemShape::Underdetermined, SystemShape::Determined,
+                                                      SystemShape::Overdetermined};
+
+// The status in a state: the library has no name for it, so the names are FitResult's.
+auto solve_status_field() {
+  return state_field(
+      [](const LinearSystemResult& r) { return std::string(r.ok() ? "success" : "numerical_failure"); },
+      [](LinearSystemResult& r, const py::object& value) {
+        const auto name = value.cast<std::string>();
+        if (name != "success" && name != "numerical_failure") {
+          throw std::runtime_error("cannot unpickle LinearSystemResult: unknown status '" + name + "'");
+        }
+        r.status = name == "success" ? SolveStatus::Success : SolveStatus::NumericalFailure;
+      });
+}
+
+}  // namespace
 
 void bind_linear_system(py::module_& m) {
   py::class_<ColumnClassification>(m, "ColumnClassification", "The classification of one right-hand side.")
@@ -19,38 +54,72 @@ void bind_linear_system(py::module_& m) {
       .def_property_readonly("at_infinity_dimension", copied(&ColumnClassification::at_infinity_dimension))
       .def_property_readonly("augmented_rank", copied(&ColumnClassification::augmented_rank))
       .def_property_readonly("residual_norm", copied(&ColumnClassification::residual_norm))
-      .def_property_readonly("backward_error", copied(&ColumnClassification::backward_error));
+      .def_property_readonly("backward_error", copied(&ColumnClassification::backward_error))
+      .def(pickle_fields<ColumnClassification>(
+          "ColumnClassification", state_field(&ColumnClassification::consistent),
+          state_field(&ColumnClassification::finite_solution_dimension),
+          state_field(&ColumnClassification::at_infinity_dimension), state_field(&ColumnClassification::augmented_rank),
+          state_field(&ColumnClassification::residual_norm), state_field(&ColumnClassification::backward_error)));
 
-  py::class_<LinearSystemResult>(m, "LinearSystemResult",
-                                 "Rank, consistency, solution sets and the minimum-norm least-squares "
-                                 "solution of A x = b, with an explanation in words.")
-      .def_property_readonly("ok", &LinearSystemResult::ok)
-      .def_property_readonly("message", copied(&LinearSystemResult::message), "why it failed ('' on success)")
-      .def_property_readonly("m", copied(&LinearSystemResult::m))
-      .def_property_readonly("n", copied(&LinearSystemResult::n))
-      .def_property_readonly("p", copied(&LinearSystemResult::p), "number of right-hand sides")
-      .def_property_readonly("shape", [](const LinearSystemResult& r) { return std::string(to_string(r.shape)); })
-      .def_property_readonly("singular_values", copied(&LinearSystemResult::singular_values))
-      .def_property_readonly("threshold", copied(&LinearSystemResult::threshold))
-      .def_property_readonly("rank", copied(&LinearSystemResult::rank))
-      .def_property_readonly("nullity", copied(&LinearSystemResult::nullity))
-      .def_property_readonly("condition_number", copied(&LinearSystemResult::condition_number))
-      .def_property_readonly("reciprocal_condition_number", copied(&LinearSystemResult::reciprocal_condition_number))
-      .def_property_readonly("effective_condition_number", copied(&LinearSystemResult::effective_condition_number))
-      .def_property_readonly("scaled_singular_values", copied(&LinearSystemResult::scaled_singular_values))
-      .def_property_readonly("scaled_condition_number", copied(&LinearSystemResult::scaled_condition_number))
-      .def_property_readonly("refinement_steps", copied(&LinearSystemResult::refinement_steps))
-      .def_property_readonly("consistent", copied(&LinearSystemResult::consistent))
-      .def_property_readonly("finite_solution_dimension", copied(&LinearSystemResult::finite_solution_dimension))
-      .def_property_readonly("at_infinity_dimension", copied(&LinearSystemResult::at_infinity_dimension))
-      .def_property_readonly("columns", copied(&LinearSystemResult::columns))
-      .def_property_readonly("solution", copied(&LinearSystemResult::solution), "n x p minimum-norm least-squares solution")
-      .def_property_readonly("residual_norm", copied(&LinearSystemResult::residual_norm))
-      .def_property_readonly("null_space", copied(&LinearSystemResult::null_space), "orthonormal columns")
-      .def_property_readonly("range", copied(&LinearSystemResult::range), "orthonormal columns")
-      .def_property_readonly("explanation", copied(&LinearSystemResult::explanation))
-      .def_property_readonly("warnings", copied(&LinearSystemResult::warnings))
-      .def("__repr__", [](const LinearSystemResult& r) {
+  py::class_<SolveResult>(m, "LinearSystemResult",
+                          "Rank, consistency, solution sets and the minimum-norm least-squares "
+                          "solution of A x = b, with an explanation in words.")
+      .def_property_readonly("ok", [](const SolveResult& r) { return r.ok(); })
+      .def_property_readonly("message", result_field(&LinearSystemResult::message), "why it failed ('' on success)")
+      .def_property_readonly("m", result_field(&LinearSystemResult::m))
+      .def_property_readonly("n", result_field(&LinearSystemResult::n))
+      .def_property_readonly("p", result_field(&LinearSystemResult::p), "number of right-hand sides (1 for a 1-D b)")
+      .def_property_readonly("shape", [](const SolveResult& r) { return std::string(to_string(r.shape)); })
+      .def_property_readonly("singular_values", result_field(&LinearSystemResult::singular_values))
+      .def_property_readonly("threshold", result_field(&LinearSystemResult::threshold))
+      .def_property_readonly("rank", result_field(&LinearSystemResult::rank))
+      .def_property_readonly("nullity", result_field(&LinearSystemResult::nullity))
+      .def_property_readonly("condition_number", result_field(&LinearSystemResult::condition_number))
+      .def_property_readonly("reciprocal_condition_number",
+                             result_field(&LinearSystemResult::reciprocal_condition_number))
+      .def_property_readonly("effective_condition_number",
+                             result_field(&LinearSystemResult::effective_condition_number))
+      .def_property_readonly("scaled_singular_values", result_field(&LinearSystemResult::scaled_singular_values))
+      .def_property_readonly("scaled_condition_number", result_field(&LinearSystemResult::scaled_condition_number))
+      .def_property_readonly("refinement_steps", result_field(&LinearSystemResult::refinement_steps))
+      .def_property_readonly("consistent", result_field(&LinearSystemResult::consistent))
+      .def_property_readonly("finite_solution_dimension", result_field(&LinearSystemResult::finite_solution_dimension))
+      .def_property_readonly("at_infinity_dimension", result_field(&LinearSystemResult::at_infinity_dimension))
+      .def_property_readonly("columns", result_field(&LinearSystemResult::columns),
+                             "one ColumnClassification per right-hand side (a list of one for a 1-D b)")
+      .def_property_readonly(
+          "solution",
+          [](const SolveResult& r) -> py::object {
+            // reshaped, not col(0): a failed result's solution is empty.
+            if (r.vector_b) return py::cast(Eigen::VectorXd(r.solution.reshaped()));
+            return py::cast(Eigen::MatrixXd(r.solution));
+          },
+          "the minimum-norm least-squares solution: shape (n,) for a 1-D b, (n, p) for an m x p b; "
+          "empty on failure")
+      .def_property_readonly("residual_norm", result_field(&LinearSystemResult::residual_norm),
+                             "||A X - B||_F (||A x - b||_2 for a 1-D b)")
+      .def_property_readonly("null_space", result_field(&LinearSystemResult::null_space), "orthonormal columns")
+      .def_property_readonly("range", result_field(&LinearSystemResult::range), "orthonormal columns")
+      .def_property_readonly("explanation", result_field(&LinearSystemResult::explanation))
+      .def_property_readonly("warnings", result_field(&LinearSystemResult::warnings))
+      .def(pickle_fields<SolveResult>(
+          "LinearSystemResult", solve_status_field(), state_field(&LinearSystemResult::message),
+          state_field(&LinearSystemResult::m), state_field(&LinearSystemResult::n), state_field(&LinearSystemResult::p),
+          enum_field(&LinearSystemResult::shape, kSystemShapes, "LinearSystemResult", "shape"),
+          state_field(&LinearSystemResult::singular_values), state_field(&LinearSystemResult::threshold),
+          state_field(&LinearSystemResult::rank), state_field(&LinearSystemResult::nullity),
+          state_field(&LinearSystemResult::condition_number),
+          state_field(&LinearSystemResult::reciprocal_condition_number),
+          state_field(&LinearSystemResult::effective_condition_number),
+          state_field(&LinearSystemResult::scaled_singular_values),
+          state_field(&LinearSystemResult::scaled_condition_number), state_field(&LinearSystemResult::refinement_steps),
+          state_field(&LinearSystemResult::consistent), state_field(&LinearSystemResult::finite_solution_dimension),
+          state_field(&LinearSystemResult::at_infinity_dimension), state_field(&LinearSystemResult::columns),
+          state_field(&LinearSystemResult::solution), state_field(&LinearSystemResult::residual_norm),
+          state_field(&LinearSystemResult::null_space), state_field(&LinearSystemResult::range),
+          state_field(&LinearSystemResult::explanation), state_field(&LinearSystemResult::warnings),
+          state_field(&SolveResult::vector_b)))
+      .def("__repr__", [](const SolveResult& r) {
         std::ostringstream out;
         out << "LinearSystemResult(rank=" << r.rank << ", nullity=" << r.nullity
             << ", consistent=" << (r.consistent ? "True" : "False")
@@ -62,15 +131,17 @@ void bind_linear_system(py::module_& m) {
 
   m.def(
       "solve",
-      [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, std::optional<double> threshold) {
+      [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, std::optional<double> threshold, bool vector_b) {
         LinearSystemOptions options;
         if (threshold) options.threshold = *threshold;
         std::string error;
         if (!options.is_valid(&error)) throw std::invalid_argument(error);
+        if (vector_b && B.cols() != 1) throw std::invalid_argument("vector_b=True needs b with one column");
         py::gil_scoped_release release;
-        return solve(A, B, options);
+        return SolveResult{solve(A, B, options), vector_b};
       },
-      py::arg("A"), py::arg("b"), py::arg("threshold") = py::none());
+      py::arg("A"), py::arg("b"), py::arg("threshold") = py::none(), py::arg("vector_b") = false,
+      "solve(A, B) as a LinearSystemResult; vector_b: b was 1-D (B is its column), so the solution is 1-D.");
 }
 
 }  // namespace spdfit::python

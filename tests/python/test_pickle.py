@@ -1,6 +1,10 @@
 """Results pickle (issue 18), so multiprocessing and joblib can return them: every attribute
-survives the round trip, for every method, a failure, and through a process pool."""
+survives the round trip, for every method, a failure, and through a process pool; so do the
+results of solve, spdfit.linkage, spdfit.hexapod and spdfit.experiment, and the plain options
+classes."""
 import concurrent.futures
+import functools
+import math
 import pickle
 import warnings
 
@@ -8,7 +12,11 @@ import numpy as np
 import pytest
 
 import spdfit
+import spdfit.experiment as ex
+import spdfit.hexapod as hx
+import spdfit.linkage as lk
 import thesis_reference as ref
+from spdfit import _spdfit
 
 FIELDS = ["m", "n", "rank_a", "rank_b", "cond_a", "cond_b", "residual_norm", "symmetric", "positive_definite",
           "positive_semidefinite", "min_eigenvalue", "max_eigenvalue", "area_criterion", "area_criterion_minimum",
@@ -95,3 +103,295 @@ def test_results_come_back_from_a_process_pool():
 def test_a_truncated_state_is_refused():
     with pytest.raises(RuntimeError, match="expected 7 fields"):
         spdfit.FitResult.__new__(spdfit.FitResult).__setstate__(("spde",))
+
+
+# ---- Every class of the module ----------------------------------------------------------------
+
+MODULES = (_spdfit, _spdfit.linkage, _spdfit.hexapod, _spdfit.experiment)
+
+
+def module_classes():
+    """{name: class} of every class the compiled module defines (but its exception)."""
+    return {name: c for module in MODULES for name, c in vars(module).items()
+            if isinstance(c, type) and not issubclass(c, BaseException)}
+
+
+def attributes(obj):
+    """The names of the attributes (properties) of one of the module's objects."""
+    names = [name for name, value in vars(type(obj)).items() if isinstance(value, property)]
+    assert names, type(obj).__name__
+    return names
+
+
+def ours(obj):
+    return type(obj).__module__.startswith("spdfit._spdfit")
+
+
+def assert_same(a, b, where="result"):
+    """a and b equal attribute by attribute, into the module's nested objects; arrays equal in
+    shape, dtype and every value (NaN where NaN)."""
+    assert type(a) is type(b), where
+    if ours(a):
+        for name in attributes(a):
+            assert_same(getattr(a, name), getattr(b, name), f"{where}.{name}")
+    elif isinstance(a, np.ndarray):
+        assert (a.shape, a.dtype) == (b.shape, b.dtype), where
+        assert np.array_equal(a, b, equal_nan=True), where
+    elif isinstance(a, dict):
+        assert list(a) == list(b), where
+        for key in a:
+            assert_same(a[key], b[key], f"{where}[{key!r}]")
+    elif isinstance(a, (list, tuple)):
+        assert len(a) == len(b), where
+        for i, (x, y) in enumerate(zip(a, b)):
+            assert_same(x, y, f"{where}[{i}]")
+    elif isinstance(a, float):
+        assert a == b or (math.isnan(a) and math.isnan(b)), where
+    else:
+        assert a == b, where
+
+
+def nested(obj):
+    """obj and every object of the module inside it (attributes, lists, tuples, dicts)."""
+    if isinstance(obj, dict):
+        yield from nested(list(obj.values()))
+    elif isinstance(obj, (list, tuple)):
+        for item in obj:
+            yield from nested(item)
+    elif ours(obj):
+        yield obj
+        for name in attributes(obj):
+            yield from nested(getattr(obj, name))
+
+
+def quiet(function, *args, **kwargs):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", spdfit.SpdfitWarning)
+        return function(*args, **kwargs)
+
+
+def numerical_failure(function, *args, **kwargs):
+    """The result attached to the NumericalError that function raises."""
+    with pytest.raises(spdfit.NumericalError) as error:
+        quiet(function, *args, **kwargs)
+    return error.value.result
+
+
+def gauss_newton_options():
+    options = _spdfit.linkage.GaussNewtonOptions()
+    options.tolerance, options.max_iterations, options.threshold = 1e-8, 7, 1e-12
+    return options
+
+
+def stream_options():
+    options = _spdfit.StreamOptions()
+    options.block_rows, options.threads = 1000, 3
+    return options
+
+
+def simulation_options():
+    """SimulationOptions away from every default (Python can only make the defaults: the state
+    is the way in)."""
+    options = _spdfit.hexapod.SimulationOptions.__new__(_spdfit.hexapod.SimulationOptions)
+    options.__setstate__((30, 0.5, 0.25, 2.0, "gaussian"))
+    return options
+
+
+def gaussian(*shape, seed=5):
+    return np.random.default_rng(seed).standard_normal(shape)
+
+
+@functools.lru_cache(maxsize=None)
+def identified(truth_and_modes):
+    sim = hx.simulate(samples=24, noise_var=0.3, seed=2)
+    if not truth_and_modes:
+        return quiet(hx.identify, sim.A, sim.B)
+    stiffness = np.diag(hx.geometry().strut_stiffness)
+    return quiet(hx.identify, sim.A, sim.B, truth=sim.truth, stiffness=stiffness, bootstrap=12, threads=1)
+
+
+# Objects made through the public API, with their optional parts present and absent.
+EXAMPLES = {
+    "fit, auto": lambda: quiet(spdfit.fit, *ref.thesis_generator(30, 6, 1.0, np.random.default_rng(8))[:2]),
+    "nearest_spd": lambda: spdfit.nearest_spd(np.array([[2.0, 3.0], [3.0, 1.0]]), full_output=True),
+    "solve, full rank, 3 right-hand sides": lambda: spdfit.solve(gaussian(7, 4), gaussian(7, 3, seed=6)),
+    "solve, rank-deficient": lambda: quiet(spdfit.solve, gaussian(7, 2) @ gaussian(2, 4, seed=6),
+                                           gaussian(7, 2, seed=7)),
+    "solve, underdetermined": lambda: spdfit.solve(gaussian(3, 5), gaussian(3, 2, seed=6)),
+    "solve, 1-D b": lambda: spdfit.solve(gaussian(7, 4), gaussian(7, seed=6)),
+    "solve, failed": lambda: numerical_failure(spdfit.solve, np.eye(2) * 1e-300, np.full((2, 1), 1e300)),
+    "synthesize, steering": lambda: quiet(lk.synthesize, steering=0.5),
+    "synthesize, dial zeros fitted": lambda: quiet(lk.synthesize, steering=0.5, fit_dial_zeros=True),
+    "synthesize, no real linkage": lambda: numerical_failure(lk.synthesize, [0, 10, 20, 30], [0, -10, -20, -30]),
+    "analyze, crank-rocker": lambda: lk.analyze((1.0, 0.4, 1.1, 0.9), points=37),
+    "analyze, mostly unassemblable": lambda: lk.analyze((1.0, 2.0, 0.5, 0.6), points=37),
+    "FourBar": lambda: lk.FourBar(1.0, 0.5, 1.2, 0.8),
+    "GaussNewtonOptions": gauss_newton_options,
+    "Geometry": lambda: hx.geometry(),
+    "ModelDescription": lambda: _spdfit.hexapod.describe(hx.geometry()),
+    "SimulationOptions, default": lambda: _spdfit.hexapod.SimulationOptions(),
+    "SimulationOptions": simulation_options,
+    "identify, bootstrap and modes": lambda: identified(True),
+    "identify, no truth": lambda: identified(False),
+    "thesis": lambda: ex.thesis(0.86, samples=14, trials=6, seed=3, threads=1, force_noise_var=0.4,
+                                distribution="gaussian", methods=["tls", "spde", "psd-ls"]),
+    "paper_2x2": lambda: ex.paper_2x2(0.5, trials=40, seed=2, threads=1),
+    "paper_hexapod": lambda: ex.paper_hexapod(trials=3, threads=1),
+    "StreamOptions": stream_options,
+}
+
+
+@functools.lru_cache(maxsize=None)
+def example(label):
+    return EXAMPLES[label]()
+
+
+def test_every_class_of_the_module_pickles():
+    classes = module_classes()
+    assert len(classes) >= 29  # the 29 of issue 18; the scan must not come back empty
+    assert [name for name, c in classes.items() if "__setstate__" not in vars(c)] == []
+
+
+def test_the_examples_cover_every_class():
+    # Every class is in some example, so test_round_trip reaches each one's pickle (nested ones
+    # through their parents', which is how they travel).
+    found = {type(obj).__name__ for label in EXAMPLES for obj in nested(example(label))}
+    assert found == set(module_classes())
+
+
+def test_the_examples_have_their_optional_parts_present_and_absent():
+    assert example("synthesize, steering").structural.check is not None
+    assert example("synthesize, steering").structural.lengths is not None
+    assert example("synthesize, no real linkage").design.lengths is None
+    assert example("synthesize, no real linkage").design.check is None
+    samples = example("analyze, mostly unassemblable").samples
+    assert any(s.phi_plus is None for s in samples) and any(s.phi_plus is not None for s in samples)
+    assert example("analyze, mostly unassemblable").transmission is not None
+    spde = example("identify, bootstrap and modes")["spde"]
+    assert spde.modes_uncertainty is not None and spde.error_vs_truth is not None
+    assert spde.result.bootstrap is not None
+    assert example("identify, no truth")["spde"].error_vs_truth is None
+    assert example("identify, no truth")["spde"].modes_hz is None
+    assert not example("solve, failed").ok and example("solve, rank-deficient").nullity == 2
+    assert example("solve, 1-D b").solution.shape == (4,)
+
+
+def round_trip(obj):
+    back = pickle.loads(pickle.dumps(obj))
+    assert back is not obj
+    assert_same(back, obj)
+    return back
+
+
+@pytest.mark.parametrize("label", list(EXAMPLES))
+def test_round_trip(label):
+    obj = example(label)
+    round_trip(obj)
+
+
+def test_the_comparison_sees_a_difference():
+    # assert_same is what the round trips rest on: it must fail on one changed number, also deep
+    # inside a nested object.
+    with pytest.raises(AssertionError, match="result.a4"):
+        assert_same(lk.FourBar(1, 2, 3, 4), lk.FourBar(1, 2, 3, 5))
+    original = example("synthesize, steering")
+    state = list(original.__getstate__())
+    structural = list(state[13].__getstate__())
+    structural[0] = structural[0] + np.array([0.0, 0.0, 1e-15])
+    state[13] = type(original.structural).__new__(type(original.structural))
+    state[13].__setstate__(tuple(structural))
+    changed = type(original).__new__(type(original))
+    changed.__setstate__(tuple(state))
+    with pytest.raises(AssertionError, match="result.structural.k"):
+        assert_same(changed, original)
+
+
+def test_options_keep_their_values():
+    assert (example("GaussNewtonOptions").tolerance, example("GaussNewtonOptions").max_iterations,
+            example("GaussNewtonOptions").threshold) == (1e-8, 7, 1e-12)
+    back = round_trip(example("StreamOptions"))
+    assert (back.block_rows, back.threads) == (1000, 3)
+    back = round_trip(example("SimulationOptions"))
+    assert (back.samples, back.noise_var, back.force_noise_var, back.signal_var, back.distribution) == \
+           (30, 0.5, 0.25, 2.0, "gaussian")
+
+
+def test_stream_options_keep_their_read_options():
+    # Not attributes in Python (fit_files takes its own), but part of the value: the state
+    # carries allow_nonfinite and the index column as read_table's index_col spells it.
+    for read in [(False, None), (True, True), (False, False)]:
+        options = _spdfit.StreamOptions.__new__(_spdfit.StreamOptions)
+        options.__setstate__((64, 2, read))
+        assert pickle.loads(pickle.dumps(options)).__getstate__() == (64, 2, read)
+
+
+def test_the_thesis_experiment_keeps_its_options():
+    back = round_trip(example("thesis"))
+    simulation, truth, methods = back.__getstate__()[0]
+    assert (simulation.samples, simulation.noise_var, simulation.force_noise_var, simulation.distribution) == \
+           (14, 0.86, 0.4, "gaussian")
+    assert np.array_equal(truth, hx.thesis_mass_matrix()) and methods == ["tls", "spde", "psd-ls"]
+    assert [m.method for m in back.methods] == methods
+
+
+def identify_one(seed):
+    sim = hx.simulate(samples=20, noise_var=0.5, seed=seed)
+    return quiet(hx.identify, sim.A, sim.B, truth=sim.truth, stiffness=np.eye(6) * 1e4)
+
+
+def synthesize_one(rho):
+    return quiet(lk.synthesize, steering=rho)
+
+
+def test_hexapod_and_linkage_results_come_back_from_a_process_pool():
+    with concurrent.futures.ProcessPoolExecutor(max_workers=2) as pool:
+        identified_there = list(pool.map(identify_one, [1, 2]))
+        synthesized_there = list(pool.map(synthesize_one, [0.4, 0.5]))
+    for seed, there in zip([1, 2], identified_there):
+        here = identify_one(seed)
+        assert_same(there, here)
+    for rho, there in zip([0.4, 0.5], synthesized_there):
+        assert_same(there, synthesize_one(rho))
+
+
+def first_instances():
+    """{class name: (class, an instance)} from the examples."""
+    found = {}
+    for label in EXAMPLES:
+        for item in nested(example(label)):
+            found.setdefault(type(item).__name__, (type(item), item))
+    return found
+
+
+@pytest.mark.parametrize("name", sorted(module_classes()))
+def test_a_state_of_the_wrong_length_is_refused(name):
+    cls, obj = first_instances()[name]
+    state = obj.__getstate__()
+    # Two fields short, not one: Diagnostics also reads the 30-field state of before d existed.
+    for wrong in (state[:-2], state + (None,), ()):
+        with pytest.raises(RuntimeError, match=f"cannot unpickle {name}: expected {len(state)} fields, "
+                                               f"got {len(wrong)}"):
+            cls.__new__(cls).__setstate__(wrong)
+
+
+@pytest.mark.parametrize("label,index,message", [
+    ("synthesize, steering", 0, "cannot unpickle SynthesisResult: unknown status 'bogus'"),
+    ("analyze, crank-rocker", 2, "cannot unpickle Analysis: unknown Grashof type 'bogus'"),
+    ("solve, rank-deficient", 0, "cannot unpickle LinearSystemResult: unknown status 'bogus'"),
+    ("solve, rank-deficient", 5, "cannot unpickle LinearSystemResult: unknown shape 'bogus'"),
+    ("SimulationOptions", 4, "cannot unpickle SimulationOptions: unknown distribution 'bogus'"),
+])
+def test_an_unknown_name_in_a_state_is_refused(label, index, message):
+    obj = example(label)
+    state = list(obj.__getstate__())
+    state[index] = "bogus"
+    with pytest.raises(RuntimeError, match=message):
+        type(obj).__new__(type(obj)).__setstate__(tuple(state))
+
+
+def test_nested_options_of_the_wrong_length_are_refused():
+    result = example("thesis")
+    state = list(result.__getstate__())
+    state[0] = state[0][:2]
+    with pytest.raises(RuntimeError, match="cannot unpickle ThesisExperimentResult's options: expected 3 fields, got 2"):
+        type(result).__new__(type(result)).__setstate__(tuple(state))
