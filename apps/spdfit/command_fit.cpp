@@ -24,6 +24,7 @@ struct FitOptionsCli {
   std::optional<int> max_iterations;
   std::optional<double> min_eig;
   bool report = false;
+  bool header = false;
   BootstrapCli bootstrap;
   bool stream = false;
   StreamOptions stream_options;
@@ -59,6 +60,11 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
                 "Print X with its bootstrap standard errors (with --bootstrap), its eigenvalues and the noise "
                 "estimate as a table for people")
       ->excludes(json);
+  sub->add_flag("--header", options->header,
+                "Print X as CSV with a header row and row labels: rows named by A's columns, columns by B's "
+                "(numbers where a file has no header row); --json has them as row_names and column_names")
+      ->excludes(json)
+      ->excludes("--report");
   sub->add_option("-o,--output", options->output,
                   "Write to FILE instead of stdout (X.npy: a NumPy file; X.mat: a MATLAB file with the variable X)");
   sub->add_option("--rank-tol", options->rank_tolerance,
@@ -100,6 +106,7 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
     const Method method = *parse_method(options->method);
     if (options->json) check_text_output(options->output, "--json");
     if (options->report) check_text_output(options->output, "--report");
+    if (options->header) check_text_output(options->output, "--header");
     FitOptions fit_options;
     fit_options.rank_tolerance = options->rank_tolerance;
     // Each of these options applies to some methods only: a usage error with the others.
@@ -132,6 +139,8 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
     }
     if (options->json || options->report) {
       emit(options->json ? result_json(result).dump(2) + "\n" : fit_report(result), options->output);
+    } else if (options->header) {
+      emit(labelled_matrix_csv(result), options->output);
     } else {
       emit_matrix(result.X, options->output);
     }

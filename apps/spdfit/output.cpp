@@ -99,6 +99,8 @@ json result_json(const FitResult& result) {
   out["n"] = result.diagnostics.n;
   out["d"] = result.diagnostics.d;
   out["X"] = matrix_json(result.X);
+  if (!result.row_names.empty()) out["row_names"] = result.row_names;
+  if (!result.column_names.empty()) out["column_names"] = result.column_names;
   out["diagnostics"] = diagnostics_json(result.diagnostics);
   out["warnings"] = result.warnings;
   if (!result.ok()) out["error"] = result.message;
@@ -263,6 +265,19 @@ void emit_matrix(const Eigen::MatrixXd& X, const std::string& path) {
   } else {
     emit(matrix_csv(X), path);
   }
+}
+
+std::string labelled_matrix_csv(const FitResult& result) {
+  const auto or_numbers = [](const std::vector<std::string>& names, Eigen::Index count) {
+    if (static_cast<Eigen::Index>(names.size()) == count) return names;
+    std::vector<std::string> numbers;
+    for (Eigen::Index k = 1; k <= count; ++k) numbers.push_back(std::to_string(k));
+    return numbers;
+  };
+  std::ostringstream out;
+  io::write_csv(out, result.X, or_numbers(result.row_names, result.X.rows()),
+                or_numbers(result.column_names, result.X.cols()));
+  return out.str();
 }
 
 void check_text_output(const std::string& path, const std::string& what) {

@@ -19,6 +19,7 @@ namespace spdfit {
 struct DataPair {
   Eigen::MatrixXd A, B;
   std::vector<std::string> warnings;  ///< the readers' (io::Table::warnings), A's then B's
+  std::vector<std::string> a_names, b_names;  ///< the files' column names (empty without a header row)
 };
 
 /// Reads A and B from `a_path` and `b_path` (the formats of io::read_table) and checks that they
@@ -35,8 +36,9 @@ DataPair read_pair(const std::string& a_path, const std::string& b_path, const i
 /// stream_factor), naming B's file when B's d != n columns meet a method that needs a square X
 /// (non_square_refusal), and std::invalid_argument on invalid options; a numerical failure is the
 /// result's status. `read` says how the files are read, on either path (it takes the place of
-/// stream->read); the readers' warnings come first in the result's warnings. Cost O(m n^2) plus
-/// the method's O(n^3).
+/// stream->read); the readers' warnings come first in the result's warnings, and the files'
+/// column names are the result's row_names (A's) and column_names (B's). Cost O(m n^2) plus the
+/// method's O(n^3).
 FitResult fit_files(const std::string& a_path, const std::string& b_path, Method method,
                     const FitOptions& options = {}, const std::optional<StreamOptions>& stream = std::nullopt,
                     const io::ReadOptions& read = {});

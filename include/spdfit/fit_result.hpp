@@ -160,6 +160,9 @@ struct FitResult {
   /// The bootstrap's standard errors, interval and bias, when FitOptions::bootstrap > 0 and the
   /// estimate succeeded.
   std::optional<Bootstrap> bootstrap;
+  /// The names of X's rows (A's columns) and columns (B's columns), from the header rows of the
+  /// files fit_files read (a dropped index column's name left out); empty when a file had none.
+  std::vector<std::string> row_names, column_names;
 
   bool ok() const { return status == Status::Success; }
 };

@@ -78,6 +78,12 @@ std::string format_double(double value);
 
 /// Writes X as CSV: one matrix row per line, comma-separated, values as format_double.
 void write_csv(std::ostream& out, const Eigen::Ref<const Eigen::MatrixXd>& X);
+/// Writes X as CSV with names: a header row of column names after an empty first cell, and each
+/// row's name in its first column (as pandas' to_csv and R's write.csv write a labelled table;
+/// read_table reads it back, dropping the labels). Names are quoted. Throws
+/// std::invalid_argument unless there is one name per row and per column.
+void write_csv(std::ostream& out, const Eigen::Ref<const Eigen::MatrixXd>& X,
+               const std::vector<std::string>& row_names, const std::vector<std::string>& column_names);
 /// Writes X to `path` as CSV. Throws DataError when the file cannot be written.
 void write_csv(const std::string& path, const Eigen::Ref<const Eigen::MatrixXd>& X);
 /// Writes X to `path` as a .npy file (float64, C order). Throws DataError on failure.

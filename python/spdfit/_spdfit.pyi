@@ -91,6 +91,8 @@ class FitResult:
     interval: Optional[Interval]
     bias: Optional[npt.NDArray[np.float64]]
     bootstrap: Optional[Bootstrap]
+    row_names: List[str]
+    column_names: List[str]
 
 class NearestResult:
     X: npt.NDArray[np.float64]

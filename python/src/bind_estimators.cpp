@@ -319,11 +319,16 @@ void bind_estimators(py::module_& m) {
                              "the bootstrap bias estimate (mean of the replicates minus X), or None")
       .def_property_readonly("bootstrap", copied(&FitResult::bootstrap),
                              "the bootstrap's details (replicates, failed, seed, eigenvalues, ...), or None")
+      .def_property_readonly("row_names", copied(&FitResult::row_names),
+                             "names of X's rows: A's column names from its file's header (fit_files), else []")
+      .def_property_readonly("column_names", copied(&FitResult::column_names),
+                             "names of X's columns: B's column names from its file's header, else []")
       .def(pickle_fields<FitResult>(
           "FitResult", enum_field(&FitResult::method, kSelectableMethods, "FitResult", "method"),
           enum_field(&FitResult::status, kStatuses, "FitResult", "status"), state_field(&FitResult::message),
           state_field(&FitResult::X), state_field(&FitResult::diagnostics), state_field(&FitResult::warnings),
-          state_field(&FitResult::bootstrap)))
+          state_field(&FitResult::bootstrap), state_field(&FitResult::row_names),
+          state_field(&FitResult::column_names)))
       .def("__repr__", &repr);
 
   m.def(

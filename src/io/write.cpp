@@ -6,6 +6,7 @@
 #include <cstring>
 #include <fstream>
 #include <ostream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -76,6 +77,35 @@ void write_csv(std::ostream& out, const Eigen::Ref<const Eigen::MatrixXd>& X) {
     }
     line += '\n';
     out.write(line.data(), static_cast<std::streamsize>(line.size()));
+  }
+}
+
+void write_csv(std::ostream& out, const Eigen::Ref<const Eigen::MatrixXd>& X,
+               const std::vector<std::string>& row_names, const std::vector<std::string>& column_names) {
+  if (row_names.size() != static_cast<std::size_t>(X.rows()) ||
+      column_names.size() != static_cast<std::size_t>(X.cols())) {
+    throw std::invalid_argument("write_csv: " + std::to_string(row_names.size()) + " row names and " +
+                                std::to_string(column_names.size()) + " column names for a " +
+                                std::to_string(X.rows()) + "x" + std::to_string(X.cols()) + " matrix");
+  }
+  // Names are always quoted (as R's write.csv does), so that a name such as "1" stays a name.
+  const auto quoted = [](const std::string& name) {
+    std::string out = "\"";
+    for (const char c : name) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return out + "\"";
+  };
+  std::string line = "\"\"";
+  for (const std::string& name : column_names) line += "," + quoted(name);
+  line += '\n';
+  for (Eigen::Index i = 0; i < X.rows(); ++i) {
+    line += quoted(row_names[static_cast<std::size_t>(i)]);
+    for (Eigen::Index j = 0; j < X.cols(); ++j) {
+      line += ',';
+      append_double(&line, X(i, j));
+    }
+    line += '\n';
+    out.write(line.data(), static_cast<std::streamsize>(line.size()));
+    line.clear();
   }
 }
 

@@ -11,6 +11,13 @@
 namespace spdfit {
 
 namespace {
+// The readers' warnings first, then the fit's; the files' column names as X's row and column names.
+void attach_read_info(FitResult& result, const detail::PairInfo& info) {
+  result.warnings.insert(result.warnings.begin(), info.warnings.begin(), info.warnings.end());
+  result.row_names = info.a_names;
+  result.column_names = info.b_names;
+}
+
 std::string shape(const Eigen::MatrixXd& M) { return std::to_string(M.rows()) + "x" + std::to_string(M.cols()); }
 // The streaming bootstrap: Poisson counts on fixed row groups, all in the one pass.
 FitResult fit_stream_bootstrap(const std::string& a_path, const std::string& b_path, Method method,
@@ -20,6 +27,7 @@ FitResult fit_stream_bootstrap(const std::string& a_path, const std::string& b_p
   detail::check_enough_rows_for(method, a_path, factors.total.rows(), factors.total.n(), factors.total.d());
   const Reduction data = reduce(factors.total, options);
   FitResult result = fit(data, method);
+  attach_read_info(result, factors.info);
   if (!result.ok()) return result;
   std::vector<detail::Replicate> replicates(factors.replicates.size());
   detail::parallel_for(replicates.size(), options.threads, [&](std::size_t r) {
@@ -47,6 +55,7 @@ DataPair read_pair(const std::string& a_path, const std::string& b_path, const i
   io::Table a = io::read_table(a_path, options);
   data.A = std::move(a.values);
   data.warnings = std::move(a.warnings);
+  data.a_names = std::move(a.column_names);
   if (data.A.rows() < data.A.cols()) {
     throw detail::fewer_samples_than_columns(a_path, static_cast<std::uint64_t>(data.A.rows()),
                                              static_cast<std::uint64_t>(data.A.cols()));
@@ -54,6 +63,7 @@ DataPair read_pair(const std::string& a_path, const std::string& b_path, const i
   io::Table b = io::read_table(b_path, options);
   data.B = std::move(b.values);
   data.warnings.insert(data.warnings.end(), b.warnings.begin(), b.warnings.end());
+  data.b_names = std::move(b.column_names);
   if (data.A.rows() != data.B.rows()) {
     throw io::DataError(b_path, 0, 0,
                         "B is " + shape(data.B) + " but A (" + a_path + ") is " + shape(data.A) +
@@ -69,20 +79,20 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
   std::optional<StreamOptions> streamed = stream;
   if (streamed) streamed->read = read;  // one way of reading, whichever path
   if (streamed && options.bootstrap > 0) return fit_stream_bootstrap(a_path, b_path, method, options, *streamed);
-  std::vector<std::string> read_warnings;
+  detail::PairInfo info;
   FitResult result;
   if (streamed) {
-    const TriangularFactor factor = detail::stream_factor_for(method, a_path, b_path, *streamed, &read_warnings);
+    const TriangularFactor factor = detail::stream_factor_for(method, a_path, b_path, *streamed, &info);
     detail::check_enough_rows_for(method, a_path, factor.rows(), factor.n(), factor.d());
     result = fit(reduce(factor, options), method);
   } else {
     DataPair data = read_pair(a_path, b_path, read);
     detail::check_method_fits(method, b_path, data.A.cols(), data.B.cols());
     detail::check_enough_rows_for(method, a_path, data.A.rows(), data.A.cols(), data.B.cols());
-    read_warnings = std::move(data.warnings);
+    info = {std::move(data.warnings), std::move(data.a_names), std::move(data.b_names)};
     result = fit(data.A, data.B, method, options);
   }
-  result.warnings.insert(result.warnings.begin(), read_warnings.begin(), read_warnings.end());
+  attach_read_info(result, info);
   return result;
 }
 

@@ -38,10 +38,14 @@ class PairReader {
         side_by_side_(side_by_side),
         method_(method) {}
 
-  /// The readers' warnings (a first column of row labels dropped), A's then B's.
-  std::vector<std::string> warnings() const {
-    std::vector<std::string> out = a_.warnings();
-    out.insert(out.end(), b_.warnings().begin(), b_.warnings().end());
+  /// The readers' warnings (a first column of row labels dropped, a file read whole), A's then
+  /// B's, and their column names.
+  detail::PairInfo info() const {
+    detail::PairInfo out;
+    out.warnings = a_.warnings();
+    out.warnings.insert(out.warnings.end(), b_.warnings().begin(), b_.warnings().end());
+    out.a_names = a_.column_names();
+    out.b_names = b_.column_names();
     return out;
   }
 
@@ -106,14 +110,16 @@ class PairReader {
 
 TriangularFactor stream_factor(const std::string& a_path, const std::string& b_path,
                                const StreamOptions& options, std::vector<std::string>* warnings) {
-  return detail::stream_factor_for(std::nullopt, a_path, b_path, options, warnings);
+  detail::PairInfo info;
+  TriangularFactor factor = detail::stream_factor_for(std::nullopt, a_path, b_path, options, &info);
+  if (warnings) *warnings = std::move(info.warnings);
+  return factor;
 }
 
 namespace detail {
 
 TriangularFactor stream_factor_for(const std::optional<Method>& method, const std::string& a_path,
-                                   const std::string& b_path, const StreamOptions& options,
-                                   std::vector<std::string>* warnings) {
+                                   const std::string& b_path, const StreamOptions& options, PairInfo* info) {
   if (options.block_rows < 1) throw std::invalid_argument("block_rows must be at least 1");
   const unsigned threads = resolve_threads(options.threads);
   PairReader reader(a_path, b_path, options, threads > 1, method);
@@ -141,7 +147,7 @@ TriangularFactor stream_factor_for(const std::optional<Method>& method, const st
     if (in_flight.size() >= threads) merge_oldest();
   }
   while (!in_flight.empty()) merge_oldest();
-  if (warnings) *warnings = reader.warnings();
+  if (info) *info = reader.info();
 
   // The last next() read a short block of A (0 rows when m is a multiple of block_rows), so
   // m >= n was checked there, and m >= 1 (an empty file is an error): there is a factor.
@@ -207,6 +213,7 @@ ResampledFactors stream_resampled_factors(Method method, const std::string& a_pa
     batch.back().B.conservativeResize(filled, Eigen::NoChange);
   }
   flush();
+  out.info = reader.info();
   return out;
 }
 

@@ -101,3 +101,49 @@ def test_output_mat_reads_back_in_scipy(spdfit, data):
     np.testing.assert_array_equal(scipy.io.loadmat(path / "X.mat")["X"], expected)
     usage = spdfit("fit", "--method", "ls", "--json", "-o", path / "X.mat", path / "A.csv", path / "B.csv")
     assert usage.returncode == 2 and "names a .mat file" in usage.stderr
+
+
+# ---- Names in the output (issue 18) -------------------------------------------------------------
+
+@pytest.mark.parametrize("stream", [[], ["--stream", "--block-rows", "5"]])
+def test_header_and_json_name_x_by_the_files_columns(spdfit, tmp_path, stream):
+    rng = np.random.default_rng(4)
+    A = rng.standard_normal((20, 3))
+    B = A @ rng.standard_normal((3, 2))
+    # pandas' df.to_csv(): an index column under an empty header cell, dropped with a warning.
+    (tmp_path / "A.csv").write_text("," + "Fx,Fy,Fz\n" + "".join(
+        f"{i}," + ",".join(repr(v) for v in row) + "\n" for i, row in enumerate(A)))
+    np.savetxt(tmp_path / "B.csv", B, delimiter=",", header='"g,1",g2', comments="")
+    result = spdfit("fit", "--method", "ls", "--header", *stream, tmp_path / "A.csv", tmp_path / "B.csv")
+    assert result.returncode == 0, result.stderr
+    assert "first column holds row labels" in result.stderr
+    lines = result.stdout.splitlines()
+    assert lines[0] == '"","g,1","g2"'
+    assert [line.split(",")[0] for line in lines[1:]] == ['"Fx"', '"Fy"', '"Fz"']
+    j = json.loads(spdfit("fit", "--method", "ls", "--json", *stream, tmp_path / "A.csv", tmp_path / "B.csv").stdout)
+    assert j["row_names"] == ["Fx", "Fy", "Fz"] and j["column_names"] == ["g,1", "g2"]
+    # The numbers are the plain output's.
+    plain = spdfit("fit", "--method", "ls", *stream, tmp_path / "A.csv", tmp_path / "B.csv").stdout
+    X_back = np.array([[float(v) for v in line.split(",")[1:]] for line in lines[1:]])
+    np.testing.assert_array_equal(X_back, np.loadtxt(plain.splitlines(), delimiter=","))
+
+
+def test_header_numbers_names_when_the_files_have_none(spdfit, data):
+    path, _, _ = data
+    result = spdfit("fit", "--method", "ls", "--header", path / "A.csv", path / "B.csv")
+    assert result.stdout.splitlines()[0] == '"","1","2","3"'
+    assert spdfit("fit", "--method", "ls", "--header", "--json", path / "A.csv", path / "B.csv").returncode == 2
+    assert spdfit("fit", "--method", "ls", "--header", "-o", path / "X.npy", path / "A.csv",
+                  path / "B.csv").returncode == 2
+
+
+def test_streaming_bootstrap_prints_the_readers_warnings(spdfit, tmp_path):
+    rng = np.random.default_rng(5)
+    A = rng.standard_normal((50, 2))
+    (tmp_path / "A.csv").write_text(",x,y\n" + "".join(f"{i},{a},{b}\n" for i, (a, b) in enumerate(A)))
+    np.savetxt(tmp_path / "B.csv", A * 2, delimiter=",")
+    result = spdfit("fit", "--method", "ls", "--stream", "--bootstrap", "20", "--json", tmp_path / "A.csv",
+                    tmp_path / "B.csv")
+    assert result.returncode == 0, result.stderr
+    assert "first column holds row labels" in result.stderr
+    assert json.loads(result.stdout)["row_names"] == ["x", "y"]

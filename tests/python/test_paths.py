@@ -51,3 +51,20 @@ def test_read_matrix_converts_numeric_npy_as_numpy_does(tmp_path, dtype):
     np.testing.assert_array_equal(spdfit.read_matrix(tmp_path / "v.npy"), values.astype(float))
     np.save(tmp_path / "f.npy", np.asfortranarray(values))
     np.testing.assert_array_equal(spdfit.read_matrix(tmp_path / "f.npy"), values.astype(float))
+
+
+def test_fit_files_names_x_by_the_files_columns(tmp_path):
+    # Issue 18: rows of X named by A's columns, columns by B's; kept through pickling.
+    import pickle
+    rng = np.random.default_rng(9)
+    A = rng.standard_normal((12, 2))
+    np.savetxt(tmp_path / "A.csv", A, delimiter=",", header="ax,ay", comments="")
+    np.savetxt(tmp_path / "B.csv", A @ [[1.0, 2.0, 0.0], [0.0, 1.0, 1.0]], delimiter=",", header="f1,f2,f3",
+               comments="")
+    for stream in (False, True):
+        r = spdfit.fit_files(tmp_path / "A.csv", tmp_path / "B.csv", "ls") if stream else \
+            spdfit.fit_files(tmp_path / "A.csv", tmp_path / "B.csv", "ls", block_rows=5)
+        assert (r.row_names, r.column_names) == (["ax", "ay"], ["f1", "f2", "f3"])
+        back = pickle.loads(pickle.dumps(r))
+        assert (back.row_names, back.column_names) == (r.row_names, r.column_names)
+    assert spdfit.fit(A, A, "ls").row_names == []

@@ -28,6 +28,7 @@ FIELDS = ["m", "n", "rank_a", "rank_b", "cond_a", "cond_b", "residual_norm", "sy
 def same(a, b):
     assert (a.method, a.status, a.message, a.warnings, a.ok) == (b.method, b.status, b.message, b.warnings, b.ok)
     assert np.array_equal(a.X, b.X)
+    assert (a.row_names, a.column_names) == (b.row_names, b.column_names)
     for name in FIELDS:
         assert getattr(a.diagnostics, name) == getattr(b.diagnostics, name), name
     for name in ("singular_values_a", "singular_values_b"):
@@ -101,7 +102,7 @@ def test_results_come_back_from_a_process_pool():
 
 
 def test_a_truncated_state_is_refused():
-    with pytest.raises(RuntimeError, match="expected 7 fields"):
+    with pytest.raises(RuntimeError, match="expected 9 fields"):
         spdfit.FitResult.__new__(spdfit.FitResult).__setstate__(("spde",))
 
 
