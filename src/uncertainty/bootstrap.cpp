@@ -198,7 +198,7 @@ void attach_bootstrap(FitResult& result, const std::vector<Replicate>& replicate
       boot.interval.upper(i, j) = mo.upper;
     }
   }
-  if (result.diagnostics.symmetric || result.X == result.X.transpose()) {
+  if (result.diagnostics.symmetric || (rows == cols && result.X == result.X.transpose())) {
     std::vector<std::optional<VectorXd>> spectra(replicates.size());
     parallel_for(replicates.size(), options.threads, [&](std::size_t r) {
       const MatrixXd& X = replicates[r].X;
