@@ -25,8 +25,8 @@ void check(std::string_view bytes, bool allow_nonfinite) {
     return;
   }
   SPDFIT_FUZZ_CHECK(X.rows() > 0 && X.cols() > 0);
-  // Eight bytes per value, all of them in the input after the header.
-  SPDFIT_FUZZ_CHECK(static_cast<std::size_t>(X.size()) <= bytes.size() / 8);
+  // At least one byte per value (8 for float64, 1 for int8 or bool), all of them in the input.
+  SPDFIT_FUZZ_CHECK(static_cast<std::size_t>(X.size()) <= bytes.size());
   SPDFIT_FUZZ_CHECK(allow_nonfinite || X.allFinite());
   // parse_table picks the same reader by the magic bytes.
   const Eigen::MatrixXd Y = spdfit::io::parse_table(bytes, "fuzz.npy", options).values;
