@@ -1,6 +1,9 @@
 // spdfit fit --method METHOD [--json | --report] [--output FILE] [--bootstrap N [--confidence F] [--seed S]]
 //            [--stream [--block-rows N]] [--threads N] A B
 #include <CLI/CLI.hpp>
+#include <sys/stat.h>
+
+#include <cstdint>
 #include <memory>
 #include <optional>
 
@@ -8,6 +11,7 @@
 #include "cli.hpp"
 #include "input.hpp"
 #include "output.hpp"
+#include "progress_line.hpp"
 #include "validators.hpp"
 #include "spdfit/fit_files.hpp"
 
@@ -30,6 +34,12 @@ struct FitOptionsCli {
   StreamOptions stream_options;
   std::string var_a, var_b;
 };
+
+// The size of a file, 0 when it is not a regular file (standard input, a FILE:NAME array).
+std::uint64_t file_bytes(const std::string& path) {
+  struct stat info {};
+  return ::stat(path.c_str(), &info) == 0 && S_ISREG(info.st_mode) ? static_cast<std::uint64_t>(info.st_size) : 0;
+}
 
 // "A.mat:accel" for --var-a accel: the library's one way of naming an array in a file.
 std::string with_variable(const std::string& path, const std::string& variable) {
@@ -129,9 +139,16 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
     if (options->a_path == "-" && options->b_path == "-") {
       throw UsageError("A and B cannot both be standard input (-)");
     }
-    const FitResult result = fit_files(with_variable(options->a_path, options->var_a),
-                                       with_variable(options->b_path, options->var_b), method, fit_options, stream,
-                                       global.read);
+    const FitResult result = [&] {
+      // Long runs show a progress line on a terminal (the streaming pass, then the replicates),
+      // cleared before anything else is printed.
+      ProgressLine reading(global, "reading A and B", file_bytes(options->a_path) + file_bytes(options->b_path));
+      ProgressLine refitting(global, "bootstrap replicates");
+      if (stream) stream->progress = reading.callback();
+      fit_options.progress = refitting.callback();
+      return fit_files(with_variable(options->a_path, options->var_a), with_variable(options->b_path, options->var_b),
+                       method, fit_options, stream, global.read);
+    }();
     for (const std::string& w : result.warnings) warn(global, w);
     if (!result.ok()) throw DataFailure(result.message);
     if (result.bootstrap && !options->json && !options->report) {

@@ -6,6 +6,7 @@
 #include <limits>
 #include <string>
 
+#include "spdfit/progress.hpp"
 #include "spdfit/rank.hpp"
 
 namespace spdfit {
@@ -45,6 +46,8 @@ struct FitOptions {
   std::uint64_t seed = 1;
   /// Threads for the bootstrap's replicates: 0 (the default) means one per core.
   unsigned threads = 0;
+  /// Told the fraction of the bootstrap's replicates refitted, as they finish.
+  ProgressCallback progress;
 
   /// True when the options are usable; otherwise `error` says why.
   bool is_valid(std::string* error = nullptr) const {

@@ -45,6 +45,9 @@ class RowReader {
   const std::vector<std::string>& warnings() const;
   /// Rows returned so far.
   std::uint64_t rows_read() const;
+  /// How much of the file has been read, in [0, 1]: bytes for text, rows for .npy and files read
+  /// whole; 0 when unknown (standard input before its end).
+  double fraction_read() const;
 
  private:
   struct Source;  // the format-specific part, one kind per file format (row_reader.cpp)

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "spdfit/io.hpp"
+#include "spdfit/progress.hpp"
 #include "spdfit/triangular_factor.hpp"
 
 namespace spdfit {
@@ -20,6 +21,8 @@ struct StreamOptions {
   /// computed on up to this many threads; the result does not depend on the number.
   unsigned threads = 0;
   io::ReadOptions read;
+  /// Told the fraction of A's file read, after each block (text: bytes; .npy: rows).
+  ProgressCallback progress;
 };
 
 /// The triangular factor of [A B] for A and B in the files `a_path` and `b_path` (the formats

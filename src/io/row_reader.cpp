@@ -33,6 +33,7 @@ struct RowReader::Source {
   virtual Index columns() const = 0;
   virtual const std::vector<std::string>& column_names() const { return no_names; }
   virtual const std::vector<std::string>& warnings() const { return no_names; }
+  virtual double fraction_read() const = 0;
 
   std::string path;
   std::uint64_t rows_read = 0;
@@ -79,6 +80,9 @@ class RowReader::NpySource final : public RowReader::Source {
     return count;
   }
   Index columns() const override { return static_cast<Index>(layout_.cols); }
+  double fraction_read() const override {
+    return static_cast<double>(rows_read) / static_cast<double>(layout_.rows);
+  }
 
  private:
   // The data are one run of rows (C order) or one run per column (Fortran order); in each, the
@@ -117,6 +121,8 @@ class RowReader::TextSource final : public RowReader::Source {
       errno = error;
       fail_errno(path, "cannot be opened");
     }
+    struct stat info {};
+    if (::fstat(fd, &info) == 0 && S_ISREG(info.st_mode)) size_ = static_cast<std::uint64_t>(info.st_size);
   }
   ~TextSource() override { std::fclose(file_); }
 
@@ -141,6 +147,10 @@ class RowReader::TextSource final : public RowReader::Source {
   Index columns() const override { return static_cast<Index>(parser_.columns()); }
   const std::vector<std::string>& column_names() const override { return parser_.column_names(); }
   const std::vector<std::string>& warnings() const override { return parser_.warnings(); }
+  double fraction_read() const override {
+    if (at_end_) return 1.0;
+    return size_ > 0 ? std::min(1.0, static_cast<double>(bytes_) / static_cast<double>(size_)) : 0.0;
+  }
 
  private:
   // Rows parsed but not yet handed out.
@@ -157,6 +167,7 @@ class RowReader::TextSource final : public RowReader::Source {
     buffer_.resize(kept + RowReader::kTextPieceBytes);
     const std::size_t got = std::fread(buffer_.data() + kept, 1, RowReader::kTextPieceBytes, file_);
     buffer_.resize(kept + got);
+    bytes_ += got;
     if (std::ferror(file_)) fail_errno(path, "read error");
     if (got < RowReader::kTextPieceBytes) {  // the end: the rest is the last line(s)
       parser_.feed(buffer_);
@@ -187,6 +198,8 @@ class RowReader::TextSource final : public RowReader::Source {
   std::string buffer_;     // bytes read but not yet parsed (an incomplete last line)
   std::size_t taken_ = 0;  // rows at the front of parser_.values() already handed out
   bool at_end_ = false;
+  std::uint64_t bytes_ = 0;  // read from the file so far
+  std::uint64_t size_ = 0;   // the file's size (0: not a regular file)
 };
 
 // A .mat or .npz file, or standard input, read whole (their libraries read whole arrays; a
@@ -207,6 +220,9 @@ class RowReader::TableSource final : public RowReader::Source {
     return count;
   }
   Index columns() const override { return table_.values.cols(); }
+  double fraction_read() const override {
+    return static_cast<double>(rows_read) / static_cast<double>(table_.values.rows());
+  }
   const std::vector<std::string>& column_names() const override { return table_.column_names; }
   const std::vector<std::string>& warnings() const override { return table_.warnings; }
 
@@ -262,5 +278,6 @@ Index RowReader::columns() const { return source_->columns(); }
 const std::vector<std::string>& RowReader::column_names() const { return source_->column_names(); }
 const std::vector<std::string>& RowReader::warnings() const { return source_->warnings(); }
 std::uint64_t RowReader::rows_read() const { return source_->rows_read; }
+double RowReader::fraction_read() const { return source_->fraction_read(); }
 
 }  // namespace spdfit::io

@@ -2,7 +2,6 @@
 
 #include <stdexcept>
 
-#include "numerics/parallel.hpp"
 #include "pipeline/pair_checks.hpp"
 #include "pipeline/stream_resampling.hpp"
 #include "spdfit/fit.hpp"
@@ -29,10 +28,9 @@ FitResult fit_stream_bootstrap(const std::string& a_path, const std::string& b_p
   FitResult result = fit(data, method);
   attach_read_info(result, factors.info);
   if (!result.ok()) return result;
-  std::vector<detail::Replicate> replicates(factors.replicates.size());
-  detail::parallel_for(replicates.size(), options.threads, [&](std::size_t r) {
-    replicates[r] = detail::refit(factors.replicates[r], options, result);
-  });
+  const std::vector<detail::Replicate> replicates =
+      detail::run_replicates(factors.replicates.size(), options,
+                             [&](std::size_t r) { return detail::refit(factors.replicates[r], options, result); });
   detail::attach_bootstrap(result, replicates, options, data);
   result.bootstrap->scheme = "poisson_groups";
   result.bootstrap->group_rows = detail::kBootstrapGroupRows;

@@ -38,6 +38,9 @@ class PairReader {
         side_by_side_(side_by_side),
         method_(method) {}
 
+  /// How much of A has been read, in [0, 1].
+  double fraction_read() const { return a_.fraction_read(); }
+
   /// The readers' warnings (a first column of row labels dropped, a file read whole), A's then
   /// B's, and their column names.
   detail::PairInfo info() const {
@@ -145,8 +148,10 @@ TriangularFactor stream_factor_for(const std::optional<Method>& method, const st
         std::async(policy, [b = std::move(block)] { return TriangularFactor::from_data(b.A, b.B); }));
     block = Block{};
     if (in_flight.size() >= threads) merge_oldest();
+    if (options.progress) options.progress(reader.fraction_read());
   }
   while (!in_flight.empty()) merge_oldest();
+  if (options.progress) options.progress(1.0);
   if (info) *info = reader.info();
 
   // The last next() read a short block of A (0 rows when m is a multiple of block_rows), so
@@ -207,12 +212,14 @@ ResampledFactors stream_resampled_factors(Method method, const std::string& a_pa
       filled += take;
       offset += take;
     }
+    if (options.progress) options.progress(reader.fraction_read());
   }
   if (!batch.empty() && filled < g_rows) {
     batch.back().A.conservativeResize(filled, Eigen::NoChange);
     batch.back().B.conservativeResize(filled, Eigen::NoChange);
   }
   flush();
+  if (options.progress) options.progress(1.0);
   out.info = reader.info();
   return out;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -243,13 +244,26 @@ void attach_bootstrap(FitResult& result, const std::vector<Replicate>& replicate
   result.bootstrap = std::move(boot);
 }
 
+std::vector<Replicate> run_replicates(std::size_t count, const FitOptions& options,
+                                      const std::function<Replicate(std::size_t)>& make) {
+  std::vector<Replicate> replicates(count);
+  std::mutex progress_mutex;
+  std::size_t done = 0;
+  parallel_for(count, options.threads, [&](std::size_t r) {
+    replicates[r] = make(r);
+    if (!options.progress) return;
+    const std::lock_guard<std::mutex> lock(progress_mutex);  // one call at a time
+    options.progress(static_cast<double>(++done) / static_cast<double>(count));
+  });
+  return replicates;
+}
+
 void bootstrap_in_memory(FitResult& result, const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
                          const Reduction& full_data) {
   const FitOptions& options = full_data.options();
-  std::vector<Replicate> replicates(static_cast<std::size_t>(options.bootstrap));
-  parallel_for(replicates.size(), options.threads, [&](std::size_t r) {
-    replicates[r] = refit(resample_rows(A, B, options.seed, r), options, result);
-  });
+  const std::vector<Replicate> replicates =
+      run_replicates(static_cast<std::size_t>(options.bootstrap), options,
+                     [&](std::size_t r) { return refit(resample_rows(A, B, options.seed, r), options, result); });
   attach_bootstrap(result, replicates, options, full_data);
 }
 

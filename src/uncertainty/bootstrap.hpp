@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -50,6 +51,11 @@ FitResult fit_replicate(const Reduction& data, const FitResult& full);
 /// One replicate: fit_replicate on the reduction of its factor (replicate_options); a failure, or
 /// a factor with fewer rows than columns, is the message.
 Replicate refit(const TriangularFactor& factor, const FitOptions& options, const FitResult& full);
+
+/// Replicates 0 .. count - 1, made by make(r) on options.threads threads, telling
+/// options.progress the fraction made as they finish.
+std::vector<Replicate> run_replicates(std::size_t count, const FitOptions& options,
+                                      const std::function<Replicate(std::size_t)>& make);
 
 /// The uncertainty of sorted values (SpectrumUncertainty): `replicates` holds each replicate's
 /// values ascending, or nothing where it has none.
