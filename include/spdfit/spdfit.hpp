@@ -32,6 +32,7 @@
 #include "spdfit/method.hpp"
 #include "spdfit/nearest_spd.hpp"
 #include "spdfit/nearest_correlation.hpp"
+#include "spdfit/progress.hpp"
 #include "spdfit/psd_least_squares.hpp"
 #include "spdfit/random.hpp"
 #include "spdfit/rank.hpp"
