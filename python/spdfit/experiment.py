@@ -9,6 +9,13 @@ a given seed gives the same numbers whatever the number of threads.
 from . import _as_matrix
 from ._spdfit import experiment as _core
 
+# The result classes (the library's), under the names the type stubs give them.
+Summary = _core.Summary
+MethodErrors = _core.MethodErrors
+ThesisExperimentResult = _core.ThesisExperimentResult
+EntryStatistics = _core.EntryStatistics
+EntryExperimentResult = _core.EntryExperimentResult
+
 # The thesis' experiments 1-3: noise variances (its M-file's nm = 1, 3.2, 3.9; V = nm^2 / 12), as
 # the library's table of its reported runs gives them.
 THESIS_NOISE_VARIANCES = tuple(run[1] for run in _core.THESIS_REPORTED_RUNS)
@@ -20,7 +27,8 @@ THESIS_REPORTED = {run[0]: tuple(run[1:]) for run in _core.THESIS_REPORTED_RUNS}
 # The library's defaults (the thesis' chapter-6 set-up, the paper's), not retyped here.
 _DEFAULTS = _core.DEFAULTS
 
-__all__ = ["THESIS_NOISE_VARIANCES", "THESIS_REPORTED", "paper_2x2", "paper_2x2_sweep", "paper_hexapod", "thesis"]
+__all__ = ["EntryExperimentResult", "EntryStatistics", "MethodErrors", "Summary", "THESIS_NOISE_VARIANCES",
+           "THESIS_REPORTED", "ThesisExperimentResult", "paper_2x2", "paper_2x2_sweep", "paper_hexapod", "thesis"]
 
 
 def _names(methods):

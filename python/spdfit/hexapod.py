@@ -17,9 +17,10 @@ from . import _as_matrix, _options
 from ._spdfit import hexapod as _core
 
 Geometry = _core.Geometry
+MethodIdentification = _core.MethodIdentification
 
-__all__ = ["Geometry", "Model", "Simulation", "cubic_geometry", "geometry", "identify", "model", "simulate",
-           "thesis_mass_matrix"]
+__all__ = ["Geometry", "MethodIdentification", "Model", "Simulation", "cubic_geometry", "geometry", "identify",
+           "model", "simulate", "thesis_mass_matrix"]
 
 Model = _namedtuple("Model", "geometry jacobian mass_matrix payload_mass_matrix modes_hz strut_lengths "
                              "mass_matrix_eigenvalues jacobian_condition strut_directions")

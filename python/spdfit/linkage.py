@@ -18,9 +18,14 @@ FourBar = _core.FourBar
 SynthesisResult = _core.SynthesisResult
 LinkageSolution = _core.LinkageSolution
 Analysis = _core.Analysis
+AnalysisSample = _core.AnalysisSample
+AngleRange = _core.AngleRange
+DialZeros = _core.DialZeros
+MotionCheck = _core.MotionCheck
 
-__all__ = ["Analysis", "FourBar", "LinkageSolution", "SynthesisResult", "analyze", "freudenstein_parameters",
-           "function_names", "grashof_type", "link_lengths", "synthesize"]
+__all__ = ["Analysis", "AnalysisSample", "AngleRange", "DialZeros", "FourBar", "LinkageSolution", "MotionCheck",
+           "SynthesisResult", "analyze", "freudenstein_parameters", "function_names", "grashof_type", "link_lengths",
+           "synthesize"]
 
 # Gauss-Newton's defaults are the library's (GaussNewtonOptions), not retyped here.
 _GAUSS_NEWTON = _core.GaussNewtonOptions()
