@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Sets up, builds and runs every test (unit tests, the reference comparison, CLI tests), then the
+# Sets up, builds and runs every test (unit tests, the reference comparison, CLI tests, the Python
+# module's, `pip install .` into a virtual environment from the same build), then the
 # same tests again under AddressSanitizer and UndefinedBehaviorSanitizer (build-sanitize/), then
 # each fuzz target for about a minute (docs/errors.md says what they check).
 set -euo pipefail

@@ -97,20 +97,107 @@ _INT_OPTIONS = ("max_iter", "bootstrap", "seed", "threads")
 
 
 def read_matrix(path, *, allow_nonfinite=False, index_col=None):
-    """Read a matrix from delimited text (commas, semicolons, tabs or spaces; '#' comments; an
-    optional header row) or a .npy file. `path` is a str or an os.PathLike (pathlib.Path).
-    Raises DataError (a ValueError) naming the file, line and column on bad input; NaN and Inf
-    are rejected unless allow_nonfinite.
+    r"""Read a matrix from a data file.
 
-    index_col: True when the first column holds row labels (an index, as pandas' to_csv and R's
-    write.csv write one): it is dropped. False: the first column is data. None (the default):
-    a header whose first cell is empty marks an index, which is dropped with a SpdfitWarning,
-    and a first column 0, 1, 2, ... under any other header raises DataError."""
+    Delimited text (commas, semicolons, tabs or spaces; '#' comments; an optional header row) or a
+    .npy file, read as the command line reads it.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file's name (a pathlib.Path works).
+    allow_nonfinite : bool, default False
+        Accept NaN and Inf, which are rejected otherwise.
+    index_col : bool or None, default None
+        True when the first column holds row labels (an index, as pandas' to_csv and R's write.csv
+        write one): it is dropped. False: the first column is data. None: a header whose first cell
+        is empty marks an index, which is dropped with a SpdfitWarning, and a first column 0, 1, 2,
+        ... under any other header raises DataError.
+
+    Returns
+    -------
+    numpy.ndarray
+        The values, float64, m x n.
+
+    Raises
+    ------
+    DataError
+        Bad input (a ValueError); the message names the file, line and column.
+    TypeError
+        `path` is neither a str nor an os.PathLike.
+
+    Warns
+    -----
+    SpdfitWarning
+        An index column was found and dropped (index_col=None).
+
+    See Also
+    --------
+    read_table : the values and the header's column names.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> import spdfit
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder) / "A.csv"
+    ...     _ = path.write_text("# accelerations\nx,y\n1.5,2\n-3,0.25\n")
+    ...     A = spdfit.read_matrix(path)
+    >>> A
+    array([[ 1.5 ,  2.  ],
+           [-3.  ,  0.25]])
+    """
     return read_table(path, allow_nonfinite=allow_nonfinite, index_col=index_col)[0]
 
 
 def read_table(path, *, allow_nonfinite=False, index_col=None):
-    """Like read_matrix, but returns (values, column_names from the header row)."""
+    r"""Read a data file as read_matrix does, with the header row's column names.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file's name (a pathlib.Path works).
+    allow_nonfinite : bool, default False
+        Accept NaN and Inf, which are rejected otherwise.
+    index_col : bool or None, default None
+        Whether the first column holds row labels, as in read_matrix.
+
+    Returns
+    -------
+    values : numpy.ndarray
+        The values, float64, m x n.
+    column_names : list of str
+        The names in the header row (an empty list without a header).
+
+    Raises
+    ------
+    DataError
+        Bad input (a ValueError); the message names the file, line and column.
+    TypeError
+        `path` is neither a str nor an os.PathLike.
+
+    Warns
+    -----
+    SpdfitWarning
+        An index column was found and dropped (index_col=None).
+
+    See Also
+    --------
+    read_matrix : the values only.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> import spdfit
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder) / "forces.csv"
+    ...     _ = path.write_text("Fx,Fy\n1.5,2\n-3,0.25\n")
+    ...     values, names = spdfit.read_table(path)
+    >>> names
+    ['Fx', 'Fy']
+    >>> values.shape
+    (2, 2)
+    """
     values, names, messages = _spdfit.read_table(_os.fspath(path), allow_nonfinite=allow_nonfinite,
                                                  index_col=index_col)
     for message in messages:
@@ -119,7 +206,39 @@ def read_table(path, *, allow_nonfinite=False, index_col=None):
 
 
 def write_csv(path, X):
-    """Write X as CSV with values that read back exactly; `path` a str or os.PathLike."""
+    """Write X as CSV with values that read back exactly.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file's name (a pathlib.Path works).
+    X : array_like
+        The matrix (any real dtype; a 1-D array is one column).
+
+    Returns
+    -------
+    None
+
+    Raises
+    ------
+    DataError
+        The file cannot be written; the message names it and says why.
+    ValueError
+        X is not a real numeric matrix.
+    TypeError
+        `path` is neither a str nor an os.PathLike.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> import numpy as np, spdfit
+    >>> X = np.array([[0.1, 2.0 / 3.0], [2.0 / 3.0, 1e-300]])
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     spdfit.write_csv(pathlib.Path(folder) / "X.csv", X)
+    ...     back = spdfit.read_matrix(pathlib.Path(folder) / "X.csv")
+    >>> bool(np.array_equal(back, X))
+    True
+    """
     _spdfit.write_csv(_os.fspath(path), _as_matrix("X", X))
 
 
@@ -133,32 +252,84 @@ def _checked(result, stacklevel=3):
 
 def fit(A, B, method="auto", *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_eig=None,
         bootstrap=0, confidence=None, seed=None, threads=0):
-    """Estimate X in A X ~= B with `method` (one of METHODS); returns a FitResult.
+    """Estimate X in A X ~= B with `method` (one of METHODS).
 
-    The default, "auto", chooses spde, spd-tls or psd-ls from the data and always returns a
-    positive definite X; result.method is the method it ran and result.diagnostics.reason says
-    why (the default was "spde" before; docs/changes.md).
+    The default, "auto", chooses spde, spd-tls or psd-ls from the data and always returns a positive
+    definite X; result.method is the method it ran and result.diagnostics.reason says why (the
+    default was "spde" before; docs/changes.md). "ls" and "tls" also take B with d != n columns (X
+    n x d, as numpy.linalg.lstsq returns for several right-hand sides; tls then needs m >= n + d); the
+    other methods estimate a symmetric X.
 
-    rank_tolerance: relative singular-value cut-off for numerical rank (default max(m, n) eps,
-    lecture notes 002 section 3.8). noise_ratio: sigma_B / sigma_A, the noise in B relative to
-    the noise in A, for the total least-squares methods (tls, tls-sym, tls-psd, spd-tls) and auto
-    (default 1). max_iter: the iteration limit of spd-tls, psd-ls and auto (default 200).
-    min_eig: psd-ls's floor, X >= min_eig I (default 0). Each of the last three is a ValueError
-    with a method that does not take it.
+    Parameters
+    ----------
+    A, B : array_like
+        The measurements, m x n and m x d, one sample per row (d = n but for "ls" and "tls"); any
+        real dtype, converted to float64; a 1-D array is one column.
+    method : str, default "auto"
+        One of METHODS.
+    rank_tolerance : float, optional
+        Relative singular-value cut-off for numerical rank (default max(m, n) eps, lecture notes 002
+        section 3.8).
+    noise_ratio : float, optional
+        sigma_B / sigma_A, the noise in B relative to the noise in A, for the total least-squares
+        methods (tls, tls-sym, tls-psd, spd-tls) and auto (default 1).
+    max_iter : int, optional
+        The iteration limit of spd-tls, psd-ls and auto (default 200).
+    min_eig : float, optional
+        psd-ls's floor, X >= min_eig I (default 0).
+    bootstrap : int, default 0
+        N > 0 resamples the rows of [A B] N times and refits each resample with the same method
+        (auto: the one it chose). The result then has standard_errors (the shape of X), interval
+        (level, lower, upper: the central `confidence` fraction of the replicates), bias (their mean
+        minus X) and bootstrap (replicates, failed, seed, eigenvalues with their intervals). Without
+        bootstrap these attributes are None.
+    confidence : float, optional
+        The fraction of the replicates in the bootstrap's interval (default 0.95).
+    seed : int, optional
+        Makes the bootstrap reproducible (default 1).
+    threads : int, default 0
+        The bootstrap's threads (0: one per core); the numbers do not depend on it.
 
-    bootstrap: N > 0 resamples the rows of [A B] N times and refits each resample with the same
-    method (auto: the one it chose), on `threads` threads (0: one per core; the numbers do not
-    depend on it). The result then has standard_errors (the shape of X), interval (level, lower, upper:
-    the central `confidence` fraction, default 0.95, of the replicates), bias (their mean minus
-    X) and bootstrap (replicates, failed, seed, eigenvalues with their intervals); `seed`
-    (default 1) makes them reproducible. Without bootstrap these attributes are None.
+    Returns
+    -------
+    FitResult
+        The estimate X with its diagnostics and warnings.
 
-    "ls" and "tls" also take B with d != n columns (X n x d, as numpy.linalg.lstsq returns for
-    several right-hand sides; tls then needs m >= n + d); the other methods estimate a symmetric X
-    and raise ValueError for it.
+    Raises
+    ------
+    ValueError
+        Bad input: shapes, NaN/Inf, m < n, an unknown method, B with d != n columns for a method
+        that estimates a symmetric X, or noise_ratio, max_iter or min_eig with a method that does
+        not take it.
+    TypeError
+        An option of the wrong type (method=3, max_iter=2.5, ...), named in the message.
+    NumericalError
+        The method has no answer for this data; the failed FitResult is its `result`.
 
-    Raises ValueError for bad input (shapes, NaN/Inf, m < n, unknown method) and NumericalError
-    when the method has no answer for this data."""
+    Warns
+    -----
+    SpdfitWarning
+        A condition worth knowing (rank deficiency, ill-conditioning, ...), one per entry of
+        result.warnings.
+
+    See Also
+    --------
+    fit_all : every estimator on the same data.
+    fit_files : the same estimate from data files of any length.
+
+    Examples
+    --------
+    >>> import numpy as np, spdfit
+    >>> A = np.array([[5., 2.], [-3., 1.], [1., -2.], [-1., 1.]])
+    >>> X = np.array([[3., 1.], [1., 1.]])
+    >>> r = spdfit.fit(A, A @ X)
+    >>> r.method, r.diagnostics.reason.code
+    ('spde', 'noise_free')
+    >>> bool(np.allclose(r.X, X))
+    True
+    >>> spdfit.fit(A, A @ X, method="procrustes").diagnostics.cross_term_positive_definite
+    True
+    """
     options = _options(method, rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter,
                        min_eig=min_eig, bootstrap=bootstrap, confidence=confidence, seed=seed, threads=threads)
     A, B = _as_matrix("A", A), _as_matrix("B", B)
@@ -172,22 +343,70 @@ _STREAM_DEFAULTS = _spdfit.StreamOptions()
 def fit_files(A_path, B_path, method="auto", *, block_rows=_STREAM_DEFAULTS.block_rows,
               threads=_STREAM_DEFAULTS.threads, rank_tolerance=None, noise_ratio=None, max_iter=None,
               min_eig=None, bootstrap=0, confidence=None, seed=None):
-    """Estimate X from A and B in two data files read a block of rows at a time (`spdfit fit
-    --stream`): any number of rows in O(threads * block_rows * n + n^2) memory.
+    """Estimate X from A and B in two data files read a block of rows at a time.
 
-    The files are read as read_matrix reads them (.npy memory-mapped, delimited text parsed as it
-    is read); each block's triangular QR factor of [A B] is computed on up to `threads` threads
-    (0: one per core) and the factors are merged in block order (TSQR), so the estimate is
-    fit(read_matrix(A_path), read_matrix(B_path), method)'s to rounding, the same for every
-    thread count. The other options are fit's.
+    As `spdfit fit --stream`: any number of rows in O(threads * block_rows * n + n^2) memory. The
+    files are read as read_matrix reads them (.npy memory-mapped, delimited text parsed as it is
+    read); each block's triangular QR factor of [A B] is computed on up to `threads` threads and the
+    factors are merged in block order (TSQR), so the estimate is fit(read_matrix(A_path),
+    read_matrix(B_path), method)'s to rounding, the same for every thread count.
 
-    bootstrap: the streaming bootstrap, in the same one pass: the rows are cut into groups of
-    4096, each group gets a Poisson(1) count per replicate (keyed by seed, replicate and group),
-    and the groups' factors are merged, so weighted, into the replicates' factors. It needs about
-    100 groups (409,600 rows) or more, and warns below that; its numbers agree with fit's
-    in-memory bootstrap within Monte Carlo error, not exactly.
+    Parameters
+    ----------
+    A_path, B_path : str or os.PathLike
+        The data files of A and B (the same number of rows).
+    method : str, default "auto"
+        One of METHODS, as in fit.
+    block_rows : int, default 32768
+        Rows per block (the library's default, StreamOptions).
+    threads : int, default 0
+        Threads (0: one per core); the numbers do not depend on it.
+    rank_tolerance, noise_ratio, max_iter, min_eig : optional
+        As in fit.
+    bootstrap : int, default 0
+        The streaming bootstrap, in the same one pass: the rows are cut into groups of 4096, each
+        group gets a Poisson(1) count per replicate (keyed by seed, replicate and group), and the
+        groups' factors are merged, so weighted, into the replicates' factors. It needs about 100
+        groups (409,600 rows) or more, and warns below that; its numbers agree with fit's in-memory
+        bootstrap within Monte Carlo error, not exactly.
+    confidence, seed : optional
+        As in fit.
 
-    Raises DataError for bad files, ValueError for bad arguments and NumericalError as fit does."""
+    Returns
+    -------
+    FitResult
+        The estimate X with its diagnostics and warnings.
+
+    Raises
+    ------
+    DataError
+        A bad file (a ValueError); the message names the file, line and column.
+    ValueError
+        Bad arguments, as in fit.
+    TypeError
+        An option of the wrong type.
+    NumericalError
+        The method has no answer for this data, as in fit.
+
+    Warns
+    -----
+    SpdfitWarning
+        A condition worth knowing (rank deficiency, ill-conditioning, ...), one per entry of
+        result.warnings.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> import numpy as np, spdfit
+    >>> A = np.array([[5., 2.], [-3., 1.], [1., -2.], [-1., 1.]])
+    >>> X = np.array([[3., 1.], [1., 1.]])
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     spdfit.write_csv(pathlib.Path(folder) / "A.csv", A)
+    ...     spdfit.write_csv(pathlib.Path(folder) / "B.csv", A @ X)
+    ...     r = spdfit.fit_files(pathlib.Path(folder) / "A.csv", pathlib.Path(folder) / "B.csv", "spde")
+    >>> bool(np.allclose(r.X, spdfit.fit(A, A @ X, "spde").X))
+    True
+    """
     rank_tolerance, noise_ratio, max_iter, min_eig, bootstrap, confidence, seed, threads = _options(
         method, rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter, min_eig=min_eig,
         bootstrap=bootstrap, confidence=confidence, seed=seed, threads=threads)
@@ -197,11 +416,55 @@ def fit_files(A_path, B_path, method="auto", *, block_rows=_STREAM_DEFAULTS.bloc
 
 
 def fit_all(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_eig=None):
-    """Every estimator (METHODS but "auto") on the same data (one shared QR); a dict
-    {method: FitResult}; for B with d != n columns only "ls" and "tls", which fit a non-square X. noise_ratio applies to the total least-squares methods, max_iter to
-    spd-tls and psd-ls, min_eig to psd-ls.
+    """Every estimator (METHODS but "auto") on the same data, from one shared QR.
 
-    Failures are not raised here: check `result.ok` and `result.message`."""
+    For B with d != n columns only "ls" and "tls", which fit a non-square X. Failures are not raised
+    here: check `result.ok` and `result.message`.
+
+    Parameters
+    ----------
+    A, B : array_like
+        The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
+        column).
+    rank_tolerance : float, optional
+        Relative singular-value cut-off for numerical rank (default max(m, n) eps, lecture notes 002
+        section 3.8).
+    noise_ratio : float, optional
+        sigma_B / sigma_A for the total least-squares methods (default 1).
+    max_iter : int, optional
+        The iteration limit of spd-tls and psd-ls (default 200).
+    min_eig : float, optional
+        psd-ls's floor, X >= min_eig I (default 0).
+
+    Returns
+    -------
+    dict of str to FitResult
+        {method: FitResult}, in the order of METHODS.
+
+    Raises
+    ------
+    ValueError
+        Bad input: shapes, NaN/Inf, m < n.
+    TypeError
+        An option of the wrong type.
+
+    Warns
+    -----
+    SpdfitWarning
+        Each method's warnings, prefixed with its name.
+
+    Examples
+    --------
+    >>> import numpy as np, spdfit
+    >>> A = np.array([[5., 2.], [-3., 1.], [1., -2.], [-1., 1.]])
+    >>> X = np.array([[3., 1.], [1., 1.]])
+    >>> B = A @ X + np.array([[0.1, -0.2], [0.05, 0.1], [-0.1, 0.], [0.2, 0.1]])
+    >>> results = spdfit.fit_all(A, B)
+    >>> list(results)
+    ['ls', 'procrustes', 'tls', 'tls-sym', 'tls-psd', 'spde', 'spd-tls', 'psd-ls']
+    >>> all(r.ok for r in results.values())
+    True
+    """
     options = _options(rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter, min_eig=min_eig)
     A, B = _as_matrix("A", A), _as_matrix("B", B)
     results = {}
@@ -215,55 +478,345 @@ def fit_all(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_e
 def least_squares(A, B, *, rank_tolerance=None):
     """Least squares X = A^+ B minimizing ||A X - B||_F (thesis 000 section 3.1).
 
-    Back substitution in R11 X = R12 from the QR of [A B]; for rank-deficient A the
-    minimum-norm solution from the SVD with small singular values edited (notes 002 eq. 3.21)."""
+    Back substitution in R11 X = R12 from the QR of [A B]; for rank-deficient A the minimum-norm
+    solution from the SVD with small singular values edited (notes 002 eq. 3.21).
+
+    Parameters
+    ----------
+    A, B : array_like
+        The measurements, m x n and m x d (d may differ from n: X is then n x d).
+    rank_tolerance : float, optional
+        Relative singular-value cut-off for numerical rank (default max(m, n) eps, lecture notes 002
+        section 3.8).
+
+    Returns
+    -------
+    FitResult
+        The estimate X with its diagnostics and warnings.
+
+    Raises
+    ------
+    ValueError
+        Bad input: shapes, NaN/Inf, m < n.
+    TypeError
+        An option of the wrong type.
+    NumericalError
+        The method has no answer for this data; the failed FitResult is its `result`.
+
+    Warns
+    -----
+    SpdfitWarning
+        A condition worth knowing (rank deficiency, ill-conditioning, ...), one per entry of
+        result.warnings.
+
+    Examples
+    --------
+    >>> import numpy as np, spdfit
+    >>> A = np.array([[5., 2.], [-3., 1.], [1., -2.], [-1., 1.]])
+    >>> X = np.array([[3., 1.], [1., 1.]])
+    >>> r = spdfit.least_squares(A, A @ X)
+    >>> bool(np.allclose(r.X, X))
+    True
+    """
     return fit(A, B, "ls", rank_tolerance=rank_tolerance)
 
 
 def symmetric_procrustes(A, B, *, rank_tolerance=None):
-    """The symmetric X minimizing ||A X - B||_F: A^T A X + X A^T A = A^T B + B^T A (thesis eq. 3.15).
+    """The symmetric X minimizing ||A X - B||_F.
 
-    Positive definite when A^T B + B^T A is (Theorem 3.2 (3)); see
-    result.diagnostics.cross_term_positive_definite."""
+    The solution of A^T A X + X A^T A = A^T B + B^T A (thesis eq. 3.15). Positive definite when
+    A^T B + B^T A is (Theorem 3.2 (3)); see result.diagnostics.cross_term_positive_definite.
+
+    Parameters
+    ----------
+    A, B : array_like
+        The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
+        column).
+    rank_tolerance : float, optional
+        Relative singular-value cut-off for numerical rank (default max(m, n) eps, lecture notes 002
+        section 3.8).
+
+    Returns
+    -------
+    FitResult
+        The estimate X with its diagnostics and warnings.
+
+    Raises
+    ------
+    ValueError
+        Bad input: shapes, NaN/Inf, m < n.
+    TypeError
+        An option of the wrong type.
+    NumericalError
+        The method has no answer for this data; the failed FitResult is its `result`.
+
+    Warns
+    -----
+    SpdfitWarning
+        A condition worth knowing (rank deficiency, ill-conditioning, ...), one per entry of
+        result.warnings.
+
+    Examples
+    --------
+    >>> import numpy as np, spdfit
+    >>> A = np.array([[5., 2.], [-3., 1.], [1., -2.], [-1., 1.]])
+    >>> X = np.array([[3., 1.], [1., 1.]])
+    >>> B = A @ X + np.array([[0.1, -0.2], [0.05, 0.1], [-0.1, 0.], [0.2, 0.1]])
+    >>> r = spdfit.symmetric_procrustes(A, B)
+    >>> r.X.round(4)
+    array([[3.0031, 0.9846],
+           [0.9846, 0.9861]])
+    >>> r.diagnostics.cross_term_positive_definite
+    True
+    """
     return fit(A, B, "procrustes", rank_tolerance=rank_tolerance)
 
 
 def total_least_squares(A, B, *, rank_tolerance=None, noise_ratio=None):
     """Total least squares X = -V12 V22^-1 from the SVD of [A B] (thesis eq. 4.37).
 
-    Raises NumericalError when V22 is singular; warns when sigma_n = sigma_{n+1}."""
+    Parameters
+    ----------
+    A, B : array_like
+        The measurements, m x n and m x d (d may differ from n: X is then n x d, and m >= n + d).
+    rank_tolerance : float, optional
+        Relative singular-value cut-off for numerical rank (default max(m, n) eps, lecture notes 002
+        section 3.8).
+    noise_ratio : float, optional
+        sigma_B / sigma_A, the noise in B relative to the noise in A (default 1).
+
+    Returns
+    -------
+    FitResult
+        The estimate X with its diagnostics and warnings.
+
+    Raises
+    ------
+    ValueError
+        Bad input: shapes, NaN/Inf, m < n.
+    TypeError
+        An option of the wrong type.
+    NumericalError
+        V22 is singular (no total least-squares solution); the failed FitResult is its `result`.
+
+    Warns
+    -----
+    SpdfitWarning
+        sigma_n = sigma_{n+1} (the solution is not unique), and the other conditions of fit.
+
+    Examples
+    --------
+    >>> import numpy as np, spdfit
+    >>> A = np.array([[5., 2.], [-3., 1.], [1., -2.], [-1., 1.]])
+    >>> X = np.array([[3., 1.], [1., 1.]])
+    >>> r = spdfit.total_least_squares(A, A @ X)
+    >>> bool(np.allclose(r.X, X))
+    True
+    """
     return fit(A, B, "tls", rank_tolerance=rank_tolerance, noise_ratio=noise_ratio)
 
 
 def total_least_squares_symmetric(A, B, *, rank_tolerance=None, noise_ratio=None):
-    """(X_TLS + X_TLS^T) / 2, the nearest symmetric matrix to the TLS estimate (thesis eq. 4.38)."""
+    """(X_TLS + X_TLS^T) / 2, the nearest symmetric matrix to the TLS estimate (thesis eq. 4.38).
+
+    Parameters
+    ----------
+    A, B : array_like
+        The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
+        column).
+    rank_tolerance : float, optional
+        Relative singular-value cut-off for numerical rank (default max(m, n) eps, lecture notes 002
+        section 3.8).
+    noise_ratio : float, optional
+        sigma_B / sigma_A, the noise in B relative to the noise in A (default 1).
+
+    Returns
+    -------
+    FitResult
+        The estimate X with its diagnostics and warnings.
+
+    Raises
+    ------
+    ValueError
+        Bad input: shapes, NaN/Inf, m < n.
+    TypeError
+        An option of the wrong type.
+    NumericalError
+        The method has no answer for this data; the failed FitResult is its `result`.
+
+    Warns
+    -----
+    SpdfitWarning
+        A condition worth knowing (rank deficiency, ill-conditioning, ...), one per entry of
+        result.warnings.
+
+    Examples
+    --------
+    >>> import numpy as np, spdfit
+    >>> A = np.array([[5., 2.], [-3., 1.], [1., -2.], [-1., 1.]])
+    >>> X = np.array([[3., 1.], [1., 1.]])
+    >>> B = A @ X + np.array([[0.1, -0.2], [0.05, 0.1], [-0.1, 0.], [0.2, 0.1]])
+    >>> r = spdfit.total_least_squares_symmetric(A, B)
+    >>> r.X.round(4)
+    array([[2.994 , 1.0147],
+           [1.0147, 0.9955]])
+    """
     return fit(A, B, "tls-sym", rank_tolerance=rank_tolerance, noise_ratio=noise_ratio)
 
 
 def total_least_squares_psd(A, B, *, rank_tolerance=None, noise_ratio=None):
-    """Higham's nearest symmetric positive semidefinite matrix to X_TLS (thesis eq. 4.39)."""
+    """Higham's nearest symmetric positive semidefinite matrix to X_TLS (thesis eq. 4.39).
+
+    Parameters
+    ----------
+    A, B : array_like
+        The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
+        column).
+    rank_tolerance : float, optional
+        Relative singular-value cut-off for numerical rank (default max(m, n) eps, lecture notes 002
+        section 3.8).
+    noise_ratio : float, optional
+        sigma_B / sigma_A, the noise in B relative to the noise in A (default 1).
+
+    Returns
+    -------
+    FitResult
+        The estimate X with its diagnostics and warnings.
+
+    Raises
+    ------
+    ValueError
+        Bad input: shapes, NaN/Inf, m < n.
+    TypeError
+        An option of the wrong type.
+    NumericalError
+        The method has no answer for this data; the failed FitResult is its `result`.
+
+    Warns
+    -----
+    SpdfitWarning
+        A condition worth knowing (rank deficiency, ill-conditioning, ...), one per entry of
+        result.warnings.
+
+    Examples
+    --------
+    >>> import numpy as np, spdfit
+    >>> A = np.array([[5., 2.], [-3., 1.], [1., -2.], [-1., 1.]])
+    >>> X = np.array([[3., 1.], [1., 1.]])
+    >>> B = A @ X + np.array([[0.1, -0.2], [0.05, 0.1], [-0.1, 0.], [0.2, 0.1]])
+    >>> r = spdfit.total_least_squares_psd(A, B)
+    >>> r.diagnostics.positive_semidefinite
+    True
+    """
     return fit(A, B, "tls-psd", rank_tolerance=rank_tolerance, noise_ratio=noise_ratio)
 
 
 def spde(A, B, *, rank_tolerance=None):
     """The area-criterion estimate: the unique SPD X with X (A^T A) X = B^T B.
 
-    Minimizes ||A Y - B Y^-T||_F^2 over X = Y Y^T (Chen & McInroy, Definition II.1, Theorem
-    III.3). Computed as X = L L^T, L = R11^-1 V_M S^(1/2) from the polar decomposition of
-    M = R_b R11^T, so X is exactly symmetric and positive definite, with error ~cond(A) eps on
-    noise-free data. B of rank r < n gives the PSD minimizer of rank r (Corollary III.7, with a
-    warning); A rank-deficient raises NumericalError."""
+    Minimizes ||A Y - B Y^-T||_F^2 over X = Y Y^T (Chen & McInroy, Definition II.1, Theorem III.3).
+    Computed as X = L L^T, L = R11^-1 V_M S^(1/2) from the polar decomposition of M = R_b R11^T, so X
+    is exactly symmetric and positive definite, with error ~cond(A) eps on noise-free data.
+
+    Parameters
+    ----------
+    A, B : array_like
+        The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
+        column).
+    rank_tolerance : float, optional
+        Relative singular-value cut-off for numerical rank (default max(m, n) eps, lecture notes 002
+        section 3.8).
+
+    Returns
+    -------
+    FitResult
+        The estimate X with its diagnostics and warnings.
+
+    Raises
+    ------
+    ValueError
+        Bad input: shapes, NaN/Inf, m < n.
+    TypeError
+        An option of the wrong type.
+    NumericalError
+        A is rank-deficient; the failed FitResult is its `result`.
+
+    Warns
+    -----
+    SpdfitWarning
+        B has rank r < n: X is then the PSD minimizer of rank r (Corollary III.7). And the other
+        conditions of fit.
+
+    Examples
+    --------
+    >>> import numpy as np, spdfit
+    >>> A = np.array([[5., 2.], [-3., 1.], [1., -2.], [-1., 1.]])
+    >>> X = np.array([[3., 1.], [1., 1.]])
+    >>> B = A @ X + np.array([[0.1, -0.2], [0.05, 0.1], [-0.1, 0.], [0.2, 0.1]])
+    >>> r = spdfit.spde(A, B)
+    >>> r.X.round(4)
+    array([[3.0126, 0.9732],
+           [0.9732, 0.9629]])
+    >>> r.diagnostics.positive_definite
+    True
+    >>> d = r.diagnostics          # Corollary III.4: the minimum, in closed form
+    >>> bool(np.isclose(d.area_criterion, d.area_criterion_minimum))
+    True
+    """
     return fit(A, B, "spde", rank_tolerance=rank_tolerance)
 
 
 def spd_total_least_squares(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None):
     """Total least squares over the symmetric positive definite matrices (spd-tls).
 
-    Minimizes f(X) = tr((A X - B)^T (A X - B) (r^2 I + X^2)^-1), r = noise_ratio, the TLS
-    criterion ||[dA dB/r]||_F^2, over SPD X by a Riemannian Newton method from spde, until
+    Minimizes f(X) = tr((A X - B)^T (A X - B) (r^2 I + X^2)^-1), r = noise_ratio, the TLS criterion
+    ||[dA dB/r]||_F^2, over SPD X by a Riemannian Newton method from spde, until
     ||X^1/2 grad f X^1/2||_F <= 1e-10 f (diagnostics: iterations, gradient_norm, converged).
-    Consistent (its error keeps falling with m) and positive definite; warns when the infimum
-    is on the boundary (then X is semidefinite) or the iteration limit is reached."""
+    Consistent (its error keeps falling with m) and positive definite.
+
+    Parameters
+    ----------
+    A, B : array_like
+        The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
+        column).
+    rank_tolerance : float, optional
+        Relative singular-value cut-off for numerical rank (default max(m, n) eps, lecture notes 002
+        section 3.8).
+    noise_ratio : float, optional
+        sigma_B / sigma_A, the noise in B relative to the noise in A (default 1).
+    max_iter : int, optional
+        The iteration limit (default 200).
+
+    Returns
+    -------
+    FitResult
+        The estimate X with its diagnostics and warnings.
+
+    Raises
+    ------
+    ValueError
+        Bad input: shapes, NaN/Inf, m < n.
+    TypeError
+        An option of the wrong type.
+    NumericalError
+        The method has no answer for this data; the failed FitResult is its `result`.
+
+    Warns
+    -----
+    SpdfitWarning
+        The infimum is on the boundary (then X is semidefinite) or the iteration limit is reached;
+        and the other conditions of fit.
+
+    Examples
+    --------
+    >>> import numpy as np, spdfit
+    >>> A = np.array([[5., 2.], [-3., 1.], [1., -2.], [-1., 1.]])
+    >>> X = np.array([[3., 1.], [1., 1.]])
+    >>> B = A @ X + np.array([[0.1, -0.2], [0.05, 0.1], [-0.1, 0.], [0.2, 0.1]])
+    >>> r = spdfit.spd_total_least_squares(A, B)
+    >>> r.diagnostics.converged, r.diagnostics.positive_definite
+    (True, True)
+    """
     return fit(A, B, "spd-tls", rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter)
 
 
@@ -271,17 +824,107 @@ def psd_least_squares(A, B, *, min_eig=None, rank_tolerance=None, max_iter=None)
     """The symmetric X >= min_eig I minimizing ||A X - B||_F (psd-ls), with a certificate.
 
     Symmetric Procrustes when it is feasible; else spectral projected gradient with exact face
-    solves, to a relative KKT residual <= 1e-12. result.diagnostics.certificate holds
-    primal_min_eig, dual_min_eig, complementarity and duality_gap: X is optimal when the first two
-    are >= 0 and the third is 0, to rounding."""
+    solves, to a relative KKT residual <= 1e-12. result.diagnostics.certificate holds primal_min_eig,
+    dual_min_eig, complementarity and duality_gap: X is optimal when the first two are >= 0 and the
+    third is 0, to rounding.
+
+    Parameters
+    ----------
+    A, B : array_like
+        The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
+        column).
+    min_eig : float, optional
+        The floor, X >= min_eig I (default 0).
+    rank_tolerance : float, optional
+        Relative singular-value cut-off for numerical rank (default max(m, n) eps, lecture notes 002
+        section 3.8).
+    max_iter : int, optional
+        The iteration limit (default 200).
+
+    Returns
+    -------
+    FitResult
+        The estimate X with its diagnostics and warnings.
+
+    Raises
+    ------
+    ValueError
+        Bad input: shapes, NaN/Inf, m < n.
+    TypeError
+        An option of the wrong type.
+    NumericalError
+        The method has no answer for this data; the failed FitResult is its `result`.
+
+    Warns
+    -----
+    SpdfitWarning
+        A condition worth knowing (rank deficiency, ill-conditioning, ...), one per entry of
+        result.warnings.
+
+    Examples
+    --------
+    >>> import numpy as np, spdfit
+    >>> A = np.array([[5., 2.], [-3., 1.], [1., -2.], [-1., 1.]])
+    >>> X = np.array([[3., 1.], [1., 1.]])
+    >>> B = A @ X + np.array([[0.1, -0.2], [0.05, 0.1], [-0.1, 0.], [0.2, 0.1]])
+    >>> r = spdfit.psd_least_squares(A, B, min_eig=1.0)
+    >>> round(float(np.linalg.eigvalsh(r.X)[0]), 10)
+    1.0
+    >>> c = r.diagnostics.certificate
+    >>> c.primal_min_eig > -1e-12 and c.dual_min_eig > -1e-12 and abs(c.complementarity) < 1e-12
+    True
+    """
     return fit(A, B, "psd-ls", rank_tolerance=rank_tolerance, max_iter=max_iter, min_eig=min_eig)
 
 
 def auto_fit(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None):
     """fit(A, B, "auto"): spde, spd-tls or psd-ls, chosen from the data, always positive definite.
 
-    result.method is the method it ran; result.diagnostics.chosen_method and .reason (code,
-    text) say which and why."""
+    result.method is the method it ran; result.diagnostics.chosen_method and .reason (code, text)
+    say which and why.
+
+    Parameters
+    ----------
+    A, B : array_like
+        The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
+        column).
+    rank_tolerance : float, optional
+        Relative singular-value cut-off for numerical rank (default max(m, n) eps, lecture notes 002
+        section 3.8).
+    noise_ratio : float, optional
+        sigma_B / sigma_A, the noise in B relative to the noise in A (default 1).
+    max_iter : int, optional
+        The iteration limit (default 200).
+
+    Returns
+    -------
+    FitResult
+        The estimate X with its diagnostics and warnings.
+
+    Raises
+    ------
+    ValueError
+        Bad input: shapes, NaN/Inf, m < n.
+    TypeError
+        An option of the wrong type.
+    NumericalError
+        The method has no answer for this data; the failed FitResult is its `result`.
+
+    Warns
+    -----
+    SpdfitWarning
+        A condition worth knowing (rank deficiency, ill-conditioning, ...), one per entry of
+        result.warnings.
+
+    Examples
+    --------
+    >>> import numpy as np, spdfit
+    >>> A = np.array([[5., 2.], [-3., 1.], [1., -2.], [-1., 1.]])
+    >>> X = np.array([[3., 1.], [1., 1.]])
+    >>> r = spdfit.auto_fit(A, A @ X)
+    >>> r.diagnostics.chosen_method, r.diagnostics.positive_definite
+    ('spde', True)
+    """
     return fit(A, B, "auto", rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter)
 
 
@@ -305,25 +948,66 @@ def _repair(kind, C, *, min_eig, min_eig_rel, alpha=None, weights=None, max_iter
 
 def nearest_spd(X, min_eig=None, *, min_eig_rel=None, keep_diag=False, via_corr=False, weights=None,
                 max_iter=None, tol=None, full_output=False):
-    """Repair a covariance: the nearest symmetric matrix to X (Frobenius norm) with every
-    eigenvalue >= a floor (`spdfit nearest`).
+    """Repair a covariance: the nearest symmetric matrix to X with every eigenvalue >= a floor.
 
-    The floor is min_eig (absolute) or min_eig_rel (relative: times the largest eigenvalue of
-    X's symmetric part); by default the relative REPAIR_FLOOR_DEFAULT = 1e-8, so the result is
-    positive definite and its Cholesky factorization succeeds. min_eig=0 is the plain positive
-    semidefinite projection. Without a diagonal constraint this is Higham's (1988) eigenvalue clip
-    of (X + X^T)/2 (thesis section 3.3).
+    The nearest in the Frobenius norm (`spdfit nearest`). Without a diagonal constraint this is
+    Higham's (1988) eigenvalue clip of (X + X^T)/2 (thesis section 3.3). keep_diag=True keeps X's
+    diagonal (trusted variances): the nearest matrix with that diagonal and the floor, by Qi and
+    Sun's Newton method (as nearest_correlation). via_corr=True is statsmodels' cov_nearest route:
+    scale to a correlation, repair it (the floor applies to the correlation), scale back.
 
-    keep_diag=True keeps X's diagonal (trusted variances): the nearest matrix with that diagonal
-    and the floor, by Qi and Sun's Newton method (as nearest_correlation). via_corr=True is
-    statsmodels' cov_nearest route: scale to a correlation, repair it (the floor applies to the
-    correlation), scale back. Both take weights (n positive numbers: the distance
-    ||W^1/2 (X - C) W^1/2||_F, W = diag(weights)), max_iter and tol.
+    Parameters
+    ----------
+    X : array_like
+        The square matrix to repair.
+    min_eig : float, optional
+        An absolute floor; min_eig=0 is the plain positive semidefinite projection.
+    min_eig_rel : float, optional
+        A relative floor: times the largest eigenvalue of X's symmetric part. By default the relative
+        REPAIR_FLOOR_DEFAULT = 1e-8, so the result is positive definite and its Cholesky
+        factorization succeeds.
+    keep_diag : bool, default False
+        Keep X's diagonal.
+    via_corr : bool, default False
+        Repair through the correlation matrix.
+    weights : array_like, optional
+        With keep_diag or via_corr: n positive numbers, the distance ||W^1/2 (X - C) W^1/2||_F,
+        W = diag(weights).
+    max_iter, tol : optional
+        With keep_diag or via_corr: the Newton iterations' bounds, as in nearest_correlation.
+    full_output : bool, default False
+        Return a NearestResult instead of the matrix.
 
-    Warnings (a non-symmetric X, a floor that moved X more than the repair itself, no
-    convergence) are SpdfitWarnings. Returns the matrix, or a NearestResult (X, distance, clipped,
-    min_eigenvalue_before, min_eig, iterations, gradient_norm, converged, cholesky_ok, warnings)
-    with full_output=True."""
+    Returns
+    -------
+    numpy.ndarray or NearestResult
+        The matrix, or with full_output=True a NearestResult (X, distance, clipped,
+        min_eigenvalue_before, min_eig, iterations, gradient_norm, converged, cholesky_ok, warnings).
+
+    Raises
+    ------
+    ValueError
+        X is not a non-empty square matrix or has NaN/Inf; keep_diag and via_corr both given; weights,
+        max_iter or tol without keep_diag or via_corr.
+    TypeError
+        An option of the wrong type.
+
+    Warns
+    -----
+    SpdfitWarning
+        A non-symmetric X, a floor that moved X more than the repair itself, no convergence.
+
+    Examples
+    --------
+    >>> import numpy as np, spdfit
+    >>> spdfit.nearest_spd([[1., 2.], [2., 1.]], min_eig=0).round(12)
+    array([[1.5, 1.5],
+           [1.5, 1.5]])
+    >>> S = np.array([[4., 2., 2.1], [2., 3., 2.9], [2.1, 2.9, 2.]])
+    >>> r = spdfit.nearest_spd(S, keep_diag=True, full_output=True)
+    >>> np.diag(r.X), r.clipped, r.cholesky_ok
+    (array([4., 3., 2.]), 1, True)
+    """
     if keep_diag and via_corr:
         raise ValueError("give keep_diag=True or via_corr=True, not both")
     kind = "keep_diag" if keep_diag else "via_corr" if via_corr else "spd"
@@ -333,21 +1017,65 @@ def nearest_spd(X, min_eig=None, *, min_eig_rel=None, keep_diag=False, via_corr=
 
 def nearest_correlation(C, *, weights=None, alpha=None, min_eig=None, min_eig_rel=None, max_iter=None, tol=None,
                         full_output=False):
-    """The nearest correlation matrix to C (`spdfit nearest --corr`): minimizes
-    ||W^1/2 (X - C) W^1/2||_F over symmetric X with unit diagonal and every eigenvalue >= a floor
-    (Higham 2002), W = diag(weights) (default all ones), by Qi and Sun's quadratically convergent
-    Newton method on the dual (with Borsdorf and Higham's preconditioned conjugate gradients), not
-    alternating projections.
+    """The nearest correlation matrix to C (`spdfit nearest --corr`).
 
-    The floor is an exact constraint: min_eig (absolute, below 1), min_eig_rel (relative to the
-    largest eigenvalue of C's symmetric part) or alpha (NAG g02ab's name: X = (1 - alpha) X~ +
-    alpha I, the same minimizer as min_eig=alpha); by default the relative REPAIR_FLOOR_DEFAULT =
-    1e-8, so X is positive definite. min_eig=0 gives the plain nearest correlation matrix.
-    max_iter and tol bound the Newton iterations (stop at ||diag(X) - 1||_2 <= tol sqrt(n);
-    defaults 200 and 1e-10, the library's); not converging is a SpdfitWarning, with the best
-    iterate. The diagonal is exactly 1. Returns the matrix, or a NearestResult (X, distance,
-    iterations, gradient_norm, converged, clipped, min_eig, cholesky_ok, warnings) with
-    full_output=True."""
+    Minimizes ||W^1/2 (X - C) W^1/2||_F over symmetric X with unit diagonal and every eigenvalue >=
+    a floor (Higham 2002), W = diag(weights), by Qi and Sun's quadratically convergent Newton method
+    on the dual (with Borsdorf and Higham's preconditioned conjugate gradients), not alternating
+    projections. The floor is an exact constraint. The diagonal of X is exactly 1.
+
+    Parameters
+    ----------
+    C : array_like
+        The square matrix to repair.
+    weights : array_like, optional
+        n positive numbers (default all ones).
+    alpha : float, optional
+        NAG g02ab's floor: X = (1 - alpha) X~ + alpha I, the same minimizer as min_eig=alpha.
+    min_eig : float, optional
+        An absolute floor, below 1; min_eig=0 gives the plain nearest correlation matrix.
+    min_eig_rel : float, optional
+        A floor relative to the largest eigenvalue of C's symmetric part. By default the relative
+        REPAIR_FLOOR_DEFAULT = 1e-8, so X is positive definite.
+    max_iter : int, optional
+        The Newton iterations' limit (default 200, the library's).
+    tol : float, optional
+        Stop at ||diag(X) - 1||_2 <= tol sqrt(n) (default 1e-10, the library's).
+    full_output : bool, default False
+        Return a NearestResult instead of the matrix.
+
+    Returns
+    -------
+    numpy.ndarray or NearestResult
+        The matrix, or with full_output=True a NearestResult (X, distance, iterations,
+        gradient_norm, converged, clipped, min_eig, cholesky_ok, warnings).
+
+    Raises
+    ------
+    ValueError
+        C is not a non-empty square matrix or has NaN/Inf, or the floor cannot be met with a unit
+        diagonal.
+    TypeError
+        An option of the wrong type.
+
+    Warns
+    -----
+    SpdfitWarning
+        Not converging (X is then the best iterate), or a diagonal that is not 1 (C is repaired to a
+        correlation matrix all the same).
+
+    Examples
+    --------
+    >>> import numpy as np, spdfit
+    >>> C = np.array([[1., 1., 0.], [1., 1., 1.], [0., 1., 1.]])
+    >>> spdfit.nearest_correlation(C, min_eig=0).round(4)
+    array([[1.    , 0.7607, 0.1573],
+           [0.7607, 1.    , 0.7607],
+           [0.1573, 0.7607, 1.    ]])
+    >>> r = spdfit.nearest_correlation(C, full_output=True)
+    >>> r.converged, r.cholesky_ok
+    (True, True)
+    """
     return _repair("corr", C, min_eig=min_eig, min_eig_rel=min_eig_rel, alpha=alpha, weights=weights,
                    max_iter=max_iter, tol=tol, full_output=full_output, caller="nearest_correlation")
 
@@ -355,27 +1083,97 @@ def nearest_correlation(C, *, weights=None, alpha=None, min_eig=None, min_eig_re
 def area_criterion(A, B, X):
     """The area criterion ||A Y - B Y^-T||_F^2 for X = Y Y^T (Chen & McInroy, Definition II.1).
 
-    For X semidefinite of rank r < n, tr(P X + X^+ Q) - 2 tr(A^T B) (Corollary III.7). None
-    when X is not symmetric positive semidefinite."""
+    For X semidefinite of rank r < n, tr(P X + X^+ Q) - 2 tr(A^T B) (Corollary III.7).
+
+    Parameters
+    ----------
+    A, B : array_like
+        The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
+        column).
+    X : array_like
+        The n x n matrix to evaluate.
+
+    Returns
+    -------
+    float or None
+        The criterion; None when X is not symmetric positive semidefinite.
+
+    Raises
+    ------
+    ValueError
+        Shapes that do not fit (X not n x n, A and B of different shapes) or a non-numeric array.
+
+    Examples
+    --------
+    >>> import numpy as np, spdfit
+    >>> A = np.array([[5., 2.], [-3., 1.], [1., -2.], [-1., 1.]])
+    >>> X = np.array([[3., 1.], [1., 1.]])
+    >>> B = A @ X + np.array([[0.1, -0.2], [0.05, 0.1], [-0.1, 0.], [0.2, 0.1]])
+    >>> round(spdfit.area_criterion(A, B, X), 4)
+    0.1162
+    >>> round(spdfit.area_criterion(A, B, spdfit.spde(A, B).X), 4)    # spde minimizes it
+    0.0383
+    >>> print(spdfit.area_criterion(A, B, -X))
+    None
+    """
     return _spdfit.area_criterion(_as_matrix("A", A), _as_matrix("B", B), _as_matrix("X", X))
 
 
 def solve(A, b, *, threshold=None):
     """Classify and solve A x = b (lecture notes 002, sections 3.3.2 and 3.7-3.8).
 
-    From the SVD of A with singular values below threshold * sigma_max edited to zero (default
-    max(m, n) eps): rank, nullity, condition number, whether the system is consistent, the
-    dimension of the finite solution set (-1 none, 0 a point, 1 a line, ...) and of the solutions
-    at infinity (the homogeneous [A | -b][x; w] = 0 with w = 0), the minimum-norm least-squares
-    solution, the residual, bases of the null space and range, and an explanation in words.
-    b may have several columns (each is classified on its own). Raises NumericalError when the
-    solution does not fit in a double (b huge against A).
+    From the SVD of A with singular values below threshold * sigma_max edited to zero: rank,
+    nullity, condition number, whether the system is consistent, the dimension of the finite
+    solution set (-1 none, 0 a point, 1 a line, ...) and of the solutions at infinity (the
+    homogeneous [A | -b][x; w] = 0 with w = 0), the minimum-norm least-squares solution, the
+    residual, bases of the null space and range, and an explanation in words. b may have several
+    columns (each is classified on its own).
 
-    Shapes follow numpy.linalg.lstsq: result.solution has shape (n,) for b of shape (m,) and
-    (n, k) for b of shape (m, k), (m, 1) included. The per-right-hand-side classification keeps
-    one entry per column of b whatever its dimensionality, as lstsq's residuals do: result.columns
-    is a list of one ColumnClassification for a 1-D b, result.p is 1, and result.residual_norm
-    (||A X - b||_F, a scalar) is ||A x - b||_2. A pickled result keeps the solution's shape."""
+    Shapes follow numpy.linalg.lstsq: result.solution has shape (n,) for b of shape (m,) and (n, k)
+    for b of shape (m, k), (m, 1) included. The per-right-hand-side classification keeps one entry
+    per column of b whatever its dimensionality, as lstsq's residuals do: result.columns is a list of
+    one ColumnClassification for a 1-D b, result.p is 1, and result.residual_norm (||A X - b||_F, a
+    scalar) is ||A x - b||_2. A pickled result keeps the solution's shape.
+
+    Parameters
+    ----------
+    A : array_like
+        The m x n matrix.
+    b : array_like
+        The right-hand side(s): shape (m,) or (m, k).
+    threshold : float, optional
+        The relative cut-off of the singular values (default max(m, n) eps).
+
+    Returns
+    -------
+    LinearSystemResult
+        The classification, the solution and the explanation.
+
+    Raises
+    ------
+    ValueError
+        Bad input: b's rows not A's, NaN/Inf, a non-numeric array.
+    TypeError
+        threshold is not a number.
+    NumericalError
+        The solution does not fit in a double (b huge against A); the failed result is its `result`.
+
+    Warns
+    -----
+    SpdfitWarning
+        A is ill-conditioned, and the other conditions in result.warnings.
+
+    Examples
+    --------
+    >>> import spdfit
+    >>> r = spdfit.solve([[1., 0.], [0., 1.], [1., 1.]], [1., 1., 0.])
+    >>> r.rank, r.consistent, r.solution.shape
+    (2, False, (2,))
+    >>> r.solution.round(6)
+    array([0.333333, 0.333333])
+    >>> print(r.explanation.splitlines()[0])
+    3 equations in 2 unknowns (overdetermined): 3 lines in the plane. Rank 2, nullity 0.
+    """
     result = _spdfit.solve(_as_matrix("A", A), _as_matrix("b", b), threshold, _np.ndim(b) == 1)
     for message in result.warnings:
         _warnings.warn(message, SpdfitWarning, stacklevel=2)

@@ -18,13 +18,13 @@ REPAIR_FLOOR_DEFAULT: float
 
 __version__: str
 METHODS: Tuple[str, ...]
-Method = Literal["ls", "procrustes", "tls", "tls-sym", "tls-psd", "spde", "spd-tls", "psd-ls", "auto"]
+_Method = Literal["ls", "procrustes", "tls", "tls-sym", "tls-psd", "spde", "spd-tls", "psd-ls", "auto"]
 
-PathLike = Union[str, "os.PathLike[str]"]
+_PathLike = Union[str, "os.PathLike[str]"]
 
-def read_matrix(path: PathLike, *, allow_nonfinite: bool = ..., index_col: Optional[bool] = ...) -> npt.NDArray[np.float64]: ...
-def read_table(path: PathLike, *, allow_nonfinite: bool = ..., index_col: Optional[bool] = ...) -> Tuple[npt.NDArray[np.float64], List[str]]: ...
-def write_csv(path: PathLike, X: npt.ArrayLike) -> None: ...
+def read_matrix(path: _PathLike, *, allow_nonfinite: bool = ..., index_col: Optional[bool] = ...) -> npt.NDArray[np.float64]: ...
+def read_table(path: _PathLike, *, allow_nonfinite: bool = ..., index_col: Optional[bool] = ...) -> Tuple[npt.NDArray[np.float64], List[str]]: ...
+def write_csv(path: _PathLike, X: npt.ArrayLike) -> None: ...
 
 class NumericalError(RuntimeError):
     result: Optional[object]
@@ -32,11 +32,11 @@ class NumericalError(RuntimeError):
 
 class SpdfitWarning(UserWarning): ...
 
-def fit(A: npt.ArrayLike, B: npt.ArrayLike, method: Method = ..., *,
+def fit(A: npt.ArrayLike, B: npt.ArrayLike, method: _Method = ..., *,
         rank_tolerance: Optional[float] = ..., noise_ratio: Optional[float] = ...,
         max_iter: Optional[int] = ..., min_eig: Optional[float] = ..., bootstrap: int = ...,
         confidence: Optional[float] = ..., seed: Optional[int] = ..., threads: int = ...) -> FitResult: ...
-def fit_files(A_path: Union[str, "os.PathLike[str]"], B_path: Union[str, "os.PathLike[str]"], method: Method = ..., *,
+def fit_files(A_path: _PathLike, B_path: _PathLike, method: _Method = ..., *,
               block_rows: int = ..., threads: int = ..., rank_tolerance: Optional[float] = ...,
               noise_ratio: Optional[float] = ..., max_iter: Optional[int] = ...,
               min_eig: Optional[float] = ..., bootstrap: int = ..., confidence: Optional[float] = ...,

@@ -1,4 +1,8 @@
-"""Type stubs for the compiled core of spdfit (use the `spdfit` package, not this module)."""
+"""Type stubs for the compiled core of spdfit (use the `spdfit` package, not this module).
+
+Checked against the module by mypy.stubtest (tests/python/test_stubs.py). The attributes of the
+result classes are read-only properties, as the bindings define them (def_property_readonly).
+"""
 from typing import List, Optional, Tuple
 
 import numpy as np
@@ -6,141 +10,259 @@ import numpy.typing as npt
 
 __version__: str
 
+class _Pybind11Type(type):
+    """The metaclass pybind11 gives every class the extension defines
+    (pybind11_builtins.pybind11_type, not importable). Declared here, privately and in the stubs
+    only, so that the stubs state that the classes have a metaclass of their own, as stubtest
+    checks; the submodules' stubs use it too."""
+
 class DataError(ValueError): ...
 
 METHODS: Tuple[str, ...]
 
-class PsdCertificate:
-    primal_min_eig: float
-    dual_min_eig: float
-    complementarity: float
-    duality_gap: float
+class PsdCertificate(metaclass=_Pybind11Type):
+    @property
+    def primal_min_eig(self) -> float: ...
+    @property
+    def dual_min_eig(self) -> float: ...
+    @property
+    def complementarity(self) -> float: ...
+    @property
+    def duality_gap(self) -> float: ...
 
-class AutoReason:
-    code: str
-    text: str
+class AutoReason(metaclass=_Pybind11Type):
+    @property
+    def code(self) -> str: ...
+    @property
+    def text(self) -> str: ...
 
-class Diagnostics:
-    m: int
-    n: int
-    d: int
-    rank_a: int
-    rank_b: int
-    cond_a: float
-    cond_b: float
-    cond_a_scaled: float
-    cond_b_scaled: float
-    singular_values_a: npt.NDArray[np.float64]
-    singular_values_b: npt.NDArray[np.float64]
-    residual_norm: float
-    symmetric: bool
-    positive_definite: bool
-    positive_semidefinite: bool
-    min_eigenvalue: Optional[float]
-    max_eigenvalue: Optional[float]
-    area_criterion: Optional[float]
-    area_criterion_minimum: Optional[float]
-    cross_term_positive_definite: Optional[bool]
-    tls_sigma_n: Optional[float]
-    tls_sigma_n1: Optional[float]
-    tls_correction_norm: Optional[float]
-    tls_v22_min_singular_value: Optional[float]
-    noise_sigma: Optional[float]
-    iterations: Optional[int]
-    gradient_norm: Optional[float]
-    converged: Optional[bool]
-    certificate: Optional[PsdCertificate]
-    chosen_method: Optional[str]
-    reason: Optional[AutoReason]
+class Diagnostics(metaclass=_Pybind11Type):
+    @property
+    def m(self) -> int: ...
+    @property
+    def n(self) -> int: ...
+    @property
+    def d(self) -> int: ...
+    @property
+    def rank_a(self) -> int: ...
+    @property
+    def rank_b(self) -> int: ...
+    @property
+    def cond_a(self) -> float: ...
+    @property
+    def cond_b(self) -> float: ...
+    @property
+    def cond_a_scaled(self) -> float: ...
+    @property
+    def cond_b_scaled(self) -> float: ...
+    @property
+    def singular_values_a(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def singular_values_b(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def residual_norm(self) -> float: ...
+    @property
+    def symmetric(self) -> bool: ...
+    @property
+    def positive_definite(self) -> bool: ...
+    @property
+    def positive_semidefinite(self) -> bool: ...
+    @property
+    def min_eigenvalue(self) -> Optional[float]: ...
+    @property
+    def max_eigenvalue(self) -> Optional[float]: ...
+    @property
+    def area_criterion(self) -> Optional[float]: ...
+    @property
+    def area_criterion_minimum(self) -> Optional[float]: ...
+    @property
+    def cross_term_positive_definite(self) -> Optional[bool]: ...
+    @property
+    def tls_sigma_n(self) -> Optional[float]: ...
+    @property
+    def tls_sigma_n1(self) -> Optional[float]: ...
+    @property
+    def tls_correction_norm(self) -> Optional[float]: ...
+    @property
+    def tls_v22_min_singular_value(self) -> Optional[float]: ...
+    @property
+    def noise_sigma(self) -> Optional[float]: ...
+    @property
+    def iterations(self) -> Optional[int]: ...
+    @property
+    def gradient_norm(self) -> Optional[float]: ...
+    @property
+    def converged(self) -> Optional[bool]: ...
+    @property
+    def certificate(self) -> Optional[PsdCertificate]: ...
+    @property
+    def chosen_method(self) -> Optional[str]: ...
+    @property
+    def reason(self) -> Optional[AutoReason]: ...
 
-class Interval:
-    level: float
-    lower: npt.NDArray[np.float64]
-    upper: npt.NDArray[np.float64]
+class Interval(metaclass=_Pybind11Type):
+    @property
+    def level(self) -> float: ...
+    @property
+    def lower(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def upper(self) -> npt.NDArray[np.float64]: ...
 
-class SpectrumUncertainty:
-    estimate: npt.NDArray[np.float64]
-    standard_errors: npt.NDArray[np.float64]
-    lower: npt.NDArray[np.float64]
-    upper: npt.NDArray[np.float64]
-    clusters: List[List[int]]
-    failed: int
+class SpectrumUncertainty(metaclass=_Pybind11Type):
+    @property
+    def estimate(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def standard_errors(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def lower(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def upper(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def clusters(self) -> List[List[int]]: ...
+    @property
+    def failed(self) -> int: ...
 
-class Bootstrap:
-    replicates: int
-    failed: int
-    seed: int
-    method: str
-    scheme: str
-    group_rows: int
-    groups: int
-    standard_errors: npt.NDArray[np.float64]
-    bias: npt.NDArray[np.float64]
-    interval: Interval
-    eigenvalues: Optional[SpectrumUncertainty]
+class Bootstrap(metaclass=_Pybind11Type):
+    @property
+    def replicates(self) -> int: ...
+    @property
+    def failed(self) -> int: ...
+    @property
+    def seed(self) -> int: ...
+    @property
+    def method(self) -> str: ...
+    @property
+    def scheme(self) -> str: ...
+    @property
+    def group_rows(self) -> int: ...
+    @property
+    def groups(self) -> int: ...
+    @property
+    def standard_errors(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def bias(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def interval(self) -> Interval: ...
+    @property
+    def eigenvalues(self) -> Optional[SpectrumUncertainty]: ...
 
-class FitResult:
-    method: str
-    ok: bool
-    status: str
-    message: str
-    X: npt.NDArray[np.float64]
-    diagnostics: Diagnostics
-    warnings: List[str]
-    standard_errors: Optional[npt.NDArray[np.float64]]
-    interval: Optional[Interval]
-    bias: Optional[npt.NDArray[np.float64]]
-    bootstrap: Optional[Bootstrap]
-    row_names: List[str]
-    column_names: List[str]
+class FitResult(metaclass=_Pybind11Type):
+    @property
+    def method(self) -> str: ...
+    @property
+    def ok(self) -> bool: ...
+    @property
+    def status(self) -> str: ...
+    @property
+    def message(self) -> str: ...
+    @property
+    def X(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def diagnostics(self) -> Diagnostics: ...
+    @property
+    def warnings(self) -> List[str]: ...
+    @property
+    def standard_errors(self) -> Optional[npt.NDArray[np.float64]]: ...
+    @property
+    def interval(self) -> Optional[Interval]: ...
+    @property
+    def bias(self) -> Optional[npt.NDArray[np.float64]]: ...
+    @property
+    def bootstrap(self) -> Optional[Bootstrap]: ...
+    @property
+    def row_names(self) -> List[str]: ...
+    @property
+    def column_names(self) -> List[str]: ...
 
-class NearestResult:
-    X: npt.NDArray[np.float64]
-    distance: float
-    clipped: int
-    min_eigenvalue_before: float
-    min_eig: float
-    iterations: int
-    gradient_norm: float
-    converged: bool
-    cholesky_ok: bool
-    warnings: List[str]
+class NearestResult(metaclass=_Pybind11Type):
+    @property
+    def X(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def distance(self) -> float: ...
+    @property
+    def clipped(self) -> int: ...
+    @property
+    def min_eigenvalue_before(self) -> float: ...
+    @property
+    def min_eig(self) -> float: ...
+    @property
+    def iterations(self) -> int: ...
+    @property
+    def gradient_norm(self) -> float: ...
+    @property
+    def converged(self) -> bool: ...
+    @property
+    def cholesky_ok(self) -> bool: ...
+    @property
+    def warnings(self) -> List[str]: ...
 
-class ColumnClassification:
-    consistent: bool
-    finite_solution_dimension: int
-    at_infinity_dimension: int
-    augmented_rank: int
-    residual_norm: float
-    backward_error: float
+class ColumnClassification(metaclass=_Pybind11Type):
+    @property
+    def consistent(self) -> bool: ...
+    @property
+    def finite_solution_dimension(self) -> int: ...
+    @property
+    def at_infinity_dimension(self) -> int: ...
+    @property
+    def augmented_rank(self) -> int: ...
+    @property
+    def residual_norm(self) -> float: ...
+    @property
+    def backward_error(self) -> float: ...
 
-class LinearSystemResult:
-    ok: bool
-    message: str
-    m: int
-    n: int
-    p: int
-    shape: str
-    singular_values: npt.NDArray[np.float64]
-    threshold: float
-    rank: int
-    nullity: int
-    condition_number: float
-    reciprocal_condition_number: float
-    effective_condition_number: float
-    scaled_singular_values: npt.NDArray[np.float64]
-    scaled_condition_number: float
-    refinement_steps: int
-    consistent: bool
-    finite_solution_dimension: int
-    at_infinity_dimension: int
-    columns: List[ColumnClassification]
-    solution: npt.NDArray[np.float64]  # shape (n,) for a 1-D b, (n, p) for an m x p b
-    residual_norm: float
-    null_space: npt.NDArray[np.float64]
-    range: npt.NDArray[np.float64]
-    explanation: str
-    warnings: List[str]
+class LinearSystemResult(metaclass=_Pybind11Type):
+    @property
+    def ok(self) -> bool: ...
+    @property
+    def message(self) -> str: ...
+    @property
+    def m(self) -> int: ...
+    @property
+    def n(self) -> int: ...
+    @property
+    def p(self) -> int: ...
+    @property
+    def shape(self) -> str: ...
+    @property
+    def singular_values(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def threshold(self) -> float: ...
+    @property
+    def rank(self) -> int: ...
+    @property
+    def nullity(self) -> int: ...
+    @property
+    def condition_number(self) -> float: ...
+    @property
+    def reciprocal_condition_number(self) -> float: ...
+    @property
+    def effective_condition_number(self) -> float: ...
+    @property
+    def scaled_singular_values(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def scaled_condition_number(self) -> float: ...
+    @property
+    def refinement_steps(self) -> int: ...
+    @property
+    def consistent(self) -> bool: ...
+    @property
+    def finite_solution_dimension(self) -> int: ...
+    @property
+    def at_infinity_dimension(self) -> int: ...
+    @property
+    def columns(self) -> List[ColumnClassification]: ...
+    @property
+    def solution(self) -> npt.NDArray[np.float64]: ...  # shape (n,) for a 1-D b, (n, p) for an m x p b
+    @property
+    def residual_norm(self) -> float: ...
+    @property
+    def null_space(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def range(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def explanation(self) -> str: ...
+    @property
+    def warnings(self) -> List[str]: ...
 
 REPAIR_FLOOR_DEFAULT: float
 
@@ -148,7 +270,8 @@ def fit(A: npt.ArrayLike, B: npt.ArrayLike, method: str, rank_tolerance: Optiona
         noise_ratio: Optional[float] = ..., max_iter: Optional[int] = ...,
         min_eig: Optional[float] = ..., bootstrap: int = ..., confidence: Optional[float] = ...,
         seed: Optional[int] = ..., threads: int = ...) -> FitResult: ...
-class StreamOptions:
+
+class StreamOptions(metaclass=_Pybind11Type):
     block_rows: int
     threads: int
     def __init__(self) -> None: ...
@@ -164,6 +287,8 @@ def nearest(C: npt.ArrayLike, kind: str, min_eig: Optional[float] = ..., min_eig
             alpha: Optional[float] = ..., weights: Optional[npt.ArrayLike] = ..., max_iter: Optional[int] = ...,
             tol: Optional[float] = ...) -> NearestResult: ...
 def area_criterion(A: npt.ArrayLike, B: npt.ArrayLike, X: npt.ArrayLike) -> Optional[float]: ...
-def read_matrix(path: str, *, allow_nonfinite: bool = ...) -> npt.NDArray[np.float64]: ...
-def read_table(path: str) -> Tuple[npt.NDArray[np.float64], List[str]]: ...
+def solve(A: npt.ArrayLike, b: npt.ArrayLike, threshold: Optional[float] = ...,
+          vector_b: bool = ...) -> LinearSystemResult: ...
+def read_table(path: str, *, allow_nonfinite: bool = ...,
+               index_col: Optional[bool] = ...) -> Tuple[npt.NDArray[np.float64], List[str], List[str]]: ...
 def write_csv(path: str, X: npt.ArrayLike) -> None: ...

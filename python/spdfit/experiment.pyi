@@ -4,47 +4,76 @@ from typing import Dict, Iterable, List, Optional, Sequence, Tuple
 import numpy as np
 import numpy.typing as npt
 
-Array = npt.NDArray[np.float64]
+from ._spdfit import _Pybind11Type
+
+_Array = npt.NDArray[np.float64]
 
 THESIS_NOISE_VARIANCES: Tuple[float, float, float]
 THESIS_REPORTED: Dict[int, Tuple[float, float, float, float]]
 
-class Summary:
-    count: int
-    failures: int
-    mean: float
-    std: float
-    median: float
-    min: float
-    max: float
-    standard_error: float
+class Summary(metaclass=_Pybind11Type):
+    @property
+    def count(self) -> int: ...
+    @property
+    def failures(self) -> int: ...
+    @property
+    def mean(self) -> float: ...
+    @property
+    def std(self) -> float: ...
+    @property
+    def median(self) -> float: ...
+    @property
+    def min(self) -> float: ...
+    @property
+    def max(self) -> float: ...
+    @property
+    def standard_error(self) -> float: ...
 
-class MethodErrors:
-    method: str
-    errors: Array
-    summary: Summary
+class MethodErrors(metaclass=_Pybind11Type):
+    @property
+    def method(self) -> str: ...
+    @property
+    def errors(self) -> _Array: ...
+    @property
+    def summary(self) -> Summary: ...
 
-class ThesisExperimentResult:
-    trials: int
-    seed: int
-    methods: List[MethodErrors]
-    truth: Array
+class ThesisExperimentResult(metaclass=_Pybind11Type):
+    @property
+    def trials(self) -> int: ...
+    @property
+    def seed(self) -> int: ...
+    @property
+    def methods(self) -> List[MethodErrors]: ...
+    @property
+    def truth(self) -> _Array: ...
 
-class EntryStatistics:
-    method: str
-    count: int
-    failures: int
-    mae: Array
-    std: Array
-    bias: Array
-    errors: Array
+class EntryStatistics(metaclass=_Pybind11Type):
+    @property
+    def method(self) -> str: ...
+    @property
+    def count(self) -> int: ...
+    @property
+    def failures(self) -> int: ...
+    @property
+    def mae(self) -> _Array: ...
+    @property
+    def std(self) -> _Array: ...
+    @property
+    def bias(self) -> _Array: ...
+    @property
+    def errors(self) -> _Array: ...
 
-class EntryExperimentResult:
-    trials: int
-    seed: int
-    truth: Array
-    entries: List[Tuple[int, int]]
-    methods: List[EntryStatistics]
+class EntryExperimentResult(metaclass=_Pybind11Type):
+    @property
+    def trials(self) -> int: ...
+    @property
+    def seed(self) -> int: ...
+    @property
+    def truth(self) -> _Array: ...
+    @property
+    def entries(self) -> List[Tuple[int, int]]: ...
+    @property
+    def methods(self) -> List[EntryStatistics]: ...
 
 def thesis(noise_var: float, *, samples: int = ..., trials: int = ..., seed: int = ..., threads: int = ...,
            force_noise_var: Optional[float] = ..., signal_var: float = ..., distribution: str = ...,

@@ -4,7 +4,7 @@ simulated measurements (appendix B) and the identification of M_p from them.
 
     >>> import spdfit.hexapod as hx
     >>> model = hx.model()                       # the built-in cubic-configuration hexapod
-    >>> A, B, truth = hx.simulate(samples=12, noise_var=0.86, seed=1)
+    >>> A, B, truth = hx.simulate(samples=12, noise_var=0.86, seed=1)[:3]
     >>> estimates = hx.identify(A, B, truth=truth)
 """
 import json as _json
@@ -17,11 +17,10 @@ from . import _as_matrix, _options
 from ._spdfit import hexapod as _core
 
 Geometry = _core.Geometry
-cubic_geometry = _core.cubic_geometry
-thesis_mass_matrix = _core.thesis_mass_matrix
+MethodIdentification = _core.MethodIdentification
 
-__all__ = ["Geometry", "Model", "Simulation", "cubic_geometry", "geometry", "identify", "model", "simulate",
-           "thesis_mass_matrix"]
+__all__ = ["Geometry", "MethodIdentification", "Model", "Simulation", "cubic_geometry", "geometry", "identify",
+           "model", "simulate", "thesis_mass_matrix"]
 
 Model = _namedtuple("Model", "geometry jacobian mass_matrix payload_mass_matrix modes_hz strut_lengths "
                              "mass_matrix_eigenvalues jacobian_condition strut_directions")
@@ -36,10 +35,85 @@ Simulation = _namedtuple("Simulation", "A B truth A_true B_true")
 Simulation.__doc__ = "Simulated measurements A (accelerations), B (forces) and the true M_p."
 
 
+# The compiled module's functions, wrapped in Python functions that carry NumPy-format docstrings
+# (a compiled function's docstring cannot be set from Python).
+def cubic_geometry():
+    """The built-in cubic-configuration hexapod (mutually orthogonal struts).
+
+    Its joint-space mass-inertia matrix reproduces the thesis' M_p (eq. 6.1).
+
+    Returns
+    -------
+    Geometry
+        The geometry and masses, in SI units.
+
+    See Also
+    --------
+    geometry : a Geometry from a file or a dict.
+
+    Examples
+    --------
+    >>> import spdfit.hexapod as hx
+    >>> g = hx.cubic_geometry()
+    >>> g.base_points.shape, g.payload_points.shape
+    ((3, 6), (3, 6))
+    """
+    return _core.cubic_geometry()
+
+
+def thesis_mass_matrix():
+    """M_p of thesis eq. 6.1: the joint-space mass-inertia matrix of the thesis' hexapod (kg).
+
+    The truth of the thesis' experiments. (The appendix-B M-file's copy is garbled; eq. 6.1 is
+    right.)
+
+    Returns
+    -------
+    numpy.ndarray
+        The 6 x 6 symmetric positive definite M_p.
+
+    Examples
+    --------
+    >>> import numpy as np, spdfit.hexapod as hx
+    >>> M = hx.thesis_mass_matrix()
+    >>> M.shape, bool(np.array_equal(M, M.T)), bool(np.all(np.linalg.eigvalsh(M) > 0))
+    ((6, 6), True, True)
+    """
+    return _core.thesis_mass_matrix()
+
+
 def geometry(source=None):
-    """A Geometry from None (the built-in cubic hexapod), a Geometry, a path to a geometry JSON
-    file, or a dict in that file's format (base_points, payload_points, payload_origin,
-    payload_mass, payload_inertia, strut_mass, strut_stiffness, ...)."""
+    """A hexapod's Geometry, from the built-in one, a file or a dict.
+
+    Parameters
+    ----------
+    source : None, Geometry, str, os.PathLike or dict, optional
+        None (the built-in cubic hexapod), a Geometry (returned as it is), a path to a geometry JSON
+        file, or a dict in that file's format (base_points, payload_points, payload_origin,
+        payload_mass, payload_inertia, strut_mass, strut_stiffness, ...).
+
+    Returns
+    -------
+    Geometry
+        The geometry and masses, in SI units.
+
+    Raises
+    ------
+    DataError
+        A bad geometry file or dict (a ValueError); the message names the file (``<dict>`` for a
+        dict) and the key.
+    ValueError
+        `source` is of none of these types.
+
+    Examples
+    --------
+    >>> import json
+    >>> import spdfit.hexapod as hx
+    >>> g = hx.geometry()                                  # the built-in cubic hexapod
+    >>> same = hx.geometry(json.loads(g.to_json()))        # a dict in the file's format
+    >>> same.payload_mass == g.payload_mass
+    True
+    """
     if source is None:
         return _core.cubic_geometry()
     if isinstance(source, Geometry):
@@ -52,8 +126,39 @@ def geometry(source=None):
 
 
 def model(geometry_source=None):
-    """The Jacobian J, the joint-space mass-inertia matrix M_p (thesis eq. 2.12) and the modal
-    frequencies sqrt(eig(M_p^-1 K)) / 2 pi in Hz (section 2.2) of a hexapod (see `geometry`)."""
+    """The Jacobian, the mass-inertia matrix and the modes of a hexapod.
+
+    The Jacobian J, the joint-space mass-inertia matrix M_p (thesis eq. 2.12) and the modal
+    frequencies sqrt(eig(M_p^-1 K)) / 2 pi in Hz (section 2.2).
+
+    Parameters
+    ----------
+    geometry_source : None, Geometry, str, os.PathLike or dict, optional
+        The hexapod, as `geometry` takes it (default: the built-in cubic hexapod).
+
+    Returns
+    -------
+    Model
+        A named tuple: geometry, jacobian (J), mass_matrix (M_p), payload_mass_matrix (M_x), modes_hz,
+        strut_lengths, mass_matrix_eigenvalues, jacobian_condition (cond(J)) and strut_directions
+        (unit vectors, columns).
+
+    Raises
+    ------
+    DataError
+        A bad geometry file or dict (a ValueError).
+    ValueError
+        `geometry_source` is of none of the types `geometry` takes.
+
+    Examples
+    --------
+    >>> import spdfit.hexapod as hx
+    >>> m = hx.model()                       # the built-in cubic-configuration hexapod
+    >>> m.mass_matrix.shape, m.jacobian.shape
+    ((6, 6), (6, 6))
+    >>> m.modes_hz.round(1)
+    array([ 6.2,  6.2,  6.2,  8.3,  8.3, 14.1])
+    """
     g = geometry(geometry_source)
     d = _core.describe(g)
     return Model(g, d.jacobian, d.mass_matrix, d.payload_mass_matrix, d.modes_hz, d.strut_lengths,
@@ -62,12 +167,53 @@ def model(geometry_source=None):
 
 def simulate(samples=_SIMULATION.samples, noise_var=0.86, *, seed=1, truth="thesis",
              signal_var=_SIMULATION.signal_var, distribution=_SIMULATION.distribution, force_noise_var=None):
-    """Measurements as the thesis' appendix-B generator makes them: true accelerations uniform with
-    variance signal_var (on [-5, 5] by default), true forces B_true = A_true M_p, and independent
-    noise of variance noise_var (force_noise_var for B, if given) in every entry of A and B,
-    "uniform" (half-width sqrt(3 V), the thesis') or "gaussian". truth: "thesis" (eq. 6.1), an
-    n x n array, or a geometry (see `geometry`). The same seed gives the same data as
-    `spdfit hexapod simulate --seed`. Returns Simulation(A, B, truth, A_true, B_true)."""
+    """Measurements as the thesis' appendix-B generator makes them.
+
+    True accelerations uniform with variance signal_var (on [-5, 5] by default), true forces
+    B_true = A_true M_p, and independent noise of variance noise_var (force_noise_var for B, if
+    given) in every entry of A and B. The same seed gives the same data as
+    `spdfit hexapod simulate --seed`.
+
+    Parameters
+    ----------
+    samples : int, optional
+        The number of samples m (rows); the library's default.
+    noise_var : float, default 0.86
+        The noise variance V in every entry (the thesis' experiment 2).
+    seed : int, default 1
+        The random seed.
+    truth : "thesis", array_like, Geometry, str, os.PathLike or dict, default "thesis"
+        "thesis" (eq. 6.1), an n x n array, or a geometry (see `geometry`) whose M_p is the truth.
+    signal_var : float, optional
+        The variance of the true accelerations (the library's default: uniform on [-5, 5]).
+    distribution : str, optional
+        The noise: "uniform" (half-width sqrt(3 V), the thesis') or "gaussian".
+    force_noise_var : float, optional
+        The noise variance in B, when it differs from noise_var.
+
+    Returns
+    -------
+    Simulation
+        A named tuple (A, B, truth, A_true, B_true): the measured accelerations and forces (m x n),
+        the true M_p and the noise-free data.
+
+    Raises
+    ------
+    ValueError
+        Bad options (a negative variance, samples < 1, an unknown distribution, a truth that is not
+        square).
+    DataError
+        A bad geometry file or dict given as the truth (a ValueError).
+
+    Examples
+    --------
+    >>> import numpy as np, spdfit.hexapod as hx
+    >>> data = hx.simulate(samples=12, noise_var=0.86, seed=1)
+    >>> data.A.shape, data.B.shape
+    ((12, 6), (12, 6))
+    >>> bool(np.allclose(data.B_true, data.A_true @ data.truth))
+    True
+    """
     if isinstance(truth, str) and truth == "thesis":
         M = _core.thesis_mass_matrix()
     elif isinstance(truth, (dict, Geometry)) or (isinstance(truth, (str, _os.PathLike)) and truth != "thesis"):
@@ -81,14 +227,47 @@ def simulate(samples=_SIMULATION.samples, noise_var=0.86, *, seed=1, truth="thes
 
 
 def identify(A, B, *, truth=None, stiffness=None, bootstrap=0, confidence=None, seed=None, threads=0):
-    """Every estimator on accelerations A and forces B; a dict {method: MethodIdentification} with
-    the FitResult, the eigenvalues, the modes (with a stiffness matrix K) and the error against
-    a known truth.
+    """Every estimator on accelerations A and forces B, with eigenvalues, modes and errors.
 
-    bootstrap=N (with confidence, seed and threads as in spdfit.fit) adds each method's bootstrap
-    to its result (result.standard_errors, result.bootstrap.eigenvalues) and, with a stiffness,
-    the modes' intervals (modes_uncertainty): N resamples of the rows, each refitted by every
-    estimator."""
+    Parameters
+    ----------
+    A, B : array_like
+        The measured accelerations and forces, m x n each.
+    truth : array_like, optional
+        A known M_p: each method's error_vs_truth is ||M_p - M_hat||_F.
+    stiffness : array_like, optional
+        The stiffness matrix K: each method's modes_hz are its modes sqrt(eig(M_hat^-1 K)) / 2 pi.
+    bootstrap : int, default 0
+        N > 0 adds each method's bootstrap to its result (result.standard_errors,
+        result.bootstrap.eigenvalues) and, with a stiffness, the modes' intervals
+        (modes_uncertainty): N resamples of the rows, each refitted by every estimator.
+    confidence, seed, threads : optional
+        As in spdfit.fit.
+
+    Returns
+    -------
+    dict of str to MethodIdentification
+        {method: MethodIdentification} with the FitResult, the eigenvalues, the modes and the error
+        against the truth.
+
+    Raises
+    ------
+    ValueError
+        Bad input: shapes (a truth or stiffness that is not n x n), NaN/Inf, m < n, bad options.
+    TypeError
+        An option of the wrong type.
+
+    Examples
+    --------
+    >>> import spdfit.hexapod as hx
+    >>> data = hx.simulate(samples=200, noise_var=0.86, seed=1)
+    >>> estimates = hx.identify(data.A, data.B, truth=data.truth)
+    >>> list(estimates)
+    ['ls', 'procrustes', 'tls', 'tls-sym', 'tls-psd', 'spde', 'spd-tls', 'psd-ls']
+    >>> e = estimates["spd-tls"]
+    >>> e.result.diagnostics.positive_definite, e.error_vs_truth < estimates["procrustes"].error_vs_truth
+    (True, True)
+    """
     bootstrap, confidence, seed, threads = _options(bootstrap=bootstrap, confidence=confidence, seed=seed,
                                                     threads=threads)
     results = _core.identify(_as_matrix("A", A), _as_matrix("B", B),

@@ -5,53 +5,69 @@ from typing import Any, Dict, NamedTuple, Optional, Union
 import numpy as np
 import numpy.typing as npt
 
-Array = npt.NDArray[np.float64]
+from ._spdfit import FitResult, SpectrumUncertainty, _Pybind11Type
 
-class Geometry:
-    base_points: Array
-    payload_points: Array
-    payload_origin: Array
-    payload_rotation: Array
-    payload_mass: float
-    payload_inertia: Array
-    strut_mass: Array
-    strut_stiffness: Array
-    strut_damping: Array
+_Array = npt.NDArray[np.float64]
+
+class Geometry(metaclass=_Pybind11Type):
+    @property
+    def base_points(self) -> _Array: ...
+    @property
+    def payload_points(self) -> _Array: ...
+    @property
+    def payload_origin(self) -> _Array: ...
+    @property
+    def payload_rotation(self) -> _Array: ...
+    @property
+    def payload_mass(self) -> float: ...
+    @property
+    def payload_inertia(self) -> _Array: ...
+    @property
+    def strut_mass(self) -> _Array: ...
+    @property
+    def strut_stiffness(self) -> _Array: ...
+    @property
+    def strut_damping(self) -> _Array: ...
     def to_json(self) -> str: ...
 
-class MethodIdentification:
-    result: Any  # spdfit.FitResult
-    eigenvalues: Optional[Array]
-    modes_hz: Optional[Array]
-    error_vs_truth: Optional[float]
-    modes_uncertainty: Any  # Optional[spdfit.SpectrumUncertainty]
+class MethodIdentification(metaclass=_Pybind11Type):
+    @property
+    def result(self) -> FitResult: ...
+    @property
+    def eigenvalues(self) -> Optional[_Array]: ...
+    @property
+    def modes_hz(self) -> Optional[_Array]: ...
+    @property
+    def error_vs_truth(self) -> Optional[float]: ...
+    @property
+    def modes_uncertainty(self) -> Optional[SpectrumUncertainty]: ...
 
 class Model(NamedTuple):
     geometry: Geometry
-    jacobian: Array
-    mass_matrix: Array
-    payload_mass_matrix: Array
-    modes_hz: Array
-    strut_lengths: Array
-    mass_matrix_eigenvalues: Array
+    jacobian: _Array
+    mass_matrix: _Array
+    payload_mass_matrix: _Array
+    modes_hz: _Array
+    strut_lengths: _Array
+    mass_matrix_eigenvalues: _Array
     jacobian_condition: float
-    strut_directions: Array
+    strut_directions: _Array
 
 class Simulation(NamedTuple):
-    A: Array
-    B: Array
-    truth: Array
-    A_true: Array
-    B_true: Array
+    A: _Array
+    B: _Array
+    truth: _Array
+    A_true: _Array
+    B_true: _Array
 
-GeometrySource = Union[None, Geometry, str, os.PathLike, Dict[str, Any]]
+_GeometrySource = Union[None, Geometry, str, os.PathLike, Dict[str, Any]]
 
 def cubic_geometry() -> Geometry: ...
-def thesis_mass_matrix() -> Array: ...
-def geometry(source: GeometrySource = ...) -> Geometry: ...
-def model(geometry_source: GeometrySource = ...) -> Model: ...
+def thesis_mass_matrix() -> _Array: ...
+def geometry(source: _GeometrySource = ...) -> Geometry: ...
+def model(geometry_source: _GeometrySource = ...) -> Model: ...
 def simulate(samples: int = ..., noise_var: float = ..., *, seed: int = ...,
-             truth: Union[str, npt.ArrayLike, GeometrySource] = ..., signal_var: float = ...,
+             truth: Union[str, npt.ArrayLike, _GeometrySource] = ..., signal_var: float = ...,
              distribution: str = ..., force_noise_var: Optional[float] = ...) -> Simulation: ...
 def identify(A: npt.ArrayLike, B: npt.ArrayLike, *, truth: Optional[npt.ArrayLike] = ...,
              stiffness: Optional[npt.ArrayLike] = ..., bootstrap: int = ..., confidence: Optional[float] = ...,

@@ -4,80 +4,134 @@ from typing import List, Optional, Sequence, Tuple, Union
 import numpy as np
 import numpy.typing as npt
 
-Array = npt.NDArray[np.float64]
+from ._spdfit import _Pybind11Type
+
+_Array = npt.NDArray[np.float64]
 STEERING_PSI_RANGE: Tuple[float, float]
 
-class FourBar:
-    a1: float
-    a2: float
-    a3: float
-    a4: float
+class FourBar(metaclass=_Pybind11Type):
+    @property
+    def a1(self) -> float: ...
+    @property
+    def a2(self) -> float: ...
+    @property
+    def a3(self) -> float: ...
+    @property
+    def a4(self) -> float: ...
     def __init__(self, a1: float, a2: float, a3: float, a4: float) -> None: ...
 
-class AngleRange:
-    min: float
-    max: float
+class AngleRange(metaclass=_Pybind11Type):
+    @property
+    def min(self) -> float: ...
+    @property
+    def max(self) -> float: ...
 
-class DialZeros:
-    alpha: float
-    beta: float
+class DialZeros(metaclass=_Pybind11Type):
+    @property
+    def alpha(self) -> float: ...
+    @property
+    def beta(self) -> float: ...
 
-class MotionCheck:
-    grashof: str
-    transmission: AngleRange
-    dead_points: List[float]
-    branch_defect: bool
-    branch_defect_reason: str
+class MotionCheck(metaclass=_Pybind11Type):
+    @property
+    def grashof(self) -> str: ...
+    @property
+    def transmission(self) -> AngleRange: ...
+    @property
+    def dead_points(self) -> List[float]: ...
+    @property
+    def branch_defect(self) -> bool: ...
+    @property
+    def branch_defect_reason(self) -> str: ...
 
-class LinkageSolution:
-    k: Array
-    dial_zeros: DialZeros
-    lengths: Optional[FourBar]
-    no_linkage_reason: str
-    design_error_norm: float
-    structural_error_rms: float
-    structural_error_max: float
-    phi_generated: Array
-    iterations: int
-    final_step_norm: float
-    rounding_limited: bool
-    check: Optional[MotionCheck]
+class LinkageSolution(metaclass=_Pybind11Type):
+    @property
+    def k(self) -> _Array: ...
+    @property
+    def dial_zeros(self) -> DialZeros: ...
+    @property
+    def lengths(self) -> Optional[FourBar]: ...
+    @property
+    def no_linkage_reason(self) -> str: ...
+    @property
+    def design_error_norm(self) -> float: ...
+    @property
+    def structural_error_rms(self) -> float: ...
+    @property
+    def structural_error_max(self) -> float: ...
+    @property
+    def phi_generated(self) -> _Array: ...
+    @property
+    def iterations(self) -> int: ...
+    @property
+    def final_step_norm(self) -> float: ...
+    @property
+    def rounding_limited(self) -> bool: ...
+    @property
+    def check(self) -> Optional[MotionCheck]: ...
 
-class SynthesisResult:
-    ok: bool
-    status: str
-    message: str
-    positions: int
-    precision_point: bool
-    dial_zeros_fitted: bool
-    branch: int
-    rank: int
-    condition_number: float
-    scaled_condition_number: float
-    used_svd: bool
-    psi: Array
-    phi: Array
-    design: LinkageSolution
-    structural: LinkageSolution
-    warnings: List[str]
+class SynthesisResult(metaclass=_Pybind11Type):
+    @property
+    def ok(self) -> bool: ...
+    @property
+    def status(self) -> str: ...
+    @property
+    def message(self) -> str: ...
+    @property
+    def positions(self) -> int: ...
+    @property
+    def precision_point(self) -> bool: ...
+    @property
+    def dial_zeros_fitted(self) -> bool: ...
+    @property
+    def branch(self) -> int: ...
+    @property
+    def rank(self) -> int: ...
+    @property
+    def condition_number(self) -> float: ...
+    @property
+    def scaled_condition_number(self) -> float: ...
+    @property
+    def used_svd(self) -> bool: ...
+    @property
+    def psi(self) -> _Array: ...
+    @property
+    def phi(self) -> _Array: ...
+    @property
+    def design(self) -> LinkageSolution: ...
+    @property
+    def structural(self) -> LinkageSolution: ...
+    @property
+    def warnings(self) -> List[str]: ...
 
-class AnalysisSample:
-    psi: float
-    phi_plus: Optional[float]
-    phi_minus: Optional[float]
-    transmission_angle: Optional[float]
+class AnalysisSample(metaclass=_Pybind11Type):
+    @property
+    def psi(self) -> float: ...
+    @property
+    def phi_plus(self) -> Optional[float]: ...
+    @property
+    def phi_minus(self) -> Optional[float]: ...
+    @property
+    def transmission_angle(self) -> Optional[float]: ...
 
-class Analysis:
-    bar: FourBar
-    k: Array
-    grashof: str
-    input_fully_rotates: bool
-    dead_points: List[float]
-    samples: List[AnalysisSample]
-    transmission: Optional[AngleRange]
+class Analysis(metaclass=_Pybind11Type):
+    @property
+    def bar(self) -> FourBar: ...
+    @property
+    def k(self) -> _Array: ...
+    @property
+    def grashof(self) -> str: ...
+    @property
+    def input_fully_rotates(self) -> bool: ...
+    @property
+    def dead_points(self) -> List[float]: ...
+    @property
+    def samples(self) -> List[AnalysisSample]: ...
+    @property
+    def transmission(self) -> Optional[AngleRange]: ...
 
 def function_names() -> List[str]: ...
-def freudenstein_parameters(bar: FourBar) -> Array: ...
+def freudenstein_parameters(bar: FourBar) -> _Array: ...
 def link_lengths(k: npt.ArrayLike) -> FourBar: ...
 def grashof_type(bar: FourBar) -> str: ...
 def synthesize(psi: Optional[npt.ArrayLike] = ..., phi: Optional[npt.ArrayLike] = ..., *,
