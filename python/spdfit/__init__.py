@@ -96,6 +96,39 @@ def _options(method=None, **values):
 _INT_OPTIONS = ("max_iter", "bootstrap", "seed", "threads")
 
 
+
+# Sections that many docstrings share, written once: a docstring names one as {name} on a line of
+# its own (indented as a section), and _shared_doc puts the text in.
+_DOC_PARTS = {
+    "returns": """Returns
+    -------
+    FitResult
+        The estimate X with its diagnostics and warnings.""",
+    "bad_input": """ValueError
+        Bad input: shapes, NaN/Inf, m < n.
+    TypeError
+        An option of the wrong type.""",
+    "warns": """Warns
+    -----
+    SpdfitWarning
+        A condition worth knowing (rank deficiency, ill-conditioning, ...), one per entry of
+        result.warnings.""",
+    "rank_tolerance": """rank_tolerance : float, optional
+        Relative singular-value cut-off for numerical rank (default max(m, n) eps, lecture notes 002
+        section 3.8).""",
+    "noise_ratio": """noise_ratio : float, optional
+        sigma_B / sigma_A, the noise in B relative to the noise in A (default 1).""",
+}
+
+
+def _shared_doc(function):
+    """Fills the {name} placeholders of function's docstring with _DOC_PARTS (plain replacement:
+    docstrings also hold braces of their own, as sigma_{n+1})."""
+    for name, text in _DOC_PARTS.items():
+        function.__doc__ = function.__doc__.replace("{" + name + "}", text)
+    return function
+
+
 def read_matrix(path, *, allow_nonfinite=False, index_col=None):
     r"""Read a matrix from a data file.
 
@@ -250,6 +283,7 @@ def _checked(result, stacklevel=3):
     return result
 
 
+@_shared_doc
 def fit(A, B, method="auto", *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_eig=None,
         bootstrap=0, confidence=None, seed=None, threads=0):
     """Estimate X in A X ~= B with `method` (one of METHODS).
@@ -267,9 +301,7 @@ def fit(A, B, method="auto", *, rank_tolerance=None, noise_ratio=None, max_iter=
         real dtype, converted to float64; a 1-D array is one column.
     method : str, default "auto"
         One of METHODS.
-    rank_tolerance : float, optional
-        Relative singular-value cut-off for numerical rank (default max(m, n) eps, lecture notes 002
-        section 3.8).
+    {rank_tolerance}
     noise_ratio : float, optional
         sigma_B / sigma_A, the noise in B relative to the noise in A, for the total least-squares
         methods (tls, tls-sym, tls-psd, spd-tls) and auto (default 1).
@@ -290,10 +322,7 @@ def fit(A, B, method="auto", *, rank_tolerance=None, noise_ratio=None, max_iter=
     threads : int, default 0
         The bootstrap's threads (0: one per core); the numbers do not depend on it.
 
-    Returns
-    -------
-    FitResult
-        The estimate X with its diagnostics and warnings.
+    {returns}
 
     Raises
     ------
@@ -306,11 +335,7 @@ def fit(A, B, method="auto", *, rank_tolerance=None, noise_ratio=None, max_iter=
     NumericalError
         The method has no answer for this data; the failed FitResult is its `result`.
 
-    Warns
-    -----
-    SpdfitWarning
-        A condition worth knowing (rank deficiency, ill-conditioning, ...), one per entry of
-        result.warnings.
+    {warns}
 
     See Also
     --------
@@ -340,6 +365,7 @@ def fit(A, B, method="auto", *, rank_tolerance=None, noise_ratio=None, max_iter=
 _STREAM_DEFAULTS = _spdfit.StreamOptions()
 
 
+@_shared_doc
 def fit_files(A_path, B_path, method="auto", *, block_rows=_STREAM_DEFAULTS.block_rows,
               threads=_STREAM_DEFAULTS.threads, rank_tolerance=None, noise_ratio=None, max_iter=None,
               min_eig=None, bootstrap=0, confidence=None, seed=None):
@@ -372,10 +398,7 @@ def fit_files(A_path, B_path, method="auto", *, block_rows=_STREAM_DEFAULTS.bloc
     confidence, seed : optional
         As in fit.
 
-    Returns
-    -------
-    FitResult
-        The estimate X with its diagnostics and warnings.
+    {returns}
 
     Raises
     ------
@@ -388,11 +411,7 @@ def fit_files(A_path, B_path, method="auto", *, block_rows=_STREAM_DEFAULTS.bloc
     NumericalError
         The method has no answer for this data, as in fit.
 
-    Warns
-    -----
-    SpdfitWarning
-        A condition worth knowing (rank deficiency, ill-conditioning, ...), one per entry of
-        result.warnings.
+    {warns}
 
     Examples
     --------
@@ -415,6 +434,7 @@ def fit_files(A_path, B_path, method="auto", *, block_rows=_STREAM_DEFAULTS.bloc
                                       seed))
 
 
+@_shared_doc
 def fit_all(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_eig=None):
     """Every estimator (METHODS but "auto") on the same data, from one shared QR.
 
@@ -426,9 +446,7 @@ def fit_all(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_e
     A, B : array_like
         The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
         column).
-    rank_tolerance : float, optional
-        Relative singular-value cut-off for numerical rank (default max(m, n) eps, lecture notes 002
-        section 3.8).
+    {rank_tolerance}
     noise_ratio : float, optional
         sigma_B / sigma_A for the total least-squares methods (default 1).
     max_iter : int, optional
@@ -443,10 +461,7 @@ def fit_all(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_e
 
     Raises
     ------
-    ValueError
-        Bad input: shapes, NaN/Inf, m < n.
-    TypeError
-        An option of the wrong type.
+    {bad_input}
 
     Warns
     -----
@@ -475,6 +490,7 @@ def fit_all(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_e
     return results
 
 
+@_shared_doc
 def least_squares(A, B, *, rank_tolerance=None):
     """Least squares X = A^+ B minimizing ||A X - B||_F (thesis 000 section 3.1).
 
@@ -485,29 +501,17 @@ def least_squares(A, B, *, rank_tolerance=None):
     ----------
     A, B : array_like
         The measurements, m x n and m x d (d may differ from n: X is then n x d).
-    rank_tolerance : float, optional
-        Relative singular-value cut-off for numerical rank (default max(m, n) eps, lecture notes 002
-        section 3.8).
+    {rank_tolerance}
 
-    Returns
-    -------
-    FitResult
-        The estimate X with its diagnostics and warnings.
+    {returns}
 
     Raises
     ------
-    ValueError
-        Bad input: shapes, NaN/Inf, m < n.
-    TypeError
-        An option of the wrong type.
+    {bad_input}
     NumericalError
         The method has no answer for this data; the failed FitResult is its `result`.
 
-    Warns
-    -----
-    SpdfitWarning
-        A condition worth knowing (rank deficiency, ill-conditioning, ...), one per entry of
-        result.warnings.
+    {warns}
 
     Examples
     --------
@@ -521,6 +525,7 @@ def least_squares(A, B, *, rank_tolerance=None):
     return fit(A, B, "ls", rank_tolerance=rank_tolerance)
 
 
+@_shared_doc
 def symmetric_procrustes(A, B, *, rank_tolerance=None):
     """The symmetric X minimizing ||A X - B||_F.
 
@@ -532,29 +537,17 @@ def symmetric_procrustes(A, B, *, rank_tolerance=None):
     A, B : array_like
         The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
         column).
-    rank_tolerance : float, optional
-        Relative singular-value cut-off for numerical rank (default max(m, n) eps, lecture notes 002
-        section 3.8).
+    {rank_tolerance}
 
-    Returns
-    -------
-    FitResult
-        The estimate X with its diagnostics and warnings.
+    {returns}
 
     Raises
     ------
-    ValueError
-        Bad input: shapes, NaN/Inf, m < n.
-    TypeError
-        An option of the wrong type.
+    {bad_input}
     NumericalError
         The method has no answer for this data; the failed FitResult is its `result`.
 
-    Warns
-    -----
-    SpdfitWarning
-        A condition worth knowing (rank deficiency, ill-conditioning, ...), one per entry of
-        result.warnings.
+    {warns}
 
     Examples
     --------
@@ -572,6 +565,7 @@ def symmetric_procrustes(A, B, *, rank_tolerance=None):
     return fit(A, B, "procrustes", rank_tolerance=rank_tolerance)
 
 
+@_shared_doc
 def total_least_squares(A, B, *, rank_tolerance=None, noise_ratio=None):
     """Total least squares X = -V12 V22^-1 from the SVD of [A B] (thesis eq. 4.37).
 
@@ -579,23 +573,14 @@ def total_least_squares(A, B, *, rank_tolerance=None, noise_ratio=None):
     ----------
     A, B : array_like
         The measurements, m x n and m x d (d may differ from n: X is then n x d, and m >= n + d).
-    rank_tolerance : float, optional
-        Relative singular-value cut-off for numerical rank (default max(m, n) eps, lecture notes 002
-        section 3.8).
-    noise_ratio : float, optional
-        sigma_B / sigma_A, the noise in B relative to the noise in A (default 1).
+    {rank_tolerance}
+    {noise_ratio}
 
-    Returns
-    -------
-    FitResult
-        The estimate X with its diagnostics and warnings.
+    {returns}
 
     Raises
     ------
-    ValueError
-        Bad input: shapes, NaN/Inf, m < n.
-    TypeError
-        An option of the wrong type.
+    {bad_input}
     NumericalError
         V22 is singular (no total least-squares solution); the failed FitResult is its `result`.
 
@@ -616,6 +601,7 @@ def total_least_squares(A, B, *, rank_tolerance=None, noise_ratio=None):
     return fit(A, B, "tls", rank_tolerance=rank_tolerance, noise_ratio=noise_ratio)
 
 
+@_shared_doc
 def total_least_squares_symmetric(A, B, *, rank_tolerance=None, noise_ratio=None):
     """(X_TLS + X_TLS^T) / 2, the nearest symmetric matrix to the TLS estimate (thesis eq. 4.38).
 
@@ -624,31 +610,18 @@ def total_least_squares_symmetric(A, B, *, rank_tolerance=None, noise_ratio=None
     A, B : array_like
         The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
         column).
-    rank_tolerance : float, optional
-        Relative singular-value cut-off for numerical rank (default max(m, n) eps, lecture notes 002
-        section 3.8).
-    noise_ratio : float, optional
-        sigma_B / sigma_A, the noise in B relative to the noise in A (default 1).
+    {rank_tolerance}
+    {noise_ratio}
 
-    Returns
-    -------
-    FitResult
-        The estimate X with its diagnostics and warnings.
+    {returns}
 
     Raises
     ------
-    ValueError
-        Bad input: shapes, NaN/Inf, m < n.
-    TypeError
-        An option of the wrong type.
+    {bad_input}
     NumericalError
         The method has no answer for this data; the failed FitResult is its `result`.
 
-    Warns
-    -----
-    SpdfitWarning
-        A condition worth knowing (rank deficiency, ill-conditioning, ...), one per entry of
-        result.warnings.
+    {warns}
 
     Examples
     --------
@@ -664,6 +637,7 @@ def total_least_squares_symmetric(A, B, *, rank_tolerance=None, noise_ratio=None
     return fit(A, B, "tls-sym", rank_tolerance=rank_tolerance, noise_ratio=noise_ratio)
 
 
+@_shared_doc
 def total_least_squares_psd(A, B, *, rank_tolerance=None, noise_ratio=None):
     """Higham's nearest symmetric positive semidefinite matrix to X_TLS (thesis eq. 4.39).
 
@@ -672,31 +646,18 @@ def total_least_squares_psd(A, B, *, rank_tolerance=None, noise_ratio=None):
     A, B : array_like
         The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
         column).
-    rank_tolerance : float, optional
-        Relative singular-value cut-off for numerical rank (default max(m, n) eps, lecture notes 002
-        section 3.8).
-    noise_ratio : float, optional
-        sigma_B / sigma_A, the noise in B relative to the noise in A (default 1).
+    {rank_tolerance}
+    {noise_ratio}
 
-    Returns
-    -------
-    FitResult
-        The estimate X with its diagnostics and warnings.
+    {returns}
 
     Raises
     ------
-    ValueError
-        Bad input: shapes, NaN/Inf, m < n.
-    TypeError
-        An option of the wrong type.
+    {bad_input}
     NumericalError
         The method has no answer for this data; the failed FitResult is its `result`.
 
-    Warns
-    -----
-    SpdfitWarning
-        A condition worth knowing (rank deficiency, ill-conditioning, ...), one per entry of
-        result.warnings.
+    {warns}
 
     Examples
     --------
@@ -711,6 +672,7 @@ def total_least_squares_psd(A, B, *, rank_tolerance=None, noise_ratio=None):
     return fit(A, B, "tls-psd", rank_tolerance=rank_tolerance, noise_ratio=noise_ratio)
 
 
+@_shared_doc
 def spde(A, B, *, rank_tolerance=None):
     """The area-criterion estimate: the unique SPD X with X (A^T A) X = B^T B.
 
@@ -723,21 +685,13 @@ def spde(A, B, *, rank_tolerance=None):
     A, B : array_like
         The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
         column).
-    rank_tolerance : float, optional
-        Relative singular-value cut-off for numerical rank (default max(m, n) eps, lecture notes 002
-        section 3.8).
+    {rank_tolerance}
 
-    Returns
-    -------
-    FitResult
-        The estimate X with its diagnostics and warnings.
+    {returns}
 
     Raises
     ------
-    ValueError
-        Bad input: shapes, NaN/Inf, m < n.
-    TypeError
-        An option of the wrong type.
+    {bad_input}
     NumericalError
         A is rank-deficient; the failed FitResult is its `result`.
 
@@ -766,6 +720,7 @@ def spde(A, B, *, rank_tolerance=None):
     return fit(A, B, "spde", rank_tolerance=rank_tolerance)
 
 
+@_shared_doc
 def spd_total_least_squares(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None):
     """Total least squares over the symmetric positive definite matrices (spd-tls).
 
@@ -779,25 +734,16 @@ def spd_total_least_squares(A, B, *, rank_tolerance=None, noise_ratio=None, max_
     A, B : array_like
         The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
         column).
-    rank_tolerance : float, optional
-        Relative singular-value cut-off for numerical rank (default max(m, n) eps, lecture notes 002
-        section 3.8).
-    noise_ratio : float, optional
-        sigma_B / sigma_A, the noise in B relative to the noise in A (default 1).
+    {rank_tolerance}
+    {noise_ratio}
     max_iter : int, optional
         The iteration limit (default 200).
 
-    Returns
-    -------
-    FitResult
-        The estimate X with its diagnostics and warnings.
+    {returns}
 
     Raises
     ------
-    ValueError
-        Bad input: shapes, NaN/Inf, m < n.
-    TypeError
-        An option of the wrong type.
+    {bad_input}
     NumericalError
         The method has no answer for this data; the failed FitResult is its `result`.
 
@@ -820,6 +766,7 @@ def spd_total_least_squares(A, B, *, rank_tolerance=None, noise_ratio=None, max_
     return fit(A, B, "spd-tls", rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter)
 
 
+@_shared_doc
 def psd_least_squares(A, B, *, min_eig=None, rank_tolerance=None, max_iter=None):
     """The symmetric X >= min_eig I minimizing ||A X - B||_F (psd-ls), with a certificate.
 
@@ -835,31 +782,19 @@ def psd_least_squares(A, B, *, min_eig=None, rank_tolerance=None, max_iter=None)
         column).
     min_eig : float, optional
         The floor, X >= min_eig I (default 0).
-    rank_tolerance : float, optional
-        Relative singular-value cut-off for numerical rank (default max(m, n) eps, lecture notes 002
-        section 3.8).
+    {rank_tolerance}
     max_iter : int, optional
         The iteration limit (default 200).
 
-    Returns
-    -------
-    FitResult
-        The estimate X with its diagnostics and warnings.
+    {returns}
 
     Raises
     ------
-    ValueError
-        Bad input: shapes, NaN/Inf, m < n.
-    TypeError
-        An option of the wrong type.
+    {bad_input}
     NumericalError
         The method has no answer for this data; the failed FitResult is its `result`.
 
-    Warns
-    -----
-    SpdfitWarning
-        A condition worth knowing (rank deficiency, ill-conditioning, ...), one per entry of
-        result.warnings.
+    {warns}
 
     Examples
     --------
@@ -877,6 +812,7 @@ def psd_least_squares(A, B, *, min_eig=None, rank_tolerance=None, max_iter=None)
     return fit(A, B, "psd-ls", rank_tolerance=rank_tolerance, max_iter=max_iter, min_eig=min_eig)
 
 
+@_shared_doc
 def auto_fit(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None):
     """fit(A, B, "auto"): spde, spd-tls or psd-ls, chosen from the data, always positive definite.
 
@@ -888,33 +824,20 @@ def auto_fit(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None):
     A, B : array_like
         The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
         column).
-    rank_tolerance : float, optional
-        Relative singular-value cut-off for numerical rank (default max(m, n) eps, lecture notes 002
-        section 3.8).
-    noise_ratio : float, optional
-        sigma_B / sigma_A, the noise in B relative to the noise in A (default 1).
+    {rank_tolerance}
+    {noise_ratio}
     max_iter : int, optional
         The iteration limit (default 200).
 
-    Returns
-    -------
-    FitResult
-        The estimate X with its diagnostics and warnings.
+    {returns}
 
     Raises
     ------
-    ValueError
-        Bad input: shapes, NaN/Inf, m < n.
-    TypeError
-        An option of the wrong type.
+    {bad_input}
     NumericalError
         The method has no answer for this data; the failed FitResult is its `result`.
 
-    Warns
-    -----
-    SpdfitWarning
-        A condition worth knowing (rank deficiency, ill-conditioning, ...), one per entry of
-        result.warnings.
+    {warns}
 
     Examples
     --------
