@@ -147,3 +147,23 @@ def test_streaming_bootstrap_prints_the_readers_warnings(spdfit, tmp_path):
     assert result.returncode == 0, result.stderr
     assert "first column holds row labels" in result.stderr
     assert json.loads(result.stdout)["row_names"] == ["x", "y"]
+
+
+def test_matlab_7_3_file(spdfit, tmp_path):
+    # fuzz/corpus/mat/v73.mat: MATLAB 7.3 (HDF5), the 3 x 2 double variable A = [1 4; 2 5; 3 7],
+    # written by libmatio's MAT_FT_MAT73 writer (Debian's Python has no v7.3 writer: h5py is not
+    # installed). scipy cannot read it; spdfit reads it through libmatio's HDF5 path.
+    from spdfit_testing import SOURCE_DIR
+    path = SOURCE_DIR / "fuzz" / "corpus" / "mat" / "v73.mat"
+    assert path.read_bytes()[:19] == b"MATLAB 7.3 MAT-file"
+    result = spdfit("fit", "--method", "ls", "--json", f"{path}:A", path)
+    assert result.returncode == 0, result.stderr
+    j = json.loads(result.stdout)
+    assert (j["m"], j["n"]) == (3, 2)
+    np.testing.assert_allclose(j["X"], np.eye(2), atol=1e-14)
+    # The values: A x = [-7, -8, -11] has the exact solution x = [1, -2] only when A was read as
+    # [1 4; 2 5; 3 7].
+    (tmp_path / "b.csv").write_text("-7\n-8\n-11\n")
+    solved = json.loads(spdfit("solve", "--json", path, tmp_path / "b.csv").stdout)
+    np.testing.assert_allclose(np.ravel(solved["solution"]), [1.0, -2.0],
+                               rtol=1e-13)
