@@ -48,6 +48,34 @@ void quiet_log(int, char*) {}
 
 bool numeric_class(matio_classes c) { return c >= MAT_C_DOUBLE && c <= MAT_C_UINT64; }
 
+// Deflate (level-5 compression, HDF5's filters) expands at most about 1032:1.
+constexpr std::uint64_t kMaxExpansion = 1100;
+
+std::uint64_t file_size(const std::string& path) {
+  struct stat info {};
+  return ::stat(path.c_str(), &info) == 0 ? static_cast<std::uint64_t>(info.st_size) : 0;
+}
+
+// Refuses a variable whose header declares more values than the file could hold even compressed:
+// libmatio allocates what the header says, so a damaged 200-byte file could ask for gigabytes.
+void check_declared_size(const matvar_t& v, const std::string& file, const std::string& name) {
+  std::uint64_t values = 1;
+  for (int k = 0; k < v.rank; ++k) {
+    const std::uint64_t d = v.dims[k];
+    if (d != 0 && values > UINT64_MAX / d) {
+      values = UINT64_MAX;
+      break;
+    }
+    values *= d;
+  }
+  const std::uint64_t most = kMaxExpansion * (file_size(file) + 1024);
+  if (values > most / 8) {
+    std::string shape;
+    for (int k = 0; k < v.rank && k < 8; ++k) shape += (k ? "x" : "") + std::to_string(v.dims[k]);
+    throw DataError(name, 0, 0, "declares a " + shape + " array, more than the file can hold (a damaged .mat file?)");
+  }
+}
+
 // Whether the variable (its header only) is a real 2-D numeric array: what read_mat returns.
 bool is_candidate(const matvar_t& v) {
   return numeric_class(v.class_type) && v.isComplex == 0 && v.rank == 2 && v.dims[0] > 0 && v.dims[1] > 0;
@@ -115,6 +143,19 @@ bool holds_npy(const std::string& path) {
   return false;
 }
 
+namespace {
+// The variable `variable` of the open file, its declared size checked before libmatio reads it;
+// nothing when there is no such variable.
+MatVar read_checked(mat_t* mat, const std::string& file, const std::string& variable, const std::string& name) {
+  {
+    MatVar info(Mat_VarReadInfo(mat, variable.c_str()));
+    if (!info) return nullptr;
+    check_declared_size(*info, file, variable.empty() ? name : file + ":" + variable);
+  }
+  return MatVar(Mat_VarRead(mat, variable.c_str()));
+}
+}  // namespace
+
 Table read_mat(const std::string& file, const std::string& variable, const ReadOptions& options) {
   Mat_LogInitFunc("spdfit", quiet_log);
   const std::string name = variable.empty() ? file : file + ":" + variable;
@@ -139,9 +180,9 @@ Table read_mat(const std::string& file, const std::string& variable, const ReadO
                           (all.empty() ? std::string() : "; its variables: " + joined(all)) +
                           ": name one as " + file + ":NAME");
     }
-    chosen.reset(Mat_VarRead(mat.get(), candidates.front().c_str()));
+    chosen = read_checked(mat.get(), file, candidates.front(), name);
   } else {
-    chosen.reset(Mat_VarRead(mat.get(), variable.c_str()));
+    chosen = read_checked(mat.get(), file, variable, name);
     if (!chosen) {
       // Rewind by reopening: list what there is.
       MatFile again(Mat_Open(file.c_str(), MAT_ACC_RDONLY));
@@ -216,9 +257,8 @@ Table read_npz(const std::string& file, const std::string& variable, const ReadO
   }
   // The declared size is checked against the archive before it is trusted with an allocation
   // (a ZIP entry that claims far more than deflate's ratio of its compressed size is damaged).
-  constexpr zip_uint64_t kMaxRatio = 1100;  // deflate expands at most about 1032:1
   if (!(info.valid & ZIP_STAT_SIZE) ||
-      ((info.valid & ZIP_STAT_COMP_SIZE) && info.size > kMaxRatio * (info.comp_size + 1024))) {
+      ((info.valid & ZIP_STAT_COMP_SIZE) && info.size > kMaxExpansion * (info.comp_size + 1024))) {
     throw DataError(name, 0, 0, "has a damaged size in the archive");
   }
   std::unique_ptr<zip_file_t, int (*)(zip_file_t*)> entry(zip_fopen(archive.get(), (key + ".npy").c_str(), 0),

@@ -167,3 +167,13 @@ def test_matlab_7_3_file(spdfit, tmp_path):
     solved = json.loads(spdfit("solve", "--json", path, tmp_path / "b.csv").stdout)
     np.testing.assert_allclose(np.ravel(solved["solution"]), [1.0, -2.0],
                                rtol=1e-13)
+
+
+def test_a_mat_file_that_declares_more_than_it_holds_is_refused_at_once(spdfit):
+    # Found by the fuzzer (fuzz/regressions/mat): 232 bytes declaring a 3 x 83886082 array, which
+    # libmatio would allocate and fill; the declared size is checked against the file first.
+    from spdfit_testing import SOURCE_DIR
+    path = SOURCE_DIR / "fuzz" / "regressions" / "mat" / "declares_huge_array.mat"
+    result = spdfit("fit", "--method", "ls", path, path)
+    assert result.returncode == 1
+    assert "declares a 3x83886082 array, more than the file can hold" in result.stderr
