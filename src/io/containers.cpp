@@ -107,6 +107,14 @@ bool is_mat(std::string_view first) {
   return endian == "IM" || endian == "MI";
 }
 
+bool is_level5(std::string_view first) {
+  if (!is_mat(first)) return false;
+  // The version, 0x0100 for level 5 (0x0200: 7.3), in the byte order "IM" or "MI" says.
+  const auto b124 = static_cast<unsigned char>(first[124]), b125 = static_cast<unsigned char>(first[125]);
+  const unsigned version = first.substr(126, 2) == "IM" ? b124 | (b125 << 8) : (b124 << 8) | b125;
+  return version == 0x0100;
+}
+
 bool is_zip(std::string_view first) { return first.substr(0, 4) == std::string_view("PK\x03\x04", 4); }
 
 std::string first_bytes(const std::string& path, std::size_t count) {
@@ -303,7 +311,7 @@ void check_level5(const std::string& file) {
   std::string bytes;
   char buffer[1 << 16];
   for (std::size_t got; (got = std::fread(buffer, 1, sizeof buffer, in.get())) > 0;) bytes.append(buffer, got);
-  if (bytes.size() < 128 || bytes[125] != 0x01) return;  // version 0x0100 (level 5); 0x0200 is 7.3
+  if (!is_level5(bytes)) return;  // 7.3: libhdf5 reads those
   const bool swap = bytes.substr(126, 2) == "MI";
   Level5Checker(file, swap).check_body(std::string_view(bytes).substr(128));
 }

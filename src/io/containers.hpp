@@ -35,6 +35,8 @@ bool holds_npy(const std::string& path);
 /// body) or a ZIP archive (a NumPy .npz).
 bool is_mat(std::string_view first);
 bool is_zip(std::string_view first);
+/// Whether they are a level-5 .mat file (not 7.3, whose body libhdf5 parses).
+bool is_level5(std::string_view first);
 
 /// The array `variable` of the .mat file (or, when it is "", the file's only 2-D numeric
 /// array): double, single, integer and logical classes, converted to double; 1-D arrays are a
