@@ -173,11 +173,16 @@ class Level5Checker {
       std::uint32_t type = 0, bytes = 0;
       std::string_view data;
       at = next(body, at, &type, &bytes, &data, /*padded=*/true);
+      // MATLAB writes only arrays (miMATRIX), compressed or not, at the top level; libmatio
+      // misreads anything else (it asked for 4 GB for a stray miINT32 element).
       if (type == kMiCompressed) {
         if (depth > 0) bad("a compressed element inside a compressed element");
         check_body(inflate(data), depth + 1);
       } else if (type == kMiMatrix) {
+        if (data.empty()) bad("an empty top-level array element");
         check_matrix(data, 0);
+      } else {
+        bad("a top-level element of type " + std::to_string(type) + ", not an array");
       }
     }
   }

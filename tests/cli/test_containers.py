@@ -174,6 +174,8 @@ def test_matlab_7_3_file(spdfit, tmp_path):
     ("declares_huge_array.mat", "an array declares 251658246 values in 56 bytes"),
     # 1 kB whose cell array declares 959328513 cells: libmatio asked for 7.8 GB reading its header.
     ("cell_of_959328513_cells.mat", "is a damaged .mat file"),
+    # A stray miUINT32 element at the top level, for which libmatio asked for 4 GB.
+    ("stray_top_level_element.mat", "an empty top-level array element"),
 ])
 def test_a_mat_file_that_declares_more_than_it_holds_is_refused_at_once(spdfit, name, fragment):
     # Found by the fuzzer (fuzz/regressions/mat): spdfit walks a level-5 file's structure before
