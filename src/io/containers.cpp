@@ -255,6 +255,7 @@ class Level5Checker {
     std::size_t at = next(s, 0, &type, &bytes, &flags, true);
     if (type != kMiUint32 || bytes < 8) bad("an array without its flags");
     const std::uint32_t array_class = u32(flags, 0) & 0xff;
+    if (array_class < 1 || array_class > 17) bad("an array of class " + std::to_string(array_class));
     const std::uint32_t nzmax = u32(flags, 4);
     at = next(s, at, &type, &bytes, &dims, true);
     if (type != kMiInt32 || bytes < 8 || bytes % 4 != 0) bad("an array without its dimensions");
@@ -281,12 +282,16 @@ class Level5Checker {
       case 2:    // struct
       case 3: {  // object (a class name element first)
         if (array_class == 3) at = next(s, at, &type, &bytes, &name, true);
+        // As MATLAB writes them: the field name length (at most 64, with the NUL) as one int32,
+        // then the names, name_length bytes each.
         std::string_view length, names;
         at = next(s, at, &type, &bytes, &length, true);
-        if (bytes < 4) bad("a struct without its field name length");
+        if (type != kMiInt32 || bytes != 4) bad("a struct without its field name length");
         const std::uint32_t name_length = u32(length, 0);
+        if (name_length < 1 || name_length > 64) bad("a struct's field names of length " + std::to_string(name_length));
         at = next(s, at, &type, &bytes, &names, true);
-        const std::uint64_t fields = name_length == 0 ? 0 : bytes / name_length;
+        if (type != kMiInt8 || bytes % name_length != 0) bad("a struct's field names that do not fit their length");
+        const std::uint64_t fields = bytes / name_length;
         const std::uint64_t left = s.size() - std::min(s.size(), at);
         if (fields != 0 && count > left / 8 / fields) bad("a struct array declares more fields than it holds");
         for (std::uint64_t k = 0; k < count * fields && at < s.size(); ++k) {

@@ -176,6 +176,8 @@ def test_matlab_7_3_file(spdfit, tmp_path):
     ("cell_of_959328513_cells.mat", "is a damaged .mat file"),
     # A stray miUINT32 element at the top level, for which libmatio asked for 4 GB.
     ("stray_top_level_element.mat", "an empty top-level array element"),
+    # A struct whose field name length is not one int32: libmatio asked for 4 GB.
+    ("struct_field_name_length.mat", "a struct without its field name length"),
 ])
 def test_a_mat_file_that_declares_more_than_it_holds_is_refused_at_once(spdfit, name, fragment):
     # Found by the fuzzer (fuzz/regressions/mat): spdfit walks a level-5 file's structure before
