@@ -27,6 +27,9 @@ const std::string& scratch_path() {
     ::close(fd);
     return std::string(name);
   }();
+  // Registered once `path` is made, so it runs before `path` is destroyed.
+  static const bool removed_at_exit = std::atexit([] { std::remove(path.c_str()); }) == 0;
+  (void)removed_at_exit;
   return path;
 }
 

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -83,6 +84,33 @@ bool is_candidate(const matvar_t& v) {
   return numeric_class(v.class_type) && v.isComplex == 0 && v.rank == 2 && v.dims[0] > 0 && v.dims[1] > 0;
 }
 
+bool ends_with_npy(std::string_view name) { return name.size() > 4 && name.substr(name.size() - 4) == ".npy"; }
+
+using ZipArchive = std::unique_ptr<zip_t, int (*)(zip_t*)>;
+
+ZipArchive open_zip(const std::string& path) {
+  int error = 0;
+  return ZipArchive(zip_open(path.c_str(), ZIP_RDONLY, &error), zip_close);
+}
+
+// The arrays of a .npz archive: its entries that are .npy files, named without ".npy".
+std::vector<std::string> npy_entries(zip_t* archive) {
+  std::vector<std::string> arrays;
+  const zip_int64_t entries = zip_get_num_entries(archive, 0);
+  for (zip_int64_t k = 0; k < entries; ++k) {
+    const char* entry = zip_get_name(archive, static_cast<zip_uint64_t>(k), 0);
+    const std::string_view name = entry ? entry : "";
+    if (ends_with_npy(name)) arrays.emplace_back(name.substr(0, name.size() - 4));
+  }
+  return arrays;
+}
+
+// The variables of an open .mat file (headers only): all of them, and the real 2-D numeric
+// arrays among them, the ones read_mat can return.
+struct MatVariables {
+  std::vector<std::string> all, candidates;
+};
+
 template <typename T>
 void widen(const void* data, Eigen::MatrixXd& out) {
   const T* values = static_cast<const T*>(data);
@@ -100,12 +128,16 @@ FileSpec split_spec(const std::string& path) {
   return {file, path.substr(colon + 1)};
 }
 
+namespace {
+
 bool is_mat(std::string_view first) {
   // A 128-byte header (text, subsystem offset, version 0x0100 or 0x0200, endian "IM" or "MI").
   if (first.size() < 128 || first.substr(0, 7) != "MATLAB ") return false;
   const std::string_view endian = first.substr(126, 2);
   return endian == "IM" || endian == "MI";
 }
+
+}  // namespace
 
 bool is_level5(std::string_view first) {
   if (!is_mat(first)) return false;
@@ -115,8 +147,11 @@ bool is_level5(std::string_view first) {
   return version == 0x0100;
 }
 
+namespace {
+
 bool is_zip(std::string_view first) { return first.substr(0, 4) == std::string_view("PK\x03\x04", 4); }
 
+// Up to `count` first bytes of the file ("" when it cannot be read: its reader then says why).
 std::string first_bytes(const std::string& path, std::size_t count) {
   struct stat info {};
   if (::stat(path.c_str(), &info) != 0 || !S_ISREG(info.st_mode)) return "";
@@ -126,6 +161,8 @@ std::string first_bytes(const std::string& path, std::size_t count) {
   out.resize(std::fread(out.data(), 1, count, file.get()));
   return out;
 }
+
+}  // namespace
 
 std::string read_standard_input() {
   std::string bytes;
@@ -140,18 +177,15 @@ std::string read_standard_input() {
   return bytes;
 }
 
+namespace {
+
+// Whether the ZIP archive holds .npy entries (a NumPy .npz, not an .xlsx workbook).
 bool holds_npy(const std::string& path) {
-  int error = 0;
-  std::unique_ptr<zip_t, int (*)(zip_t*)> archive(zip_open(path.c_str(), ZIP_RDONLY, &error), zip_close);
-  if (!archive) return false;
-  const zip_int64_t entries = zip_get_num_entries(archive.get(), 0);
-  for (zip_int64_t k = 0; k < entries; ++k) {
-    const char* entry = zip_get_name(archive.get(), static_cast<zip_uint64_t>(k), 0);
-    const std::string_view name = entry ? entry : "";
-    if (name.size() > 4 && name.substr(name.size() - 4) == ".npy") return true;
-  }
-  return false;
+  const ZipArchive archive = open_zip(path);
+  return archive && !npy_entries(archive.get()).empty();
 }
+
+}  // namespace
 
 namespace {
 
@@ -326,6 +360,18 @@ void check_level5(const std::string& file) {
   Level5Checker(file, swap).check_body(std::string_view(bytes).substr(128));
 }
 
+MatVariables list_variables(mat_t* mat) {
+  MatVariables out;
+  for (;;) {
+    MatVar v(Mat_VarReadNextInfo(mat));
+    if (!v) break;
+    const std::string name = v->name ? v->name : "";
+    out.all.push_back(name);
+    if (is_candidate(*v)) out.candidates.push_back(name);
+  }
+  return out;
+}
+
 // The variable `variable` of the open file, its declared size checked before libmatio reads it;
 // nothing when there is no such variable.
 MatVar read_checked(mat_t* mat, const std::string& file, const std::string& variable, const std::string& name) {
@@ -344,38 +390,27 @@ Table read_mat(const std::string& file, const std::string& variable, const ReadO
   check_level5(file);
   MatFile mat(Mat_Open(file.c_str(), MAT_ACC_RDONLY));
   if (!mat) throw DataError(file, 0, 0, "is not a MATLAB .mat file libmatio can read (levels 5 and 7.3 are)");
-  std::vector<std::string> all, candidates;
+  const auto its_variables = [](const MatVariables& found) {
+    return found.all.empty() ? std::string() : "; its variables: " + joined(found.all);
+  };
   MatVar chosen;
   if (variable.empty()) {
-    // Headers only, to find the one real 2-D numeric array.
-    for (;;) {
-      MatVar v(Mat_VarReadNextInfo(mat.get()));
-      if (!v) break;
-      const std::string v_name = v->name ? v->name : "";
-      all.push_back(v_name);
-      if (is_candidate(*v)) candidates.push_back(v_name);
-    }
-    if (candidates.size() != 1) {
+    const MatVariables found = list_variables(mat.get());
+    if (found.candidates.size() != 1) {
       throw DataError(file, 0, 0,
-                      (candidates.empty() ? "holds no real 2-D numeric array"
-                                          : "holds " + std::to_string(candidates.size()) +
-                                                " 2-D numeric arrays (" + joined(candidates) + ")") +
-                          (all.empty() ? std::string() : "; its variables: " + joined(all)) +
-                          ": name one as " + file + ":NAME");
+                      (found.candidates.empty() ? "holds no real 2-D numeric array"
+                                                : "holds " + std::to_string(found.candidates.size()) +
+                                                      " 2-D numeric arrays (" + joined(found.candidates) + ")") +
+                          its_variables(found) + ": name one as " + file + ":NAME");
     }
-    chosen = read_checked(mat.get(), file, candidates.front(), name);
+    chosen = read_checked(mat.get(), file, found.candidates.front(), name);
   } else {
     chosen = read_checked(mat.get(), file, variable, name);
     if (!chosen) {
       // Rewind by reopening: list what there is.
-      MatFile again(Mat_Open(file.c_str(), MAT_ACC_RDONLY));
-      while (again) {
-        MatVar v{Mat_VarReadNextInfo(again.get())};
-        if (!v) break;
-        all.push_back(v->name ? v->name : "");
-      }
-      throw DataError(file, 0, 0, "has no variable '" + variable + "'" +
-                                      (all.empty() ? std::string() : "; its variables: " + joined(all)));
+      const MatFile again(Mat_Open(file.c_str(), MAT_ACC_RDONLY));
+      throw DataError(file, 0, 0,
+                      "has no variable '" + variable + "'" + (again ? its_variables(list_variables(again.get())) : ""));
     }
   }
   if (!chosen) throw DataError(name, 0, 0, "could not be read (a damaged .mat file?)");
@@ -409,20 +444,11 @@ Table read_mat(const std::string& file, const std::string& variable, const ReadO
 }
 
 Table read_npz(const std::string& file, const std::string& variable, const ReadOptions& options) {
-  int error = 0;
-  std::unique_ptr<zip_t, int (*)(zip_t*)> archive(zip_open(file.c_str(), ZIP_RDONLY, &error), zip_close);
+  const ZipArchive archive = open_zip(file);
   if (!archive) throw DataError(file, 0, 0, "is not a ZIP archive (.npz) libzip can read");
-  const zip_int64_t entries = zip_get_num_entries(archive.get(), 0);
-  std::vector<std::string> arrays;
-  for (zip_int64_t k = 0; k < entries; ++k) {
-    const char* entry = zip_get_name(archive.get(), static_cast<zip_uint64_t>(k), 0);
-    const std::string entry_name = entry ? entry : "";
-    if (entry_name.size() > 4 && entry_name.compare(entry_name.size() - 4, 4, ".npy") == 0) {
-      arrays.push_back(entry_name.substr(0, entry_name.size() - 4));
-    }
-  }
+  const std::vector<std::string> arrays = npy_entries(archive.get());
   std::string key = variable;
-  if (key.size() > 4 && key.compare(key.size() - 4, 4, ".npy") == 0) key.resize(key.size() - 4);
+  if (ends_with_npy(key)) key.resize(key.size() - 4);
   if (key.empty()) {
     if (arrays.size() != 1) {
       throw DataError(file, 0, 0,
@@ -459,16 +485,29 @@ Table read_npz(const std::string& file, const std::string& variable, const ReadO
   return table;
 }
 
-void write_mat(const std::string& file, const std::string& name, const Eigen::MatrixXd& X) {
-  Mat_LogInitFunc("spdfit", quiet_log);
-  MatFile mat(Mat_CreateVer(file.c_str(), nullptr, MAT_FT_MAT5));
-  if (!mat) throw DataError(file, 0, 0, "cannot be written as a .mat file");
-  std::size_t dims[2] = {static_cast<std::size_t>(X.rows()), static_cast<std::size_t>(X.cols())};
-  MatVar var(Mat_VarCreate(name.c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, const_cast<double*>(X.data()),
-                           MAT_F_DONT_COPY_DATA));
-  if (!var || Mat_VarWrite(mat.get(), var.get(), MAT_COMPRESSION_NONE) != 0) {
-    throw DataError(file, 0, 0, "cannot be written as a .mat file");
-  }
+std::optional<Table> read_named_arrays(const FileSpec& spec, const ReadOptions& options) {
+  if (spec.file == "-") return std::nullopt;
+  const std::string head = first_bytes(spec.file, 128);
+  if (is_mat(head)) return read_mat(spec.file, spec.variable, options);
+  if (is_zip(head) && holds_npy(spec.file)) return read_npz(spec.file, spec.variable, options);
+  return std::nullopt;
 }
 
 }  // namespace spdfit::io::detail
+
+namespace spdfit::io {
+
+void write_mat(const std::string& path, const Eigen::Ref<const Eigen::MatrixXd>& X, const std::string& name) {
+  Mat_LogInitFunc("spdfit", detail::quiet_log);
+  detail::MatFile mat(Mat_CreateVer(path.c_str(), nullptr, MAT_FT_MAT5));
+  if (!mat) throw DataError(path, 0, 0, "cannot be written as a .mat file");
+  Eigen::MatrixXd dense = X;  // columns one after another, as libmatio reads them
+  std::size_t dims[2] = {static_cast<std::size_t>(X.rows()), static_cast<std::size_t>(X.cols())};
+  detail::MatVar var(
+      Mat_VarCreate(name.c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, dense.data(), MAT_F_DONT_COPY_DATA));
+  if (!var || Mat_VarWrite(mat.get(), var.get(), MAT_COMPRESSION_NONE) != 0) {
+    throw DataError(path, 0, 0, "cannot be written as a .mat file");
+  }
+}
+
+}  // namespace spdfit::io

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -21,21 +22,12 @@ struct FileSpec {
 /// exists. Anything else is the path as given (whose reader then says "no such file").
 FileSpec split_spec(const std::string& path);
 
-/// Up to `count` first bytes of the file ("" when it cannot be read: its reader then says why).
-std::string first_bytes(const std::string& path, std::size_t count);
-
 /// All of standard input (for the file name "-"). Throws DataError naming "<stdin>" on a read
 /// error or when it is empty.
 std::string read_standard_input();
 
-/// Whether the ZIP archive holds .npy entries (a NumPy .npz, not an .xlsx workbook).
-bool holds_npy(const std::string& path);
-
-/// Whether these first bytes of a file are a MATLAB .mat file (level 5, or 7.3 with its HDF5
-/// body) or a ZIP archive (a NumPy .npz).
-bool is_mat(std::string_view first);
-bool is_zip(std::string_view first);
-/// Whether they are a level-5 .mat file (not 7.3, whose body libhdf5 parses).
+/// Whether these first bytes of a file are a level-5 MATLAB .mat file (not 7.3, whose body
+/// libhdf5 parses): the files whose structure read_mat checks before libmatio reads them.
 bool is_level5(std::string_view first);
 
 /// The array `variable` of the .mat file (or, when it is "", the file's only 2-D numeric
@@ -49,8 +41,9 @@ Table read_mat(const std::string& file, const std::string& variable, const ReadO
 /// DataError listing them and the "file.npz:name" syntax). Compressed (savez_compressed) or not.
 Table read_npz(const std::string& file, const std::string& variable, const ReadOptions& options);
 
-/// Writes X to a level-5 .mat file as the double variable `name`. Throws DataError naming the
-/// file when it cannot be written.
-void write_mat(const std::string& file, const std::string& name, const Eigen::MatrixXd& X);
+/// The table of a .mat or .npz file (read_mat, read_npz), decided by its first bytes; nothing
+/// for any other file (and for standard input). The one place that decides which files hold
+/// named arrays, for read_table and RowReader.
+std::optional<Table> read_named_arrays(const FileSpec& spec, const ReadOptions& options);
 
 }  // namespace spdfit::io::detail

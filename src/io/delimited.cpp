@@ -19,6 +19,15 @@ constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
 
 bool is_blank(char c) { return c == ' ' || c == '\t'; }
 
+// `text` without the spaces and tabs around it.
+std::string_view trimmed(std::string_view text) {
+  std::size_t first = 0;
+  std::size_t last = text.size();
+  while (first < last && is_blank(text[first])) ++first;
+  while (last > first && is_blank(text[last - 1])) --last;
+  return text.substr(first, last - first);
+}
+
 }  // namespace
 
 namespace detail {
@@ -157,11 +166,7 @@ bool DelimitedParser::next_line(Line* line) {
   if (end < text_.size() && text_[end] == '\r' && pos_ < text_.size() && text_[pos_] == '\n') {
     ++pos_;
   }
-  std::size_t first = 0;
-  std::size_t last = line->raw.size();
-  while (first < last && is_blank(line->raw[first])) ++first;
-  while (last > first && is_blank(line->raw[last - 1])) --last;
-  line->content = line->raw.substr(first, last - first);
+  line->content = trimmed(line->raw);
   return true;
 }
 
@@ -260,27 +265,22 @@ std::size_t DelimitedParser::parse_row(const Line& line) {
       label = false;
       continue;
     }
+    // A quoted number in a data row ("1.5", as some spreadsheets and exporters write every cell)
+    // reads as the number, spaces around it allowed as around unquoted fields; quoted text is still
+    // not one. (In the first line quoted tokens count as names: R's header "","1","2" stays a
+    // header; see is_header.)
+    std::string unquoted;
+    Field value = field;
     if (field.quoted) {
-      // A quoted number in a data row ("1.5", as some spreadsheets and exporters write every
-      // cell) reads as the number; quoted text is still not one. (In the first line quoted
-      // tokens count as names: R's header "","1","2" stays a header; see is_header.)
-      const std::string text = unquote(field);
-      Field inner = field;
-      inner.text = text;
-      const std::size_t first = inner.text.find_first_not_of(" \t");  // spaces, as around unquoted fields
-      inner.text = first == std::string_view::npos ? std::string_view()
-                                                   : inner.text.substr(first, inner.text.find_last_not_of(" \t") - first + 1);
-      if (inner.text.empty()) fail_empty_field(line, field, count);
-      if (parse_number(inner.text).kind == NumberKind::kNotANumber) {
+      unquoted = unquote(field);
+      value.text = trimmed(unquoted);
+      if (!value.text.empty() && parse_number(value.text).kind == NumberKind::kNotANumber) {
         const std::string_view quoted = line.content.substr(field.offset, field.text.size() + 2);
         fail(line, field.offset, quote_token(quoted) + " is quoted text, not a number");
       }
-      values_.push_back(parse_value(line, inner));
-      ++count;
-      continue;
     }
-    if (field.text.empty()) fail_empty_field(line, field, count);
-    values_.push_back(parse_value(line, field));
+    if (value.text.empty()) fail_empty_field(line, field, count);
+    values_.push_back(parse_value(line, value));
     ++count;
   }
   return count;

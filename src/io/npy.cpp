@@ -22,19 +22,8 @@ namespace {
   throw DataError(source, 0, 0, problem);
 }
 
-// Assembling the bytes explicitly makes the result independent of the host's byte order.
-double decode_double(const char* bytes, bool big_endian) {
-  std::uint64_t bits = 0;
-  for (int k = 0; k < 8; ++k) {
-    const auto byte = static_cast<std::uint64_t>(static_cast<unsigned char>(bytes[k]));
-    bits |= byte << (8 * (big_endian ? 7 - k : k));
-  }
-  double value;
-  std::memcpy(&value, &bits, sizeof(value));
-  return value;
-}
-
-// One value of any supported dtype, as a double.
+// One value of any supported dtype, as a double. Assembling the bytes explicitly makes the
+// result independent of the host's byte order.
 double decode_value(const char* bytes, char kind, std::size_t size, bool big_endian) {
   std::uint64_t bits = 0;
   for (std::size_t k = 0; k < size; ++k) {
@@ -135,8 +124,9 @@ void decode_npy_rows(const NpyLayout& layout, const char* data, std::uint64_t fi
   const auto n = static_cast<Eigen::Index>(layout.cols);
   out->resize(count, n);
   if (count == 0) return;  // past the end: an empty block has no storage for memcpy to write to
-  if (layout.kind != 'f' || layout.item_size != 8) {
-    // Other dtypes, converted value by value.
+  const bool native = layout.kind == 'f' && layout.item_size == 8 && !layout.big_endian && host_is_little_endian();
+  if (!native) {
+    // Other dtypes and byte orders, converted value by value.
     const std::size_t size = layout.item_size;
     for (Eigen::Index j = 0; j < n; ++j) {
       for (Eigen::Index i = 0; i < count; ++i) {
@@ -148,32 +138,18 @@ void decode_npy_rows(const NpyLayout& layout, const char* data, std::uint64_t fi
     }
     return;
   }
-  const bool native = !layout.big_endian && host_is_little_endian();
   if (layout.fortran_order) {
     // Column j's rows are contiguous: copy each column's run of `count` rows.
     for (Eigen::Index j = 0; j < n; ++j) {
       const char* column = data + 8 * (static_cast<std::uint64_t>(j) * layout.rows + first);
-      if (native) {
-        std::memcpy(out->col(j).data(), column, 8 * static_cast<std::size_t>(count));
-      } else {
-        for (Eigen::Index i = 0; i < count; ++i)
-          (*out)(i, j) = decode_double(column + 8 * i, layout.big_endian);
-      }
+      std::memcpy(out->col(j).data(), column, 8 * static_cast<std::size_t>(count));
     }
     return;
   }
-  const char* rows = data + 8 * first * layout.cols;
-  if (native) {
-    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-    RowMajor block(count, n);
-    std::memcpy(block.data(), rows, 8 * static_cast<std::size_t>(count * n));
-    *out = block;
-    return;
-  }
-  for (Eigen::Index i = 0; i < count; ++i) {
-    for (Eigen::Index j = 0; j < n; ++j)
-      (*out)(i, j) = decode_double(rows + 8 * (i * n + j), layout.big_endian);
-  }
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  RowMajor block(count, n);
+  std::memcpy(block.data(), data + 8 * first * layout.cols, 8 * static_cast<std::size_t>(count * n));
+  *out = block;
 }
 
 void check_npy_finite(const Eigen::MatrixXd& block, std::uint64_t first_row, const std::string& source) {

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -133,9 +134,7 @@ Table read_table(const std::string& path, const ReadOptions& options) {
   const detail::FileSpec spec = detail::split_spec(path);
   // The content decides, not the name: .mat and .npz files hold named arrays, and their
   // libraries read them from the file.
-  const std::string head = detail::first_bytes(spec.file, 128);
-  if (detail::is_mat(head)) return detail::read_mat(spec.file, spec.variable, options);
-  if (detail::is_zip(head) && detail::holds_npy(spec.file)) return detail::read_npz(spec.file, spec.variable, options);
+  if (std::optional<Table> named = detail::read_named_arrays(spec, options)) return std::move(*named);
   const std::string bytes =
       detail::read_file(spec.file, std::numeric_limits<std::size_t>::max(), "a data file",
                         [&spec](std::string_view first) { refuse_binary_early(first, spec.file); });

@@ -11,6 +11,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 #include <string_view>
 #include <utility>
 
@@ -232,10 +233,11 @@ class RowReader::TableSource final : public RowReader::Source {
 
 RowReader::RowReader(const std::string& path, const ReadOptions& options) {
   const detail::FileSpec spec = detail::split_spec(path);
-  const std::string head = path == "-" ? std::string() : detail::first_bytes(spec.file, 128);
-  if (path == "-" || !spec.variable.empty() || detail::is_mat(head) ||
-      (detail::is_zip(head) && detail::holds_npy(spec.file))) {
-    source_ = std::make_unique<TableSource>(path, read_table(path, options));
+  std::optional<Table> named = detail::read_named_arrays(spec, options);
+  // Standard input, and FILE:NAME of a file without named arrays (whose error read_table gives).
+  if (!named && (path == "-" || !spec.variable.empty())) named = read_table(path, options);
+  if (named) {
+    source_ = std::make_unique<TableSource>(path, std::move(*named));
     return;
   }
   detail::check_regular_file(path);

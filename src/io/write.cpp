@@ -12,7 +12,6 @@
 
 #include "file_error.hpp"
 #include "npy_header.hpp"
-#include "containers.hpp"
 #include "spdfit/io.hpp"
 
 namespace spdfit::io {
@@ -149,10 +148,6 @@ void write_npy(const std::string& path, const Eigen::Ref<const Eigen::MatrixXd>&
     out.write(row.data(), static_cast<std::streamsize>(row.size()));
   }
   finish_writing(out, path);
-}
-
-void write_mat(const std::string& path, const Eigen::Ref<const Eigen::MatrixXd>& X, const std::string& name) {
-  detail::write_mat(path, name, X);
 }
 
 }  // namespace spdfit::io
