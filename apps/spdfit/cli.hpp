@@ -29,8 +29,12 @@ struct DataFailure : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+class MpiWorld;
+
 /// Options every command shares.
 struct GlobalOptions {
+  /// The processes spdfit runs among under mpirun (one, without MPI, otherwise).
+  MpiWorld* mpi = nullptr;
   bool quiet = false;  ///< suppress warnings on stderr
   /// How every data file is read: --index-col / --no-index-col set read.index_column.
   io::ReadOptions read;

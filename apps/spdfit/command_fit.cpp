@@ -3,7 +3,9 @@
 #include <CLI/CLI.hpp>
 #include <sys/stat.h>
 
+#include <csignal>
 #include <cstdint>
+#include <cstdlib>
 #include <memory>
 #include <optional>
 
@@ -11,8 +13,10 @@
 #include "cli.hpp"
 #include "input.hpp"
 #include "output.hpp"
+#include "mpi_world.hpp"
 #include "progress_line.hpp"
 #include "validators.hpp"
+#include "spdfit/distributed.hpp"
 #include "spdfit/fit_files.hpp"
 
 namespace spdfit::cli {
@@ -44,6 +48,17 @@ std::uint64_t file_bytes(const std::string& path) {
 // "A.mat:accel" for --var-a accel: the library's one way of naming an array in a file.
 std::string with_variable(const std::string& path, const std::string& variable) {
   return variable.empty() ? path : path + ":" + variable;
+}
+
+// Test switch: SPDFIT_TEST_MPI_DIE=K kills process K (SIGKILL) after its first block under mpirun,
+// as a crashed node would end, so that tests see the other processes end too instead of waiting.
+ProgressCallback test_failure_switch(int rank, ProgressCallback progress) {
+  const char* die = std::getenv("SPDFIT_TEST_MPI_DIE");
+  if (die == nullptr || std::to_string(rank) != die) return progress;
+  return [progress](double fraction) {
+    std::raise(SIGKILL);
+    if (progress) progress(fraction);
+  };
 }
 
 std::vector<std::string> method_names() {
@@ -131,6 +146,12 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
     fit_options.max_iterations = options->max_iterations.value_or(fit_options.max_iterations);
     fit_options.min_eig = options->min_eig.value_or(fit_options.min_eig);
     apply_bootstrap_options(options->bootstrap, fit_options, "--stream", options->stream);
+    MpiWorld& world = *global.mpi;
+    if (world.size() > 1 && !options->stream) {
+      throw UsageError("under mpirun the processes read parts of A and B a block of rows at a time: add --stream");
+    }
+    // Under mpirun the cores of a node are shared among its processes (unless --threads says).
+    if (world.active() && !options->bootstrap.threads) fit_options.threads = world.threads_per_process();
     std::optional<StreamOptions> stream;
     if (options->stream) {
       stream = options->stream_options;
@@ -139,23 +160,42 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
     if (options->a_path == "-" && options->b_path == "-") {
       throw UsageError("A and B cannot both be standard input (-)");
     }
-    const FitResult result = [&] {
+    const std::string a_path = with_variable(options->a_path, options->var_a);
+    const std::string b_path = with_variable(options->b_path, options->var_b);
+    std::vector<std::uint64_t> rows_per_process;
+    const std::optional<FitResult> outcome = [&]() -> std::optional<FitResult> {
       // Long runs show a progress line on a terminal (the streaming pass, then the replicates),
       // cleared before anything else is printed.
       ProgressLine reading(global, "reading A and B", file_bytes(options->a_path) + file_bytes(options->b_path));
       ProgressLine refitting(global, "bootstrap replicates");
-      if (stream) stream->progress = reading.callback();
+      if (stream) stream->progress = test_failure_switch(world.rank(), reading.callback());
       fit_options.progress = refitting.callback();
-      return fit_files(with_variable(options->a_path, options->var_a), with_variable(options->b_path, options->var_b),
-                       method, fit_options, stream, global.read);
+      if (world.active() && stream) {
+        DistributedFit fit = fit_files_distributed(a_path, b_path, method, fit_options, *stream, global.read,
+                                                   world.channel());
+        rows_per_process = std::move(fit.rows_per_process);
+        return std::move(fit.result);
+      }
+      FitResult result = fit_files(a_path, b_path, method, fit_options, stream, global.read);
+      if (world.active()) rows_per_process = {static_cast<std::uint64_t>(result.diagnostics.m)};
+      return result;
     }();
+    if (!outcome) return;  // a process other than the first under mpirun: process 0 writes
+    const FitResult& result = *outcome;
     for (const std::string& w : result.warnings) warn(global, w);
     if (!result.ok()) throw DataFailure(result.message);
     if (result.bootstrap && !options->json && !options->report) {
       warn(global, "--bootstrap's standard errors and intervals are shown with --json or --report; this prints X only");
     }
-    if (options->json || options->report) {
-      emit(options->json ? result_json(result).dump(2) + "\n" : fit_report(result), options->output);
+    if (options->json) {
+      nlohmann::json out = result_json(result);
+      if (world.active()) {  // how the work was divided among the processes
+        out["processes"] = world.size();
+        out["rows_per_process"] = rows_per_process;
+      }
+      emit(out.dump(2) + "\n", options->output);
+    } else if (options->report) {
+      emit(fit_report(result), options->output);
     } else if (options->header) {
       emit(labelled_matrix_csv(result), options->output);
     } else {

@@ -1,11 +1,14 @@
 // spdfit: estimate symmetric positive definite matrices from imperfect measurements.
+#include <cstdio>
 #include <iostream>
+#include <memory>
 #include <vector>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "cli.hpp"
+#include "mpi_world.hpp"
 #include "spdfit/io.hpp"
 #include "spdfit/version.hpp"
 
@@ -29,7 +32,23 @@ int main(int argc, char** argv) {
       "Exit status: 0 success, 1 bad data or numerical failure, 2 usage error.\n"
       "Run 'spdfit COMMAND --help' for a command's options.");
 
+  // Under mpirun: MPI before anything else, and only process 0 prints (every process parses the
+  // command line and fails alike; the distributed fit gives each the same outcome).
+  std::unique_ptr<MpiWorld> mpi;
+  try {
+    mpi = std::make_unique<MpiWorld>();
+  } catch (const std::exception& e) {
+    std::cerr << "spdfit: error: " << e.what() << '\n';
+    return kExitUsageError;
+  }
+  if (mpi->rank() != 0) {
+    if (std::freopen("/dev/null", "w", stdout) == nullptr || std::freopen("/dev/null", "w", stderr) == nullptr) {
+      return kExitDataError;
+    }
+  }
+
   GlobalOptions global;
+  global.mpi = mpi.get();
   app.add_flag("-q,--quiet", global.quiet, "Do not print warnings on stderr (before or after the command)");
   // The global options are accepted after the command too (`spdfit fit -q ...`): the commands,
   // added below, inherit this and pass an option they do not know on to the top level.
@@ -82,7 +101,13 @@ int main(int argc, char** argv) {
 
   try {
     for (const Command& command : commands) {
-      if (command.app->parsed()) command.run();
+      if (!command.app->parsed()) continue;
+      if (mpi->size() > 1 && command.app->get_name() != "fit") {
+        throw UsageError("under mpirun with " + std::to_string(mpi->size()) +
+                         " processes only 'spdfit fit --stream' runs (its rows are split among the processes); "
+                         "run '" + command.app->get_name() + "' without mpirun");
+      }
+      command.run();
     }
     return kExitSuccess;
   } catch (const UsageError& e) {

@@ -11,6 +11,10 @@
 
 namespace spdfit::io {
 
+namespace detail {
+class SplitFile;  // a file split among processes (src/io/split_file.hpp) opens readers of its parts
+}
+
 /// Reads the matrix in a data file (the formats of read_table: .npy by its magic bytes,
 /// delimited text otherwise) a block of rows at a time, in O(block) memory: a .npy file is
 /// memory-mapped and decoded block by block, a text file is read in pieces of about
@@ -50,6 +54,8 @@ class RowReader {
   double fraction_read() const;
 
  private:
+  friend class detail::SplitFile;
+  RowReader() = default;
   struct Source;  // the format-specific part, one kind per file format (row_reader.cpp)
   class NpySource;
   class TextSource;

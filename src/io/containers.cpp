@@ -485,11 +485,23 @@ Table read_npz(const std::string& file, const std::string& variable, const ReadO
   return table;
 }
 
-std::optional<Table> read_named_arrays(const FileSpec& spec, const ReadOptions& options) {
-  if (spec.file == "-") return std::nullopt;
+NamedArrays named_arrays_kind(const FileSpec& spec) {
+  if (spec.file == "-") return NamedArrays::kNone;
   const std::string head = first_bytes(spec.file, 128);
-  if (is_mat(head)) return read_mat(spec.file, spec.variable, options);
-  if (is_zip(head) && holds_npy(spec.file)) return read_npz(spec.file, spec.variable, options);
+  if (is_mat(head)) return NamedArrays::kMat;
+  if (is_zip(head) && holds_npy(spec.file)) return NamedArrays::kNpz;
+  return NamedArrays::kNone;
+}
+
+std::optional<Table> read_named_arrays(const FileSpec& spec, const ReadOptions& options) {
+  switch (named_arrays_kind(spec)) {
+    case NamedArrays::kMat:
+      return read_mat(spec.file, spec.variable, options);
+    case NamedArrays::kNpz:
+      return read_npz(spec.file, spec.variable, options);
+    case NamedArrays::kNone:
+      break;
+  }
   return std::nullopt;
 }
 

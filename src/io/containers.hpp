@@ -41,7 +41,12 @@ Table read_mat(const std::string& file, const std::string& variable, const ReadO
 /// DataError listing them and the "file.npz:name" syntax). Compressed (savez_compressed) or not.
 Table read_npz(const std::string& file, const std::string& variable, const ReadOptions& options);
 
-/// The table of a .mat or .npz file (read_mat, read_npz), decided by its first bytes; nothing
+/// Which files hold named arrays, decided by their first bytes (a .npz is a zip archive of .npy
+/// files): the one place that decides it, for read_named_arrays and for splitting files.
+enum class NamedArrays { kNone, kMat, kNpz };
+NamedArrays named_arrays_kind(const FileSpec& spec);
+
+/// The table of a .mat or .npz file (read_mat, read_npz), decided by named_arrays_kind; nothing
 /// for any other file (and for standard input). The one place that decides which files hold
 /// named arrays, for read_table and RowReader.
 std::optional<Table> read_named_arrays(const FileSpec& spec, const ReadOptions& options);

@@ -32,6 +32,21 @@ std::string_view trimmed(std::string_view text) {
 
 namespace detail {
 
+DelimitedParser::DelimitedParser(std::string source, ReadOptions options, const Layout& layout,
+                                 std::size_t lines_before, std::size_t bytes_before)
+    : source_(std::move(source)), options_(options), drop_first_(layout.drop_first) {
+  line_number_ = lines_before;
+  bytes_fed_ = bytes_before;
+  separator_ = layout.separator;
+  separator_line_ = layout.separator_line;
+  seen_content_ = true;
+  have_header_ = layout.have_header;
+  columns_ = layout.columns;
+  columns_line_ = layout.columns_line;
+  index_decided_ = true;
+  resumed_ = true;
+}
+
 void DelimitedParser::feed(std::string_view text) {
   const bool first_piece = bytes_fed_ == 0;
   piece_offset_ = bytes_fed_;
@@ -87,15 +102,16 @@ void DelimitedParser::parse_line(const Line& line) {
       return;
     }
   }
-  if (have_header_ && rows_ == 0) choose_separator_after_header(line);
+  const bool first_row = rows_ == 0 && !resumed_;
+  if (have_header_ && first_row) choose_separator_after_header(line);
 
   const std::size_t fields = parse_row(line);
-  if (rows_ == 0) first_data_line_ = line.number;
+  if (first_row) first_data_line_ = line.number;
   if (!index_decided_ && !drop_first_ && fields > 0) {
     first_column_counts_rows_ =
         first_column_counts_rows_ && values_[values_.size() - fields] == static_cast<double>(rows_);
   }
-  if (rows_ == 0) {
+  if (first_row) {
     columns_ = fields;
     columns_line_ = line.number;
     if (have_header_) {
@@ -123,7 +139,7 @@ void DelimitedParser::keep_header(const Line& line) {
 }
 
 void DelimitedParser::finish() const {
-  if (rows_ > 0) return;
+  if (rows_ > 0 || resumed_) return;
   std::string problem = "no data rows";
   if (have_header_) {
     problem += " (only a header row, line " + std::to_string(header_.number) + ")";

@@ -18,6 +18,27 @@ class DelimitedParser {
   DelimitedParser(std::string source, ReadOptions options)
       : source_(std::move(source)), options_(options), drop_first_(options.index_column == IndexColumn::kDrop) {}
 
+  /// What a parser decided on a file's first lines, which every later line is parsed by: the
+  /// separator, the header, the number of columns and whether the first is dropped as labels.
+  struct Layout {
+    Separator separator = Separator::kNone;
+    std::size_t separator_line = 0;
+    bool have_header = false;
+    std::size_t columns = 0;
+    std::size_t columns_line = 0;
+    bool drop_first = false;
+  };
+  /// The layout decided so far: final once a data row has been parsed and the index column decided
+  /// (ReadOptions::index_column), which is after the first piece with three data rows.
+  Layout layout() const {
+    return {separator_, separator_line_, have_header_, columns_, columns_line_, drop_first_};
+  }
+  /// A parser for a later part of a file whose first lines decided `layout`: the part starts at a
+  /// line start after the file's first data row, with `lines_before` lines and `bytes_before` bytes
+  /// before it, so that messages give the file's own line numbers and byte offsets.
+  DelimitedParser(std::string source, ReadOptions options, const Layout& layout, std::size_t lines_before,
+                  std::size_t bytes_before);
+
   /// Parses the next piece of the text: it starts where the previous piece ended, at the start
   /// of a line, and ends with a line end or at the end of the input (no line, and no CR LF
   /// pair, is split between two pieces). The values of its data rows are appended to values(),
@@ -91,6 +112,7 @@ class DelimitedParser {
   bool first_column_counts_rows_ = true;
   std::size_t first_data_line_ = 0;
   std::vector<std::string> warnings_;
+  bool resumed_ = false;  // built from a Layout: the first lines were parsed elsewhere
 };
 
 }  // namespace spdfit::io::detail

@@ -11,6 +11,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <optional>
 #include <string_view>
 #include <utility>
@@ -20,6 +21,7 @@
 #include "file_error.hpp"
 #include "npy_layout.hpp"
 #include "read_file.hpp"
+#include "split_file.hpp"
 
 namespace spdfit::io {
 
@@ -55,7 +57,11 @@ namespace {
 class RowReader::NpySource final : public RowReader::Source {
  public:
   NpySource(const std::string& path, int fd, std::size_t size, const ReadOptions& options)
-      : Source(path), size_(size), options_(options) {
+      : NpySource(path, fd, size, options, 0, std::numeric_limits<std::uint64_t>::max()) {}
+  // Rows [begin, min(end, the file's rows)) only: a process's part of a file split among processes.
+  NpySource(const std::string& path, int fd, std::size_t size, const ReadOptions& options, std::uint64_t begin,
+            std::uint64_t end)
+      : Source(path), begin_(begin), size_(size), options_(options) {
     void* map = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
     if (map == MAP_FAILED) fail_errno(path, "cannot be memory-mapped");
     map_ = static_cast<const char*>(map);
@@ -63,6 +69,9 @@ class RowReader::NpySource final : public RowReader::Source {
     try {
       const std::string_view bytes(map_, size_);
       layout_ = detail::npy_layout(detail::parse_npy_header(bytes, path), size_, path);
+      end_ = std::min(end, layout_.rows);
+      begin_ = std::min(begin_, end_);
+      dropped_rows_ = begin_;
     } catch (...) {
       ::munmap(map, size_);  // a constructor that throws runs no destructor
       throw;
@@ -71,18 +80,20 @@ class RowReader::NpySource final : public RowReader::Source {
   ~NpySource() override { ::munmap(const_cast<char*>(map_), size_); }
 
   Index read(Index max_rows, Eigen::MatrixXd* rows) override {
-    const std::uint64_t left = layout_.rows - rows_read;
+    const std::uint64_t at = begin_ + rows_read;
+    const std::uint64_t left = end_ - at;
     const auto count =
         static_cast<Index>(std::min<std::uint64_t>(left, static_cast<std::uint64_t>(max_rows)));
-    detail::decode_npy_rows(layout_, map_ + layout_.data_offset, rows_read, count, rows);
-    if (!options_.allow_nonfinite) detail::check_npy_finite(*rows, rows_read, path);
+    detail::decode_npy_rows(layout_, map_ + layout_.data_offset, at, count, rows);
+    if (!options_.allow_nonfinite) detail::check_npy_finite(*rows, at, path);
     rows_read += static_cast<std::uint64_t>(count);
     drop_decoded_pages();
     return count;
   }
   Index columns() const override { return static_cast<Index>(layout_.cols); }
+  std::uint64_t rows() const { return layout_.rows; }  ///< the file's, not only those read
   double fraction_read() const override {
-    return static_cast<double>(rows_read) / static_cast<double>(layout_.rows);
+    return end_ > begin_ ? static_cast<double>(rows_read) / static_cast<double>(end_ - begin_) : 1.0;
   }
 
  private:
@@ -98,12 +109,14 @@ class RowReader::NpySource final : public RowReader::Source {
     for (std::uint64_t j = 0; j < runs; ++j) {
       const std::size_t start = layout_.data_offset + size * j * run_values;
       const std::size_t from = (start + size * dropped_rows_ * per_row) / page * page;
-      const std::size_t to = (start + size * rows_read * per_row) / page * page;
+      const std::size_t to = (start + size * (begin_ + rows_read) * per_row) / page * page;
       if (to > from) ::madvise(const_cast<char*>(map_) + from, to - from, MADV_DONTNEED);
     }
-    dropped_rows_ = rows_read;
+    dropped_rows_ = begin_ + rows_read;
   }
 
+  std::uint64_t begin_ = 0;  // the first row read (0 but for a part of a split file)
+  std::uint64_t end_ = 0;    // one past the last
   std::uint64_t dropped_rows_ = 0;
   const char* map_ = nullptr;
   std::size_t size_;
@@ -116,16 +129,30 @@ class RowReader::TextSource final : public RowReader::Source {
  public:
   TextSource(const std::string& path, int fd, const ReadOptions& options)
       : Source(path), file_(::fdopen(fd, "rb")), parser_(path, options) {
-    if (file_ == nullptr) {
-      const int error = errno;
-      ::close(fd);
-      errno = error;
-      fail_errno(path, "cannot be opened");
-    }
+    adopt(fd);
     struct stat info {};
     if (::fstat(fd, &info) == 0 && S_ISREG(info.st_mode)) size_ = static_cast<std::uint64_t>(info.st_size);
   }
+  // The bytes [begin, end) of the file only, parsed as the file's first lines decided (`layout`):
+  // a process's part of a file split among processes. `begin` is a line start after the first
+  // data row, preceded by `lines_before` lines; `end` is a line start or the file's end.
+  TextSource(const std::string& path, int fd, const ReadOptions& options, const detail::DelimitedParser::Layout& layout,
+             std::uint64_t begin, std::uint64_t end, std::uint64_t lines_before)
+      : Source(path), file_(::fdopen(fd, "rb")), parser_(path, options, layout, lines_before, begin) {
+    adopt(fd);
+    if (::fseeko(file_, static_cast<off_t>(begin), SEEK_SET) != 0) fail_errno(path, "read error");
+    size_ = end - begin;
+    limit_ = size_;
+  }
   ~TextSource() override { std::fclose(file_); }
+
+  // Reads no further than byte `end` (a line start), and learns the file's layout from its first
+  // lines: the first part of a file split among processes.
+  void limit_to(std::uint64_t end) {
+    limit_ = end;
+    size_ = end;
+  }
+  detail::DelimitedParser::Layout layout() const { return parser_.layout(); }
 
   Index read(Index max_rows, Eigen::MatrixXd* rows) override {
     while (available() < static_cast<std::size_t>(max_rows) && !at_end_) read_piece();
@@ -160,17 +187,27 @@ class RowReader::TextSource final : public RowReader::Source {
     return n == 0 ? 0 : parser_.values().size() / n - taken_;
   }
 
+  // Owns `fd` through file_, or closes it and throws when fdopen failed.
+  void adopt(int fd) {
+    if (file_ != nullptr) return;
+    const int error = errno;
+    ::close(fd);
+    errno = error;
+    fail_errno(path, "cannot be opened");
+  }
+
   // Reads about kTextPieceBytes more bytes and parses the whole lines among them; the bytes
   // after the last line end wait for the next piece. A CR at the very end waits too, since
   // an LF may follow it in the next piece (CR LF is one line end).
   void read_piece() {
     const std::size_t kept = buffer_.size();
-    buffer_.resize(kept + RowReader::kTextPieceBytes);
-    const std::size_t got = std::fread(buffer_.data() + kept, 1, RowReader::kTextPieceBytes, file_);
+    const auto want = static_cast<std::size_t>(std::min<std::uint64_t>(RowReader::kTextPieceBytes, limit_ - bytes_));
+    buffer_.resize(kept + want);
+    const std::size_t got = std::fread(buffer_.data() + kept, 1, want, file_);
     buffer_.resize(kept + got);
     bytes_ += got;
     if (std::ferror(file_)) fail_errno(path, "read error");
-    if (got < RowReader::kTextPieceBytes) {  // the end: the rest is the last line(s)
+    if (got < RowReader::kTextPieceBytes) {  // the end (of the file or the part): the rest is the last line(s)
       parser_.feed(buffer_);
       buffer_.clear();
       at_end_ = true;
@@ -200,7 +237,8 @@ class RowReader::TextSource final : public RowReader::Source {
   std::size_t taken_ = 0;  // rows at the front of parser_.values() already handed out
   bool at_end_ = false;
   std::uint64_t bytes_ = 0;  // read from the file so far
-  std::uint64_t size_ = 0;   // the file's size (0: not a regular file)
+  std::uint64_t size_ = 0;   // the file's size (0: not a regular file), or the part's
+  std::uint64_t limit_ = std::numeric_limits<std::uint64_t>::max();  // bytes to read at most
 };
 
 // A .mat or .npz file, or standard input, read whole (their libraries read whole arrays; a
@@ -269,6 +307,62 @@ RowReader::RowReader(const std::string& path, const ReadOptions& options) {
     throw;
   }
 }
+
+namespace detail {
+
+SplitFile::SplitFile(const std::string& path, const ReadOptions& options, int part, int parts)
+    : path_(path), options_(options), part_(part), parts_(parts) {
+  if (parts < 1 || part < 0 || part >= parts) throw std::invalid_argument("SplitFile: part outside 0 .. parts - 1");
+  const FileSpec spec = split_spec(path);
+  if (path == "-" || !spec.variable.empty() || named_arrays_kind(spec) != NamedArrays::kNone) {
+    const std::string what = path == "-" ? "standard input" : path;
+    throw DataError(path, 0, 0,
+                    what + " cannot be split among processes: only .npy files and text files are read in row "
+                           "ranges; convert it to .npy, or run spdfit without mpirun");
+  }
+  // The first rows, parsed here as the part starting at the file's start will parse them: the
+  // layout every later part is parsed by, and the columns.
+  RowReader probe(path, options);
+  Eigen::MatrixXd first;
+  probe.read(3, &first);
+  columns_ = probe.columns();
+  if (auto* text = dynamic_cast<RowReader::TextSource*>(probe.source_.get())) {
+    layout_ = text->layout();
+  } else if (auto* npy = dynamic_cast<RowReader::NpySource*>(probe.source_.get())) {
+    npy_ = true;
+    rows_ = npy->rows();
+  }
+  struct stat info {};
+  if (::stat(path.c_str(), &info) == 0) size_ = static_cast<std::uint64_t>(info.st_size);
+}
+
+RowReader SplitFile::open(std::uint64_t first, std::uint64_t count, const LinePosition& begin,
+                          const LinePosition& end) const {
+  RowReader reader;
+  const int fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) fail_errno(path_, "cannot be opened");
+  if (npy_) {
+    try {
+      reader.source_ = std::make_unique<RowReader::NpySource>(path_, fd, static_cast<std::size_t>(size_), options_,
+                                                              first, first + count);
+    } catch (...) {
+      ::close(fd);
+      throw;
+    }
+    ::close(fd);
+  } else if (first == 0) {
+    // From the file's start, header and all, as a whole file is read.
+    auto text = std::make_unique<RowReader::TextSource>(path_, fd, options_);
+    text->limit_to(end.byte);
+    reader.source_ = std::move(text);
+  } else {
+    reader.source_ = std::make_unique<RowReader::TextSource>(path_, fd, options_, layout_, begin.byte, end.byte,
+                                                             begin.lines_before);
+  }
+  return reader;
+}
+
+}  // namespace detail
 
 RowReader::~RowReader() = default;
 RowReader::RowReader(RowReader&&) noexcept = default;

@@ -18,12 +18,21 @@ void attach_read_info(FitResult& result, const detail::PairInfo& info) {
 }
 
 std::string shape(const Eigen::MatrixXd& M) { return std::to_string(M.rows()) + "x" + std::to_string(M.cols()); }
-// The streaming bootstrap: Poisson counts on fixed row groups, all in the one pass.
-FitResult fit_stream_bootstrap(const std::string& a_path, const std::string& b_path, Method method,
-                               const FitOptions& options, const StreamOptions& stream) {
-  const detail::ResampledFactors factors =
-      detail::stream_resampled_factors(method, a_path, b_path, stream, options.bootstrap, options.seed);
-  detail::check_enough_rows_for(method, a_path, factors.total.rows(), factors.total.n(), factors.total.d());
+}  // namespace
+
+namespace detail {
+
+FitResult fit_streamed(Method method, const FitOptions& options, const TriangularFactor& factor, const PairInfo& info,
+                       const std::string& a_path) {
+  check_enough_rows_for(method, a_path, factor.rows(), factor.n(), factor.d());
+  FitResult result = fit(reduce(factor, options), method);
+  attach_read_info(result, info);
+  return result;
+}
+
+FitResult fit_streamed_bootstrap(Method method, const FitOptions& options, const ResampledFactors& factors,
+                                 const std::string& a_path) {
+  check_enough_rows_for(method, a_path, factors.total.rows(), factors.total.n(), factors.total.d());
   const Reduction data = reduce(factors.total, options);
   FitResult result = fit(data, method);
   attach_read_info(result, factors.info);
@@ -46,7 +55,7 @@ FitResult fit_stream_bootstrap(const std::string& a_path, const std::string& b_p
   return result;
 }
 
-}  // namespace
+}  // namespace detail
 
 DataPair read_pair(const std::string& a_path, const std::string& b_path, const io::ReadOptions& options) {
   DataPair data;
@@ -76,21 +85,22 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
   if (!options.is_valid(&error)) throw std::invalid_argument("fit_files: " + error);
   std::optional<StreamOptions> streamed = stream;
   if (streamed) streamed->read = read;  // one way of reading, whichever path
-  if (streamed && options.bootstrap > 0) return fit_stream_bootstrap(a_path, b_path, method, options, *streamed);
-  detail::PairInfo info;
-  FitResult result;
-  if (streamed) {
-    const TriangularFactor factor = detail::stream_factor_for(method, a_path, b_path, *streamed, &info);
-    detail::check_enough_rows_for(method, a_path, factor.rows(), factor.n(), factor.d());
-    result = fit(reduce(factor, options), method);
-  } else {
-    DataPair data = read_pair(a_path, b_path, read);
-    detail::check_method_fits(method, b_path, data.A.cols(), data.B.cols());
-    detail::check_enough_rows_for(method, a_path, data.A.rows(), data.A.cols(), data.B.cols());
-    info = {std::move(data.warnings), std::move(data.a_names), std::move(data.b_names)};
-    result = fit(data.A, data.B, method, options);
+  if (streamed && options.bootstrap > 0) {
+    // The streaming bootstrap: Poisson counts on fixed row groups, all in the one pass.
+    return detail::fit_streamed_bootstrap(
+        method, options,
+        detail::stream_resampled_factors(method, a_path, b_path, *streamed, options.bootstrap, options.seed), a_path);
   }
-  attach_read_info(result, info);
+  if (streamed) {
+    detail::PairInfo info;
+    const TriangularFactor factor = detail::stream_factor_for(method, a_path, b_path, *streamed, &info);
+    return detail::fit_streamed(method, options, factor, info, a_path);
+  }
+  DataPair data = read_pair(a_path, b_path, read);
+  detail::check_method_fits(method, b_path, data.A.cols(), data.B.cols());
+  detail::check_enough_rows_for(method, a_path, data.A.rows(), data.A.cols(), data.B.cols());
+  FitResult result = fit(data.A, data.B, method, options);
+  attach_read_info(result, {std::move(data.warnings), std::move(data.a_names), std::move(data.b_names)});
   return result;
 }
 

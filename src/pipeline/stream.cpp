@@ -30,10 +30,10 @@ struct Block {
 
 class PairReader {
  public:
-  PairReader(const std::string& a_path, const std::string& b_path, const StreamOptions& options,
-             bool side_by_side, std::optional<Method> method)
-      : a_(a_path, options.read),
-        b_(b_path, options.read),
+  PairReader(detail::PairReaders readers, const StreamOptions& options, bool side_by_side, std::optional<Method> method)
+      : a_(std::move(readers.a)),
+        b_(std::move(readers.b)),
+        whole_(readers.whole),
         block_rows_(options.block_rows),
         side_by_side_(side_by_side),
         method_(method) {}
@@ -74,9 +74,10 @@ class PairReader {
   }
 
  private:
-  // Throws when A, all read, has fewer rows (samples) than columns.
+  // Throws when A, all read, has fewer rows (samples) than columns (checked on the whole file
+  // before a part is read, when a file is split among processes).
   void check_enough_rows() const {
-    if (a_.rows_read() < static_cast<std::uint64_t>(a_.columns())) {
+    if (whole_ && a_.rows_read() < static_cast<std::uint64_t>(a_.columns())) {
       throw detail::fewer_samples_than_columns(a_.path(), a_.rows_read(),
                                            static_cast<std::uint64_t>(a_.columns()));
     }
@@ -103,6 +104,7 @@ class PairReader {
   }
 
   io::RowReader a_, b_;
+  bool whole_;
   Index block_rows_;
   bool side_by_side_;
   std::optional<Method> method_;
@@ -121,11 +123,23 @@ TriangularFactor stream_factor(const std::string& a_path, const std::string& b_p
 
 namespace detail {
 
+PairReaders::PairReaders(const std::string& a_path, const std::string& b_path, const io::ReadOptions& read)
+    : a(a_path, read), b(b_path, read) {}
+
+PairReaders::PairReaders(io::RowReader a_part, io::RowReader b_part, std::uint64_t first)
+    : a(std::move(a_part)), b(std::move(b_part)), whole(false), first_row(first) {}
+
 TriangularFactor stream_factor_for(const std::optional<Method>& method, const std::string& a_path,
                                    const std::string& b_path, const StreamOptions& options, PairInfo* info) {
   if (options.block_rows < 1) throw std::invalid_argument("block_rows must be at least 1");
+  return stream_factor_for(method, PairReaders(a_path, b_path, options.read), options, info);
+}
+
+TriangularFactor stream_factor_for(const std::optional<Method>& method, PairReaders readers,
+                                   const StreamOptions& options, PairInfo* info) {
+  if (options.block_rows < 1) throw std::invalid_argument("block_rows must be at least 1");
   const unsigned threads = resolve_threads(options.threads);
-  PairReader reader(a_path, b_path, options, threads > 1, method);
+  PairReader reader(std::move(readers), options, threads > 1, method);
 
   // Blocks' factors are computed on up to `threads` threads while the next blocks are read, and
   // merged strictly in block order, so the result is the same for every thread count.
@@ -162,8 +176,18 @@ TriangularFactor stream_factor_for(const std::optional<Method>& method, const st
 ResampledFactors stream_resampled_factors(Method method, const std::string& a_path, const std::string& b_path,
                                           const StreamOptions& options, int replicates, std::uint64_t seed) {
   if (options.block_rows < 1) throw std::invalid_argument("block_rows must be at least 1");
+  return stream_resampled_factors(method, PairReaders(a_path, b_path, options.read), options, replicates, seed);
+}
+
+ResampledFactors stream_resampled_factors(Method method, PairReaders readers, const StreamOptions& options,
+                                          int replicates, std::uint64_t seed) {
+  if (options.block_rows < 1) throw std::invalid_argument("block_rows must be at least 1");
+  if (readers.first_row % static_cast<std::uint64_t>(kBootstrapGroupRows) != 0) {
+    throw std::invalid_argument("stream_resampled_factors: a part must start at a group of rows");
+  }
   const unsigned threads = resolve_threads(options.threads);
-  PairReader reader(a_path, b_path, options, threads > 1, method);
+  const std::uint64_t first_group = readers.first_row / static_cast<std::uint64_t>(kBootstrapGroupRows);
+  PairReader reader(std::move(readers), options, threads > 1, method);
   // Rows are copied into whole groups; a batch of groups is factored on the threads, then merged
   // into the total and into every replicate (replicates spread over the threads), each factor
   // in group order, so the result does not depend on the threads or the block size.
@@ -182,10 +206,10 @@ ResampledFactors stream_resampled_factors(Method method, const std::string& a_pa
     std::vector<const TriangularFactor*> pointers;
     for (const TriangularFactor& f : factors) pointers.push_back(&f);
     out.total.merge(pointers, std::vector<std::uint32_t>(factors.size(), 1));
-    const std::uint64_t first_group = out.groups;
+    const std::uint64_t first = first_group + out.groups;
     parallel_for(out.replicates.size(), threads, [&](std::size_t r) {
       std::vector<std::uint32_t> counts(factors.size());
-      for (std::size_t k = 0; k < factors.size(); ++k) counts[k] = poisson_count(seed, r, first_group + k);
+      for (std::size_t k = 0; k < factors.size(); ++k) counts[k] = poisson_count(seed, r, first + k);
       out.replicates[r].merge(pointers, counts);
     });
     out.groups += factors.size();

@@ -7,7 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "spdfit/fit_options.hpp"
+#include "spdfit/fit_result.hpp"
 #include "spdfit/method.hpp"
+#include "spdfit/row_reader.hpp"
 #include "spdfit/stream.hpp"
 #include "spdfit/triangular_factor.hpp"
 
@@ -20,11 +23,23 @@ struct PairInfo {
   std::vector<std::string> a_names, b_names;
 };
 
+/// The readers of A and B: of the whole files, or of the same rows [first_row, ...) of each, one
+/// process's part of files split among processes (then m >= n is not checked on the part).
+struct PairReaders {
+  PairReaders(const std::string& a_path, const std::string& b_path, const io::ReadOptions& read);
+  PairReaders(io::RowReader a_part, io::RowReader b_part, std::uint64_t first_row);
+  io::RowReader a, b;
+  bool whole = true;
+  std::uint64_t first_row = 0;
+};
+
 /// stream_factor for data that `method` (when given) will fit: B with a column count the method
 /// does not fit (check_method_fits) is refused at the first block, not after the whole pass.
 /// `info`, when given, receives the readers' warnings and column names.
 TriangularFactor stream_factor_for(const std::optional<Method>& method, const std::string& a_path,
                                    const std::string& b_path, const StreamOptions& options, PairInfo* info);
+TriangularFactor stream_factor_for(const std::optional<Method>& method, PairReaders readers,
+                                   const StreamOptions& options, PairInfo* info);
 
 /// The factor of all the rows and of each replicate's resample.
 struct ResampledFactors {
@@ -40,5 +55,18 @@ struct ResampledFactors {
 /// options.threads threads. Throws as stream_factor_for does.
 ResampledFactors stream_resampled_factors(Method method, const std::string& a_path, const std::string& b_path,
                                           const StreamOptions& options, int replicates, std::uint64_t seed);
+/// The same for the rows of `readers`; a part (readers.whole false) starts at a multiple of
+/// kBootstrapGroupRows, its groups numbered from first_row / kBootstrapGroupRows, so that the
+/// parts' factors merged in order are those of the whole files.
+ResampledFactors stream_resampled_factors(Method method, PairReaders readers, const StreamOptions& options,
+                                          int replicates, std::uint64_t seed);
+
+/// The estimate from a streamed factor, as fit_files gives it: m >= n (m >= n + d for a
+/// non-square tls) checked, naming A's file; the readers' warnings and column names attached.
+FitResult fit_streamed(Method method, const FitOptions& options, const TriangularFactor& factor, const PairInfo& info,
+                       const std::string& a_path);
+/// The same with the streaming bootstrap's replicates refitted (FitResult::bootstrap).
+FitResult fit_streamed_bootstrap(Method method, const FitOptions& options, const ResampledFactors& factors,
+                                 const std::string& a_path);
 
 }  // namespace spdfit::detail
