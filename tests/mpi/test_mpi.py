@@ -1,0 +1,173 @@
+"""`mpirun -n K spdfit fit --stream` against the single-process `spdfit fit --stream`: the same
+estimate for K = 1, 2, 3 (.npy and CSV, rows that do not divide evenly, lines of very different
+lengths in A and B, a header and comments), how the rows were divided (--json), and errors that end
+every process promptly with one message."""
+import json
+import os
+import pathlib
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "support"))
+
+from spdfit_testing import SLOWDOWN, cli_path, run_cli  # noqa: E402
+
+MPIRUN = shutil.which("mpirun")
+pytestmark = pytest.mark.skipif(MPIRUN is None, reason="no mpirun (Debian: openmpi-bin)")
+
+M, N = 10007, 4  # 10007 is prime: no K divides it
+
+
+def mpirun(k, *args, env=None, timeout_s=120):
+    """CompletedProcess of `mpirun -n k spdfit args...`; -q keeps mpirun's own notices out of
+    stderr, so that what is left is spdfit's."""
+    command = [MPIRUN, "-q", "--oversubscribe", "-n", str(k)]
+    if os.geteuid() == 0:
+        command.insert(1, "--allow-run-as-root")
+    return subprocess.run(command + [cli_path(), *map(str, args)], capture_output=True, text=True,
+                          timeout=timeout_s * SLOWDOWN, env=dict(os.environ, **(env or {})))
+
+
+@pytest.fixture(scope="module")
+def files(tmp_path_factory):
+    """The same noisy data as .npy files and as CSV: A with a header, comments and blank lines and
+    short lines, B with long lines (17 digits) and CR LF line ends."""
+    d = tmp_path_factory.mktemp("mpi")
+    rng = np.random.default_rng(11)
+    X = rng.standard_normal((N, N))
+    X = X @ X.T + N * np.eye(N)
+    A = np.round(rng.uniform(-5, 5, (M, N)), 2)
+    B = A @ X + 0.05 * rng.standard_normal((M, N))
+    np.save(d / "A.npy", A)
+    np.save(d / "B.npy", B)
+    lines = ["# accelerations", "", ",".join(f"a{j}" for j in range(N))]
+    for i, row in enumerate(A):
+        if i % 1000 == 0:
+            lines += ["# block %d" % i, ""]
+        lines.append(",".join("%g" % v for v in row))
+    (d / "A.csv").write_text("\n".join(lines) + "\n")
+    (d / "B.csv").write_bytes("".join(",".join("%.17g" % v for v in row) + "\r\n" for row in B).encode())
+    return d
+
+
+def fit_json(result):
+    assert result.returncode == 0, result.stderr
+    return json.loads(result.stdout)
+
+
+def single(files, kind, method, *extra):
+    return fit_json(run_cli(cli_path(), "fit", "--method", method, "--stream", "--json", *extra,
+                            files / f"A.{kind}", files / f"B.{kind}"))
+
+
+def relative(X, Y):
+    return np.abs(np.array(X) - np.array(Y)).max() / np.abs(np.array(Y)).max()
+
+
+@pytest.mark.parametrize("kind", ["npy", "csv"])
+@pytest.mark.parametrize("k", [1, 2, 3])
+def test_every_process_count_gives_the_single_process_estimate(files, kind, k):
+    for method in ["spde", "ls", "procrustes"]:
+        reference = single(files, kind, method)
+        out = fit_json(mpirun(k, "fit", "--method", method, "--stream", "--json", "--block-rows", "1000",
+                              files / f"A.{kind}", files / f"B.{kind}"))
+        assert relative(out["X"], reference["X"]) < 1e-12, method
+        assert out["m"] == M
+        assert out["processes"] == k
+        assert len(out["rows_per_process"]) == k and sum(out["rows_per_process"]) == M
+        assert max(out["rows_per_process"]) - min(out["rows_per_process"]) <= 1
+        if kind == "csv":
+            assert out["row_names"] == [f"a{j}" for j in range(N)]
+
+
+def test_auto_makes_the_same_choice_and_spd_tls_agrees_to_its_tolerance(files):
+    for method in ["auto", "spd-tls"]:
+        reference = single(files, "csv", method)
+        out = fit_json(mpirun(3, "fit", "--method", method, "--stream", "--json", files / "A.csv",
+                              files / "B.csv"))
+        assert out["method"] == reference["method"]
+        assert relative(out["X"], reference["X"]) < 1e-8
+
+
+def test_the_output_is_the_same_run_to_run_and_written_once(files, tmp_path):
+    first = mpirun(3, "fit", "--method", "spde", "--stream", files / "A.csv", files / "B.csv")
+    second = mpirun(3, "fit", "--method", "spde", "--stream", files / "A.csv", files / "B.csv")
+    assert first.returncode == 0 and first.stdout == second.stdout
+    assert len(first.stdout.splitlines()) == N  # one X, from process 0 only
+    out = tmp_path / "X.npy"
+    assert mpirun(2, "fit", "--method", "spde", "--stream", "-o", out, files / "A.npy",
+                  files / "B.npy").returncode == 0
+    assert relative(np.load(out), single(files, "npy", "spde")["X"]) < 1e-12
+
+
+def test_the_streaming_bootstrap_is_the_single_process_one(files):
+    reference = single(files, "npy", "spde", "--bootstrap", "30", "--seed", "4")
+    out = fit_json(mpirun(2, "fit", "--method", "spde", "--stream", "--json", "--bootstrap", "30", "--seed", "4",
+                          files / "A.npy", files / "B.npy"))
+    assert out["rows_per_process"][0] % 4096 == 0  # parts start at whole groups of rows
+    se, se_ref = (np.array(o["standard_errors"]) for o in (out, reference))
+    assert np.abs(se - se_ref).max() <= 1e-10 * np.abs(se_ref).max()
+
+
+def errors(result):
+    return [line for line in result.stderr.splitlines() if line.startswith("spdfit: error:")]
+
+
+def test_a_bad_row_on_the_last_process_ends_every_process_with_one_message(files, tmp_path):
+    text = (files / "B.csv").read_bytes().decode().split("\r\n")
+    text[M - 3] = "1,2,x,4"
+    bad = tmp_path / "B.csv"
+    bad.write_bytes("\r\n".join(text).encode())
+    alone = run_cli(cli_path(), "fit", "--method", "spde", "--stream", files / "A.csv", bad)
+    assert alone.returncode == 1 and f"B.csv:{M - 2}:5: 'x' is not a number" in alone.stderr
+    for k in [2, 3]:
+        result = mpirun(k, "fit", "--method", "spde", "--stream", "--block-rows", "500", files / "A.csv", bad)
+        assert result.returncode == 1
+        assert errors(result) == errors(alone), result.stderr
+
+
+def test_the_first_bad_row_in_the_files_order_is_the_one_reported(files, tmp_path):
+    text = (files / "A.csv").read_text().splitlines()
+    text[200] = "1,2,early,4"
+    text[-5] = "1,2,late,4"
+    bad = tmp_path / "A.csv"
+    bad.write_text("\n".join(text) + "\n")
+    result = mpirun(3, "fit", "--method", "spde", "--stream", "--block-rows", "500", bad, files / "B.csv")
+    assert result.returncode == 1
+    assert len(errors(result)) == 1 and "'early' is not a number" in errors(result)[0], result.stderr
+
+
+def test_an_unreadable_file_ends_every_process(files, tmp_path):
+    for b in [tmp_path / "missing.csv", tmp_path]:  # no such file; a directory
+        result = mpirun(3, "fit", "--method", "spde", "--stream", files / "A.csv", b)
+        assert result.returncode == 1
+        assert len(errors(result)) == 1 and str(b) in errors(result)[0], result.stderr
+
+
+def test_a_process_that_dies_ends_the_run(files):
+    # Process 1 kills itself (SIGKILL) after its first block; mpirun ends the others instead of
+    # leaving them waiting for it (the timeout would catch a hang).
+    result = mpirun(3, "fit", "--method", "spde", "--stream", "--block-rows", "100", files / "A.csv",
+                    files / "B.csv", env={"SPDFIT_TEST_MPI_DIE": "1"}, timeout_s=60)
+    assert result.returncode != 0
+    assert result.stdout == ""
+
+
+def test_what_cannot_run_on_several_processes_is_a_usage_error(files, tmp_path):
+    result = mpirun(2, "fit", "--method", "spde", files / "A.npy", files / "B.npy")
+    assert result.returncode == 2 and len(errors(result)) == 1 and "add --stream" in result.stderr
+    result = mpirun(2, "nearest", files / "A.csv")
+    assert result.returncode == 2 and len(errors(result)) == 1 and "only 'spdfit fit --stream'" in result.stderr
+    # A .mat file cannot be read in row ranges; one process reads it whole.
+    subprocess.run([sys.executable, "-c", "import numpy, scipy.io, sys; "
+                    "scipy.io.savemat(sys.argv[2], {'B': numpy.load(sys.argv[1])})",
+                    files / "B.npy", tmp_path / "B.mat"], check=True)
+    result = mpirun(2, "fit", "--method", "spde", "--stream", files / "A.npy", tmp_path / "B.mat")
+    assert result.returncode == 1 and "cannot be split among processes" in result.stderr
+    assert len(errors(result)) == 1
+    result = mpirun(1, "fit", "--method", "spde", "--stream", files / "A.npy", tmp_path / "B.mat")
+    assert result.returncode == 0, result.stderr
