@@ -1,6 +1,8 @@
 // MPI for the distributed fit: the world's setup and a Channel over MPI's C interface.
 #include "mpi_world.hpp"
 
+#include <sched.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
@@ -149,8 +151,15 @@ MpiWorld::MpiWorld() {
   int on_node = 1;
   MPI_Comm_size(node, &on_node);
   MPI_Comm_free(&node);
+  // mpirun binds each process to cores of its own by default (to one core when K <= 2): more
+  // threads than the cores it may run on would only take turns.
   const unsigned cores = std::max(1U, std::thread::hardware_concurrency());
   threads_ = std::max(1U, cores / static_cast<unsigned>(std::max(1, on_node)));
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  if (sched_getaffinity(0, sizeof allowed, &allowed) == 0) {
+    threads_ = std::min(threads_, std::max(1U, static_cast<unsigned>(CPU_COUNT(&allowed))));
+  }
   if (openblas_set_num_threads != nullptr) openblas_set_num_threads(static_cast<int>(threads_));
   impl_->channel = std::make_unique<MpiChannel>(rank_, size_);
 }
