@@ -164,8 +164,7 @@ std::string first_bytes(const std::string& path, std::size_t count) {
 
 }  // namespace
 
-std::string read_standard_input() {
-  std::string bytes;
+std::string read_standard_input(std::string bytes) {
   char buffer[1 << 16];
   for (;;) {
     const std::size_t got = std::fread(buffer, 1, sizeof buffer, stdin);

@@ -22,9 +22,9 @@ struct FileSpec {
 /// exists. Anything else is the path as given (whose reader then says "no such file").
 FileSpec split_spec(const std::string& path);
 
-/// All of standard input (for the file name "-"). Throws DataError naming "<stdin>" on a read
-/// error or when it is empty.
-std::string read_standard_input();
+/// All of standard input (for the file name "-"), after `bytes`, what was read from it already.
+/// Throws DataError naming "<stdin>" on a read error or when it is empty.
+std::string read_standard_input(std::string bytes = {});
 
 /// Whether these first bytes of a file are a level-5 MATLAB .mat file (not 7.3, whose body
 /// libhdf5 parses): the files whose structure read_mat checks before libmatio reads them.

@@ -20,6 +20,7 @@
 #include "delimited_parser.hpp"
 #include "file_error.hpp"
 #include "npy_layout.hpp"
+#include "parse.hpp"
 #include "read_file.hpp"
 #include "split_file.hpp"
 
@@ -144,7 +145,15 @@ class RowReader::TextSource final : public RowReader::Source {
     size_ = end - begin;
     limit_ = size_;
   }
-  ~TextSource() override { std::fclose(file_); }
+  // Standard input (not closed here), whose first bytes `first` were read already to tell text
+  // from .npy.
+  TextSource(std::FILE* input, std::string first, const ReadOptions& options)
+      : Source(kStdinName), file_(input), owned_(false), parser_(kStdinName, options), buffer_(std::move(first)) {
+    bytes_ = buffer_.size();
+  }
+  ~TextSource() override {
+    if (owned_) std::fclose(file_);
+  }
 
   // Reads no further than byte `end` (a line start), and learns the file's layout from its first
   // lines: the first part of a file split among processes.
@@ -231,7 +240,9 @@ class RowReader::TextSource final : public RowReader::Source {
     buffer_.erase(0, cut);
   }
 
+  static constexpr const char* kStdinName = "<stdin>";
   std::FILE* file_;
+  bool owned_ = true;
   detail::DelimitedParser parser_;
   std::string buffer_;     // bytes read but not yet parsed (an incomplete last line)
   std::size_t taken_ = 0;  // rows at the front of parser_.values() already handed out
@@ -241,14 +252,14 @@ class RowReader::TextSource final : public RowReader::Source {
   std::uint64_t limit_ = std::numeric_limits<std::uint64_t>::max();  // bytes to read at most
 };
 
-// A .mat or .npz file, or standard input, read whole (their libraries read whole arrays; a
-// pipe cannot be mapped) and handed out a block at a time, with a warning on memory.
+// A .mat or .npz file, or a .npy file on standard input, read whole (their libraries read whole
+// arrays; a pipe cannot be mapped) and handed out a block at a time, with a warning on memory.
 class RowReader::TableSource final : public RowReader::Source {
  public:
   TableSource(const std::string& path, Table table) : Source(path), table_(std::move(table)) {
     table_.warnings.push_back(
         (path == "-" ? std::string("standard input") : path) +
-        " is read whole, not a block at a time (only .npy files and text files are streamed): memory grows "
+        " is read whole, not a block at a time (only .npy files and text are streamed): memory grows "
         "with its rows");
   }
   Index read(Index max_rows, Eigen::MatrixXd* rows) override {
@@ -270,10 +281,24 @@ class RowReader::TableSource final : public RowReader::Source {
 };
 
 RowReader::RowReader(const std::string& path, const ReadOptions& options) {
+  if (path == "-") {
+    // Text is streamed from standard input as from a file; a .npy file (told by its first bytes)
+    // is read whole.
+    std::string first(detail::kNpyMagic.size(), '\0');
+    first.resize(std::fread(first.data(), 1, first.size(), stdin));
+    if (std::ferror(stdin)) throw DataError("<stdin>", 0, 0, "read error");
+    if (first.empty()) throw DataError("<stdin>", 0, 0, "is empty");
+    if (first != detail::kNpyMagic) {
+      source_ = std::make_unique<TextSource>(stdin, std::move(first), options);
+      return;
+    }
+    source_ = std::make_unique<TableSource>(path, parse_table(detail::read_standard_input(std::move(first)), "<stdin>", options));
+    return;
+  }
   const detail::FileSpec spec = detail::split_spec(path);
   std::optional<Table> named = detail::read_named_arrays(spec, options);
-  // Standard input, and FILE:NAME of a file without named arrays (whose error read_table gives).
-  if (!named && (path == "-" || !spec.variable.empty())) named = read_table(path, options);
+  // FILE:NAME of a file without named arrays (whose error read_table gives).
+  if (!named && !spec.variable.empty()) named = read_table(path, options);
   if (named) {
     source_ = std::make_unique<TableSource>(path, std::move(*named));
     return;

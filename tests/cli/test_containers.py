@@ -3,10 +3,16 @@
 messages that say what to do; --output X.mat read back by scipy.io.loadmat."""
 import json
 import pathlib
+import subprocess
+import sys
 
 import numpy as np
 import pytest
 import scipy.io
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "support"))
+
+from spdfit_testing import cli_path  # noqa: E402
 
 X_TRUE = np.array([[2.0, 0.5, 0.0], [0.5, 1.0, 0.2], [0.0, 0.2, 3.0]])
 
@@ -56,10 +62,24 @@ def test_every_container_gives_the_csv_estimate(spdfit, data, stream):
 def test_standard_input(spdfit, data, stream):
     path, _, _ = data
     expected, _ = estimate(spdfit, path / "A.csv", path / "B.csv")
-    X, _ = estimate(spdfit, *stream, "-", path / "B.csv", stdin=(path / "A.csv").read_text())
+    X, stderr = estimate(spdfit, *stream, "-", path / "B.csv", stdin=(path / "A.csv").read_text())
     np.testing.assert_allclose(X, expected, rtol=1e-12, atol=1e-13)
+    assert "read whole" not in stderr  # text on standard input streams as from a file
     both = spdfit("fit", "--method", "ls", "-", "-", input="1,2\n")
     assert both.returncode == 2 and "cannot both be standard input" in both.stderr
+
+
+def test_a_npy_file_on_standard_input_is_read_whole_with_a_warning(spdfit, data, tmp_path):
+    path, A, B = data
+    np.save(tmp_path / "A.npy", A)
+    result = subprocess.run([cli_path(), "fit", "--method", "ls", "--stream", "--json", "-", str(path / "B.csv")],
+                            stdin=open(tmp_path / "A.npy", "rb"), capture_output=True)
+    assert result.returncode == 0, result.stderr
+    np.testing.assert_allclose(json.loads(result.stdout)["X"], np.linalg.lstsq(A, B, rcond=None)[0], rtol=1e-10)
+    assert b"standard input is read whole" in result.stderr
+    result = subprocess.run([cli_path(), "fit", "--method", "ls", "--stream", "-", str(path / "B.csv")],
+                            input=b"1,2\n3,x\n", capture_output=True)
+    assert result.returncode == 1 and b"<stdin>:2:3: 'x' is not a number" in result.stderr
 
 
 def test_a_file_whose_name_has_the_colon_wins(spdfit, data):
