@@ -58,7 +58,7 @@ Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
       experiment::ThesisExperimentOptions options;
       options.simulation.noise_var = reported.noise_var;
       monte_carlo.progress =
-          terminal_progress("demo: thesis experiment " + std::to_string(reported.experiment), global.quiet);
+          trials_progress(global, "demo: thesis experiment " + std::to_string(reported.experiment));
       thesis.push_back(experiment::run_thesis_experiment(options, monte_carlo));
     }
     std::vector<ThesisExperimentResult>& samples = results.samples;
@@ -66,7 +66,7 @@ Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
     for (Eigen::Index m : demo::sample_sizes()) {
       experiment::ThesisExperimentOptions options = thesis[1].options;
       options.simulation.samples = m;
-      monte_carlo.progress = terminal_progress("demo: m = " + std::to_string(m) + " samples", global.quiet);
+      monte_carlo.progress = trials_progress(global, "demo: m = " + std::to_string(m) + " samples");
       samples.push_back(experiment::run_thesis_experiment(options, monte_carlo));
     }
     std::vector<EntryExperimentResult>& paper = results.paper;
@@ -75,7 +75,7 @@ Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
       experiment::Paper2x2Options options;
       options.std_a = std_a;
       monte_carlo.progress =
-          terminal_progress("demo: 2x2 example, std_a = " + trimmed(std_a), global.quiet);
+          trials_progress(global, "demo: 2x2 example, std_a = " + trimmed(std_a));
       paper.push_back(experiment::run_paper_2x2(options, monte_carlo));
     }
     monte_carlo.trials = cli->trials_beyond;
@@ -85,8 +85,7 @@ Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
         options.simulation.noise_var = width * width / 12.0;  // uniform of width nm
         options.simulation.samples = m;
         options.methods = demo::beyond_methods();
-        monte_carlo.progress = terminal_progress(
-            "demo: nm = " + trimmed(width) + ", m = " + std::to_string(m), global.quiet);
+        monte_carlo.progress = trials_progress(global, "demo: nm = " + trimmed(width) + ", m = " + std::to_string(m));
         results.beyond.push_back(experiment::run_thesis_experiment(options, monte_carlo));
       }
     }

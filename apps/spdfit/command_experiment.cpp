@@ -84,7 +84,7 @@ experiment::MonteCarloOptions monte_carlo(const CommonCli& common, const std::st
   options.trials = common.trials;
   options.seed = common.seed;
   options.threads = common.threads;
-  options.progress = terminal_progress(label, global.quiet);
+  options.progress = trials_progress(global, label);
   return options;
 }
 

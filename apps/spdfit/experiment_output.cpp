@@ -4,11 +4,13 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include <unistd.h>
 
 #include "output.hpp"
+#include "progress_line.hpp"
 #include "spdfit/io.hpp"
 
 namespace spdfit::cli {
@@ -197,18 +199,18 @@ std::string sweep_table(const std::vector<double>& levels,
   return out.str();
 }
 
-std::function<void(std::size_t, std::size_t)> terminal_progress(const std::string& label, bool quiet) {
-  if (quiet || !::isatty(::fileno(stderr))) return {};
-  auto shown = std::make_shared<bool>(false);
-  return [label, shown](std::size_t done, std::size_t total) {
+std::function<void(std::size_t, std::size_t)> trials_progress(const GlobalOptions& global, const std::string& label) {
+  auto line = std::make_shared<std::optional<ProgressLine>>();
+  line->emplace(global, label);
+  ProgressCallback update = (*line)->callback();
+  if (!update) return {};
+  return [line, update](std::size_t done, std::size_t total) {
+    if (!line->has_value()) return;
     if (done < total) {
-      std::fprintf(stderr, "\r%s: %zu/%zu trials", label.c_str(), done, total);
-      *shown = true;
-    } else if (*shown) {
-      std::fprintf(stderr, "\r\033[K");  // clear the progress line
-      *shown = false;
+      update(static_cast<double>(done) / static_cast<double>(total));
+    } else {
+      line->reset();  // cleared before the results are printed
     }
-    std::fflush(stderr);
   };
 }
 

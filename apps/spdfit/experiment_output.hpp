@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli.hpp"
 #include "output.hpp"
 #include "spdfit/experiment/paper.hpp"
 #include "spdfit/experiment/thesis.hpp"
@@ -52,8 +53,8 @@ std::string sweep_csv(const std::vector<double>& levels, double std_b,
 std::string sweep_table(const std::vector<double>& levels,
                         const std::vector<experiment::EntryExperimentResult>& results);
 
-/// A progress callback for MonteCarloOptions that shows "LABEL: done/total trials" on stderr,
-/// only when stderr is a terminal (and not when `quiet`), and clears it when the run ends.
-std::function<void(std::size_t, std::size_t)> terminal_progress(const std::string& label, bool quiet);
+/// A progress callback for MonteCarloOptions: the progress line of long runs (ProgressLine:
+/// percent and time left, on a terminal, after a second, not with -q), cleared when the trials end.
+std::function<void(std::size_t, std::size_t)> trials_progress(const GlobalOptions& global, const std::string& label);
 
 }  // namespace spdfit::cli

@@ -63,3 +63,14 @@ def test_short_runs_show_nothing(files):
     env = {k: v for k, v in os.environ.items() if k != "SPDFIT_TEST_PROGRESS_NOW"}
     _, terminal, status = run_with_terminal(["fit", "--method", "ls", files / "A.csv", files / "B.csv"], env)
     assert status == 0 and "spdfit:" not in terminal
+
+
+def test_the_experiments_show_the_same_progress_line():
+    env = dict(os.environ, SPDFIT_TEST_PROGRESS_NOW="1")
+    args = ["experiment", "thesis", "--noise-var", "0.86", "--trials", "40000", "--seed", "3"]  # over 0.1 s: updates come that often
+    stdout, terminal, status = run_with_terminal(args, env)
+    assert status == 0 and b"Thesis experiment" in stdout
+    assert "spdfit: experiment thesis" in terminal and "%, " in terminal and "left" in terminal
+    assert terminal.endswith("\r\x1b[K")  # cleared when the trials end
+    piped = subprocess.run([cli_path(), *args], capture_output=True, text=True, env=env)
+    assert piped.returncode == 0 and "experiment thesis" not in piped.stderr
