@@ -16,7 +16,8 @@ area-criterion estimate, always symmetric positive definite), "spd-tls" (total l
 the positive definite matrices), "psd-ls" (least squares over X >= min_eig I, with an optimality
 certificate) and "auto" (spde, spd-tls or psd-ls, chosen from the data; fit's default). "ls" and
 "tls" also take B with d != n columns and return an n x d X. Every method works from the
-Householder QR of [A B], not from Gram matrices. Numerical failures raise NumericalError; bad
+Householder QR of [A B], not from Gram matrices; spdfit.Factor holds that factor as a value that
+merges, for fits spread over processes or machines. Numerical failures raise NumericalError; bad
 input raises ValueError (DataError for files); warnings are SpdfitWarning.
 """
 import numbers as _numbers
@@ -38,7 +39,7 @@ __version__ = _spdfit.__version__
 METHODS = _spdfit.METHODS
 
 __all__ = [
-    "METHODS", "DataError", "Diagnostics", "FitResult", "NearestSpdResult", "NumericalError",
+    "METHODS", "DataError", "Diagnostics", "Factor", "FitResult", "NearestSpdResult", "NumericalError",
     "LinearSystemResult", "SpdfitWarning", "area_criterion", "solve", "fit", "fit_all", "fit_files",
     "least_squares", "nearest_spd", "nearest_correlation", "read_matrix",
     "read_table", "spde", "symmetric_procrustes", "total_least_squares", "total_least_squares_psd",
@@ -86,14 +87,17 @@ def _options(method=None, **values):
         if name in _INT_OPTIONS:
             if isinstance(value, bool) or not isinstance(value, _numbers.Integral):
                 raise TypeError(f"{name} must be an int, got {type(value).__name__}")
-            if value < 0 and name != "max_iter":
+            if value < 0 and name not in _RANGE_IN_LIBRARY:
                 raise ValueError(f"{name} must be >= 0, got {value}")
         elif isinstance(value, bool) or not isinstance(value, _numbers.Real):
             raise TypeError(f"{name} must be a real number, got {type(value).__name__}")
     return tuple(None if v is None else (int(v) if k in _INT_OPTIONS else float(v)) for k, v in values.items())
 
 
-_INT_OPTIONS = ("max_iter", "bootstrap", "seed", "threads")
+_INT_OPTIONS = ("max_iter", "bootstrap", "seed", "threads", "block_rows", "n", "d")
+# The int options whose range the library checks, with its own message ("max_iterations must be at
+# least 1", "block_rows must be at least 1", "A and B must each have at least one column").
+_RANGE_IN_LIBRARY = ("max_iter", "block_rows", "n", "d")
 
 
 
@@ -123,9 +127,16 @@ _DOC_PARTS = {
 
 def _shared_doc(function):
     """Fills the {name} placeholders of function's docstring with _DOC_PARTS (plain replacement:
-    docstrings also hold braces of their own, as sigma_{n+1})."""
+    docstrings also hold braces of their own, as sigma_{n+1}). The parts are written for a
+    function's docstring, indented by 4; a method's placeholder is indented further, and the
+    part's lines with it."""
     for name, text in _DOC_PARTS.items():
-        function.__doc__ = function.__doc__.replace("{" + name + "}", text)
+        placeholder = "{" + name + "}"
+        for line in function.__doc__.splitlines():
+            if line.strip() == placeholder:
+                deeper = line[:len(line) - len(line.lstrip())][4:]
+                function.__doc__ = function.__doc__.replace(placeholder, text.replace("\n", "\n" + deeper))
+                break
     return function
 
 
@@ -1107,3 +1118,4 @@ def solve(A, b, *, threshold=None):
 
 # Submodules (imported last: they use the helpers above).
 from . import experiment, hexapod, linkage  # noqa: E402
+from .factor import Factor  # noqa: E402

@@ -45,14 +45,14 @@ FitOptions options_from(const std::optional<double>& rank_tolerance, const std::
   return options;
 }
 
-namespace {
-
 Method method_from(const std::string& name) {
   if (const auto method = parse_method(name)) return *method;
   std::string known;
   for (Method m : kSelectableMethods) known += (known.empty() ? "" : ", ") + std::string(to_string(m));
   throw std::invalid_argument("unknown method '" + name + "' (methods: " + known + ")");
 }
+
+namespace {
 
 // Every Status, for unpickling it by name (pickle.hpp).
 constexpr std::array<Status, 3> kStatuses = {Status::NotComputed, Status::Success, Status::NumericalFailure};

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 
 #include "spdfit/fit_options.hpp"
 #include "spdfit/method.hpp"
@@ -34,11 +35,16 @@ FitOptions options_from(const std::optional<double>& rank_tolerance, const std::
                         std::optional<Method> method = {}, const std::optional<int>& max_iter = {},
                         const std::optional<double>& min_eig = {}, const BootstrapArgs& boot = {});
 
+/// The method a Python call names; std::invalid_argument (a ValueError) listing the methods for a
+/// name that is none of them.
+Method method_from(const std::string& name);
+
 void bind_estimators(pybind11::module_& m);
 void bind_io(pybind11::module_& m);
 void bind_linear_system(pybind11::module_& m);
 void bind_linkage(pybind11::module_& m);
 void bind_hexapod(pybind11::module_& m);
 void bind_experiment(pybind11::module_& m);
+void bind_factor(pybind11::module_& m);
 
 }  // namespace spdfit::python

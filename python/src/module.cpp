@@ -10,6 +10,7 @@ PYBIND11_MODULE(_spdfit, m) {
   m.attr("__version__") = spdfit::kVersion;
   spdfit::python::bind_io(m);
   spdfit::python::bind_estimators(m);
+  spdfit::python::bind_factor(m);
   spdfit::python::bind_linear_system(m);
   spdfit::python::bind_linkage(m);
   spdfit::python::bind_hexapod(m);

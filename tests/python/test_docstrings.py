@@ -1,5 +1,6 @@
 """Every public function of the package (the functions in the __all__ of spdfit, spdfit.hexapod,
-spdfit.linkage and spdfit.experiment) has a docstring in the NumPy format, parsed with numpydoc
+spdfit.linkage and spdfit.experiment, and the classes there written in Python, such as
+spdfit.Factor, with their public methods) has a docstring in the NumPy format, parsed with numpydoc
 (Debian's python3-numpydoc): a summary, Parameters naming exactly the function's parameters (a
 function without parameters has none to name), Returns, Raises naming exception classes that
 exist (a function without parameters has no input to refuse), and Examples that run as doctests
@@ -22,13 +23,28 @@ docscrape = pytest.importorskip("numpydoc.docscrape", reason="numpydoc is not in
 MODULES = [spdfit, spdfit.hexapod, spdfit.linkage, spdfit.experiment]
 
 
+def is_python_class(value):
+    """A class of the package written in Python: not compiled by pybind11, and neither an exception
+    or a warning nor a named tuple of results, whose docstrings are one line."""
+    return (isinstance(value, type) and type(value) is type and value.__module__.startswith("spdfit")
+            and not issubclass(value, (BaseException, tuple)))
+
+
 def public_functions():
-    """(qualified name, function) for every function in the modules' __all__."""
+    """(qualified name, function) for every function in the modules' __all__, and for every class
+    there written in Python the class (its docstring documents the constructor) and its public
+    methods."""
     found = []
     for module in MODULES:
         for name in module.__all__:
             value = getattr(module, name)
-            if callable(value) and not isinstance(value, type):
+            if is_python_class(value):
+                found.append((f"{module.__name__}.{name}", value))
+                found += [(f"{module.__name__}.{name}.{attribute}", getattr(value, attribute))
+                          for attribute, member in vars(value).items()
+                          if not attribute.startswith("_")
+                          and (inspect.isfunction(member) or isinstance(member, (classmethod, staticmethod)))]
+            elif callable(value) and not isinstance(value, type):
                 found.append((f"{module.__name__}.{name}", value))
     return found
 
@@ -61,10 +77,12 @@ def problems(function):
         found.append("no summary line")
 
     parameters = list(inspect.signature(function).parameters)
+    if parameters[:1] == ["self"]:  # a method, taken from its class
+        parameters = parameters[1:]
     documented = [name.strip() for entry in doc["Parameters"] for name in entry.name.split(",")]
     if documented != parameters:
         found.append(f"Parameters documents {documented}, the function takes {parameters}")
-    if not doc["Returns"]:
+    if not doc["Returns"] and not isinstance(function, type):  # a class's docstring documents its constructor
         found.append("no Returns section")
     raised = [entry.type or entry.name for entry in doc["Raises"]]
     if parameters and not raised:
@@ -119,9 +137,10 @@ def test_every_module_function_is_covered():
     """The list is not empty and covers each module, so that the tests above cannot pass on
     nothing."""
     modules = {name.rsplit(".", 1)[0] for name, _ in FUNCTIONS}
-    assert modules == {module.__name__ for module in MODULES}
+    assert {module.__name__ for module in MODULES} <= modules
     assert {"spdfit.fit", "spdfit.solve", "spdfit.hexapod.simulate", "spdfit.linkage.synthesize",
-            "spdfit.experiment.thesis"} <= {name for name, _ in FUNCTIONS}
+            "spdfit.experiment.thesis", "spdfit.Factor", "spdfit.Factor.from_data", "spdfit.Factor.merge",
+            "spdfit.Factor.fit"} <= {name for name, _ in FUNCTIONS}
 
 
 def test_the_checks_find_what_is_missing():

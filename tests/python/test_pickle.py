@@ -132,6 +132,8 @@ def assert_same(a, b, where="result"):
     """a and b equal attribute by attribute, into the module's nested objects; arrays equal in
     shape, dtype and every value (NaN where NaN)."""
     assert type(a) is type(b), where
+    if isinstance(a, _spdfit.TriangularFactor):  # R is not an attribute: the whole state, bit for bit
+        assert a.serialize() == b.serialize(), where
     if ours(a):
         for name in attributes(a):
             assert_same(getattr(a, name), getattr(b, name), f"{where}.{name}")
@@ -239,6 +241,7 @@ EXAMPLES = {
     "paper_2x2": lambda: ex.paper_2x2(0.5, trials=40, seed=2, threads=1),
     "paper_hexapod": lambda: ex.paper_hexapod(trials=3, threads=1),
     "StreamOptions": stream_options,
+    "TriangularFactor": lambda: _spdfit.TriangularFactor.from_data(gaussian(9, 3), gaussian(9, 2, seed=6)),
 }
 
 
@@ -364,7 +367,12 @@ def first_instances():
     return found
 
 
-@pytest.mark.parametrize("name", sorted(module_classes()))
+# The classes whose state is a tuple of fields (pickle.hpp); TriangularFactor's is the library's
+# serialization, whose checks test_factor.py corrupts byte by byte.
+TUPLE_STATES = sorted(set(module_classes()) - {"TriangularFactor"})
+
+
+@pytest.mark.parametrize("name", TUPLE_STATES)
 def test_a_state_of_the_wrong_length_is_refused(name):
     cls, obj = first_instances()[name]
     state = obj.__getstate__()
