@@ -31,7 +31,8 @@ struct DataFailure : std::runtime_error {
 
 /// Options every command shares.
 struct GlobalOptions {
-  bool quiet = false;  ///< suppress warnings on stderr
+  bool quiet = false;    ///< suppress warnings on stderr
+  bool verbose = false;  ///< say more on stderr (which BLAS kernels run); excludes quiet
   /// How every data file is read: --index-col / --no-index-col set read.index_column.
   io::ReadOptions read;
 };

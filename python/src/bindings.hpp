@@ -40,5 +40,6 @@ void bind_linear_system(pybind11::module_& m);
 void bind_linkage(pybind11::module_& m);
 void bind_hexapod(pybind11::module_& m);
 void bind_experiment(pybind11::module_& m);
+void bind_blas_core(pybind11::module_& m);
 
 }  // namespace spdfit::python
