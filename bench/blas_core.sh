@@ -10,14 +10,15 @@ set -eu
 build=${1:-build}
 spdfit=$build/apps/spdfit
 floor=$build/bench/spdfit_lapack_floor
-rounds=${ROUNDS:-5}
+rounds=${ROUNDS:-3}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 unset OPENBLAS_CORETYPE SPDFIT_TEST_BLAS_CORE SPDFIT_BLAS_REEXEC SPDFIT_TEST_BLAS_EXE OPENBLAS_NUM_THREADS
 
 echo "# OpenBLAS core: dgemm and a large fit ($(date -u +%Y-%m-%dT%H:%MZ))"
 echo
-echo "CPU: $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) cores; $(dpkg-query -W -f '${Package} ${Version}' libopenblas0-pthread 2>/dev/null || echo 'OpenBLAS ?')."
+echo "CPU: $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) cores;" \
+  "$(dpkg-query -W -f '${Package} ${Version}' libopenblas0-pthread 2>/dev/null || echo 'OpenBLAS ?')."
 echo "spdfit $(git rev-parse --short HEAD 2>/dev/null || echo '?') (Release build in $build)."
 echo "Load average at the start: $(cut -d' ' -f1-3 /proc/loadavg). Command: bench/blas_core.sh $build (ROUNDS=$rounds)"
 echo
@@ -49,41 +50,49 @@ PY
 echo
 echo "## spdfit fit --method spde A.npy B.npy (n = 1000, m = 4000), wall / user seconds"
 echo
+echo "One OpenBLAS thread (OPENBLAS_NUM_THREADS=1: user time is the work, whatever else runs on the"
+echo "machine) and OpenBLAS's default (a thread per core), the cases alternating round by round."
+echo
 echo '```'
 for round in $(seq "$rounds"); do
-  for case in default Prescott restart SkylakeX-by-hand Haswell-by-hand; do
-    case $case in
-      default) set -- env ;;
-      Prescott) set -- env OPENBLAS_CORETYPE=Prescott ;;
-      restart) set -- env SPDFIT_TEST_BLAS_CORE=Prescott ;;
-      SkylakeX-by-hand) set -- env OPENBLAS_CORETYPE=SkylakeX ;;
-      Haswell-by-hand) set -- env OPENBLAS_CORETYPE=Haswell ;;
-    esac
-    "$@" /usr/bin/time -f "%e %U" -o "$work/time" "$spdfit" --verbose fit --method spde "$work/A.npy" "$work/B.npy" \
-      > "$work/X-$case.csv" 2> "$work/verbose"
-    printf 'round %s %-17s %s s wall %s s user   %s\n' "$round" "$case" $(cat "$work/time") "$(cat "$work/verbose")" |
-      tee -a "$work/fits"
+  for threads in 1 all; do
+    for case in default Prescott restart SkylakeX-by-hand Haswell-by-hand; do
+      case $case in
+        default) set -- env ;;
+        Prescott) set -- env OPENBLAS_CORETYPE=Prescott ;;
+        restart) set -- env SPDFIT_TEST_BLAS_CORE=Prescott ;;
+        SkylakeX-by-hand) set -- env OPENBLAS_CORETYPE=SkylakeX ;;
+        Haswell-by-hand) set -- env OPENBLAS_CORETYPE=Haswell ;;
+      esac
+      [ "$threads" = 1 ] && set -- "$@" OPENBLAS_NUM_THREADS=1
+      "$@" /usr/bin/time -f "%e %U" -o "$work/time" "$spdfit" --verbose fit --method spde "$work/A.npy" \
+        "$work/B.npy" > "$work/X-$threads-$case.csv" 2> "$work/verbose"
+      printf 'round %s threads %-3s %-17s %s s wall %s s user   %s\n' "$round" "$threads" "$case" $(cat "$work/time") \
+        "$(cat "$work/verbose")" | tee -a "$work/fits"
+    done
   done
 done
 echo '```'
 echo
 echo "Per case over the $rounds rounds (the minimum is the run least disturbed by other load):"
 echo
-echo "| case | min wall (s) | median wall (s) | median user (s) |"
-echo "|---|---:|---:|---:|"
-for case in default Prescott restart SkylakeX-by-hand Haswell-by-hand; do
-  walls=$(awk -v c="$case" '$3 == c { print $4 }' "$work/fits" | sort -n)
-  users=$(awk -v c="$case" '$3 == c { print $7 }' "$work/fits" | sort -n)
-  middle=$(( (rounds + 1) / 2 ))
-  printf '| %s | %s | %s | %s |\n' "$case" "$(echo "$walls" | head -1)" "$(echo "$walls" | sed -n "${middle}p")" \
-    "$(echo "$users" | sed -n "${middle}p")"
+echo "| OpenBLAS threads | case | min wall (s) | median wall (s) | min user (s) | median user (s) |"
+echo "|---|---|---:|---:|---:|---:|"
+middle=$(( (rounds + 1) / 2 ))
+for threads in 1 all; do
+  for case in default Prescott restart SkylakeX-by-hand Haswell-by-hand; do
+    walls=$(awk -v t="$threads" -v c="$case" '$4 == t && $5 == c { print $6 }' "$work/fits" | sort -n)
+    users=$(awk -v t="$threads" -v c="$case" '$4 == t && $5 == c { print $9 }' "$work/fits" | sort -n)
+    printf '| %s | %s | %s | %s | %s | %s |\n' "$threads" "$case" "$(echo "$walls" | head -1)" \
+      "$(echo "$walls" | sed -n "${middle}p")" "$(echo "$users" | head -1)" "$(echo "$users" | sed -n "${middle}p")"
+  done
 done
 echo
 echo "Load average at the end: $(cut -d' ' -f1-3 /proc/loadavg)."
 echo
 for core in SkylakeX Haswell; do
   echo "X of the restart byte-identical to X with OPENBLAS_CORETYPE=$core by hand:" \
-    "$(cmp -s "$work/X-restart.csv" "$work/X-$core-by-hand.csv" && echo yes || echo no)"
+    "$(cmp -s "$work/X-all-restart.csv" "$work/X-all-$core-by-hand.csv" && echo yes || echo no)"
 done
 
 echo
