@@ -14,6 +14,6 @@ _check = _spdfit.blas_core()
 if _check["suggested"]:
     # stacklevel 3: past this module and the package's __init__ to the user's import statement.
     _warnings.warn(f"OpenBLAS runs its generic '{_check['reported']}' kernels on this CPU, which has "
-                   f"{_check['cpu']}: NumPy's and spdfit's dense linear algebra runs several times slower than "
-                   f"it can. Choose the kernels before starting Python: "
+                   f"{_check['cpu']}: NumPy's and spdfit's matrix products and factorizations run up to "
+                   f"four times slower than they can. Choose the kernels before starting Python: "
                    f"export OPENBLAS_CORETYPE={_check['suggested']}", SpdfitWarning, stacklevel=3)

@@ -45,8 +45,9 @@ def test_a_generic_core_warns_once_with_the_remedy():
     extension, core = expected_choice()
     caught, check = import_spdfit(SPDFIT_TEST_BLAS_CORE="Prescott")
     assert caught == [["SpdfitWarning", f"OpenBLAS runs its generic 'Prescott' kernels on this CPU, which has "
-                       f"{extension}: NumPy's and spdfit's dense linear algebra runs several times slower than it "
-                       f"can. Choose the kernels before starting Python: export OPENBLAS_CORETYPE={core}",
+                       f"{extension}: NumPy's and spdfit's matrix products and factorizations run up to four "
+                       f"times slower than they can. Choose the kernels before starting Python: "
+                       f"export OPENBLAS_CORETYPE={core}",
                        "<string>"]]  # the user's import statement, not spdfit's own files
     assert check["reported"] == "Prescott" and check["from_test_switch"]
     assert check["cpu"] == extension and check["suggested"] == core
