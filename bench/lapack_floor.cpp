@@ -6,8 +6,11 @@
 //   BM_FloorTls:   the QR of [A B] plus the SVD of its 2n x 2n triangular factor (dgesdd,
 //                  right singular vectors): the floor of tls;
 // and the pieces alone (BM_Dgeqrf, BM_Dsyevd, BM_Dgesdd), so that each of spdfit's steps can
-// be held against LAPACK's. OpenBLAS picks its kernels and thread count itself
-// (OPENBLAS_CORETYPE and OPENBLAS_NUM_THREADS override them).
+// be held against LAPACK's; BM_Dgemm (C = A B, n x n) shows which kernels OpenBLAS runs: its
+// GFLOP/s against the same run with OPENBLAS_CORETYPE set is the number behind spdfit's choice of
+// core (docs/performance.md, "The BLAS core"; bench/blas_core.sh runs it for every core). OpenBLAS
+// picks its kernels and thread count itself (OPENBLAS_CORETYPE and OPENBLAS_NUM_THREADS override
+// them); the run's context names the core ("openblas_core").
 // Run: build/bench/spdfit_lapack_floor --benchmark_min_time=0.1
 #include <benchmark/benchmark.h>
 #include <lapacke.h>
@@ -15,6 +18,14 @@
 #include <Eigen/Core>
 #include <random>
 #include <stdexcept>
+#include <string>
+
+// The Fortran BLAS's dgemm and OpenBLAS's name for its kernels (cblas.h declares them, but which
+// cblas.h /usr/include holds depends on Debian's alternatives).
+extern "C" void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k,
+                       const double* alpha, const double* a, const int* lda, const double* b, const int* ldb,
+                       const double* beta, double* c, const int* ldc);
+extern "C" char* openblas_get_corename(void) __attribute__((weak));
 
 namespace {
 
@@ -68,6 +79,21 @@ void BM_Dgeqrf(benchmark::State& state) {
                          benchmark::Counter::kIsRate);
 }
 
+// C = A B with n x n operands: 2 n^3 flops, the BLAS's best case.
+void BM_Dgemm(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const MatrixXd A = random_matrix(n, n, 1), B = random_matrix(n, n, 2);
+  MatrixXd C(n, n);
+  const double one = 1.0, zero = 0.0;
+  for (auto _ : state) {
+    dgemm_("N", "N", &n, &n, &n, &one, A.data(), &n, B.data(), &n, &zero, C.data(), &n);
+    benchmark::DoNotOptimize(C.data());
+  }
+  const double size = static_cast<double>(n);
+  state.counters["flops"] = benchmark::Counter(
+      2.0 * size * size * size * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+
 void BM_Dsyevd(benchmark::State& state) {
   const MatrixXd W = random_matrix(state.range(0), state.range(0), 7);
   const MatrixXd S = W.transpose() * W;
@@ -97,6 +123,8 @@ void BM_FloorTls(benchmark::State& state) {
 
 void sizes(benchmark::internal::Benchmark* b) { b->Arg(1000)->Arg(2000)->Unit(benchmark::kMillisecond); }
 
+// Wall-clock time: OpenBLAS runs dgemm on its own threads, which this thread's CPU time misses.
+BENCHMARK(BM_Dgemm)->Arg(1000)->Arg(2000)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Dgeqrf)->Apply(sizes);
 BENCHMARK(BM_Dsyevd)->Apply(sizes);
 BENCHMARK(BM_Dgesdd)->Arg(2000)->Arg(4000)->Unit(benchmark::kMillisecond);
@@ -105,4 +133,12 @@ BENCHMARK(BM_FloorTls)->Apply(sizes);
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::AddCustomContext("openblas_core",
+                              openblas_get_corename ? openblas_get_corename() : "(not OpenBLAS)");
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

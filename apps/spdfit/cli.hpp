@@ -35,7 +35,8 @@ class MpiWorld;
 struct GlobalOptions {
   /// The processes spdfit runs among under mpirun (one, without MPI, otherwise).
   MpiWorld* mpi = nullptr;
-  bool quiet = false;  ///< suppress warnings on stderr
+  bool quiet = false;    ///< suppress warnings on stderr
+  bool verbose = false;  ///< say more on stderr (which BLAS kernels run); excludes quiet
   /// How every data file is read: --index-col / --no-index-col set read.index_column.
   io::ReadOptions read;
 };

@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "blas_restart.hpp"
 #include "cli.hpp"
 #include "mpi_world.hpp"
 #include "spdfit/io.hpp"
@@ -22,6 +23,7 @@ void warn(const GlobalOptions& global, const std::string& message) {
 
 int main(int argc, char** argv) {
   using namespace spdfit::cli;
+  restart_for_blas_core(argv);  // first: may restart the program with faster BLAS kernels
   CLI::App app{
       "spdfit: estimate a symmetric positive definite matrix X from noisy data A X ~= B\n"
       "(least squares, symmetric Procrustes, total least squares and the area-criterion SPDE)"};
@@ -49,7 +51,11 @@ int main(int argc, char** argv) {
 
   GlobalOptions global;
   global.mpi = mpi.get();
-  app.add_flag("-q,--quiet", global.quiet, "Do not print warnings on stderr (before or after the command)");
+  auto* quiet = app.add_flag("-q,--quiet", global.quiet,
+                             "Do not print warnings on stderr (before or after the command)");
+  app.add_flag("-v,--verbose", global.verbose,
+               "Say on stderr which BLAS kernels run (OpenBLAS's core, and whether spdfit chose it)")
+      ->excludes(quiet);
   // The global options are accepted after the command too (`spdfit fit -q ...`): the commands,
   // added below, inherit this and pass an option they do not know on to the top level.
   app.fallthrough();
@@ -98,6 +104,7 @@ int main(int argc, char** argv) {
     std::cerr << "spdfit: error: " << message << "\nRun '" << help << "' for usage.\n";
     return kExitUsageError;
   }
+  report_blas_core(global);
 
   try {
     for (const Command& command : commands) {

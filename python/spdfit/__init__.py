@@ -63,6 +63,8 @@ class SpdfitWarning(UserWarning):
     """A condition the user should know about (rank deficiency, ill-conditioning, ...)."""
 
 
+from . import _blas_core  # noqa: E402,F401  (warns once if OpenBLAS runs generic kernels here)
+
 def _as_matrix(name, value):
     """A float64 2-D array from any real numeric array-like; a 1-D array is one column."""
     array = _np.asarray(value)

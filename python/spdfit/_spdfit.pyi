@@ -3,7 +3,7 @@
 Checked against the module by mypy.stubtest (tests/python/test_stubs.py). The attributes of the
 result classes are read-only properties, as the bindings define them (def_property_readonly).
 """
-from typing import List, Optional, Tuple
+from typing import Dict, List, Optional, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -314,3 +314,4 @@ def solve(A: npt.ArrayLike, b: npt.ArrayLike, threshold: Optional[float] = ...,
 def read_table(path: str, *, allow_nonfinite: bool = ...,
                index_col: Optional[bool] = ...) -> Tuple[npt.NDArray[np.float64], List[str], List[str]]: ...
 def write_csv(path: str, X: npt.ArrayLike) -> None: ...
+def blas_core() -> Dict[str, Union[str, bool]]: ...

@@ -46,5 +46,6 @@ void bind_linkage(pybind11::module_& m);
 void bind_hexapod(pybind11::module_& m);
 void bind_experiment(pybind11::module_& m);
 void bind_factor(pybind11::module_& m);
+void bind_blas_core(pybind11::module_& m);
 
 }  // namespace spdfit::python

@@ -15,4 +15,5 @@ PYBIND11_MODULE(_spdfit, m) {
   spdfit::python::bind_linkage(m);
   spdfit::python::bind_hexapod(m);
   spdfit::python::bind_experiment(m);
+  spdfit::python::bind_blas_core(m);
 }

@@ -1,0 +1,80 @@
+#include "numerics/blas_core.hpp"
+
+#include <strings.h>
+
+#include <array>
+#include <cstdlib>
+
+// OpenBLAS's name for the kernels it chose (cblas.h declares it; which cblas.h /usr/include holds
+// depends on Debian's alternatives, so it is declared here). Weak: with another BLAS, or none
+// (SPDFIT_LAPACK off), the symbol is absent and its address null.
+extern "C" char* openblas_get_corename(void) __attribute__((weak));
+
+namespace spdfit::detail {
+
+namespace {
+
+// OpenBLAS 0.3.21's x86-64 cores whose kernels stop short of AVX2 (the names of its corename[]
+// table in driver/others/dynamic.c). It falls back to one of these on a CPU it does not know, or
+// when the OS does not enable the wider registers (which __builtin_cpu_supports sees as well).
+// Excavator is left out: OpenBLAS names it only on that AMD CPU, never as a fallback.
+constexpr std::array<const char*, 20> kGenericCores = {
+    "Katmai", "Coppermine",  "Northwood", "Prescott",  "Banias",     "Atom",         "Core2",
+    "Penryn", "Dunnington",  "Nehalem",   "Athlon",    "Opteron",    "Opteron_SSE3", "Barcelona",
+    "Nano",   "Sandybridge", "Bobcat",    "Bulldozer", "Piledriver", "Steamroller"};
+
+std::string environment(const char* name) {
+  const char* value = std::getenv(name);
+  return value ? value : "";
+}
+
+// The widest extension OpenBLAS has double-precision kernels for, as BlasCoreCheck::cpu.
+// libgcc's __builtin_cpu_supports also checks that the OS saves the registers (XGETBV).
+std::string cpu_vector_extension() {
+#if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
+  __builtin_cpu_init();  // may run before the constructors that would otherwise call it
+  // The Haswell kernels use FMA3 as well as AVX2; the SkylakeX ones AVX-512 F, BW, VL and DQ
+  // (every AVX-512 CPU from Skylake-SP on has all four).
+  const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  if (avx2 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+      __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq")) {
+    return "AVX-512";
+  }
+  if (avx2) return "AVX2";
+#endif
+  return "";
+}
+
+}  // namespace
+
+std::string blas_core_name() {
+  if (openblas_get_corename == nullptr) return "";
+  const char* name = openblas_get_corename();
+  return name ? name : "";
+}
+
+bool is_generic_blas_core(const std::string& core) {
+  for (const char* generic : kGenericCores) {
+    if (strcasecmp(core.c_str(), generic) == 0) return true;
+  }
+  return false;
+}
+
+BlasCoreCheck check_blas_core() {
+  BlasCoreCheck check;
+  check.reported = blas_core_name();
+  const std::string test_core = environment(kTestBlasCoreVariable);
+  if (!check.reported.empty() && !test_core.empty()) {
+    check.reported = test_core;
+    check.from_test_switch = true;
+  }
+  check.cpu = cpu_vector_extension();
+  check.user_coretype = environment(kOpenBlasCoreVariable);
+  if (check.user_coretype.empty() && is_generic_blas_core(check.reported)) {
+    if (check.cpu == "AVX-512") check.suggested = "SkylakeX";
+    if (check.cpu == "AVX2") check.suggested = "Haswell";
+  }
+  return check;
+}
+
+}  // namespace spdfit::detail
