@@ -14,7 +14,7 @@ import pytest
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "support"))
 
-from spdfit_testing import SLOWDOWN, cli_path, run_cli  # noqa: E402
+from spdfit_testing import SLOWDOWN, cli_path, mpirun_environment, run_cli  # noqa: E402
 
 MPIRUN = shutil.which("mpirun")
 pytestmark = pytest.mark.skipif(MPIRUN is None, reason="no mpirun (Debian: openmpi-bin)")
@@ -29,7 +29,7 @@ def mpirun(k, *args, env=None, timeout_s=120):
     if os.geteuid() == 0:
         command.insert(1, "--allow-run-as-root")
     return subprocess.run(command + [cli_path(), *map(str, args)], capture_output=True, text=True,
-                          timeout=timeout_s * SLOWDOWN, env=dict(os.environ, **(env or {})))
+                          timeout=timeout_s * SLOWDOWN, env=mpirun_environment(env))
 
 
 @pytest.fixture(scope="module")

@@ -12,7 +12,7 @@ import pytest
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "support"))
 
-from spdfit_testing import SLOWDOWN, cli_path, doc_commands  # noqa: E402
+from spdfit_testing import SLOWDOWN, cli_path, doc_commands, mpirun_environment  # noqa: E402
 
 ROOT = pathlib.Path(os.environ.get("SPDFIT_SOURCE_DIR", pathlib.Path(__file__).resolve().parents[2]))
 MPIRUN = shutil.which("mpirun")
@@ -35,7 +35,7 @@ def test_console_example(tmp_path, command, expected):
     at = words.index("spdfit")
     launcher = [MPIRUN, "--oversubscribe"] + (["--allow-run-as-root"] if os.geteuid() == 0 else []) + words[1:at]
     result = subprocess.run(launcher + [cli_path(), *words[at + 1:]], cwd=tmp_path, capture_output=True, text=True,
-                            timeout=120 * SLOWDOWN)
+                            timeout=120 * SLOWDOWN, env=mpirun_environment())
     assert result.returncode == 0, f"{command}\n{result.stderr}"
     printed = {line.rstrip() for line in (result.stdout + result.stderr).splitlines()}
     for line in expected:
