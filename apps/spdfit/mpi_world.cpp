@@ -16,9 +16,7 @@
 #include <mpi.h>
 #endif
 
-// OpenBLAS's thread count, when OpenBLAS is what the library links (a weak reference: absent
-// with another BLAS).
-extern "C" void openblas_set_num_threads(int) __attribute__((weak));
+#include "numerics/blas_core.hpp"
 
 namespace spdfit::cli {
 
@@ -132,16 +130,11 @@ class MpiChannel final : public Channel {
 
 }  // namespace
 
-struct MpiWorld::Impl {
-  std::unique_ptr<MpiChannel> channel;
-};
-
 MpiWorld::MpiWorld() {
   if (!launched_by_mpi()) return;
   int provided = 0;
   check(MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
   active_ = true;
-  impl_ = new Impl;
   check(MPI_Comm_rank(MPI_COMM_WORLD, &rank_), "MPI_Comm_rank");
   check(MPI_Comm_size(MPI_COMM_WORLD, &size_), "MPI_Comm_size");
   // The processes on this node share its cores.
@@ -160,21 +153,17 @@ MpiWorld::MpiWorld() {
   if (sched_getaffinity(0, sizeof allowed, &allowed) == 0) {
     threads_ = std::min(threads_, std::max(1U, static_cast<unsigned>(CPU_COUNT(&allowed))));
   }
-  if (openblas_set_num_threads != nullptr) openblas_set_num_threads(static_cast<int>(threads_));
-  impl_->channel = std::make_unique<MpiChannel>(rank_, size_);
+  detail::set_blas_threads(static_cast<int>(threads_));
+  channel_ = std::make_unique<MpiChannel>(rank_, size_);
 }
 
 MpiWorld::~MpiWorld() {
   if (!active_) return;
-  delete impl_;
+  channel_.reset();  // frees its communicator before MPI ends
   MPI_Finalize();
 }
 
-Channel& MpiWorld::channel() { return *impl_->channel; }
-
 #else  // built without MPI
-
-struct MpiWorld::Impl {};
 
 MpiWorld::MpiWorld() {
   if (!launched_by_mpi()) return;
@@ -188,8 +177,11 @@ MpiWorld::MpiWorld() {
 
 MpiWorld::~MpiWorld() = default;
 
-Channel& MpiWorld::channel() { throw std::logic_error("MpiWorld::channel: built without MPI"); }
-
 #endif
+
+Channel& MpiWorld::channel() {
+  if (!channel_) throw std::logic_error("MpiWorld::channel: MPI is not running");
+  return *channel_;
+}
 
 }  // namespace spdfit::cli

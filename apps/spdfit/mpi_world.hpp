@@ -2,6 +2,7 @@
 // alone pays nothing for it (MPI_Init takes about 0.3 s).
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "spdfit/distributed.hpp"
@@ -33,8 +34,7 @@ class MpiWorld {
   int rank_ = 0;
   int size_ = 1;
   unsigned threads_ = 0;
-  struct Impl;
-  Impl* impl_ = nullptr;
+  std::unique_ptr<Channel> channel_;
 };
 
 /// Whether the environment says an MPI launcher started this process.

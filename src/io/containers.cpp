@@ -7,6 +7,7 @@
 #include <zip.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdint>
@@ -164,15 +165,16 @@ std::string first_bytes(const std::string& path, std::size_t count) {
 
 }  // namespace
 
-std::string read_standard_input(std::string bytes) {
+std::string read_standard_input(std::string bytes, std::size_t at_most) {
   char buffer[1 << 16];
-  for (;;) {
-    const std::size_t got = std::fread(buffer, 1, sizeof buffer, stdin);
+  while (bytes.size() < at_most) {
+    const std::size_t want = std::min(sizeof buffer, at_most - bytes.size());
+    const std::size_t got = std::fread(buffer, 1, want, stdin);
     bytes.append(buffer, got);
-    if (got < sizeof buffer) break;
+    if (got < want) break;
   }
-  if (std::ferror(stdin)) throw DataError("<stdin>", 0, 0, "read error");
-  if (bytes.empty()) throw DataError("<stdin>", 0, 0, "is empty");
+  if (std::ferror(stdin)) throw DataError(kStdinName, 0, 0, "read error");
+  if (bytes.empty()) throw DataError(kStdinName, 0, 0, "is empty");
   return bytes;
 }
 

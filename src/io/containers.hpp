@@ -22,9 +22,12 @@ struct FileSpec {
 /// exists. Anything else is the path as given (whose reader then says "no such file").
 FileSpec split_spec(const std::string& path);
 
-/// All of standard input (for the file name "-"), after `bytes`, what was read from it already.
-/// Throws DataError naming "<stdin>" on a read error or when it is empty.
-std::string read_standard_input(std::string bytes = {});
+/// How messages name standard input (the file name "-").
+inline constexpr const char* kStdinName = "<stdin>";
+
+/// Standard input after `bytes` (what was read from it already), up to `at_most` bytes in all.
+/// Throws DataError naming kStdinName on a read error or when it is empty.
+std::string read_standard_input(std::string bytes = {}, std::size_t at_most = static_cast<std::size_t>(-1));
 
 /// Whether these first bytes of a file are a level-5 MATLAB .mat file (not 7.3, whose body
 /// libhdf5 parses): the files whose structure read_mat checks before libmatio reads them.

@@ -67,8 +67,7 @@ void DelimitedParser::feed(std::string_view text) {
 // Row numbers 0, 1, 2, ... in the first column, under a header without pandas' and R's mark of
 // an index: fitting them as data is never what was meant, and dropping them unasked could drop
 // real data, so the user says which (decided on the first piece of text: the whole file for
-// read_table, the first block when streaming).
-constexpr std::size_t kIndexDecisionRows = 3;
+// read_table, the first block when streaming; kIndexDecisionRows rows at least).
 
 void DelimitedParser::decide_index_column() {
   if (index_decided_ || rows_ < kIndexDecisionRows) return;

@@ -15,6 +15,10 @@ namespace spdfit::io::detail {
 
 class DelimitedParser {
  public:
+  /// Data rows the index column is decided on (ReadOptions::index_column): whether the first
+  /// column is 0, 1, 2, ...
+  static constexpr std::size_t kIndexDecisionRows = 3;
+
   DelimitedParser(std::string source, ReadOptions options)
       : source_(std::move(source)), options_(options), drop_first_(options.index_column == IndexColumn::kDrop) {}
 

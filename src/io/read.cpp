@@ -130,7 +130,7 @@ Table parse_table(std::string_view bytes, const std::string& source, const ReadO
 }
 
 Table read_table(const std::string& path, const ReadOptions& options) {
-  if (path == "-") return parse_table(detail::read_standard_input(), "<stdin>", options);
+  if (path == "-") return parse_table(detail::read_standard_input(), detail::kStdinName, options);
   const detail::FileSpec spec = detail::split_spec(path);
   // The content decides, not the name: .mat and .npz files hold named arrays, and their
   // libraries read them from the file.

@@ -148,7 +148,8 @@ class RowReader::TextSource final : public RowReader::Source {
   // Standard input (not closed here), whose first bytes `first` were read already to tell text
   // from .npy.
   TextSource(std::FILE* input, std::string first, const ReadOptions& options)
-      : Source(kStdinName), file_(input), owned_(false), parser_(kStdinName, options), buffer_(std::move(first)) {
+      : Source(detail::kStdinName), file_(input), owned_(false), parser_(detail::kStdinName, options),
+        buffer_(std::move(first)) {
     bytes_ = buffer_.size();
   }
   ~TextSource() override {
@@ -240,7 +241,6 @@ class RowReader::TextSource final : public RowReader::Source {
     buffer_.erase(0, cut);
   }
 
-  static constexpr const char* kStdinName = "<stdin>";
   std::FILE* file_;
   bool owned_ = true;
   detail::DelimitedParser parser_;
@@ -284,15 +284,12 @@ RowReader::RowReader(const std::string& path, const ReadOptions& options) {
   if (path == "-") {
     // Text is streamed from standard input as from a file; a .npy file (told by its first bytes)
     // is read whole.
-    std::string first(detail::kNpyMagic.size(), '\0');
-    first.resize(std::fread(first.data(), 1, first.size(), stdin));
-    if (std::ferror(stdin)) throw DataError("<stdin>", 0, 0, "read error");
-    if (first.empty()) throw DataError("<stdin>", 0, 0, "is empty");
+    std::string first = detail::read_standard_input({}, detail::kNpyMagic.size());
     if (first != detail::kNpyMagic) {
       source_ = std::make_unique<TextSource>(stdin, std::move(first), options);
       return;
     }
-    source_ = std::make_unique<TableSource>(path, parse_table(detail::read_standard_input(std::move(first)), "<stdin>", options));
+    source_ = std::make_unique<TableSource>(path, parse_table(detail::read_standard_input(std::move(first)), detail::kStdinName, options));
     return;
   }
   const detail::FileSpec spec = detail::split_spec(path);
@@ -349,7 +346,7 @@ SplitFile::SplitFile(const std::string& path, const ReadOptions& options, int pa
   // layout every later part is parsed by, and the columns.
   RowReader probe(path, options);
   Eigen::MatrixXd first;
-  probe.read(3, &first);
+  probe.read(DelimitedParser::kIndexDecisionRows, &first);
   columns_ = probe.columns();
   if (auto* text = dynamic_cast<RowReader::TextSource*>(probe.source_.get())) {
     layout_ = text->layout();

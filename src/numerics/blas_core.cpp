@@ -9,6 +9,7 @@
 // depends on Debian's alternatives, so it is declared here). Weak: with another BLAS, or none
 // (SPDFIT_LAPACK off), the symbol is absent and its address null.
 extern "C" char* openblas_get_corename(void) __attribute__((weak));
+extern "C" void openblas_set_num_threads(int) __attribute__((weak));
 
 namespace spdfit::detail {
 
@@ -51,6 +52,10 @@ std::string blas_core_name() {
   if (openblas_get_corename == nullptr) return "";
   const char* name = openblas_get_corename();
   return name ? name : "";
+}
+
+void set_blas_threads(int threads) {
+  if (openblas_set_num_threads != nullptr) openblas_set_num_threads(threads);
 }
 
 bool is_generic_blas_core(const std::string& core) {

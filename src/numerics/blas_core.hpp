@@ -50,6 +50,9 @@ std::string blas_core_name();
 /// OpenBLAS's) is not generic: spdfit overrides only choices it knows to be a fallback.
 bool is_generic_blas_core(const std::string& core);
 
+/// Sets the BLAS's threads (openblas_set_num_threads) when it is OpenBLAS; nothing otherwise.
+void set_blas_threads(int threads);
+
 /// The BLAS core, the CPU's vector extensions and the user's OPENBLAS_CORETYPE, and the core to
 /// choose instead (BlasCoreCheck::suggested). Reads the environment and CPUID (through
 /// __builtin_cpu_supports): cheap enough for every start of the program and every import.

@@ -154,7 +154,6 @@ std::vector<std::uint64_t> boundaries(std::uint64_t m, int parts, std::uint64_t 
 // The factors one process holds: of its rows, and with --bootstrap of each replicate's resample.
 struct PartFactors {
   ResampledFactors factors;  // total (and replicates, groups with the bootstrap)
-  bool bootstrap = false;
 
   std::string serialize() const {
     std::string out;
@@ -258,7 +257,6 @@ DistributedFit fit_files_distributed(const std::string& a_path, const std::strin
 
   // Each process's factors of its rows, the others stopping at their next block when one fails.
   PartFactors part;
-  part.bootstrap = bootstrap;
   step(
       channel,
       [&] {
