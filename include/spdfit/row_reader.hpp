@@ -60,6 +60,7 @@ class RowReader {
   class NpySource;
   class TextSource;
   class TableSource;
+  class MatSource;
   std::unique_ptr<Source> source_;
 };
 

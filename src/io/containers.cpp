@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -351,12 +352,13 @@ class Level5Checker {
 
 // Checks a level-5 .mat file (not 7.3: libhdf5 reads those) before libmatio sees it.
 void check_level5(const std::string& file) {
+  if (!is_level5(first_bytes(file, 128))) return;  // 7.3: libhdf5 reads those
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(std::fopen(file.c_str(), "rb"), std::fclose);
   if (!in) return;  // Mat_Open reports it
   std::string bytes;
   char buffer[1 << 16];
   for (std::size_t got; (got = std::fread(buffer, 1, sizeof buffer, in.get())) > 0;) bytes.append(buffer, got);
-  if (!is_level5(bytes)) return;  // 7.3: libhdf5 reads those
+  if (!is_level5(bytes)) return;  // changed since
   const bool swap = bytes.substr(126, 2) == "MI";
   Level5Checker(file, swap).check_body(std::string_view(bytes).substr(128));
 }
@@ -373,30 +375,26 @@ MatVariables list_variables(mat_t* mat) {
   return out;
 }
 
-// The variable `variable` of the open file, its declared size checked before libmatio reads it;
-// nothing when there is no such variable.
-MatVar read_checked(mat_t* mat, const std::string& file, const std::string& variable, const std::string& name) {
-  {
-    MatVar info(Mat_VarReadInfo(mat, variable.c_str()));
-    if (!info) return nullptr;
-    check_declared_size(*info, file, variable.empty() ? name : file + ":" + variable);
-  }
-  return MatVar(Mat_VarRead(mat, variable.c_str()));
-}
-}  // namespace
+// An open .mat file and the header (not yet the values) of its variable that read_mat returns,
+// checked: a real 2-D numeric array no larger than the file can hold.
+struct MatMatrix {
+  MatFile file;
+  MatVar header;
+  std::string name;  // how messages name it: "file" or "file:variable"
+};
 
-Table read_mat(const std::string& file, const std::string& variable, const ReadOptions& options) {
+MatMatrix open_matrix(const std::string& file, const std::string& variable) {
   Mat_LogInitFunc("spdfit", quiet_log);
-  const std::string name = variable.empty() ? file : file + ":" + variable;
+  MatMatrix out{nullptr, nullptr, variable.empty() ? file : file + ":" + variable};
   check_level5(file);
-  MatFile mat(Mat_Open(file.c_str(), MAT_ACC_RDONLY));
-  if (!mat) throw DataError(file, 0, 0, "is not a MATLAB .mat file libmatio can read (levels 5 and 7.3 are)");
+  out.file.reset(Mat_Open(file.c_str(), MAT_ACC_RDONLY));
+  if (!out.file) throw DataError(file, 0, 0, "is not a MATLAB .mat file libmatio can read (levels 5 and 7.3 are)");
   const auto its_variables = [](const MatVariables& found) {
     return found.all.empty() ? std::string() : "; its variables: " + joined(found.all);
   };
-  MatVar chosen;
+  std::string chosen = variable;
   if (variable.empty()) {
-    const MatVariables found = list_variables(mat.get());
+    const MatVariables found = list_variables(out.file.get());
     if (found.candidates.size() != 1) {
       throw DataError(file, 0, 0,
                       (found.candidates.empty() ? "holds no real 2-D numeric array"
@@ -404,18 +402,19 @@ Table read_mat(const std::string& file, const std::string& variable, const ReadO
                                                       " 2-D numeric arrays (" + joined(found.candidates) + ")") +
                           its_variables(found) + ": name one as " + file + ":NAME");
     }
-    chosen = read_checked(mat.get(), file, found.candidates.front(), name);
-  } else {
-    chosen = read_checked(mat.get(), file, variable, name);
-    if (!chosen) {
-      // Rewind by reopening: list what there is.
-      const MatFile again(Mat_Open(file.c_str(), MAT_ACC_RDONLY));
-      throw DataError(file, 0, 0,
-                      "has no variable '" + variable + "'" + (again ? its_variables(list_variables(again.get())) : ""));
-    }
+    chosen = found.candidates.front();
   }
-  if (!chosen) throw DataError(name, 0, 0, "could not be read (a damaged .mat file?)");
-  const matvar_t& v = *chosen;
+  out.header.reset(Mat_VarReadInfo(out.file.get(), chosen.c_str()));
+  if (!out.header) {
+    if (variable.empty()) throw DataError(out.name, 0, 0, "could not be read (a damaged .mat file?)");
+    // Rewind by reopening: list what there is.
+    const MatFile again(Mat_Open(file.c_str(), MAT_ACC_RDONLY));
+    throw DataError(file, 0, 0,
+                    "has no variable '" + variable + "'" + (again ? its_variables(list_variables(again.get())) : ""));
+  }
+  const matvar_t& v = *out.header;
+  check_declared_size(v, file, variable.empty() ? out.name : file + ":" + chosen);
+  const std::string& name = out.name;
   if (!numeric_class(v.class_type)) {
     static const char* const kClasses[] = {"empty", "cell", "struct", "object", "char", "sparse"};
     const std::string what = v.class_type <= MAT_C_SPARSE ? kClasses[v.class_type] : "function or opaque";
@@ -424,24 +423,91 @@ Table read_mat(const std::string& file, const std::string& variable, const ReadO
   if (v.isComplex) throw DataError(name, 0, 0, "is complex; spdfit reads real arrays");
   if (v.rank != 2) throw DataError(name, 0, 0, "has " + std::to_string(v.rank) + " dimensions; save a 2-D array");
   if (v.dims[0] == 0 || v.dims[1] == 0) throw DataError(name, 0, 0, "is empty");
-  if (!v.data) throw DataError(name, 0, 0, "could not be read (a damaged .mat file?)");
+  return out;
+}
+
+// Values of a numeric class as libmatio reads them, column by column, converted to double.
+void widen_class(matio_classes type, const void* data, Eigen::MatrixXd& out) {
+  switch (type) {
+    case MAT_C_DOUBLE: widen<double>(data, out); break;
+    case MAT_C_SINGLE: widen<float>(data, out); break;
+    case MAT_C_INT8: widen<std::int8_t>(data, out); break;
+    case MAT_C_UINT8: widen<std::uint8_t>(data, out); break;
+    case MAT_C_INT16: widen<std::int16_t>(data, out); break;
+    case MAT_C_UINT16: widen<std::uint16_t>(data, out); break;
+    case MAT_C_INT32: widen<std::int32_t>(data, out); break;
+    case MAT_C_UINT32: widen<std::uint32_t>(data, out); break;
+    case MAT_C_INT64: widen<std::int64_t>(data, out); break;
+    default: widen<std::uint64_t>(data, out); break;
+  }
+}
+
+std::size_t class_size(matio_classes type) {
+  switch (type) {
+    case MAT_C_DOUBLE: case MAT_C_INT64: case MAT_C_UINT64: return 8;
+    case MAT_C_SINGLE: case MAT_C_INT32: case MAT_C_UINT32: return 4;
+    case MAT_C_INT16: case MAT_C_UINT16: return 2;
+    default: return 1;
+  }
+}
+
+}  // namespace
+
+Table read_mat(const std::string& file, const std::string& variable, const ReadOptions& options) {
+  const MatMatrix matrix = open_matrix(file, variable);
+  const MatVar whole(Mat_VarRead(matrix.file.get(), matrix.header->name));
+  if (!whole || !whole->data || whole->class_type != matrix.header->class_type) {
+    throw DataError(matrix.name, 0, 0, "could not be read (a damaged .mat file?)");
+  }
   Table table;
   // MATLAB stores arrays column by column, as Eigen does; a row vector stays a row.
-  table.values.resize(static_cast<Eigen::Index>(v.dims[0]), static_cast<Eigen::Index>(v.dims[1]));
-  switch (v.class_type) {
-    case MAT_C_DOUBLE: widen<double>(v.data, table.values); break;
-    case MAT_C_SINGLE: widen<float>(v.data, table.values); break;
-    case MAT_C_INT8: widen<std::int8_t>(v.data, table.values); break;
-    case MAT_C_UINT8: widen<std::uint8_t>(v.data, table.values); break;
-    case MAT_C_INT16: widen<std::int16_t>(v.data, table.values); break;
-    case MAT_C_UINT16: widen<std::uint16_t>(v.data, table.values); break;
-    case MAT_C_INT32: widen<std::int32_t>(v.data, table.values); break;
-    case MAT_C_UINT32: widen<std::uint32_t>(v.data, table.values); break;
-    case MAT_C_INT64: widen<std::int64_t>(v.data, table.values); break;
-    default: widen<std::uint64_t>(v.data, table.values); break;
-  }
-  if (!options.allow_nonfinite) check_npy_finite(table.values, 0, name);
+  table.values.resize(static_cast<Eigen::Index>(whole->dims[0]), static_cast<Eigen::Index>(whole->dims[1]));
+  widen_class(whole->class_type, whole->data, table.values);
+  if (!options.allow_nonfinite) check_npy_finite(table.values, 0, matrix.name);
   return table;
+}
+
+bool is_mat73(const FileSpec& spec) {
+  if (named_arrays_kind(spec) != NamedArrays::kMat) return false;
+  return !is_level5(first_bytes(spec.file, 128));
+}
+
+struct MatRowBlocks::State {
+  MatMatrix matrix;
+  std::vector<unsigned char> buffer;
+};
+
+MatRowBlocks::MatRowBlocks(const FileSpec& spec) : state_(std::make_unique<State>()) {
+  state_->matrix = open_matrix(spec.file, spec.variable);
+  const matvar_t& v = *state_->matrix.header;
+  // libmatio takes the hyperslab's corner and extent as int.
+  if (v.dims[0] > static_cast<std::size_t>(std::numeric_limits<int>::max()) ||
+      v.dims[1] > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
+    throw DataError(state_->matrix.name, 0, 0,
+                    "has more than 2^31 - 1 rows, more than libmatio reads in row ranges: save it as .npy");
+  }
+}
+
+MatRowBlocks::~MatRowBlocks() = default;
+
+std::uint64_t MatRowBlocks::rows() const { return state_->matrix.header->dims[0]; }
+Eigen::Index MatRowBlocks::columns() const { return static_cast<Eigen::Index>(state_->matrix.header->dims[1]); }
+const std::string& MatRowBlocks::name() const { return state_->matrix.name; }
+
+void MatRowBlocks::read(std::uint64_t first, Eigen::Index count, Eigen::MatrixXd* out) {
+  matvar_t& v = *state_->matrix.header;
+  out->resize(count, columns());
+  if (count == 0) return;
+  state_->buffer.resize(static_cast<std::size_t>(out->size()) * class_size(v.class_type));
+  int start[2] = {static_cast<int>(first), 0};
+  int stride[2] = {1, 1};
+  int edge[2] = {static_cast<int>(count), static_cast<int>(columns())};
+  if (Mat_VarReadData(state_->matrix.file.get(), &v, state_->buffer.data(), start, stride, edge) != 0) {
+    throw DataError(name(), 0, 0,
+                    "rows " + std::to_string(first + 1) + " to " + std::to_string(first + count) +
+                        " could not be read (a damaged .mat file?)");
+  }
+  widen_class(v.class_type, state_->buffer.data(), *out);
 }
 
 Table read_npz(const std::string& file, const std::string& variable, const ReadOptions& options) {

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -39,6 +41,29 @@ bool is_level5(std::string_view first);
 /// such variable (listing those there are), several candidates and no name, a class or shape
 /// that is not a real 2-D array, NaN or Inf (unless options allow them).
 Table read_mat(const std::string& file, const std::string& variable, const ReadOptions& options);
+
+/// Whether the file is a MATLAB 7.3 .mat file (HDF5), whose variables are read in row ranges.
+bool is_mat73(const FileSpec& spec);
+
+/// A 7.3 .mat file's variable (chosen as read_mat chooses it, with its checks), read a block of
+/// rows at a time: HDF5 hyperslabs through libmatio, so that memory does not grow with its rows.
+class MatRowBlocks {
+ public:
+  explicit MatRowBlocks(const FileSpec& spec);
+  ~MatRowBlocks();
+  MatRowBlocks(const MatRowBlocks&) = delete;
+  MatRowBlocks& operator=(const MatRowBlocks&) = delete;
+
+  std::uint64_t rows() const;
+  Eigen::Index columns() const;
+  const std::string& name() const;  ///< "file" or "file:variable", as messages name it
+  /// Rows [first, first + count), converted to double (NaN and Inf not checked).
+  void read(std::uint64_t first, Eigen::Index count, Eigen::MatrixXd* out);
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 /// The array `variable` ("x" or "x.npy") of the .npz file, or its only array when "" (several:
 /// DataError listing them and the "file.npz:name" syntax). Compressed (savez_compressed) or not.

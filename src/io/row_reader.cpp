@@ -252,6 +252,42 @@ class RowReader::TextSource final : public RowReader::Source {
   std::uint64_t limit_ = std::numeric_limits<std::uint64_t>::max();  // bytes to read at most
 };
 
+// A variable of a MATLAB 7.3 file (HDF5), read a block of rows at a time. libmatio opens the
+// dataset anew for each read, and so decompresses each chunk anew: it is read in slabs of about
+// 8 MB (or the block, if larger), which the blocks are cut from.
+class RowReader::MatSource final : public RowReader::Source {
+ public:
+  MatSource(const std::string& path, const detail::FileSpec& spec, const ReadOptions& options)
+      : Source(path), blocks_(spec), options_(options) {}
+  Index read(Index max_rows, Eigen::MatrixXd* rows) override {
+    const auto count = static_cast<Index>(
+        std::min<std::uint64_t>(blocks_.rows() - rows_read, static_cast<std::uint64_t>(max_rows)));
+    if (rows_read + static_cast<std::uint64_t>(count) > slab_first_ + static_cast<std::uint64_t>(slab_.rows())) {
+      const Index slab_rows = std::max<Index>(count, kSlabBytes / (8 * std::max<Index>(1, blocks_.columns())));
+      slab_first_ = rows_read;
+      blocks_.read(slab_first_,
+                   static_cast<Index>(std::min<std::uint64_t>(blocks_.rows() - slab_first_,
+                                                              static_cast<std::uint64_t>(slab_rows))),
+                   &slab_);
+    }
+    *rows = slab_.middleRows(static_cast<Index>(rows_read - slab_first_), count);
+    if (!options_.allow_nonfinite) detail::check_npy_finite(*rows, rows_read, blocks_.name());
+    rows_read += static_cast<std::uint64_t>(count);
+    return count;
+  }
+  Index columns() const override { return blocks_.columns(); }
+  double fraction_read() const override {
+    return static_cast<double>(rows_read) / static_cast<double>(blocks_.rows());
+  }
+
+ private:
+  static constexpr Index kSlabBytes = Index{8} << 20;
+  detail::MatRowBlocks blocks_;
+  ReadOptions options_;
+  Eigen::MatrixXd slab_;
+  std::uint64_t slab_first_ = 0;
+};
+
 // A .mat or .npz file, or a .npy file on standard input, read whole (their libraries read whole
 // arrays; a pipe cannot be mapped) and handed out a block at a time, with a warning on memory.
 class RowReader::TableSource final : public RowReader::Source {
@@ -259,7 +295,8 @@ class RowReader::TableSource final : public RowReader::Source {
   TableSource(const std::string& path, Table table) : Source(path), table_(std::move(table)) {
     table_.warnings.push_back(
         (path == "-" ? std::string("standard input") : path) +
-        " is read whole, not a block at a time (only .npy files and text are streamed): memory grows "
+        " is read whole, not a block at a time (only .npy files, text and MATLAB 7.3 files are streamed): "
+        "memory grows "
         "with its rows");
   }
   Index read(Index max_rows, Eigen::MatrixXd* rows) override {
@@ -293,6 +330,10 @@ RowReader::RowReader(const std::string& path, const ReadOptions& options) {
     return;
   }
   const detail::FileSpec spec = detail::split_spec(path);
+  if (detail::is_mat73(spec)) {
+    source_ = std::make_unique<MatSource>(path, spec, options);
+    return;
+  }
   std::optional<Table> named = detail::read_named_arrays(spec, options);
   // FILE:NAME of a file without named arrays (whose error read_table gives).
   if (!named && !spec.variable.empty()) named = read_table(path, options);

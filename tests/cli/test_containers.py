@@ -171,8 +171,8 @@ def test_streaming_bootstrap_prints_the_readers_warnings(spdfit, tmp_path):
 
 def test_matlab_7_3_file(spdfit, tmp_path):
     # fuzz/corpus/mat/v73.mat: MATLAB 7.3 (HDF5), the 3 x 2 double variable A = [1 4; 2 5; 3 7],
-    # written by libmatio's MAT_FT_MAT73 writer (Debian's Python has no v7.3 writer: h5py is not
-    # installed). scipy cannot read it; spdfit reads it through libmatio's HDF5 path.
+    # written by libmatio's MAT_FT_MAT73 writer (test_mat73.py writes others with h5py). scipy
+    # cannot read it; spdfit reads it through libmatio's HDF5 path.
     from spdfit_testing import SOURCE_DIR
     path = SOURCE_DIR / "fuzz" / "corpus" / "mat" / "v73.mat"
     assert path.read_bytes()[:19] == b"MATLAB 7.3 MAT-file"
