@@ -91,11 +91,27 @@ std::string format_number(double value) {
   return buffer;
 }
 
+namespace {
+
+// A B, on the BLAS for large products (multiply).
+MatrixXd product(const MatrixXd& A, const MatrixXd& B) {
+  MatrixXd C;
+  multiply(A, false, B, false, C);
+  return C;
+}
+
+}  // namespace
+
 std::optional<double> scaled_area_criterion(const DynamicReduction& data, const MatrixXd& X_s) {
+  VectorXd lambda;
+  MatrixXd W;
+  if (!symmetric_eigen(X_s, lambda, &W)) return std::nullopt;
+  return scaled_area_criterion(data, lambda, W);
+}
+
+std::optional<double> scaled_area_criterion(const DynamicReduction& data, const VectorXd& lambda,
+                                            const MatrixXd& vectors) {
   const Index n = data.n;
-  Eigen::SelfAdjointEigenSolver<MatrixXd> eig(X_s);
-  if (eig.info() != Eigen::Success) return std::nullopt;
-  const VectorXd& lambda = eig.eigenvalues();  // ascending
   const double scale = lambda.cwiseAbs().maxCoeff();
   const double eps = std::numeric_limits<double>::epsilon();
   if (!(scale > 0.0)) return std::nullopt;
@@ -104,20 +120,20 @@ std::optional<double> scaled_area_criterion(const DynamicReduction& data, const 
   Index first = 0;
   while (first < n && lambda(first) <= zero) ++first;
   const Index r = n - first;
-  const MatrixXd W = eig.eigenvectors().rightCols(r);
+  const auto W = vectors.rightCols(r);
   const VectorXd root = lambda.tail(r).cwiseSqrt();
   const MatrixXd Y = W * root.asDiagonal();                 // X = Y Y^T
   const MatrixXd Z = W * root.cwiseInverse().asDiagonal();  // Y^-T when r = n
   if (r == n) {
     // ||A Y - B Y^-T||^2 = ||R11 Y - R12 Y^-T||^2 + ||R22 Y^-T||^2: a sum of squares, no
     // cancellation (Chen & McInroy, Definition II.1).
-    const double top = (data.R11 * Y - data.R12 * Z).squaredNorm();
-    return top + (data.R22 * Z).squaredNorm();
+    const double top = (product(data.R11, Y) - product(data.R12, Z)).squaredNorm();
+    return top + product(data.R22, Z).squaredNorm();
   }
   // Semidefinite X of rank r (Corollary III.7): tr(P X) + tr(X^+ Q) - 2 tr(A^T B) with
   // P = R11^T R11, Q = R_b^T R_b and X^+ = Z Z^T.
-  const double cross = (data.R11.transpose() * data.R12).trace();
-  return (data.R11 * Y).squaredNorm() + (data.R_b * Z).squaredNorm() - 2.0 * cross;
+  const double cross = data.R11.cwiseProduct(data.R12).sum();  // tr(R11^T R12)
+  return product(data.R11, Y).squaredNorm() + product(data.R_b, Z).squaredNorm() - 2.0 * cross;
 }
 
 FitResult finish(Method method, const DynamicReduction& data, const MatrixXd& X_s, Diagnostics d,
@@ -135,15 +151,17 @@ FitResult finish(Method method, const DynamicReduction& data, const MatrixXd& X_
   if (!X_s.allFinite()) return checked(method, X_s, std::move(d), std::move(warnings));
 
   // ||A X - B||_F^2 = ||R11 X - R12||_F^2 + ||R22||_F^2, in B's units.
-  const double fit_part = (data.R11 * X_s - data.R12).norm();
+  const double fit_part = (product(data.R11, X_s) - data.R12).norm();
   d.residual_norm = std::ldexp(std::hypot(fit_part, data.R22.norm()), eb);
 
   // A non-square X (ls, tls) is never symmetric: no eigenvalues, no area criterion.
   d.symmetric = data.square() && X_s == X_s.transpose();
   if (d.symmetric) {
-    Eigen::SelfAdjointEigenSolver<MatrixXd> eig(X_s, Eigen::EigenvaluesOnly);
-    if (eig.info() == Eigen::Success) {
-      const VectorXd& lambda = eig.eigenvalues();
+    // One eigendecomposition for the definiteness and the area criterion.
+    VectorXd lambda;
+    MatrixXd vectors;
+    const bool solved = symmetric_eigen(X_s, lambda, &vectors);
+    if (solved) {
       const double scale = lambda.cwiseAbs().maxCoeff();
       const double eps = std::numeric_limits<double>::epsilon();
       d.min_eigenvalue = std::ldexp(lambda(0), eb - ea);
@@ -152,7 +170,7 @@ FitResult finish(Method method, const DynamicReduction& data, const MatrixXd& X_
       d.positive_semidefinite = lambda(0) >= -kSemidefiniteSlack * data.n * eps * scale;
     }
     if (d.positive_semidefinite) {
-      if (auto f = scaled_area_criterion(data, X_s)) d.area_criterion = std::ldexp(*f, ea + eb);
+      if (auto f = scaled_area_criterion(data, lambda, vectors)) d.area_criterion = std::ldexp(*f, ea + eb);
     }
   }
 

@@ -25,6 +25,9 @@ FitResult failure(Method method, const DynamicReduction& data, std::string messa
 /// The area criterion of a symmetric X_s in scaled units (see area_criterion.hpp); nothing
 /// when X_s is not positive semidefinite.
 std::optional<double> scaled_area_criterion(const DynamicReduction& data, const Eigen::MatrixXd& X_s);
+/// The same from X_s's eigendecomposition (eigenvalues ascending, eigenvectors as columns).
+std::optional<double> scaled_area_criterion(const DynamicReduction& data, const Eigen::VectorXd& lambda,
+                                            const Eigen::MatrixXd& vectors);
 
 /// "1.5e+08"-style text for messages.
 std::string format_number(double value);

@@ -22,7 +22,8 @@ double spde_kernel(const BasicReduction<MaxN>& data, SquareMatrix<MaxN>& X_s) {
   // H = V_M S V_M^T of M (the unique SPD square root; Chen & McInroy eq. 15) and
   // X = R11^-1 H R11^-T = L L^T with L = R11^-1 V_M S^(1/2). Working with the triangular
   // factors instead of P and Q keeps the error at about cond(A) eps instead of cond(A)^2 eps.
-  const Matrix M = data.R_b * data.R11.transpose();
+  Matrix M;
+  product_into<Matrix>(data.R_b, false, data.R11, true, M);
   BasicSvd<Matrix> polar;
   svd_into(M, polar, false, true);
 
@@ -34,8 +35,13 @@ double spde_kernel(const BasicReduction<MaxN>& data, SquareMatrix<MaxN>& X_s) {
   // first entry of its right-hand side, which an n x 0 matrix does not have.
   if (r > 0) {
     Matrix L = polar.V.leftCols(r) * polar.s.head(r).cwiseSqrt().asDiagonal();
-    data.R11.template triangularView<Eigen::Upper>().solveInPlace(L);
-    X_s.template selfadjointView<Eigen::Lower>().rankUpdate(L);
+    if constexpr (MaxN == Eigen::Dynamic) {
+      solve_upper_in_place(data.R11, L);
+      lower_gram(L, X_s);
+    } else {
+      data.R11.template triangularView<Eigen::Upper>().solveInPlace(L);
+      X_s.template selfadjointView<Eigen::Lower>().rankUpdate(L);
+    }
     make_symmetric_from_lower(X_s);
   }
   return polar.s.head(r).sum();

@@ -23,12 +23,16 @@ void procrustes_kernel(const BasicReduction<MaxN>& data, SquareMatrix<MaxN>& X_s
   // solution of the normal equation (thesis eq. 3.15) without forming A^T A. Singular values
   // under the rank cut-off are edited to zero; entries with both zero are free, and zero is
   // their minimum-norm choice.
-  const Matrix C = data.U_a.transpose() * data.R12 * data.V_a;
+  Matrix UR, C;
+  product_into<Matrix>(data.U_a, true, data.R12, false, UR);
+  product_into<Matrix>(UR, false, data.V_a, false, C);
   typename BasicReduction<MaxN>::Vector s = data.s_a;
   s.tail(n - r).setZero();
   Matrix Xt;
   procrustes_eigenbasis(s, C, Xt);
-  const Matrix X = data.V_a * Xt * data.V_a.transpose();
+  Matrix VX, X;
+  product_into<Matrix>(data.V_a, false, Xt, false, VX);
+  product_into<Matrix>(VX, false, data.V_a, true, X);
   X_s = symmetric_part(X);
 }
 
@@ -55,9 +59,10 @@ FitResult symmetric_procrustes(const Reduction& reduction) {
   // Theorem 3.2 (3): A^T B + B^T A positive definite implies a positive definite estimate.
   Diagnostics d;
   if (data.options.diagnostics) {
-    const MatrixXd cross = data.R11.transpose() * data.R12;
-    Eigen::SelfAdjointEigenSolver<MatrixXd> eig(cross + cross.transpose(), Eigen::EigenvaluesOnly);
-    d.cross_term_positive_definite = eig.info() == Eigen::Success && eig.eigenvalues()(0) > 0.0;
+    MatrixXd cross;
+    detail::multiply(data.R11, true, data.R12, false, cross);
+    Eigen::VectorXd w;
+    d.cross_term_positive_definite = detail::symmetric_eigen(MatrixXd(cross + cross.transpose()), w) && w(0) > 0.0;
   }
 
   FitResult result =

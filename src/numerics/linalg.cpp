@@ -76,6 +76,33 @@ void multiply(const Eigen::Ref<const MatrixXd>& A, bool transpose_a, const Eigen
   }
 }
 
+void solve_upper_in_place(const Eigen::Ref<const MatrixXd>& U, MatrixXd& L) {
+  if (L.size() == 0) return;  // Eigen's solve takes the address of the first entry
+#ifdef SPDFIT_HAVE_LAPACK
+  if (U.rows() >= 64) {
+    cblas_dtrsm(CblasColMajor, CblasLeft, CblasUpper, CblasNoTrans, CblasNonUnit, static_cast<blasint>(L.rows()),
+                static_cast<blasint>(L.cols()), 1.0, U.data(), static_cast<blasint>(U.outerStride()), L.data(),
+                static_cast<blasint>(L.outerStride()));
+    return;
+  }
+#endif
+  U.triangularView<Eigen::Upper>().solveInPlace(L);
+}
+
+void lower_gram(const Eigen::Ref<const MatrixXd>& L, MatrixXd& X) {
+  X.setZero(L.rows(), L.rows());
+  if (L.cols() == 0) return;
+#ifdef SPDFIT_HAVE_LAPACK
+  if (L.rows() >= 64) {
+    cblas_dsyrk(CblasColMajor, CblasLower, CblasNoTrans, static_cast<blasint>(L.rows()),
+                static_cast<blasint>(L.cols()), 1.0, L.data(), static_cast<blasint>(L.outerStride()), 0.0, X.data(),
+                static_cast<blasint>(X.outerStride()));
+    return;
+  }
+#endif
+  X.selfadjointView<Eigen::Lower>().rankUpdate(L);
+}
+
 bool has_cholesky(const Eigen::Ref<const MatrixXd>& X) {
 #ifdef SPDFIT_HAVE_LAPACK
   if (X.rows() >= 64) {

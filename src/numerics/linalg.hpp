@@ -180,6 +180,32 @@ MatrixXd triangular_factor(const Eigen::Ref<const MatrixXd>& A);
 void multiply(const Eigen::Ref<const MatrixXd>& A, bool transpose_a, const Eigen::Ref<const MatrixXd>& B,
               bool transpose_b, MatrixXd& C);
 
+/// C = op(A) op(B) for the estimators' kernels, templates over the matrix type: multiply (the
+/// BLAS for large products) for dynamic matrices, Eigen's product for the bounded sizes of the
+/// small-problem path.
+template <typename Matrix>
+void product_into(const Matrix& A, bool transpose_a, const Matrix& B, bool transpose_b, Matrix& C) {
+  if constexpr (Matrix::MaxColsAtCompileTime == Eigen::Dynamic) {
+    multiply(A, transpose_a, B, transpose_b, C);
+  } else if (transpose_a && transpose_b) {
+    C.noalias() = A.transpose() * B.transpose();
+  } else if (transpose_a) {
+    C.noalias() = A.transpose() * B;
+  } else if (transpose_b) {
+    C.noalias() = A * B.transpose();
+  } else {
+    C.noalias() = A * B;
+  }
+}
+
+/// L := U^-1 L for an upper triangular U (its upper triangle is read): BLAS dtrsm when spdfit is
+/// built with LAPACK and U has 64 rows or more, else Eigen.
+void solve_upper_in_place(const Eigen::Ref<const MatrixXd>& U, MatrixXd& L);
+
+/// The lower triangle of X = L L^T (the upper one is left as it was): BLAS dsyrk when spdfit is
+/// built with LAPACK and X has 64 rows or more, else Eigen.
+void lower_gram(const Eigen::Ref<const MatrixXd>& L, MatrixXd& X);
+
 /// Whether the symmetric X (its lower triangle) has a Cholesky factorization X = L L^T, i.e. is
 /// numerically positive definite: LAPACK's dpotrf from 64 rows on when built with LAPACK, else
 /// Eigen's LLT.
