@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "spdfit/fit_options.hpp"
+#include "spdfit/method.hpp"
 #include "spdfit/triangular_factor.hpp"
 
 namespace spdfit {
@@ -17,6 +18,7 @@ namespace detail {
 template <int MaxN>
 struct BasicReduction;
 const BasicReduction<Eigen::Dynamic>& data_of(const Reduction& reduction);
+Reduction reduce_for(const TriangularFactor& factor, const FitOptions& options, Method method);
 }  // namespace detail
 
 /// The data reduced to small matrices, all in the scaled units of the triangular factor: the SVD
@@ -41,7 +43,9 @@ class Reduction {
 
  private:
   friend Reduction reduce(const TriangularFactor& factor, const FitOptions& options);
+  friend Reduction detail::reduce_for(const TriangularFactor& factor, const FitOptions& options, Method method);
   friend const detail::BasicReduction<Eigen::Dynamic>& detail::data_of(const Reduction& reduction);
+  static Reduction make(const TriangularFactor& factor, const FitOptions& options, bool vectors_a);
   explicit Reduction(std::shared_ptr<const detail::BasicReduction<Eigen::Dynamic>> data) : data_(std::move(data)) {}
 
   std::shared_ptr<const detail::BasicReduction<Eigen::Dynamic>> data_;

@@ -38,10 +38,15 @@ using SquareMatrix = typename BasicReduction<MaxN>::Matrix;
 /// Fills `out` (all but `options`, which the caller sets) from the (n + d) x (n + d) triangular
 /// factor R of the data (A with n columns, B with d = R.cols() - n) scaled by 2^-exponent_a,
 /// 2^-exponent_b, accumulated from m >= n rows: the SVD of R11, the triangular factor of B and
-/// its singular values, the ranks. Cost O((n + d)^3).
+/// its singular values, the ranks. Cost O((n + d)^3). Without `vectors_a`, R11's singular
+/// vectors U_a and V_a are left empty (uses_vectors_a says which methods need them).
 template <int MaxN>
 void reduce_into(const typename BasicReduction<MaxN>::Factor& R, Eigen::Index m, Eigen::Index n, int exponent_a,
-                 int exponent_b, BasicReduction<MaxN>& out);
+                 int exponent_b, BasicReduction<MaxN>& out, bool vectors_a = true);
+
+/// The reduction `method` needs and no more (reduce computes everything, for any method): for
+/// one method's fit, without R11's singular vectors when the method does not use them.
+Reduction reduce_for(const TriangularFactor& factor, const FitOptions& options, Method method);
 
 /// Least squares in scaled units: back substitution in R11 for full-rank A, else the
 /// minimum-norm solution from the edited SVD.

@@ -33,7 +33,7 @@ SPDFIT_FOR_EACH_MAX_N(SPDFIT_INSTANTIATE)
 }  // namespace detail
 
 FitResult least_squares(const Reduction& reduction) {
-  const detail::DynamicReduction& data = detail::data_of(reduction);
+  const detail::DynamicReduction& data = detail::data_of(reduction, Method::LeastSquares);
   std::vector<std::string> warnings;
   MatrixXd X_s;
   detail::least_squares_kernel(data, X_s);

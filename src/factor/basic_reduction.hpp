@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <optional>
 #include <stdexcept>
+#include <string>
 
 #include "spdfit/fit_options.hpp"
 #include "spdfit/reduction.hpp"
@@ -61,11 +62,23 @@ inline const DynamicReduction& data_of(const Reduction& reduction) {
   return *reduction.data_;
 }
 
+/// Whether `method` works with R11's singular vectors (U_a, V_a): least squares, procrustes,
+/// psd-ls and auto (which runs least squares). The others need only the singular values.
+constexpr bool uses_vectors_a(Method method) {
+  return method == Method::LeastSquares || method == Method::SymmetricProcrustes ||
+         method == Method::PsdLeastSquares || method == Method::Auto;
+}
+
 /// data_of for `method`: also throws std::invalid_argument when B's columns differ from A's and
-/// the method does not fit a non-square X (non_square_refusal).
+/// the method does not fit a non-square X (non_square_refusal), and std::logic_error when the
+/// reduction lacks R11's singular vectors the method needs (made by reduce_for another method).
 inline const DynamicReduction& data_of(const Reduction& reduction, Method method) {
   const DynamicReduction& data = data_of(reduction);
   if (auto refusal = non_square_refusal(method, data.n, data.d)) throw std::invalid_argument(*refusal);
+  if (uses_vectors_a(method) && data.V_a.rows() != data.n) {
+    throw std::logic_error(std::string("this Reduction was made for another method, without the singular vectors ") +
+                           std::string(to_string(method)) + " needs: make one with spdfit::reduce");
+  }
   return data;
 }
 

@@ -17,7 +17,7 @@ namespace detail {
 
 template <int MaxN>
 void reduce_into(const typename BasicReduction<MaxN>::Factor& R, Eigen::Index m, Eigen::Index n, int exponent_a,
-                 int exponent_b, BasicReduction<MaxN>& out) {
+                 int exponent_b, BasicReduction<MaxN>& out, bool vectors_a) {
   using Matrix = typename BasicReduction<MaxN>::Matrix;
   const Eigen::Index d = R.cols() - n;
   out.m = m;
@@ -31,7 +31,7 @@ void reduce_into(const typename BasicReduction<MaxN>::Factor& R, Eigen::Index m,
 
   // A = Q1 R11, so A and R11 share their singular values and right singular vectors.
   BasicSvd<Matrix> a;
-  svd_into(out.R11, a);
+  svd_into(out.R11, a, vectors_a, vectors_a);
   out.U_a = std::move(a.U);
   out.V_a = std::move(a.V);
   out.s_a = std::move(a.s);
@@ -88,7 +88,7 @@ std::optional<double> noise_variance(const BasicReduction<MaxN>& data) {
 #define SPDFIT_INSTANTIATE(MaxN)                                                                  \
   template void reduce_into<MaxN>(const typename BasicReduction<MaxN>::Factor&, Eigen::Index, Eigen::Index, int, \
                                   int,                                                          \
-                                  BasicReduction<MaxN>&);                                               \
+                                  BasicReduction<MaxN>&, bool);                                               \
   template void tls_factor<MaxN>(const BasicReduction<MaxN>&, typename BasicReduction<MaxN>::Factor&, int&); \
   template std::optional<double> noise_variance<MaxN>(const BasicReduction<MaxN>&);
 SPDFIT_FOR_EACH_MAX_N(SPDFIT_INSTANTIATE)
@@ -96,7 +96,15 @@ SPDFIT_FOR_EACH_MAX_N(SPDFIT_INSTANTIATE)
 
 }  // namespace detail
 
-Reduction reduce(const TriangularFactor& factor, const FitOptions& options) {
+namespace detail {
+
+Reduction reduce_for(const TriangularFactor& factor, const FitOptions& options, Method method) {
+  return Reduction::make(factor, options, uses_vectors_a(method));
+}
+
+}  // namespace detail
+
+Reduction Reduction::make(const TriangularFactor& factor, const FitOptions& options, bool vectors_a) {
   std::string error;
   if (!options.is_valid(&error)) throw std::invalid_argument(error);
   const Eigen::Index n = factor.n();
@@ -105,10 +113,14 @@ Reduction reduce(const TriangularFactor& factor, const FitOptions& options) {
   }
   auto r = std::make_shared<detail::DynamicReduction>();
   r->options = options;
-  detail::reduce_into(factor.R(), factor.rows(), n, factor.exponent_a(), factor.exponent_b(), *r);
+  detail::reduce_into(factor.R(), factor.rows(), n, factor.exponent_a(), factor.exponent_b(), *r, vectors_a);
   // A property of the data, computed once for every method that reports it.
   if (options.diagnostics) r->noise_var = detail::noise_variance(*r);
   return Reduction(std::move(r));
+}
+
+Reduction reduce(const TriangularFactor& factor, const FitOptions& options) {
+  return Reduction::make(factor, options, true);
 }
 
 Eigen::Index Reduction::m() const { return data_ ? data_->m : 0; }

@@ -43,7 +43,7 @@ FitResult fit(const Reduction& data, Method method) {
 
 FitResult fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Method method,
               const FitOptions& options) {
-  const Reduction data = reduce(TriangularFactor::from_data(A, B), options);
+  const Reduction data = detail::reduce_for(TriangularFactor::from_data(A, B), options, method);
   FitResult result = fit(data, method);
   if (options.bootstrap > 0 && result.ok()) detail::bootstrap_in_memory(result, A, B, data);
   return result;

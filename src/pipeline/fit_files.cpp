@@ -25,7 +25,7 @@ namespace detail {
 FitResult fit_streamed(Method method, const FitOptions& options, const TriangularFactor& factor, const PairInfo& info,
                        const std::string& a_path) {
   check_enough_rows_for(method, a_path, factor.rows(), factor.n(), factor.d());
-  FitResult result = fit(reduce(factor, options), method);
+  FitResult result = fit(detail::reduce_for(factor, options, method), method);
   attach_read_info(result, info);
   return result;
 }

@@ -71,16 +71,21 @@ Replicate replicate_of(FitResult&& fitted) {
   return out;
 }
 
+namespace {
+// Whether the full data's estimate ended at psd-ls's boundary, which replicates then follow.
+bool at_boundary(const FitResult& full) { return full.diagnostics.reason && full.diagnostics.reason->code == "boundary"; }
+}  // namespace
+
 FitResult fit_replicate(const Reduction& data, const FitResult& full) {
-  const bool boundary = full.diagnostics.reason && full.diagnostics.reason->code == "boundary";
-  if (!boundary) return fit(data, full.method);
+  if (!at_boundary(full)) return fit(data, full.method);
   const DynamicReduction& reduced = data_of(data);
   return psd_least_squares_scaled(reduced, auto_floor(reduced));
 }
 
 Replicate refit(const TriangularFactor& factor, const FitOptions& options, const FitResult& full) {
   try {
-    return replicate_of(fit_replicate(reduce(factor, replicate_options(options)), full));
+    const Method needs = at_boundary(full) ? Method::PsdLeastSquares : full.method;
+    return replicate_of(fit_replicate(reduce_for(factor, replicate_options(options), needs), full));
   } catch (const std::invalid_argument& e) {
     return Replicate{{}, e.what()};  // a resample with fewer rows than columns
   }

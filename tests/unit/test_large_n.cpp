@@ -65,6 +65,22 @@ TEST_F(LargeN, TlsMatchesEigensSvdOfTheData) {
   EXPECT_LE((r.X - X).norm(), 1e-9 * X.norm());
 }
 
+// fit() reduces the data for the one method it runs: without R11's singular vectors for spde and
+// the TLS family, which do not use them. Their estimates are those from the full reduction.
+TEST_F(LargeN, FitReducesOnlyWhatTheMethodUses) {
+  const Reduction full = reduce(TriangularFactor::from_data(A_, B_));
+  for (Method method : {Method::Spde, Method::TotalLeastSquares, Method::SymmetricProcrustes,
+                        Method::LeastSquares}) {
+    const FitResult lean = fit(A_, B_, method), reference = fit(full, method);
+    ASSERT_TRUE(lean.ok() && reference.ok()) << to_string(method);
+    EXPECT_EQ(lean.X, reference.X) << to_string(method);
+    EXPECT_EQ(lean.diagnostics.rank_a, reference.diagnostics.rank_a);
+    // Singular values alone (dqds) or with their vectors (divide and conquer): equal to rounding.
+    const Eigen::VectorXd& s = reference.diagnostics.singular_values_a;
+    EXPECT_LE((lean.diagnostics.singular_values_a - s).cwiseAbs().maxCoeff(), 1e3 * kEps * s(0));
+  }
+}
+
 // The area criterion ||A Y - B Y^-T||_F^2 for X = Y Y^T (Chen & McInroy, Definition II.1), from
 // Eigen's eigendecomposition of X: Y = W sqrt(Lambda), Y^-T = W sqrt(Lambda)^-1.
 double area_criterion_of(const MatrixXd& A, const MatrixXd& B, const MatrixXd& X) {
