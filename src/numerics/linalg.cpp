@@ -65,14 +65,8 @@ void multiply(const Eigen::Ref<const MatrixXd>& A, bool transpose_a, const Eigen
 #endif
   if (k == 0) {
     C.setZero();
-  } else if (transpose_a && transpose_b) {
-    C.noalias() = A.transpose() * B.transpose();
-  } else if (transpose_a) {
-    C.noalias() = A.transpose() * B;
-  } else if (transpose_b) {
-    C.noalias() = A * B.transpose();
   } else {
-    C.noalias() = A * B;
+    eigen_product(A, transpose_a, B, transpose_b, C);
   }
 }
 

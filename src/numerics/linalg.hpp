@@ -174,6 +174,20 @@ void triangular_factor_into(const Eigen::MatrixBase<Derived>& A, Result& R) {
 /// Householder QR of A.
 MatrixXd triangular_factor(const Eigen::Ref<const MatrixXd>& A);
 
+/// C = op(A) op(B), op the transpose where asked, by Eigen's own product (any matrix types).
+template <typename MatrixA, typename MatrixB, typename MatrixC>
+void eigen_product(const MatrixA& A, bool transpose_a, const MatrixB& B, bool transpose_b, MatrixC& C) {
+  if (transpose_a && transpose_b) {
+    C.noalias() = A.transpose() * B.transpose();
+  } else if (transpose_a) {
+    C.noalias() = A.transpose() * B;
+  } else if (transpose_b) {
+    C.noalias() = A * B.transpose();
+  } else {
+    C.noalias() = A * B;
+  }
+}
+
 /// C = op(A) op(B), op the transpose where asked: BLAS dgemm (multithreaded) when spdfit is built
 /// with LAPACK and the product is large (from 64^3 multiply-adds on), else Eigen. A and B may be
 /// column blocks of a matrix (any outer stride).
@@ -187,14 +201,8 @@ template <typename Matrix>
 void product_into(const Matrix& A, bool transpose_a, const Matrix& B, bool transpose_b, Matrix& C) {
   if constexpr (Matrix::MaxColsAtCompileTime == Eigen::Dynamic) {
     multiply(A, transpose_a, B, transpose_b, C);
-  } else if (transpose_a && transpose_b) {
-    C.noalias() = A.transpose() * B.transpose();
-  } else if (transpose_a) {
-    C.noalias() = A.transpose() * B;
-  } else if (transpose_b) {
-    C.noalias() = A * B.transpose();
   } else {
-    C.noalias() = A * B;
+    eigen_product(A, transpose_a, B, transpose_b, C);
   }
 }
 
