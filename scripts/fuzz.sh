@@ -10,7 +10,10 @@ cd "$(dirname "$0")/.."
 
 build=build-sanitize
 seconds=${FUZZ_SECONDS:-60}
-targets=(delimited npy geometry linkage_pairs)
+targets=(delimited npy geometry linkage_pairs mat)
+# LeakSanitizer's suppressions: libraries' own leaks (libmatio's on malformed .mat files), never
+# spdfit's.
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan-suppressions.txt:print_suppressions=0}
 summary=""
 status=0
 for target in "${targets[@]}"; do
