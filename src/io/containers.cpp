@@ -358,7 +358,7 @@ void check_level5(const std::string& file) {
   std::string bytes;
   char buffer[1 << 16];
   for (std::size_t got; (got = std::fread(buffer, 1, sizeof buffer, in.get())) > 0;) bytes.append(buffer, got);
-  if (!is_level5(bytes)) return;  // changed since
+  if (!is_level5(bytes)) return;  // the file changed since its first bytes were read
   const bool swap = bytes.substr(126, 2) == "MI";
   Level5Checker(file, swap).check_body(std::string_view(bytes).substr(128));
 }
@@ -380,19 +380,19 @@ MatVariables list_variables(mat_t* mat) {
 struct MatMatrix {
   MatFile file;
   MatVar header;
-  std::string name;  // how messages name it: "file" or "file:variable"
+  std::string variable;  // the variable's name in the file
+  std::string name;      // how messages name it: "file" or "file:variable"
 };
 
 MatMatrix open_matrix(const std::string& file, const std::string& variable) {
   Mat_LogInitFunc("spdfit", quiet_log);
-  MatMatrix out{nullptr, nullptr, variable.empty() ? file : file + ":" + variable};
+  MatMatrix out{nullptr, nullptr, variable, variable.empty() ? file : file + ":" + variable};
   check_level5(file);
   out.file.reset(Mat_Open(file.c_str(), MAT_ACC_RDONLY));
   if (!out.file) throw DataError(file, 0, 0, "is not a MATLAB .mat file libmatio can read (levels 5 and 7.3 are)");
   const auto its_variables = [](const MatVariables& found) {
     return found.all.empty() ? std::string() : "; its variables: " + joined(found.all);
   };
-  std::string chosen = variable;
   if (variable.empty()) {
     const MatVariables found = list_variables(out.file.get());
     if (found.candidates.size() != 1) {
@@ -402,9 +402,9 @@ MatMatrix open_matrix(const std::string& file, const std::string& variable) {
                                                       " 2-D numeric arrays (" + joined(found.candidates) + ")") +
                           its_variables(found) + ": name one as " + file + ":NAME");
     }
-    chosen = found.candidates.front();
+    out.variable = found.candidates.front();
   }
-  out.header.reset(Mat_VarReadInfo(out.file.get(), chosen.c_str()));
+  out.header.reset(Mat_VarReadInfo(out.file.get(), out.variable.c_str()));
   if (!out.header) {
     if (variable.empty()) throw DataError(out.name, 0, 0, "could not be read (a damaged .mat file?)");
     // Rewind by reopening: list what there is.
@@ -413,7 +413,7 @@ MatMatrix open_matrix(const std::string& file, const std::string& variable) {
                     "has no variable '" + variable + "'" + (again ? its_variables(list_variables(again.get())) : ""));
   }
   const matvar_t& v = *out.header;
-  check_declared_size(v, file, variable.empty() ? out.name : file + ":" + chosen);
+  check_declared_size(v, file, variable.empty() ? out.name : file + ":" + out.variable);
   const std::string& name = out.name;
   if (!numeric_class(v.class_type)) {
     static const char* const kClasses[] = {"empty", "cell", "struct", "object", "char", "sparse"};
@@ -455,8 +455,10 @@ std::size_t class_size(matio_classes type) {
 
 Table read_mat(const std::string& file, const std::string& variable, const ReadOptions& options) {
   const MatMatrix matrix = open_matrix(file, variable);
-  const MatVar whole(Mat_VarRead(matrix.file.get(), matrix.header->name));
-  if (!whole || !whole->data || whole->class_type != matrix.header->class_type) {
+  const MatVar whole(Mat_VarRead(matrix.file.get(), matrix.variable.c_str()));
+  // As its header said (the file may have changed since, or libmatio read it otherwise).
+  if (!whole || !whole->data || whole->class_type != matrix.header->class_type || whole->rank != 2 ||
+      whole->isComplex || whole->dims[0] != matrix.header->dims[0] || whole->dims[1] != matrix.header->dims[1]) {
     throw DataError(matrix.name, 0, 0, "could not be read (a damaged .mat file?)");
   }
   Table table;
