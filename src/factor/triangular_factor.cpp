@@ -94,7 +94,11 @@ void TriangularFactor::absorb_rows(Eigen::Ref<MatrixXd> rows, Index count) {
   auto rows_b = rows.rightCols(d_);
   detail::multiply_by_power_of_two(rows_a, -exponent_a());
   detail::multiply_by_power_of_two(rows_b, -exponent_b());
-  absorb(rows);
+  if (rows_ == 0) {
+    R_ = detail::triangular_factor_in_place(rows);  // the rows are a scratch copy
+  } else {
+    absorb(rows);
+  }
   rows_ += count;
 }
 

@@ -118,14 +118,17 @@ NpyLayout npy_layout(const NpyHeader& header, std::size_t file_bytes, const std:
   return layout;
 }
 
+bool is_native_double(const NpyLayout& layout) {
+  return layout.kind == 'f' && layout.item_size == 8 && !layout.big_endian && host_is_little_endian();
+}
+
 void decode_npy_rows(const NpyLayout& layout, const char* data, std::uint64_t first, Eigen::Index count,
                      Eigen::MatrixXd* out) {
   // Both dimensions are at most the file's value count, so they fit in Eigen::Index.
   const auto n = static_cast<Eigen::Index>(layout.cols);
   out->resize(count, n);
   if (count == 0) return;  // past the end: an empty block has no storage for memcpy to write to
-  const bool native = layout.kind == 'f' && layout.item_size == 8 && !layout.big_endian && host_is_little_endian();
-  if (!native) {
+  if (!is_native_double(layout)) {
     // Other dtypes and byte orders, converted value by value.
     const std::size_t size = layout.item_size;
     for (Eigen::Index j = 0; j < n; ++j) {

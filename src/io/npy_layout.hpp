@@ -28,6 +28,10 @@ struct NpyLayout {
 /// before anything is allocated, so that a hostile shape costs nothing.
 NpyLayout npy_layout(const NpyHeader& header, std::size_t file_bytes, const std::string& source);
 
+/// Whether the values are little-endian float64 on a little-endian host: bytes that are doubles
+/// as they stand.
+bool is_native_double(const NpyLayout& layout);
+
 /// Decodes rows [first, first + count) of the array whose data (after the header) start at
 /// `data` into `out` (resized to count x cols).
 void decode_npy_rows(const NpyLayout& layout, const char* data, std::uint64_t first, Eigen::Index count,

@@ -52,9 +52,12 @@ namespace {
 
 }  // namespace
 
-// A .npy file, mapped whole and decoded a block at a time: the kernel reads ahead
-// (MADV_SEQUENTIAL), and the pages of rows already decoded are dropped from the mapping (the page
-// cache keeps them), so that resident memory stays O(block) however long the file.
+// A .npy file decoded a block at a time. In C order (NumPy's default) each block's rows are one
+// run of bytes, read with pread into a buffer used again for every block: no page faults on a
+// mapping, and no new memory per block. In Fortran order a block is one run per column: the file
+// is mapped whole, the kernel reads ahead (MADV_SEQUENTIAL), and the pages of rows already decoded
+// are dropped from the mapping (the page cache keeps them). Either way resident memory stays
+// O(block) however long the file.
 class RowReader::NpySource final : public RowReader::Source {
  public:
   NpySource(const std::string& path, int fd, std::size_t size, const ReadOptions& options)
@@ -73,22 +76,36 @@ class RowReader::NpySource final : public RowReader::Source {
       end_ = std::min(end, layout_.rows);
       begin_ = std::min(begin_, end_);
       dropped_rows_ = begin_;
+      if (!layout_.fortran_order) {
+        fd_ = ::fcntl(fd, F_DUPFD_CLOEXEC, 0);  // the caller closes fd
+        if (fd_ < 0) fail_errno(path, "cannot be read");
+        ::posix_fadvise(fd_, 0, 0, POSIX_FADV_SEQUENTIAL);
+        ::munmap(map, size_);
+        map_ = nullptr;
+      }
     } catch (...) {
-      ::munmap(map, size_);  // a constructor that throws runs no destructor
+      if (map_) ::munmap(map, size_);  // a constructor that throws runs no destructor
       throw;
     }
   }
-  ~NpySource() override { ::munmap(const_cast<char*>(map_), size_); }
+  ~NpySource() override {
+    if (map_) ::munmap(const_cast<char*>(map_), size_);
+    if (fd_ >= 0) ::close(fd_);
+  }
 
   Index read(Index max_rows, Eigen::MatrixXd* rows) override {
     const std::uint64_t at = begin_ + rows_read;
     const std::uint64_t left = end_ - at;
     const auto count =
         static_cast<Index>(std::min<std::uint64_t>(left, static_cast<std::uint64_t>(max_rows)));
-    detail::decode_npy_rows(layout_, map_ + layout_.data_offset, at, count, rows);
+    if (map_) {
+      detail::decode_npy_rows(layout_, map_ + layout_.data_offset, at, count, rows);
+    } else {
+      read_rows(at, count, rows);
+    }
     if (!options_.allow_nonfinite) detail::check_npy_finite(*rows, at, path);
     rows_read += static_cast<std::uint64_t>(count);
-    drop_decoded_pages();
+    if (map_) drop_decoded_pages();
     return count;
   }
   Index columns() const override { return static_cast<Index>(layout_.cols); }
@@ -98,6 +115,30 @@ class RowReader::NpySource final : public RowReader::Source {
   }
 
  private:
+  // Rows [at, at + count) of a C-order file, read into buffer_ and decoded from there.
+  void read_rows(std::uint64_t at, Index count, Eigen::MatrixXd* rows) {
+    const std::size_t row_bytes = layout_.item_size * layout_.cols;
+    const std::size_t bytes = row_bytes * static_cast<std::size_t>(count);
+    buffer_.resize((bytes + sizeof(double) - 1) / sizeof(double));  // doubles: aligned for any item
+    char* into = reinterpret_cast<char*>(buffer_.data());
+    std::uint64_t offset = layout_.data_offset + at * row_bytes;
+    for (std::size_t done = 0; done < bytes;) {
+      const ssize_t got = ::pread(fd_, into + done, bytes - done, static_cast<off_t>(offset + done));
+      if (got < 0 && errno == EINTR) continue;
+      if (got < 0) fail_errno(path, "read error");
+      if (got == 0) throw DataError(path, 0, 0, "ends before the rows its header declares (was it truncated?)");
+      done += static_cast<std::size_t>(got);
+    }
+    if (detail::is_native_double(layout_)) {
+      using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+      *rows = Eigen::Map<const RowMajor>(buffer_.data(), count, static_cast<Index>(layout_.cols));
+      return;
+    }
+    detail::NpyLayout part = layout_;  // the block alone: its rows from the buffer's start
+    part.rows = static_cast<std::uint64_t>(count);
+    detail::decode_npy_rows(part, into, 0, count, rows);
+  }
+
   // The data are one run of rows (C order) or one run per column (Fortran order); in each, the
   // pages wholly before the first row not yet decoded are dropped.
   void drop_decoded_pages() {
@@ -119,7 +160,9 @@ class RowReader::NpySource final : public RowReader::Source {
   std::uint64_t begin_ = 0;  // the first row read (0 but for a part of a split file)
   std::uint64_t end_ = 0;    // one past the last
   std::uint64_t dropped_rows_ = 0;
-  const char* map_ = nullptr;
+  const char* map_ = nullptr;  // Fortran order only
+  int fd_ = -1;                // C order only
+  std::vector<double> buffer_;
   std::size_t size_;
   ReadOptions options_;
   detail::NpyLayout layout_;
@@ -380,8 +423,8 @@ SplitFile::SplitFile(const std::string& path, const ReadOptions& options, int pa
   if (path == "-" || !spec.variable.empty() || named_arrays_kind(spec) != NamedArrays::kNone) {
     const std::string what = path == "-" ? "standard input" : path;
     throw DataError(path, 0, 0,
-                    what + " cannot be split among processes: only .npy files and text files are read in row "
-                           "ranges; convert it to .npy, or run spdfit without mpirun");
+                    what + " cannot be split among processes: only .npy files and text files are split; "
+                           "convert it to .npy, or run spdfit without mpirun");
   }
   // The first rows, parsed here as the part starting at the file's start will parse them: the
   // layout every later part is parsed by, and the columns.

@@ -202,6 +202,26 @@ MatrixXd triangular_factor(const Eigen::Ref<const MatrixXd>& A) {
   return R;
 }
 
+MatrixXd triangular_factor_in_place(Eigen::Ref<MatrixXd> A) {
+  const Index cols = A.cols(), k = std::min(A.rows(), cols);
+  MatrixXd R = MatrixXd::Zero(cols, cols);
+  if (A.rows() == 0) return R;
+#ifdef SPDFIT_HAVE_LAPACK
+  if (cols >= kLapackMinColumns) {
+    Eigen::VectorXd tau(k);
+    const lapack_int info =
+        LAPACKE_dgeqrf(LAPACK_COL_MAJOR, static_cast<lapack_int>(A.rows()), static_cast<lapack_int>(cols), A.data(),
+                       static_cast<lapack_int>(A.outerStride()), tau.data());
+    if (info != 0) throw std::runtime_error("the QR (LAPACK dgeqrf) failed: info = " + std::to_string(info));
+    R.topRows(k) = A.topRows(k).triangularView<Eigen::Upper>();
+    return R;
+  }
+#endif
+  const Eigen::HouseholderQR<Eigen::Ref<MatrixXd>> qr(A);
+  R.topRows(k) = qr.matrixQR().topRows(k).triangularView<Eigen::Upper>();
+  return R;
+}
+
 std::optional<int> scale_exponent(const Eigen::Ref<const MatrixXd>& X) {
   if (X.size() == 0) return std::nullopt;
   return scale_exponent(X.cwiseAbs().maxCoeff());

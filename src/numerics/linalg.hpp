@@ -174,6 +174,9 @@ void triangular_factor_into(const Eigen::MatrixBase<Derived>& A, Result& R) {
 /// Householder QR of A.
 MatrixXd triangular_factor(const Eigen::Ref<const MatrixXd>& A);
 
+/// The same, computed in A's own storage (A is overwritten): no copy of a tall block.
+MatrixXd triangular_factor_in_place(Eigen::Ref<MatrixXd> A);
+
 /// C = op(A) op(B), op the transpose where asked, by Eigen's own product (any matrix types).
 template <typename MatrixA, typename MatrixB, typename MatrixC>
 void eigen_product(const MatrixA& A, bool transpose_a, const MatrixB& B, bool transpose_b, MatrixC& C) {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "numerics/parallel.hpp"
 #include "pipeline/pair_checks.hpp"
@@ -142,25 +143,39 @@ TriangularFactor stream_factor_for(const std::optional<Method>& method, PairRead
   PairReader reader(std::move(readers), options, threads > 1, method);
 
   // Blocks' factors are computed on up to `threads` threads while the next blocks are read, and
-  // merged strictly in block order, so the result is the same for every thread count.
-  std::deque<std::future<TriangularFactor>> in_flight;
+  // merged strictly in block order, so the result is the same for every thread count. A block's
+  // buffers come back with its factor and are read into again: allocating them anew for every
+  // block cost page faults (a fresh mapping per buffer) about a sixth of the time.
+  struct Factored {
+    TriangularFactor factor;
+    Block buffers;
+  };
+  std::deque<std::future<Factored>> in_flight;
+  std::vector<Block> spare;
   std::optional<TriangularFactor> total;
   auto merge_oldest = [&] {
-    TriangularFactor block = in_flight.front().get();
+    Factored done = in_flight.front().get();
     in_flight.pop_front();
+    spare.push_back(std::move(done.buffers));
     if (total) {
-      total->merge(block);
+      total->merge(done.factor);
     } else {
-      total = std::move(block);
+      total = std::move(done.factor);
     }
   };
   Block block;
   while (reader.next(&block)) {
     // One thread: computed on this one when merged (deferred).
     const std::launch policy = threads == 1 ? std::launch::deferred : std::launch::async;
-    in_flight.push_back(
-        std::async(policy, [b = std::move(block)] { return TriangularFactor::from_data(b.A, b.B); }));
+    in_flight.push_back(std::async(policy, [b = std::move(block)]() mutable {
+      TriangularFactor factor = TriangularFactor::from_data(b.A, b.B);
+      return Factored{std::move(factor), std::move(b)};
+    }));
     block = Block{};
+    if (!spare.empty()) {
+      block = std::move(spare.back());
+      spare.pop_back();
+    }
     if (in_flight.size() >= threads) merge_oldest();
     if (options.progress) options.progress(reader.fraction_read());
   }

@@ -162,7 +162,7 @@ def test_what_cannot_run_on_several_processes_is_a_usage_error(files, tmp_path):
     assert result.returncode == 2 and len(errors(result)) == 1 and "add --stream" in result.stderr
     result = mpirun(2, "nearest", files / "A.csv")
     assert result.returncode == 2 and len(errors(result)) == 1 and "only 'spdfit fit --stream'" in result.stderr
-    # A .mat file cannot be read in row ranges; one process reads it whole.
+    # A .mat file is not split among processes; one process reads it as without mpirun.
     subprocess.run([sys.executable, "-c", "import numpy, scipy.io, sys; "
                     "scipy.io.savemat(sys.argv[2], {'B': numpy.load(sys.argv[1])})",
                     files / "B.npy", tmp_path / "B.mat"], check=True)

@@ -364,7 +364,7 @@ TEST_F(DistributedTest, FilesThatCannotBeSplitOrPairedAreRefusedOnEveryProcess) 
     ASSERT_TRUE(out.data_error) << out.error;
     EXPECT_NE(out.error.find("missing.csv"), std::string::npos) << out.error;
   }
-  // A .mat file cannot be read in row ranges.
+  // A .mat file is not split among processes.
   const std::string mat = Path("B.mat");
   io::write_mat(mat, B_, "B");
   for (const Outcome& out : run_processes(2, a_path_, mat, Method::Spde)) {
