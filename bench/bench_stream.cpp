@@ -1,5 +1,5 @@
 // Throughput of the streaming fit (spdfit fit --stream): stream_factor over two data files of
-// m x 6 rows written once to the temporary directory, as .npy (memory-mapped) and as CSV
+// m x 6 rows written once to the temporary directory, as .npy (read block by block) and as CSV
 // (parsed as read), on 1 and 2 threads. Reports bytes of both files per second; hold it
 // against the time `cat A B > /dev/null` takes to read the same files from the page cache
 // (bench/results/ records both). The in-memory reader is the baseline: io::read_matrix of both

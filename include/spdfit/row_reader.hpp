@@ -16,8 +16,9 @@ class SplitFile;  // a file split among processes (src/io/split_file.hpp) opens 
 }
 
 /// Reads the matrix in a data file (the formats of read_table: .npy by its magic bytes,
-/// delimited text otherwise) a block of rows at a time, in O(block) memory: a .npy file is
-/// memory-mapped and decoded block by block, a text file is read in pieces of about
+/// delimited text otherwise) a block of rows at a time, in O(block) memory: a .npy file's blocks
+/// are read into one reused buffer (C order) or decoded from a mapping (Fortran order), a MATLAB
+/// 7.3 variable is read in row ranges, a text file is read in pieces of about
 /// `kTextPieceBytes` bytes of whole lines. The rows, their values and every error (naming the
 /// file, and for text the line and column) are those of read_table.
 class RowReader {

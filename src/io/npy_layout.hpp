@@ -1,6 +1,6 @@
 // The numeric array that a .npy header describes (float64, float32, integers or booleans, all
 // read as double), checked against the file's size, and decoding it a block of rows at a time (internal to src/io: parse_npy decodes all rows at
-// once, the streaming RowReader a block at a time from the memory-mapped file).
+// once, the streaming RowReader a block at a time).
 #pragma once
 
 #include <Eigen/Core>

@@ -1,4 +1,4 @@
-// Reading a data file a block of rows at a time: .npy files memory-mapped, text in pieces of
+// Reading a data file a block of rows at a time: .npy files by pread (or mapped), text in pieces of
 // whole lines through the same parser as read_table.
 #include "spdfit/row_reader.hpp"
 
