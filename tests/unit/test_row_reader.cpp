@@ -152,7 +152,13 @@ TEST_F(RowReaderTest, NpyInBothOrdersGivesReadTablesRows) {
   for (std::size_t k = 0; k < big.size(); k += 8) std::reverse(big.begin() + k, big.begin() + k + 8);
   const std::string big_endian =
       Write("b.npy", NpyBytes("{'descr': '>f8', 'fortran_order': True, 'shape': (10007, 4), }", big));
-  for (const std::string& path : {c_order, fortran, big_endian}) {
+  // Big-endian in C order too: read by blocks into a buffer (pread), then converted.
+  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> row_major = M;
+  std::string big_rows(reinterpret_cast<const char*>(row_major.data()), sizeof(double) * M.size());
+  for (std::size_t k = 0; k < big_rows.size(); k += 8) std::reverse(big_rows.begin() + k, big_rows.begin() + k + 8);
+  const std::string big_endian_c =
+      Write("bc.npy", NpyBytes("{'descr': '>f8', 'fortran_order': False, 'shape': (10007, 4), }", big_rows));
+  for (const std::string& path : {c_order, fortran, big_endian, big_endian_c}) {
     EXPECT_EQ(io::read_matrix(path), M) << path;
     for (Index block : {1, 999, 20000}) EXPECT_EQ(ReadAll(path, block), M) << path << " block " << block;
   }
