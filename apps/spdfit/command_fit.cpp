@@ -16,6 +16,7 @@
 #include "mpi_world.hpp"
 #include "progress_line.hpp"
 #include "validators.hpp"
+#include "io/containers.hpp"
 #include "spdfit/distributed.hpp"
 #include "spdfit/fit_files.hpp"
 
@@ -45,9 +46,16 @@ std::uint64_t file_bytes(const std::string& path) {
   return ::stat(path.c_str(), &info) == 0 && S_ISREG(info.st_mode) ? static_cast<std::uint64_t>(info.st_size) : 0;
 }
 
-// "A.mat:accel" for --var-a accel: the library's one way of naming an array in a file.
-std::string with_variable(const std::string& path, const std::string& variable) {
-  return variable.empty() ? path : path + ":" + variable;
+// "A.mat:accel" for --var-a accel: the library's one way of naming an array in a file. A file
+// named with its array already, or standard input, takes no --var-a (a usage error).
+std::string with_variable(const std::string& path, const std::string& variable, const char* option) {
+  if (variable.empty()) return path;
+  if (path == "-") throw UsageError(std::string(option) + " names an array in a file, but the file is standard input (-)");
+  if (!io::detail::split_spec(path).variable.empty()) {
+    throw UsageError(std::string(option) + " " + variable + " names the array, but " + path +
+                     " names one already: give one of them");
+  }
+  return path + ":" + variable;
 }
 
 // Test switch: SPDFIT_TEST_MPI_DIE=K kills process K (SIGKILL) after its first block under mpirun,
@@ -160,8 +168,8 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
     if (options->a_path == "-" && options->b_path == "-") {
       throw UsageError("A and B cannot both be standard input (-)");
     }
-    const std::string a_path = with_variable(options->a_path, options->var_a);
-    const std::string b_path = with_variable(options->b_path, options->var_b);
+    const std::string a_path = with_variable(options->a_path, options->var_a, "--var-a");
+    const std::string b_path = with_variable(options->b_path, options->var_b, "--var-b");
     std::vector<std::uint64_t> rows_per_process;
     const std::optional<FitResult> outcome = [&]() -> std::optional<FitResult> {
       // Long runs show a progress line on a terminal (the streaming pass, then the replicates),

@@ -145,8 +145,9 @@ def _shared_doc(function):
 def read_matrix(path, *, allow_nonfinite=False, index_col=None):
     r"""Read a matrix from a data file.
 
-    Delimited text (commas, semicolons, tabs or spaces; '#' comments; an optional header row) or a
-    .npy file, read as the command line reads it.
+    Delimited text (commas, semicolons, tabs or spaces; '#' comments; an optional header row), a
+    .npy file, a MATLAB .mat file (level 5 or 7.3) or a NumPy .npz archive, read as the command
+    line reads it: "log.mat:accel" names the array in a .mat or .npz file.
 
     Parameters
     ----------
@@ -385,8 +386,9 @@ def fit_files(A_path, B_path, method="auto", *, block_rows=_STREAM_DEFAULTS.bloc
     """Estimate X from A and B in two data files read a block of rows at a time.
 
     As `spdfit fit --stream`: any number of rows in O(threads * block_rows * n + n^2) memory. The
-    files are read as read_matrix reads them (.npy memory-mapped, delimited text parsed as it is
-    read); each block's triangular QR factor of [A B] is computed on up to `threads` threads and the
+    files are read as read_matrix reads them (.npy files and MATLAB 7.3 variables a block of rows
+    at a time, delimited text parsed as it is read; level-5 .mat files and .npz arrays whole, with
+    a SpdfitWarning that memory grows with their rows); each block's triangular QR factor of [A B] is computed on up to `threads` threads and the
     factors are merged in block order (TSQR), so the estimate is fit(read_matrix(A_path),
     read_matrix(B_path), method)'s to rounding, the same for every thread count.
 

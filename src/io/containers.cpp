@@ -395,12 +395,18 @@ MatMatrix open_matrix(const std::string& file, const std::string& variable) {
   };
   if (variable.empty()) {
     const MatVariables found = list_variables(out.file.get());
-    if (found.candidates.size() != 1) {
+    if (found.all.empty()) {
+      throw DataError(file, 0, 0, "holds no variable libmatio can read (a damaged or truncated .mat file?)");
+    }
+    if (found.candidates.empty()) {
       throw DataError(file, 0, 0,
-                      (found.candidates.empty() ? "holds no real 2-D numeric array"
-                                                : "holds " + std::to_string(found.candidates.size()) +
-                                                      " 2-D numeric arrays (" + joined(found.candidates) + ")") +
-                          its_variables(found) + ": name one as " + file + ":NAME");
+                      "holds no real 2-D numeric array" + its_variables(found) +
+                          " (none is a real numeric matrix: save the data as a 2-D double array)");
+    }
+    if (found.candidates.size() > 1) {
+      throw DataError(file, 0, 0,
+                      "holds " + std::to_string(found.candidates.size()) + " 2-D numeric arrays (" +
+                          joined(found.candidates) + ")" + its_variables(found) + ": name one as " + file + ":NAME");
     }
     out.variable = found.candidates.front();
   }
@@ -409,14 +415,22 @@ MatMatrix open_matrix(const std::string& file, const std::string& variable) {
     if (variable.empty()) throw DataError(out.name, 0, 0, "could not be read (a damaged .mat file?)");
     // Rewind by reopening: list what there is.
     const MatFile again(Mat_Open(file.c_str(), MAT_ACC_RDONLY));
-    throw DataError(file, 0, 0,
-                    "has no variable '" + variable + "'" + (again ? its_variables(list_variables(again.get())) : ""));
+    const MatVariables there = again ? list_variables(again.get()) : MatVariables{};
+    if (there.all.empty()) {
+      throw DataError(file, 0, 0,
+                      "has no variable '" + variable +
+                          "' libmatio can read: it lists none at all (a damaged or truncated .mat file?)");
+    }
+    throw DataError(file, 0, 0, "has no variable '" + variable + "'" + its_variables(there));
   }
   const matvar_t& v = *out.header;
   check_declared_size(v, file, variable.empty() ? out.name : file + ":" + out.variable);
   const std::string& name = out.name;
   if (!numeric_class(v.class_type)) {
-    static const char* const kClasses[] = {"empty", "cell", "struct", "object", "char", "sparse"};
+    if (v.class_type == MAT_C_EMPTY) {
+      throw DataError(name, 0, 0, "has no MATLAB class libmatio knows (no MATLAB_class attribute?), so it is not read");
+    }
+    static const char* const kClasses[] = {"", "cell", "struct", "object", "char", "sparse"};
     const std::string what = v.class_type <= MAT_C_SPARSE ? kClasses[v.class_type] : "function or opaque";
     throw DataError(name, 0, 0, "is a " + what + " array, not a numeric matrix");
   }

@@ -123,3 +123,41 @@ def test_streamed_7_3_bootstrap_matches_npy(spdfit, tmp_path):
     assert mat["bootstrap"]["groups"] == 13
     for key in ["X", "standard_errors", "interval", "bias"]:
         np.testing.assert_array_equal(mat[key], npy[key], err_msg=key)
+
+
+def test_a_truncated_7_3_file_is_called_damaged(spdfit, logs, tmp_path):
+    # Cut in half, HDF5 can no longer list the variables: not "no such variable".
+    path, _, _ = logs
+    whole = (path / "log.mat").read_bytes()
+    (tmp_path / "cut.mat").write_bytes(whole[: len(whole) // 2])
+    for spec in [f"{tmp_path}/cut.mat:accel", tmp_path / "cut.mat"]:
+        result = spdfit("fit", "--method", "ls", "--stream", spec, path / "B.npy")
+        assert result.returncode == 1, result.stderr
+        assert "a damaged or truncated .mat file?" in result.stderr, result.stderr
+
+
+def test_variables_that_cannot_be_read_say_why(spdfit, logs, tmp_path):
+    path, A, _ = logs
+    # A dataset without MATLAB's class attribute (MATLAB always writes one).
+    with h5py.File(tmp_path / "noclass.mat", "w", userblock_size=512) as f:
+        f.create_dataset("accel", data=A.T)
+    with open(tmp_path / "noclass.mat", "r+b") as f:
+        f.write(b"MATLAB 7.3 MAT-file".ljust(116, b" ") + bytes(8) + b"\x00\x02IM")
+    result = spdfit("fit", "--method", "ls", f"{tmp_path}/noclass.mat:accel", path / "B.npy")
+    assert result.returncode == 1
+    assert "has no MATLAB class libmatio knows (no MATLAB_class attribute?)" in result.stderr
+    # Only a 3-D array: no "name one", which could not help.
+    write_mat73(tmp_path / "cube.mat", {"cube": np.zeros((4, 3, 2))})
+    result = spdfit("fit", "--method", "ls", tmp_path / "cube.mat", path / "B.npy")
+    assert result.returncode == 1
+    assert "holds no real 2-D numeric array; its variables: cube (none is a real numeric matrix" in result.stderr
+    assert "name one as" not in result.stderr
+
+
+def test_var_a_with_a_named_array_or_standard_input_is_a_usage_error(spdfit, logs):
+    path, _, _ = logs
+    result = spdfit("fit", "--method", "ls", "--var-a", "accel", f"{path}/log.mat:accel", f"{path}/log.mat:force")
+    assert result.returncode == 2
+    assert f"--var-a accel names the array, but {path}/log.mat:accel names one already" in result.stderr
+    result = spdfit("fit", "--method", "ls", "--var-a", "accel", "-", path / "B.npy", input="1,2\n")
+    assert result.returncode == 2 and "the file is standard input (-)" in result.stderr
