@@ -7,7 +7,6 @@
 #include <utility>
 
 #include "spdfit/fit_options.hpp"
-#include "spdfit/method.hpp"
 #include "spdfit/triangular_factor.hpp"
 
 namespace spdfit {
@@ -18,7 +17,7 @@ namespace detail {
 template <int MaxN>
 struct BasicReduction;
 const BasicReduction<Eigen::Dynamic>& data_of(const Reduction& reduction);
-Reduction reduce_for(const TriangularFactor& factor, const FitOptions& options, Method method);
+Reduction reduce_with(const TriangularFactor& factor, const FitOptions& options, bool vectors_a);
 }  // namespace detail
 
 /// The data reduced to small matrices, all in the scaled units of the triangular factor: the SVD
@@ -43,9 +42,8 @@ class Reduction {
 
  private:
   friend Reduction reduce(const TriangularFactor& factor, const FitOptions& options);
-  friend Reduction detail::reduce_for(const TriangularFactor& factor, const FitOptions& options, Method method);
+  friend Reduction detail::reduce_with(const TriangularFactor& factor, const FitOptions& options, bool vectors_a);
   friend const detail::BasicReduction<Eigen::Dynamic>& detail::data_of(const Reduction& reduction);
-  static Reduction make(const TriangularFactor& factor, const FitOptions& options, bool vectors_a);
   explicit Reduction(std::shared_ptr<const detail::BasicReduction<Eigen::Dynamic>> data) : data_(std::move(data)) {}
 
   std::shared_ptr<const detail::BasicReduction<Eigen::Dynamic>> data_;

@@ -98,13 +98,8 @@ SPDFIT_FOR_EACH_MAX_N(SPDFIT_INSTANTIATE)
 
 namespace detail {
 
-Reduction reduce_for(const TriangularFactor& factor, const FitOptions& options, Method method) {
-  return Reduction::make(factor, options, uses_vectors_a(method));
-}
-
-}  // namespace detail
-
-Reduction Reduction::make(const TriangularFactor& factor, const FitOptions& options, bool vectors_a) {
+// The reduction, with R11's singular vectors or without them (reduce and reduce_for).
+Reduction reduce_with(const TriangularFactor& factor, const FitOptions& options, bool vectors_a) {
   std::string error;
   if (!options.is_valid(&error)) throw std::invalid_argument(error);
   const Eigen::Index n = factor.n();
@@ -119,8 +114,14 @@ Reduction Reduction::make(const TriangularFactor& factor, const FitOptions& opti
   return Reduction(std::move(r));
 }
 
+Reduction reduce_for(const TriangularFactor& factor, const FitOptions& options, Method method) {
+  return reduce_with(factor, options, uses_vectors_a(method));
+}
+
+}  // namespace detail
+
 Reduction reduce(const TriangularFactor& factor, const FitOptions& options) {
-  return Reduction::make(factor, options, true);
+  return detail::reduce_with(factor, options, true);
 }
 
 Eigen::Index Reduction::m() const { return data_ ? data_->m : 0; }

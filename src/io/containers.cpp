@@ -456,15 +456,6 @@ void widen_class(matio_classes type, const void* data, Eigen::MatrixXd& out) {
   }
 }
 
-std::size_t class_size(matio_classes type) {
-  switch (type) {
-    case MAT_C_DOUBLE: case MAT_C_INT64: case MAT_C_UINT64: return 8;
-    case MAT_C_SINGLE: case MAT_C_INT32: case MAT_C_UINT32: return 4;
-    case MAT_C_INT16: case MAT_C_UINT16: return 2;
-    default: return 1;
-  }
-}
-
 }  // namespace
 
 Table read_mat(const std::string& file, const std::string& variable, const ReadOptions& options) {
@@ -481,11 +472,6 @@ Table read_mat(const std::string& file, const std::string& variable, const ReadO
   widen_class(whole->class_type, whole->data, table.values);
   if (!options.allow_nonfinite) check_npy_finite(table.values, 0, matrix.name);
   return table;
-}
-
-bool is_mat73(const FileSpec& spec) {
-  if (named_arrays_kind(spec) != NamedArrays::kMat) return false;
-  return !is_level5(first_bytes(spec.file, 128));
 }
 
 struct MatRowBlocks::State {
@@ -514,7 +500,7 @@ void MatRowBlocks::read(std::uint64_t first, Eigen::Index count, Eigen::MatrixXd
   matvar_t& v = *state_->matrix.header;
   out->resize(count, columns());
   if (count == 0) return;
-  state_->buffer.resize(static_cast<std::size_t>(out->size()) * class_size(v.class_type));
+  state_->buffer.resize(static_cast<std::size_t>(out->size()) * Mat_SizeOfClass(v.class_type));
   int start[2] = {static_cast<int>(first), 0};
   int stride[2] = {1, 1};
   int edge[2] = {static_cast<int>(count), static_cast<int>(columns())};
@@ -571,7 +557,7 @@ Table read_npz(const std::string& file, const std::string& variable, const ReadO
 NamedArrays named_arrays_kind(const FileSpec& spec) {
   if (spec.file == "-") return NamedArrays::kNone;
   const std::string head = first_bytes(spec.file, 128);
-  if (is_mat(head)) return NamedArrays::kMat;
+  if (is_mat(head)) return is_level5(head) ? NamedArrays::kMat : NamedArrays::kMat73;
   if (is_zip(head) && holds_npy(spec.file)) return NamedArrays::kNpz;
   return NamedArrays::kNone;
 }
@@ -579,6 +565,7 @@ NamedArrays named_arrays_kind(const FileSpec& spec) {
 std::optional<Table> read_named_arrays(const FileSpec& spec, const ReadOptions& options) {
   switch (named_arrays_kind(spec)) {
     case NamedArrays::kMat:
+    case NamedArrays::kMat73:
       return read_mat(spec.file, spec.variable, options);
     case NamedArrays::kNpz:
       return read_npz(spec.file, spec.variable, options);

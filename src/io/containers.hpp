@@ -42,9 +42,6 @@ bool is_level5(std::string_view first);
 /// that is not a real 2-D array, NaN or Inf (unless options allow them).
 Table read_mat(const std::string& file, const std::string& variable, const ReadOptions& options);
 
-/// Whether the file is a MATLAB 7.3 .mat file (HDF5), whose variables are read in row ranges.
-bool is_mat73(const FileSpec& spec);
-
 /// A 7.3 .mat file's variable (chosen as read_mat chooses it, with its checks), read a block of
 /// rows at a time: HDF5 hyperslabs through libmatio, so that memory does not grow with its rows.
 class MatRowBlocks {
@@ -71,7 +68,7 @@ Table read_npz(const std::string& file, const std::string& variable, const ReadO
 
 /// Which files hold named arrays, decided by their first bytes (a .npz is a zip archive of .npy
 /// files): the one place that decides it, for read_named_arrays and for splitting files.
-enum class NamedArrays { kNone, kMat, kNpz };
+enum class NamedArrays { kNone, kMat, kMat73, kNpz };
 NamedArrays named_arrays_kind(const FileSpec& spec);
 
 /// The table of a .mat or .npz file (read_mat, read_npz), decided by named_arrays_kind; nothing

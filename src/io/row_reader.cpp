@@ -339,8 +339,7 @@ class RowReader::TableSource final : public RowReader::Source {
     table_.warnings.push_back(
         (path == "-" ? std::string("standard input") : path) +
         " is read whole, not a block at a time (only .npy files, text and MATLAB 7.3 files are streamed): "
-        "memory grows "
-        "with its rows");
+        "memory grows with its rows");
   }
   Index read(Index max_rows, Eigen::MatrixXd* rows) override {
     const Index left = table_.values.rows() - static_cast<Index>(rows_read);
@@ -373,7 +372,7 @@ RowReader::RowReader(const std::string& path, const ReadOptions& options) {
     return;
   }
   const detail::FileSpec spec = detail::split_spec(path);
-  if (detail::is_mat73(spec)) {
+  if (detail::named_arrays_kind(spec) == detail::NamedArrays::kMat73) {
     source_ = std::make_unique<MatSource>(path, spec, options);
     return;
   }

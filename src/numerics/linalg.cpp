@@ -129,21 +129,8 @@ bool symmetric_eigen_large(const Eigen::Ref<const MatrixXd>& M, VectorXd& w, Mat
 }
 
 void triangular_factor_large(const Eigen::Ref<const MatrixXd>& A, MatrixXd& R) {
-  const Index k = std::min(A.rows(), A.cols());
-#ifdef SPDFIT_HAVE_LAPACK
-  if (A.cols() >= kLapackMinColumns) {
-    MatrixXd work = A;
-    Eigen::VectorXd tau(k);
-    const lapack_int info = LAPACKE_dgeqrf(LAPACK_COL_MAJOR, static_cast<lapack_int>(work.rows()),
-                                           static_cast<lapack_int>(work.cols()), work.data(),
-                                           static_cast<lapack_int>(work.rows()), tau.data());
-    if (info != 0) throw std::runtime_error("the QR (LAPACK dgeqrf) failed: info = " + std::to_string(info));
-    R.topRows(k) = work.topRows(k).triangularView<Eigen::Upper>();
-    return;
-  }
-#endif
-  const Eigen::HouseholderQR<MatrixXd> qr(A);
-  R.topRows(k) = qr.matrixQR().topRows(k).triangularView<Eigen::Upper>();
+  MatrixXd work = A;  // the QR overwrites its input
+  R = triangular_factor_in_place(work);
 }
 
 Svd svd(const Eigen::Ref<const MatrixXd>& A, bool compute_u, bool compute_v) {

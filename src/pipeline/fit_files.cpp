@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "estimators/kernels.hpp"
 #include "pipeline/pair_checks.hpp"
 #include "pipeline/stream_resampling.hpp"
 #include "spdfit/fit.hpp"

@@ -5,10 +5,9 @@ a MATLAB_class attribute): a writer independent of libmatio. The reference is th
 .npy, streamed through the .npy reader."""
 import json
 
+import h5py  # python3-h5py, in scripts/debian-packages.txt
 import numpy as np
 import pytest
-
-h5py = pytest.importorskip("h5py")
 
 MATLAB_CLASSES = {np.dtype(np.float64): "double", np.dtype(np.float32): "single",
                   np.dtype(np.int16): "int16", np.dtype(np.int32): "int32", np.dtype(np.uint8): "uint8"}
