@@ -9,6 +9,7 @@
 #include <string>
 
 #include "numerics/blas_core.hpp"
+#include "numerics/block_qr.hpp"
 
 namespace spdfit::cli {
 
@@ -108,7 +109,10 @@ void report_blas_core(const GlobalOptions& global) {
                      detail::kOpenBlasCoreVariable + "=" + s.check.suggested +
                      " before running spdfit for the faster kernels");
   }
-  if (global.verbose) std::cerr << "spdfit: " << verbose_line(s) << '\n';
+  if (global.verbose) {
+    std::cerr << "spdfit: " << verbose_line(s) << '\n';
+    std::cerr << "spdfit: own kernels (the block QR): " << detail::kernel_isa_report() << '\n';
+  }
 }
 
 }  // namespace spdfit::cli

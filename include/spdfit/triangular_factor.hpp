@@ -99,8 +99,8 @@ class TriangularFactor {
  private:
   // Raises the stored exponents to at least (ea, eb), rescaling R exactly.
   void raise_exponents(std::optional<int> ea, std::optional<int> eb);
-  // Stacks R on top of the (already scaled) rows and re-triangularizes.
-  void absorb(const Eigen::Ref<const Eigen::MatrixXd>& scaled_rows);
+  // Re-triangularizes [R; rows] (the rows, already scaled, are overwritten).
+  void absorb(Eigen::Ref<Eigen::MatrixXd> scaled_rows);
   // Scales rows of [A B] by the stored exponents (in place), absorbs them, and counts `count` rows.
   void absorb_rows(Eigen::Ref<Eigen::MatrixXd> rows, Eigen::Index count);
 

@@ -70,14 +70,12 @@ void TriangularFactor::raise_exponents(std::optional<int> ea, std::optional<int>
   raise(exponent_b_, eb, n_, d_);
 }
 
-void TriangularFactor::absorb(const Eigen::Ref<const MatrixXd>& scaled_rows) {
+void TriangularFactor::absorb(Eigen::Ref<MatrixXd> scaled_rows) {
   if (rows_ == 0) {
-    R_ = detail::triangular_factor(scaled_rows);
+    R_ = detail::triangular_factor_in_place(scaled_rows);
     return;
   }
-  MatrixXd stacked(n_ + d_ + scaled_rows.rows(), n_ + d_);
-  stacked << R_, scaled_rows;
-  R_ = detail::triangular_factor(stacked);
+  detail::absorb_rows_into_factor(R_, scaled_rows);
 }
 
 void TriangularFactor::append(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B) {
@@ -94,11 +92,7 @@ void TriangularFactor::absorb_rows(Eigen::Ref<MatrixXd> rows, Index count) {
   auto rows_b = rows.rightCols(d_);
   detail::multiply_by_power_of_two(rows_a, -exponent_a());
   detail::multiply_by_power_of_two(rows_b, -exponent_b());
-  if (rows_ == 0) {
-    R_ = detail::triangular_factor_in_place(rows);  // the rows are a scratch copy
-  } else {
-    absorb(rows);
-  }
+  absorb(rows);  // the rows are a scratch copy
   rows_ += count;
 }
 

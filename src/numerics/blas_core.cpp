@@ -5,6 +5,8 @@
 #include <array>
 #include <cstdlib>
 
+#include "numerics/block_qr.hpp"
+
 // OpenBLAS's name for the kernels it chose (cblas.h declares it; which cblas.h /usr/include holds
 // depends on Debian's alternatives, so it is declared here). Weak: with another BLAS, or none
 // (SPDFIT_LAPACK off), the symbol is absent and its address null.
@@ -29,20 +31,18 @@ std::string environment(const char* name) {
   return value ? value : "";
 }
 
-// The widest extension OpenBLAS has double-precision kernels for, as BlasCoreCheck::cpu.
-// libgcc's __builtin_cpu_supports also checks that the OS saves the registers (XGETBV).
+// The widest extension OpenBLAS has double-precision kernels for, as BlasCoreCheck::cpu: the
+// Haswell kernels use FMA3 as well as AVX2; the SkylakeX ones AVX-512 F, BW, VL and DQ (every
+// AVX-512 CPU from Skylake-SP on has all four), which is cpu_vector_isa()'s rule.
 std::string cpu_vector_extension() {
-#if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
-  __builtin_cpu_init();  // may run before the constructors that would otherwise call it
-  // The Haswell kernels use FMA3 as well as AVX2; the SkylakeX ones AVX-512 F, BW, VL and DQ
-  // (every AVX-512 CPU from Skylake-SP on has all four).
-  const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  if (avx2 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
-      __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq")) {
-    return "AVX-512";
+  switch (cpu_vector_isa()) {
+    case VectorIsa::kAvx512:
+      return "AVX-512";
+    case VectorIsa::kAvx2:
+      return "AVX2";
+    case VectorIsa::kBaseline:
+      break;
   }
-  if (avx2) return "AVX2";
-#endif
   return "";
 }
 

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "numerics/block_qr.hpp"
+
 #ifdef SPDFIT_HAVE_LAPACK
 #include <cblas.h>
 #include <lapacke.h>
@@ -204,9 +206,26 @@ MatrixXd triangular_factor_in_place(Eigen::Ref<MatrixXd> A) {
     return R;
   }
 #endif
+  if (A.rows() >= cols) {
+    absorb_into_triangle(R, A);  // the QR of [0; A]: spdfit's vectorized block QR
+    return R;
+  }
   const Eigen::HouseholderQR<Eigen::Ref<MatrixXd>> qr(A);
   R.topRows(k) = qr.matrixQR().topRows(k).triangularView<Eigen::Upper>();
   return R;
+}
+
+void absorb_rows_into_factor(MatrixXd& R, Eigen::Ref<MatrixXd> rows) {
+  const Index cols = R.cols();
+#ifdef SPDFIT_HAVE_LAPACK
+  if (cols >= kLapackMinColumns) {
+    MatrixXd stacked(cols + rows.rows(), cols);
+    stacked << R, rows;
+    R = triangular_factor_in_place(stacked);
+    return;
+  }
+#endif
+  absorb_into_triangle(R, rows);
 }
 
 std::optional<int> scale_exponent(const Eigen::Ref<const MatrixXd>& X) {

@@ -18,6 +18,7 @@
 #include <limits>
 #include <optional>
 
+#include "numerics/householder.hpp"
 #include "numerics/one_sided_jacobi.hpp"
 #include "spdfit/rank.hpp"
 
@@ -115,9 +116,10 @@ VectorXd singular_values(const Eigen::Ref<const MatrixXd>& A);
 double condition_number(const Eigen::Ref<const VectorXd>& s);
 
 /// Householder QR in place for bounded-size matrices (at most a few dozen rows and columns),
-/// column by column as Eigen's unblocked HouseholderQR (the same reflectors, LAPACK's dgeqr2),
-/// in plain loops over contiguous columns: at these sizes Eigen's general kernels spend most of
-/// their time on call overhead. On return the upper triangle of W holds R.
+/// column by column as Eigen's unblocked HouseholderQR (the same reflectors, LAPACK's dgeqr2;
+/// householder_step with serial sums), in plain loops over contiguous columns: at these sizes
+/// Eigen's general kernels spend most of their time on call overhead. On return the upper
+/// triangle of W holds R.
 template <typename Work>
 void small_householder_qr(Work& W) {
   static_assert(Work::MaxColsAtCompileTime != Eigen::Dynamic && !(Work::Flags & Eigen::RowMajorBit),
@@ -125,31 +127,15 @@ void small_householder_qr(Work& W) {
   const Index m = W.rows(), k = W.cols();
   const Index steps = std::min(m, k);
   for (Index j = 0; j < steps; ++j) {
-    double* x = W.col(j).data() + j;  // the column below the diagonal, x[0] on it
-    const Index len = m - j;
-    double tail = 0.0;
-    for (Index i = 1; i < len; ++i) tail += x[i] * x[i];
-    if (!(tail > std::numeric_limits<double>::min())) continue;  // already triangular here: H = I
-    const double c0 = x[0];
-    double beta = std::sqrt(c0 * c0 + tail);
-    if (c0 >= 0.0) beta = -beta;
-    const double scale = 1.0 / (c0 - beta);
-    for (Index i = 1; i < len; ++i) x[i] *= scale;  // the essential part of v = [1; x(1:)]
-    const double tau = (beta - c0) / beta;
-    x[0] = beta;
-    for (Index c = j + 1; c < k; ++c) {
-      double* y = W.col(c).data() + j;
-      double w = y[0];
-      for (Index i = 1; i < len; ++i) w += x[i] * y[i];
-      w *= tau;
-      y[0] -= w;
-      for (Index i = 1; i < len; ++i) y[i] -= w * x[i];
-    }
+    double* diagonal = W.col(j).data() + j;  // the column below the diagonal, from the diagonal on
+    householder_step<1>(diagonal, m, diagonal + 1, m, m - j - 1, k - j);
   }
 }
 
 /// The upper triangular factor of a dynamic A (rows >= 1) into R: LAPACK's blocked dgeqrf
-/// when spdfit is built with LAPACK and A has at least 64 columns, else Eigen's HouseholderQR.
+/// when spdfit is built with LAPACK and A has at least 64 columns, else spdfit's vectorized
+/// block QR (block_qr.hpp) when A has at least as many rows as columns, else Eigen's
+/// HouseholderQR.
 void triangular_factor_large(const Eigen::Ref<const MatrixXd>& A, MatrixXd& R);
 
 /// The upper triangular factor R (cols x cols, zero-padded when rows < cols) of the
@@ -176,6 +162,11 @@ MatrixXd triangular_factor(const Eigen::Ref<const MatrixXd>& A);
 
 /// The same, computed in A's own storage (A is overwritten): no copy of a tall block.
 MatrixXd triangular_factor_in_place(Eigen::Ref<MatrixXd> A);
+
+/// R (square, upper triangular) <- the upper triangular factor of [R; rows], rows overwritten:
+/// spdfit's block QR, which needs no stacked copy, below 64 columns; LAPACK's dgeqrf on the
+/// stacked matrix from 64 columns on (when built with LAPACK). Cost O(rows cols^2).
+void absorb_rows_into_factor(MatrixXd& R, Eigen::Ref<MatrixXd> rows);
 
 /// C = op(A) op(B), op the transpose where asked, by Eigen's own product (any matrix types).
 template <typename MatrixA, typename MatrixB, typename MatrixC>
