@@ -133,7 +133,7 @@ void small_householder_qr(Work& W) {
 }
 
 /// The upper triangular factor of a dynamic A (rows >= 1) into R: LAPACK's blocked dgeqrf
-/// when spdfit is built with LAPACK and A has at least 64 columns, else spdfit's vectorized
+/// when spdfit is built with LAPACK and A has at least 128 columns, else spdfit's vectorized
 /// block QR (block_qr.hpp) when A has at least as many rows as columns, else Eigen's
 /// HouseholderQR.
 void triangular_factor_large(const Eigen::Ref<const MatrixXd>& A, MatrixXd& R);
@@ -164,8 +164,8 @@ MatrixXd triangular_factor(const Eigen::Ref<const MatrixXd>& A);
 MatrixXd triangular_factor_in_place(Eigen::Ref<MatrixXd> A);
 
 /// R (square, upper triangular) <- the upper triangular factor of [R; rows], rows overwritten:
-/// spdfit's block QR, which needs no stacked copy, below 64 columns; LAPACK's dgeqrf on the
-/// stacked matrix from 64 columns on (when built with LAPACK). Cost O(rows cols^2).
+/// spdfit's block QR, which needs no stacked copy, below 128 columns; LAPACK's dgeqrf on the
+/// stacked matrix from 128 columns on (when built with LAPACK). Cost O(rows cols^2).
 void absorb_rows_into_factor(MatrixXd& R, Eigen::Ref<MatrixXd> rows);
 
 /// C = op(A) op(B), op the transpose where asked, by Eigen's own product (any matrix types).
