@@ -21,8 +21,8 @@ def run(*args, **env_changes):
 
 @pytest.fixture(scope="module")
 def fit_args(tmp_path_factory):
-    """The arguments of a fit at n = 70 (m = 280), which runs LAPACK's QR and SVD (from 64 columns
-    on, docs/performance.md) and so the BLAS."""
+    """The arguments of a fit at n = 70 (m = 280), which runs LAPACK's QR (from 128 columns of
+    [A B] on) and SVDs (above 64 columns, docs/performance.md) and so the BLAS."""
     directory = tmp_path_factory.mktemp("blas_core")
     rng = np.random.default_rng(19)
     n, m = 70, 280
