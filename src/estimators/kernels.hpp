@@ -24,6 +24,10 @@ namespace spdfit::detail {
 /// checks of TriangularFactor, shared with the small-problem path).
 void check_data(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
                 Eigen::Index n, Eigen::Index d);
+/// check_data's two halves: the shapes, and NaN or Inf in A or B.
+void check_shapes(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
+                  Eigen::Index n, Eigen::Index d);
+void check_finite(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B);
 
 /// The message for data with fewer rows m than columns n.
 std::string too_few_rows(Eigen::Index m, Eigen::Index n);

@@ -16,6 +16,11 @@ using Eigen::MatrixXd;
 namespace detail {
 
 void check_data(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Index n, Index d) {
+  check_shapes(A, B, n, d);
+  check_finite(A, B);
+}
+
+void check_shapes(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Index n, Index d) {
   if (A.rows() != B.rows()) {
     throw std::invalid_argument("A is " + std::to_string(A.rows()) + "x" + std::to_string(A.cols()) +
                                 " but B is " + std::to_string(B.rows()) + "x" + std::to_string(B.cols()) +
@@ -25,6 +30,9 @@ void check_data(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Matr
     throw std::invalid_argument("A and B have " + std::to_string(A.cols()) + " and " + std::to_string(B.cols()) +
                                 " columns, expected " + std::to_string(n) + " and " + std::to_string(d));
   }
+}
+
+void check_finite(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B) {
   if (!A.allFinite()) throw std::invalid_argument("A contains NaN or Inf");
   if (!B.allFinite()) throw std::invalid_argument("B contains NaN or Inf");
 }
@@ -79,12 +87,35 @@ void TriangularFactor::absorb(Eigen::Ref<MatrixXd> scaled_rows) {
 }
 
 void TriangularFactor::append(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B) {
-  detail::check_data(A, B, n_, d_);
+  detail::check_shapes(A, B, n_, d_);
   if (A.rows() == 0) return;
-  raise_exponents(detail::scale_exponent(A), detail::scale_exponent(B));
-  MatrixXd rows(A.rows(), n_ + d_);
-  rows << A, B;
-  absorb_rows(rows, A.rows());
+  // The rows are taken in the QR's own chunks, so that checking, scaling, copying and folding a
+  // chunk into R touch it while it is in the cache (one pass over A and B from memory, not five).
+  // A chunk that raises the exponents rescales R exactly, by powers of two, so the result has the
+  // bits of all the rows at once. On a chunk with NaN or Inf, the factor is put back as it was.
+  const Index chunk = std::min(A.rows(), detail::absorb_chunk_rows(n_ + d_));
+  const MatrixXd saved_r = R_;
+  const std::optional<int> saved_a = exponent_a_, saved_b = exponent_b_;
+  const Index saved_rows = rows_;
+  MatrixXd rows(chunk, n_ + d_);
+  try {
+    for (Index first = 0; first < A.rows(); first += chunk) {
+      const Index len = std::min(chunk, A.rows() - first);
+      const auto part_a = A.middleRows(first, len);
+      const auto part_b = B.middleRows(first, len);
+      detail::check_finite(part_a, part_b);
+      raise_exponents(detail::scale_exponent(part_a), detail::scale_exponent(part_b));
+      auto scaled = rows.topRows(len);
+      scaled << part_a, part_b;
+      absorb_rows(scaled, len);
+    }
+  } catch (...) {
+    R_ = saved_r;
+    exponent_a_ = saved_a;
+    exponent_b_ = saved_b;
+    rows_ = saved_rows;
+    throw;
+  }
 }
 
 void TriangularFactor::absorb_rows(Eigen::Ref<MatrixXd> rows, Index count) {

@@ -149,10 +149,28 @@ void decode_npy_rows(const NpyLayout& layout, const char* data, std::uint64_t fi
     }
     return;
   }
-  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  RowMajor block(count, n);
-  std::memcpy(block.data(), data + 8 * first * layout.cols, 8 * static_cast<std::size_t>(count * n));
-  *out = block;
+  rows_to_columns(data + 8 * first * layout.cols, count, n, out);
+}
+
+bool rows_to_columns(const char* from, Eigen::Index count, Eigen::Index cols, Eigen::MatrixXd* out) {
+  out->resize(count, cols);
+  // A value is NaN or Inf when its exponent bits are all ones; OR-ing a flag per value keeps the
+  // loop free of branches.
+  constexpr std::uint64_t kExponent = 0x7ff0000000000000ULL;
+  std::uint64_t nonfinite = 0;
+  double* to = out->data();
+  for (Eigen::Index i = 0; i < count; ++i) {
+    const char* row = from + 8 * static_cast<std::size_t>(i * cols);
+    for (Eigen::Index j = 0; j < cols; ++j) {
+      std::uint64_t bits;
+      std::memcpy(&bits, row + 8 * j, 8);
+      nonfinite |= static_cast<std::uint64_t>((bits & kExponent) == kExponent);
+      double x;
+      std::memcpy(&x, &bits, 8);
+      to[j * count + i] = x;
+    }
+  }
+  return nonfinite == 0;
 }
 
 void check_npy_finite(const Eigen::MatrixXd& block, std::uint64_t first_row, const std::string& source) {

@@ -37,6 +37,11 @@ bool is_native_double(const NpyLayout& layout);
 void decode_npy_rows(const NpyLayout& layout, const char* data, std::uint64_t first, Eigen::Index count,
                      Eigen::MatrixXd* out);
 
+/// Native doubles in C order (`count` rows of `cols`, row after row, at `from`, which needs no
+/// alignment) into `out` (resized to count x cols, column-major), in one pass that also tells
+/// whether every value is finite (false: a NaN or Inf, which check_npy_finite then names).
+bool rows_to_columns(const char* from, Eigen::Index count, Eigen::Index cols, Eigen::MatrixXd* out);
+
 /// Throws DataError naming the first NaN or Inf of `block` in reading order (row by row), with
 /// row numbers counted from 1 at the array's first row, `first_row` being block's first.
 void check_npy_finite(const Eigen::MatrixXd& block, std::uint64_t first_row, const std::string& source);

@@ -20,12 +20,8 @@ using Eigen::Index;
 // Lanes of the sums: eight doubles, one AVX-512 register, two AVX2 ones or four SSE2 ones.
 constexpr int kLanes = 8;
 
-// Rows per chunk: about 256 kB of C, so that a chunk stays in the L2 cache while its k
-// reflections sweep it (measured on an AMD EPYC: 128-row to 2048-row chunks within 10%).
-Index chunk_rows(Index k) { return std::clamp<Index>(Index{32768} / std::max<Index>(k, 1), 128, 4096); }
-
 [[gnu::always_inline]] inline void absorb_chunks(double* R, Index k, double* C, Index rows, Index ldc) {
-  const Index chunk = chunk_rows(k);
+  const Index chunk = block_qr_chunk_rows(k);
   for (Index first = 0; first < rows; first += chunk) {
     const Index len = std::min(chunk, rows - first);
     double* part = C + first;
@@ -129,6 +125,10 @@ VectorIsa cpu_vector_isa() {
 #endif
   return VectorIsa::kBaseline;
 }
+
+// About 256 kB of C, so that a chunk stays in the L2 cache while its k reflections sweep it
+// (measured on an AMD EPYC: 128-row to 2048-row chunks within 10%).
+Index block_qr_chunk_rows(Index k) { return std::clamp<Index>(Index{32768} / std::max<Index>(k, 1), 128, 4096); }
 
 VectorIsa kernel_isa() { return kernel_choice().isa; }
 

@@ -34,6 +34,10 @@ VectorIsa kernel_isa();
 /// note when SPDFIT_KERNELS is set to a value that is not taken.
 std::string kernel_isa_report();
 
+/// The rows of C the block QR folds into R at a time, for k columns: a multiple of it, given to
+/// absorb_into_triangle call by call, gives the same bits as all the rows in one call.
+Eigen::Index block_qr_chunk_rows(Eigen::Index k);
+
 /// R (k x k, upper triangular; below the diagonal is not read and left as it was) <- the upper
 /// triangular factor of the Householder QR of [R; C], for C of any number of rows and k columns,
 /// which is overwritten (it ends holding reflectors). R^T R grows by C^T C exactly in exact

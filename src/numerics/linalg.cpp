@@ -217,6 +217,13 @@ MatrixXd triangular_factor_in_place(Eigen::Ref<MatrixXd> A) {
   return R;
 }
 
+Index absorb_chunk_rows(Index cols) {
+#ifdef SPDFIT_HAVE_LAPACK
+  if (cols >= kLapackMinColumns) return std::numeric_limits<Index>::max();
+#endif
+  return block_qr_chunk_rows(cols);
+}
+
 void absorb_rows_into_factor(MatrixXd& R, Eigen::Ref<MatrixXd> rows) {
   const Index cols = R.cols();
 #ifdef SPDFIT_HAVE_LAPACK

@@ -168,6 +168,12 @@ MatrixXd triangular_factor_in_place(Eigen::Ref<MatrixXd> A);
 /// stacked matrix from 128 columns on (when built with LAPACK). Cost O(rows cols^2).
 void absorb_rows_into_factor(MatrixXd& R, Eigen::Ref<MatrixXd> rows);
 
+/// How many rows absorb_rows_into_factor (or triangular_factor_in_place, first) may be given at a
+/// time for the same bits as all the rows at once, when each call gets a multiple of it: the block
+/// QR's chunk below 128 columns; every row (the largest Index) from 128 columns on, where dgeqrf
+/// runs on the stacked rows.
+Index absorb_chunk_rows(Index cols);
+
 /// C = op(A) op(B), op the transpose where asked, by Eigen's own product (any matrix types).
 template <typename MatrixA, typename MatrixB, typename MatrixC>
 void eigen_product(const MatrixA& A, bool transpose_a, const MatrixB& B, bool transpose_b, MatrixC& C) {

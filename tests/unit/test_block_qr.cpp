@@ -6,12 +6,15 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/QR>
+#include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <vector>
 
 #include "numerics/block_qr.hpp"
 #include "numerics/linalg.hpp"
+#include "spdfit/triangular_factor.hpp"
 
 namespace {
 
@@ -144,6 +147,43 @@ TEST(BlockQr, KernelChoiceIsReported) {
   const std::string report = spdfit::detail::kernel_isa_report();
   EXPECT_NE(report.find(spdfit::detail::vector_isa_name(spdfit::detail::kernel_isa())), std::string::npos);
   EXPECT_LE(spdfit::detail::kernel_isa(), spdfit::detail::cpu_vector_isa());
+}
+
+}  // namespace
+
+namespace {
+
+TEST(BlockQr, ChunkedAppendHasTheBitsOfOnePass) {
+  // TriangularFactor::append takes its rows in the QR's chunks and raises the exponents chunk by
+  // chunk; the rows grow by 2^20 halfway (A) and 2^-30 then 2^40 (B), so R is rescaled mid-way. It
+  // must give the bits of the QR of all the rows, scaled by the final exponents, in one call.
+  std::srand(21);
+  const Index m = 9000, n = 4, d = 3;
+  MatrixXd A = MatrixXd::Random(m, n), B = MatrixXd::Random(m, d);
+  A.bottomRows(m / 2) *= std::ldexp(1.0, 20);
+  B.topRows(m / 3) *= std::ldexp(1.0, -30);
+  B.bottomRows(100) *= std::ldexp(1.0, 40);
+  const spdfit::TriangularFactor f = spdfit::TriangularFactor::from_data(A, B);
+  MatrixXd scaled(m, n + d);
+  scaled << A * std::ldexp(1.0, -f.exponent_a()), B * std::ldexp(1.0, -f.exponent_b());
+  const MatrixXd expected = spdfit::detail::triangular_factor_in_place(scaled);
+  EXPECT_GT(m, spdfit::detail::absorb_chunk_rows(n + d));  // more than one chunk
+  EXPECT_EQ(std::memcmp(f.R().data(), expected.data(), sizeof(double) * static_cast<std::size_t>(expected.size())),
+            0)
+      << "largest difference " << (f.R() - expected).cwiseAbs().maxCoeff();
+  EXPECT_EQ(f.rows(), m);
+}
+
+TEST(BlockQr, AppendWithNanLeavesTheFactorAsItWas) {
+  // The NaN is in a later chunk than the first: the chunks before it must not stay folded in.
+  std::srand(22);
+  const MatrixXd A0 = MatrixXd::Random(300, 3), B0 = MatrixXd::Random(300, 3);
+  spdfit::TriangularFactor f = spdfit::TriangularFactor::from_data(A0, B0);
+  const std::string before = f.serialize();
+  MatrixXd A = MatrixXd::Random(20000, 3) * 1e6, B = MatrixXd::Random(20000, 3);
+  B(19000, 2) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(f.append(A, B), std::invalid_argument);
+  EXPECT_EQ(f.serialize(), before);
 }
 
 }  // namespace
