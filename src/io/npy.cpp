@@ -155,20 +155,26 @@ void decode_npy_rows(const NpyLayout& layout, const char* data, std::uint64_t fi
 bool rows_to_columns(const char* from, Eigen::Index count, Eigen::Index cols, Eigen::MatrixXd* out) {
   out->resize(count, cols);
   // A value is NaN or Inf when its exponent bits are all ones; OR-ing a flag per value keeps the
-  // loop free of branches.
+  // loop free of branches. Rows are taken eight at a time, so that each column receives a whole
+  // cache line per visit (row by row, a wide file's columns each took a line per value).
   constexpr std::uint64_t kExponent = 0x7ff0000000000000ULL;
+  constexpr Eigen::Index kTile = 8;
   std::uint64_t nonfinite = 0;
   double* to = out->data();
-  for (Eigen::Index i = 0; i < count; ++i) {
-    const char* row = from + 8 * static_cast<std::size_t>(i * cols);
+  auto copy = [&](Eigen::Index i, Eigen::Index j) {
+    std::uint64_t bits;
+    std::memcpy(&bits, from + 8 * static_cast<std::size_t>(i * cols + j), 8);
+    nonfinite |= static_cast<std::uint64_t>((bits & kExponent) == kExponent);
+    std::memcpy(to + j * count + i, &bits, 8);
+  };
+  Eigen::Index i = 0;
+  for (; i + kTile <= count; i += kTile) {
     for (Eigen::Index j = 0; j < cols; ++j) {
-      std::uint64_t bits;
-      std::memcpy(&bits, row + 8 * j, 8);
-      nonfinite |= static_cast<std::uint64_t>((bits & kExponent) == kExponent);
-      double x;
-      std::memcpy(&x, &bits, 8);
-      to[j * count + i] = x;
+      for (Eigen::Index t = 0; t < kTile; ++t) copy(i + t, j);
     }
+  }
+  for (; i < count; ++i) {
+    for (Eigen::Index j = 0; j < cols; ++j) copy(i, j);
   }
   return nonfinite == 0;
 }
