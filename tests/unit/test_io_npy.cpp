@@ -12,7 +12,9 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <vector>
 
+#include "io/npy_layout.hpp"
 #include "io/parse.hpp"
 #include "spdfit/io.hpp"
 
@@ -432,6 +434,45 @@ TEST(IoNpy, MalformedHeaders) {
   expect_malformed("{'x': " + std::string(5000, '(') + "}", "nested too deeply");
   ExpectNpyError(MakeNpy(Dict("<f8", false, "(1,)") + std::string(20000, ' '), EncodeAll({1})),
                  "malformed .npy header: it is 20086 bytes long (at most 10000 are accepted)");
+}
+
+}  // namespace
+
+namespace {
+
+// rows_to_columns: C-order doubles into a column-major matrix, eight rows per column visit plus
+// the rows left over, with a flag for NaN and Inf; against the plain index formula.
+TEST(IoNpy, RowsToColumnsTransposesAndFlagsNonfinite) {
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> normal;
+  for (const Eigen::Index count : {0, 1, 7, 8, 9, 37}) {
+    for (const Eigen::Index cols : {1, 3, 50}) {
+      std::vector<double> rows(static_cast<std::size_t>(count * cols));
+      for (double& x : rows) x = normal(rng);
+      Eigen::MatrixXd out;
+      EXPECT_TRUE(spdfit::io::detail::rows_to_columns(reinterpret_cast<const char*>(rows.data()), count, cols, &out));
+      ASSERT_EQ(out.rows(), count);
+      ASSERT_EQ(out.cols(), cols);
+      for (Eigen::Index i = 0; i < count; ++i) {
+        for (Eigen::Index j = 0; j < cols; ++j) EXPECT_EQ(out(i, j), rows[static_cast<std::size_t>(i * cols + j)]);
+      }
+      if (count == 0) continue;
+      // One non-finite value, in a full tile and in the last (possibly partial) one.
+      for (const Eigen::Index at : {Eigen::Index{0}, count * cols - 1}) {
+        for (const double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+                                 -std::numeric_limits<double>::infinity()}) {
+          std::vector<double> copy = rows;
+          copy[static_cast<std::size_t>(at)] = bad;
+          EXPECT_FALSE(spdfit::io::detail::rows_to_columns(reinterpret_cast<const char*>(copy.data()), count, cols, &out))
+              << count << " x " << cols << " at " << at;
+        }
+      }
+    }
+  }
+  // The largest finite double and a subnormal are finite.
+  const double edge[2] = {std::numeric_limits<double>::max(), std::numeric_limits<double>::denorm_min()};
+  Eigen::MatrixXd out;
+  EXPECT_TRUE(spdfit::io::detail::rows_to_columns(reinterpret_cast<const char*>(edge), 1, 2, &out));
 }
 
 }  // namespace
