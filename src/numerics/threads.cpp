@@ -85,6 +85,42 @@ void parallel_for(std::size_t count, unsigned threads, const std::function<void(
   if (progress) progress(done.load(), count);
 }
 
+TaskPool::TaskPool(unsigned threads) {
+  threads_.reserve(threads);
+  for (unsigned k = 0; k < threads; ++k) threads_.emplace_back([this] { work(); });
+}
+
+TaskPool::~TaskPool() {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    stopping_ = true;
+  }
+  ready_.notify_all();
+  for (std::thread& thread : threads_) thread.join();
+}
+
+void TaskPool::enqueue(std::function<void()> job) {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    jobs_.push_back(std::move(job));
+  }
+  ready_.notify_one();
+}
+
+void TaskPool::work() {
+  for (;;) {
+    std::function<void()> job;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      ready_.wait(lock, [this] { return stopping_ || !jobs_.empty(); });
+      if (jobs_.empty()) return;  // stopping, and nothing left to run
+      job = std::move(jobs_.front());
+      jobs_.pop_front();
+    }
+    job();  // a packaged_task: its exception goes to its future
+  }
+}
+
 }  // namespace detail
 
 }  // namespace spdfit

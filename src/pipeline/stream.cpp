@@ -2,6 +2,7 @@
 
 #include <deque>
 #include <future>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -61,9 +62,14 @@ class PairReader {
     Index got_a = 0;
     Index got_b = 0;
     if (side_by_side_ && started_) {
-      std::future<Index> b = std::async(std::launch::async, [&] { return b_.read(block_rows_, &block->B); });
-      // The future's destructor waits for B even when reading A throws.
-      got_a = read_a(block);
+      if (!b_thread_) b_thread_ = std::make_unique<detail::TaskPool>(1);
+      std::future<Index> b = b_thread_->submit([this, block] { return b_.read(block_rows_, &block->B); });
+      try {
+        got_a = read_a(block);
+      } catch (...) {
+        b.wait();  // B's read writes into *block: it must end before the block can go
+        throw;
+      }
       got_b = b.get();
     } else {
       got_a = read_a(block);
@@ -110,6 +116,7 @@ class PairReader {
   bool side_by_side_;
   std::optional<Method> method_;
   bool started_ = false;
+  std::unique_ptr<detail::TaskPool> b_thread_;  // reads B beside A, from the second block on
 };
 
 }  // namespace
@@ -150,6 +157,9 @@ TriangularFactor stream_factor_for(const std::optional<Method>& method, PairRead
     TriangularFactor factor;
     Block buffers;
   };
+  // One thread: each block is factored on this one when merged (no pool).
+  std::optional<detail::TaskPool> pool;
+  if (threads > 1) pool.emplace(threads);
   std::deque<std::future<Factored>> in_flight;
   std::vector<Block> spare;
   std::optional<TriangularFactor> total;
@@ -165,12 +175,12 @@ TriangularFactor stream_factor_for(const std::optional<Method>& method, PairRead
   };
   Block block;
   while (reader.next(&block)) {
-    // One thread: computed on this one when merged (deferred).
-    const std::launch policy = threads == 1 ? std::launch::deferred : std::launch::async;
-    in_flight.push_back(std::async(policy, [b = std::move(block)]() mutable {
+    auto factor_block = [b = std::move(block)]() mutable {
       TriangularFactor factor = TriangularFactor::from_data(b.A, b.B);
       return Factored{std::move(factor), std::move(b)};
-    }));
+    };
+    in_flight.push_back(pool ? pool->submit(std::move(factor_block))
+                             : std::async(std::launch::deferred, std::move(factor_block)));
     block = Block{};
     if (!spare.empty()) {
       block = std::move(spare.back());
