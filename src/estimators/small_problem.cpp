@@ -66,7 +66,9 @@ bool estimate_bounded(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<cons
   {
     typename BasicReduction<MaxN>::Factor R;
     small_factor<MaxN>(A, B, ea, eb, R);
-    reduce_into(R, A.rows(), A.cols(), ea, eb, data);
+    // R11's singular vectors only when a method uses them (the values do not depend on them).
+    const bool vectors_a = std::any_of(methods.begin(), methods.end(), uses_vectors_a);
+    reduce_into(R, A.rows(), A.cols(), ea, eb, data, vectors_a);
   }
   const Index n = data.n;
   const FitOptions defaults;

@@ -46,6 +46,25 @@ TEST(Estimate, GivesFitsEstimatesToRounding) {
   }
 }
 
+TEST(Estimate, EachMethodAloneGivesTheBitsOfAllTogether) {
+  // Alone, a method that does not use R11's singular vectors (spde, the TLS family, spd-tls) runs
+  // on a reduction without them; the estimate must not change by a bit, on the stack path too.
+  test::Generator g(44);
+  for (Index n : {2, 6, 9}) {
+    const MatrixXd A = g.gaussian(5 * n, n);
+    const MatrixXd B = A * g.spd(n, 30.0) + 0.1 * g.gaussian(5 * n, n);
+    std::vector<MatrixXd> together;
+    experiment::estimate(A, B, kMethods, together);
+    for (std::size_t i = 0; i < kMethods.size(); ++i) {
+      std::vector<MatrixXd> alone;
+      experiment::estimate(A, B, {kMethods[i]}, alone);
+      ASSERT_EQ(alone.size(), 1u);
+      EXPECT_TRUE(alone[0].size() == together[i].size() && alone[0] == together[i])
+          << "n = " << n << ", " << to_string(kMethods[i]);
+    }
+  }
+}
+
 TEST(Estimate, ScalesAcrossTheDoubleRangeLikeFit) {
   // Exponents beyond +-1022 take the entry-by-entry scaling (denormal data).
   test::Generator g(42);
