@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "blas_restart.hpp"
+#include "numerics/blas_core.hpp"
 #include "cli.hpp"
 #include "mpi_world.hpp"
 #include "spdfit/io.hpp"
@@ -24,6 +25,8 @@ void warn(const GlobalOptions& global, const std::string& message) {
 int main(int argc, char** argv) {
   using namespace spdfit::cli;
   restart_for_blas_core(argv);  // first: may restart the program with faster BLAS kernels
+  // OpenBLAS's threads, started as it loaded, would spin for about 0.1 s: stopped until needed.
+  spdfit::detail::idle_blas_threads();
   CLI::App app{
       "spdfit: estimate a symmetric positive definite matrix X from noisy data A X ~= B\n"
       "(least squares, symmetric Procrustes, total least squares and the area-criterion SPDE)"};

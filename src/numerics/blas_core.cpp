@@ -12,6 +12,7 @@
 // (SPDFIT_LAPACK off), the symbol is absent and its address null.
 extern "C" char* openblas_get_corename(void) __attribute__((weak));
 extern "C" void openblas_set_num_threads(int) __attribute__((weak));
+extern "C" int blas_thread_shutdown_(void) __attribute__((weak));
 
 namespace spdfit::detail {
 
@@ -56,6 +57,10 @@ std::string blas_core_name() {
 
 void set_blas_threads(int threads) {
   if (openblas_set_num_threads != nullptr) openblas_set_num_threads(threads);
+}
+
+void idle_blas_threads() {
+  if (blas_thread_shutdown_ != nullptr) blas_thread_shutdown_();
 }
 
 bool is_generic_blas_core(const std::string& core) {

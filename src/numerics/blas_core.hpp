@@ -53,6 +53,14 @@ bool is_generic_blas_core(const std::string& core);
 /// Sets the BLAS's threads (openblas_set_num_threads) when it is OpenBLAS; nothing otherwise.
 void set_blas_threads(int threads);
 
+/// Stops OpenBLAS's worker threads now (blas_thread_shutdown_); its next call that uses threads
+/// starts them again. Its idle threads spin in sched_yield for 2^28 clock ticks (about 0.1 s)
+/// after it loads and after every threaded call: on a 2-core machine that took a core from
+/// spdfit's own threads for the whole of a streamed fit of 10^7 rows. Only for a program that makes
+/// no BLAS call on another thread at the same moment (the command line), never from the Python
+/// module, whose process NumPy shares. Nothing when the BLAS is not OpenBLAS.
+void idle_blas_threads();
+
 /// The BLAS core, the CPU's vector extensions and the user's OPENBLAS_CORETYPE, and the core to
 /// choose instead (BlasCoreCheck::suggested). Reads the environment and CPUID (through
 /// __builtin_cpu_supports): cheap enough for every start of the program and every import.
