@@ -2,7 +2,7 @@
 // there) and -ffp-contract=off (src/CMakeLists.txt): with no fused multiply-adds and sums in fixed
 // lanes, every variant computes the same bits, so results do not depend on the CPU. The variants
 // are functions with a target attribute, each inlining the same baseline code; the baseline one
-// uses no ymm or zmm register (checked with objdump by tests/unit/check_kernel_isa.sh).
+// uses no ymm or zmm register (checked with objdump by tests/isa/check_kernel_isa.sh).
 #include "numerics/block_qr.hpp"
 
 #include <algorithm>
