@@ -109,6 +109,8 @@ void report_blas_core(const GlobalOptions& global) {
                      detail::kOpenBlasCoreVariable + "=" + s.check.suggested +
                      " before running spdfit for the faster kernels");
   }
+  const std::string kernels = detail::kernel_isa_warning();
+  if (!kernels.empty()) warn(global, kernels);
   if (global.verbose) {
     std::cerr << "spdfit: " << verbose_line(s) << '\n';
     std::cerr << "spdfit: own kernels (the block QR): " << detail::kernel_isa_report() << '\n';

@@ -6,6 +6,7 @@
 #include "numerics/block_qr.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -55,7 +56,12 @@ Kernel kernel_for(VectorIsa isa) {
   return absorb_baseline;
 }
 
-bool parse_isa(const std::string& name, VectorIsa* isa) {
+// The name, ignoring case and surrounding blanks ("AVX2" and " avx2" are avx2).
+bool parse_isa(std::string name, VectorIsa* isa) {
+  const auto blank = [](unsigned char c) { return std::isspace(c) != 0; };
+  name.erase(name.begin(), std::find_if_not(name.begin(), name.end(), blank));
+  name.erase(std::find_if_not(name.rbegin(), name.rend(), blank).base(), name.end());
+  for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   for (VectorIsa candidate : {VectorIsa::kBaseline, VectorIsa::kAvx2, VectorIsa::kAvx512}) {
     if (name == vector_isa_name(candidate)) {
       *isa = candidate;
@@ -68,6 +74,7 @@ bool parse_isa(const std::string& name, VectorIsa* isa) {
 struct KernelChoice {
   VectorIsa isa = VectorIsa::kBaseline;
   std::string report;
+  std::string warning;  // SPDFIT_KERNELS set to something not taken
 };
 
 KernelChoice choose_kernels() {
@@ -83,9 +90,13 @@ KernelChoice choose_kernels() {
   } else if (!parse_isa(requested, &asked)) {
     choice.report = std::string(vector_isa_name(cpu)) + " (the CPU's widest; " + setting +
                     " is not one of baseline, avx2, avx512, and is ignored)";
+    choice.warning = setting + " is not one of baseline, avx2, avx512: ignored, spdfit's kernels run on " +
+                     vector_isa_name(cpu) + ", the CPU's widest";
   } else if (asked > cpu) {
     choice.report = std::string(vector_isa_name(cpu)) + " (the CPU's widest; " + setting +
                     " asks for more than the CPU has)";
+    choice.warning = setting + " asks for more than this CPU has: spdfit's kernels run on " +
+                     vector_isa_name(cpu) + ", the CPU's widest";
   } else {
     choice.isa = asked;
     choice.report = std::string(vector_isa_name(asked)) + " (" + setting + ")";
@@ -133,6 +144,8 @@ Index block_qr_chunk_rows(Index k) { return std::clamp<Index>(Index{32768} / std
 VectorIsa kernel_isa() { return kernel_choice().isa; }
 
 std::string kernel_isa_report() { return kernel_choice().report; }
+
+std::string kernel_isa_warning() { return kernel_choice().warning; }
 
 void absorb_into_triangle(VectorIsa isa, Eigen::Ref<Eigen::MatrixXd> R, Eigen::Ref<Eigen::MatrixXd> C) {
   const Index k = R.cols();

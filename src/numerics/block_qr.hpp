@@ -23,8 +23,8 @@ const char* vector_isa_name(VectorIsa isa);
 VectorIsa cpu_vector_isa();
 
 /// Narrows the kernels' instruction set, for measurements and tests: "baseline", "avx2" or
-/// "avx512". A set wider than the CPU's is not taken (the CPU's widest is); any other value is
-/// ignored. Read once, at the kernels' first use.
+/// "avx512" (case and surrounding blanks ignored). A set wider than the CPU's is not taken (the
+/// CPU's widest is); any other value is ignored. Read once, at the kernels' first use.
 inline constexpr const char* kKernelsVariable = "SPDFIT_KERNELS";
 
 /// The instruction set the kernels run on: cpu_vector_isa(), narrowed by SPDFIT_KERNELS.
@@ -33,6 +33,10 @@ VectorIsa kernel_isa();
 /// For --verbose: "AVX-512 (the CPU's widest)", "baseline (SPDFIT_KERNELS=baseline)", and a
 /// note when SPDFIT_KERNELS is set to a value that is not taken.
 std::string kernel_isa_report();
+
+/// Empty, or what to warn about when SPDFIT_KERNELS is set to a value that is not taken (an
+/// unknown name, or a set this CPU lacks): the command line warns even without --verbose.
+std::string kernel_isa_warning();
 
 /// The rows of C the block QR folds into R at a time, for k columns: a multiple of it, given to
 /// absorb_into_triangle call by call, gives the same bits as all the rows in one call.

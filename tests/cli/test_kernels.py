@@ -86,3 +86,21 @@ def test_an_unknown_or_too_wide_choice_is_not_taken(data):
         result = run("-v", *fit, **{KERNELS: "avx512"})
         assert kernel_line(result) == (f"spdfit: own kernels (the block QR): {widest} (the CPU's widest; "
                                        "SPDFIT_KERNELS=avx512 asks for more than the CPU has)")
+
+
+def test_a_choice_not_taken_is_warned_about_without_verbose(data):
+    fit = ["fit", "--method", "ls", data[0], data[1]]
+    widest = variants_of_this_cpu()[-1]
+    result = run(*fit, **{KERNELS: "fast"})
+    assert result.returncode == 0, result.stderr
+    assert result.stderr == (f"spdfit: warning: SPDFIT_KERNELS=fast is not one of baseline, avx2, avx512: "
+                             f"ignored, spdfit's kernels run on {widest}, the CPU's widest\n")
+    assert run(*fit, **{KERNELS: "baseline"}).stderr == ""
+
+
+def test_case_and_blanks_are_ignored(data):
+    fit = ["fit", "--method", "ls", data[0], data[1]]
+    result = run("-v", *fit, **{KERNELS: " Baseline "})
+    assert result.returncode == 0, result.stderr
+    assert kernel_line(result) == "spdfit: own kernels (the block QR): baseline (SPDFIT_KERNELS= Baseline )"
+    assert "warning" not in result.stderr

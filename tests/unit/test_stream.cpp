@@ -49,12 +49,16 @@ TEST_F(StreamTest, EveryMethodMatchesTheInMemoryEstimate) {
 }
 
 TEST_F(StreamTest, TheResultDoesNotDependOnTheThreadCount) {
-  MakeData(20000, 4, 2);
-  const TriangularFactor one = Stream(333, 1);
-  for (unsigned threads : {2u, 3u, 8u}) {
-    const TriangularFactor many = Stream(333, threads);
-    EXPECT_EQ(many.R(), one.R()) << threads << " threads";  // bitwise
-    EXPECT_EQ(many.rows(), 20000);
+  // Blocks of 4096 rows and more run on the threads (15 blocks here); smaller ones on the calling
+  // thread alone (stream.cpp, kMinThreadedBlockRows).
+  MakeData(60000, 4, 2);
+  for (Index block : {Index{333}, Index{4096}}) {
+    const TriangularFactor one = Stream(block, 1);
+    for (unsigned threads : {2u, 3u, 8u}) {
+      const TriangularFactor many = Stream(block, threads);
+      EXPECT_EQ(many.R(), one.R()) << threads << " threads, block " << block;  // bitwise
+      EXPECT_EQ(many.rows(), 60000);
+    }
   }
 }
 
