@@ -341,8 +341,8 @@ class RowReader::TableSource final : public RowReader::Source {
   TableSource(const std::string& path, Table table) : Source(path), table_(std::move(table)) {
     table_.warnings.push_back(
         (path == "-" ? std::string("standard input") : path) +
-        " is read whole, not a block at a time (only .npy files, text and MATLAB 7.3 files are streamed): "
-        "memory grows with its rows");
+        " is read whole, not a block at a time (text, MATLAB 7.3 files and .npy files named by path are "
+        "streamed; .npz, older .mat files and .npy on standard input are not): memory grows with its rows");
   }
   Index read(Index max_rows, Eigen::MatrixXd* rows) override {
     const Index left = table_.values.rows() - static_cast<Index>(rows_read);
