@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,9 @@ class RowReader {
   const std::vector<std::string>& warnings() const;
   /// Rows returned so far.
   std::uint64_t rows_read() const;
+  /// The rows the file holds, known before it is read: a .npy file's header, a MATLAB 7.3
+  /// variable's size, a file read whole. Nothing for text, which is counted as it is read.
+  std::optional<std::uint64_t> rows_declared() const;
   /// How much of the file has been read, in [0, 1]: bytes for text, rows for .npy and files read
   /// whole; 0 when unknown (standard input before its end).
   double fraction_read() const;

@@ -38,6 +38,7 @@ struct RowReader::Source {
   virtual const std::vector<std::string>& column_names() const { return no_names; }
   virtual const std::vector<std::string>& warnings() const { return no_names; }
   virtual double fraction_read() const = 0;
+  virtual std::optional<std::uint64_t> rows_declared() const { return std::nullopt; }
 
   std::string path;
   std::uint64_t rows_read = 0;
@@ -111,6 +112,7 @@ class RowReader::NpySource final : public RowReader::Source {
   }
   Index columns() const override { return static_cast<Index>(layout_.cols); }
   std::uint64_t rows() const { return layout_.rows; }  ///< the file's, not only those read
+  std::optional<std::uint64_t> rows_declared() const override { return end_ - begin_; }
   double fraction_read() const override {
     return end_ > begin_ ? static_cast<double>(rows_read) / static_cast<double>(end_ - begin_) : 1.0;
   }
@@ -325,6 +327,7 @@ class RowReader::MatSource final : public RowReader::Source {
   double fraction_read() const override {
     return static_cast<double>(rows_read) / static_cast<double>(blocks_.rows());
   }
+  std::optional<std::uint64_t> rows_declared() const override { return blocks_.rows(); }
 
  private:
   static constexpr Index kSlabBytes = Index{8} << 20;
@@ -352,6 +355,9 @@ class RowReader::TableSource final : public RowReader::Source {
     return count;
   }
   Index columns() const override { return table_.values.cols(); }
+  std::optional<std::uint64_t> rows_declared() const override {
+    return static_cast<std::uint64_t>(table_.values.rows());
+  }
   double fraction_read() const override {
     return static_cast<double>(rows_read) / static_cast<double>(table_.values.rows());
   }
@@ -483,5 +489,6 @@ const std::vector<std::string>& RowReader::column_names() const { return source_
 const std::vector<std::string>& RowReader::warnings() const { return source_->warnings(); }
 std::uint64_t RowReader::rows_read() const { return source_->rows_read; }
 double RowReader::fraction_read() const { return source_->fraction_read(); }
+std::optional<std::uint64_t> RowReader::rows_declared() const { return source_->rows_declared(); }
 
 }  // namespace spdfit::io

@@ -144,7 +144,16 @@ TriangularFactor stream_factor(const std::string& a_path, const std::string& b_p
 namespace detail {
 
 PairReaders::PairReaders(const std::string& a_path, const std::string& b_path, const io::ReadOptions& read)
-    : a(a_path, read), b(b_path, read) {}
+    : a(a_path, read), b(b_path, read) {
+  // Files that declare their rows (.npy headers, MATLAB 7.3 sizes) are paired before any is read,
+  // not when the shorter one ends (after minutes, for a large file).
+  const std::optional<std::uint64_t> rows_a = a.rows_declared(), rows_b = b.rows_declared();
+  if (rows_a && rows_b && *rows_a != *rows_b) {
+    throw io::DataError(b.path(), 0, 0,
+                        "B has " + rows_text(*rows_b) + " but A (" + a.path() + ") has " + std::to_string(*rows_a) +
+                            ": A and B must have the same numbers of rows (samples)");
+  }
+}
 
 PairReaders::PairReaders(io::RowReader a_part, io::RowReader b_part, std::uint64_t first)
     : a(std::move(a_part)), b(std::move(b_part)), whole(false), first_row(first) {}

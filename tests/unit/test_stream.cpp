@@ -89,6 +89,21 @@ DataError StreamError(const std::string& a, const std::string& b, Index block = 
   return DataError("", 0, 0, "");
 }
 
+TEST_F(StreamTest, NpyFilesOfDifferentLengthsAreRefusedFromTheirHeaders) {
+  // Both headers give the rows: refused before a block is read, with both counts, whatever the
+  // block size (a text file is counted as it is read: see below).
+  test::Generator g(8);
+  const std::string a = Path("A5000.npy"), b = Path("B4999.npy");
+  io::write_npy(a, g.gaussian(5000, 3));
+  io::write_npy(b, g.gaussian(4999, 3));
+  for (Index block : {Index{7}, Index{1} << 15}) {
+    const DataError e = StreamError(a, b, block);
+    EXPECT_EQ(e.source(), b);
+    EXPECT_EQ(e.problem(),
+              "B has 4999 rows but A (" + a + ") has 5000: A and B must have the same numbers of rows (samples)");
+  }
+}
+
 TEST_F(StreamTest, MismatchedFilesAreRefusedByName) {
   const std::string a = Write("A.csv", "1,2\n3,4\n5,6\n");
   const std::string longer = Write("long.csv", "1,2\n3,4\n5,6\n7,8\n");
