@@ -122,12 +122,12 @@ bool is_native_double(const NpyLayout& layout) {
   return layout.kind == 'f' && layout.item_size == 8 && !layout.big_endian && host_is_little_endian();
 }
 
-void decode_npy_rows(const NpyLayout& layout, const char* data, std::uint64_t first, Eigen::Index count,
+bool decode_npy_rows(const NpyLayout& layout, const char* data, std::uint64_t first, Eigen::Index count,
                      Eigen::MatrixXd* out) {
   // Both dimensions are at most the file's value count, so they fit in Eigen::Index.
   const auto n = static_cast<Eigen::Index>(layout.cols);
   out->resize(count, n);
-  if (count == 0) return;  // past the end: an empty block has no storage for memcpy to write to
+  if (count == 0) return true;  // past the end: an empty block has no storage for memcpy to write to
   if (!is_native_double(layout)) {
     // Other dtypes and byte orders, converted value by value.
     const std::size_t size = layout.item_size;
@@ -139,7 +139,7 @@ void decode_npy_rows(const NpyLayout& layout, const char* data, std::uint64_t fi
         (*out)(i, j) = decode_value(data + size * index, layout.kind, size, layout.big_endian);
       }
     }
-    return;
+    return false;
   }
   if (layout.fortran_order) {
     // Column j's rows are contiguous: copy each column's run of `count` rows.
@@ -147,9 +147,9 @@ void decode_npy_rows(const NpyLayout& layout, const char* data, std::uint64_t fi
       const char* column = data + 8 * (static_cast<std::uint64_t>(j) * layout.rows + first);
       std::memcpy(out->col(j).data(), column, 8 * static_cast<std::size_t>(count));
     }
-    return;
+    return false;
   }
-  rows_to_columns(data + 8 * first * layout.cols, count, n, out);
+  return rows_to_columns(data + 8 * first * layout.cols, count, n, out);
 }
 
 bool rows_to_columns(const char* from, Eigen::Index count, Eigen::Index cols, Eigen::MatrixXd* out) {
@@ -199,9 +199,9 @@ Eigen::MatrixXd parse_npy(std::string_view bytes, const std::string& source, con
   const detail::NpyHeader header = detail::parse_npy_header(bytes, source);
   const detail::NpyLayout layout = detail::npy_layout(header, bytes.size(), source);
   Eigen::MatrixXd X;
-  detail::decode_npy_rows(layout, bytes.data() + layout.data_offset, 0,
-                          static_cast<Eigen::Index>(layout.rows), &X);
-  if (!options.allow_nonfinite) detail::check_npy_finite(X, 0, source);
+  const bool finite = detail::decode_npy_rows(layout, bytes.data() + layout.data_offset, 0,
+                                              static_cast<Eigen::Index>(layout.rows), &X);
+  if (!options.allow_nonfinite && !finite) detail::check_npy_finite(X, 0, source);
   return X;
 }
 

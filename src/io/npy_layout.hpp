@@ -33,8 +33,10 @@ NpyLayout npy_layout(const NpyHeader& header, std::size_t file_bytes, const std:
 bool is_native_double(const NpyLayout& layout);
 
 /// Decodes rows [first, first + count) of the array whose data (after the header) start at
-/// `data` into `out` (resized to count x cols).
-void decode_npy_rows(const NpyLayout& layout, const char* data, std::uint64_t first, Eigen::Index count,
+/// `data` into `out` (resized to count x cols). True when every value was seen to be finite on the
+/// way (native doubles in C order, by rows_to_columns); false when one is NaN or Inf or when the
+/// layout is not checked as it is decoded: check_npy_finite then decides, and names the value.
+bool decode_npy_rows(const NpyLayout& layout, const char* data, std::uint64_t first, Eigen::Index count,
                      Eigen::MatrixXd* out);
 
 /// Native doubles in C order (`count` rows of `cols`, row after row, at `from`, which needs no

@@ -99,13 +99,9 @@ class RowReader::NpySource final : public RowReader::Source {
     const std::uint64_t left = end_ - at;
     const auto count =
         static_cast<Index>(std::min<std::uint64_t>(left, static_cast<std::uint64_t>(max_rows)));
-    bool finite_known = false;  // read_rows checked as it decoded
-    if (map_) {
-      detail::decode_npy_rows(layout_, map_ + layout_.data_offset, at, count, rows);
-    } else {
-      finite_known = read_rows(at, count, rows);
-    }
-    if (!options_.allow_nonfinite && !finite_known) detail::check_npy_finite(*rows, at, path);
+    const bool finite = map_ ? detail::decode_npy_rows(layout_, map_ + layout_.data_offset, at, count, rows)
+                             : read_rows(at, count, rows);
+    if (!options_.allow_nonfinite && !finite) detail::check_npy_finite(*rows, at, path);
     rows_read += static_cast<std::uint64_t>(count);
     if (map_) drop_decoded_pages();
     return count;
@@ -118,8 +114,8 @@ class RowReader::NpySource final : public RowReader::Source {
   }
 
  private:
-  // Rows [at, at + count) of a C-order file, read into buffer_ and decoded from there. True when
-  // the values were checked for NaN and Inf on the way (native doubles: one pass does both).
+  // Rows [at, at + count) of a C-order file, read into buffer_ and decoded from there; what
+  // decode_npy_rows returns (true: every value seen finite).
   bool read_rows(std::uint64_t at, Index count, Eigen::MatrixXd* rows) {
     const std::size_t row_bytes = layout_.item_size * layout_.cols;
     const std::size_t bytes = row_bytes * static_cast<std::size_t>(count);
@@ -133,15 +129,9 @@ class RowReader::NpySource final : public RowReader::Source {
       if (got == 0) throw DataError(path, 0, 0, "ends before the rows its header declares (was it truncated?)");
       done += static_cast<std::size_t>(got);
     }
-    if (detail::is_native_double(layout_)) {
-      const bool finite = detail::rows_to_columns(into, count, static_cast<Index>(layout_.cols), rows);
-      if (!finite && !options_.allow_nonfinite) detail::check_npy_finite(*rows, at, path);
-      return true;
-    }
     detail::NpyLayout part = layout_;  // the block alone: its rows from the buffer's start
     part.rows = static_cast<std::uint64_t>(count);
-    detail::decode_npy_rows(part, into, 0, count, rows);
-    return false;
+    return detail::decode_npy_rows(part, into, 0, count, rows);
   }
 
   // The data are one run of rows (C order) or one run per column (Fortran order); in each, the

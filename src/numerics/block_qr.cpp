@@ -153,14 +153,9 @@ void absorb_into_triangle(VectorIsa isa, Eigen::Ref<Eigen::MatrixXd> R, Eigen::R
     throw std::invalid_argument("absorb_into_triangle: R is " + std::to_string(R.rows()) + " x " +
                                 std::to_string(R.cols()) + " and C has " + std::to_string(C.cols()) + " columns");
   }
+  if (R.outerStride() != k) throw std::invalid_argument("absorb_into_triangle: R must be contiguous (a whole matrix)");
   if (isa > cpu_vector_isa()) throw std::invalid_argument("absorb_into_triangle: the CPU lacks that instruction set");
   if (C.rows() == 0 || k == 0) return;
-  if (R.outerStride() != k) {  // the kernel takes R contiguous
-    Eigen::MatrixXd packed = R;
-    kernel_for(isa)(packed.data(), k, C.data(), C.rows(), C.outerStride());
-    R = packed;
-    return;
-  }
   kernel_for(isa)(R.data(), k, C.data(), C.rows(), C.outerStride());
 }
 

@@ -42,9 +42,10 @@ std::string kernel_isa_warning();
 /// absorb_into_triangle call by call, gives the same bits as all the rows in one call.
 Eigen::Index block_qr_chunk_rows(Eigen::Index k);
 
-/// R (k x k, upper triangular; below the diagonal is not read and left as it was) <- the upper
-/// triangular factor of the Householder QR of [R; C], for C of any number of rows and k columns,
-/// which is overwritten (it ends holding reflectors). R^T R grows by C^T C exactly in exact
+/// R (k x k, contiguous, upper triangular; below the diagonal is not read and left as it was)
+/// <- the upper triangular factor of the Householder QR of [R; C], for C of any number of rows
+/// and k columns, which is overwritten (it ends holding reflectors). Throws std::invalid_argument
+/// for shapes that do not fit or an R that is a block of a larger matrix. R^T R grows by C^T C exactly in exact
 /// arithmetic; the arithmetic is backward stable, as the unblocked QR (LAPACK's dgeqr2).
 /// Cost 2 rows k^2 flops. Runs on kernel_isa().
 void absorb_into_triangle(Eigen::Ref<Eigen::MatrixXd> R, Eigen::Ref<Eigen::MatrixXd> C);

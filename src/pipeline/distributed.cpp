@@ -229,11 +229,7 @@ DistributedFit fit_files_distributed(const std::string& a_path, const std::strin
   const auto n = static_cast<std::uint64_t>(a->columns());
   const Eigen::Index d = b->columns();
   if (m < n) throw detail::fewer_samples_than_columns(a_path, m, n);
-  if (b->rows() != m) {
-    throw io::DataError(b_path, 0, 0,
-                        "B has " + std::to_string(b->rows()) + " rows but A (" + a_path + ") has " +
-                            std::to_string(m) + ": A and B must have the same numbers of rows (samples)");
-  }
+  detail::check_same_rows(a_path, m, b_path, b->rows());
   detail::check_method_fits(method, b_path, a->columns(), d);
 
   const bool bootstrap = options.bootstrap > 0;

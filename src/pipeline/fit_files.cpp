@@ -73,9 +73,7 @@ DataPair read_pair(const std::string& a_path, const std::string& b_path, const i
   data.warnings.insert(data.warnings.end(), b.warnings.begin(), b.warnings.end());
   data.b_names = std::move(b.column_names);
   if (data.A.rows() != data.B.rows()) {
-    throw io::DataError(b_path, 0, 0,
-                        "B is " + shape(data.B) + " but A (" + a_path + ") is " + shape(data.A) +
-                            ": A and B must have the same numbers of rows (samples)");
+    throw detail::unequal_rows(b_path, "B is " + shape(data.B) + " but A (" + a_path + ") is " + shape(data.A));
   }
   return data;
 }

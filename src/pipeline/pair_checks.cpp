@@ -8,6 +8,18 @@ io::DataError fewer_samples_than_columns(const std::string& a_path, std::uint64_
                            " columns: at least as many samples as columns are needed");
 }
 
+std::string rows_text(std::uint64_t rows) { return std::to_string(rows) + (rows == 1 ? " row" : " rows"); }
+
+io::DataError unequal_rows(const std::string& b_path, const std::string& problem) {
+  return io::DataError(b_path, 0, 0, problem + ": A and B must have the same numbers of rows (samples)");
+}
+
+void check_same_rows(const std::string& a_path, std::uint64_t rows_a, const std::string& b_path,
+                     std::uint64_t rows_b) {
+  if (rows_a == rows_b) return;
+  throw unequal_rows(b_path, "B has " + rows_text(rows_b) + " but A (" + a_path + ") has " + std::to_string(rows_a));
+}
+
 void check_method_fits(const std::optional<Method>& method, const std::string& b_path, long long n, long long d) {
   if (!method) return;
   if (auto refusal = non_square_refusal(*method, n, d)) throw io::DataError(b_path, 0, 0, *refusal);

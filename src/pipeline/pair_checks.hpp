@@ -15,6 +15,17 @@ namespace spdfit::detail {
 /// X needs at least n samples.
 io::DataError fewer_samples_than_columns(const std::string& a_path, std::uint64_t rows, std::uint64_t columns);
 
+/// "1 row", "7 rows".
+std::string rows_text(std::uint64_t rows);
+
+/// The error for A and B of different numbers of rows, naming B's file: `problem` says how they
+/// differ ("B has 3 rows but A (a.csv) has 4"), the rest is the same for every reader.
+io::DataError unequal_rows(const std::string& b_path, const std::string& problem);
+
+/// Throws unequal_rows when both counts are known and differ.
+void check_same_rows(const std::string& a_path, std::uint64_t rows_a, const std::string& b_path,
+                     std::uint64_t rows_b);
+
 /// Throws io::DataError, naming B's file, when A has n columns and B d != n and `method` (when
 /// given) needs a square X (non_square_refusal).
 void check_method_fits(const std::optional<Method>& method, const std::string& b_path, long long n, long long d);

@@ -23,8 +23,6 @@ using Eigen::MatrixXd;
 
 namespace {
 
-std::string rows_text(std::uint64_t rows) { return std::to_string(rows) + (rows == 1 ? " row" : " rows"); }
-
 // Below this many rows per block, blocks are read and factored on the calling thread alone: handing
 // a small block to another thread (a wake-up and a wait each way) costs more than its work. On 2e6
 // x 6 .npy rows (AMD EPYC, 2 cores): --block-rows 7 took 15.7 s on two threads against 1.2 s on
@@ -116,10 +114,10 @@ class PairReader {
     if (got_a > 0 && got_b > 0) detail::check_method_fits(method_, b_.path(), a_.columns(), b_.columns());
     if (got_a == got_b) return;
     const std::string problem =
-        got_a < got_b ? "B has more than " + rows_text(a_.rows_read()) + " but A (" + a_.path() + ") has " +
+        got_a < got_b ? "B has more than " + detail::rows_text(a_.rows_read()) + " but A (" + a_.path() + ") has " +
                             std::to_string(a_.rows_read())
-                      : "B has " + rows_text(b_.rows_read()) + " but A (" + a_.path() + ") has more";
-    throw io::DataError(b_.path(), 0, 0, problem + ": A and B must have the same numbers of rows (samples)");
+                      : "B has " + detail::rows_text(b_.rows_read()) + " but A (" + a_.path() + ") has more";
+    throw detail::unequal_rows(b_.path(), problem);
   }
 
   io::RowReader a_, b_;
@@ -148,11 +146,7 @@ PairReaders::PairReaders(const std::string& a_path, const std::string& b_path, c
   // Files that declare their rows (.npy headers, MATLAB 7.3 sizes) are paired before any is read,
   // not when the shorter one ends (after minutes, for a large file).
   const std::optional<std::uint64_t> rows_a = a.rows_declared(), rows_b = b.rows_declared();
-  if (rows_a && rows_b && *rows_a != *rows_b) {
-    throw io::DataError(b.path(), 0, 0,
-                        "B has " + rows_text(*rows_b) + " but A (" + a.path() + ") has " + std::to_string(*rows_a) +
-                            ": A and B must have the same numbers of rows (samples)");
-  }
+  if (rows_a && rows_b) check_same_rows(a.path(), *rows_a, b.path(), *rows_b);
 }
 
 PairReaders::PairReaders(io::RowReader a_part, io::RowReader b_part, std::uint64_t first)
