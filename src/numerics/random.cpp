@@ -27,6 +27,14 @@ std::uint64_t trial_seed(std::uint64_t seed, std::uint64_t trial) {
   return splitmix64(mixed);
 }
 
+std::mt19937_64& Random::engine() {
+  if (!engine_) {
+    engine_.emplace(seed_);
+    engine_->discard(lazy_.drawn());
+  }
+  return *engine_;
+}
+
 double Random::normal() {
   if (has_spare_) {
     has_spare_ = false;
