@@ -3,6 +3,9 @@
 // SPDFIT_LAPACK), timed on the same data as bench_estimators:
 //   BM_FloorSpde:  the QR of [A B] (dgeqrf, m x 2n) plus one symmetric eigendecomposition of
 //                  size n (dsyevd, eigenvectors): the floor of spde and procrustes;
+//   BM_FloorSpdeSvd: the same plus one n x n SVD with both vector sets (dgesdd on R11): issue 19's
+//                  definition of that floor ("QR of [A B] + one n x n SVD + one symmetric
+//                  eigendecomposition"), the stable path's own LAPACK work;
 //   BM_FloorTls:   the QR of [A B] plus the SVD of its 2n x 2n triangular factor (dgesdd,
 //                  right singular vectors): the floor of tls;
 // and the pieces alone (BM_Dgeqrf, BM_Dsyevd, BM_Dgesdd), so that each of spdfit's steps can
@@ -116,6 +119,17 @@ void BM_FloorSpde(benchmark::State& state) {
   }
 }
 
+void BM_FloorSpdeSvd(benchmark::State& state) {
+  const Index n = state.range(0);
+  const MatrixXd AB = data(n);
+  const MatrixXd W = random_matrix(n, n, 7);
+  const MatrixXd S = W.transpose() * W;
+  for (auto _ : state) {
+    const MatrixXd R = qr_factor(AB);
+    right_singular_vectors(R.topLeftCorner(n, n));
+    symmetric_eigen(S);
+  }
+}
 void BM_FloorTls(benchmark::State& state) {
   const MatrixXd AB = data(state.range(0));
   for (auto _ : state) right_singular_vectors(qr_factor(AB));
@@ -129,6 +143,7 @@ BENCHMARK(BM_Dgeqrf)->Apply(sizes);
 BENCHMARK(BM_Dsyevd)->Apply(sizes);
 BENCHMARK(BM_Dgesdd)->Arg(2000)->Arg(4000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FloorSpde)->Apply(sizes);
+BENCHMARK(BM_FloorSpdeSvd)->Apply(sizes);
 BENCHMARK(BM_FloorTls)->Apply(sizes);
 
 }  // namespace

@@ -142,6 +142,9 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
     if (options->header) check_text_output(options->output, "--header");
     FitOptions fit_options;
     fit_options.rank_tolerance = options->rank_tolerance;
+    // The noise estimate (the singular values of the 2n x 2n factor) is shown only in --json and
+    // --report: printing X alone, spdfit does not spend the time on it.
+    fit_options.noise_estimate = options->json || options->report;
     // Each of these options applies to some methods only: a usage error with the others.
     auto check = [&](bool given, MethodOption option, const char* spelling) {
       if (!given) return;

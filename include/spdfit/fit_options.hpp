@@ -23,6 +23,12 @@ struct FitOptions {
   /// bit for bit, without the two symmetric eigendecompositions and the residual per estimate.
   /// The data's diagnostics (m, n, ranks) and numerical failures are reported either way.
   bool diagnostics = true;
+  /// With diagnostics, also compute the noise estimate (Diagnostics::noise_sigma) and its
+  /// warning: the singular values of the (n + d) x (n + d) triangular factor of [A B], at large n
+  /// the costliest diagnostic (at n = 2000 longer than spde's estimate itself). Off, noise_sigma
+  /// is left unset and the rest is the same, X bit for bit; auto and the bootstrap compute the
+  /// estimate they need either way. The command line turns it off when it prints only X.
+  bool noise_estimate = true;
   /// The ratio sigma_B / sigma_A of the noise in B to the noise in A, for the total least-squares
   /// methods (tls, tls-sym, tls-psd, spd-tls, and auto): they fit [A, B / noise_ratio] and scale X back, so
   /// that the errors they minimize are in a common unit. Also the scaling of the noise estimate

@@ -110,7 +110,7 @@ Reduction reduce_with(const TriangularFactor& factor, const FitOptions& options,
   r->options = options;
   detail::reduce_into(factor.R(), factor.rows(), n, factor.exponent_a(), factor.exponent_b(), *r, vectors_a);
   // A property of the data, computed once for every method that reports it.
-  if (options.diagnostics) r->noise_var = detail::noise_variance(*r);
+  if (options.diagnostics && options.noise_estimate) r->noise_var = detail::noise_variance(*r);
   return Reduction(std::move(r));
 }
 

@@ -42,3 +42,24 @@ def test_noise_ratio_must_be_a_finite_positive_number(spdfit, data, tmp_path, va
     r = spdfit("fit", "--method", "tls", "--noise-ratio", value, a, b)
     assert r.returncode == 2
     assert "--noise-ratio" in r.stderr and "finite number > 0" in r.stderr
+
+
+def test_x_alone_skips_the_noise_estimate(spdfit, tmp_path):
+    """Printing X alone (CSV, --header, -o) does not compute the noise estimate, so its warning
+    about thin data is not given; --json and --report still have both. X is the same bits."""
+    rng = np.random.default_rng(5)
+    A = rng.standard_normal((7, 4))  # m - n < n: the estimate's thin-data warning
+    B = A @ np.diag([1.0, 2.0, 3.0, 4.0]) + 0.1 * rng.standard_normal((7, 4))
+    a, b = save(tmp_path, A, B)
+    plain = spdfit("fit", "--method", "spde", a, b)
+    assert plain.returncode == 0, plain.stderr
+    assert "noise estimate" not in plain.stderr
+    full = spdfit("fit", "--method", "spde", "--json", a, b)
+    out = json.loads(full.stdout)
+    assert out["diagnostics"]["noise_sigma"] > 0
+    assert any(w.startswith("the noise estimate (noise_sigma) rests on") for w in out["warnings"])
+    report = spdfit("fit", "--method", "spde", "--report", a, b)
+    assert "noise estimate: sigma = " in report.stdout
+    assert "rests on" in report.stderr
+    X = np.loadtxt(plain.stdout.splitlines(), delimiter=",")
+    assert np.array_equal(X, np.array(out["X"]))

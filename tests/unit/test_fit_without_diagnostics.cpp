@@ -44,5 +44,48 @@ TEST(FitWithoutDiagnostics, FailuresAreStillReported) {
   EXPECT_EQ(lean.message, full.message);
 }
 
+// FitOptions::noise_estimate = false (the command line printing X alone) skips only the noise
+// estimate: every method's X, status, ranks, diagnostics and other warnings are the same; auto
+// chooses the same method (it computes the estimate it needs itself).
+TEST(FitWithoutNoiseEstimate, OnlyTheNoiseEstimateAndItsWarningAreLeftOut) {
+  test::Generator g(13);
+  for (Index n : {2, 6, 12, 80}) {
+    const Index m = n + n / 2;  // m - n < n: the noise estimate's thin-data warning
+    const MatrixXd A = g.gaussian(m, n);
+    const MatrixXd B = A * g.spd(n, 100.0) + 0.5 * g.gaussian(m, n);
+    FitOptions lean;
+    lean.noise_estimate = false;
+    for (Method method : {Method::LeastSquares, Method::SymmetricProcrustes, Method::TotalLeastSquares,
+                          Method::Spde, Method::SpdTotalLeastSquares, Method::Auto}) {
+      // The iterative methods at n = 80 take seconds: the small sizes cover them.
+      if (n > 12 && (method == Method::SpdTotalLeastSquares || method == Method::Auto)) continue;
+      const FitResult full = fit(A, B, method);
+      const FitResult without = fit(A, B, method, lean);
+      const std::string name = std::string(to_string(method)) + ", n = " + std::to_string(n);
+      ASSERT_TRUE(full.ok()) << name << ": " << full.message;
+      EXPECT_EQ(without.status, full.status) << name;
+      EXPECT_EQ(without.X, full.X) << name;
+      EXPECT_TRUE(full.diagnostics.noise_sigma.has_value()) << name;
+      EXPECT_FALSE(without.diagnostics.noise_sigma.has_value()) << name;
+      EXPECT_EQ(without.diagnostics.rank_a, full.diagnostics.rank_a) << name;
+      EXPECT_EQ(without.diagnostics.cond_a_scaled, full.diagnostics.cond_a_scaled) << name;
+      EXPECT_EQ(without.diagnostics.min_eigenvalue, full.diagnostics.min_eigenvalue) << name;
+      EXPECT_EQ(without.diagnostics.chosen_method, full.diagnostics.chosen_method) << name;
+      // The warnings are the full run's without the one about the noise estimate.
+      std::vector<std::string> expected;
+      bool warned = false;
+      for (const std::string& w : full.warnings) {
+        if (w.rfind("the noise estimate (noise_sigma) rests on", 0) == 0) {
+          warned = true;
+        } else {
+          expected.push_back(w);
+        }
+      }
+      EXPECT_TRUE(warned) << name;
+      EXPECT_EQ(without.warnings, expected) << name;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace spdfit
