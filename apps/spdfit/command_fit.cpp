@@ -142,9 +142,10 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
     if (options->header) check_text_output(options->output, "--header");
     FitOptions fit_options;
     fit_options.rank_tolerance = options->rank_tolerance;
-    // The noise estimate (the singular values of the 2n x 2n factor) is shown only in --json and
-    // --report: printing X alone, spdfit does not spend the time on it.
-    fit_options.noise_estimate = options->json || options->report;
+    // The noise estimate and the column-scaled condition numbers (singular values of 2n x 2n and
+    // n x n matrices) are shown only by --json and --report: printing X alone, spdfit does not
+    // spend the time on them.
+    fit_options.reported_diagnostics = options->json || options->report;
     // Each of these options applies to some methods only: a usage error with the others.
     auto check = [&](bool given, MethodOption option, const char* spelling) {
       if (!given) return;

@@ -23,12 +23,19 @@ struct FitOptions {
   /// bit for bit, without the two symmetric eigendecompositions and the residual per estimate.
   /// The data's diagnostics (m, n, ranks) and numerical failures are reported either way.
   bool diagnostics = true;
-  /// With diagnostics, also compute the noise estimate (Diagnostics::noise_sigma) and its
-  /// warning: the singular values of the (n + d) x (n + d) triangular factor of [A B], at large n
-  /// the costliest diagnostic (at n = 2000 longer than spde's estimate itself). Off, noise_sigma
-  /// is left unset and the rest is the same, X bit for bit; auto and the bootstrap compute the
-  /// estimate they need either way. The command line turns it off when it prints only X.
-  bool noise_estimate = true;
+  /// With diagnostics, also compute the diagnostics that are only reported, which neither X nor a
+  /// warning needs: the noise estimate (Diagnostics::noise_sigma, the singular values of the
+  /// (n + d) x (n + d) triangular factor of [A B]), the column-scaled condition numbers
+  /// (cond_a_scaled, cond_b_scaled: singular values of A and B with scaled columns), the residual
+  /// norm and the area criterion (products of n x n matrices): at large n most of the
+  /// diagnostics' time (at n = 2000 the noise estimate alone is longer than spde's estimate).
+  /// Off, noise_sigma and area_criterion are unset, residual_norm and cond_b_scaled are 0, and so
+  /// is cond_a_scaled unless it may exceed 1e12 (then it is computed for the warning about an
+  /// ill-conditioned A); procrustes computes cross_term_positive_definite only for its warning.
+  /// X, the ranks, the eigenvalues and definiteness of X are the same, and so are the warnings
+  /// but the one about a noise estimate from few rows. auto and the bootstrap compute the noise
+  /// estimate they need either way. The command line turns this off when it prints X alone.
+  bool reported_diagnostics = true;
   /// The ratio sigma_B / sigma_A of the noise in B to the noise in A, for the total least-squares
   /// methods (tls, tls-sym, tls-psd, spd-tls, and auto): they fit [A, B / noise_ratio] and scale X back, so
   /// that the errors they minimize are in a common unit. Also the scaling of the noise estimate

@@ -16,10 +16,6 @@ using Eigen::VectorXd;
 
 namespace {
 
-// The lecture notes (002, section 3.7.2) call a matrix ill-conditioned when its reciprocal
-// condition number is below 1e-12: estimates may then have lost about 12 digits or more.
-constexpr double kIllConditionedRcond = 1e-12;
-
 
 
 // Eigenvalues above -kSemidefiniteSlack * n * eps * max|lambda| count as nonnegative: the
@@ -150,9 +146,12 @@ FitResult finish(Method method, const DynamicReduction& data, const MatrixXd& X_
   // defined for it.
   if (!X_s.allFinite()) return checked(method, X_s, std::move(d), std::move(warnings));
 
+  const bool reported = data.options.reported_diagnostics;
   // ||A X - B||_F^2 = ||R11 X - R12||_F^2 + ||R22||_F^2, in B's units.
-  const double fit_part = (product(data.R11, X_s) - data.R12).norm();
-  d.residual_norm = std::ldexp(std::hypot(fit_part, data.R22.norm()), eb);
+  if (reported) {
+    const double fit_part = (product(data.R11, X_s) - data.R12).norm();
+    d.residual_norm = std::ldexp(std::hypot(fit_part, data.R22.norm()), eb);
+  }
 
   // A non-square X (ls, tls) is never symmetric: no eigenvalues, no area criterion.
   d.symmetric = data.square() && X_s == X_s.transpose();
@@ -169,7 +168,7 @@ FitResult finish(Method method, const DynamicReduction& data, const MatrixXd& X_
       d.positive_definite = lambda(0) > 0.0;
       d.positive_semidefinite = lambda(0) >= -kSemidefiniteSlack * data.n * eps * scale;
     }
-    if (d.positive_semidefinite) {
+    if (d.positive_semidefinite && reported) {
       if (auto f = scaled_area_criterion(data, lambda, vectors)) d.area_criterion = std::ldexp(*f, ea + eb);
     }
   }

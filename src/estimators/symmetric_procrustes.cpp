@@ -57,17 +57,24 @@ FitResult symmetric_procrustes(const Reduction& reduction) {
   }
 
   // Theorem 3.2 (3): A^T B + B^T A positive definite implies a positive definite estimate.
-  Diagnostics d;
-  if (data.options.diagnostics) {
+  // Reported with every diagnostic; otherwise computed only for the warning below.
+  const auto cross_term_positive_definite = [&data]() {
     MatrixXd cross;
     detail::multiply(data.R11, true, data.R12, false, cross);
     Eigen::VectorXd w;
-    d.cross_term_positive_definite = detail::symmetric_eigen(MatrixXd(cross + cross.transpose()), w) && w(0) > 0.0;
+    return detail::symmetric_eigen(MatrixXd(cross + cross.transpose()), w) && w(0) > 0.0;
+  };
+  Diagnostics d;
+  if (data.options.diagnostics && data.options.reported_diagnostics) {
+    d.cross_term_positive_definite = cross_term_positive_definite();
   }
 
   FitResult result =
       detail::finish(Method::SymmetricProcrustes, data, X_s, std::move(d), std::move(warnings));
   if (result.ok() && data.options.diagnostics && !result.diagnostics.positive_definite) {
+    if (!result.diagnostics.cross_term_positive_definite) {
+      result.diagnostics.cross_term_positive_definite = cross_term_positive_definite();
+    }
     result.warnings.push_back(
         "the procrustes estimate is not positive definite (smallest eigenvalue " +
         detail::format_number(result.diagnostics.min_eigenvalue.value_or(0.0)) + "); A^T B + B^T A is " +

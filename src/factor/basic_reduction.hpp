@@ -44,13 +44,21 @@ struct BasicReduction {
   Vector s_b;                           ///< singular values of B, descending
   /// Numerical ranks under the options' cut-off, decided on A and B with unit-norm columns.
   Eigen::Index rank_a = 0, rank_b = 0;
-  /// cond(A D), cond(B D) with unit-norm columns: set when options.diagnostics, else 0.
+  /// cond(A D), cond(B D) with unit-norm columns: set when options.diagnostics and
+  /// options.reported_diagnostics, else 0; without reported_diagnostics cond(A D) is still set where it
+  /// may exceed 1 / kIllConditionedRcond, for the warning.
   double cond_a_scaled = 0.0, cond_b_scaled = 0.0;
   FitOptions options;
   /// The noise estimate sigma^2 (noise_variance, kernels.hpp), in A's units: set by reduce when
-  /// options.diagnostics and m > n, for every method's diagnostics to report.
+  /// options.diagnostics, options.reported_diagnostics and m > n, for every method's diagnostics to
+  /// report.
   std::optional<double> noise_var;
 };
+
+/// The lecture notes (002, section 3.7.2) call a matrix ill-conditioned when its reciprocal
+/// condition number is below 1e-12: estimates may then have lost about 12 digits or more. The
+/// warning about A is judged on cond(A D) (cond_a_scaled).
+constexpr double kIllConditionedRcond = 1e-12;
 
 /// The reduction behind the public, unbounded Reduction.
 using DynamicReduction = BasicReduction<Eigen::Dynamic>;

@@ -47,11 +47,13 @@ void reduce_into(const typename BasicReduction<MaxN>::Factor& R, Eigen::Index m,
   // The ranks are decided on A and B with their columns scaled to unit norm (the columns of R11
   // and R_b have the norms of A's and B's), so that they do not depend on the units of each
   // column (numerics/least_squares.hpp). The scaled condition numbers are diagnostics.
+  // Without reported_diagnostics, cond(A D) only where the ill-conditioning warning may need it.
   const bool report = out.options.diagnostics;
+  const bool all = report && out.options.reported_diagnostics;
   out.rank_a = equilibrated_rank(out.R11, out.s_a, out.options.rank_cutoff(m, n),
-                                 report ? &out.cond_a_scaled : nullptr);
+                                 report ? &out.cond_a_scaled : nullptr, all ? 0.0 : 1.0 / kIllConditionedRcond);
   out.rank_b = equilibrated_rank(out.R_b, out.s_b, out.options.rank_cutoff(m, d),
-                                 report ? &out.cond_b_scaled : nullptr);
+                                 all ? &out.cond_b_scaled : nullptr);
 }
 
 template <int MaxN>
@@ -110,7 +112,7 @@ Reduction reduce_with(const TriangularFactor& factor, const FitOptions& options,
   r->options = options;
   detail::reduce_into(factor.R(), factor.rows(), n, factor.exponent_a(), factor.exponent_b(), *r, vectors_a);
   // A property of the data, computed once for every method that reports it.
-  if (options.diagnostics && options.noise_estimate) r->noise_var = detail::noise_variance(*r);
+  if (options.diagnostics && options.reported_diagnostics) r->noise_var = detail::noise_variance(*r);
   return Reduction(std::move(r));
 }
 

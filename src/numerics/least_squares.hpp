@@ -45,16 +45,19 @@ int column_exponent(const Eigen::MatrixBase<Derived>& v) {
 /// holds the singular values of A itself (descending). The scaled singular values are computed
 /// only when those of A cannot decide: when rank(s) == n and cond(s) * spread < 1 / cutoff, with
 /// spread >= cond(D) from the exponents, A D has full rank too (cond(A D) <= cond(A) cond(D)).
-/// With scaled_condition given they are always computed and cond(A D) is written there. Matrix is
-/// the plain matrix type (bounded sizes keep everything on the stack). Cost O(m n) or one more SVD.
+/// With scaled_condition given they are computed and cond(A D) is written there, unless the
+/// bound cond(s) * spread is at most report_above (a caller that needs cond(A D) only where it may
+/// exceed a threshold): then *scaled_condition is left as it was. Matrix is the plain matrix type
+/// (bounded sizes keep everything on the stack). Cost O(m n) or one more SVD.
 template <typename Matrix, typename Vector>
-Eigen::Index equilibrated_rank(const Matrix& A, const Vector& s, double cutoff, double* scaled_condition = nullptr) {
+Eigen::Index equilibrated_rank(const Matrix& A, const Vector& s, double cutoff, double* scaled_condition = nullptr,
+                               double report_above = 0.0) {
   const Index n = A.cols();
   Eigen::Matrix<int, Eigen::Dynamic, 1, Eigen::ColMajor, Matrix::MaxColsAtCompileTime, 1> e(n);
   for (Index j = 0; j < n; ++j) e(j) = column_exponent(A.col(j));
-  if (!scaled_condition && n > 0 && numerical_rank(s, cutoff) == n &&
-      condition_number(s) * std::ldexp(1.0, e.maxCoeff() - e.minCoeff() + 1) * cutoff < 1.0) {
-    return n;
+  if (n > 0 && numerical_rank(s, cutoff) == n) {
+    const double bound = condition_number(s) * std::ldexp(1.0, e.maxCoeff() - e.minCoeff() + 1);
+    if (bound * cutoff < 1.0 && (!scaled_condition || bound <= report_above)) return n;
   }
   Matrix As = A;
   scale_columns(As, e, -1);

@@ -45,8 +45,9 @@ def test_noise_ratio_must_be_a_finite_positive_number(spdfit, data, tmp_path, va
 
 
 def test_x_alone_skips_the_noise_estimate(spdfit, tmp_path):
-    """Printing X alone (CSV, --header, -o) does not compute the noise estimate, so its warning
-    about thin data is not given; --json and --report still have both. X is the same bits."""
+    """Printing X alone (CSV, --header, -o) does not compute the noise estimate (nor the
+    column-scaled condition numbers), so its warning about thin data is not given; --json and
+    --report still have both. X is the same bits."""
     rng = np.random.default_rng(5)
     A = rng.standard_normal((7, 4))  # m - n < n: the estimate's thin-data warning
     B = A @ np.diag([1.0, 2.0, 3.0, 4.0]) + 0.1 * rng.standard_normal((7, 4))
