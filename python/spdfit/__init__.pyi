@@ -37,7 +37,8 @@ class SpdfitWarning(UserWarning): ...
 def fit(A: npt.ArrayLike, B: npt.ArrayLike, method: _Method = ..., *,
         rank_tolerance: Optional[float] = ..., noise_ratio: Optional[float] = ...,
         max_iter: Optional[int] = ..., min_eig: Optional[float] = ..., bootstrap: int = ...,
-        confidence: Optional[float] = ..., seed: Optional[int] = ..., threads: int = ...) -> FitResult: ...
+        confidence: Optional[float] = ..., seed: Optional[int] = ..., threads: int = ...,
+        reported_diagnostics: bool = ...) -> FitResult: ...
 def fit_files(A_path: _PathLike, B_path: _PathLike, method: _Method = ..., *,
               block_rows: int = ..., threads: int = ..., rank_tolerance: Optional[float] = ...,
               noise_ratio: Optional[float] = ..., max_iter: Optional[int] = ...,

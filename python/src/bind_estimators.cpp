@@ -336,17 +336,18 @@ void bind_estimators(py::module_& m) {
       [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const std::string& method,
          std::optional<double> rank_tolerance, std::optional<double> noise_ratio, std::optional<int> max_iter,
          std::optional<double> min_eig, int bootstrap, std::optional<double> confidence,
-         std::optional<std::uint64_t> seed, unsigned threads) {
+         std::optional<std::uint64_t> seed, unsigned threads, bool reported_diagnostics) {
         const Method chosen = method_from(method);
-        const FitOptions options = options_from(rank_tolerance, noise_ratio, chosen, max_iter, min_eig,
-                                                BootstrapArgs{bootstrap, confidence, seed, threads});
+        FitOptions options = options_from(rank_tolerance, noise_ratio, chosen, max_iter, min_eig,
+                                          BootstrapArgs{bootstrap, confidence, seed, threads});
+        options.reported_diagnostics = reported_diagnostics;
         py::gil_scoped_release release;
         return fit(A, B, chosen, options);
       },
       py::arg("A"), py::arg("B"), py::arg("method"), py::arg("rank_tolerance") = py::none(),
       py::arg("noise_ratio") = py::none(), py::arg("max_iter") = py::none(), py::arg("min_eig") = py::none(),
       py::arg("bootstrap") = 0, py::arg("confidence") = py::none(), py::arg("seed") = py::none(),
-      py::arg("threads") = 0u);
+      py::arg("threads") = 0u, py::arg("reported_diagnostics") = true);
   py::class_<StreamOptions>(m, "StreamOptions",
                             "How fit_files streams its files; the defaults are the library's own.")
       .def(py::init<>())
