@@ -337,7 +337,7 @@ def fit(A, B, method="auto", *, rank_tolerance=None, noise_ratio=None, max_iter=
         The bootstrap's threads (0: one per core); the numbers do not depend on it.
     reported_diagnostics : bool, default True
         False skips the diagnostics that neither X nor a warning needs, at large n most of the
-        time beyond the estimate (at n = 2000 about half of spde's): noise_sigma is then None,
+        time beyond the estimate (at n = 2000 more than half of spde's): noise_sigma is then None,
         area_criterion None, residual_norm and cond_b_scaled 0, and cond_a_scaled 0 unless A may
         be ill-conditioned enough for its warning. X and the other warnings are the same.
 
