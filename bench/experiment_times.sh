@@ -9,15 +9,15 @@ old=${2:-}
 runs=${3:-7}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-now() { date +%s.%N; }
+now() { date +%s%N; }  # nanoseconds, as an integer for the shell's arithmetic
+seconds() { awk -v ns="$1" 'BEGIN { printf "%.3f", ns / 1e9 }'; }
 time_one() {  # label binary
-  local s e t1 t2
-  s=$(now); "$2" experiment paper-2x2 --sweep --seed 1 >"$out/sweep-$1.json"; e=$(now)
-  t1=$(echo "$e - $s" | bc)
+  local s t1 t2
+  s=$(now); "$2" experiment paper-2x2 --sweep --seed 1 >"$out/sweep-$1.json"
+  t1=$(seconds $(($(now) - s)))
   s=$(now)
   for V in 0.082 0.86 1.28; do "$2" experiment thesis --noise-var "$V" --trials 2000 --seed 1 >"$out/thesis-$1-$V.txt"; done
-  e=$(now)
-  t2=$(echo "$e - $s" | bc)
+  t2=$(seconds $(($(now) - s)))
   echo "$1 $t1 $t2" >>"$out/times"
 }
 for _ in $(seq "$runs"); do

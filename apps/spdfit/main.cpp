@@ -8,9 +8,9 @@
 #include <CLI/CLI.hpp>
 
 #include "blas_restart.hpp"
-#include "numerics/blas_core.hpp"
 #include "cli.hpp"
 #include "mpi_world.hpp"
+#include "numerics/blas_core.hpp"
 #include "spdfit/io.hpp"
 #include "spdfit/version.hpp"
 

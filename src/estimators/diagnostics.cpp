@@ -16,8 +16,6 @@ using Eigen::VectorXd;
 
 namespace {
 
-
-
 // Eigenvalues above -kSemidefiniteSlack * n * eps * max|lambda| count as nonnegative: the
 // rounding error of a symmetric eigensolver.
 constexpr double kSemidefiniteSlack = 4.0;
