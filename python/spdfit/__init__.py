@@ -84,19 +84,24 @@ def _options(method=None, **values):
     if method is not None and not isinstance(method, str):
         raise TypeError(f"method must be a str (one of {', '.join(METHODS)}), got {type(method).__name__}")
     for name, value in values.items():
-        if value is None:
+        if name in _BOOL_OPTIONS:  # no None: a bool option has a bool default
+            if not isinstance(value, bool):
+                raise TypeError(f"{name} must be a bool, got {type(value).__name__}")
+        elif value is None:
             continue
-        if name in _INT_OPTIONS:
+        elif name in _INT_OPTIONS:
             if isinstance(value, bool) or not isinstance(value, _numbers.Integral):
                 raise TypeError(f"{name} must be an int, got {type(value).__name__}")
             if value < 0 and name not in _RANGE_IN_LIBRARY:
                 raise ValueError(f"{name} must be >= 0, got {value}")
         elif isinstance(value, bool) or not isinstance(value, _numbers.Real):
             raise TypeError(f"{name} must be a real number, got {type(value).__name__}")
-    return tuple(None if v is None else (int(v) if k in _INT_OPTIONS else float(v)) for k, v in values.items())
+    return tuple(v if v is None or k in _BOOL_OPTIONS else (int(v) if k in _INT_OPTIONS else float(v))
+                 for k, v in values.items())
 
 
 _INT_OPTIONS = ("max_iter", "bootstrap", "seed", "threads", "block_rows", "n", "d")
+_BOOL_OPTIONS = ("reported_diagnostics",)
 # The int options whose range the library checks, with its own message ("max_iterations must be at
 # least 1", "block_rows must be at least 1", "A and B must each have at least one column").
 _RANGE_IN_LIBRARY = ("max_iter", "block_rows", "n", "d")
@@ -375,11 +380,10 @@ def fit(A, B, method="auto", *, rank_tolerance=None, noise_ratio=None, max_iter=
     True
     """
     options = _options(method, rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter,
-                       min_eig=min_eig, bootstrap=bootstrap, confidence=confidence, seed=seed, threads=threads)
-    if not isinstance(reported_diagnostics, bool):
-        raise TypeError(f"reported_diagnostics must be a bool, got {type(reported_diagnostics).__name__}")
+                       min_eig=min_eig, bootstrap=bootstrap, confidence=confidence, seed=seed, threads=threads,
+                       reported_diagnostics=reported_diagnostics)
     A, B = _as_matrix("A", A), _as_matrix("B", B)
-    return _checked(_spdfit.fit(A, B, method, *options, reported_diagnostics=reported_diagnostics))
+    return _checked(_spdfit.fit(A, B, method, *options))
 
 
 # The streaming defaults are the library's (StreamOptions), not retyped here.
@@ -389,7 +393,7 @@ _STREAM_DEFAULTS = _spdfit.StreamOptions()
 @_shared_doc
 def fit_files(A_path, B_path, method="auto", *, block_rows=_STREAM_DEFAULTS.block_rows,
               threads=_STREAM_DEFAULTS.threads, rank_tolerance=None, noise_ratio=None, max_iter=None,
-              min_eig=None, bootstrap=0, confidence=None, seed=None):
+              min_eig=None, bootstrap=0, confidence=None, seed=None, reported_diagnostics=True):
     """Estimate X from A and B in two data files read a block of rows at a time.
 
     As `spdfit fit --stream`: any number of rows in O(threads * block_rows * n + n^2) memory. The
@@ -419,6 +423,8 @@ def fit_files(A_path, B_path, method="auto", *, block_rows=_STREAM_DEFAULTS.bloc
         bootstrap within Monte Carlo error, not exactly.
     confidence, seed : optional
         As in fit.
+    reported_diagnostics : bool, default True
+        As in fit: False skips the diagnostics that neither X nor a warning needs.
 
     {returns}
 
@@ -448,16 +454,17 @@ def fit_files(A_path, B_path, method="auto", *, block_rows=_STREAM_DEFAULTS.bloc
     >>> bool(np.allclose(r.X, spdfit.fit(A, A @ X, "spde").X))
     True
     """
-    rank_tolerance, noise_ratio, max_iter, min_eig, bootstrap, confidence, seed, threads = _options(
+    rank_tolerance, noise_ratio, max_iter, min_eig, bootstrap, confidence, seed, threads, reported = _options(
         method, rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter, min_eig=min_eig,
-        bootstrap=bootstrap, confidence=confidence, seed=seed, threads=threads)
+        bootstrap=bootstrap, confidence=confidence, seed=seed, threads=threads,
+        reported_diagnostics=reported_diagnostics)
     return _checked(_spdfit.fit_files(_os.fspath(A_path), _os.fspath(B_path), method, block_rows, threads,
                                       rank_tolerance, noise_ratio, max_iter, min_eig, bootstrap, confidence,
-                                      seed))
+                                      seed, reported))
 
 
 @_shared_doc
-def fit_all(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_eig=None):
+def fit_all(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_eig=None, reported_diagnostics=True):
     """Every estimator (METHODS but "auto") on the same data, from one shared QR.
 
     For B with d != n columns only "ls" and "tls", which fit a non-square X. Failures are not raised
@@ -475,6 +482,8 @@ def fit_all(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_e
         The iteration limit of spd-tls and psd-ls (default 200).
     min_eig : float, optional
         psd-ls's floor, X >= min_eig I (default 0).
+    reported_diagnostics : bool, default True
+        As in fit: False skips the diagnostics that neither X nor a warning needs.
 
     Returns
     -------
@@ -502,7 +511,8 @@ def fit_all(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_e
     >>> all(r.ok for r in results.values())
     True
     """
-    options = _options(rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter, min_eig=min_eig)
+    options = _options(rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter, min_eig=min_eig,
+                       reported_diagnostics=reported_diagnostics)
     A, B = _as_matrix("A", A), _as_matrix("B", B)
     results = {}
     for result in _spdfit.fit_all(A, B, *options):

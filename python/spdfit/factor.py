@@ -275,7 +275,7 @@ class Factor:
 
     @_shared_doc
     def fit(self, method="auto", *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_eig=None,
-            bootstrap=0):
+            bootstrap=0, reported_diagnostics=True):
         """Estimate X in A X ~= B from the factor, with `method` (one of METHODS).
 
         The estimate of spdfit.fit on all the factor's rows, to rounding (exactly the streaming
@@ -298,6 +298,8 @@ class Factor:
         bootstrap : int, default 0
             Refused unless 0: the bootstrap resamples rows, which a factor no longer has. Use
             spdfit.fit or spdfit.fit_files with bootstrap=N.
+        reported_diagnostics : bool, default True
+            As in fit: False skips the diagnostics that neither X nor a warning needs.
 
         {returns}
 
@@ -325,14 +327,15 @@ class Factor:
         >>> bool(np.allclose(r.X, X))
         True
         """
-        rank_tolerance, noise_ratio, max_iter, min_eig, bootstrap = _options(
+        rank_tolerance, noise_ratio, max_iter, min_eig, bootstrap, reported = _options(
             method, rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter, min_eig=min_eig,
-            bootstrap=bootstrap)
+            bootstrap=bootstrap, reported_diagnostics=reported_diagnostics)
         if bootstrap:
             raise ValueError("Factor.fit cannot bootstrap: the bootstrap resamples the rows of [A B], which a factor "
                              "no longer holds; use spdfit.fit(A, B, bootstrap=N) or "
                              "spdfit.fit_files(A_path, B_path, bootstrap=N)")
-        return _checked(_spdfit.fit_factor(self._core, method, rank_tolerance, noise_ratio, max_iter, min_eig))
+        return _checked(_spdfit.fit_factor(self._core, method, rank_tolerance, noise_ratio, max_iter, min_eig,
+                                           reported))
 
     @property
     def n(self):

@@ -360,10 +360,11 @@ void bind_estimators(py::module_& m) {
       [](const std::string& a_path, const std::string& b_path, const std::string& method, Eigen::Index block_rows,
          unsigned threads, std::optional<double> rank_tolerance, std::optional<double> noise_ratio,
          std::optional<int> max_iter, std::optional<double> min_eig, int bootstrap,
-         std::optional<double> confidence, std::optional<std::uint64_t> seed) {
+         std::optional<double> confidence, std::optional<std::uint64_t> seed, bool reported_diagnostics) {
         const Method chosen = method_from(method);
-        const FitOptions options = options_from(rank_tolerance, noise_ratio, chosen, max_iter, min_eig,
-                                                BootstrapArgs{bootstrap, confidence, seed, threads});
+        FitOptions options = options_from(rank_tolerance, noise_ratio, chosen, max_iter, min_eig,
+                                          BootstrapArgs{bootstrap, confidence, seed, threads});
+        options.reported_diagnostics = reported_diagnostics;
         StreamOptions stream;
         stream.block_rows = block_rows;
         stream.threads = threads;
@@ -373,17 +374,20 @@ void bind_estimators(py::module_& m) {
       py::arg("A_path"), py::arg("B_path"), py::arg("method"), py::arg("block_rows") = StreamOptions{}.block_rows,
       py::arg("threads") = StreamOptions{}.threads, py::arg("rank_tolerance") = py::none(),
       py::arg("noise_ratio") = py::none(), py::arg("max_iter") = py::none(), py::arg("min_eig") = py::none(),
-      py::arg("bootstrap") = 0, py::arg("confidence") = py::none(), py::arg("seed") = py::none());
+      py::arg("bootstrap") = 0, py::arg("confidence") = py::none(), py::arg("seed") = py::none(),
+      py::arg("reported_diagnostics") = true);
   m.def(
       "fit_all",
       [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, std::optional<double> rank_tolerance,
-         std::optional<double> noise_ratio, std::optional<int> max_iter, std::optional<double> min_eig) {
-        const FitOptions options = options_from(rank_tolerance, noise_ratio, std::nullopt, max_iter, min_eig);
+         std::optional<double> noise_ratio, std::optional<int> max_iter, std::optional<double> min_eig,
+         bool reported_diagnostics) {
+        FitOptions options = options_from(rank_tolerance, noise_ratio, std::nullopt, max_iter, min_eig);
+        options.reported_diagnostics = reported_diagnostics;
         py::gil_scoped_release release;
         return fit_all(A, B, options);
       },
       py::arg("A"), py::arg("B"), py::arg("rank_tolerance") = py::none(), py::arg("noise_ratio") = py::none(),
-      py::arg("max_iter") = py::none(), py::arg("min_eig") = py::none());
+      py::arg("max_iter") = py::none(), py::arg("min_eig") = py::none(), py::arg("reported_diagnostics") = true);
 
   py::class_<NearestResult>(m, "NearestResult",
                             "A repaired matrix and how it was reached (nearest_spd, nearest_correlation).")

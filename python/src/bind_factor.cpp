@@ -73,14 +73,17 @@ void bind_factor(py::module_& m) {
   m.def(
       "fit_factor",
       [](const TriangularFactor& factor, const std::string& method, std::optional<double> rank_tolerance,
-         std::optional<double> noise_ratio, std::optional<int> max_iter, std::optional<double> min_eig) {
+         std::optional<double> noise_ratio, std::optional<int> max_iter, std::optional<double> min_eig,
+         bool reported_diagnostics) {
         const Method chosen = method_from(method);
-        const FitOptions options = options_from(rank_tolerance, noise_ratio, chosen, max_iter, min_eig);
+        FitOptions options = options_from(rank_tolerance, noise_ratio, chosen, max_iter, min_eig);
+        options.reported_diagnostics = reported_diagnostics;
         py::gil_scoped_release release;
         return fit(reduce(factor, options), chosen);
       },
       py::arg("factor"), py::arg("method"), py::arg("rank_tolerance") = py::none(),
-      py::arg("noise_ratio") = py::none(), py::arg("max_iter") = py::none(), py::arg("min_eig") = py::none());
+      py::arg("noise_ratio") = py::none(), py::arg("max_iter") = py::none(), py::arg("min_eig") = py::none(),
+      py::arg("reported_diagnostics") = true);
 
   // (factor, the readers' warnings) of a file pair read a block of rows at a time.
   m.def(
