@@ -2,9 +2,7 @@
 // read whole (a .npz entry is a .npy file, parsed by parse_npy).
 #include "containers.hpp"
 
-#include <matio.h>
 #include <sys/stat.h>
-#include <zip.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -19,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "format_libraries.hpp"
 #include "npy_layout.hpp"
 #include "parse.hpp"
 #include "text_scan.hpp"
@@ -40,10 +39,10 @@ std::string joined(const std::vector<std::string>& names) {
 }
 
 struct MatCloser {
-  void operator()(mat_t* mat) const { Mat_Close(mat); }
+  void operator()(mat_t* mat) const { loaded_matio().Mat_Close(mat); }
 };
 struct VarFreer {
-  void operator()(matvar_t* var) const { Mat_VarFree(var); }
+  void operator()(matvar_t* var) const { loaded_matio().Mat_VarFree(var); }
 };
 using MatFile = std::unique_ptr<mat_t, MatCloser>;
 using MatVar = std::unique_ptr<matvar_t, VarFreer>;
@@ -91,16 +90,18 @@ bool ends_with_npy(std::string_view name) { return name.size() > 4 && name.subst
 using ZipArchive = std::unique_ptr<zip_t, int (*)(zip_t*)>;
 
 ZipArchive open_zip(const std::string& path) {
+  const Libzip& zip = libzip(path);
   int error = 0;
-  return ZipArchive(zip_open(path.c_str(), ZIP_RDONLY, &error), zip_close);
+  return ZipArchive(zip.zip_open(path.c_str(), ZIP_RDONLY, &error), zip.zip_close);
 }
 
 // The arrays of a .npz archive: its entries that are .npy files, named without ".npy".
 std::vector<std::string> npy_entries(zip_t* archive) {
   std::vector<std::string> arrays;
-  const zip_int64_t entries = zip_get_num_entries(archive, 0);
+  const Libzip& zip = loaded_libzip();
+  const zip_int64_t entries = zip.zip_get_num_entries(archive, 0);
   for (zip_int64_t k = 0; k < entries; ++k) {
-    const char* entry = zip_get_name(archive, static_cast<zip_uint64_t>(k), 0);
+    const char* entry = zip.zip_get_name(archive, static_cast<zip_uint64_t>(k), 0);
     const std::string_view name = entry ? entry : "";
     if (ends_with_npy(name)) arrays.emplace_back(name.substr(0, name.size() - 4));
   }
@@ -366,7 +367,7 @@ void check_level5(const std::string& file) {
 MatVariables list_variables(mat_t* mat) {
   MatVariables out;
   for (;;) {
-    MatVar v(Mat_VarReadNextInfo(mat));
+    MatVar v(loaded_matio().Mat_VarReadNextInfo(mat));
     if (!v) break;
     const std::string name = v->name ? v->name : "";
     out.all.push_back(name);
@@ -385,10 +386,11 @@ struct MatMatrix {
 };
 
 MatMatrix open_matrix(const std::string& file, const std::string& variable) {
-  Mat_LogInitFunc("spdfit", quiet_log);
+  const Matio& lib = matio(file);
+  lib.Mat_LogInitFunc("spdfit", quiet_log);
   MatMatrix out{nullptr, nullptr, variable, variable.empty() ? file : file + ":" + variable};
   check_level5(file);
-  out.file.reset(Mat_Open(file.c_str(), MAT_ACC_RDONLY));
+  out.file.reset(lib.Mat_Open(file.c_str(), MAT_ACC_RDONLY));
   if (!out.file) throw DataError(file, 0, 0, "is not a MATLAB .mat file libmatio can read (levels 5 and 7.3 are)");
   const auto its_variables = [](const MatVariables& found) {
     return found.all.empty() ? std::string() : "; its variables: " + joined(found.all);
@@ -410,11 +412,11 @@ MatMatrix open_matrix(const std::string& file, const std::string& variable) {
     }
     out.variable = found.candidates.front();
   }
-  out.header.reset(Mat_VarReadInfo(out.file.get(), out.variable.c_str()));
+  out.header.reset(lib.Mat_VarReadInfo(out.file.get(), out.variable.c_str()));
   if (!out.header) {
     if (variable.empty()) throw DataError(out.name, 0, 0, "could not be read (a damaged .mat file?)");
     // Rewind by reopening: list what there is.
-    const MatFile again(Mat_Open(file.c_str(), MAT_ACC_RDONLY));
+    const MatFile again(lib.Mat_Open(file.c_str(), MAT_ACC_RDONLY));
     const MatVariables there = again ? list_variables(again.get()) : MatVariables{};
     if (there.all.empty()) {
       throw DataError(file, 0, 0,
@@ -460,7 +462,7 @@ void widen_class(matio_classes type, const void* data, Eigen::MatrixXd& out) {
 
 Table read_mat(const std::string& file, const std::string& variable, const ReadOptions& options) {
   const MatMatrix matrix = open_matrix(file, variable);
-  const MatVar whole(Mat_VarRead(matrix.file.get(), matrix.variable.c_str()));
+  const MatVar whole(loaded_matio().Mat_VarRead(matrix.file.get(), matrix.variable.c_str()));
   // As its header said (the file may have changed since, or libmatio read it otherwise).
   if (!whole || !whole->data || whole->class_type != matrix.header->class_type || whole->rank != 2 ||
       whole->isComplex || whole->dims[0] != matrix.header->dims[0] || whole->dims[1] != matrix.header->dims[1]) {
@@ -500,11 +502,11 @@ void MatRowBlocks::read(std::uint64_t first, Eigen::Index count, Eigen::MatrixXd
   matvar_t& v = *state_->matrix.header;
   out->resize(count, columns());
   if (count == 0) return;
-  state_->buffer.resize(static_cast<std::size_t>(out->size()) * Mat_SizeOfClass(v.class_type));
+  state_->buffer.resize(static_cast<std::size_t>(out->size()) * loaded_matio().Mat_SizeOfClass(v.class_type));
   int start[2] = {static_cast<int>(first), 0};
   int stride[2] = {1, 1};
   int edge[2] = {static_cast<int>(count), static_cast<int>(columns())};
-  if (Mat_VarReadData(state_->matrix.file.get(), &v, state_->buffer.data(), start, stride, edge) != 0) {
+  if (loaded_matio().Mat_VarReadData(state_->matrix.file.get(), &v, state_->buffer.data(), start, stride, edge) != 0) {
     throw DataError(name(), 0, 0,
                     "rows " + std::to_string(first + 1) + " to " + std::to_string(first + count) +
                         " could not be read (a damaged .mat file?)");
@@ -529,8 +531,9 @@ Table read_npz(const std::string& file, const std::string& variable, const ReadO
   }
   const std::string name = file + ":" + key;
   zip_stat_t info;
-  zip_stat_init(&info);
-  if (zip_stat(archive.get(), (key + ".npy").c_str(), 0, &info) != 0) {
+  const Libzip& zip = loaded_libzip();
+  zip.zip_stat_init(&info);
+  if (zip.zip_stat(archive.get(), (key + ".npy").c_str(), 0, &info) != 0) {
     throw DataError(file, 0, 0, "has no array '" + key + "'; its arrays: " + joined(arrays));
   }
   // The declared size is checked against the archive before it is trusted with an allocation
@@ -539,13 +542,13 @@ Table read_npz(const std::string& file, const std::string& variable, const ReadO
       ((info.valid & ZIP_STAT_COMP_SIZE) && info.size > kMaxExpansion * (info.comp_size + 1024))) {
     throw DataError(name, 0, 0, "has a damaged size in the archive");
   }
-  std::unique_ptr<zip_file_t, int (*)(zip_file_t*)> entry(zip_fopen(archive.get(), (key + ".npy").c_str(), 0),
-                                                          zip_fclose);
+  std::unique_ptr<zip_file_t, int (*)(zip_file_t*)> entry(
+      zip.zip_fopen(archive.get(), (key + ".npy").c_str(), 0), zip.zip_fclose);
   if (!entry) throw DataError(name, 0, 0, "cannot be read from the archive");
   std::string bytes(static_cast<std::size_t>(info.size), '\0');
   std::size_t got = 0;
   while (got < bytes.size()) {
-    const zip_int64_t n = zip_fread(entry.get(), bytes.data() + got, bytes.size() - got);
+    const zip_int64_t n = zip.zip_fread(entry.get(), bytes.data() + got, bytes.size() - got);
     if (n <= 0) throw DataError(name, 0, 0, "cannot be read from the archive (damaged or truncated)");
     got += static_cast<std::size_t>(n);
   }
@@ -580,14 +583,15 @@ std::optional<Table> read_named_arrays(const FileSpec& spec, const ReadOptions& 
 namespace spdfit::io {
 
 void write_mat(const std::string& path, const Eigen::Ref<const Eigen::MatrixXd>& X, const std::string& name) {
-  Mat_LogInitFunc("spdfit", detail::quiet_log);
-  detail::MatFile mat(Mat_CreateVer(path.c_str(), nullptr, MAT_FT_MAT5));
+  const detail::Matio& lib = detail::matio(path);
+  lib.Mat_LogInitFunc("spdfit", detail::quiet_log);
+  detail::MatFile mat(lib.Mat_CreateVer(path.c_str(), nullptr, MAT_FT_MAT5));
   if (!mat) throw DataError(path, 0, 0, "cannot be written as a .mat file");
   Eigen::MatrixXd dense = X;  // columns one after another, as libmatio reads them
   std::size_t dims[2] = {static_cast<std::size_t>(X.rows()), static_cast<std::size_t>(X.cols())};
   detail::MatVar var(
-      Mat_VarCreate(name.c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, dense.data(), MAT_F_DONT_COPY_DATA));
-  if (!var || Mat_VarWrite(mat.get(), var.get(), MAT_COMPRESSION_NONE) != 0) {
+      lib.Mat_VarCreate(name.c_str(), MAT_C_DOUBLE, MAT_T_DOUBLE, 2, dims, dense.data(), MAT_F_DONT_COPY_DATA));
+  if (!var || lib.Mat_VarWrite(mat.get(), var.get(), MAT_COMPRESSION_NONE) != 0) {
     throw DataError(path, 0, 0, "cannot be written as a .mat file");
   }
 }

@@ -1,0 +1,110 @@
+#include "format_libraries.hpp"
+
+#include <dlfcn.h>
+
+#include <iterator>
+#include <mutex>
+
+#include "spdfit/io.hpp"
+
+namespace spdfit::io::detail {
+
+bool open_library(const std::string& soname, const char* const* names, std::size_t count, void** addresses,
+                  std::string* error) {
+  // dlerror's message is global state: read under one lock with the calls that set it.
+  static std::mutex loader;
+  const std::lock_guard<std::mutex> lock(loader);
+  void* library = ::dlopen(soname.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!library) {
+    const char* why = ::dlerror();
+    *error = why ? why : "cannot be opened";
+    return false;
+  }
+  for (std::size_t k = 0; k < count; ++k) {
+    ::dlerror();
+    addresses[k] = ::dlsym(library, names[k]);
+    if (!addresses[k]) {
+      const char* why = ::dlerror();
+      *error = soname + " has no function " + names[k] + (why ? std::string(" (") + why + ")" : std::string());
+      ::dlclose(library);
+      return false;
+    }
+  }
+  return true;  // never closed: the functions stay in use until the process ends
+}
+
+namespace {
+
+#define SPDFIT_NAME_OF(function) #function,
+#define SPDFIT_COUNT(function) +1
+#define SPDFIT_STORE(function) api.function = reinterpret_cast<decltype(api.function)>(addresses[k++]);
+
+// The loaded functions, or why they are not: decided once, at the first call.
+template <typename Api>
+struct Loaded {
+  Api api;
+  std::string error;
+};
+
+Loaded<Matio> load_matio() {
+  static constexpr const char* kNames[] = {SPDFIT_MATIO_FUNCTIONS(SPDFIT_NAME_OF)};
+  void* addresses[0 SPDFIT_MATIO_FUNCTIONS(SPDFIT_COUNT)] = {};
+  Loaded<Matio> out;
+  if (open_library(SPDFIT_MATIO_SONAME, kNames, std::size(kNames), addresses, &out.error)) {
+    Matio& api = out.api;
+    std::size_t k = 0;
+    SPDFIT_MATIO_FUNCTIONS(SPDFIT_STORE)
+  }
+  return out;
+}
+
+Loaded<Libzip> load_libzip() {
+  static constexpr const char* kNames[] = {SPDFIT_LIBZIP_FUNCTIONS(SPDFIT_NAME_OF)};
+  void* addresses[0 SPDFIT_LIBZIP_FUNCTIONS(SPDFIT_COUNT)] = {};
+  Loaded<Libzip> out;
+  if (open_library(SPDFIT_LIBZIP_SONAME, kNames, std::size(kNames), addresses, &out.error)) {
+    Libzip& api = out.api;
+    std::size_t k = 0;
+    SPDFIT_LIBZIP_FUNCTIONS(SPDFIT_STORE)
+  }
+  return out;
+}
+
+#undef SPDFIT_NAME_OF
+#undef SPDFIT_COUNT
+#undef SPDFIT_STORE
+
+const Loaded<Matio>& matio_once() {
+  static const Loaded<Matio> loaded = load_matio();
+  return loaded;
+}
+
+const Loaded<Libzip>& libzip_once() {
+  static const Loaded<Libzip> loaded = load_libzip();
+  return loaded;
+}
+
+}  // namespace
+
+const Matio& matio(const std::string& file) {
+  const Loaded<Matio>& loaded = matio_once();
+  if (!loaded.error.empty()) {
+    throw DataError(file, 0, 0, "cannot be read or written: .mat files need libmatio, which did not load: " +
+                                    loaded.error);
+  }
+  return loaded.api;
+}
+
+const Matio& loaded_matio() { return matio_once().api; }
+
+const Libzip& libzip(const std::string& file) {
+  const Loaded<Libzip>& loaded = libzip_once();
+  if (!loaded.error.empty()) {
+    throw DataError(file, 0, 0, "cannot be read: .npz archives need libzip, which did not load: " + loaded.error);
+  }
+  return loaded.api;
+}
+
+const Libzip& loaded_libzip() { return libzip_once().api; }
+
+}  // namespace spdfit::io::detail
