@@ -1,14 +1,13 @@
 #!/bin/bash
 # Start-up time of the command line: the wall time of `spdfit --version` (loading its shared
-# libraries, OpenBLAS's initialization, parsing the arguments), averaged over many runs, for one
-# or two builds alternating in one run. Every command pays it once; the thesis' experiments
-# (issue 19: three processes, 0.1 s in all) pay it three times. It also lists the shared
-# libraries each build loads at start.
-# Usage: bench/startup_times.sh NEW_SPDFIT [OLD_SPDFIT] [ROUNDS]   (default 5 rounds of 100 runs)
+# libraries, OpenBLAS's initialization, parsing the arguments), averaged over 100 runs, for one
+# or more builds alternating in each round. Every command pays it once; the thesis' experiments
+# (issue 19: three processes, 0.1 s in all) pay it three times. Also lists how many shared
+# objects each build loads at start.
+# Usage: [ROUNDS=5] bench/startup_times.sh SPDFIT [SPDFIT ...]
 set -euo pipefail
-new=${1:?usage: bench/startup_times.sh NEW_SPDFIT [OLD_SPDFIT] [ROUNDS]}
-old=${2:-}
-rounds=${3:-5}
+[ $# -ge 1 ] || { echo "usage: [ROUNDS=5] bench/startup_times.sh SPDFIT [SPDFIT ...]" >&2; exit 2; }
+rounds=${ROUNDS:-5}
 runs=100
 now() { date +%s%N; }
 per_run() {  # binary -> milliseconds per run of `binary --version`, over $runs runs
@@ -17,13 +16,11 @@ per_run() {  # binary -> milliseconds per run of `binary --version`, over $runs 
   for _ in $(seq "$runs"); do "$1" --version >/dev/null; done
   awk -v ns="$(($(now) - s))" -v n="$runs" 'BEGIN { printf "%.2f", ns / n / 1e6 }'
 }
-for label in new old; do
-  binary=$([ "$label" = new ] && echo "$new" || echo "$old")
-  [ -n "$binary" ] || continue
-  echo "$label: $(ldd "$binary" | grep -vc linux-vdso) shared objects loaded at start (ldd)"
+for binary in "$@"; do
+  echo "$binary: $(ldd "$binary" | grep -vc linux-vdso) shared objects loaded at start (ldd)"
 done
 for round in $(seq "$rounds"); do
-  line="round $round: new $(per_run "$new") ms"
-  if [ -n "$old" ]; then line="$line, old $(per_run "$old") ms"; fi
+  line="round $round:"
+  for binary in "$@"; do line="$line $(per_run "$binary") ms"; done
   echo "$line"
 done

@@ -1,10 +1,12 @@
-// MPI for the distributed fit: the world's setup and a Channel over MPI's C interface.
+// MPI for the distributed fit: the world's setup, from the plugin spdfit-mpi.so (mpi_session.hpp)
+// opened only under an MPI launcher.
 #include "mpi_world.hpp"
 
+#include <dlfcn.h>
 #include <sched.h>
+#include <unistd.h>
 
 #include <algorithm>
-#include <cstdint>
 #include <cstdlib>
 #include <memory>
 #include <stdexcept>
@@ -12,10 +14,7 @@
 #include <thread>
 #include <vector>
 
-#ifdef SPDFIT_HAVE_MPI
-#include <mpi.h>
-#endif
-
+#include "mpi_session.hpp"
 #include "numerics/blas_core.hpp"
 
 namespace spdfit::cli {
@@ -27,161 +26,79 @@ bool launched_by_mpi() {
   return false;
 }
 
-#ifdef SPDFIT_HAVE_MPI
-
 namespace {
 
-[[noreturn]] void mpi_failed(const char* call) { throw std::runtime_error(std::string("MPI: ") + call + " failed"); }
+#ifdef SPDFIT_HAVE_MPI
 
-void check(int code, const char* call) {
-  if (code != MPI_SUCCESS) mpi_failed(call);
+// The folder of this program's file (/proc/self/exe), with a trailing slash.
+std::string program_folder() {
+  std::vector<char> path(4096);
+  const ssize_t length = ::readlink("/proc/self/exe", path.data(), path.size() - 1);
+  if (length <= 0) return "";
+  const std::string file(path.data(), static_cast<std::size_t>(length));
+  return file.substr(0, file.rfind('/') + 1);
 }
 
-constexpr int kDataTag = 1;
-constexpr int kFailureTag = 2;
-
-// Messages over MPI_COMM_WORLD for the data; failures are announced on a communicator of their
-// own, so that polling for them never takes a data message.
-class MpiChannel final : public Channel {
- public:
-  MpiChannel(int rank, int size) : rank_(rank), size_(size) {
-    check(MPI_Comm_dup(MPI_COMM_WORLD, &failures_), "MPI_Comm_dup");
-  }
-  ~MpiChannel() override { MPI_Comm_free(&failures_); }
-
-  int rank() const override { return rank_; }
-  int size() const override { return size_; }
-
-  std::vector<std::string> all_gather(const std::string& mine) override {
-    const int bytes = as_count(mine.size());
-    std::vector<int> sizes(static_cast<std::size_t>(size_));
-    check(MPI_Allgather(&bytes, 1, MPI_INT, sizes.data(), 1, MPI_INT, MPI_COMM_WORLD), "MPI_Allgather");
-    std::vector<int> offsets(sizes.size());
-    std::int64_t total = 0;
-    for (std::size_t k = 0; k < sizes.size(); ++k) {
-      offsets[k] = as_count(static_cast<std::size_t>(total));
-      total += sizes[k];
+// The plugin beside the program (the build tree) or where the install puts it, relative to the
+// program (SPDFIT_MPI_PLUGIN_FROM_BIN); kept open for the process.
+std::unique_ptr<MpiSession> start_session() {
+  const std::string folder = program_folder();
+  std::string tried;
+  for (const std::string& path : {folder + SPDFIT_MPI_PLUGIN, folder + SPDFIT_MPI_PLUGIN_FROM_BIN}) {
+    void* plugin = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!plugin) {
+      const char* why = ::dlerror();
+      tried += "\n  " + (why ? std::string(why) : path);
+      continue;
     }
-    std::string all(static_cast<std::size_t>(total), '\0');
-    check(MPI_Allgatherv(mine.data(), bytes, MPI_BYTE, all.data(), sizes.data(), offsets.data(), MPI_BYTE,
-                         MPI_COMM_WORLD),
-          "MPI_Allgatherv");
-    std::vector<std::string> out;
-    for (std::size_t k = 0; k < sizes.size(); ++k) {
-      out.push_back(all.substr(static_cast<std::size_t>(offsets[k]), static_cast<std::size_t>(sizes[k])));
-    }
-    return out;
+    using Start = MpiSession* (*)(std::string*);
+    const auto start = reinterpret_cast<Start>(::dlsym(plugin, kMpiSessionStart));
+    if (!start) throw std::runtime_error(path + " has no function " + kMpiSessionStart);
+    std::string error;
+    std::unique_ptr<MpiSession> session(start(&error));
+    if (!session) throw std::runtime_error(error);
+    return session;
   }
+  throw std::runtime_error("started by an MPI launcher, but MPI's part of spdfit (" + std::string(SPDFIT_MPI_PLUGIN) +
+                           ") could not be loaded:" + tried);
+}
 
-  void send(int to, const std::string& bytes) override {
-    check(MPI_Send(bytes.data(), as_count(bytes.size()), MPI_BYTE, to, kDataTag, MPI_COMM_WORLD), "MPI_Send");
-  }
-
-  std::string receive(int from) override {
-    MPI_Status status;
-    check(MPI_Probe(from, kDataTag, MPI_COMM_WORLD, &status), "MPI_Probe");
-    int bytes = 0;
-    check(MPI_Get_count(&status, MPI_BYTE, &bytes), "MPI_Get_count");
-    std::string out(static_cast<std::size_t>(bytes), '\0');
-    check(MPI_Recv(out.data(), bytes, MPI_BYTE, from, kDataTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "MPI_Recv");
-    return out;
-  }
-
-  void announce_failure() override {
-    for (int k = 0; k < size_; ++k) {
-      if (k == rank_) continue;
-      MPI_Request request;
-      check(MPI_Isend(&kNotice, 1, MPI_BYTE, k, kFailureTag, failures_, &request), "MPI_Isend");
-      announcements_.push_back(request);
-    }
-  }
-
-  bool failure_announced() override {
-    int flag = 0;
-    check(MPI_Iprobe(MPI_ANY_SOURCE, kFailureTag, failures_, &flag, MPI_STATUS_IGNORE), "MPI_Iprobe");
-    return flag != 0;
-  }
-
-  // Every announcement sent is received, so that none is left pending at MPI_Finalize.
-  void settle(const std::vector<int>& announced) override {
-    for (int k : announced) {
-      if (k == rank_) continue;
-      char notice = 0;
-      check(MPI_Recv(&notice, 1, MPI_BYTE, k, kFailureTag, failures_, MPI_STATUS_IGNORE), "MPI_Recv");
-    }
-    if (!announcements_.empty()) {
-      check(MPI_Waitall(static_cast<int>(announcements_.size()), announcements_.data(), MPI_STATUSES_IGNORE),
-            "MPI_Waitall");
-      announcements_.clear();
-    }
-  }
-
- private:
-  static int as_count(std::size_t bytes) {
-    if (bytes > static_cast<std::size_t>(INT32_MAX)) throw std::runtime_error("MPI: a message above 2 GiB");
-    return static_cast<int>(bytes);
-  }
-
-  static constexpr char kNotice = 1;
-  int rank_, size_;
-  MPI_Comm failures_ = MPI_COMM_NULL;
-  std::vector<MPI_Request> announcements_;
-};
+#endif
 
 }  // namespace
 
 MpiWorld::MpiWorld() {
   if (!launched_by_mpi()) return;
-  int provided = 0;
-  check(MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
+#ifdef SPDFIT_HAVE_MPI
+  session_ = start_session();
   active_ = true;
-  check(MPI_Comm_rank(MPI_COMM_WORLD, &rank_), "MPI_Comm_rank");
-  check(MPI_Comm_size(MPI_COMM_WORLD, &size_), "MPI_Comm_size");
-  // The processes on this node share its cores.
-  MPI_Comm node;
-  check(MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &node),
-        "MPI_Comm_split_type");
-  int on_node = 1;
-  MPI_Comm_size(node, &on_node);
-  MPI_Comm_free(&node);
+  rank_ = session_->rank();
+  size_ = session_->size();
   // mpirun binds each process to cores of its own by default (to one core when K <= 2): more
   // threads than the cores it may run on would only take turns.
   const unsigned cores = std::max(1U, std::thread::hardware_concurrency());
-  threads_ = std::max(1U, cores / static_cast<unsigned>(std::max(1, on_node)));
+  threads_ = std::max(1U, cores / static_cast<unsigned>(std::max(1, session_->processes_on_node())));
   cpu_set_t allowed;
   CPU_ZERO(&allowed);
   if (sched_getaffinity(0, sizeof allowed, &allowed) == 0) {
     threads_ = std::min(threads_, std::max(1U, static_cast<unsigned>(CPU_COUNT(&allowed))));
   }
   detail::set_blas_threads(static_cast<int>(threads_));
-  channel_ = std::make_unique<MpiChannel>(rank_, size_);
-}
-
-MpiWorld::~MpiWorld() {
-  if (!active_) return;
-  channel_.reset();  // frees its communicator before MPI ends
-  MPI_Finalize();
-}
-
-#else  // built without MPI
-
-MpiWorld::MpiWorld() {
-  if (!launched_by_mpi()) return;
+#else
   const char* size = std::getenv("OMPI_COMM_WORLD_SIZE");
   if (size == nullptr) size = std::getenv("PMI_SIZE");
   if (size != nullptr && std::atoi(size) > 1) {
     throw std::runtime_error("this spdfit was built without MPI (SPDFIT_MPI off), so it cannot run under mpirun "
                              "with several processes");
   }
+#endif
 }
 
-MpiWorld::~MpiWorld() = default;
-
-#endif
+MpiWorld::~MpiWorld() = default;  // the session, if any, ends MPI
 
 Channel& MpiWorld::channel() {
-  if (!channel_) throw std::logic_error("MpiWorld::channel: MPI is not running");
-  return *channel_;
+  if (!session_) throw std::logic_error("MpiWorld::channel: MPI is not running");
+  return session_->channel();
 }
 
 }  // namespace spdfit::cli

@@ -22,13 +22,13 @@ pytestmark = pytest.mark.skipif(MPIRUN is None, reason="no mpirun (Debian: openm
 M, N = 10007, 4  # 10007 is prime: no K divides it
 
 
-def mpirun(k, *args, env=None, timeout_s=120):
-    """CompletedProcess of `mpirun -n k spdfit args...`; -q keeps mpirun's own notices out of
-    stderr, so that what is left is spdfit's."""
+def mpirun(k, *args, env=None, timeout_s=120, program=None):
+    """CompletedProcess of `mpirun -n k spdfit args...` (`program` instead of the spdfit under
+    test if given); -q keeps mpirun's own notices out of stderr, so that what is left is spdfit's."""
     command = [MPIRUN, "-q", "--oversubscribe", "-n", str(k)]
     if os.geteuid() == 0:
         command.insert(1, "--allow-run-as-root")
-    return subprocess.run(command + [cli_path(), *map(str, args)], capture_output=True, text=True,
+    return subprocess.run(command + [program or cli_path(), *map(str, args)], capture_output=True, text=True,
                           timeout=timeout_s * SLOWDOWN, env=mpirun_environment(env))
 
 
@@ -171,3 +171,20 @@ def test_what_cannot_run_on_several_processes_is_a_usage_error(files, tmp_path):
     assert len(errors(result)) == 1
     result = mpirun(1, "fit", "--method", "spde", "--stream", files / "A.npy", tmp_path / "B.mat")
     assert result.returncode == 0, result.stderr
+
+
+def test_mpi_is_loaded_only_under_a_launcher(files, tmp_path):
+    """The MPI code is a plugin beside the program (spdfit-mpi.so), opened only under mpirun: a
+    copy of the program without it runs alone as before, and under mpirun says what is missing."""
+    alone = run_cli(cli_path(), "fit", "-m", "spde", "--stream", files / "A.npy", files / "B.npy")
+    assert alone.returncode == 0, alone.stderr
+    copy = tmp_path / "bin" / "spdfit"
+    copy.parent.mkdir()
+    shutil.copy(cli_path(), copy)
+    copied_alone = run_cli(copy, "fit", "-m", "spde", "--stream", files / "A.npy", files / "B.npy")
+    assert copied_alone.returncode == 0, copied_alone.stderr
+    assert copied_alone.stdout == alone.stdout
+    r = mpirun(2, "fit", "-m", "spde", "--stream", files / "A.npy", files / "B.npy", program=copy)
+    assert r.returncode == 2
+    assert "MPI's part of spdfit (spdfit-mpi.so) could not be loaded" in r.stderr
+    assert str(copy.parent / "spdfit-mpi.so") in r.stderr
