@@ -2,7 +2,6 @@
 
 #include <dlfcn.h>
 
-#include <iterator>
 #include <mutex>
 
 #include "spdfit/io.hpp"
@@ -35,10 +34,6 @@ bool open_library(const std::string& soname, const char* const* names, std::size
 
 namespace {
 
-#define SPDFIT_NAME_OF(function) #function,
-#define SPDFIT_COUNT(function) +1
-#define SPDFIT_STORE(function) api.function = reinterpret_cast<decltype(api.function)>(addresses[k++]);
-
 // The loaded functions, or why they are not: decided once, at the first call.
 template <typename Api>
 struct Loaded {
@@ -46,32 +41,35 @@ struct Loaded {
   std::string error;
 };
 
+// Opens `soname` and hands the addresses of `names` to store(api, addresses).
+template <typename Api, std::size_t N, typename Store>
+Loaded<Api> load(const char* soname, const char* const (&names)[N], Store store) {
+  void* addresses[N] = {};
+  Loaded<Api> out;
+  if (open_library(soname, names, N, addresses, &out.error)) store(out.api, addresses);
+  return out;
+}
+
+#define SPDFIT_NAME_OF(function) #function,
+#define SPDFIT_STORE(function) api.function = reinterpret_cast<decltype(api.function)>(addresses[k++]);
+
 Loaded<Matio> load_matio() {
   static constexpr const char* kNames[] = {SPDFIT_MATIO_FUNCTIONS(SPDFIT_NAME_OF)};
-  void* addresses[0 SPDFIT_MATIO_FUNCTIONS(SPDFIT_COUNT)] = {};
-  Loaded<Matio> out;
-  if (open_library(SPDFIT_MATIO_SONAME, kNames, std::size(kNames), addresses, &out.error)) {
-    Matio& api = out.api;
+  return load<Matio>(SPDFIT_MATIO_SONAME, kNames, [](Matio& api, void* const* addresses) {
     std::size_t k = 0;
     SPDFIT_MATIO_FUNCTIONS(SPDFIT_STORE)
-  }
-  return out;
+  });
 }
 
 Loaded<Libzip> load_libzip() {
   static constexpr const char* kNames[] = {SPDFIT_LIBZIP_FUNCTIONS(SPDFIT_NAME_OF)};
-  void* addresses[0 SPDFIT_LIBZIP_FUNCTIONS(SPDFIT_COUNT)] = {};
-  Loaded<Libzip> out;
-  if (open_library(SPDFIT_LIBZIP_SONAME, kNames, std::size(kNames), addresses, &out.error)) {
-    Libzip& api = out.api;
+  return load<Libzip>(SPDFIT_LIBZIP_SONAME, kNames, [](Libzip& api, void* const* addresses) {
     std::size_t k = 0;
     SPDFIT_LIBZIP_FUNCTIONS(SPDFIT_STORE)
-  }
-  return out;
+  });
 }
 
 #undef SPDFIT_NAME_OF
-#undef SPDFIT_COUNT
 #undef SPDFIT_STORE
 
 const Loaded<Matio>& matio_once() {
