@@ -1,6 +1,7 @@
 // The plugin spdfit-mpi.so: MPI's world and a Channel over MPI's C interface, for the command
 // line's distributed fit (apps/spdfit/mpi_session.hpp says why it is a plugin).
 #include "mpi_session.hpp"
+#include "spdfit/version.hpp"
 
 #include <mpi.h>
 
@@ -148,7 +149,9 @@ class WorldSession final : public MpiSession {
 }  // namespace
 }  // namespace spdfit::cli
 
-extern "C" spdfit::cli::MpiSession* spdfit_mpi_session_start(std::string* error) {
+extern "C" const char* spdfit_mpi_session_version() { return spdfit::kVersion; }
+
+extern "C" spdfit::cli::MpiSession* spdfit_mpi_session_start_v1(std::string* error) {
   try {
     return new spdfit::cli::WorldSession();
   } catch (const std::exception& e) {

@@ -23,10 +23,16 @@ class MpiSession {
 
 }  // namespace spdfit::cli
 
-/// The plugin's one entry point, named kMpiSessionStart for dlsym: MPI_Init_thread and the
-/// session (the caller deletes it to end MPI), or nullptr with the reason in `*error`.
-extern "C" spdfit::cli::MpiSession* spdfit_mpi_session_start(std::string* error);
+/// The plugin's entry points, found with dlsym by the names below, so that a plugin left from
+/// another build is refused instead of called through another interface.
+/// spdfit_mpi_session_start_v1: MPI_Init_thread and the session (the caller deletes it to end
+/// MPI), or nullptr with the reason in `*error`; the number is the interface's, raised whenever
+/// MpiSession or Channel changes. spdfit_mpi_session_version: spdfit::kVersion as the plugin was
+/// built, which the program checks against its own.
+extern "C" spdfit::cli::MpiSession* spdfit_mpi_session_start_v1(std::string* error);
+extern "C" const char* spdfit_mpi_session_version();
 
 namespace spdfit::cli {
-inline constexpr const char* kMpiSessionStart = "spdfit_mpi_session_start";
+inline constexpr const char* kMpiSessionStart = "spdfit_mpi_session_start_v1";
+inline constexpr const char* kMpiSessionVersion = "spdfit_mpi_session_version";
 }  // namespace spdfit::cli

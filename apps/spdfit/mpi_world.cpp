@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -16,6 +17,7 @@
 
 #include "mpi_session.hpp"
 #include "numerics/blas_core.hpp"
+#include "spdfit/version.hpp"
 
 namespace spdfit::cli {
 
@@ -51,9 +53,14 @@ std::unique_ptr<MpiSession> start_session() {
       tried += "\n  " + (why ? std::string(why) : path);
       continue;
     }
+    using Version = const char* (*)();
     using Start = MpiSession* (*)(std::string*);
+    const auto version = reinterpret_cast<Version>(::dlsym(plugin, kMpiSessionVersion));
     const auto start = reinterpret_cast<Start>(::dlsym(plugin, kMpiSessionStart));
-    if (!start) throw std::runtime_error(path + " has no function " + kMpiSessionStart);
+    if (!version || !start || std::strcmp(version(), kVersion) != 0) {
+      throw std::runtime_error(path + " is not the MPI plugin of this spdfit (" + kVersion +
+                               ", MPI session interface " + kMpiSessionStart + "): reinstall or rebuild spdfit");
+    }
     std::string error;
     std::unique_ptr<MpiSession> session(start(&error));
     if (!session) throw std::runtime_error(error);

@@ -1,4 +1,4 @@
-// Reading matrices from data files (delimited text, .npy) and writing them back.
+// Reading matrices from data files (delimited text, .npy, MATLAB .mat, NumPy .npz) and writing them back.
 #pragma once
 
 #include <Eigen/Core>

@@ -6,6 +6,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdint>
@@ -152,7 +153,12 @@ bool is_level5(std::string_view first) {
 
 namespace {
 
-bool is_zip(std::string_view first) { return first.substr(0, 4) == std::string_view("PK\x03\x04", 4); }
+// A ZIP archive's first bytes: a local file header, or the end record of an archive with no
+// entries (np.savez with no arrays).
+bool is_zip(std::string_view first) {
+  const std::string_view magic = first.substr(0, 4);
+  return magic == std::string_view("PK\x03\x04", 4) || magic == std::string_view("PK\x05\x06", 4);
+}
 
 // Up to `count` first bytes of the file ("" when it cannot be read: its reader then says why).
 std::string first_bytes(const std::string& path, std::size_t count) {
@@ -183,6 +189,14 @@ std::string read_standard_input(std::string bytes, std::size_t at_most) {
 namespace {
 
 // Whether the ZIP archive holds .npy entries (a NumPy .npz, not an .xlsx workbook).
+// Whether the file's name ends in .npz (any case).
+bool named_npz(const std::string& path) {
+  if (path.size() < 4) return false;
+  std::string tail = path.substr(path.size() - 4);
+  std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char c) { return std::tolower(c); });
+  return tail == ".npz";
+}
+
 bool holds_npy(const std::string& path) {
   const ZipArchive archive = open_zip(path);
   return archive && !npy_entries(archive.get()).empty();
@@ -516,7 +530,7 @@ void MatRowBlocks::read(std::uint64_t first, Eigen::Index count, Eigen::MatrixXd
 
 Table read_npz(const std::string& file, const std::string& variable, const ReadOptions& options) {
   const ZipArchive archive = open_zip(file);
-  if (!archive) throw DataError(file, 0, 0, "is not a ZIP archive (.npz) libzip can read");
+  if (!archive) throw DataError(file, 0, 0, "is not a ZIP archive (.npz) libzip can read (damaged or truncated?)");
   const std::vector<std::string> arrays = npy_entries(archive.get());
   std::string key = variable;
   if (ends_with_npy(key)) key.resize(key.size() - 4);
@@ -561,7 +575,9 @@ NamedArrays named_arrays_kind(const FileSpec& spec) {
   if (spec.file == "-") return NamedArrays::kNone;
   const std::string head = first_bytes(spec.file, 128);
   if (is_mat(head)) return is_level5(head) ? NamedArrays::kMat : NamedArrays::kMat73;
-  if (is_zip(head) && holds_npy(spec.file)) return NamedArrays::kNpz;
+  // A ZIP archive with .npy entries, or one named .npz (so that a damaged or empty one is called
+  // that, not a spreadsheet saved in the wrong format, as text_scan says of other ZIP files).
+  if (is_zip(head) && (named_npz(spec.file) || holds_npy(spec.file))) return NamedArrays::kNpz;
   return NamedArrays::kNone;
 }
 

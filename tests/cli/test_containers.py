@@ -106,6 +106,25 @@ def test_messages_say_what_to_do(spdfit, data, spec, fragments):
         assert fragment in result.stderr, (fragment, result.stderr)
 
 
+def test_a_damaged_or_empty_npz_is_called_that(spdfit, data, tmp_path):
+    """An .npz cut short, or with no arrays, is named as the archive it is meant to be (a ZIP file
+    of another name is taken for a misnamed spreadsheet, as before)."""
+    path, _, _ = data
+    whole = (path / "log.npz").read_bytes()
+    (tmp_path / "cut.npz").write_bytes(whole[:200])
+    np.savez(tmp_path / "empty.npz")
+    cases = [("cut.npz", "is not a ZIP archive (.npz) libzip can read (damaged or truncated?)"),
+             ("cut.npz:accel", "is not a ZIP archive (.npz) libzip can read (damaged or truncated?)"),
+             ("empty.npz", "holds no .npy arrays")]
+    for spec, fragment in cases:
+        result = spdfit("fit", "--method", "ls", f"{tmp_path}/{spec}", path / "B.csv")
+        assert result.returncode == 1 and fragment in result.stderr, result.stderr
+        assert "spreadsheet" not in result.stderr and "xlsx" not in result.stderr
+    (tmp_path / "book.zip").write_bytes(whole[:200])
+    result = spdfit("fit", "--method", "ls", tmp_path / "book.zip", path / "B.csv")
+    assert result.returncode == 1 and "a ZIP archive, such as an Excel .xlsx workbook" in result.stderr
+
+
 def test_complex_and_3d_arrays_are_refused(spdfit, tmp_path):
     scipy.io.savemat(tmp_path / "c.mat", {"Z": np.ones((4, 2)) * (1 + 1j), "T": np.ones((2, 2, 2))})
     for name, fragment in [("Z", "is complex"), ("T", "has 3 dimensions")]:

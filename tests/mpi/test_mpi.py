@@ -188,3 +188,10 @@ def test_mpi_is_loaded_only_under_a_launcher(files, tmp_path):
     assert r.returncode == 2
     assert "MPI's part of spdfit (spdfit-mpi.so) could not be loaded" in r.stderr
     assert str(copy.parent / "spdfit-mpi.so") in r.stderr
+    # A shared object of that name that is not this build's plugin is refused, not called.
+    linked = subprocess.run(["ldd", cli_path()], capture_output=True, text=True, check=True).stdout
+    zlib = next(line.split("=>")[1].split()[0] for line in linked.splitlines() if "libz.so" in line)
+    shutil.copy(zlib, copy.parent / "spdfit-mpi.so")
+    r = mpirun(2, "fit", "-m", "spde", "--stream", files / "A.npy", files / "B.npy", program=copy)
+    assert r.returncode == 2
+    assert "is not the MPI plugin of this spdfit" in r.stderr, r.stderr
