@@ -42,11 +42,12 @@ std::string program_folder() {
 }
 
 // The plugin beside the program (the build tree) or where the install puts it, relative to the
-// program (SPDFIT_MPI_PLUGIN_FROM_BIN); kept open for the process.
+// program (SPDFIT_MPI_PLUGIN_DIR_FROM_BIN); kept open for the process.
 std::unique_ptr<MpiSession> start_session() {
   const std::string folder = program_folder();
   std::string tried;
-  for (const std::string& path : {folder + SPDFIT_MPI_PLUGIN, folder + SPDFIT_MPI_PLUGIN_FROM_BIN}) {
+  for (const std::string& path :
+       {folder + SPDFIT_MPI_PLUGIN, folder + SPDFIT_MPI_PLUGIN_DIR_FROM_BIN + SPDFIT_MPI_PLUGIN}) {
     void* plugin = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!plugin) {
       const char* why = ::dlerror();
@@ -59,15 +60,16 @@ std::unique_ptr<MpiSession> start_session() {
     const auto start = reinterpret_cast<Start>(::dlsym(plugin, kMpiSessionStart));
     if (!version || !start || std::strcmp(version(), kVersion) != 0) {
       throw std::runtime_error(path + " is not the MPI plugin of this spdfit (" + kVersion +
-                               ", MPI session interface " + kMpiSessionStart + "): reinstall or rebuild spdfit");
+                               ", MPI session interface " + kMpiSessionStart +
+                               "): reinstall or rebuild spdfit");
     }
     std::string error;
     std::unique_ptr<MpiSession> session(start(&error));
     if (!session) throw std::runtime_error(error);
     return session;
   }
-  throw std::runtime_error("started by an MPI launcher, but MPI's part of spdfit (" + std::string(SPDFIT_MPI_PLUGIN) +
-                           ") could not be loaded:" + tried);
+  throw std::runtime_error("started by an MPI launcher, but MPI's part of spdfit (" +
+                           std::string(SPDFIT_MPI_PLUGIN) + ") could not be loaded:" + tried);
 }
 
 #endif
@@ -95,8 +97,9 @@ MpiWorld::MpiWorld() {
   const char* size = std::getenv("OMPI_COMM_WORLD_SIZE");
   if (size == nullptr) size = std::getenv("PMI_SIZE");
   if (size != nullptr && std::atoi(size) > 1) {
-    throw std::runtime_error("this spdfit was built without MPI (SPDFIT_MPI off), so it cannot run under mpirun "
-                             "with several processes");
+    throw std::runtime_error(
+        "this spdfit was built without MPI (SPDFIT_MPI off), so it cannot run under mpirun "
+        "with several processes");
   }
 #endif
 }

@@ -1,6 +1,6 @@
 // Running under an MPI launcher (mpirun): MPI is loaded (the plugin spdfit-mpi.so) and
 // initialized only then, so that spdfit started alone pays nothing for it (MPI_Init takes about
-// 0.3 s; loading Open MPI's libraries about 2 ms).
+// 0.3 s; loading Open MPI's libraries 1.5–2 ms).
 #pragma once
 
 #include <memory>

@@ -188,7 +188,6 @@ std::string read_standard_input(std::string bytes, std::size_t at_most) {
 
 namespace {
 
-// Whether the ZIP archive holds .npy entries (a NumPy .npz, not an .xlsx workbook).
 // Whether the file's name ends in .npz (any case).
 bool named_npz(const std::string& path) {
   if (path.size() < 4) return false;
@@ -197,6 +196,7 @@ bool named_npz(const std::string& path) {
   return tail == ".npz";
 }
 
+// Whether the ZIP archive holds .npy entries (a NumPy .npz, not an .xlsx workbook).
 bool holds_npy(const std::string& path) {
   const ZipArchive archive = open_zip(path);
   return archive && !npy_entries(archive.get()).empty();
