@@ -39,6 +39,7 @@ FitOptions options_from(const std::optional<double>& rank_tolerance, const std::
 /// name that is none of them.
 Method method_from(const std::string& name);
 
+void bind_results(pybind11::module_& m);
 void bind_estimators(pybind11::module_& m);
 void bind_io(pybind11::module_& m);
 void bind_linear_system(pybind11::module_& m);
