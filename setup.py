@@ -93,6 +93,10 @@ class CMakeBuild(build_ext):
         target = pathlib.Path(self.get_ext_fullpath(ext.name))
         target.parent.mkdir(parents=True, exist_ok=True)
         shutil.copyfile(built, target)
+        # The type stubs as the build wrote them (their option keywords come from the library's
+        # tables), in place of the sources that build_py copied.
+        for stub in package_dir.glob("*.pyi"):
+            shutil.copyfile(stub, target.parent / stub.name)
 
 
 setup(

@@ -9,35 +9,30 @@
 #include <memory>
 #include <optional>
 
-#include "bootstrap_options.hpp"
 #include "cli.hpp"
 #include "input.hpp"
 #include "output.hpp"
 #include "mpi_world.hpp"
 #include "progress_line.hpp"
-#include "validators.hpp"
+#include "table_options.hpp"
 #include "io/containers.hpp"
 #include "spdfit/distributed.hpp"
-#include "spdfit/fit_files.hpp"
+#include "spdfit/fit_request.hpp"
 
 namespace spdfit::cli {
 
 namespace {
 
+// The options that are the command line's own (what to print, where); the request's come from
+// the library's table (fit_option_table).
 struct FitOptionsCli {
   std::string method;
   std::string a_path, b_path, output;
   bool json = false;
-  double rank_tolerance = -1.0;
-  std::optional<double> noise_ratio;
-  std::optional<int> max_iterations;
-  std::optional<double> min_eig;
   bool report = false;
   bool header = false;
-  BootstrapCli bootstrap;
-  bool stream = false;
-  StreamOptions stream_options;
   std::string var_a, var_b;
+  std::unique_ptr<TableOptions<FitRequest>> table;
 };
 
 // The size of a file, 0 when it is not a regular file (standard input, a FILE:NAME array).
@@ -100,31 +95,7 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
       ->excludes("--report");
   sub->add_option("-o,--output", options->output,
                   "Write to FILE instead of stdout (X.npy: a NumPy file; X.mat: a MATLAB file with the variable X)");
-  sub->add_option("--rank-tol", options->rank_tolerance,
-                  "Relative singular-value cut-off for numerical rank (default max(m,n)*eps)")
-      ->check(rank_tolerance());
-  sub->add_option("--noise-ratio", options->noise_ratio,
-                  "sigma_B / sigma_A, the noise in B relative to the noise in A, for the total least-squares "
-                  "methods (tls, tls-sym, tls-psd, spd-tls) and auto; default 1")
-      ->check(positive());
-  sub->add_option("--max-iter", options->max_iterations,
-                  "Iteration limit of spd-tls, psd-ls and auto (default 200); then the best iterate, with a "
-                  "warning")
-      ->check(CLI::Range(1, 1000000));
-  sub->add_option("--min-eig", options->min_eig,
-                  "psd-ls: the floor epsilon of X >= epsilon I (default 0: positive semidefinite)")
-      ->check(non_negative());
-  add_bootstrap_options(*sub, options->bootstrap,
-                        "standard errors, a percentile interval and the bias of every entry of X (with --json or "
-                        "--report)",
-                        "Threads for --stream and --bootstrap (default: one per core; the result does not depend on it)");
-  CLI::Option* stream =
-      sub->add_flag("--stream", options->stream,
-                    "Read A and B a block of rows at a time (memory O(threads x block-rows x n + n^2) whatever the "
-                    "number of rows; same estimate to rounding)");
-  sub->add_option("--block-rows", options->stream_options.block_rows, "Rows per block with --stream")
-      ->check(CLI::Range(Eigen::Index{1}, Eigen::Index{1} << 24))
-      ->needs(stream);
+  options->table = std::make_unique<TableOptions<FitRequest>>(*sub, fit_option_table());
   sub->add_option("--var-a", options->var_a, "The variable of A's .mat or .npz file (as A.mat:NAME)");
   sub->add_option("--var-b", options->var_b, "The variable of B's .mat or .npz file (as B.mat:NAME)");
   sub->add_option("A", options->a_path,
@@ -140,35 +111,26 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
     if (options->json) check_text_output(options->output, "--json");
     if (options->report) check_text_output(options->output, "--report");
     if (options->header) check_text_output(options->output, "--header");
-    FitOptions fit_options;
-    fit_options.rank_tolerance = options->rank_tolerance;
+    const TableOptions<FitRequest>& table = *options->table;
+    FitRequest request;
+    request.method = method;
+    request.read = global.read;
+    table.apply(request);
+    try {
+      check_fit_request(request, table.given());
+    } catch (const OptionError& e) {
+      throw_usage(e);
+    }
     // The noise estimate and the column-scaled condition numbers (singular values of 2n x 2n and
     // n x n matrices) are shown only by --json and --report: printing X alone, spdfit does not
     // spend the time on them.
-    fit_options.reported_diagnostics = options->json || options->report;
-    // Each of these options applies to some methods only: a usage error with the others.
-    auto check = [&](bool given, MethodOption option, const char* spelling) {
-      if (!given) return;
-      if (const auto why = misplaced_option(option, method, spelling)) throw UsageError(*why);
-    };
-    check(options->noise_ratio.has_value(), MethodOption::NoiseRatio, "--noise-ratio");
-    check(options->max_iterations.has_value(), MethodOption::MaxIterations, "--max-iter");
-    check(options->min_eig.has_value(), MethodOption::MinEig, "--min-eig");
-    fit_options.noise_ratio = options->noise_ratio.value_or(fit_options.noise_ratio);
-    fit_options.max_iterations = options->max_iterations.value_or(fit_options.max_iterations);
-    fit_options.min_eig = options->min_eig.value_or(fit_options.min_eig);
-    apply_bootstrap_options(options->bootstrap, fit_options, "--stream", options->stream);
+    request.options.reported_diagnostics = options->json || options->report;
     MpiWorld& world = *global.mpi;
-    if (world.size() > 1 && !options->stream) {
+    if (world.size() > 1 && !request.stream) {
       throw UsageError("under mpirun the processes read parts of A and B a block of rows at a time: add --stream");
     }
     // Under mpirun the cores of a node are shared among its processes (unless --threads says).
-    if (world.active() && !options->bootstrap.threads) fit_options.threads = world.threads_per_process();
-    std::optional<StreamOptions> stream;
-    if (options->stream) {
-      stream = options->stream_options;
-      stream->threads = fit_options.threads;
-    }
+    if (world.active() && !table.was_given("threads")) request.options.threads = world.threads_per_process();
     if (options->a_path == "-" && options->b_path == "-") {
       throw UsageError("A and B cannot both be standard input (-)");
     }
@@ -180,15 +142,14 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
       // cleared before anything else is printed.
       ProgressLine reading(global, "reading A and B", file_bytes(options->a_path) + file_bytes(options->b_path));
       ProgressLine refitting(global, "bootstrap replicates");
-      if (stream) stream->progress = test_failure_switch(world.rank(), reading.callback());
-      fit_options.progress = refitting.callback();
-      if (world.active() && stream) {
-        DistributedFit fit = fit_files_distributed(a_path, b_path, method, fit_options, *stream, global.read,
-                                                   world.channel());
+      request.options.progress = refitting.callback();
+      request.read_progress = test_failure_switch(world.rank(), reading.callback());
+      if (world.active() && request.stream) {
+        DistributedFit fit = fit_files_distributed(a_path, b_path, request, world.channel());
         rows_per_process = std::move(fit.rows_per_process);
         return std::move(fit.result);
       }
-      FitResult result = fit_files(a_path, b_path, method, fit_options, stream, global.read);
+      FitResult result = fit_files(a_path, b_path, request);
       if (world.active()) rows_per_process = {static_cast<std::uint64_t>(result.diagnostics.m)};
       return result;
     }();

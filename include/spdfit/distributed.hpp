@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "spdfit/fit_options.hpp"
+#include "spdfit/fit_request.hpp"
 #include "spdfit/fit_result.hpp"
 #include "spdfit/io.hpp"
 #include "spdfit/method.hpp"
@@ -64,5 +65,10 @@ struct DistributedFit {
 DistributedFit fit_files_distributed(const std::string& a_path, const std::string& b_path, Method method,
                                      const FitOptions& options, const StreamOptions& stream,
                                      const io::ReadOptions& read, Channel& channel);
+
+/// The same, as the request says (its method, options, stream options and read options; the
+/// request streams whether or not request.stream is set, as every distributed fit does).
+DistributedFit fit_files_distributed(const std::string& a_path, const std::string& b_path,
+                                     const FitRequest& request, Channel& channel);
 
 }  // namespace spdfit

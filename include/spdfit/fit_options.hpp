@@ -3,7 +3,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
-#include <limits>
+#include <optional>
 #include <string>
 
 #include "spdfit/progress.hpp"
@@ -14,10 +14,10 @@ namespace spdfit {
 /// Options for the estimators. The defaults follow the source documents.
 struct FitOptions {
   /// Relative cut-off for the numerical rank (spdfit/rank.hpp): a singular value sigma_i counts
-  /// as zero when sigma_i <= rank_tolerance * sigma_max. A negative value (the default) means
+  /// as zero when sigma_i <= rank_tolerance * sigma_max. Nothing (the default) means
   /// max(rows, cols) * machine epsilon, the editing rule of the lecture notes
-  /// (shared/seeds/002, section 3.8).
-  double rank_tolerance = -1.0;
+  /// (shared/seeds/002, section 3.8). A number in [0, 1).
+  std::optional<double> rank_tolerance;
   /// Compute the estimate's diagnostics (residual, eigenvalues, definiteness, area criterion)
   /// and the warnings about it. Monte Carlo loops that need only X turn this off: X is the same,
   /// bit for bit, without the two symmetric eigendecompositions and the residual per estimate.
@@ -62,35 +62,13 @@ struct FitOptions {
   /// Told the fraction of the bootstrap's replicates refitted, as they finish.
   ProgressCallback progress;
 
-  /// True when the options are usable; otherwise `error` says why.
-  bool is_valid(std::string* error = nullptr) const {
-    if (!is_valid_rank_tolerance(rank_tolerance, "rank_tolerance", error)) return false;
-    if (!(noise_ratio > 0.0) || !(noise_ratio < std::numeric_limits<double>::infinity())) {
-      if (error) *error = "noise_ratio must be a finite number above 0";
-      return false;
-    }
-    if (max_iterations < 1) {
-      if (error) *error = "max_iterations must be at least 1";
-      return false;
-    }
-    if (!(min_eig >= 0.0) || !(min_eig < std::numeric_limits<double>::infinity())) {
-      if (error) *error = "min_eig must be a finite number >= 0";
-      return false;
-    }
-    if (bootstrap < 0) {
-      if (error) *error = "bootstrap must be a number of replicates >= 0";
-      return false;
-    }
-    if (!(confidence > 0.0 && confidence < 1.0)) {
-      if (error) *error = "confidence must be a fraction strictly between 0 and 1 (0.95 for 95%)";
-      return false;
-    }
-    return true;
-  }
+  /// True when every option is in the range fit_option_table() gives it (fit_request.hpp);
+  /// otherwise `error` names the option and says why.
+  bool is_valid(std::string* error = nullptr) const;
 
   /// The cut-off to use for a rows x cols matrix (spdfit::rank_cutoff).
   double rank_cutoff(Eigen::Index rows, Eigen::Index cols) const {
-    return spdfit::rank_cutoff(rank_tolerance, rows, cols);
+    return rank_tolerance ? *rank_tolerance : default_rank_tolerance(rows, cols);
   }
 };
 

@@ -77,12 +77,11 @@ def _as_matrix(name, value):
     return _np.asarray(array, dtype=_np.float64)
 
 
-def _options(method=None, **values):
-    """The fit options checked for type: a short TypeError naming the argument (instead of
-    pybind11's listing of every signature); None means the library's default. Returns them in
-    the order given."""
-    if method is not None and not isinstance(method, str):
-        raise TypeError(f"method must be a str (one of {', '.join(METHODS)}), got {type(method).__name__}")
+def _options(**values):
+    """Integer arguments that are not the library's options (Factor's n, d, block_rows, threads)
+    checked for type: a short TypeError naming the argument (instead of pybind11's listing of
+    every signature); None means the default. Returns them in the order given. The options of the
+    fits and repairs are checked by the library, by name (_takes_options)."""
     for name, value in values.items():
         if name in _BOOL_OPTIONS:  # no None: a bool option has a bool default
             if not isinstance(value, bool):
@@ -100,11 +99,11 @@ def _options(method=None, **values):
                  for k, v in values.items())
 
 
-_INT_OPTIONS = ("max_iter", "bootstrap", "seed", "threads", "block_rows", "n", "d")
-_BOOL_OPTIONS = ("reported_diagnostics",)
-# The int options whose range the library checks, with its own message ("max_iterations must be at
-# least 1", "block_rows must be at least 1", "A and B must each have at least one column").
-_RANGE_IN_LIBRARY = ("max_iter", "block_rows", "n", "d")
+_INT_OPTIONS = ("block_rows", "threads", "n", "d")
+_BOOL_OPTIONS = ()
+# The int options whose range the library checks, with its own message ("block_rows must be an
+# integer in [1, 16777216]", "A and B must each have at least one column").
+_RANGE_IN_LIBRARY = ("block_rows", "n", "d")
 
 
 
@@ -145,6 +144,49 @@ def _shared_doc(function):
                 function.__doc__ = function.__doc__.replace(placeholder, text.replace("\n", "\n" + deeper))
                 break
     return function
+
+
+# The options each function takes, from the library's option tables: {function: [(keyword, type,
+# help, default text, default value)]}. The functions take them as **options, which the library
+# binds by name (checking types, ranges and which method takes which); _takes_options gives each
+# function the signature and docstring entries that list them.
+_KEYWORDS = _spdfit.KEYWORDS
+
+
+def _option_doc(keyword, kind, text, default_text, default):
+    """The numpydoc entry of one option (indented by 4, as a function's Parameters section)."""
+    import textwrap
+    head = f"{keyword} : {kind}, " + ("optional" if default is None else f"default {default!r}")
+    if default is None and default_text:
+        text += f" (default {default_text})"
+    body = textwrap.fill(text.rstrip(".") + ".", width=96, initial_indent=" " * 8, subsequent_indent=" " * 8)
+    return "    " + head + "\n" + body
+
+
+def _takes_options(entry, *, given=()):
+    """Gives a function of signature (..., **options) the keyword-only parameters of the library's
+    table entry `entry` ("fit", "fit_files", "fit:spde", ...) but those in `given` (parameters it
+    spells out itself), after its own, with the defaults the library says to show, and fills the
+    "{options}" line of its docstring (the last of its Parameters) with their documentation."""
+    keywords = [k for k in _KEYWORDS[entry] if k[0] not in given]
+
+    def decorate(function):
+        import inspect
+        signature = inspect.signature(function)
+        parameters = [p for p in signature.parameters.values() if p.kind != p.VAR_KEYWORD]
+        before = [p for p in parameters if p.kind != p.KEYWORD_ONLY]
+        after = [p for p in parameters if p.kind == p.KEYWORD_ONLY]
+        generated = [inspect.Parameter(k[0], inspect.Parameter.KEYWORD_ONLY, default=k[4]) for k in keywords]
+        function.__signature__ = signature.replace(parameters=before + after + generated)
+        for line in function.__doc__.splitlines():
+            if line.strip() == "{options}":
+                deeper = line[:len(line) - len(line.lstrip())][4:]
+                text = "\n".join(_option_doc(*k) for k in keywords).replace("\n", "\n" + deeper)
+                function.__doc__ = function.__doc__.replace(line, deeper + text)
+                break
+        return function
+
+    return decorate
 
 
 def read_matrix(path, *, allow_nonfinite=False, index_col=None):
@@ -303,8 +345,8 @@ def _checked(result, stacklevel=3):
 
 
 @_shared_doc
-def fit(A, B, method="auto", *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_eig=None,
-        bootstrap=0, confidence=None, seed=None, threads=0, reported_diagnostics=True):
+@_takes_options("fit")
+def fit(A, B, method="auto", **options):
     """Estimate X in A X ~= B with `method` (one of METHODS).
 
     The default, "auto", chooses spde, spd-tls or psd-ls from the data and always returns a positive
@@ -313,6 +355,16 @@ def fit(A, B, method="auto", *, rank_tolerance=None, noise_ratio=None, max_iter=
     n x d, as numpy.linalg.lstsq returns for several right-hand sides; tls then needs m >= n + d); the
     other methods estimate a symmetric X.
 
+    The options are the library's (the command line's, spelled as keywords); each is checked for its
+    type and range, and one that the method does not take (noise_ratio with spde, ...) is an error.
+    With bootstrap=N > 0 the rows of [A B] are resampled N times and each resample refitted with the
+    same method (auto: the one it chose); the result then has standard_errors (the shape of X),
+    interval (level, lower, upper: the central `confidence` fraction of the replicates), bias (their
+    mean minus X) and bootstrap (replicates, failed, seed, eigenvalues with their intervals); without
+    it these attributes are None. reported_diagnostics=False skips the diagnostics that neither X
+    nor a warning needs (at n = 2000 more than half of spde's time); X and the other warnings are
+    the same.
+
     Parameters
     ----------
     A, B : array_like
@@ -320,31 +372,7 @@ def fit(A, B, method="auto", *, rank_tolerance=None, noise_ratio=None, max_iter=
         real dtype, converted to float64; a 1-D array is one column.
     method : str, default "auto"
         One of METHODS.
-    {rank_tolerance}
-    noise_ratio : float, optional
-        sigma_B / sigma_A, the noise in B relative to the noise in A, for the total least-squares
-        methods (tls, tls-sym, tls-psd, spd-tls) and auto (default 1).
-    max_iter : int, optional
-        The iteration limit of spd-tls, psd-ls and auto (default 200).
-    min_eig : float, optional
-        psd-ls's floor, X >= min_eig I (default 0).
-    bootstrap : int, default 0
-        N > 0 resamples the rows of [A B] N times and refits each resample with the same method
-        (auto: the one it chose). The result then has standard_errors (the shape of X), interval
-        (level, lower, upper: the central `confidence` fraction of the replicates), bias (their mean
-        minus X) and bootstrap (replicates, failed, seed, eigenvalues with their intervals). Without
-        bootstrap these attributes are None.
-    confidence : float, optional
-        The fraction of the replicates in the bootstrap's interval (default 0.95).
-    seed : int, optional
-        Makes the bootstrap reproducible (default 1).
-    threads : int, default 0
-        The bootstrap's threads (0: one per core); the numbers do not depend on it.
-    reported_diagnostics : bool, default True
-        False skips the diagnostics that neither X nor a warning needs, at large n most of the
-        time beyond the estimate (at n = 2000 more than half of spde's): noise_sigma is then None,
-        area_criterion None, residual_norm and cond_b_scaled 0, and cond_a_scaled 0 unless A may
-        be ill-conditioned enough for its warning. X and the other warnings are the same.
+    {options}
 
     {returns}
 
@@ -352,10 +380,12 @@ def fit(A, B, method="auto", *, rank_tolerance=None, noise_ratio=None, max_iter=
     ------
     ValueError
         Bad input: shapes, NaN/Inf, m < n, an unknown method, B with d != n columns for a method
-        that estimates a symmetric X, or noise_ratio, max_iter or min_eig with a method that does
-        not take it.
+        that estimates a symmetric X, an option out of range, or an option with a method that does
+        not take it (noise_ratio, max_iter or min_eig) or without the one it needs (confidence,
+        seed without bootstrap).
     TypeError
-        An option of the wrong type (method=3, max_iter=2.5, ...), named in the message.
+        An option of the wrong type (method=3, max_iter=2.5, ...) or one the function does not
+        take, named in the message.
     NumericalError
         The method has no answer for this data; the failed FitResult is its `result`.
 
@@ -379,11 +409,8 @@ def fit(A, B, method="auto", *, rank_tolerance=None, noise_ratio=None, max_iter=
     >>> spdfit.fit(A, A @ X, method="procrustes").diagnostics.cross_term_positive_definite
     True
     """
-    options = _options(method, rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter,
-                       min_eig=min_eig, bootstrap=bootstrap, confidence=confidence, seed=seed, threads=threads,
-                       reported_diagnostics=reported_diagnostics)
     A, B = _as_matrix("A", A), _as_matrix("B", B)
-    return _checked(_spdfit.fit(A, B, method, *options))
+    return _checked(_spdfit.fit(A, B, method, options))
 
 
 # The streaming defaults are the library's (StreamOptions), not retyped here.
@@ -391,9 +418,8 @@ _STREAM_DEFAULTS = _spdfit.StreamOptions()
 
 
 @_shared_doc
-def fit_files(A_path, B_path, method="auto", *, block_rows=_STREAM_DEFAULTS.block_rows,
-              threads=_STREAM_DEFAULTS.threads, rank_tolerance=None, noise_ratio=None, max_iter=None,
-              min_eig=None, bootstrap=0, confidence=None, seed=None, reported_diagnostics=True):
+@_takes_options("fit_files")
+def fit_files(A_path, B_path, method="auto", **options):
     """Estimate X from A and B in two data files read a block of rows at a time.
 
     As `spdfit fit --stream`: any number of rows in O(threads * block_rows * n + n^2) memory. The
@@ -403,28 +429,19 @@ def fit_files(A_path, B_path, method="auto", *, block_rows=_STREAM_DEFAULTS.bloc
     factors are merged in block order (TSQR), so the estimate is fit(read_matrix(A_path),
     read_matrix(B_path), method)'s to rounding, the same for every thread count.
 
+    bootstrap=N runs the streaming bootstrap in the same one pass: the rows are cut into groups of
+    4096, each group gets a Poisson(1) count per replicate (keyed by seed, replicate and group), and
+    the groups' factors are merged, so weighted, into the replicates' factors. It needs about 100
+    groups (409,600 rows) or more, and warns below that; its numbers agree with fit's in-memory
+    bootstrap within Monte Carlo error, not exactly. The other options are fit's.
+
     Parameters
     ----------
     A_path, B_path : str or os.PathLike
         The data files of A and B (the same number of rows).
     method : str, default "auto"
         One of METHODS, as in fit.
-    block_rows : int, default 32768
-        Rows per block (the library's default, StreamOptions).
-    threads : int, default 0
-        Threads (0: one per core); the numbers do not depend on it.
-    rank_tolerance, noise_ratio, max_iter, min_eig : optional
-        As in fit.
-    bootstrap : int, default 0
-        The streaming bootstrap, in the same one pass: the rows are cut into groups of 4096, each
-        group gets a Poisson(1) count per replicate (keyed by seed, replicate and group), and the
-        groups' factors are merged, so weighted, into the replicates' factors. It needs about 100
-        groups (409,600 rows) or more, and warns below that; its numbers agree with fit's in-memory
-        bootstrap within Monte Carlo error, not exactly.
-    confidence, seed : optional
-        As in fit.
-    reported_diagnostics : bool, default True
-        As in fit: False skips the diagnostics that neither X nor a warning needs.
+    {options}
 
     {returns}
 
@@ -454,17 +471,12 @@ def fit_files(A_path, B_path, method="auto", *, block_rows=_STREAM_DEFAULTS.bloc
     >>> bool(np.allclose(r.X, spdfit.fit(A, A @ X, "spde").X))
     True
     """
-    rank_tolerance, noise_ratio, max_iter, min_eig, bootstrap, confidence, seed, threads, reported = _options(
-        method, rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter, min_eig=min_eig,
-        bootstrap=bootstrap, confidence=confidence, seed=seed, threads=threads,
-        reported_diagnostics=reported_diagnostics)
-    return _checked(_spdfit.fit_files(_os.fspath(A_path), _os.fspath(B_path), method, block_rows, threads,
-                                      rank_tolerance, noise_ratio, max_iter, min_eig, bootstrap, confidence,
-                                      seed, reported))
+    return _checked(_spdfit.fit_files(_os.fspath(A_path), _os.fspath(B_path), method, options))
 
 
 @_shared_doc
-def fit_all(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_eig=None, reported_diagnostics=True):
+@_takes_options("fit_all")
+def fit_all(A, B, **options):
     """Every estimator (METHODS but "auto") on the same data, from one shared QR.
 
     For B with d != n columns only "ls" and "tls", which fit a non-square X. Failures are not raised
@@ -475,15 +487,7 @@ def fit_all(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_e
     A, B : array_like
         The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
         column).
-    {rank_tolerance}
-    noise_ratio : float, optional
-        sigma_B / sigma_A for the total least-squares methods (default 1).
-    max_iter : int, optional
-        The iteration limit of spd-tls and psd-ls (default 200).
-    min_eig : float, optional
-        psd-ls's floor, X >= min_eig I (default 0).
-    reported_diagnostics : bool, default True
-        As in fit: False skips the diagnostics that neither X nor a warning needs.
+    {options}
 
     Returns
     -------
@@ -511,11 +515,9 @@ def fit_all(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_e
     >>> all(r.ok for r in results.values())
     True
     """
-    options = _options(rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter, min_eig=min_eig,
-                       reported_diagnostics=reported_diagnostics)
     A, B = _as_matrix("A", A), _as_matrix("B", B)
     results = {}
-    for result in _spdfit.fit_all(A, B, *options):
+    for result in _spdfit.fit_all(A, B, options):
         for message in result.warnings:
             _warnings.warn(f"{result.method}: {message}", SpdfitWarning, stacklevel=2)
         results[result.method] = result
@@ -523,7 +525,8 @@ def fit_all(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_e
 
 
 @_shared_doc
-def least_squares(A, B, *, rank_tolerance=None):
+@_takes_options("fit:ls")
+def least_squares(A, B, **options):
     """Least squares X = A^+ B minimizing ||A X - B||_F (thesis 000 section 3.1).
 
     Back substitution in R11 X = R12 from the QR of [A B]; for rank-deficient A the minimum-norm
@@ -533,7 +536,7 @@ def least_squares(A, B, *, rank_tolerance=None):
     ----------
     A, B : array_like
         The measurements, m x n and m x d (d may differ from n: X is then n x d).
-    {rank_tolerance}
+    {options}
 
     {returns}
 
@@ -554,11 +557,12 @@ def least_squares(A, B, *, rank_tolerance=None):
     >>> bool(np.allclose(r.X, X))
     True
     """
-    return fit(A, B, "ls", rank_tolerance=rank_tolerance)
+    return fit(A, B, "ls", **options)
 
 
 @_shared_doc
-def symmetric_procrustes(A, B, *, rank_tolerance=None):
+@_takes_options("fit:procrustes")
+def symmetric_procrustes(A, B, **options):
     """The symmetric X minimizing ||A X - B||_F.
 
     The solution of A^T A X + X A^T A = A^T B + B^T A (thesis eq. 3.15). Positive definite when
@@ -569,7 +573,7 @@ def symmetric_procrustes(A, B, *, rank_tolerance=None):
     A, B : array_like
         The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
         column).
-    {rank_tolerance}
+    {options}
 
     {returns}
 
@@ -594,19 +598,19 @@ def symmetric_procrustes(A, B, *, rank_tolerance=None):
     >>> r.diagnostics.cross_term_positive_definite
     True
     """
-    return fit(A, B, "procrustes", rank_tolerance=rank_tolerance)
+    return fit(A, B, "procrustes", **options)
 
 
 @_shared_doc
-def total_least_squares(A, B, *, rank_tolerance=None, noise_ratio=None):
+@_takes_options("fit:tls")
+def total_least_squares(A, B, **options):
     """Total least squares X = -V12 V22^-1 from the SVD of [A B] (thesis eq. 4.37).
 
     Parameters
     ----------
     A, B : array_like
         The measurements, m x n and m x d (d may differ from n: X is then n x d, and m >= n + d).
-    {rank_tolerance}
-    {noise_ratio}
+    {options}
 
     {returns}
 
@@ -630,11 +634,12 @@ def total_least_squares(A, B, *, rank_tolerance=None, noise_ratio=None):
     >>> bool(np.allclose(r.X, X))
     True
     """
-    return fit(A, B, "tls", rank_tolerance=rank_tolerance, noise_ratio=noise_ratio)
+    return fit(A, B, "tls", **options)
 
 
 @_shared_doc
-def total_least_squares_symmetric(A, B, *, rank_tolerance=None, noise_ratio=None):
+@_takes_options("fit:tls-sym")
+def total_least_squares_symmetric(A, B, **options):
     """(X_TLS + X_TLS^T) / 2, the nearest symmetric matrix to the TLS estimate (thesis eq. 4.38).
 
     Parameters
@@ -642,8 +647,7 @@ def total_least_squares_symmetric(A, B, *, rank_tolerance=None, noise_ratio=None
     A, B : array_like
         The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
         column).
-    {rank_tolerance}
-    {noise_ratio}
+    {options}
 
     {returns}
 
@@ -666,11 +670,12 @@ def total_least_squares_symmetric(A, B, *, rank_tolerance=None, noise_ratio=None
     array([[2.994 , 1.0147],
            [1.0147, 0.9955]])
     """
-    return fit(A, B, "tls-sym", rank_tolerance=rank_tolerance, noise_ratio=noise_ratio)
+    return fit(A, B, "tls-sym", **options)
 
 
 @_shared_doc
-def total_least_squares_psd(A, B, *, rank_tolerance=None, noise_ratio=None):
+@_takes_options("fit:tls-psd")
+def total_least_squares_psd(A, B, **options):
     """Higham's nearest symmetric positive semidefinite matrix to X_TLS (thesis eq. 4.39).
 
     Parameters
@@ -678,8 +683,7 @@ def total_least_squares_psd(A, B, *, rank_tolerance=None, noise_ratio=None):
     A, B : array_like
         The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
         column).
-    {rank_tolerance}
-    {noise_ratio}
+    {options}
 
     {returns}
 
@@ -701,11 +705,12 @@ def total_least_squares_psd(A, B, *, rank_tolerance=None, noise_ratio=None):
     >>> r.diagnostics.positive_semidefinite
     True
     """
-    return fit(A, B, "tls-psd", rank_tolerance=rank_tolerance, noise_ratio=noise_ratio)
+    return fit(A, B, "tls-psd", **options)
 
 
 @_shared_doc
-def spde(A, B, *, rank_tolerance=None):
+@_takes_options("fit:spde")
+def spde(A, B, **options):
     """The area-criterion estimate: the unique SPD X with X (A^T A) X = B^T B.
 
     Minimizes ||A Y - B Y^-T||_F^2 over X = Y Y^T (Chen & McInroy, Definition II.1, Theorem III.3).
@@ -717,7 +722,7 @@ def spde(A, B, *, rank_tolerance=None):
     A, B : array_like
         The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
         column).
-    {rank_tolerance}
+    {options}
 
     {returns}
 
@@ -749,11 +754,12 @@ def spde(A, B, *, rank_tolerance=None):
     >>> bool(np.isclose(d.area_criterion, d.area_criterion_minimum))
     True
     """
-    return fit(A, B, "spde", rank_tolerance=rank_tolerance)
+    return fit(A, B, "spde", **options)
 
 
 @_shared_doc
-def spd_total_least_squares(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None):
+@_takes_options("fit:spd-tls")
+def spd_total_least_squares(A, B, **options):
     """Total least squares over the symmetric positive definite matrices (spd-tls).
 
     Minimizes f(X) = tr((A X - B)^T (A X - B) (r^2 I + X^2)^-1), r = noise_ratio, the TLS criterion
@@ -766,10 +772,7 @@ def spd_total_least_squares(A, B, *, rank_tolerance=None, noise_ratio=None, max_
     A, B : array_like
         The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
         column).
-    {rank_tolerance}
-    {noise_ratio}
-    max_iter : int, optional
-        The iteration limit (default 200).
+    {options}
 
     {returns}
 
@@ -795,11 +798,12 @@ def spd_total_least_squares(A, B, *, rank_tolerance=None, noise_ratio=None, max_
     >>> r.diagnostics.converged, r.diagnostics.positive_definite
     (True, True)
     """
-    return fit(A, B, "spd-tls", rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter)
+    return fit(A, B, "spd-tls", **options)
 
 
 @_shared_doc
-def psd_least_squares(A, B, *, min_eig=None, rank_tolerance=None, max_iter=None):
+@_takes_options("fit:psd-ls")
+def psd_least_squares(A, B, **options):
     """The symmetric X >= min_eig I minimizing ||A X - B||_F (psd-ls), with a certificate.
 
     Symmetric Procrustes when it is feasible; else spectral projected gradient with exact face
@@ -812,11 +816,7 @@ def psd_least_squares(A, B, *, min_eig=None, rank_tolerance=None, max_iter=None)
     A, B : array_like
         The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
         column).
-    min_eig : float, optional
-        The floor, X >= min_eig I (default 0).
-    {rank_tolerance}
-    max_iter : int, optional
-        The iteration limit (default 200).
+    {options}
 
     {returns}
 
@@ -841,11 +841,12 @@ def psd_least_squares(A, B, *, min_eig=None, rank_tolerance=None, max_iter=None)
     >>> c.primal_min_eig > -1e-12 and c.dual_min_eig > -1e-12 and abs(c.complementarity) < 1e-12
     True
     """
-    return fit(A, B, "psd-ls", rank_tolerance=rank_tolerance, max_iter=max_iter, min_eig=min_eig)
+    return fit(A, B, "psd-ls", **options)
 
 
 @_shared_doc
-def auto_fit(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None):
+@_takes_options("fit:auto")
+def auto_fit(A, B, **options):
     """fit(A, B, "auto"): spde, spd-tls or psd-ls, chosen from the data, always positive definite.
 
     result.method is the method it ran; result.diagnostics.chosen_method and .reason (code, text)
@@ -856,10 +857,7 @@ def auto_fit(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None):
     A, B : array_like
         The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
         column).
-    {rank_tolerance}
-    {noise_ratio}
-    max_iter : int, optional
-        The iteration limit (default 200).
+    {options}
 
     {returns}
 
@@ -880,7 +878,7 @@ def auto_fit(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None):
     >>> r.diagnostics.chosen_method, r.diagnostics.positive_definite
     ('spde', True)
     """
-    return fit(A, B, "auto", rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter)
+    return fit(A, B, "auto", **options)
 
 
 # The relative eigenvalue floor the repairs use when none is given (the library's, as the
@@ -888,21 +886,17 @@ def auto_fit(A, B, *, rank_tolerance=None, noise_ratio=None, max_iter=None):
 REPAIR_FLOOR_DEFAULT = _spdfit.REPAIR_FLOOR_DEFAULT
 
 
-def _repair(kind, C, *, min_eig, min_eig_rel, alpha=None, weights=None, max_iter=None, tol=None, full_output,
-            caller):
-    """The one path of nearest_spd and nearest_correlation: options checked for type, the
-    library's repair, its warnings as SpdfitWarning."""
-    given = dict(zip(("min_eig", "min_eig_rel", "alpha", "max_iter", "tol"),
-                     _options(min_eig=min_eig, min_eig_rel=min_eig_rel, alpha=alpha, max_iter=max_iter, tol=tol)))
-    w = None if weights is None else _as_matrix("weights", weights).ravel()
-    result = _spdfit.nearest(_as_matrix("X" if kind == "spd" else "C", C), kind, weights=w, **given)
+def _repair(entry, C, options):
+    """The one path of nearest_spd and nearest_correlation: the library's repair with the options
+    bound by name, its warnings as SpdfitWarning."""
+    result = _spdfit.nearest(_as_matrix("X" if entry == "nearest_spd" else "C", C), entry, options)
     for message in result.warnings:
-        _warnings.warn(f"{caller}: {message}", SpdfitWarning, stacklevel=3)
-    return result if full_output else result.X
+        _warnings.warn(f"{entry}: {message}", SpdfitWarning, stacklevel=3)
+    return result
 
 
-def nearest_spd(X, min_eig=None, *, min_eig_rel=None, keep_diag=False, via_corr=False, weights=None,
-                max_iter=None, tol=None, full_output=False):
+@_takes_options("nearest_spd", given=("min_eig",))
+def nearest_spd(X, min_eig=None, *, full_output=False, **options):
     """Repair a covariance: the nearest symmetric matrix to X with every eigenvalue >= a floor.
 
     The nearest in the Frobenius norm (`spdfit nearest`). Without a diagonal constraint this is
@@ -917,21 +911,9 @@ def nearest_spd(X, min_eig=None, *, min_eig_rel=None, keep_diag=False, via_corr=
         The square matrix to repair.
     min_eig : float, optional
         An absolute floor; min_eig=0 is the plain positive semidefinite projection.
-    min_eig_rel : float, optional
-        A relative floor: times the largest eigenvalue of X's symmetric part. By default the relative
-        REPAIR_FLOOR_DEFAULT = 1e-8, so the result is positive definite and its Cholesky
-        factorization succeeds.
-    keep_diag : bool, default False
-        Keep X's diagonal.
-    via_corr : bool, default False
-        Repair through the correlation matrix.
-    weights : array_like, optional
-        With keep_diag or via_corr: n positive numbers, the distance ||W^1/2 (X - C) W^1/2||_F,
-        W = diag(weights).
-    max_iter, tol : optional
-        With keep_diag or via_corr: the Newton iterations' bounds, as in nearest_correlation.
     full_output : bool, default False
         Return a NearestResult instead of the matrix.
+    {options}
 
     Returns
     -------
@@ -963,15 +945,14 @@ def nearest_spd(X, min_eig=None, *, min_eig_rel=None, keep_diag=False, via_corr=
     >>> np.diag(r.X), r.clipped, r.cholesky_ok
     (array([4., 3., 2.]), 1, True)
     """
-    if keep_diag and via_corr:
-        raise ValueError("give keep_diag=True or via_corr=True, not both")
-    kind = "keep_diag" if keep_diag else "via_corr" if via_corr else "spd"
-    return _repair(kind, X, min_eig=min_eig, min_eig_rel=min_eig_rel, weights=weights, max_iter=max_iter, tol=tol,
-                   full_output=full_output, caller="nearest_spd")
+    if min_eig is not None:
+        options["min_eig"] = min_eig
+    result = _repair("nearest_spd", X, options)
+    return result if full_output else result.X
 
 
-def nearest_correlation(C, *, weights=None, alpha=None, min_eig=None, min_eig_rel=None, max_iter=None, tol=None,
-                        full_output=False):
+@_takes_options("nearest_correlation")
+def nearest_correlation(C, *, full_output=False, **options):
     """The nearest correlation matrix to C (`spdfit nearest --corr`).
 
     Minimizes ||W^1/2 (X - C) W^1/2||_F over symmetric X with unit diagonal and every eigenvalue >=
@@ -983,21 +964,9 @@ def nearest_correlation(C, *, weights=None, alpha=None, min_eig=None, min_eig_re
     ----------
     C : array_like
         The square matrix to repair.
-    weights : array_like, optional
-        n positive numbers (default all ones).
-    alpha : float, optional
-        NAG g02ab's floor: X = (1 - alpha) X~ + alpha I, the same minimizer as min_eig=alpha.
-    min_eig : float, optional
-        An absolute floor, below 1; min_eig=0 gives the plain nearest correlation matrix.
-    min_eig_rel : float, optional
-        A floor relative to the largest eigenvalue of C's symmetric part. By default the relative
-        REPAIR_FLOOR_DEFAULT = 1e-8, so X is positive definite.
-    max_iter : int, optional
-        The Newton iterations' limit (default 200, the library's).
-    tol : float, optional
-        Stop at ||diag(X) - 1||_2 <= tol sqrt(n) (default 1e-10, the library's).
     full_output : bool, default False
         Return a NearestResult instead of the matrix.
+    {options}
 
     Returns
     -------
@@ -1031,8 +1000,8 @@ def nearest_correlation(C, *, weights=None, alpha=None, min_eig=None, min_eig_re
     >>> r.converged, r.cholesky_ok
     (True, True)
     """
-    return _repair("corr", C, min_eig=min_eig, min_eig_rel=min_eig_rel, alpha=alpha, weights=weights,
-                   max_iter=max_iter, tol=tol, full_output=full_output, caller="nearest_correlation")
+    result = _repair("nearest_correlation", C, options)
+    return result if full_output else result.X
 
 
 def area_criterion(A, B, X):

@@ -1,6 +1,6 @@
 """Type stubs for spdfit (see __init__.py for the documentation)."""
 import os
-from typing import Dict, List, Literal, Optional, Tuple, Union, overload
+from typing import Any, Dict, List, Literal, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -34,54 +34,25 @@ class NumericalError(RuntimeError):
 
 class SpdfitWarning(UserWarning): ...
 
-def fit(A: npt.ArrayLike, B: npt.ArrayLike, method: _Method = ..., *,
-        rank_tolerance: Optional[float] = ..., noise_ratio: Optional[float] = ...,
-        max_iter: Optional[int] = ..., min_eig: Optional[float] = ..., bootstrap: int = ...,
-        confidence: Optional[float] = ..., seed: Optional[int] = ..., threads: int = ...,
-        reported_diagnostics: bool = ...) -> FitResult: ...
-def fit_files(A_path: _PathLike, B_path: _PathLike, method: _Method = ..., *,
-              block_rows: int = ..., threads: int = ..., rank_tolerance: Optional[float] = ...,
-              noise_ratio: Optional[float] = ..., max_iter: Optional[int] = ...,
-              min_eig: Optional[float] = ..., bootstrap: int = ..., confidence: Optional[float] = ...,
-              seed: Optional[int] = ..., reported_diagnostics: bool = ...) -> FitResult: ...
-def fit_all(A: npt.ArrayLike, B: npt.ArrayLike, *, rank_tolerance: Optional[float] = ...,
-            noise_ratio: Optional[float] = ..., max_iter: Optional[int] = ...,
-            min_eig: Optional[float] = ..., reported_diagnostics: bool = ...) -> Dict[str, FitResult]: ...
-def spd_total_least_squares(A: npt.ArrayLike, B: npt.ArrayLike, *, rank_tolerance: Optional[float] = ...,
-                            noise_ratio: Optional[float] = ..., max_iter: Optional[int] = ...) -> FitResult: ...
-def psd_least_squares(A: npt.ArrayLike, B: npt.ArrayLike, *, min_eig: Optional[float] = ...,
-                      rank_tolerance: Optional[float] = ..., max_iter: Optional[int] = ...) -> FitResult: ...
-def auto_fit(A: npt.ArrayLike, B: npt.ArrayLike, *, rank_tolerance: Optional[float] = ...,
-             noise_ratio: Optional[float] = ..., max_iter: Optional[int] = ...) -> FitResult: ...
-def least_squares(A: npt.ArrayLike, B: npt.ArrayLike, *, rank_tolerance: Optional[float] = ...) -> FitResult: ...
-def symmetric_procrustes(A: npt.ArrayLike, B: npt.ArrayLike, *, rank_tolerance: Optional[float] = ...) -> FitResult: ...
-def total_least_squares(A: npt.ArrayLike, B: npt.ArrayLike, *, rank_tolerance: Optional[float] = ...,
-                        noise_ratio: Optional[float] = ...) -> FitResult: ...
-def total_least_squares_symmetric(A: npt.ArrayLike, B: npt.ArrayLike, *,
-                                  rank_tolerance: Optional[float] = ...,
-                                  noise_ratio: Optional[float] = ...) -> FitResult: ...
-def total_least_squares_psd(A: npt.ArrayLike, B: npt.ArrayLike, *, rank_tolerance: Optional[float] = ...,
-                            noise_ratio: Optional[float] = ...) -> FitResult: ...
-def spde(A: npt.ArrayLike, B: npt.ArrayLike, *, rank_tolerance: Optional[float] = ...) -> FitResult: ...
+def fit(A: npt.ArrayLike, B: npt.ArrayLike, method: _Method = ..., **options: Any) -> FitResult: ...  # options: fit
+def fit_files(A_path: _PathLike, B_path: _PathLike, method: _Method = ..., **options: Any) -> FitResult: ...  # options: fit_files
+def fit_all(A: npt.ArrayLike, B: npt.ArrayLike, **options: Any) -> Dict[str, FitResult]: ...  # options: fit_all
+def spd_total_least_squares(A: npt.ArrayLike, B: npt.ArrayLike, **options: Any) -> FitResult: ...  # options: fit:spd-tls
+def psd_least_squares(A: npt.ArrayLike, B: npt.ArrayLike, **options: Any) -> FitResult: ...  # options: fit:psd-ls
+def auto_fit(A: npt.ArrayLike, B: npt.ArrayLike, **options: Any) -> FitResult: ...  # options: fit:auto
+def least_squares(A: npt.ArrayLike, B: npt.ArrayLike, **options: Any) -> FitResult: ...  # options: fit:ls
+def symmetric_procrustes(A: npt.ArrayLike, B: npt.ArrayLike, **options: Any) -> FitResult: ...  # options: fit:procrustes
+def total_least_squares(A: npt.ArrayLike, B: npt.ArrayLike, **options: Any) -> FitResult: ...  # options: fit:tls
+def total_least_squares_symmetric(A: npt.ArrayLike, B: npt.ArrayLike, **options: Any) -> FitResult: ...  # options: fit:tls-sym
+def total_least_squares_psd(A: npt.ArrayLike, B: npt.ArrayLike, **options: Any) -> FitResult: ...  # options: fit:tls-psd
+def spde(A: npt.ArrayLike, B: npt.ArrayLike, **options: Any) -> FitResult: ...  # options: fit:spde
 @overload
-def nearest_spd(X: npt.ArrayLike, min_eig: Optional[float] = ..., *, min_eig_rel: Optional[float] = ...,
-                keep_diag: bool = ..., via_corr: bool = ..., weights: Optional[npt.ArrayLike] = ...,
-                max_iter: Optional[int] = ..., tol: Optional[float] = ...,
-                full_output: Literal[False] = ...) -> npt.NDArray[np.float64]: ...
+def nearest_spd(X: npt.ArrayLike, min_eig: Optional[float] = ..., *, full_output: Literal[False] = ..., **options: Any) -> npt.NDArray[np.float64]: ...  # options: nearest_spd
 @overload
-def nearest_spd(X: npt.ArrayLike, min_eig: Optional[float] = ..., *, min_eig_rel: Optional[float] = ...,
-                keep_diag: bool = ..., via_corr: bool = ..., weights: Optional[npt.ArrayLike] = ...,
-                max_iter: Optional[int] = ..., tol: Optional[float] = ...,
-                full_output: Literal[True]) -> NearestResult: ...
+def nearest_spd(X: npt.ArrayLike, min_eig: Optional[float] = ..., *, full_output: Literal[True], **options: Any) -> NearestResult: ...  # options: nearest_spd
 @overload
-def nearest_correlation(C: npt.ArrayLike, *, weights: Optional[npt.ArrayLike] = ..., alpha: Optional[float] = ...,
-                        min_eig: Optional[float] = ..., min_eig_rel: Optional[float] = ...,
-                        max_iter: Optional[int] = ..., tol: Optional[float] = ...,
-                        full_output: Literal[False] = ...) -> npt.NDArray[np.float64]: ...
+def nearest_correlation(C: npt.ArrayLike, *, full_output: Literal[False] = ..., **options: Any) -> npt.NDArray[np.float64]: ...  # options: nearest_correlation
 @overload
-def nearest_correlation(C: npt.ArrayLike, *, weights: Optional[npt.ArrayLike] = ..., alpha: Optional[float] = ...,
-                        min_eig: Optional[float] = ..., min_eig_rel: Optional[float] = ...,
-                        max_iter: Optional[int] = ..., tol: Optional[float] = ...,
-                        full_output: Literal[True]) -> NearestResult: ...
+def nearest_correlation(C: npt.ArrayLike, *, full_output: Literal[True], **options: Any) -> NearestResult: ...  # options: nearest_correlation
 def area_criterion(A: npt.ArrayLike, B: npt.ArrayLike, X: npt.ArrayLike) -> Optional[float]: ...
 def solve(A: npt.ArrayLike, b: npt.ArrayLike, *, threshold: Optional[float] = ...) -> LinearSystemResult: ...

@@ -7,10 +7,11 @@ merged pairwise (in any grouping: the merge is associative to rounding), and the
 estimated from, with the numbers of spdfit.fit on all the rows. A Factor pickles as the library's
 validated bytes (to_bytes), which is what Dask, multiprocessing and Spark send between processes.
 """
+import numbers
 import os as _os
 import warnings as _warnings
 
-from . import SpdfitWarning, _as_matrix, _checked, _options, _shared_doc, _spdfit
+from . import SpdfitWarning, _as_matrix, _checked, _options, _shared_doc, _spdfit, _takes_options
 
 # The streaming defaults are the library's (StreamOptions), not retyped here.
 _STREAM_DEFAULTS = _spdfit.StreamOptions()
@@ -274,8 +275,8 @@ class Factor:
         return Factor._wrap(_spdfit.TriangularFactor.merged(self._core, other._core))
 
     @_shared_doc
-    def fit(self, method="auto", *, rank_tolerance=None, noise_ratio=None, max_iter=None, min_eig=None,
-            bootstrap=0, reported_diagnostics=True):
+    @_takes_options("Factor.fit")
+    def fit(self, method="auto", *, bootstrap=0, **options):
         """Estimate X in A X ~= B from the factor, with `method` (one of METHODS).
 
         The estimate of spdfit.fit on all the factor's rows, to rounding (exactly the streaming
@@ -288,18 +289,10 @@ class Factor:
         ----------
         method : str, default "auto"
             One of METHODS, as in fit.
-        {rank_tolerance}
-        noise_ratio : float, optional
-            sigma_B / sigma_A for the total least-squares methods and auto (default 1), as in fit.
-        max_iter : int, optional
-            The iteration limit of spd-tls, psd-ls and auto (default 200).
-        min_eig : float, optional
-            psd-ls's floor, X >= min_eig I (default 0).
         bootstrap : int, default 0
             Refused unless 0: the bootstrap resamples rows, which a factor no longer has. Use
             spdfit.fit or spdfit.fit_files with bootstrap=N.
-        reported_diagnostics : bool, default True
-            As in fit: False skips the diagnostics that neither X nor a warning needs.
+        {options}
 
         {returns}
 
@@ -327,15 +320,13 @@ class Factor:
         >>> bool(np.allclose(r.X, X))
         True
         """
-        rank_tolerance, noise_ratio, max_iter, min_eig, bootstrap, reported = _options(
-            method, rank_tolerance=rank_tolerance, noise_ratio=noise_ratio, max_iter=max_iter, min_eig=min_eig,
-            bootstrap=bootstrap, reported_diagnostics=reported_diagnostics)
+        if isinstance(bootstrap, bool) or not isinstance(bootstrap, numbers.Integral):
+            raise TypeError(f"bootstrap must be an int, got {type(bootstrap).__name__}")
         if bootstrap:
             raise ValueError("Factor.fit cannot bootstrap: the bootstrap resamples the rows of [A B], which a factor "
                              "no longer holds; use spdfit.fit(A, B, bootstrap=N) or "
                              "spdfit.fit_files(A_path, B_path, bootstrap=N)")
-        return _checked(_spdfit.fit_factor(self._core, method, rank_tolerance, noise_ratio, max_iter, min_eig,
-                                           reported))
+        return _checked(_spdfit.fit_factor(self._core, method, options))
 
     @property
     def n(self):

@@ -1,5 +1,5 @@
 """Type stubs for spdfit.factor (see factor.py for the documentation)."""
-from typing import Optional, Union
+from typing import Any, Optional, Union
 
 import numpy.typing as npt
 
@@ -17,10 +17,7 @@ class Factor:
     def from_bytes(cls, data: Union[bytes, bytearray, memoryview]) -> Factor: ...
     def to_bytes(self) -> bytes: ...
     def merge(self, other: Factor) -> Factor: ...
-    def fit(self, method: _Method = ..., *, rank_tolerance: Optional[float] = ...,
-            noise_ratio: Optional[float] = ..., max_iter: Optional[int] = ...,
-            min_eig: Optional[float] = ..., bootstrap: int = ...,
-            reported_diagnostics: bool = ...) -> FitResult: ...
+    def fit(self, method: _Method = ..., *, bootstrap: int = ..., **options: Any) -> FitResult: ...  # options: Factor.fit
     @property
     def n(self) -> int: ...
     @property

@@ -13,7 +13,7 @@ from collections import namedtuple as _namedtuple
 
 import numpy as _np
 
-from . import _as_matrix, _options
+from . import _as_matrix, _takes_options
 from ._spdfit import hexapod as _core
 
 Geometry = _core.Geometry
@@ -226,8 +226,14 @@ def simulate(samples=_SIMULATION.samples, noise_var=0.86, *, seed=1, truth="thes
     return Simulation(A, B, M, A_true, B_true)
 
 
-def identify(A, B, *, truth=None, stiffness=None, bootstrap=0, confidence=None, seed=None, threads=0):
+@_takes_options("hexapod.identify")
+def identify(A, B, *, truth=None, stiffness=None, **options):
     """Every estimator on accelerations A and forces B, with eigenvalues, modes and errors.
+
+    The options are spdfit.fit's (each method takes those that apply to it). bootstrap=N > 0 adds
+    each method's bootstrap to its result (result.standard_errors, result.bootstrap.eigenvalues)
+    and, with a stiffness, the modes' intervals (modes_uncertainty): N resamples of the rows, each
+    refitted by every estimator.
 
     Parameters
     ----------
@@ -237,12 +243,7 @@ def identify(A, B, *, truth=None, stiffness=None, bootstrap=0, confidence=None, 
         A known M_p: each method's error_vs_truth is ||M_p - M_hat||_F.
     stiffness : array_like, optional
         The stiffness matrix K: each method's modes_hz are its modes sqrt(eig(M_hat^-1 K)) / 2 pi.
-    bootstrap : int, default 0
-        N > 0 adds each method's bootstrap to its result (result.standard_errors,
-        result.bootstrap.eigenvalues) and, with a stiffness, the modes' intervals
-        (modes_uncertainty): N resamples of the rows, each refitted by every estimator.
-    confidence, seed, threads : optional
-        As in spdfit.fit.
+    {options}
 
     Returns
     -------
@@ -268,10 +269,7 @@ def identify(A, B, *, truth=None, stiffness=None, bootstrap=0, confidence=None, 
     >>> e.result.diagnostics.positive_definite, e.error_vs_truth < estimates["procrustes"].error_vs_truth
     (True, True)
     """
-    bootstrap, confidence, seed, threads = _options(bootstrap=bootstrap, confidence=confidence, seed=seed,
-                                                    threads=threads)
     results = _core.identify(_as_matrix("A", A), _as_matrix("B", B),
                              None if truth is None else _as_matrix("truth", truth),
-                             None if stiffness is None else _as_matrix("stiffness", stiffness),
-                             bootstrap, confidence, seed, threads)
+                             None if stiffness is None else _as_matrix("stiffness", stiffness), options)
     return {r.result.method: r for r in results}

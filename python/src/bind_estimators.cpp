@@ -6,49 +6,17 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "keywords.hpp"
 #include "pickle.hpp"
 #include "spdfit/area_criterion.hpp"
 #include "spdfit/fit.hpp"
-#include "spdfit/fit_files.hpp"
-#include "spdfit/nearest_correlation.hpp"
-#include "spdfit/nearest_spd.hpp"
+#include "spdfit/fit_request.hpp"
+#include "spdfit/nearest_request.hpp"
 #include "spdfit/stream.hpp"
 
 namespace py = pybind11;
 
 namespace spdfit::python {
-
-FitOptions options_from(const std::optional<double>& rank_tolerance, const std::optional<double>& noise_ratio,
-                        std::optional<Method> method, const std::optional<int>& max_iter,
-                        const std::optional<double>& min_eig, const BootstrapArgs& boot) {
-  FitOptions options;
-  options.bootstrap = boot.replicates;
-  options.confidence = boot.confidence.value_or(options.confidence);
-  options.seed = boot.seed.value_or(options.seed);
-  options.threads = boot.threads;
-  if (rank_tolerance) options.rank_tolerance = *rank_tolerance;
-  // Each of these options applies to some methods only: a ValueError with the others.
-  auto check = [&](bool given, MethodOption option, const char* spelling) {
-    if (!given || !method) return;
-    if (const auto why = misplaced_option(option, *method, spelling)) throw std::invalid_argument(*why);
-  };
-  check(noise_ratio.has_value(), MethodOption::NoiseRatio, "noise_ratio");
-  check(max_iter.has_value(), MethodOption::MaxIterations, "max_iter");
-  check(min_eig.has_value(), MethodOption::MinEig, "min_eig");
-  options.noise_ratio = noise_ratio.value_or(options.noise_ratio);
-  options.max_iterations = max_iter.value_or(options.max_iterations);
-  options.min_eig = min_eig.value_or(options.min_eig);
-  std::string error;
-  if (!options.is_valid(&error)) throw std::invalid_argument(error);
-  return options;
-}
-
-Method method_from(const std::string& name) {
-  if (const auto method = parse_method(name)) return *method;
-  std::string known;
-  for (Method m : kSelectableMethods) known += (known.empty() ? "" : ", ") + std::string(to_string(m));
-  throw std::invalid_argument("unknown method '" + name + "' (methods: " + known + ")");
-}
 
 namespace {
 
@@ -80,23 +48,21 @@ void bind_estimators(py::module_& m) {
   for (Method method : kSelectableMethods) names.append(std::string(to_string(method)));
   m.attr("METHODS") = py::tuple(names);
 
+  // Every function below takes its options as one dict of keyword arguments, bound by name
+  // through the library's option tables (keywords.hpp).
+  m.attr("KEYWORDS") = keyword_table();
   m.def(
       "fit",
-      [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const std::string& method,
-         std::optional<double> rank_tolerance, std::optional<double> noise_ratio, std::optional<int> max_iter,
-         std::optional<double> min_eig, int bootstrap, std::optional<double> confidence,
-         std::optional<std::uint64_t> seed, unsigned threads, bool reported_diagnostics) {
-        const Method chosen = method_from(method);
-        FitOptions options = options_from(rank_tolerance, noise_ratio, chosen, max_iter, min_eig,
-                                          BootstrapArgs{bootstrap, confidence, seed, threads});
-        options.reported_diagnostics = reported_diagnostics;
+      [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const py::handle& method, const py::dict& options) {
+        std::vector<std::string_view> given;
+        FitRequest base;
+        base.method = method_from(method);
+        const FitRequest request = fit_request("fit", options, base, given);
+        check_fit_request(request, given);
         py::gil_scoped_release release;
-        return fit(A, B, chosen, options);
+        return fit(A, B, request.method, request.options);
       },
-      py::arg("A"), py::arg("B"), py::arg("method"), py::arg("rank_tolerance") = py::none(),
-      py::arg("noise_ratio") = py::none(), py::arg("max_iter") = py::none(), py::arg("min_eig") = py::none(),
-      py::arg("bootstrap") = 0, py::arg("confidence") = py::none(), py::arg("seed") = py::none(),
-      py::arg("threads") = 0u, py::arg("reported_diagnostics") = true);
+      py::arg("A"), py::arg("B"), py::arg("method"), py::arg("options"));
   py::class_<StreamOptions>(m, "StreamOptions",
                             "How fit_files streams its files; the defaults are the library's own.")
       .def(py::init<>())
@@ -106,70 +72,39 @@ void bind_estimators(py::module_& m) {
                                         state_field(&StreamOptions::threads), stream_read_field()));
   m.def(
       "fit_files",
-      [](const std::string& a_path, const std::string& b_path, const std::string& method, Eigen::Index block_rows,
-         unsigned threads, std::optional<double> rank_tolerance, std::optional<double> noise_ratio,
-         std::optional<int> max_iter, std::optional<double> min_eig, int bootstrap,
-         std::optional<double> confidence, std::optional<std::uint64_t> seed, bool reported_diagnostics) {
-        const Method chosen = method_from(method);
-        FitOptions options = options_from(rank_tolerance, noise_ratio, chosen, max_iter, min_eig,
-                                          BootstrapArgs{bootstrap, confidence, seed, threads});
-        options.reported_diagnostics = reported_diagnostics;
-        StreamOptions stream;
-        stream.block_rows = block_rows;
-        stream.threads = threads;
+      [](const std::string& a_path, const std::string& b_path, const py::handle& method, const py::dict& options) {
+        std::vector<std::string_view> given;
+        FitRequest base;
+        base.method = method_from(method);
+        const FitRequest request = fit_request("fit_files", options, base, given);
+        check_fit_request(request, given);
         py::gil_scoped_release release;
-        return fit_files(a_path, b_path, chosen, options, stream);
+        return fit_files(a_path, b_path, request);
       },
-      py::arg("A_path"), py::arg("B_path"), py::arg("method"), py::arg("block_rows") = StreamOptions{}.block_rows,
-      py::arg("threads") = StreamOptions{}.threads, py::arg("rank_tolerance") = py::none(),
-      py::arg("noise_ratio") = py::none(), py::arg("max_iter") = py::none(), py::arg("min_eig") = py::none(),
-      py::arg("bootstrap") = 0, py::arg("confidence") = py::none(), py::arg("seed") = py::none(),
-      py::arg("reported_diagnostics") = true);
+      py::arg("A_path"), py::arg("B_path"), py::arg("method"), py::arg("options"));
   m.def(
       "fit_all",
-      [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, std::optional<double> rank_tolerance,
-         std::optional<double> noise_ratio, std::optional<int> max_iter, std::optional<double> min_eig,
-         bool reported_diagnostics) {
-        FitOptions options = options_from(rank_tolerance, noise_ratio, std::nullopt, max_iter, min_eig);
-        options.reported_diagnostics = reported_diagnostics;
+      [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const py::dict& options) {
+        std::vector<std::string_view> given;
+        const FitRequest request = fit_request("fit_all", options, FitRequest{}, given);
+        check_option_combination(fit_option_table(), given);
         py::gil_scoped_release release;
-        return fit_all(A, B, options);
+        return fit_all(A, B, request.options);
       },
-      py::arg("A"), py::arg("B"), py::arg("rank_tolerance") = py::none(), py::arg("noise_ratio") = py::none(),
-      py::arg("max_iter") = py::none(), py::arg("min_eig") = py::none(), py::arg("reported_diagnostics") = true);
+      py::arg("A"), py::arg("B"), py::arg("options"));
 
-  // "via_corr"; the floor by EigenvalueFloor::chosen, as the nearest command's.
+  m.attr("REPAIR_FLOOR_DEFAULT") = EigenvalueFloor::kRepairDefault;
+  // nearest_spd and nearest_correlation (`entry`): the repair their keyword arguments name.
   m.def(
       "nearest",
-      [](const Eigen::MatrixXd& C, const std::string& kind, std::optional<double> min_eig,
-         std::optional<double> min_eig_rel, std::optional<double> alpha, std::optional<Eigen::VectorXd> weights,
-         std::optional<int> max_iter, std::optional<double> tol) {
-        const EigenvalueFloor floor = EigenvalueFloor::chosen(min_eig, min_eig_rel, alpha.has_value());
-        if (kind == "spd") {
-          for (const auto& [given, name] : {std::pair{bool(weights), "weights"}, std::pair{bool(alpha), "alpha"},
-                                            std::pair{bool(max_iter), "max_iter"}, std::pair{bool(tol), "tol"}}) {
-            if (given) throw std::invalid_argument(std::string(name) + " needs keep_diag=True or via_corr=True");
-          }
-          py::gil_scoped_release release;
-          return nearest_spd(C, floor);
-        }
-        NearestCorrelationOptions options;
-        options.floor = floor;
-        if (weights) options.weights = *weights;
-        options.alpha = alpha.value_or(options.alpha);
-        options.max_iterations = max_iter.value_or(options.max_iterations);
-        options.tolerance = tol.value_or(options.tolerance);
-        if (kind != "corr" && kind != "keep_diag" && kind != "via_corr") {
-          throw std::invalid_argument("unknown repair '" + kind + "'");
-        }
+      [](const Eigen::MatrixXd& C, const std::string& entry, const py::dict& options) {
+        std::vector<std::string_view> given;
+        const NearestRequest request = nearest_request(entry, options, given);
+        check_nearest_request(given, python::entry(entry).unavailable);
         py::gil_scoped_release release;
-        return kind == "corr"        ? nearest_correlation(C, options)
-               : kind == "keep_diag" ? nearest_keep_diagonal(C, options)
-                                     : nearest_via_correlation(C, options);
+        return nearest(C, request);
       },
-      py::arg("C"), py::arg("kind"), py::arg("min_eig") = py::none(), py::arg("min_eig_rel") = py::none(),
-      py::arg("alpha") = py::none(), py::arg("weights") = py::none(), py::arg("max_iter") = py::none(),
-      py::arg("tol") = py::none());
+      py::arg("C"), py::arg("entry"), py::arg("options"));
 
   m.def(
       "area_criterion",

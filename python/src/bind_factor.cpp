@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "bindings.hpp"
+#include "keywords.hpp"
 #include "spdfit/fit.hpp"
 #include "spdfit/reduction.hpp"
 #include "spdfit/stream.hpp"
@@ -72,18 +73,16 @@ void bind_factor(py::module_& m) {
   // of all the rows is spdfit.fit's. No bootstrap: a factor has no rows to resample.
   m.def(
       "fit_factor",
-      [](const TriangularFactor& factor, const std::string& method, std::optional<double> rank_tolerance,
-         std::optional<double> noise_ratio, std::optional<int> max_iter, std::optional<double> min_eig,
-         bool reported_diagnostics) {
-        const Method chosen = method_from(method);
-        FitOptions options = options_from(rank_tolerance, noise_ratio, chosen, max_iter, min_eig);
-        options.reported_diagnostics = reported_diagnostics;
+      [](const TriangularFactor& factor, const py::handle& method, const py::dict& options) {
+        std::vector<std::string_view> given;
+        FitRequest base;
+        base.method = method_from(method);
+        const FitRequest request = fit_request("Factor.fit", options, base, given);
+        check_fit_request(request, given);
         py::gil_scoped_release release;
-        return fit(reduce(factor, options), chosen);
+        return fit(reduce(factor, request.options), request.method);
       },
-      py::arg("factor"), py::arg("method"), py::arg("rank_tolerance") = py::none(),
-      py::arg("noise_ratio") = py::none(), py::arg("max_iter") = py::none(), py::arg("min_eig") = py::none(),
-      py::arg("reported_diagnostics") = true);
+      py::arg("factor"), py::arg("method"), py::arg("options"));
 
   // (factor, the readers' warnings) of a file pair read a block of rows at a time.
   m.def(

@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "keywords.hpp"
 #include "pickle.hpp"
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/hexapod/identify.hpp"
@@ -119,19 +120,18 @@ void bind_hexapod(py::module_& parent) {
   m.def(
       "identify",
       [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, std::optional<Eigen::MatrixXd> truth,
-         std::optional<Eigen::MatrixXd> stiffness, int bootstrap, std::optional<double> confidence,
-         std::optional<std::uint64_t> seed, unsigned threads) {
-        IdentifyOptions options;
-        options.truth = std::move(truth);
-        options.stiffness = std::move(stiffness);
-        options.fit = options_from(std::nullopt, std::nullopt, std::nullopt, std::nullopt, std::nullopt,
-                                   BootstrapArgs{bootstrap, confidence, seed, threads});
+         std::optional<Eigen::MatrixXd> stiffness, const py::dict& options) {
+        std::vector<std::string_view> given;
+        IdentifyOptions identify_options;
+        identify_options.truth = std::move(truth);
+        identify_options.stiffness = std::move(stiffness);
+        identify_options.fit = fit_request("hexapod.identify", options, FitRequest{}, given).options;
+        check_option_combination(fit_option_table(), given);
         py::gil_scoped_release release;
-        return identify(A, B, options);
+        return identify(A, B, identify_options);
       },
       py::arg("A"), py::arg("B"), py::arg("truth") = py::none(), py::arg("stiffness") = py::none(),
-      py::arg("bootstrap") = 0, py::arg("confidence") = py::none(), py::arg("seed") = py::none(),
-      py::arg("threads") = 0u);
+      py::arg("options"));
 }
 
 }  // namespace spdfit::python

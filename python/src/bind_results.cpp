@@ -303,8 +303,6 @@ void bind_results(py::module_& m) {
           state_field(&NearestResult::min_eig), state_field(&NearestResult::iterations),
           state_field(&NearestResult::gradient_norm), state_field(&NearestResult::converged),
           state_field(&NearestResult::cholesky_ok), state_field(&NearestResult::warnings)));
-  m.attr("REPAIR_FLOOR_DEFAULT") = EigenvalueFloor::kRepairDefault;
-  // One entry for every repair: `kind` is "spd" (the eigenvalue clip), "corr", "keep_diag" or
 }
 
 }  // namespace spdfit::python

@@ -2,7 +2,10 @@
 // public face; it turns warnings into Python warnings and failures into exceptions).
 #include <pybind11/pybind11.h>
 
+#include <stdexcept>
+
 #include "bindings.hpp"
+#include "spdfit/options.hpp"
 #include "spdfit/version.hpp"
 
 PYBIND11_MODULE(_spdfit, m) {
@@ -17,4 +20,13 @@ PYBIND11_MODULE(_spdfit, m) {
   spdfit::python::bind_hexapod(m);
   spdfit::python::bind_experiment(m);
   spdfit::python::bind_blas_core(m);
+  // The library's messages name options by their library names in backticks (OptionError and
+  // other misuse): Python says them with its own keywords, as a ValueError.
+  pybind11::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const std::invalid_argument& e) {
+      PyErr_SetString(PyExc_ValueError, spdfit::spell_options(e.what(), spdfit::Frontend::kPython).c_str());
+    }
+  });
 }

@@ -13,6 +13,7 @@
 
 #include "io/split_file.hpp"
 #include "pipeline/pair_checks.hpp"
+#include "spdfit/options.hpp"
 #include "pipeline/stream_resampling.hpp"
 #include "spdfit/fit_files.hpp"
 #include "uncertainty/bootstrap.hpp"
@@ -200,7 +201,7 @@ DistributedFit fit_files_distributed(const std::string& a_path, const std::strin
     return out;
   }
   std::string error;
-  if (!options.is_valid(&error)) throw std::invalid_argument("fit_files: " + error);
+  if (!options.is_valid(&error)) throw OptionError(error);
   if (stream.block_rows < 1) throw std::invalid_argument("block_rows must be at least 1");
 
   // The counting pass: each process opens both files (learning a text file's layout from its
@@ -290,6 +291,12 @@ DistributedFit fit_files_distributed(const std::string& a_path, const std::strin
   out.result = bootstrap ? detail::fit_streamed_bootstrap(method, options, part.factors, a_path)
                          : detail::fit_streamed(method, options, part.factors.total, part.factors.info, a_path);
   return out;
+}
+
+DistributedFit fit_files_distributed(const std::string& a_path, const std::string& b_path,
+                                     const FitRequest& request, Channel& channel) {
+  return fit_files_distributed(a_path, b_path, request.method, request.options, request.stream_options(),
+                               request.read, channel);
 }
 
 }  // namespace spdfit

@@ -4,6 +4,7 @@
 
 #include "estimators/kernels.hpp"
 #include "pipeline/pair_checks.hpp"
+#include "spdfit/options.hpp"
 #include "pipeline/stream_resampling.hpp"
 #include "spdfit/fit.hpp"
 #include "uncertainty/bootstrap.hpp"
@@ -81,7 +82,7 @@ DataPair read_pair(const std::string& a_path, const std::string& b_path, const i
 FitResult fit_files(const std::string& a_path, const std::string& b_path, Method method, const FitOptions& options,
                     const std::optional<StreamOptions>& stream, const io::ReadOptions& read) {
   std::string error;
-  if (!options.is_valid(&error)) throw std::invalid_argument("fit_files: " + error);
+  if (!options.is_valid(&error)) throw OptionError(error);
   std::optional<StreamOptions> streamed = stream;
   if (streamed) streamed->read = read;  // one way of reading, whichever path
   if (streamed && options.bootstrap > 0) {

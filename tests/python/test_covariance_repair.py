@@ -117,7 +117,7 @@ def test_argument_checks():
         spdfit.nearest_spd(C, 0.1, min_eig_rel=1e-3)
     with pytest.raises(ValueError, match="weights needs keep_diag"):
         spdfit.nearest_spd(C, weights=np.ones(4))
-    with pytest.raises(ValueError, match="below 1"):
+    with pytest.raises(ValueError, match=r"min_eig_rel must be a number in \[0, 1\)"):
         spdfit.nearest_spd(C, min_eig_rel=1.0)
     with pytest.raises(ValueError, match="no positive eigenvalue"):
         spdfit.nearest_spd(-np.eye(3))

@@ -1,0 +1,102 @@
+#include "table_options.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace spdfit::cli {
+
+namespace {
+
+// The integer `text` stands for ("12", "-3", "1e3"), or nothing.
+std::optional<std::int64_t> integer_of(const std::string& text) {
+  try {
+    std::size_t used = 0;
+    const long long value = std::stoll(text, &used);
+    if (used == text.size()) return value;
+  } catch (const std::exception&) {
+  }
+  try {
+    std::size_t used = 0;
+    const double value = std::stod(text, &used);
+    // Exactly an integer, and within the range of a 64-bit integer (2^63 itself is not).
+    if (used == text.size() && value == std::floor(value) && std::abs(value) < 9.2e18) {
+      return static_cast<std::int64_t>(value);
+    }
+  } catch (const std::exception&) {
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+CLI::Validator range_validator(const NumberRange& range, bool integer) {
+  const std::string what = range.describe(integer);
+  const std::string article = integer ? "an " : "a ";
+  return CLI::Validator(
+      [range, integer, what, article](std::string& text) -> std::string {
+        if (integer) {
+          const std::optional<std::int64_t> value = integer_of(text);
+          if (value && range.contains(static_cast<double>(*value))) return "";
+        } else {
+          try {
+            std::size_t used = 0;
+            const double value = std::stod(text, &used);
+            if (used == text.size() && std::isfinite(value) && range.contains(value)) return "";
+          } catch (const std::exception&) {
+          }
+        }
+        return "'" + text + "' is not " + article + what;
+      },
+      what);
+}
+
+std::string cli_help(std::string_view help, std::string_view default_text) {
+  std::string text = spell_options(help, Frontend::kCli);
+  if (!default_text.empty()) text += " (default " + std::string(default_text) + ")";
+  return text;
+}
+
+void throw_usage(const std::exception& error) { throw UsageError(spell_options(error.what(), Frontend::kCli)); }
+
+OptionValue parse_option_text(OptionType type, std::string_view spelling, const std::string& text) {
+  switch (type) {
+    case OptionType::kInteger:
+      if (const auto value = integer_of(text)) return *value;
+      break;
+    case OptionType::kReal:
+      try {
+        std::size_t used = 0;
+        const double value = std::stod(text, &used);
+        if (used == text.size()) return value;
+      } catch (const std::exception&) {
+      }
+      break;
+    case OptionType::kRealList: {
+      std::vector<double> values;
+      std::size_t start = 0;
+      bool ok = !text.empty();
+      while (ok && start <= text.size()) {
+        const std::size_t comma = std::min(text.find(',', start), text.size());
+        const std::string part = text.substr(start, comma - start);
+        try {
+          std::size_t used = 0;
+          values.push_back(std::stod(part, &used));
+          ok = used == part.size() && std::isfinite(values.back());
+        } catch (const std::exception&) {
+          ok = false;
+        }
+        start = comma + 1;
+      }
+      if (ok) return values;
+      throw UsageError(std::string(spelling) + ": '" + text +
+                       "' is not a number or a comma-separated list of numbers (one per column)");
+    }
+    default:
+      return text;
+  }
+  throw UsageError(std::string(spelling) + ": '" + text + "' is not " +
+                   (type == OptionType::kInteger ? "an integer" : "a number"));
+}
+
+}  // namespace spdfit::cli

@@ -1,0 +1,102 @@
+#include "entries.hpp"
+
+#include <stdexcept>
+
+#include "spdfit/fit_request.hpp"
+#include "spdfit/nearest_request.hpp"
+
+namespace spdfit::python {
+
+namespace {
+
+bool contains(const std::vector<std::string_view>& names, std::string_view name) {
+  for (std::string_view n : names) {
+    if (n == name) return true;
+  }
+  return false;
+}
+
+template <typename Request>
+std::vector<Keyword> keywords_of(const std::vector<OptionSpec<Request>>& table, const Entry& entry,
+                                 const Request* applies_to) {
+  std::vector<Keyword> out;
+  for (const OptionSpec<Request>& spec : table) {
+    if (spec.python.empty() || contains(entry.unavailable, spec.name) || contains(entry.implied, spec.name)) continue;
+    if (applies_to && spec.applies && !spec.applies(*applies_to)) continue;
+    bool reachable = spec.needs.empty();
+    for (std::string_view need : spec.needs) reachable = reachable || !contains(entry.unavailable, need);
+    if (!reachable) continue;
+    std::optional<OptionValue> default_value;
+    if (!spec.nullable && spec.get) default_value = spec.get(Request{});
+    out.push_back({spec.name, spec.python, spec.type, spell_options(spec.help, Frontend::kPython), spec.default_text,
+                   std::move(default_value), spec.nullable});
+  }
+  return out;
+}
+
+}  // namespace
+
+const std::vector<Entry>& entries() {
+  static const std::vector<Entry> list = {
+      {"fit", "fit", {}, {"stream"}},
+      {"fit_files", "fit", {"stream"}, {}},
+      {"fit_all", "fit", {}, {"stream", "bootstrap"}},
+      {"Factor.fit", "fit", {}, {"stream", "bootstrap"}},
+      {"hexapod.identify", "fit", {}, {"stream"}},
+      {"nearest_spd", "nearest", {}, {"corr"}},
+      {"nearest_correlation", "nearest", {"corr"}, {"keep_diag", "via_corr"}},
+  };
+  return list;
+}
+
+const Entry& entry(std::string_view name) {
+  for (const Entry& e : entries()) {
+    if (e.name == name) return e;
+  }
+  throw std::invalid_argument("no Python entry named '" + std::string(name) + "'");
+}
+
+std::vector<Keyword> keywords(const Entry& entry, std::optional<Method> method) {
+  if (entry.table == "nearest") return keywords_of(nearest_option_table(), entry, static_cast<NearestRequest*>(nullptr));
+  FitRequest request;
+  if (method) request.method = *method;
+  return keywords_of(fit_option_table(), entry, method ? &request : nullptr);
+}
+
+std::vector<Keyword> keywords(std::string_view name) {
+  constexpr std::string_view kFitMethod = "fit:";
+  if (name.substr(0, kFitMethod.size()) == kFitMethod) {
+    const std::optional<Method> method = parse_method(name.substr(kFitMethod.size()));
+    if (!method) throw std::invalid_argument("no method named '" + std::string(name.substr(kFitMethod.size())) + "'");
+    return keywords(entry("fit"), method);
+  }
+  return keywords(entry(name));
+}
+
+std::string annotation(const Keyword& keyword) {
+  std::string type;
+  switch (keyword.type) {
+    case OptionType::kFlag:
+    case OptionType::kBoolean:
+      type = "bool";
+      break;
+    case OptionType::kInteger:
+      type = "int";
+      break;
+    case OptionType::kReal:
+      type = "float";
+      break;
+    case OptionType::kText:
+      type = "str";
+      break;
+    case OptionType::kRealList:
+      type = "Union[float, Sequence[float]]";
+      break;
+    case OptionType::kVector:
+      type = "npt.ArrayLike";
+      break;
+  }
+  return keyword.nullable ? "Optional[" + type + "]" : type;
+}
+
+}  // namespace spdfit::python
