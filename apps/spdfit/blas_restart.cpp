@@ -8,8 +8,7 @@
 #include <iostream>
 #include <string>
 
-#include "numerics/blas_core.hpp"
-#include "numerics/block_qr.hpp"
+#include "spdfit/blas.hpp"
 
 namespace spdfit::cli {
 
@@ -22,7 +21,7 @@ constexpr const char* kSelf = "/proc/self/exe";
 
 // What this run knows about the choice of kernels, for report_blas_core.
 struct BlasCoreState {
-  detail::BlasCoreCheck check;
+  BlasCoreCheck check;
   bool restarted = false;      // this process is the restarted one
   std::string restarted_from;  // the core reported before the restart (empty: marker not ours)
   std::string restart_error;   // why the restart failed (empty: it did not fail)
@@ -34,28 +33,28 @@ BlasCoreState& state() {
 }
 
 std::string verbose_line(const BlasCoreState& s) {
-  const detail::BlasCoreCheck& check = s.check;
-  const std::string core = detail::blas_core_name();
+  const BlasCoreCheck& check = s.check;
+  const std::string core = blas_core_name();
   if (core.empty()) return "the BLAS is not OpenBLAS: no choice of kernels to report";
   if (s.restarted && !s.restarted_from.empty() && !check.user_coretype.empty()) {
     return "OpenBLAS reported core '" + s.restarted_from + "'" +
            (check.cpu.empty() ? "" : " on a CPU with " + check.cpu) + ": restarted with " +
-           detail::kOpenBlasCoreVariable + "=" + check.user_coretype + " (OpenBLAS core now: " + core + ")";
+           kOpenBlasCoreVariable + "=" + check.user_coretype + " (OpenBLAS core now: " + core + ")";
   }
   if (!s.restart_error.empty()) {
     return "OpenBLAS core: " + core + " (it reported '" + check.reported + "' on a CPU with " + check.cpu +
-           "; the restart with " + detail::kOpenBlasCoreVariable + "=" + check.suggested +
+           "; the restart with " + kOpenBlasCoreVariable + "=" + check.suggested +
            " failed: " + s.restart_error + ")";
   }
   std::string line = "OpenBLAS core: " + core;
   if (!check.user_coretype.empty()) {
-    line += std::string(" (") + detail::kOpenBlasCoreVariable + "=" + check.user_coretype +
+    line += std::string(" (") + kOpenBlasCoreVariable + "=" + check.user_coretype +
             ", set before spdfit ran)";
   } else {
     line += " (chosen by OpenBLAS)";
   }
   if (check.from_test_switch) {
-    line += std::string("; ") + detail::kTestBlasCoreVariable + "=" + check.reported + " is set";
+    line += std::string("; ") + kTestBlasCoreVariable + "=" + check.reported + " is set";
   }
   return line;
 }
@@ -72,17 +71,17 @@ void restart_for_blas_core(char** argv) {
     s.restarted = true;
     const std::size_t colon = value.find(':');
     if (colon != std::string::npos) s.restarted_from = value.substr(0, colon);
-    s.check = detail::check_blas_core();
+    s.check = check_blas_core();
     return;
   }
-  s.check = detail::check_blas_core();
+  s.check = check_blas_core();
   const std::string& core = s.check.suggested;
   if (core.empty() || argv == nullptr || argv[0] == nullptr) return;
 
-  const char* const previous_coretype = std::getenv(detail::kOpenBlasCoreVariable);  // unset or ""
+  const char* const previous_coretype = std::getenv(kOpenBlasCoreVariable);  // unset or ""
   const bool had_coretype = previous_coretype != nullptr;
   const std::string marker = s.check.reported + ":" + core;
-  ::setenv(detail::kOpenBlasCoreVariable, core.c_str(), 1);
+  ::setenv(kOpenBlasCoreVariable, core.c_str(), 1);
   ::setenv(kRestartMarker, marker.c_str(), 1);
   const char* test_executable = std::getenv(kTestExecutableVariable);
   const char* executable = test_executable && *test_executable ? test_executable : kSelf;
@@ -93,9 +92,9 @@ void restart_for_blas_core(char** argv) {
   // kernels OpenBLAS chose, in the environment as it was.
   s.restart_error = std::string(executable) + ": " + std::strerror(error);
   if (had_coretype) {
-    ::setenv(detail::kOpenBlasCoreVariable, "", 1);
+    ::setenv(kOpenBlasCoreVariable, "", 1);
   } else {
-    ::unsetenv(detail::kOpenBlasCoreVariable);
+    ::unsetenv(kOpenBlasCoreVariable);
   }
   ::unsetenv(kRestartMarker);
 }
@@ -104,16 +103,16 @@ void report_blas_core(const GlobalOptions& global) {
   const BlasCoreState& s = state();
   if (!s.restart_error.empty()) {
     warn(global, "OpenBLAS runs its generic '" + s.check.reported + "' kernels on this CPU, which has " +
-                     s.check.cpu + "; restarting with " + detail::kOpenBlasCoreVariable + "=" +
+                     s.check.cpu + "; restarting with " + kOpenBlasCoreVariable + "=" +
                      s.check.suggested + " failed (" + s.restart_error + "). Set " +
-                     detail::kOpenBlasCoreVariable + "=" + s.check.suggested +
+                     kOpenBlasCoreVariable + "=" + s.check.suggested +
                      " before running spdfit for the faster kernels");
   }
-  const std::string kernels = detail::kernel_isa_warning();
+  const std::string kernels = kernel_isa_warning();
   if (!kernels.empty()) warn(global, kernels);
   if (global.verbose) {
     std::cerr << "spdfit: " << verbose_line(s) << '\n';
-    std::cerr << "spdfit: own kernels (the block QR): " << detail::kernel_isa_report() << '\n';
+    std::cerr << "spdfit: own kernels (the block QR): " << kernel_isa_report() << '\n';
   }
 }
 

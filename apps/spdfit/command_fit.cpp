@@ -15,7 +15,6 @@
 #include "mpi_world.hpp"
 #include "progress_line.hpp"
 #include "table_options.hpp"
-#include "io/containers.hpp"
 #include "spdfit/distributed.hpp"
 #include "spdfit/fit_request.hpp"
 
@@ -46,7 +45,7 @@ std::uint64_t file_bytes(const std::string& path) {
 std::string with_variable(const std::string& path, const std::string& variable, const char* option) {
   if (variable.empty()) return path;
   if (path == "-") throw UsageError(std::string(option) + " names an array in a file, but the file is standard input (-)");
-  if (!io::detail::split_spec(path).variable.empty()) {
+  if (!io::split_spec(path).variable.empty()) {
     throw UsageError(std::string(option) + " " + variable + " names the array, but " + path +
                      " names one already: give one of them");
   }

@@ -9,15 +9,16 @@
 
 #include "blas_restart.hpp"
 #include "cli.hpp"
+#include "spdfit/options.hpp"
 #include "mpi_world.hpp"
-#include "numerics/blas_core.hpp"
+#include "spdfit/blas.hpp"
 #include "spdfit/io.hpp"
 #include "spdfit/version.hpp"
 
 namespace spdfit::cli {
 
 void warn(const GlobalOptions& global, const std::string& message) {
-  if (!global.quiet) std::cerr << "spdfit: warning: " << message << '\n';
+  if (!global.quiet) std::cerr << "spdfit: warning: " << spell_options(message, Frontend::kCli) << '\n';
 }
 
 }  // namespace spdfit::cli
@@ -26,7 +27,7 @@ int main(int argc, char** argv) {
   using namespace spdfit::cli;
   restart_for_blas_core(argv);  // first: may restart the program with faster BLAS kernels
   // OpenBLAS's threads, started as it loaded, would spin for about 0.1 s: stopped until needed.
-  spdfit::detail::idle_blas_threads();
+  spdfit::idle_blas_threads();
   CLI::App app{
       "spdfit: estimate a symmetric positive definite matrix X from noisy data A X ~= B\n"
       "(least squares, symmetric Procrustes, total least squares and the area-criterion SPDE)"};
@@ -131,10 +132,10 @@ int main(int argc, char** argv) {
     std::cerr << "spdfit: error: " << e.what() << '\n';
     return kExitDataError;
   } catch (const DataFailure& e) {
-    std::cerr << "spdfit: error: " << e.what() << '\n';
+    std::cerr << "spdfit: error: " << spdfit::spell_options(e.what(), spdfit::Frontend::kCli) << '\n';
     return kExitDataError;
   } catch (const std::invalid_argument& e) {
-    std::cerr << "spdfit: error: " << e.what() << '\n';
+    std::cerr << "spdfit: error: " << spdfit::spell_options(e.what(), spdfit::Frontend::kCli) << '\n';
     return kExitDataError;
   } catch (const std::exception& e) {
     std::cerr << "spdfit: error: " << e.what() << '\n';

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "mpi_session.hpp"
-#include "numerics/blas_core.hpp"
+#include "spdfit/blas.hpp"
 #include "spdfit/version.hpp"
 
 namespace spdfit::cli {
@@ -92,7 +92,7 @@ MpiWorld::MpiWorld() {
   if (sched_getaffinity(0, sizeof allowed, &allowed) == 0) {
     threads_ = std::min(threads_, std::max(1U, static_cast<unsigned>(CPU_COUNT(&allowed))));
   }
-  detail::set_blas_threads(static_cast<int>(threads_));
+  set_blas_threads(static_cast<int>(threads_));
 #else
   const char* size = std::getenv("OMPI_COMM_WORLD_SIZE");
   if (size == nullptr) size = std::getenv("PMI_SIZE");

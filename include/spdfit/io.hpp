@@ -57,6 +57,18 @@ struct Table {
   std::vector<std::string> warnings;
 };
 
+/// A data file and, for a .mat or .npz file, the array in it ("" when not named).
+struct FileSpec {
+  std::string file;
+  std::string variable;
+};
+
+/// Splits "A.mat:accel" into the file and the array's name, as read_table reads it. A path that
+/// exists as given is a file whatever its colons; otherwise the part before the last colon names
+/// the file when that exists. Anything else is the path as given (whose reader then says "no such
+/// file"). Cost: up to two stat calls.
+FileSpec split_spec(const std::string& path);
+
 /// Reads a matrix from `path`: a .npy file (recognized by its magic bytes; float64, float32,
 /// integers or booleans, C or Fortran order, 1-D read as a column), a MATLAB .mat file (levels 5
 /// and 7.3) or a NumPy .npz archive, whose array "file.mat:name" names (without a name: the

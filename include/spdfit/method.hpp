@@ -112,14 +112,21 @@ inline std::optional<std::string> too_few_rows_refusal(Method method, long long 
          " columns: a non-square X needs at least as many rows as that";
 }
 
-/// The options of FitOptions that apply to some methods only.
-enum class MethodOption {
+/// The options of FitOptions that apply to some methods only. Deprecated: fit_option_table()
+/// (fit_request.hpp) says which methods take each option, and check_fit_request applies it; this
+/// enum and misplaced_option(MethodOption, ...) go in the next release (docs/changes.md).
+enum class [[deprecated("use fit_option_table() and check_fit_request (fit_request.hpp)")]] MethodOption {
   NoiseRatio,     ///< noise_ratio: uses_noise_ratio
   MaxIterations,  ///< max_iterations: uses_max_iterations
   MinEig,         ///< min_eig: uses_min_eig
 };
 
-/// Whether `option` applies to `method`.
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
+#endif
+/// Whether `option` applies to `method`. Deprecated with MethodOption.
+[[deprecated("use fit_option_table() and check_fit_request (fit_request.hpp)")]]
 constexpr bool applies(MethodOption option, Method method) {
   switch (option) {
     case MethodOption::NoiseRatio:
@@ -134,7 +141,8 @@ constexpr bool applies(MethodOption option, Method method) {
 
 /// The message for `option`, spelled as the caller spells it ("--noise-ratio" on the command
 /// line, "noise_ratio" in Python), given with a method it does not apply to; it names the
-/// methods it applies to. Nothing when it applies.
+/// methods it applies to. Nothing when it applies. Deprecated with MethodOption.
+[[deprecated("use fit_option_table() and check_fit_request (fit_request.hpp)")]]
 inline std::optional<std::string> misplaced_option(MethodOption option, Method method, std::string_view spelling) {
   if (applies(option, method)) return std::nullopt;
   std::string names;
@@ -147,6 +155,9 @@ inline std::optional<std::string> misplaced_option(MethodOption option, Method m
   return std::string(spelling) + " applies to " + kind + names + (*kind ? ")" : "") + ", not to " +
          std::string(to_string(method));
 }
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
 
 /// The method with the given command-line name, or nothing if there is none.
 constexpr std::optional<Method> parse_method(std::string_view name) {

@@ -94,13 +94,14 @@ struct OptionSpec {
 };
 
 /// The spelling of option `name` in `frontend`: the command line's and Python's from the tables
-/// (fit_option_table, nearest_option_table), MATLAB's the name in CamelCase. A name no table has
-/// is returned unchanged.
+/// (fit_option_table, nearest_option_table), MATLAB's the name in CamelCase; a name no table has
+/// follows the tables' convention ("--" and the name with hyphens on the command line, the name
+/// in Python).
 std::string spell_option(std::string_view name, Frontend frontend);
 
 /// `message` with every backticked library name of an option (`max_iterations`) replaced by its
-/// spelling in `frontend` ("--max-iter" on the command line); other backticked text loses its
-/// backticks. The library's own spelling is the name.
+/// spelling in `frontend` ("--max-iter" on the command line). Backticks in the library's messages
+/// are for option names only. The library's own spelling is the name without backticks.
 std::string spell_options(std::string_view message, Frontend frontend);
 
 /// MATLAB's spelling of a library name: "max_iterations" -> "MaxIterations".

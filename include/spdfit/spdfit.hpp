@@ -5,6 +5,7 @@
 
 #include "spdfit/area_criterion.hpp"
 #include "spdfit/auto.hpp"
+#include "spdfit/blas.hpp"
 #include "spdfit/distributed.hpp"
 #include "spdfit/experiment/monte_carlo.hpp"
 #include "spdfit/experiment/paper.hpp"

@@ -338,9 +338,9 @@ def write_csv(path, X):
 
 def _checked(result, stacklevel=3):
     for message in result.warnings:
-        _warnings.warn(f"{result.method}: {message}", SpdfitWarning, stacklevel=stacklevel)
+        _warnings.warn(f"{result.method}: {_spdfit.spell_options(message)}", SpdfitWarning, stacklevel=stacklevel)
     if not result.ok:
-        raise NumericalError(result.message, result)
+        raise NumericalError(_spdfit.spell_options(result.message), result)
     return result
 
 
@@ -519,7 +519,7 @@ def fit_all(A, B, **options):
     results = {}
     for result in _spdfit.fit_all(A, B, options):
         for message in result.warnings:
-            _warnings.warn(f"{result.method}: {message}", SpdfitWarning, stacklevel=2)
+            _warnings.warn(f"{result.method}: {_spdfit.spell_options(message)}", SpdfitWarning, stacklevel=2)
         results[result.method] = result
     return results
 
@@ -891,7 +891,7 @@ def _repair(entry, C, options):
     bound by name, its warnings as SpdfitWarning."""
     result = _spdfit.nearest(_as_matrix("X" if entry == "nearest_spd" else "C", C), entry, options)
     for message in result.warnings:
-        _warnings.warn(f"{entry}: {message}", SpdfitWarning, stacklevel=3)
+        _warnings.warn(f"{entry}: {_spdfit.spell_options(message)}", SpdfitWarning, stacklevel=3)
     return result
 
 

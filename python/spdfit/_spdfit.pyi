@@ -267,6 +267,7 @@ class LinearSystemResult(metaclass=_Pybind11Type):
 REPAIR_FLOOR_DEFAULT: float
 
 KEYWORDS: Dict[str, List[Tuple[str, str, str, str, object]]]
+def spell_options(message: str) -> str: ...
 def fit(A: npt.ArrayLike, B: npt.ArrayLike, method: object, options: Dict[str, object]) -> FitResult: ...
 
 class TriangularFactor(metaclass=_Pybind11Type):

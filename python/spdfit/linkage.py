@@ -11,7 +11,7 @@ import warnings as _warnings
 
 import numpy as _np
 
-from . import NumericalError, SpdfitWarning
+from . import NumericalError, SpdfitWarning, _spdfit
 from ._spdfit import linkage as _core
 
 FourBar = _core.FourBar
@@ -284,9 +284,9 @@ def synthesize(psi=None, phi=None, *, weights=None, steering=None, function=None
     result = _core.synthesize(dpsi, dphi, w, a, b, bool(fit_dial_zeros), bool(refine), float(tolerance),
                               int(max_iterations))
     for message in result.warnings:
-        _warnings.warn(message, SpdfitWarning, stacklevel=2)
+        _warnings.warn(_spdfit.spell_options(message), SpdfitWarning, stacklevel=2)
     if not result.ok:
-        raise NumericalError(result.message, result)
+        raise NumericalError(_spdfit.spell_options(result.message), result)
     return result
 
 

@@ -3,7 +3,7 @@
 #include <pybind11/pybind11.h>
 
 #include "bindings.hpp"
-#include "numerics/blas_core.hpp"
+#include "spdfit/blas.hpp"
 
 namespace py = pybind11;
 
@@ -13,9 +13,9 @@ void bind_blas_core(py::module_& m) {
   m.def(
       "blas_core",
       [] {
-        const detail::BlasCoreCheck check = detail::check_blas_core();
+        const BlasCoreCheck check = check_blas_core();
         py::dict result;
-        result["core"] = detail::blas_core_name();
+        result["core"] = blas_core_name();
         result["reported"] = check.reported;
         result["from_test_switch"] = check.from_test_switch;
         result["cpu"] = check.cpu;

@@ -52,6 +52,9 @@ void bind_estimators(py::module_& m) {
   // through the library's option tables (keywords.hpp).
   m.attr("KEYWORDS") = keyword_table();
   m.def(
+      "spell_options", [](const std::string& message) { return spell_options(message, Frontend::kPython); },
+      py::arg("message"), "A library message (a warning) with its options named as Python names them.");
+  m.def(
       "fit",
       [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const py::handle& method, const py::dict& options) {
         std::vector<std::string_view> given;

@@ -123,14 +123,6 @@ void widen(const void* data, Eigen::MatrixXd& out) {
 
 }  // namespace
 
-FileSpec split_spec(const std::string& path) {
-  if (path == "-" || exists(path)) return {path, ""};
-  const std::size_t colon = path.rfind(':');
-  if (colon == std::string::npos || colon == 0 || colon + 1 == path.size()) return {path, ""};
-  const std::string file = path.substr(0, colon);
-  if (!exists(file)) return {path, ""};
-  return {file, path.substr(colon + 1)};
-}
 
 namespace {
 
@@ -597,6 +589,15 @@ std::optional<Table> read_named_arrays(const FileSpec& spec, const ReadOptions& 
 }  // namespace spdfit::io::detail
 
 namespace spdfit::io {
+
+FileSpec split_spec(const std::string& path) {
+  if (path == "-" || detail::exists(path)) return {path, ""};
+  const std::size_t colon = path.rfind(':');
+  if (colon == std::string::npos || colon == 0 || colon + 1 == path.size()) return {path, ""};
+  const std::string file = path.substr(0, colon);
+  if (!detail::exists(file)) return {path, ""};
+  return {file, path.substr(colon + 1)};
+}
 
 void write_mat(const std::string& path, const Eigen::Ref<const Eigen::MatrixXd>& X, const std::string& name) {
   const detail::Matio& lib = detail::matio(path);

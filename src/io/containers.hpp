@@ -13,16 +13,9 @@
 
 namespace spdfit::io::detail {
 
-/// A data file and, for a .mat or .npz file, the array in it ("" when not named).
-struct FileSpec {
-  std::string file;
-  std::string variable;
-};
-
-/// Splits "A.mat:accel" into the file and the array's name. A path that exists as given is a
-/// file whatever its colons; otherwise the part before the last colon names the file when that
-/// exists. Anything else is the path as given (whose reader then says "no such file").
-FileSpec split_spec(const std::string& path);
+// The public "file:name" rule (io.hpp), by its internal names.
+using io::FileSpec;
+using io::split_spec;
 
 /// How messages name standard input (the file name "-").
 inline constexpr const char* kStdinName = "<stdin>";

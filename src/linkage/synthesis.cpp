@@ -133,7 +133,7 @@ SynthesisResult synthesize(const Eigen::Ref<const VectorXd>& delta_psi_in,
         r.status = SynthesisStatus::NoRealLinkage;
         r.message =
             "no dial zeros on a 5-degree grid give a design-error solution that is a real linkage "
-            "assemblable at every prescribed input; give a start with --alpha and --beta";
+            "assemblable at every prescribed input; give a start with `alpha` and `beta`";
         return r;
       }
       start = *grid_start;

@@ -14,7 +14,7 @@ extern "C" char* openblas_get_corename(void) __attribute__((weak));
 extern "C" void openblas_set_num_threads(int) __attribute__((weak));
 extern "C" int blas_thread_shutdown_(void) __attribute__((weak));
 
-namespace spdfit::detail {
+namespace spdfit {
 
 namespace {
 
@@ -36,12 +36,12 @@ std::string environment(const char* name) {
 // Haswell kernels use FMA3 as well as AVX2; the SkylakeX ones AVX-512 F, BW, VL and DQ (every
 // AVX-512 CPU from Skylake-SP on has all four), which is cpu_vector_isa()'s rule.
 std::string cpu_vector_extension() {
-  switch (cpu_vector_isa()) {
-    case VectorIsa::kAvx512:
+  switch (detail::cpu_vector_isa()) {
+    case detail::VectorIsa::kAvx512:
       return "AVX-512";
-    case VectorIsa::kAvx2:
+    case detail::VectorIsa::kAvx2:
       return "AVX2";
-    case VectorIsa::kBaseline:
+    case detail::VectorIsa::kBaseline:
       break;
   }
   return "";
@@ -87,4 +87,4 @@ BlasCoreCheck check_blas_core() {
   return check;
 }
 
-}  // namespace spdfit::detail
+}  // namespace spdfit

@@ -5,6 +5,8 @@
 // uses no ymm or zmm register (checked with objdump by tests/isa/check_kernel_isa.sh).
 #include "numerics/block_qr.hpp"
 
+#include "spdfit/blas.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -143,10 +145,6 @@ Index block_qr_chunk_rows(Index k) { return std::clamp<Index>(Index{32768} / std
 
 VectorIsa kernel_isa() { return kernel_choice().isa; }
 
-std::string kernel_isa_report() { return kernel_choice().report; }
-
-std::string kernel_isa_warning() { return kernel_choice().warning; }
-
 void absorb_into_triangle(VectorIsa isa, Eigen::Ref<Eigen::MatrixXd> R, Eigen::Ref<Eigen::MatrixXd> C) {
   const Index k = R.cols();
   if (R.rows() != k || C.cols() != k) {
@@ -164,3 +162,11 @@ void absorb_into_triangle(Eigen::Ref<Eigen::MatrixXd> R, Eigen::Ref<Eigen::Matri
 }
 
 }  // namespace spdfit::detail
+
+namespace spdfit {
+
+std::string kernel_isa_report() { return detail::kernel_choice().report; }
+
+std::string kernel_isa_warning() { return detail::kernel_choice().warning; }
+
+}  // namespace spdfit

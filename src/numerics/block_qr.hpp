@@ -30,13 +30,8 @@ inline constexpr const char* kKernelsVariable = "SPDFIT_KERNELS";
 /// The instruction set the kernels run on: cpu_vector_isa(), narrowed by SPDFIT_KERNELS.
 VectorIsa kernel_isa();
 
-/// For --verbose: "AVX-512 (the CPU's widest)", "baseline (SPDFIT_KERNELS=baseline)", and a
-/// note when SPDFIT_KERNELS is set to a value that is not taken.
-std::string kernel_isa_report();
-
-/// Empty, or what to warn about when SPDFIT_KERNELS is set to a value that is not taken (an
-/// unknown name, or a set this CPU lacks): the command line warns even without --verbose.
-std::string kernel_isa_warning();
+// kernel_isa_report() and kernel_isa_warning(), which say what kernel_isa() chose, are public
+// (spdfit/blas.hpp).
 
 /// The rows of C the block QR folds into R at a time, for k columns: a multiple of it, given to
 /// absorb_into_triangle call by call, gives the same bits as all the rows in one call.

@@ -51,8 +51,8 @@ FitResult fit_streamed_bootstrap(Method method, const FitOptions& options, const
                               std::to_string(factors.groups) + " groups of " +
                               std::to_string(detail::kBootstrapGroupRows) + " (about " +
                               std::to_string(detail::kBootstrapMinGroups) +
-                              " or more are needed for its standard errors to be reliable): without --stream, the "
-                              "in-memory bootstrap resamples single rows");
+                              " or more are needed for its standard errors to be reliable): the in-memory bootstrap "
+                              "(without `stream`) resamples single rows");
   }
   return result;
 }

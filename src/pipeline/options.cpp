@@ -64,12 +64,16 @@ std::string camel_case(std::string_view name) {
 }
 
 std::string spell_option(std::string_view name, Frontend frontend) {
-  if (frontend == Frontend::kLibrary) return std::string(name);
-  const bool known = find_option(fit_option_table(), name) || find_option(nearest_option_table(), name);
-  if (frontend == Frontend::kMatlab) return known ? camel_case(name) : std::string(name);
+  if (frontend == Frontend::kLibrary || (frontend == Frontend::kPython && name.empty())) return std::string(name);
+  if (frontend == Frontend::kMatlab) return camel_case(name);
   if (auto spelled = spelling_in(fit_option_table(), name, frontend)) return *spelled;
   if (auto spelled = spelling_in(nearest_option_table(), name, frontend)) return *spelled;
-  return std::string(name);
+  // An option of no table (the linkage's alpha and beta) follows the convention the tables keep:
+  // "--max-iter" on the command line, the name in Python.
+  if (frontend == Frontend::kPython) return std::string(name);
+  std::string cli = "--";
+  for (char c : name) cli += c == '_' ? '-' : c;
+  return cli;
 }
 
 std::string spell_options(std::string_view message, Frontend frontend) {

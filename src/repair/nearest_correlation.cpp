@@ -420,8 +420,7 @@ NearestResult nearest_correlation(const Eigen::Ref<const MatrixXd>& C, const Nea
                                 detail::format_number(prepared.S.diagonal().minCoeff()) + " to " +
                                 detail::format_number(prepared.S.diagonal().maxCoeff()) +
                                 "): it was repaired to a correlation matrix (unit diagonal); to keep a covariance's variances "
-                                "instead, repair it with its diagonal kept (spdfit nearest --keep-diag or --via-corr; "
-                                "Python keep_diag=True or via_corr=True)");
+                                "instead, repair it with its diagonal kept (`keep_diag` or `via_corr`)");
   }
   FixedDiagonalProblem p{std::move(prepared.S), VectorXd::Ones(n), prepared.w, floor};
   return repair(kName, C, p, prepared, options);

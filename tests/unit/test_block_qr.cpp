@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "numerics/block_qr.hpp"
+#include "spdfit/blas.hpp"
 #include "numerics/linalg.hpp"
 #include "spdfit/triangular_factor.hpp"
 
@@ -144,7 +145,7 @@ TEST(BlockQr, TriangularFactorUsesItAndStaysAccurate) {
 }
 
 TEST(BlockQr, KernelChoiceIsReported) {
-  const std::string report = spdfit::detail::kernel_isa_report();
+  const std::string report = spdfit::kernel_isa_report();
   EXPECT_NE(report.find(spdfit::detail::vector_isa_name(spdfit::detail::kernel_isa())), std::string::npos);
   EXPECT_LE(spdfit::detail::kernel_isa(), spdfit::detail::cpu_vector_isa());
 }

@@ -112,13 +112,12 @@ TEST(OptionTable, CombinationRules) {
 }
 
 TEST(OptionSpelling, EachFrontEndHasItsOwn) {
-  const std::string message = "`max_iterations` must be at least 1; see `block_rows` and `not_an_option`";
-  EXPECT_EQ(spell_options(message, Frontend::kCli), "--max-iter must be at least 1; see --block-rows and not_an_option");
-  EXPECT_EQ(spell_options(message, Frontend::kPython), "max_iter must be at least 1; see block_rows and not_an_option");
-  EXPECT_EQ(spell_options(message, Frontend::kMatlab),
-            "MaxIterations must be at least 1; see BlockRows and not_an_option");
+  const std::string message = "`max_iterations` must be at least 1; see `block_rows` and `dial_zero`";
+  EXPECT_EQ(spell_options(message, Frontend::kCli), "--max-iter must be at least 1; see --block-rows and --dial-zero");
+  EXPECT_EQ(spell_options(message, Frontend::kPython), "max_iter must be at least 1; see block_rows and dial_zero");
+  EXPECT_EQ(spell_options(message, Frontend::kMatlab), "MaxIterations must be at least 1; see BlockRows and DialZero");
   EXPECT_EQ(spell_options(message, Frontend::kLibrary),
-            "max_iterations must be at least 1; see block_rows and not_an_option");
+            "max_iterations must be at least 1; see block_rows and dial_zero");
   EXPECT_EQ(spell_options("a lone ` stays", Frontend::kCli), "a lone ` stays");
   EXPECT_EQ(spell_option("tolerance", Frontend::kCli), "--tol");
   EXPECT_EQ(camel_case("min_eig_rel"), "MinEigRel");
