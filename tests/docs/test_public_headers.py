@@ -35,3 +35,19 @@ def test_parsers_on_bytes_are_internal():
     io = (INCLUDE / "spdfit" / "io.hpp").read_text()
     for name in ("parse_table", "parse_delimited", "parse_npy", "fewer_samples_than_columns"):
         assert name not in io
+
+
+def test_front_ends_include_only_public_headers():
+    """The command line and the Python module use the library as any program would: their
+    includes of the library are spdfit/*.hpp (their own headers sit beside them). The build
+    enforces it too (src/ is not on their include path); this names the file that breaks it."""
+    internal_folders = {p.name for p in (ROOT / "src").iterdir() if p.is_dir()}
+    offenders = []
+    for folder in ("apps", "python"):
+        for source in sorted((ROOT / folder).rglob("*.[ch]pp")):
+            for included in re.findall(r'#include "([^"]+)"', source.read_text()):
+                first = included.split("/")[0]
+                if first in internal_folders or first in ("src", "..") and "spdfit/" not in included:
+                    if not (source.parent / included).exists():
+                        offenders.append(f"{source.relative_to(ROOT)}: {included}")
+    assert not offenders, offenders
