@@ -82,9 +82,9 @@ void BM_EigenHouseholder(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK_CAPTURE(BM_BlockQr, baseline, VectorIsa::kBaseline)->Arg(12)->Arg(40)->Arg(100)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_BlockQr, avx2, VectorIsa::kAvx2)->Arg(12)->Arg(40)->Arg(100)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_BlockQr, avx512, VectorIsa::kAvx512)->Arg(12)->Arg(40)->Arg(100)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BlockQr, baseline, VectorIsa::Baseline)->Arg(12)->Arg(40)->Arg(100)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BlockQr, avx2, VectorIsa::Avx2)->Arg(12)->Arg(40)->Arg(100)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BlockQr, avx512, VectorIsa::Avx512)->Arg(12)->Arg(40)->Arg(100)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Dgeqrf)->Arg(12)->Arg(40)->Arg(100)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EigenHouseholder)->Arg(12)->Arg(40)->Arg(100)->Unit(benchmark::kMillisecond);
 

@@ -138,7 +138,7 @@ std::string section_thesis(const std::vector<ThesisExperimentResult>& results, s
       << " times each; mean error (standard error below)\n\n";
   std::snprintf(line, sizeof line, "%-4s %6s", "exp", "V");
   out << line;
-  for (Method method : kSeedMethods) {
+  for (Method method : kSourceDocumentMethods) {
     std::snprintf(line, sizeof line, " %10s", std::string(to_string(method)).c_str());
     out << line;
   }
@@ -148,7 +148,7 @@ std::string section_thesis(const std::vector<ThesisExperimentResult>& results, s
     std::snprintf(line, sizeof line, "%-4d %6.3f", experiment::kThesisReportedRuns[i].experiment,
                   r.options.simulation.noise_var);
     std::string means = line, errors(means.size(), ' ');
-    for (Method method : kSeedMethods) {
+    for (Method method : kSourceDocumentMethods) {
       const experiment::Summary& s = r.of(method).summary;
       std::snprintf(line, sizeof line, " %10s", fixed(s.mean, 3).c_str());
       means += line;

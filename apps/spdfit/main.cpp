@@ -18,7 +18,7 @@
 namespace spdfit::cli {
 
 void warn(const GlobalOptions& global, const std::string& message) {
-  if (!global.quiet) std::cerr << "spdfit: warning: " << spell_options(message, Frontend::kCli) << '\n';
+  if (!global.quiet) std::cerr << "spdfit: warning: " << spell_options(message, Frontend::Cli) << '\n';
 }
 
 }  // namespace spdfit::cli
@@ -64,12 +64,12 @@ int main(int argc, char** argv) {
   // added below, inherit this and pass an option they do not know on to the top level.
   app.fallthrough();
   auto* index_col = app.add_flag_callback(
-      "--index-col", [&global] { global.read.index_column = spdfit::io::IndexColumn::kDrop; },
+      "--index-col", [&global] { global.read.index_column = spdfit::io::IndexColumn::Drop; },
       "The first column of each data file holds row labels (an index, as pandas' to_csv and R's write.csv "
       "write one): drop it. Without this, a header whose first cell is empty says so, and a first column "
       "0, 1, 2, ... is refused");
   auto* no_index_col = app.add_flag_callback(
-      "--no-index-col", [&global] { global.read.index_column = spdfit::io::IndexColumn::kKeep; },
+      "--no-index-col", [&global] { global.read.index_column = spdfit::io::IndexColumn::Keep; },
       "The first column of each data file is data, whatever its header or values");
   index_col->excludes(no_index_col);
 
@@ -132,10 +132,10 @@ int main(int argc, char** argv) {
     std::cerr << "spdfit: error: " << e.what() << '\n';
     return kExitDataError;
   } catch (const DataFailure& e) {
-    std::cerr << "spdfit: error: " << spdfit::spell_options(e.what(), spdfit::Frontend::kCli) << '\n';
+    std::cerr << "spdfit: error: " << spdfit::spell_options(e.what(), spdfit::Frontend::Cli) << '\n';
     return kExitDataError;
   } catch (const std::invalid_argument& e) {
-    std::cerr << "spdfit: error: " << spdfit::spell_options(e.what(), spdfit::Frontend::kCli) << '\n';
+    std::cerr << "spdfit: error: " << spdfit::spell_options(e.what(), spdfit::Frontend::Cli) << '\n';
     return kExitDataError;
   } catch (const std::exception& e) {
     std::cerr << "spdfit: error: " << e.what() << '\n';

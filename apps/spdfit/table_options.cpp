@@ -52,19 +52,19 @@ CLI::Validator range_validator(const NumberRange& range, bool integer) {
 }
 
 std::string cli_help(std::string_view help, std::string_view default_text) {
-  std::string text = spell_options(help, Frontend::kCli);
+  std::string text = spell_options(help, Frontend::Cli);
   if (!default_text.empty()) text += " (default " + std::string(default_text) + ")";
   return text;
 }
 
-void throw_usage(const std::exception& error) { throw UsageError(spell_options(error.what(), Frontend::kCli)); }
+void throw_usage(const std::exception& error) { throw UsageError(spell_options(error.what(), Frontend::Cli)); }
 
 OptionValue parse_option_text(OptionType type, std::string_view spelling, const std::string& text) {
   switch (type) {
-    case OptionType::kInteger:
+    case OptionType::Integer:
       if (const auto value = integer_of(text)) return *value;
       break;
-    case OptionType::kReal:
+    case OptionType::Real:
       try {
         std::size_t used = 0;
         const double value = std::stod(text, &used);
@@ -72,7 +72,7 @@ OptionValue parse_option_text(OptionType type, std::string_view spelling, const 
       } catch (const std::exception&) {
       }
       break;
-    case OptionType::kRealList: {
+    case OptionType::RealList: {
       std::vector<double> values;
       std::size_t start = 0;
       bool ok = !text.empty();
@@ -96,7 +96,7 @@ OptionValue parse_option_text(OptionType type, std::string_view spelling, const 
       return text;
   }
   throw UsageError(std::string(spelling) + ": '" + text + "' is not " +
-                   (type == OptionType::kInteger ? "an integer" : "a number"));
+                   (type == OptionType::Integer ? "an integer" : "a number"));
 }
 
 }  // namespace spdfit::cli

@@ -45,13 +45,13 @@ class TableOptions {
       auto entry = std::make_unique<Entry>();
       entry->spec = &spec;
       const std::string help = cli_help(spec.help, spec.default_text);
-      if (spec.type == OptionType::kFlag || spec.type == OptionType::kBoolean) {
+      if (spec.type == OptionType::Flag || spec.type == OptionType::Boolean) {
         entry->option = sub.add_flag(std::string(spec.cli), entry->flag, help);
       } else {
         entry->option = sub.add_option(std::string(spec.cli), entry->text, help);
         if (!spec.value_name.empty()) entry->option->type_name(std::string(spec.value_name));
-        if (spec.type == OptionType::kInteger || spec.type == OptionType::kReal) {
-          entry->option->check(range_validator(spec.range, spec.type == OptionType::kInteger));
+        if (spec.type == OptionType::Integer || spec.type == OptionType::Real) {
+          entry->option->check(range_validator(spec.range, spec.type == OptionType::Integer));
         }
       }
       entries_.push_back(std::move(entry));
@@ -124,8 +124,8 @@ OptionValue parse_option_text(OptionType type, std::string_view spelling, const 
 template <typename Request>
 OptionValue TableOptions<Request>::value_of(const Entry& entry, const VectorReader& read_vector) {
   const OptionSpec<Request>& spec = *entry.spec;
-  if (spec.type == OptionType::kFlag || spec.type == OptionType::kBoolean) return entry.flag;
-  if (spec.type == OptionType::kVector) return read_vector(entry.text);
+  if (spec.type == OptionType::Flag || spec.type == OptionType::Boolean) return entry.flag;
+  if (spec.type == OptionType::Vector) return read_vector(entry.text);
   return parse_option_text(spec.type, spec.cli, entry.text);
 }
 

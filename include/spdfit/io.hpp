@@ -38,15 +38,20 @@ enum class IndexColumn {
   /// column that is exactly 0, 1, 2, ... (row numbers: at least 3 rows and 2 columns, decided on
   /// the first piece of text read) is refused with a DataError, since fitting it as data is
   /// never what was meant. Otherwise the first column is data.
-  kAuto,
-  kDrop,  ///< the first column holds row labels (text or numbers): dropped, never parsed
-  kKeep,  ///< the first column is data, whatever its header or values
+  Auto,
+  Drop,  ///< the first column holds row labels (text or numbers): dropped, never parsed
+  Keep,  ///< the first column is data, whatever its header or values
+  // The names before spdfit's enumerators took one style (docs/changes.md); removed in the next
+  // release.
+  kAuto [[deprecated("use IndexColumn::Auto")]] = Auto,
+  kDrop [[deprecated("use IndexColumn::Drop")]] = Drop,
+  kKeep [[deprecated("use IndexColumn::Keep")]] = Keep,
 };
 
 /// Options for reading.
 struct ReadOptions {
   bool allow_nonfinite = false;  ///< NaN and Inf are rejected unless this is set
-  IndexColumn index_column = IndexColumn::kAuto;  ///< delimited text only (.npy has no labels)
+  IndexColumn index_column = IndexColumn::Auto;  ///< delimited text only (.npy has no labels)
 };
 
 /// A matrix with the column names of its header row (empty when the file had none).

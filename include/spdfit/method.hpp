@@ -22,7 +22,7 @@ enum class Method {
 };
 
 /// The six estimators of the source documents (the thesis' comparison), in report order.
-inline constexpr std::array<Method, 6> kSeedMethods = {
+inline constexpr std::array<Method, 6> kSourceDocumentMethods = {
     Method::LeastSquares,         Method::SymmetricProcrustes,
     Method::TotalLeastSquares,    Method::TotalLeastSquaresSymmetric,
     Method::TotalLeastSquaresPsd, Method::Spde};
@@ -40,7 +40,12 @@ constexpr std::array<Method, N + K> append(const std::array<Method, N>& head, co
 /// Every estimator, in the order reports list them: the seed methods, then spd-tls and psd-ls
 /// (auto, which runs one of them, is not listed).
 inline constexpr std::array<Method, 8> kAllMethods =
-    detail::append(kSeedMethods, std::array<Method, 2>{Method::SpdTotalLeastSquares, Method::PsdLeastSquares});
+    detail::append(kSourceDocumentMethods, std::array<Method, 2>{Method::SpdTotalLeastSquares, Method::PsdLeastSquares});
+
+/// The old name of kSourceDocumentMethods, which read as if it had to do with FitOptions::seed;
+/// removed in the next release.
+[[deprecated("use kSourceDocumentMethods")]] inline constexpr const std::array<Method, 6>& kSeedMethods =
+    kSourceDocumentMethods;
 
 /// Every value a method option accepts: the estimators, then auto.
 inline constexpr std::array<Method, 9> kSelectableMethods =

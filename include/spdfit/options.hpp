@@ -19,17 +19,17 @@ namespace spdfit {
 /// The front ends, each of which spells an option its own way: the library by its name
 /// (`max_iterations`), the command line as "--max-iter", Python as max_iter, MATLAB as
 /// 'MaxIterations' (the library name in CamelCase).
-enum class Frontend { kLibrary, kCli, kPython, kMatlab };
+enum class Frontend { Library, Cli, Python, Matlab };
 
 /// An option's type, which decides how a front end reads a value.
 enum class OptionType {
-  kFlag,     ///< true when given (the command line's flag without a value; Python and MATLAB: a bool)
-  kBoolean,  ///< a bool value
-  kInteger,  ///< an integer within the option's range
-  kReal,     ///< a finite real number within the option's range
-  kText,     ///< a string (a file name)
-  kRealList, ///< real numbers: one, or one per column (the command line: comma-separated)
-  kVector,   ///< n real numbers (the command line reads them from a file: one column or one row)
+  Flag,     ///< true when given (the command line's flag without a value; Python and MATLAB: a bool)
+  Boolean,  ///< a bool value
+  Integer,  ///< an integer within the option's range
+  Real,     ///< a finite real number within the option's range
+  Text,     ///< a string (a file name)
+  RealList, ///< real numbers: one, or one per column (the command line: comma-separated)
+  Vector,   ///< n real numbers (the command line reads them from a file: one column or one row)
 };
 
 /// The values an option can take, as a front end hands them over.
@@ -62,7 +62,7 @@ struct OptionSpec {
   std::string_view name;    ///< the library's name: the field it sets, snake_case
   std::string_view cli;     ///< the command line's spelling ("--rank-tol"); empty: not offered there
   std::string_view python;  ///< Python's keyword ("rank_tolerance"); empty: not offered there
-  OptionType type = OptionType::kReal;
+  OptionType type = OptionType::Real;
   std::string_view value_name;  ///< the placeholder in usage text ("N", "NUMBER", "FILE")
   /// What it does, for the command line's help, Python's docstrings and MATLAB's help; other
   /// options named by their library names in backticks.
@@ -127,17 +127,17 @@ OptionValue checked_value(const OptionSpec<Request>& spec, OptionValue value) {
     throw OptionError("`" + std::string(spec.name) + "` must be " + expected + ", got " + value_text(value));
   };
   switch (spec.type) {
-    case OptionType::kFlag:
-    case OptionType::kBoolean:
+    case OptionType::Flag:
+    case OptionType::Boolean:
       if (!std::holds_alternative<bool>(value)) wrong("true or false");
       break;
-    case OptionType::kInteger:
+    case OptionType::Integer:
       if (!std::holds_alternative<std::int64_t>(value)) wrong("an integer");
       if (!spec.range.contains(static_cast<double>(std::get<std::int64_t>(value)))) {
         wrong("an " + spec.range.describe(true));
       }
       break;
-    case OptionType::kReal: {
+    case OptionType::Real: {
       if (std::holds_alternative<std::int64_t>(value)) value = static_cast<double>(std::get<std::int64_t>(value));
       if (!std::holds_alternative<double>(value)) wrong("a real number");
       const double v = std::get<double>(value);
@@ -146,11 +146,11 @@ OptionValue checked_value(const OptionSpec<Request>& spec, OptionValue value) {
       }
       break;
     }
-    case OptionType::kText:
+    case OptionType::Text:
       if (!std::holds_alternative<std::string>(value)) wrong("text");
       break;
-    case OptionType::kRealList:
-    case OptionType::kVector:
+    case OptionType::RealList:
+    case OptionType::Vector:
       if (!std::holds_alternative<std::vector<double>>(value)) wrong("a list of real numbers");
       break;
   }

@@ -27,8 +27,8 @@ auto stream_read_field() {
   return state_field(
       [](const StreamOptions& o) {
         const io::IndexColumn index = o.read.index_column;
-        const py::object index_col = index == io::IndexColumn::kAuto ? py::object(py::none())
-                                                                     : py::bool_(index == io::IndexColumn::kDrop);
+        const py::object index_col = index == io::IndexColumn::Auto ? py::object(py::none())
+                                                                     : py::bool_(index == io::IndexColumn::Drop);
         return py::make_tuple(o.read.allow_nonfinite, index_col);
       },
       [](StreamOptions& o, const py::object& value) {
@@ -36,8 +36,8 @@ auto stream_read_field() {
         check_state(read, 2, "StreamOptions' read options");
         o.read.allow_nonfinite = read[0].cast<bool>();
         const auto index_col = read[1].cast<std::optional<bool>>();
-        o.read.index_column = !index_col ? io::IndexColumn::kAuto : *index_col ? io::IndexColumn::kDrop
-                                                                               : io::IndexColumn::kKeep;
+        o.read.index_column = !index_col ? io::IndexColumn::Auto : *index_col ? io::IndexColumn::Drop
+                                                                               : io::IndexColumn::Keep;
       });
 }
 
@@ -52,7 +52,7 @@ void bind_estimators(py::module_& m) {
   // through the library's option tables (keywords.hpp).
   m.attr("KEYWORDS") = keyword_table();
   m.def(
-      "spell_options", [](const std::string& message) { return spell_options(message, Frontend::kPython); },
+      "spell_options", [](const std::string& message) { return spell_options(message, Frontend::Python); },
       py::arg("message"), "A library message (a warning) with its options named as Python names them.");
   m.def(
       "fit",

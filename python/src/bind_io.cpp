@@ -28,7 +28,7 @@ void bind_io(py::module_& m) {
       [](const std::string& path, bool allow_nonfinite, std::optional<bool> index_col) {
         io::ReadOptions options;
         options.allow_nonfinite = allow_nonfinite;
-        if (index_col) options.index_column = *index_col ? io::IndexColumn::kDrop : io::IndexColumn::kKeep;
+        if (index_col) options.index_column = *index_col ? io::IndexColumn::Drop : io::IndexColumn::Keep;
         io::Table table;
         {
           py::gil_scoped_release release;

@@ -28,7 +28,7 @@ std::vector<Keyword> keywords_of(const std::vector<OptionSpec<Request>>& table, 
     if (!reachable) continue;
     std::optional<OptionValue> default_value;
     if (!spec.nullable && spec.get) default_value = spec.get(Request{});
-    out.push_back({spec.name, spec.python, spec.type, spell_options(spec.help, Frontend::kPython), spec.default_text,
+    out.push_back({spec.name, spec.python, spec.type, spell_options(spec.help, Frontend::Python), spec.default_text,
                    std::move(default_value), spec.nullable});
   }
   return out;
@@ -76,23 +76,23 @@ std::vector<Keyword> keywords(std::string_view name) {
 std::string annotation(const Keyword& keyword) {
   std::string type;
   switch (keyword.type) {
-    case OptionType::kFlag:
-    case OptionType::kBoolean:
+    case OptionType::Flag:
+    case OptionType::Boolean:
       type = "bool";
       break;
-    case OptionType::kInteger:
+    case OptionType::Integer:
       type = "int";
       break;
-    case OptionType::kReal:
+    case OptionType::Real:
       type = "float";
       break;
-    case OptionType::kText:
+    case OptionType::Text:
       type = "str";
       break;
-    case OptionType::kRealList:
+    case OptionType::RealList:
       type = "Union[float, Sequence[float]]";
       break;
-    case OptionType::kVector:
+    case OptionType::Vector:
       type = "npt.ArrayLike";
       break;
   }

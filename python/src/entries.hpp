@@ -17,7 +17,7 @@ namespace spdfit::python {
 struct Keyword {
   std::string_view name;     ///< the library's name
   std::string_view python;   ///< the keyword
-  OptionType type = OptionType::kReal;
+  OptionType type = OptionType::Real;
   std::string help;          ///< the table's help, options spelled for Python
   std::string_view default_text;
   /// The default the signature shows: None for a nullable option (None stands for the library's

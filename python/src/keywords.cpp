@@ -25,18 +25,18 @@ bool is_instance(const py::handle& value, const char* abc) {
 
 const char* type_text(OptionType type) {
   switch (type) {
-    case OptionType::kFlag:
-    case OptionType::kBoolean:
+    case OptionType::Flag:
+    case OptionType::Boolean:
       return "bool";
-    case OptionType::kInteger:
+    case OptionType::Integer:
       return "int";
-    case OptionType::kReal:
+    case OptionType::Real:
       return "float";
-    case OptionType::kText:
+    case OptionType::Text:
       return "str";
-    case OptionType::kRealList:
+    case OptionType::RealList:
       return "float or sequence of float";
-    case OptionType::kVector:
+    case OptionType::Vector:
       return "array_like";
   }
   return "object";
@@ -73,7 +73,7 @@ Request request_from(const std::vector<OptionSpec<Request>>& table, const Entry&
     const OptionValue checked = keyword_value(*keyword, value);
     set_option(request, *find_option(table, keyword->name), checked);
     // A flag set to False is not given (keep_diag=False is every repair's default).
-    if (keyword->type == OptionType::kFlag && !std::get<bool>(checked)) continue;
+    if (keyword->type == OptionType::Flag && !std::get<bool>(checked)) continue;
     given.push_back(keyword->name);
   }
   for (std::string_view implied : entry.implied) {
@@ -87,11 +87,11 @@ Request request_from(const std::vector<OptionSpec<Request>>& table, const Entry&
 
 OptionValue keyword_value(const Keyword& keyword, const py::handle& value) {
   switch (keyword.type) {
-    case OptionType::kFlag:
-    case OptionType::kBoolean:
+    case OptionType::Flag:
+    case OptionType::Boolean:
       if (!py::isinstance<py::bool_>(value) && type_name(value) != "bool_") wrong_type(keyword, "a bool", value);
       return value.cast<bool>();
-    case OptionType::kInteger:
+    case OptionType::Integer:
       if (py::isinstance<py::bool_>(value) || type_name(value) == "bool_" || !is_instance(value, "Integral")) {
         wrong_type(keyword, "an int", value);
       }
@@ -101,20 +101,20 @@ OptionValue keyword_value(const Keyword& keyword, const py::handle& value) {
         throw OptionError("`" + std::string(keyword.name) + "` must be an integer that fits in 64 bits, got " +
                           std::string(py::str(value)));
       }
-    case OptionType::kReal:
+    case OptionType::Real:
       if (py::isinstance<py::bool_>(value) || type_name(value) == "bool_" || !is_instance(value, "Real")) {
         wrong_type(keyword, "a real number", value);
       }
       return py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
-    case OptionType::kText:
+    case OptionType::Text:
       if (!py::isinstance<py::str>(value)) wrong_type(keyword, "a str", value);
       return value.cast<std::string>();
-    case OptionType::kRealList:
+    case OptionType::RealList:
       if (is_instance(value, "Real") && !py::isinstance<py::bool_>(value)) {
         return std::vector<double>{py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>()};
       }
       return real_vector(keyword, value);
-    case OptionType::kVector:
+    case OptionType::Vector:
       return real_vector(keyword, value);
   }
   wrong_type(keyword, "a value", value);

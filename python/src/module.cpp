@@ -26,7 +26,7 @@ PYBIND11_MODULE(_spdfit, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const std::invalid_argument& e) {
-      PyErr_SetString(PyExc_ValueError, spdfit::spell_options(e.what(), spdfit::Frontend::kPython).c_str());
+      PyErr_SetString(PyExc_ValueError, spdfit::spell_options(e.what(), spdfit::Frontend::Python).c_str());
     }
   });
 }

@@ -564,23 +564,23 @@ Table read_npz(const std::string& file, const std::string& variable, const ReadO
 }
 
 NamedArrays named_arrays_kind(const FileSpec& spec) {
-  if (spec.file == "-") return NamedArrays::kNone;
+  if (spec.file == "-") return NamedArrays::None;
   const std::string head = first_bytes(spec.file, 128);
-  if (is_mat(head)) return is_level5(head) ? NamedArrays::kMat : NamedArrays::kMat73;
+  if (is_mat(head)) return is_level5(head) ? NamedArrays::Mat : NamedArrays::Mat73;
   // A ZIP archive with .npy entries, or one named .npz (so that a damaged or empty one is called
   // that, not a spreadsheet saved in the wrong format, as text_scan says of other ZIP files).
-  if (is_zip(head) && (named_npz(spec.file) || holds_npy(spec.file))) return NamedArrays::kNpz;
-  return NamedArrays::kNone;
+  if (is_zip(head) && (named_npz(spec.file) || holds_npy(spec.file))) return NamedArrays::Npz;
+  return NamedArrays::None;
 }
 
 std::optional<Table> read_named_arrays(const FileSpec& spec, const ReadOptions& options) {
   switch (named_arrays_kind(spec)) {
-    case NamedArrays::kMat:
-    case NamedArrays::kMat73:
+    case NamedArrays::Mat:
+    case NamedArrays::Mat73:
       return read_mat(spec.file, spec.variable, options);
-    case NamedArrays::kNpz:
+    case NamedArrays::Npz:
       return read_npz(spec.file, spec.variable, options);
-    case NamedArrays::kNone:
+    case NamedArrays::None:
       break;
   }
   return std::nullopt;

@@ -61,7 +61,7 @@ Table read_npz(const std::string& file, const std::string& variable, const ReadO
 
 /// Which files hold named arrays, decided by their first bytes (a .npz is a zip archive of .npy
 /// files): the one place that decides it, for read_named_arrays and for splitting files.
-enum class NamedArrays { kNone, kMat, kMat73, kNpz };
+enum class NamedArrays { None, Mat, Mat73, Npz };
 NamedArrays named_arrays_kind(const FileSpec& spec);
 
 /// The table of a .mat or .npz file (read_mat, read_npz), decided by named_arrays_kind; nothing

@@ -72,7 +72,7 @@ void DelimitedParser::feed(std::string_view text) {
 void DelimitedParser::decide_index_column() {
   if (index_decided_ || rows_ < kIndexDecisionRows) return;
   index_decided_ = true;
-  if (options_.index_column != IndexColumn::kAuto || drop_first_ || columns_ < 2 || !first_column_counts_rows_) {
+  if (options_.index_column != IndexColumn::Auto || drop_first_ || columns_ < 2 || !first_column_counts_rows_) {
     return;
   }
   throw DataError(source_, first_data_line_, 1,
@@ -89,7 +89,7 @@ void DelimitedParser::parse_line(const Line& line) {
     separator_line_ = line.number;
     // pandas' to_csv and R's write.csv leave the index column's header cell empty; their
     // column names may be numbers (pandas' default names 0, 1, ...), and the line is still a header.
-    const bool index_mark = options_.index_column == IndexColumn::kAuto && header_first_cell_empty(line);
+    const bool index_mark = options_.index_column == IndexColumn::Auto && header_first_cell_empty(line);
     if (index_mark || is_header(line, separator_)) {
       keep_header(line);
       if (index_mark) {
@@ -187,13 +187,13 @@ bool DelimitedParser::next_line(Line* line) {
 
 bool DelimitedParser::next_field(const Line& line, FieldSplitter* splitter, Field* field) const {
   switch (splitter->next(field)) {
-    case SplitStatus::kField:
+    case SplitStatus::Field:
       return true;
-    case SplitStatus::kEnd:
+    case SplitStatus::End:
       return false;
-    case SplitStatus::kMissingClosingQuote:
+    case SplitStatus::MissingClosingQuote:
       fail(line, field->offset, "missing closing quote");
-    case SplitStatus::kTextAfterClosingQuote:
+    case SplitStatus::TextAfterClosingQuote:
       fail(line, field->offset, "unexpected text after closing quote");
   }
   return false;
@@ -210,7 +210,7 @@ bool DelimitedParser::is_header(const Line& line, Separator separator) const {
     if (field.quoted) {
       any_name = true;
     } else if (!field.text.empty()) {
-      if (parse_number(field.text).kind != NumberKind::kNotANumber) return false;
+      if (parse_number(field.text).kind != NumberKind::NotANumber) return false;
       any_name = true;
     }
   }
@@ -219,7 +219,7 @@ bool DelimitedParser::is_header(const Line& line, Separator separator) const {
 
 // ",Fx,Fy" or R's "","x1": two or more cells, the first empty (quoted or not), the others not.
 bool DelimitedParser::header_first_cell_empty(const Line& line) const {
-  if (separator_ == Separator::kNone || separator_ == Separator::kSpaces) return false;  // runs of spaces: no empty cells
+  if (separator_ == Separator::None || separator_ == Separator::Spaces) return false;  // runs of spaces: no empty cells
   FieldSplitter splitter(line.content, separator_);
   Field field;
   std::size_t count = 0;
@@ -239,8 +239,8 @@ bool DelimitedParser::header_first_cell_empty(const Line& line) const {
 // "Force (N)") and the first data line may be a single number; otherwise the two must agree.
 void DelimitedParser::choose_separator_after_header(const Line& data) {
   const Separator from_data = detect_separator(data.content);
-  if (from_data == Separator::kNone || from_data == separator_) return;
-  if (separator_ == Separator::kNone) {
+  if (from_data == Separator::None || from_data == separator_) return;
+  if (separator_ == Separator::None) {
     separator_ = from_data;
     separator_line_ = data.number;
     return;
@@ -263,7 +263,7 @@ std::vector<std::string> DelimitedParser::header_names(std::size_t data_fields) 
   if (drop_first_ && !names.empty()) names.erase(names.begin());
   // A single column of numbers under a header with spaces ("Force (N)"): the spaces belong to
   // the name, since there are no other columns for them to separate.
-  const bool by_spaces = separator_ == Separator::kSpaces || separator_ == Separator::kNone;
+  const bool by_spaces = separator_ == Separator::Spaces || separator_ == Separator::None;
   if (by_spaces && data_fields == 1 && !any_quoted && names.size() > 1) {
     names.assign(1, std::string(header.content));
   }
@@ -289,7 +289,7 @@ std::size_t DelimitedParser::parse_row(const Line& line) {
     if (field.quoted) {
       unquoted = unquote(field);
       value.text = trimmed(unquoted);
-      if (!value.text.empty() && parse_number(value.text).kind == NumberKind::kNotANumber) {
+      if (!value.text.empty() && parse_number(value.text).kind == NumberKind::NotANumber) {
         const std::string_view quoted = line.content.substr(field.offset, field.text.size() + 2);
         fail(line, field.offset, quote_token(quoted) + " is quoted text, not a number");
       }
@@ -305,31 +305,31 @@ double DelimitedParser::parse_value(const Line& line, const Field& field) const 
   const ParsedNumber number = parse_number(field.text);
   const bool negative = number.value < 0;
   switch (number.kind) {
-    case NumberKind::kFinite:
+    case NumberKind::Finite:
       return number.value;
-    case NumberKind::kNaN:
+    case NumberKind::NaN:
       if (!options_.allow_nonfinite) fail(line, field.offset, "NaN is not allowed");
       return number.value;
-    case NumberKind::kInfinity:
+    case NumberKind::Infinity:
       if (!options_.allow_nonfinite) {
         fail(line, field.offset, negative ? "-Inf is not allowed" : "Inf is not allowed");
       }
       return number.value;
-    case NumberKind::kOverflow:
+    case NumberKind::Overflow:
       if (!options_.allow_nonfinite) {
         fail(line, field.offset,
              quote_token(field.text) + " is too large for a double (it would be " +
                  (negative ? "-Inf)" : "Inf)"));
       }
       return number.value;
-    case NumberKind::kNotANumber:
+    case NumberKind::NotANumber:
       break;
   }
   fail_not_a_number(line, field);
 }
 
 void DelimitedParser::fail_empty_field(const Line& line, const Field& field, std::size_t index) const {
-  const bool tab = separator_ == Separator::kTab;
+  const bool tab = separator_ == Separator::Tab;
   const std::string one = tab ? "a tab" : separator_name(separator_);
   if (field.offset >= line.content.size()) {
     fail(line, line.content.size() - 1, "empty field: the line ends with " + one);
@@ -345,16 +345,16 @@ void DelimitedParser::fail_not_a_number(const Line& line, const Field& field) co
   for (std::size_t k = 0; k < t.size(); ++k) {
     const char c = t[k];
     const bool foreign =
-        (c == ';' && separator_ != Separator::kSemicolon) ||
-        (c == ',' && separator_ != Separator::kComma && separator_ != Separator::kSemicolon) ||
-        (c == '\t' && separator_ != Separator::kTab);
+        (c == ';' && separator_ != Separator::Semicolon) ||
+        (c == ',' && separator_ != Separator::Comma && separator_ != Separator::Semicolon) ||
+        (c == '\t' && separator_ != Separator::Tab);
     if (foreign) {
       const std::string found = c == '\t' ? "a tab" : std::string("'") + c + "'";
       fail(line, field.offset + k, "found " + found + " here, but " + separator_origin());
     }
   }
   std::string problem = quote_token(t) + " is not a number";
-  if (separator_ == Separator::kSemicolon && t.find(',') != std::string_view::npos) {
+  if (separator_ == Separator::Semicolon && t.find(',') != std::string_view::npos) {
     problem += " (decimal comma? use '.' for decimals)";
   } else if (t.find(' ') != std::string_view::npos) {
     problem += "; " + separator_origin();
@@ -363,7 +363,7 @@ void DelimitedParser::fail_not_a_number(const Line& line, const Field& field) co
 }
 
 std::string DelimitedParser::separator_origin() const {
-  if (separator_ == Separator::kNone) {
+  if (separator_ == Separator::None) {
     return "line " + std::to_string(separator_line_) + " has a single field";
   }
   return "fields in this file are separated by " + separator_name(separator_) + " (see line " +

@@ -20,12 +20,12 @@ class DelimitedParser {
   static constexpr std::size_t kIndexDecisionRows = 3;
 
   DelimitedParser(std::string source, ReadOptions options)
-      : source_(std::move(source)), options_(options), drop_first_(options.index_column == IndexColumn::kDrop) {}
+      : source_(std::move(source)), options_(options), drop_first_(options.index_column == IndexColumn::Drop) {}
 
   /// What a parser decided on a file's first lines, which every later line is parsed by: the
   /// separator, the header, the number of columns and whether the first is dropped as labels.
   struct Layout {
-    Separator separator = Separator::kNone;
+    Separator separator = Separator::None;
     std::size_t separator_line = 0;
     bool have_header = false;
     std::size_t columns = 0;
@@ -97,7 +97,7 @@ class DelimitedParser {
   std::size_t piece_offset_ = 0;  // where text_ starts in the input
   bool any_text_ = false;
 
-  Separator separator_ = Separator::kNone;
+  Separator separator_ = Separator::None;
   std::size_t separator_line_ = 0;  // the line that decided separator_
   bool seen_content_ = false;
   bool have_header_ = false;

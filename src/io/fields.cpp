@@ -22,14 +22,14 @@ std::size_t find_closing_quote(std::string_view s, std::size_t open) {
 
 std::string separator_name(Separator separator) {
   switch (separator) {
-    case Separator::kSemicolon:
+    case Separator::Semicolon:
       return "';'";
-    case Separator::kComma:
+    case Separator::Comma:
       return "','";
-    case Separator::kTab:
+    case Separator::Tab:
       return "tabs";
-    case Separator::kSpaces:
-    case Separator::kNone:
+    case Separator::Spaces:
+    case Separator::None:
       break;
   }
   return "spaces";
@@ -48,11 +48,11 @@ Separator detect_separator(std::string_view content) {
       space |= c == ' ';
     }
   }
-  if (semicolon) return Separator::kSemicolon;
-  if (comma) return Separator::kComma;
-  if (tab) return Separator::kTab;
-  if (space) return Separator::kSpaces;
-  return Separator::kNone;
+  if (semicolon) return Separator::Semicolon;
+  if (comma) return Separator::Comma;
+  if (tab) return Separator::Tab;
+  if (space) return Separator::Spaces;
+  return Separator::None;
 }
 
 std::string unquote(const Field& field) {
@@ -70,14 +70,14 @@ FieldSplitter::FieldSplitter(std::string_view content, Separator separator)
     : content_(content), separator_(separator), done_(content.empty()) {}
 
 SplitStatus FieldSplitter::next(Field* field) {
-  if (done_) return SplitStatus::kEnd;
-  if (separator_ == Separator::kSpaces || separator_ == Separator::kNone) {
+  if (done_) return SplitStatus::End;
+  if (separator_ == Separator::Spaces || separator_ == Separator::None) {
     return next_space_separated(field);
   }
   const std::string_view s = content_;
   const std::size_t n = s.size();
-  const char separator = separator_ == Separator::kSemicolon ? ';'
-                         : separator_ == Separator::kComma   ? ','
+  const char separator = separator_ == Separator::Semicolon ? ';'
+                         : separator_ == Separator::Comma   ? ','
                                                              : '\t';
   // Blanks around a separator are padding ("1, 2, 3"); a tab is padding unless it separates.
   const auto is_padding = [separator](char c) { return c == ' ' || (c == '\t' && separator != '\t'); };
@@ -88,14 +88,14 @@ SplitStatus FieldSplitter::next(Field* field) {
     const std::size_t close = find_closing_quote(s, i);
     if (close == std::string_view::npos) {
       field->offset = i;
-      return SplitStatus::kMissingClosingQuote;
+      return SplitStatus::MissingClosingQuote;
     }
     *field = {s.substr(i + 1, close - i - 1), i, true};
     end = close + 1;
     while (end < n && is_padding(s[end])) ++end;
     if (end < n && s[end] != separator) {
       field->offset = end;
-      return SplitStatus::kTextAfterClosingQuote;
+      return SplitStatus::TextAfterClosingQuote;
     }
   } else {
     end = s.find(separator, i);
@@ -109,7 +109,7 @@ SplitStatus FieldSplitter::next(Field* field) {
   } else {
     pos_ = end + 1;  // a separator at the very end leaves one more, empty, field
   }
-  return SplitStatus::kField;
+  return SplitStatus::Field;
 }
 
 SplitStatus FieldSplitter::next_space_separated(Field* field) {
@@ -123,13 +123,13 @@ SplitStatus FieldSplitter::next_space_separated(Field* field) {
     const std::size_t close = find_closing_quote(s, i);
     if (close == std::string_view::npos) {
       field->offset = i;
-      return SplitStatus::kMissingClosingQuote;
+      return SplitStatus::MissingClosingQuote;
     }
     *field = {s.substr(i + 1, close - i - 1), i, true};
     end = close + 1;
     if (end < n && s[end] != ' ') {
       field->offset = end;
-      return SplitStatus::kTextAfterClosingQuote;
+      return SplitStatus::TextAfterClosingQuote;
     }
   } else {
     end = s.find(' ', i);
@@ -139,7 +139,7 @@ SplitStatus FieldSplitter::next_space_separated(Field* field) {
   while (end < n && s[end] == ' ') ++end;
   pos_ = end;
   done_ = end >= n;
-  return SplitStatus::kField;
+  return SplitStatus::Field;
 }
 
 }  // namespace spdfit::io::detail

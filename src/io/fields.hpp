@@ -9,7 +9,7 @@ namespace spdfit::io::detail {
 
 /// What separates the fields of a line. kNone: the line holds a single field, so it does not
 /// tell; it is split like kSpaces.
-enum class Separator { kNone, kSemicolon, kComma, kTab, kSpaces };
+enum class Separator { None, Semicolon, Comma, Tab, Spaces };
 
 /// The separator as a plural noun for messages: "';'", "','", "tabs", "spaces".
 std::string separator_name(Separator separator);
@@ -31,7 +31,7 @@ struct Field {
 /// The text of a field with the quoting undone.
 std::string unquote(const Field& field);
 
-enum class SplitStatus { kField, kEnd, kMissingClosingQuote, kTextAfterClosingQuote };
+enum class SplitStatus { Field, End, MissingClosingQuote, TextAfterClosingQuote };
 
 /// Splits a line (without leading or trailing blanks) into fields, one per next() call, without
 /// parsing them. With kComma, kSemicolon and kTab, blanks around a separator are padding and

@@ -18,8 +18,8 @@ namespace {
 
 // A Python literal as written by repr(): all a .npy header dict holds.
 struct PyValue {
-  enum class Kind { kString, kBool, kNone, kInt, kTuple, kList };
-  Kind kind = Kind::kNone;
+  enum class Kind { String, Bool, None, Int, Tuple, List };
+  Kind kind = Kind::None;
   std::string text;            // kString: the contents; kInt: the digits as written
   bool flag = false;           // kBool
   std::uint64_t integer = 0;   // kInt
@@ -42,7 +42,7 @@ class PyLiteralParser {
       skip_space();
       if (peek() == '}') break;
       const PyValue key = parse_value(0);
-      if (key.kind != PyValue::Kind::kString) fail("a key is not a string");
+      if (key.kind != PyValue::Kind::String) fail("a key is not a string");
       skip_space();
       expect(':', "expected ':' after " + quote_token(key.text));
       PyValue value = parse_value(0);
@@ -91,20 +91,20 @@ class PyLiteralParser {
     PyValue value;
     const char c = peek();
     if (c == '\'' || c == '"') {
-      value.kind = PyValue::Kind::kString;
+      value.kind = PyValue::Kind::String;
       value.text = parse_string();
     } else if (c == '(' || c == '[') {
-      value.kind = c == '(' ? PyValue::Kind::kTuple : PyValue::Kind::kList;
+      value.kind = c == '(' ? PyValue::Kind::Tuple : PyValue::Kind::List;
       value.items = parse_sequence(c == '(' ? ')' : ']', depth);
     } else if (c == '-' || (c >= '0' && c <= '9')) {
       parse_integer(&value);
     } else if (consume_word("True")) {
-      value.kind = PyValue::Kind::kBool;
+      value.kind = PyValue::Kind::Bool;
       value.flag = true;
     } else if (consume_word("False")) {
-      value.kind = PyValue::Kind::kBool;
+      value.kind = PyValue::Kind::Bool;
     } else if (consume_word("None")) {
-      value.kind = PyValue::Kind::kNone;
+      value.kind = PyValue::Kind::None;
     } else {
       fail(pos_ < s_.size() ? "unexpected character " + describe(c) : std::string("it ends early"));
     }
@@ -146,7 +146,7 @@ class PyLiteralParser {
 
   // Python 2 wrote long integers with a trailing 'L': old files have shapes like (12L, 6L).
   void parse_integer(PyValue* value) {
-    value->kind = PyValue::Kind::kInt;
+    value->kind = PyValue::Kind::Int;
     if (peek() == '-') {
       value->negative = true;
       ++pos_;
@@ -233,24 +233,24 @@ NpyHeader parse_npy_header(std::string_view bytes, const std::string& source) {
   NpyHeader header;
   header.data_offset = header_start + header_length;
   const PyValue& descr = entry("descr");
-  if (descr.kind == PyValue::Kind::kString) {
+  if (descr.kind == PyValue::Kind::String) {
     header.descr = descr.text;
-  } else if (descr.kind == PyValue::Kind::kList) {
+  } else if (descr.kind == PyValue::Kind::List) {
     header.structured = true;
   } else {
     fail(source, "malformed .npy header: 'descr' is not a string");
   }
   const PyValue& fortran_order = entry("fortran_order");
-  if (fortran_order.kind != PyValue::Kind::kBool) {
+  if (fortran_order.kind != PyValue::Kind::Bool) {
     fail(source, "malformed .npy header: 'fortran_order' is not True or False");
   }
   header.fortran_order = fortran_order.flag;
   const PyValue& shape = entry("shape");
-  if (shape.kind != PyValue::Kind::kTuple) {
+  if (shape.kind != PyValue::Kind::Tuple) {
     fail(source, "malformed .npy header: 'shape' is not a tuple");
   }
   for (const PyValue& dimension : shape.items) {
-    if (dimension.kind != PyValue::Kind::kInt || dimension.negative) {
+    if (dimension.kind != PyValue::Kind::Int || dimension.negative) {
       fail(source, "malformed .npy header: 'shape' holds something other than sizes");
     }
     if (dimension.too_large) fail(source, "shape dimension " + quote_token(dimension.text) + " is too large");

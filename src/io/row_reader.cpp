@@ -371,7 +371,7 @@ RowReader::RowReader(const std::string& path, const ReadOptions& options) {
     return;
   }
   const detail::FileSpec spec = detail::split_spec(path);
-  if (detail::named_arrays_kind(spec) == detail::NamedArrays::kMat73) {
+  if (detail::named_arrays_kind(spec) == detail::NamedArrays::Mat73) {
     source_ = std::make_unique<MatSource>(path, spec, options);
     return;
   }
@@ -418,7 +418,7 @@ SplitFile::SplitFile(const std::string& path, const ReadOptions& options, int pa
     : path_(path), options_(options), part_(part), parts_(parts) {
   if (parts < 1 || part < 0 || part >= parts) throw std::invalid_argument("SplitFile: part outside 0 .. parts - 1");
   const FileSpec spec = split_spec(path);
-  if (path == "-" || !spec.variable.empty() || named_arrays_kind(spec) != NamedArrays::kNone) {
+  if (path == "-" || !spec.variable.empty() || named_arrays_kind(spec) != NamedArrays::None) {
     const std::string what = path == "-" ? "standard input" : path;
     throw DataError(path, 0, 0,
                     what + " cannot be split among processes: only .npy files and text files are split; "

@@ -235,7 +235,7 @@ std::size_t column_after(std::string_view line_prefix) {
 }
 
 ParsedNumber parse_number(std::string_view token) {
-  constexpr ParsedNumber kNotANumber{NumberKind::kNotANumber, 0.0};
+  constexpr ParsedNumber kNotANumber{NumberKind::NotANumber, 0.0};
   // from_chars follows strtod's grammar minus the '+' (and hex): accept "+1.5", but not "+-1".
   if (!token.empty() && token[0] == '+') {
     token.remove_prefix(1);
@@ -249,14 +249,14 @@ ParsedNumber parse_number(std::string_view token) {
     const bool negative = token[0] == '-';
     if (is_overflow(token)) {
       const double inf = std::numeric_limits<double>::infinity();
-      return {NumberKind::kOverflow, negative ? -inf : inf};
+      return {NumberKind::Overflow, negative ? -inf : inf};
     }
     // Below the smallest denormal: the nearest double is zero, as strtod would give.
-    return {NumberKind::kFinite, negative ? -0.0 : 0.0};
+    return {NumberKind::Finite, negative ? -0.0 : 0.0};
   }
-  if (std::isnan(value)) return {NumberKind::kNaN, value};
-  if (std::isinf(value)) return {NumberKind::kInfinity, value};
-  return {NumberKind::kFinite, value};
+  if (std::isnan(value)) return {NumberKind::NaN, value};
+  if (std::isinf(value)) return {NumberKind::Infinity, value};
+  return {NumberKind::Finite, value};
 }
 
 std::string quote_token(std::string_view token) {

@@ -37,11 +37,11 @@ std::size_t column_after(std::string_view line_prefix);
 
 /// What a field of delimited text holds.
 enum class NumberKind {
-  kFinite,      ///< a finite number (values that underflow read as denormals or signed zero)
-  kNaN,         ///< spelled NaN (any case, optionally signed or with a payload "nan(...)")
-  kInfinity,    ///< spelled inf or infinity (any case, optionally signed)
-  kOverflow,    ///< a finite spelling too large for a double, e.g. 1e999; value is +-Inf
-  kNotANumber,  ///< anything else, including text after a number ("1.5abc") and "1e"
+  Finite,      ///< a finite number (values that underflow read as denormals or signed zero)
+  NaN,         ///< spelled NaN (any case, optionally signed or with a payload "nan(...)")
+  Infinity,    ///< spelled inf or infinity (any case, optionally signed)
+  Overflow,    ///< a finite spelling too large for a double, e.g. 1e999; value is +-Inf
+  NotANumber,  ///< anything else, including text after a number ("1.5abc") and "1e"
 };
 
 struct ParsedNumber {

@@ -37,11 +37,11 @@ std::string environment(const char* name) {
 // AVX-512 CPU from Skylake-SP on has all four), which is cpu_vector_isa()'s rule.
 std::string cpu_vector_extension() {
   switch (detail::cpu_vector_isa()) {
-    case detail::VectorIsa::kAvx512:
+    case detail::VectorIsa::Avx512:
       return "AVX-512";
-    case detail::VectorIsa::kAvx2:
+    case detail::VectorIsa::Avx2:
       return "AVX2";
-    case detail::VectorIsa::kBaseline:
+    case detail::VectorIsa::Baseline:
       break;
   }
   return "";

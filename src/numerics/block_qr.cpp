@@ -51,8 +51,8 @@ void absorb_baseline(double* R, Index k, double* C, Index rows, Index ldc) { abs
 
 Kernel kernel_for(VectorIsa isa) {
 #ifdef SPDFIT_X86_KERNELS
-  if (isa == VectorIsa::kAvx512) return absorb_avx512;
-  if (isa == VectorIsa::kAvx2) return absorb_avx2;
+  if (isa == VectorIsa::Avx512) return absorb_avx512;
+  if (isa == VectorIsa::Avx2) return absorb_avx2;
 #endif
   (void)isa;
   return absorb_baseline;
@@ -64,7 +64,7 @@ bool parse_isa(std::string name, VectorIsa* isa) {
   name.erase(name.begin(), std::find_if_not(name.begin(), name.end(), blank));
   name.erase(std::find_if_not(name.rbegin(), name.rend(), blank).base(), name.end());
   for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  for (VectorIsa candidate : {VectorIsa::kBaseline, VectorIsa::kAvx2, VectorIsa::kAvx512}) {
+  for (VectorIsa candidate : {VectorIsa::Baseline, VectorIsa::Avx2, VectorIsa::Avx512}) {
     if (name == vector_isa_name(candidate)) {
       *isa = candidate;
       return true;
@@ -74,7 +74,7 @@ bool parse_isa(std::string name, VectorIsa* isa) {
 }
 
 struct KernelChoice {
-  VectorIsa isa = VectorIsa::kBaseline;
+  VectorIsa isa = VectorIsa::Baseline;
   std::string report;
   std::string warning;  // SPDFIT_KERNELS set to something not taken
 };
@@ -115,11 +115,11 @@ const KernelChoice& kernel_choice() {
 
 const char* vector_isa_name(VectorIsa isa) {
   switch (isa) {
-    case VectorIsa::kAvx512:
+    case VectorIsa::Avx512:
       return "avx512";
-    case VectorIsa::kAvx2:
+    case VectorIsa::Avx2:
       return "avx2";
-    case VectorIsa::kBaseline:
+    case VectorIsa::Baseline:
       break;
   }
   return "baseline";
@@ -132,11 +132,11 @@ VectorIsa cpu_vector_isa() {
   const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
   if (avx2 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
       __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq")) {
-    return VectorIsa::kAvx512;
+    return VectorIsa::Avx512;
   }
-  if (avx2) return VectorIsa::kAvx2;
+  if (avx2) return VectorIsa::Avx2;
 #endif
-  return VectorIsa::kBaseline;
+  return VectorIsa::Baseline;
 }
 
 // About 256 kB of C, so that a chunk stays in the L2 cache while its k reflections sweep it

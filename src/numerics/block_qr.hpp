@@ -13,7 +13,7 @@
 namespace spdfit::detail {
 
 /// The instruction sets spdfit's own kernels are built for, narrowest first.
-enum class VectorIsa { kBaseline, kAvx2, kAvx512 };
+enum class VectorIsa { Baseline, Avx2, Avx512 };
 
 /// "baseline", "avx2" or "avx512": the names SPDFIT_KERNELS takes.
 const char* vector_isa_name(VectorIsa isa);

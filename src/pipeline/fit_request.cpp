@@ -27,7 +27,7 @@ std::vector<Spec> make_table() {
   rank.name = "rank_tolerance";
   rank.cli = "--rank-tol";
   rank.python = "rank_tolerance";
-  rank.type = OptionType::kReal;
+  rank.type = OptionType::Real;
   rank.value_name = "NUMBER";
   rank.help = "Relative singular-value cut-off for numerical rank: sigma_i counts as zero when "
               "sigma_i <= tol * sigma_max, decided on A and B with their columns scaled to unit norm";
@@ -44,7 +44,7 @@ std::vector<Spec> make_table() {
   ratio.name = "noise_ratio";
   ratio.cli = "--noise-ratio";
   ratio.python = "noise_ratio";
-  ratio.type = OptionType::kReal;
+  ratio.type = OptionType::Real;
   ratio.value_name = "NUMBER";
   ratio.help = "sigma_B / sigma_A, the noise in B relative to the noise in A, for the total least-squares "
                "methods (tls, tls-sym, tls-psd, spd-tls) and auto";
@@ -60,7 +60,7 @@ std::vector<Spec> make_table() {
   iterations.name = "max_iterations";
   iterations.cli = "--max-iter";
   iterations.python = "max_iter";
-  iterations.type = OptionType::kInteger;
+  iterations.type = OptionType::Integer;
   iterations.value_name = "N";
   iterations.help = "Iteration limit of spd-tls, psd-ls and auto; then the best iterate, with a warning";
   iterations.default_text = "200";
@@ -77,7 +77,7 @@ std::vector<Spec> make_table() {
   floor.name = "min_eig";
   floor.cli = "--min-eig";
   floor.python = "min_eig";
-  floor.type = OptionType::kReal;
+  floor.type = OptionType::Real;
   floor.value_name = "NUMBER";
   floor.help = "psd-ls: the floor epsilon of X >= epsilon I (0: positive semidefinite)";
   floor.default_text = "0";
@@ -91,7 +91,7 @@ std::vector<Spec> make_table() {
   bootstrap.name = "bootstrap";
   bootstrap.cli = "--bootstrap";
   bootstrap.python = "bootstrap";
-  bootstrap.type = OptionType::kInteger;
+  bootstrap.type = OptionType::Integer;
   bootstrap.value_name = "N";
   bootstrap.help = "Resample the rows N times for standard errors, a percentile interval and the bias of "
                    "every entry of X (auto: refitting the method it chose)";
@@ -108,7 +108,7 @@ std::vector<Spec> make_table() {
   confidence.name = "confidence";
   confidence.cli = "--confidence";
   confidence.python = "confidence";
-  confidence.type = OptionType::kReal;
+  confidence.type = OptionType::Real;
   confidence.value_name = "FRACTION";
   confidence.help = "The bootstrap intervals' level, a fraction";
   confidence.default_text = "0.95";
@@ -123,7 +123,7 @@ std::vector<Spec> make_table() {
   seed.name = "seed";
   seed.cli = "--seed";
   seed.python = "seed";
-  seed.type = OptionType::kInteger;
+  seed.type = OptionType::Integer;
   seed.value_name = "N";
   seed.help = "The bootstrap's seed; the numbers depend on nothing else";
   seed.default_text = "1";
@@ -140,7 +140,7 @@ std::vector<Spec> make_table() {
   threads.name = "threads";
   threads.cli = "--threads";
   threads.python = "threads";
-  threads.type = OptionType::kInteger;
+  threads.type = OptionType::Integer;
   threads.value_name = "N";
   threads.help = "Threads for streaming and the bootstrap (0: one per core); the result does not depend on it";
   threads.default_text = "0";
@@ -157,7 +157,7 @@ std::vector<Spec> make_table() {
   Spec reported;
   reported.name = "reported_diagnostics";
   reported.python = "reported_diagnostics";
-  reported.type = OptionType::kBoolean;
+  reported.type = OptionType::Boolean;
   reported.help = "False skips the diagnostics that neither X nor a warning needs, at large n most of the time "
                   "beyond the estimate: noise_sigma and area_criterion are then None, residual_norm and "
                   "cond_b_scaled 0, and cond_a_scaled 0 unless A may be ill-conditioned enough for its warning";
@@ -170,7 +170,7 @@ std::vector<Spec> make_table() {
   Spec stream;
   stream.name = "stream";
   stream.cli = "--stream";
-  stream.type = OptionType::kFlag;
+  stream.type = OptionType::Flag;
   stream.help = "Read A and B a block of rows at a time (memory O(threads x block-rows x n + n^2) whatever the "
                 "number of rows; same estimate to rounding)";
   stream.set = [](FitRequest& r, const OptionValue& v) { r.stream = boolean(v); };
@@ -182,7 +182,7 @@ std::vector<Spec> make_table() {
   block.name = "block_rows";
   block.cli = "--block-rows";
   block.python = "block_rows";
-  block.type = OptionType::kInteger;
+  block.type = OptionType::Integer;
   block.value_name = "N";
   block.help = "Rows per block when streaming";
   block.default_text = "32768";

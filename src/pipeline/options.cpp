@@ -29,7 +29,7 @@ std::optional<std::string> spelling_in(const std::vector<OptionSpec<Request>>& t
                                        Frontend frontend) {
   const OptionSpec<Request>* spec = find_option(table, name);
   if (spec == nullptr) return std::nullopt;
-  const std::string_view spelled = frontend == Frontend::kCli ? spec->cli : spec->python;
+  const std::string_view spelled = frontend == Frontend::Cli ? spec->cli : spec->python;
   return std::string(spelled.empty() ? name : spelled);
 }
 
@@ -64,13 +64,13 @@ std::string camel_case(std::string_view name) {
 }
 
 std::string spell_option(std::string_view name, Frontend frontend) {
-  if (frontend == Frontend::kLibrary || (frontend == Frontend::kPython && name.empty())) return std::string(name);
-  if (frontend == Frontend::kMatlab) return camel_case(name);
+  if (frontend == Frontend::Library || (frontend == Frontend::Python && name.empty())) return std::string(name);
+  if (frontend == Frontend::Matlab) return camel_case(name);
   if (auto spelled = spelling_in(fit_option_table(), name, frontend)) return *spelled;
   if (auto spelled = spelling_in(nearest_option_table(), name, frontend)) return *spelled;
   // An option of no table (the linkage's alpha and beta) follows the convention the tables keep:
   // "--max-iter" on the command line, the name in Python.
-  if (frontend == Frontend::kPython) return std::string(name);
+  if (frontend == Frontend::Python) return std::string(name);
   std::string cli = "--";
   for (char c : name) cli += c == '_' ? '-' : c;
   return cli;

@@ -21,7 +21,7 @@ Spec flag(std::string_view name, std::string_view cli, std::string_view python, 
   spec.name = name;
   spec.cli = cli;
   spec.python = python;
-  spec.type = OptionType::kFlag;
+  spec.type = OptionType::Flag;
   spec.nullable = false;
   spec.help = help;
   spec.set = set;
@@ -53,7 +53,7 @@ std::vector<Spec> make_table() {
   min_eig.name = "min_eig";
   min_eig.cli = "--min-eig";
   min_eig.python = "min_eig";
-  min_eig.type = OptionType::kReal;
+  min_eig.type = OptionType::Real;
   min_eig.value_name = "NUMBER";
   min_eig.help = "Smallest eigenvalue allowed, absolute (0: the plain semidefinite projection)";
   min_eig.range = {0.0, std::numeric_limits<double>::infinity()};
@@ -69,7 +69,7 @@ std::vector<Spec> make_table() {
   relative.name = "min_eig_rel";
   relative.cli = "--min-eig-rel";
   relative.python = "min_eig_rel";
-  relative.type = OptionType::kReal;
+  relative.type = OptionType::Real;
   relative.value_name = "NUMBER";
   relative.help = "Smallest eigenvalue allowed, relative: R times the largest eigenvalue of X's symmetric part "
                   "(1e-8 when no floor is given: positive definite, Cholesky-factorable)";
@@ -86,7 +86,7 @@ std::vector<Spec> make_table() {
   alpha.name = "alpha";
   alpha.cli = "--alpha";
   alpha.python = "alpha";
-  alpha.type = OptionType::kReal;
+  alpha.type = OptionType::Real;
   alpha.value_name = "NUMBER";
   alpha.help = "With `corr` or `via_corr`: NAG g02ab's floor, X = (1 - alpha) X~ + alpha I: the same as "
                "`min_eig` alpha for a unit diagonal";
@@ -105,7 +105,7 @@ std::vector<Spec> make_table() {
   weights.name = "weights";
   weights.cli = "--weights";
   weights.python = "weights";
-  weights.type = OptionType::kVector;
+  weights.type = OptionType::Vector;
   weights.value_name = "FILE";
   weights.help = "With `corr`, `keep_diag` or `via_corr`: n positive diagonal weights w; minimizes "
                  "||W^1/2 (X - C) W^1/2||_F, W = diag(w)";
@@ -120,7 +120,7 @@ std::vector<Spec> make_table() {
   iterations.name = "max_iterations";
   iterations.cli = "--max-iter";
   iterations.python = "max_iter";
-  iterations.type = OptionType::kInteger;
+  iterations.type = OptionType::Integer;
   iterations.value_name = "N";
   iterations.help = "With `corr`, `keep_diag` or `via_corr`: Newton iterations at most";
   iterations.default_text = "200";
@@ -136,7 +136,7 @@ std::vector<Spec> make_table() {
   tolerance.name = "tolerance";
   tolerance.cli = "--tol";
   tolerance.python = "tol";
-  tolerance.type = OptionType::kReal;
+  tolerance.type = OptionType::Real;
   tolerance.value_name = "NUMBER";
   tolerance.help = "With `corr`, `keep_diag` or `via_corr`: stop when ||diag(X) - d||_2 <= tol sqrt(n) max(d)";
   tolerance.default_text = "1e-10";

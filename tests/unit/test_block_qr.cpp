@@ -27,7 +27,7 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 std::vector<VectorIsa> variants_of_this_cpu() {
   std::vector<VectorIsa> out;
-  for (VectorIsa isa : {VectorIsa::kBaseline, VectorIsa::kAvx2, VectorIsa::kAvx512}) {
+  for (VectorIsa isa : {VectorIsa::Baseline, VectorIsa::Avx2, VectorIsa::Avx512}) {
     if (isa <= spdfit::detail::cpu_vector_isa()) out.push_back(isa);
   }
   return out;
@@ -83,7 +83,7 @@ TEST(BlockQr, MatchesEigenHouseholderOnEveryVariant) {
 TEST(BlockQr, VariantsGiveTheSameBits) {
   std::srand(11);
   const MatrixXd A = MatrixXd::Random(10000, 14);
-  const MatrixXd baseline = block_r(VectorIsa::kBaseline, A);
+  const MatrixXd baseline = block_r(VectorIsa::Baseline, A);
   for (VectorIsa isa : variants_of_this_cpu()) {
     SCOPED_TRACE(spdfit::detail::vector_isa_name(isa));
     const MatrixXd R = block_r(isa, A);

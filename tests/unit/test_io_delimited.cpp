@@ -165,8 +165,8 @@ TEST(IoDelimited, IndexColumnsOfPandasAndR) {
   EXPECT_EQ(r.values, cov.values);
   // Said explicitly: labels dropped without a header, or the first column kept as data.
   ReadOptions drop, keep;
-  drop.index_column = spdfit::io::IndexColumn::kDrop;
-  keep.index_column = spdfit::io::IndexColumn::kKeep;
+  drop.index_column = spdfit::io::IndexColumn::Drop;
+  keep.index_column = spdfit::io::IndexColumn::Keep;
   EXPECT_EQ(parse_delimited("a,1,2\nb,3,4\n", "A.csv", drop).values, (MatrixXd(2, 2) << 1, 2, 3, 4).finished());
   EXPECT_EQ(parse_delimited("0,1\n1,2\n2,3\n", "A.csv", keep).values.cols(), 2);
   EXPECT_TRUE(parse_delimited("0,1\n1,2\n2,3\n", "A.csv", keep).warnings.empty());

@@ -113,13 +113,13 @@ TEST(OptionTable, CombinationRules) {
 
 TEST(OptionSpelling, EachFrontEndHasItsOwn) {
   const std::string message = "`max_iterations` must be at least 1; see `block_rows` and `dial_zero`";
-  EXPECT_EQ(spell_options(message, Frontend::kCli), "--max-iter must be at least 1; see --block-rows and --dial-zero");
-  EXPECT_EQ(spell_options(message, Frontend::kPython), "max_iter must be at least 1; see block_rows and dial_zero");
-  EXPECT_EQ(spell_options(message, Frontend::kMatlab), "MaxIterations must be at least 1; see BlockRows and DialZero");
-  EXPECT_EQ(spell_options(message, Frontend::kLibrary),
+  EXPECT_EQ(spell_options(message, Frontend::Cli), "--max-iter must be at least 1; see --block-rows and --dial-zero");
+  EXPECT_EQ(spell_options(message, Frontend::Python), "max_iter must be at least 1; see block_rows and dial_zero");
+  EXPECT_EQ(spell_options(message, Frontend::Matlab), "MaxIterations must be at least 1; see BlockRows and DialZero");
+  EXPECT_EQ(spell_options(message, Frontend::Library),
             "max_iterations must be at least 1; see block_rows and dial_zero");
-  EXPECT_EQ(spell_options("a lone ` stays", Frontend::kCli), "a lone ` stays");
-  EXPECT_EQ(spell_option("tolerance", Frontend::kCli), "--tol");
+  EXPECT_EQ(spell_options("a lone ` stays", Frontend::Cli), "a lone ` stays");
+  EXPECT_EQ(spell_option("tolerance", Frontend::Cli), "--tol");
   EXPECT_EQ(camel_case("min_eig_rel"), "MinEigRel");
 }
 

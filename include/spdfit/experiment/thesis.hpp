@@ -37,9 +37,9 @@ struct ThesisExperimentOptions {
   hexapod::SimulationOptions simulation;
   /// The true M_p; empty means thesis_mass_matrix() (eq. 6.1).
   Eigen::MatrixXd truth;
-  /// The methods to run, in the order results list them (default: kSeedMethods, the
+  /// The methods to run, in the order results list them (default: kSourceDocumentMethods, the
   /// thesis' six). Must be non-empty and without repeats.
-  std::vector<Method> methods{kSeedMethods.begin(), kSeedMethods.end()};
+  std::vector<Method> methods{kSourceDocumentMethods.begin(), kSourceDocumentMethods.end()};
 };
 
 /// One method's errors over the trials.
