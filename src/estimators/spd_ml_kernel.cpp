@@ -77,8 +77,8 @@ enum class NewtonEnd { Failed, Converged, Stopped, Boundary, Unbounded };
 // H_pq = sum_t tr(E_p U_t E_q V_t) + tr(E_q U_t E_p V_t) over the basis E_p of the packed
 // coordinates (e_i e_i^T, (e_i e_j^T + e_j e_i^T) / sqrt 2), and
 // tr(e_a e_b^T U e_c e_d^T V) = U_bc V_da.
-void model_hessian(const MatrixXd* Us, const MatrixXd* Vs, int terms, MatrixXd& H) {
-  const Index k = Us[0].rows(), np = k * (k + 1) / 2;
+void model_hessian(const MatrixXd* const* Us, const MatrixXd* const* Vs, int terms, MatrixXd& H) {
+  const Index k = Us[0]->rows(), np = k * (k + 1) / 2;
   const double w = 1.0 / std::sqrt(2.0);
   H.resize(np, np);
   // The index pairs (alpha, beta) of each packed coordinate and their weights.
@@ -111,7 +111,7 @@ void model_hessian(const MatrixXd* Us, const MatrixXd* Vs, int terms, MatrixXd& 
               const Index al = pp[x].a, be = pp[x].b, ga = qq[y].a, de = qq[y].b;
               double t = 0.0;
               for (int term = 0; term < terms; ++term) {
-                t += Us[term](be, ga) * Vs[term](de, al) + Us[term](de, al) * Vs[term](be, ga);
+                t += (*Us[term])(be, ga) * (*Vs[term])(de, al) + (*Us[term])(de, al) * (*Vs[term])(be, ga);
               }
               h += pp[x].w * qq[y].w * t;
             }
@@ -218,8 +218,8 @@ NewtonEnd newton_on_face(const Problem& pr, double infinity, const MatrixXd& Y0,
     to_face(J, scaled[5], 2.0);
     scaled[6] = MatrixXd::Identity(k, k);
     scaled[7] = 0.5 * gS;
-    const MatrixXd Us[4] = {scaled[0], scaled[2], scaled[4], scaled[6]};
-    const MatrixXd Vs[4] = {scaled[1], scaled[3], scaled[5], scaled[7]};
+    const MatrixXd* const Us[4] = {&scaled[0], &scaled[2], &scaled[4], &scaled[6]};
+    const MatrixXd* const Vs[4] = {&scaled[1], &scaled[3], &scaled[5], &scaled[7]};
     model_hessian(Us, Vs, 4, H);
     for (Index j = 0; j < k; ++j)
       for (Index i = 0; i <= j; ++i) grad(packed(i, j)) = i == j ? gS(i, i) : root2 * gS(i, j);
@@ -293,8 +293,11 @@ double spd_ml_criterion(const DynamicReduction& data, const ScaledNoise& noise, 
   return p.f;
 }
 
-bool spd_ml_kernel(const DynamicReduction& data, const ScaledNoise& noise, int max_iterations, const MatrixXd& X0_s,
-                   SpdTlsKernel<Eigen::Dynamic>& out) {
+namespace {
+
+// spd_ml_kernel with the eigenvalue beyond which f decreasing means no minimizer.
+bool ml_kernel(const DynamicReduction& data, const ScaledNoise& noise, int max_iterations, const MatrixXd& X0_s,
+               double infinity, SpdTlsKernel<Eigen::Dynamic>& out) {
   const Index n = data.n;
   Problem pr{data, noise, data.R11.transpose() * data.R11, data.R22.transpose() * data.R22,
              MatrixXd::Identity(n, n)};
@@ -303,9 +306,6 @@ bool spd_ml_kernel(const DynamicReduction& data, const ScaledNoise& noise, int m
   double gnorm = 0.0;
   int iterations = 0;
   out.iterations = 0;
-  const double sigma_min = data.s_a.size() == n ? data.s_a(n - 1) : 0.0;
-  const double infinity =
-      sigma_min > 0.0 ? kUnboundedRatio * data.R12.norm() / sigma_min : std::numeric_limits<double>::infinity();
   NewtonEnd end = newton_on_face(pr, infinity, X0_s, max_iterations, cur, gnorm, iterations, zero);
   out.iterations = iterations;
   if (end == NewtonEnd::Failed) return false;
@@ -344,77 +344,75 @@ bool spd_ml_kernel(const DynamicReduction& data, const ScaledNoise& noise, int m
   return true;
 }
 
+// ||X|| <= ||A X|| / sigma_min(A) ~ ||R12|| / sigma_min(R11) for any fit worth the name.
+double unbounded_threshold(const DynamicReduction& data) {
+  const Index n = data.n;
+  const double sigma_min = data.s_a.size() == n ? data.s_a(n - 1) : 0.0;
+  return sigma_min > 0.0 ? kUnboundedRatio * data.R12.norm() / sigma_min : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
+
+bool spd_ml_kernel(const DynamicReduction& data, const ScaledNoise& noise, int max_iterations, const MatrixXd& X0_s,
+                   SpdTlsKernel<Eigen::Dynamic>& out) {
+  return ml_kernel(data, noise, max_iterations, X0_s, unbounded_threshold(data), out);
+}
+
 bool spd_ml_solve(const DynamicReduction& data, const ScaledNoise& noise, int max_iterations,
                   SpdTlsKernel<Eigen::Dynamic>& out) {
   const Index n = data.n;
-  // The starts, each kept only when numerically positive definite with a defined criterion.
-  struct Start {
-    MatrixXd X;
-    double f = std::numeric_limits<double>::infinity();
+  int iterations = 0;
+  // The kernel from X0 when it is positive definite (a Cholesky factorization here; the kernel
+  // checks it to rounding) with a finite criterion.
+  auto run = [&](const MatrixXd& X0) {
+    const Eigen::LLT<MatrixXd> llt(X0);
+    if (llt.info() != Eigen::Success || !(llt.matrixLLT().diagonal().array() > 0.0).all()) return false;
+    if (!std::isfinite(spd_ml_criterion(data, noise, X0))) return false;
+    // The iteration judges X by its own scale (positive definiteness, the boundary): in the data's
+    // units X's entries can differ by many orders of magnitude (a column of A in mm, another in
+    // m), so it runs in coordinates where the start has a unit diagonal, X = D X' D, by an exact
+    // power-of-two congruence (the criterion is invariant: A' = A D, B' = B D^-1,
+    // Sigma_A' = D Sigma_A D, Sigma_B' = D^-1 Sigma_B D^-1).
+    VectorXd d(n);
+    for (Index j = 0; j < n; ++j) d(j) = std::exp2(std::round(0.5 * std::log2(X0(j, j))));
+    const VectorXd d_inv = d.cwiseInverse();
+    DynamicReduction scaled;
+    scaled.m = data.m;
+    scaled.n = n;
+    scaled.d = data.d;
+    scaled.rank_a = data.rank_a;
+    scaled.options = data.options;
+    scaled.R11 = data.R11 * d.asDiagonal();
+    scaled.R12 = data.R12 * d_inv.asDiagonal();
+    scaled.R22 = data.R22 * d_inv.asDiagonal();
+    ScaledNoise scaled_noise = noise;
+    scaled_noise.cov_a = d.asDiagonal() * noise.cov_a * d.asDiagonal();
+    scaled_noise.cov_b = d_inv.asDiagonal() * noise.cov_b * d_inv.asDiagonal();
+    // X' = D^-1 X D^-1 has eigenvalues at most max(d^-2) times X's: the threshold of the unbounded
+    // case moves with it (a bound, as the threshold itself).
+    const double infinity = unbounded_threshold(data) * d_inv.cwiseAbs2().maxCoeff();
+    const MatrixXd X0_scaled = d_inv.asDiagonal() * X0 * d_inv.asDiagonal();
+    const bool solved = ml_kernel(scaled, scaled_noise, max_iterations, X0_scaled, infinity, out);
+    iterations += out.iterations;
+    if (solved) out.X_s = d.asDiagonal() * out.X_s * d.asDiagonal();
+    return solved;
   };
-  Start starts[2];
-  int count = 0;
-  auto consider = [&](const MatrixXd& X) {
-    Eigen::SelfAdjointEigenSolver<MatrixXd> eig(X, Eigen::EigenvaluesOnly);
-    const VectorXd& w = eig.eigenvalues();
-    if (eig.info() != Eigen::Success || !(w(0) > static_cast<double>(n) * kEps * w(n - 1))) return;
-    const double f = spd_ml_criterion(data, noise, X);
-    if (!std::isfinite(f)) return;
-    starts[count++] = Start{X, f};
-  };
+  bool solved = false;
   if (data.rank_a == n) {
     MatrixXd X0;
     spde_kernel(data, X0);
-    consider(X0);
+    solved = run(X0);
   }
-  if (noise.a_zero || noise.b_definite) {
-    // Generalized TLS, consistent under the model: near the maximum-likelihood estimate on much
-    // data, where SPDE is biased.
+  if (!solved && noise.b_definite) {
+    // Generalized TLS where SPDE is undefined or singular (A or B rank-deficient), or its run failed.
     GeneralizedTls gtls;
     generalized_tls(data, noise, gtls);
     MatrixXd X0;
-    if (gtls.exists && gtls.X_s.allFinite() &&
-        nearest_spd_kernel<Eigen::Dynamic>(symmetric_part(gtls.X_s), EigenvalueFloor{}, X0)) {
-      consider(X0);
-    }
-  }
-  if (count == 2 && starts[1].f < starts[0].f) std::swap(starts[0], starts[1]);
-  if (count == 0) return false;
-
-  // The iteration judges X by its own scale (positive definiteness, the boundary): in the data's
-  // units X's entries can differ by many orders of magnitude (a column of A in mm, another in m),
-  // so it runs in coordinates where the best start has a unit diagonal, X = D X' D, by an exact
-  // power-of-two congruence (the criterion is invariant: A' = A D, B' = B D^-1,
-  // Sigma_A' = D Sigma_A D, Sigma_B' = D^-1 Sigma_B D^-1).
-  VectorXd d(n);
-  for (Index j = 0; j < n; ++j) d(j) = std::exp2(std::round(0.5 * std::log2(starts[0].X(j, j))));
-  const VectorXd d_inv = d.cwiseInverse();
-  DynamicReduction scaled;
-  scaled.m = data.m;
-  scaled.n = n;
-  scaled.d = data.d;
-  scaled.rank_a = data.rank_a;
-  scaled.options = data.options;
-  scaled.R11 = data.R11 * d.asDiagonal();
-  scaled.R12 = data.R12 * d_inv.asDiagonal();
-  scaled.R22 = data.R22 * d_inv.asDiagonal();
-  scaled.s_a = singular_values(scaled.R11);
-  ScaledNoise scaled_noise = noise;
-  scaled_noise.cov_a = d.asDiagonal() * noise.cov_a * d.asDiagonal();
-  scaled_noise.cov_b = d_inv.asDiagonal() * noise.cov_b * d_inv.asDiagonal();
-
-  int iterations = 0;
-  for (int i = 0; i < count; ++i) {
-    const MatrixXd X0 = d_inv.asDiagonal() * starts[i].X * d_inv.asDiagonal();
-    if (spd_ml_kernel(scaled, scaled_noise, max_iterations, X0, out)) {
-      out.X_s = d.asDiagonal() * out.X_s * d.asDiagonal();
-      out.iterations += iterations;
-      return true;
-    }
-    iterations += out.iterations;
+    solved = gtls.exists && gtls.X_s.allFinite() &&
+             nearest_spd_kernel<Eigen::Dynamic>(symmetric_part(gtls.X_s), EigenvalueFloor{}, X0) && run(X0);
   }
   out.iterations = iterations;
-  return false;
+  return solved;
 }
 
 }  // namespace spdfit::detail

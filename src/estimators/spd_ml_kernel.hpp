@@ -30,10 +30,12 @@ double spd_ml_criterion(const DynamicReduction& data, const ScaledNoise& noise, 
 bool spd_ml_kernel(const DynamicReduction& data, const ScaledNoise& noise, int max_iterations,
                    const Eigen::MatrixXd& X0_s, SpdTlsKernel<Eigen::Dynamic>& out);
 
-/// spd_ml_kernel from the better of its starts (the lower criterion): SPDE where rank_a == n, and
-/// the positive definite projection of generalized tls-sym where both covariances allow it; the
-/// other start when the first fails. Returns false, with out.iterations the steps taken, when no
-/// start is numerically positive definite or every run fails.
+/// spd_ml_kernel from SPDE where rank_a == n and SPDE is positive definite, else from the positive
+/// definite projection of generalized tls-sym (where Sigma_B > 0), in coordinates where the start
+/// has a unit diagonal (an exact power-of-two congruence: the Newton method's tests of
+/// definiteness and of the boundary then do not depend on the data's units). Returns false, with
+/// out.iterations the steps taken, when no start is numerically positive definite or the run
+/// fails.
 bool spd_ml_solve(const DynamicReduction& data, const ScaledNoise& noise, int max_iterations,
                   SpdTlsKernel<Eigen::Dynamic>& out);
 
