@@ -46,8 +46,9 @@ constexpr std::string_view to_string(NoiseSource source) {
 /// maximum-likelihood estimate minimizes sum_i r_i^T (X^T Sigma_A X + Sigma_B)^-1 r_i.
 ///
 /// Made by one of the factories below (FitOptions::noise takes it); every factory validates its
-/// input and throws std::invalid_argument naming the option by its library name in backticks
-/// (`noise_std_a`, `noise_cov_b`, `rest_a`, ...), or io::DataError naming a rest file. A model is
+/// input and throws OptionError (options.hpp, a std::invalid_argument) naming the option by its
+/// library name in backticks (`noise_std_a`, `noise_cov_b`, `rest_a`, ...), or io::DataError
+/// naming a rest file. Below, "std::invalid_argument" is that OptionError. A model is
 /// immutable. One given by one standard deviation per side is completed to n x n and d x d
 /// covariances when it meets the data (resolved).
 class NoiseModel {

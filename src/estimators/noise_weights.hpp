@@ -27,7 +27,7 @@ std::optional<ScaledNoise> scaled_noise(const DynamicReduction& data);
 // of Sigma_A and Sigma_B, naming the options that gave them: spde takes no noise model; procrustes
 // and psd-ls need Sigma_B > 0; tls, tls-sym and tls-psd need Sigma_B > 0 unless Sigma_A = 0;
 // spd-tls and auto need Sigma_A > 0 or Sigma_B > 0 (X Sigma_A X + Sigma_B > 0 for every X > 0).
-// ls takes any.
+// ls takes any. data_of and fit_files throw OptionError with the refusal.
 
 /// The warning for a method that models noise in B only (ls, procrustes, psd-ls) given a noise
 /// model with noise in A, or nothing.

@@ -9,6 +9,7 @@
 
 #include "spdfit/fit_options.hpp"
 #include "spdfit/method.hpp"
+#include "spdfit/options.hpp"
 #include "spdfit/reduction.hpp"
 
 namespace spdfit::detail {
@@ -89,7 +90,7 @@ std::optional<std::string> noise_refusal(const std::optional<NoiseModel>& model,
 inline const DynamicReduction& data_of(const Reduction& reduction, Method method) {
   const DynamicReduction& data = data_of(reduction);
   if (auto refusal = non_square_refusal(method, data.n, data.d)) throw std::invalid_argument(*refusal);
-  if (auto refusal = noise_refusal(data.options.noise, method)) throw std::invalid_argument(*refusal);
+  if (auto refusal = noise_refusal(data.options.noise, method)) throw OptionError(*refusal);
   if (uses_vectors_a(method) && data.V_a.rows() != data.n) {
     throw std::logic_error(std::string("this Reduction was made for another method, without the singular vectors ") +
                            std::string(to_string(method)) + " needs: make one with spdfit::reduce");

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "noise/noise_checks.hpp"
+#include "spdfit/options.hpp"
 
 namespace spdfit {
 
@@ -54,21 +55,21 @@ CovarianceClass classify_covariance(const MatrixXd& S) {
 }
 
 MatrixXd checked_covariance(const MatrixXd& S, const std::string& option) {
-  if (S.size() == 0) throw std::invalid_argument(option + " is empty: give a covariance matrix");
+  if (S.size() == 0) throw OptionError(option + " is empty: give a covariance matrix");
   if (S.rows() != S.cols()) {
-    throw std::invalid_argument(option + " is " + size_text(S) + ": a covariance matrix is square");
+    throw OptionError(option + " is " + size_text(S) + ": a covariance matrix is square");
   }
   for (Index j = 0; j < S.cols(); ++j)
     for (Index i = 0; i < S.rows(); ++i)
       if (!std::isfinite(S(i, j))) {
-        throw std::invalid_argument(option + " entry (" + std::to_string(i + 1) + ", " + std::to_string(j + 1) +
+        throw OptionError(option + " entry (" + std::to_string(i + 1) + ", " + std::to_string(j + 1) +
                                     ") is " + number(S(i, j)) + ": a covariance is finite");
       }
   const double biggest = S.cwiseAbs().maxCoeff();
   for (Index j = 0; j < S.cols(); ++j)
     for (Index i = 0; i < j; ++i)
       if (std::abs(S(i, j) - S(j, i)) > kSymmetryTolerance * biggest) {
-        throw std::invalid_argument(option + " is not symmetric: entry (" + std::to_string(i + 1) + ", " +
+        throw OptionError(option + " is not symmetric: entry (" + std::to_string(i + 1) + ", " +
                                     std::to_string(j + 1) + ") is " + number(S(i, j)) + " but entry (" +
                                     std::to_string(j + 1) + ", " + std::to_string(i + 1) + ") is " +
                                     number(S(j, i)));
@@ -76,7 +77,7 @@ MatrixXd checked_covariance(const MatrixXd& S, const std::string& option) {
   MatrixXd symmetric = 0.5 * (S + S.transpose());
   const CovarianceClass c = classify_covariance(symmetric);
   if (!c.zero && !c.semidefinite) {
-    throw std::invalid_argument(option + " is not positive semidefinite: its smallest eigenvalue is " +
+    throw OptionError(option + " is not positive semidefinite: its smallest eigenvalue is " +
                                 number(c.min_eigenvalue) + " (the largest " + number(c.max_eigenvalue) +
                                 "), and a covariance has no negative eigenvalues");
   }
@@ -89,11 +90,11 @@ namespace {
 
 VectorXd checked_std(const VectorXd& s, const std::string& option) {
   if (s.size() == 0) {
-    throw std::invalid_argument(option + " is empty: give one standard deviation for every column, or one for all");
+    throw OptionError(option + " is empty: give one standard deviation for every column, or one for all");
   }
   for (Index i = 0; i < s.size(); ++i) {
     if (!(s(i) >= 0.0) || !std::isfinite(s(i))) {
-      throw std::invalid_argument(option + (s.size() > 1 ? " value " + std::to_string(i + 1) : std::string()) +
+      throw OptionError(option + (s.size() > 1 ? " value " + std::to_string(i + 1) : std::string()) +
                                   " is " + detail::number(s(i)) +
                                   ": a standard deviation is a finite number >= 0 (0: exact)");
     }
@@ -104,7 +105,7 @@ VectorXd checked_std(const VectorXd& s, const std::string& option) {
 // diag(std^2) for `columns` columns, from one value for all or one for each.
 MatrixXd covariance_of_std(const VectorXd& s, Index columns, const char* side, const std::string& option) {
   if (s.size() != 1 && s.size() != columns) {
-    throw std::invalid_argument(option + " has " + std::to_string(s.size()) + " values but " + side + " has " +
+    throw OptionError(option + " has " + std::to_string(s.size()) + " values but " + side + " has " +
                                 std::to_string(columns) + " columns: give one for every column, or one for all");
   }
   const VectorXd variances = s.size() == 1 ? VectorXd::Constant(columns, s(0) * s(0)) : VectorXd(s.cwiseAbs2());
@@ -195,9 +196,9 @@ NoiseModel NoiseModel::resolved(Index n, Index d) const {
                                   std::to_string(cov.rows()) + " columns but " + side + " has " +
                                   std::to_string(columns) + ": they must come from the same sensors";
       if (!path.empty()) throw io::DataError(path, 0, 0, problem);
-      throw std::invalid_argument(problem);
+      throw OptionError(problem);
     }
-    throw std::invalid_argument(option + " is " + detail::size_text(cov) + " but " + side + " has " +
+    throw OptionError(option + " is " + detail::size_text(cov) + " but " + side + " has " +
                                 std::to_string(columns) + " columns: it must be " + std::to_string(columns) + "x" +
                                 std::to_string(columns));
   };

@@ -9,6 +9,7 @@
 #include "noise/noise_checks.hpp"
 #include "noise/rest_moments.hpp"
 #include "spdfit/noise_model.hpp"
+#include "spdfit/options.hpp"
 #include "spdfit/row_reader.hpp"
 
 namespace spdfit {
@@ -103,17 +104,17 @@ NoiseModel NoiseModel::from_rest_moments(const detail::RowMoments& a, const deta
 
 NoiseModel NoiseModel::from_rest(const Eigen::Ref<const MatrixXd>& rest_a, const Eigen::Ref<const MatrixXd>& rest_b) {
   auto check = [](const Eigen::Ref<const MatrixXd>& rows, const char* option) {
-    if (rows.cols() < 1) throw std::invalid_argument(std::string(option) + " has no columns");
+    if (rows.cols() < 1) throw OptionError(std::string(option) + " has no columns");
     if (rows.rows() < 2) {
-      throw std::invalid_argument(std::string(option) + " has " + std::to_string(rows.rows()) +
+      throw OptionError(std::string(option) + " has " + std::to_string(rows.rows()) +
                                   " row(s): a covariance needs at least 2 (and about 10 per column to be trusted)");
     }
-    if (!rows.allFinite()) throw std::invalid_argument(std::string(option) + " holds NaN or Inf");
+    if (!rows.allFinite()) throw OptionError(std::string(option) + " holds NaN or Inf");
   };
   check(rest_a, "`rest_a`");
   check(rest_b, "`rest_b`");
   if (rest_a.rows() != rest_b.rows()) {
-    throw std::invalid_argument("`rest_b` has " + std::to_string(rest_b.rows()) + " rows but `rest_a` has " +
+    throw OptionError("`rest_b` has " + std::to_string(rest_b.rows()) + " rows but `rest_a` has " +
                                 std::to_string(rest_a.rows()) +
                                 ": the rest rows of A and B come from the same stretch of log");
   }
@@ -125,7 +126,7 @@ NoiseModel NoiseModel::from_rest(const Eigen::Ref<const MatrixXd>& rest_a, const
 
 NoiseModel NoiseModel::from_rest_files(const std::string& rest_a_path, const std::string& rest_b_path,
                                        const io::ReadOptions& read, Index block_rows) {
-  if (block_rows < 1) throw std::invalid_argument("`block_rows` must be at least 1");
+  if (block_rows < 1) throw OptionError("`block_rows` must be at least 1");
   io::ReadOptions finite = read;
   finite.allow_nonfinite = false;  // a covariance of NaN is no noise model
   auto stream = [&](const std::string& path, const char* option) {

@@ -235,7 +235,7 @@ DistributedFit fit_files_distributed(const std::string& a_path, const std::strin
   detail::check_method_fits(method, b_path, a->columns(), d);
   // The noise model (every process has the options) against the data's sizes, and what the
   // method needs of it, alike on every process.
-  if (auto refusal = detail::noise_refusal(options.noise, method)) throw std::invalid_argument(*refusal);
+  if (auto refusal = detail::noise_refusal(options.noise, method)) throw OptionError(*refusal);
   if (options.noise) static_cast<void>(options.noise->resolved(a->columns(), d));
 
   const bool bootstrap = options.bootstrap > 0;

@@ -84,7 +84,7 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
   std::string error;
   if (!options.is_valid(&error)) throw OptionError(error);
   // A noise model the method cannot use is refused before any file is read.
-  if (auto refusal = detail::noise_refusal(options.noise, method)) throw std::invalid_argument(*refusal);
+  if (auto refusal = detail::noise_refusal(options.noise, method)) throw OptionError(*refusal);
   std::optional<StreamOptions> streamed = stream;
   if (streamed) streamed->read = read;  // one way of reading, whichever path
   auto readers = [&] {
