@@ -84,7 +84,7 @@ VectorXd values(std::initializer_list<double> list) {
   return v;
 }
 
-// The per-channel noise of the table (6 columns), and a 3-column version.
+// The per-channel noise of docs/guide.md's noise-model table (6 columns), and a 3-column version.
 const VectorXd kStdA6 = values({0.2, 0.4, 0.8, 0.2, 0.4, 0.8});
 const VectorXd kStdB6 = values({3.0, 1.0, 0.3, 3.0, 1.0, 0.3});
 const VectorXd kStdA3 = values({0.2, 0.8, 0.4});

@@ -41,7 +41,8 @@ VectorXd values(std::initializer_list<double> list) {
 const VectorXd kStdA = values({0.2, 0.4, 0.8, 0.2, 0.4, 0.8});
 const VectorXd kStdB = values({3.0, 1.0, 0.3, 3.0, 1.0, 0.3});
 
-// The set-up: the thesis' hexapod with per-channel Gaussian noise and a rest segment.
+// docs/guide.md's noise-model set-up: the thesis' hexapod with per-channel Gaussian noise and a
+// rest segment.
 hexapod::Measurements hexapod_data(Index m, const VectorXd& std_a, const VectorXd& std_b, std::uint64_t seed,
                                    Index rest = 0) {
   hexapod::SimulationOptions options;
@@ -344,7 +345,7 @@ TEST(ThesisExperimentWithNoiseModels, RunsEveryMethodWithEveryModelButSpde) {
   EXPECT_NEAR(result.of(Method::SpdTotalLeastSquares, experiment::FitNoise::Rest).errors[0],
               (rest.X - hexapod::thesis_mass_matrix()).norm(), 1e-9);
   // Knowing the noise helps: the likelihood fit beats unweighted psd-ls (0.33 against 0.62 here;
-  // the table has 0.445 against 0.681 at m = 100).
+  // docs/guide.md's table has 0.476 against 0.727 at m = 100).
   EXPECT_LT(result.of(Method::SpdTotalLeastSquares, experiment::FitNoise::True).summary.mean,
             result.of(Method::PsdLeastSquares, experiment::FitNoise::None).summary.mean);
   // A rest model needs rest rows.
