@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "spdfit/noise_model.hpp"
 #include "spdfit/progress.hpp"
 #include "spdfit/rank.hpp"
 
@@ -41,6 +42,14 @@ struct FitOptions {
   /// that the errors they minimize are in a common unit. Also the scaling of the noise estimate
   /// (Diagnostics::noise_sigma). A finite number > 0; 1 (the default) treats both alike.
   double noise_ratio = 1.0;
+  /// The noise model (noise_model.hpp): the covariances of the noise in each row of A and of B.
+  /// Without one the methods assume equal, independent noise in every column of A and B, in the
+  /// units given (noise_ratio scales B's). With one, spd-tls is the maximum-likelihood estimate
+  /// over the positive definite matrices, psd-ls and procrustes are weighted by B's covariance,
+  /// tls, tls-sym and tls-psd are generalized total least squares, auto chooses with it, ls is
+  /// A^+ B whatever the weight, and spde (which has none) refuses it. Checked against the data's
+  /// sizes when the data are reduced (NoiseModel::resolved). Not together with noise_ratio != 1.
+  std::optional<NoiseModel> noise;
   /// The iterative methods (spd-tls, psd-ls, auto) stop after this many iterations at most, with
   /// the best iterate, converged = false and a warning. An integer >= 1.
   int max_iterations = 200;
@@ -62,8 +71,9 @@ struct FitOptions {
   /// Told the fraction of the bootstrap's replicates refitted, as they finish.
   ProgressCallback progress;
 
-  /// True when every option is in the range fit_option_table() gives it (fit_request.hpp);
-  /// otherwise `error` names the option and says why.
+  /// True when every option is in the range fit_option_table() gives it (fit_request.hpp) and a
+  /// noise model does not come with noise_ratio != 1; otherwise `error` names the option and says
+  /// why.
   bool is_valid(std::string* error = nullptr) const;
 
   /// The cut-off to use for a rows x cols matrix (spdfit::rank_cutoff).

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "spdfit/method.hpp"
+#include "spdfit/noise_model.hpp"
 
 namespace spdfit {
 
@@ -34,8 +35,10 @@ constexpr const char* to_string(Status status) {
 
 /// psd-ls's proof of optimality: the KKT conditions of minimizing ||A X - B||_F^2 / 2 over
 /// symmetric X >= epsilon I, with the multiplier S = sym(A^T A X - A^T B) (from the triangular
-/// factor). X is optimal exactly when primal_min_eig >= 0, dual_min_eig >= 0 and
-/// complementarity = 0; the numbers say how far from that the returned X is, in the data's units.
+/// factor); with a noise model (FitOptions::noise) of the weighted sum_i r_i^T Sigma_B^-1 r_i / 2,
+/// r_i the rows of A X - B, with S = sym(A^T (A X - B) Sigma_B^-1). X is optimal exactly when
+/// primal_min_eig >= 0, dual_min_eig >= 0 and complementarity = 0; the numbers say how far from
+/// that the returned X is, in the data's units.
 struct PsdCertificate {
   double primal_min_eig = 0.0;   ///< lambda_min(X - epsilon I)
   double dual_min_eig = 0.0;     ///< lambda_min(S)
@@ -105,6 +108,11 @@ struct Diagnostics {
   std::optional<bool> converged;
   /// psd-ls only: the optimality certificate.
   std::optional<PsdCertificate> certificate;
+  /// The noise model the estimate used (FitOptions::noise, resolved to n x n and d x d covariances
+  /// in the data's units), with its source; empty when none was given or the method ran without
+  /// it (spde in fit_all): the methods then assume equal noise in every column of A and B, in the
+  /// units given (reports say "assumed-equal").
+  std::optional<NoiseModel> noise_model;
   /// auto only: the method it ran (also the result's `method`) and why.
   std::optional<Method> chosen_method;
   std::optional<AutoReason> reason;

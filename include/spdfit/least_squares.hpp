@@ -18,6 +18,10 @@ namespace spdfit {
 /// says so. The estimate is in general neither symmetric nor definite. B may have d != n columns
 /// (several right-hand sides, as numpy.linalg.lstsq): X is then n x d.
 ///
+/// A noise model (FitOptions::noise) does not change X: A^+ B is the maximum-likelihood estimate of
+/// an unconstrained X whatever B's noise covariance, and noise in A it ignores (a warning says so
+/// when the model has some); the model changes only the diagnostics it reports.
+///
 /// Preconditions: A m x n, B m x d with m >= n >= 1, d >= 1, and finite entries (else
 /// std::invalid_argument). Cost: O(m (n + d)^2) for the factor, O((n + d)^3) after it.
 FitResult least_squares(const Reduction& data);

@@ -31,6 +31,13 @@ namespace spdfit {
 /// makes the minimizer non-unique (a warning); the one returned has zero components in the
 /// directions where A has no curvature on the identified face.
 ///
+/// With a noise model (FitOptions::noise), weighted by B's noise covariance: it minimizes
+/// sum_i r_i^T Sigma_B^-1 r_i (r_i the rows of A X - B) over symmetric X >= epsilon I, the same
+/// problem for the data [A C, (B - epsilon A) C^-1], C = Sigma_B^1/2, with X = epsilon I + C Y C,
+/// and the certificate is the weighted problem's (PsdCertificate). It models noise in B only: a
+/// nonzero Sigma_A gives a warning saying that it is ignored. Needs Sigma_B positive definite
+/// (else std::invalid_argument naming the option).
+///
 /// Preconditions: as least_squares. Cost: O(m n^2) for the factor, then O(n^3) per iteration
 /// (0 when Procrustes is feasible; typically a few).
 FitResult psd_least_squares(const Reduction& data);

@@ -18,6 +18,7 @@ template <int MaxN>
 struct BasicReduction;
 const BasicReduction<Eigen::Dynamic>& data_of(const Reduction& reduction);
 Reduction reduce_with(const TriangularFactor& factor, const FitOptions& options, bool vectors_a);
+Reduction reduction_of(std::shared_ptr<const BasicReduction<Eigen::Dynamic>> data);
 }  // namespace detail
 
 /// The data reduced to small matrices, all in the scaled units of the triangular factor: the SVD
@@ -44,6 +45,7 @@ class Reduction {
   friend Reduction reduce(const TriangularFactor& factor, const FitOptions& options);
   friend Reduction detail::reduce_with(const TriangularFactor& factor, const FitOptions& options, bool vectors_a);
   friend const detail::BasicReduction<Eigen::Dynamic>& detail::data_of(const Reduction& reduction);
+  friend Reduction detail::reduction_of(std::shared_ptr<const detail::BasicReduction<Eigen::Dynamic>> data);
   explicit Reduction(std::shared_ptr<const detail::BasicReduction<Eigen::Dynamic>> data) : data_(std::move(data)) {}
 
   std::shared_ptr<const detail::BasicReduction<Eigen::Dynamic>> data_;

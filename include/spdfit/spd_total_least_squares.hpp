@@ -40,6 +40,22 @@ namespace spdfit {
 /// criterion is flat along A's weak directions, with relative errors up to ~1e-2 where spde is
 /// exact to cond(A) eps; auto chooses spde for such data.
 ///
+/// With a noise model (FitOptions::noise: the covariances Sigma_A, Sigma_B of each row's noise in
+/// A and B), the maximum-likelihood estimate of the errors-in-variables model over the symmetric
+/// positive definite X: it minimizes
+///
+///     f(X) = sum_i r_i^T (X Sigma_A X + Sigma_B)^-1 r_i,   r_i the i-th row of A X - B,
+///
+/// by the same method (here the weight does not commute with X, and the start is the better of
+/// SPDE and the positive definite projection of generalized tls-sym). Equal noise, Sigma_A =
+/// s^2 I and Sigma_B = s^2 r^2 I, is the criterion above divided by s^2: the same estimate.
+/// Sigma_A = 0 is least squares weighted by Sigma_B^-1 over the positive semidefinite matrices
+/// (psd-ls's weighted problem). gradient_norm is then in the units of f, which is dimensionless
+/// (about d (m - n) at the minimum when the noise model is right). Needs Sigma_A or Sigma_B
+/// positive definite (else std::invalid_argument naming the options). The estimate follows the
+/// data's units: scaling A by a and B by b (and Sigma_A by a^2, Sigma_B by b^2) gives (b / a) X,
+/// and A D, B D^-1 (Sigma_A -> D Sigma_A D, Sigma_B -> D^-1 Sigma_B D^-1) gives D^-1 X D^-1.
+///
 /// Preconditions: as least_squares. Cost: O(m n^2) for the factor, then O(n^6) per Newton step
 /// (the Newton system has n (n + 1) / 2 unknowns; typically 3 to 8 steps from SPDE), so it is
 /// meant for the small n of mass and stiffness matrices (n up to a few tens).

@@ -25,6 +25,9 @@ namespace spdfit {
 /// B of rank r < n: the positive semidefinite minimizer of rank exactly r (Corollary III.7),
 /// with a warning. A rank-deficient: Status::NumericalFailure (the criterion has no minimizer).
 ///
+/// spde has no noise model: with FitOptions::noise it throws std::invalid_argument naming auto and
+/// spd-tls, which take one (fit_all runs it without the model and says so in its warnings).
+///
 /// Preconditions: as least_squares. Cost: O(m n^2) for the factor, O(n^3) after it.
 FitResult spde(const Reduction& data);
 FitResult spde(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,

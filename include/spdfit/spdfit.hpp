@@ -36,6 +36,7 @@
 #include "spdfit/nearest_spd.hpp"
 #include "spdfit/nearest_correlation.hpp"
 #include "spdfit/nearest_request.hpp"
+#include "spdfit/noise_model.hpp"
 #include "spdfit/options.hpp"
 #include "spdfit/progress.hpp"
 #include "spdfit/psd_least_squares.hpp"

@@ -21,6 +21,11 @@ namespace spdfit {
 /// Rank-deficient A: the minimizer is not unique; X is the one of minimum Frobenius norm
 /// (entries with sigma_i = sigma_j = 0 set to zero), with a warning.
 ///
+/// With a noise model (FitOptions::noise), weighted by B's noise covariance: the symmetric X
+/// minimizing sum_i r_i^T Sigma_B^-1 r_i, r_i the rows of A X - B (X = C Y C with Y the estimate
+/// for [A C, B C^-1], C = Sigma_B^1/2; cross_term_positive_definite is then that of these data).
+/// As psd-ls, a nonzero Sigma_A gives a warning and Sigma_B must be positive definite.
+///
 /// Preconditions: as least_squares. Cost: O(m n^2) for the factor, O(n^3) after it.
 FitResult symmetric_procrustes(const Reduction& data);
 FitResult symmetric_procrustes(const Eigen::Ref<const Eigen::MatrixXd>& A,

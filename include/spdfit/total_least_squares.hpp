@@ -20,6 +20,16 @@ namespace spdfit {
 /// TLS is not invariant under scaling A and B by different factors: scale them to comparable
 /// noise levels first.
 ///
+/// With a noise model (FitOptions::noise), generalized TLS (Van Huffel & Vandewalle): TLS of the
+/// whitened data [A T_A, B Sigma_B^-1/2] (noise of unit variance in every column) and X mapped
+/// back, the maximum-likelihood estimate of an unconstrained X; the directions in which A has no
+/// noise (zero standard deviations, or Sigma_A's null space) are fitted by least squares (mixed
+/// LS-TLS), and Sigma_A = 0 is least squares A^+ B. The tls_* diagnostics are then those of the
+/// whitened data, in units of the noise's standard deviation (the correction norm is about
+/// sqrt(d (m - n)) when the model is right). Needs Sigma_B positive definite unless Sigma_A = 0
+/// (else std::invalid_argument naming the option). So do tls-sym and tls-psd below, which repair
+/// this estimate.
+///
 /// Preconditions: as least_squares; a non-square X (d != n) also needs m >= n + d rows (else
 /// std::invalid_argument). Cost: O(m (n + d)^2) for the factor, O((n + d)^3) after it.
 FitResult total_least_squares(const Reduction& data);

@@ -1,10 +1,13 @@
 #include "spdfit/auto.hpp"
 
 #include <algorithm>
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <limits>
 #include <string>
 
+#include "estimators/auto_settle.hpp"
 #include "estimators/diagnostics.hpp"
 #include "estimators/kernels.hpp"
 #include "estimators/psd_ls_kernel.hpp"
@@ -31,6 +34,10 @@ constexpr double kDefiniteMargin = 64.0;
 // Above this signal-to-noise ratio the data are consistent to rounding: spde, exact there to
 // cond(A) eps (spd-tls is not, on ill-conditioned A; spd_total_least_squares.hpp).
 constexpr double kNoiseFreeSnr = 1e10;
+// With a noise model, A's noise is negligible when the bias it gives least squares, in units of
+// least squares' standard errors (a Mahalanobis norm squared), is below this fraction of the
+// number of parameters: on average below a third of a standard error per parameter.
+constexpr double kNegligibleBias = 0.1;
 }  // namespace
 
 template <int MaxN>
@@ -80,6 +87,85 @@ double auto_floor(const BasicReduction<MaxN>& data) {
   return std::isfinite(norm) && norm > 0.0 ? kFloorRatio * norm : std::numeric_limits<double>::min();
 }
 
+AutoChoice auto_noise_choice(const DynamicReduction& data, const ScaledNoise& noise) {
+  AutoChoice choice;
+  const Index n = data.n, m = data.m;
+  choice.snr = std::numeric_limits<double>::quiet_NaN();
+  if (data.rank_a < n) {
+    choice.method = Method::SpdTotalLeastSquares;
+    choice.code = "rank_deficient_a";
+    return choice;
+  }
+  // In the factor's units throughout (A_s = A 2^-ea with noise covariance Sigma_A 2^-2ea), and in
+  // forms that a change of units A -> A D, B -> B D^-1 (X -> D^-1 X D^-1) leaves alone.
+  // A's noise against its signal in its worst direction: max_v m v^T Sigma_A v / ||A v||^2, the
+  // largest eigenvalue of m R11^-T Sigma_A R11^-1; snr is one over it, minus 1.
+  const auto R = data.R11.triangularView<Eigen::Upper>();
+  const Eigen::MatrixXd R_inv = R.solve(Eigen::MatrixXd::Identity(n, n));
+  const Eigen::MatrixXd Z = symmetric_part(Eigen::MatrixXd(R_inv.transpose() * noise.cov_a * R_inv));
+  const double noise_to_signal =
+      static_cast<double>(m) * Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Z, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+  choice.snr = noise_to_signal > 0.0 ? std::max(1.0 / noise_to_signal - 1.0, 0.0)
+                                     : std::numeric_limits<double>::infinity();
+  bool negligible = noise.a_zero;
+  if (!negligible && noise.b_definite) {
+    // Least squares' bias b = m (A^T A)^-1 Sigma_A X (X the least-squares estimate's symmetric part)
+    // in units of its scatter, Cov(vec X_ls) = W (x) (A^T A)^-1 with W = X Sigma_A X + Sigma_B:
+    // chi = vec(b)^T Cov^-1 vec(b) = ||R11 b L^-T||_F^2, W = L L^T; negligible when below a tenth
+    // of the n d parameters' count.
+    SquareMatrix<Eigen::Dynamic> X;
+    least_squares_kernel(data, X);
+    X = symmetric_part(X);
+    const Eigen::MatrixXd bias = static_cast<double>(m) * (R_inv * (R_inv.transpose() * (noise.cov_a * X)));
+    const Eigen::LLT<Eigen::MatrixXd> W(symmetric_part(Eigen::MatrixXd(X * noise.cov_a * X + noise.cov_b)));
+    if (W.info() == Eigen::Success) {
+      const Eigen::MatrixXd scaled = W.matrixL().solve(Eigen::MatrixXd((data.R11 * bias).transpose())).transpose();
+      const double chi = scaled.squaredNorm();
+      negligible = std::isfinite(chi) && chi <= kNegligibleBias * static_cast<double>(n * data.d);
+    }
+  }
+  if (negligible && noise.b_definite) {
+    choice.method = Method::PsdLeastSquares;
+    choice.code = "noise_in_b";
+    return choice;
+  }
+  const double extra = static_cast<double>(m - n);
+  const bool enough =
+      extra >= kMinExtraRowsPerColumn * static_cast<double>(n) && extra * choice.snr >= kMinEvidence;
+  choice.method = enough ? Method::SpdTotalLeastSquares : Method::Spde;
+  choice.code = enough ? "many_samples" : "few_samples";
+  return choice;
+}
+
+FitResult auto_settle(FitResult first, FitResult fallback, AutoReason& reason, double floor) {
+  if (first.ok() && clearly_positive_definite(first.X)) return first;
+  const std::string chosen(to_string(first.method));
+  if (fallback.ok() && clearly_positive_definite(fallback.X)) {
+    // The boundary (or no estimate): the least-squares fit over X >= floor I, positive definite.
+    const std::string why = first.ok() ? chosen +
+                                             " returned a matrix that is not positive definite (the infimum is "
+                                             "on the boundary)"
+                                       : chosen + " failed (" + first.message + ")";
+    reason = AutoReason{"boundary", why + ": psd-ls with the floor " + format_number(floor) +
+                                        " (1e-8 times the least-squares estimate's norm) instead"};
+    fallback.warnings.insert(fallback.warnings.begin(), "auto: " + reason.text);
+    return fallback;
+  }
+  const std::string fallback_failure =
+      fallback.status == Status::NotComputed ? std::string("it cannot run here")
+                                             : fallback.ok() ? std::string("its estimate is not positive definite either")
+                                                             : fallback.message;
+  if (!first.ok()) {
+    first.message += "; psd-ls, auto's fallback, did not give an estimate either: " + fallback_failure;
+    return first;
+  }
+  first.warnings.push_back("auto: the estimate is not positive definite (smallest eigenvalue " +
+                           format_number(first.diagnostics.min_eigenvalue.value_or(0.0)) + "): " + chosen +
+                           " ended on the boundary, and psd-ls, auto's fallback, did not give a positive definite "
+                           "estimate (" + fallback_failure + ")");
+  return first;
+}
+
 #define SPDFIT_INSTANTIATE(MaxN)                                                                          \
   template AutoChoice auto_choice<MaxN>(const BasicReduction<MaxN>&, std::optional<double>);           \
   template double auto_floor<MaxN>(const BasicReduction<MaxN>&);                                       \
@@ -111,32 +197,103 @@ std::string reason_text(const detail::AutoChoice& choice, Index m, Index n) {
          "scatter is smaller here";
 }
 
+// What auto assumed without a noise model, and how to give one.
+std::string assumed_equal_text(const FitOptions& options) {
+  const std::string assumed =
+      options.noise_ratio == 1.0
+          ? std::string("equal noise in every column of A and B")
+          : "equal noise in every column of A, and `noise_ratio` = " + detail::format_number(options.noise_ratio) +
+                " times it in every column of B";
+  return "; it assumed " + assumed +
+         ", in the units given: where sensors differ, give a noise model (`rest_a` and `rest_b`, rows recorded "
+         "at rest; or `noise_std_a` and `noise_std_b`; or `noise_cov_a` and `noise_cov_b`)";
+}
+
+// Where the noise model came from, for auto's reason.
+std::string noise_source_text(const NoiseModel& model) {
+  switch (model.source()) {
+    case NoiseSource::Rest:
+      return "the noise model from the rest segment (" + std::to_string(model.rest_rows().value_or(0)) +
+             " rows of `rest_a` and `rest_b`)";
+    case NoiseSource::Std:
+      return "the noise model from the standard deviations given (`noise_std_a`, `noise_std_b`)";
+    case NoiseSource::Cov:
+      return "the noise model from the covariances given (`noise_cov_a`, `noise_cov_b`)";
+  }
+  return "the noise model";
+}
+
+std::string noise_reason_text(const detail::AutoChoice& choice, const detail::DynamicReduction& data,
+                              const NoiseModel& model) {
+  const std::string source = noise_source_text(model);
+  const std::string rows = "m = " + std::to_string(data.m) + " rows for n = " + std::to_string(data.n);
+  const std::string snr = detail::format_number(choice.snr);
+  if (std::string(choice.code) == "rank_deficient_a") {
+    return "A is rank-deficient, so spde is undefined: spd-tls, the maximum-likelihood estimate with " + source +
+           ", started from generalized tls-sym";
+  }
+  if (std::string(choice.code) == "noise_in_b") {
+    return source + (model.a_is_zero() ? " has no noise in A" :
+                     " has noise in A too small to matter against A's signal (the bias it gives least squares "
+                     "is below a third of the standard error)") +
+           ": psd-ls weighted by B's noise covariance, the maximum-likelihood estimate over the positive "
+           "definite matrices when A is exact";
+  }
+  if (choice.method == Method::SpdTotalLeastSquares) {
+    return rows + " and a signal-to-noise ratio of " + snr + " in A's weakest direction, with " + source +
+           ": spd-tls, the maximum-likelihood estimate, whose error keeps falling with m";
+  }
+  return rows + " and a signal-to-noise ratio of " + snr + " in A's weakest direction: too few rows for a stable "
+         "maximum-likelihood fit with " + source + ", so spde, whose scatter is smaller here; spde has no noise "
+         "model: it assumes equal noise in every column of A and B, in the units given";
+}
+
 }  // namespace
 
 FitResult auto_fit(const Reduction& reduction) {
   const detail::DynamicReduction& data = detail::data_of(reduction, Method::Auto);
   const Index n = data.n, m = data.m;
-  const std::optional<double> noise_var = data.noise_var ? data.noise_var : detail::noise_variance(data);
-  const detail::AutoChoice choice = detail::auto_choice(data, noise_var);
-  AutoReason reason{choice.code, reason_text(choice, m, n)};
-
-  FitResult result = choice.method == Method::Spde ? spde(reduction) : spd_total_least_squares(reduction);
-  if (!result.ok() || !detail::clearly_positive_definite(result.X)) {
-    // The boundary (or no estimate): the least-squares fit over X >= floor I, positive definite.
-    const double floor_s = detail::auto_floor(data);
-    const double floor = std::ldexp(floor_s, data.exponent_b - data.exponent_a);
-    FitResult fallback = detail::psd_least_squares_scaled(data, floor_s);
-    if (fallback.ok()) {
-      const std::string why = result.ok() ? std::string(to_string(choice.method)) +
-                                                " returned a matrix that is not positive definite (the infimum is "
-                                                "on the boundary)"
-                                          : std::string(to_string(choice.method)) + " failed (" + result.message + ")";
-      reason = AutoReason{"boundary", why + ": psd-ls with the floor " + detail::format_number(floor) +
-                                          " (1e-8 times the least-squares estimate's norm) instead"};
-      fallback.warnings.insert(fallback.warnings.begin(), "auto: " + reason.text);
-      result = std::move(fallback);
-    }
+  const std::optional<detail::ScaledNoise> noise = detail::scaled_noise(data);
+  detail::AutoChoice choice;
+  AutoReason reason;
+  if (noise) {
+    choice = detail::auto_noise_choice(data, *noise);
+    reason = AutoReason{choice.code, noise_reason_text(choice, data, *data.options.noise)};
+  } else {
+    const std::optional<double> noise_var = data.noise_var ? data.noise_var : detail::noise_variance(data);
+    choice = detail::auto_choice(data, noise_var);
+    reason = AutoReason{choice.code, reason_text(choice, m, n) + assumed_equal_text(data.options)};
   }
+
+  const double floor_s = detail::auto_floor(data);
+  const double floor = std::ldexp(floor_s, data.exponent_b - data.exponent_a);
+  FitResult result;
+  switch (choice.method) {
+    case Method::Spde:
+      if (noise) {
+        // spde has no noise model: it runs without, and says so.
+        result = spde(detail::without_noise(reduction));
+        result.warnings.push_back("auto: spde ran without the noise model (it has none): it assumes equal noise "
+                                  "in every column of A and B, in the units given");
+        // The model auto chose by, and what its factory found, are still the result's.
+        result.diagnostics.noise_model = data.options.noise;
+        const std::vector<std::string>& found = data.options.noise->warnings();
+        result.warnings.insert(result.warnings.begin(), found.begin(), found.end());
+      } else {
+        result = spde(reduction);
+      }
+      break;
+    case Method::PsdLeastSquares:
+      result = detail::psd_least_squares_scaled(data, floor_s);
+      break;
+    default:
+      result = spd_total_least_squares(reduction);
+  }
+  // psd-ls with the floor, weighted by Sigma_B with a noise model (which needs Sigma_B > 0).
+  FitResult fallback;
+  const bool settled = result.ok() && detail::clearly_positive_definite(result.X);
+  if (!settled && (!noise || noise->b_definite)) fallback = detail::psd_least_squares_scaled(data, floor_s);
+  result = detail::auto_settle(std::move(result), std::move(fallback), reason, floor);
   result.diagnostics.chosen_method = result.method;
   result.diagnostics.reason = std::move(reason);
   return result;

@@ -35,6 +35,11 @@ void fill_shape_and_ranks(const DynamicReduction& data, Diagnostics& d) {
 void fill_data_diagnostics(const DynamicReduction& data, Diagnostics& d, std::vector<std::string>& warnings,
                            bool warn_thin_noise_estimate = true) {
   fill_shape_and_ranks(data, d);
+  // The noise model used, and what its factory found (a short or moving rest segment), first.
+  if (data.options.noise) {
+    d.noise_model = data.options.noise;
+    warnings.insert(warnings.begin(), data.options.noise->warnings().begin(), data.options.noise->warnings().end());
+  }
   d.singular_values_a = times_power_of_two(data.s_a, data.exponent_a);
   d.singular_values_b = times_power_of_two(data.s_b, data.exponent_b);
   d.cond_a = condition_number(data.s_a);

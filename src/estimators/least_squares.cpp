@@ -2,6 +2,7 @@
 
 #include "estimators/diagnostics.hpp"
 #include "estimators/kernels.hpp"
+#include "estimators/noise_weights.hpp"
 #include "numerics/linalg.hpp"
 
 namespace spdfit {
@@ -42,6 +43,9 @@ FitResult least_squares(const Reduction& reduction) {
                        std::to_string(data.n) +
                        "): returning the minimum-norm least-squares solution from the edited SVD");
   }
+  // A noise model does not change A^+ B: with Sigma_B alone it is the maximum-likelihood estimate
+  // of an unconstrained X whatever Sigma_B; noise in A it ignores, and says so.
+  if (auto warning = detail::ignored_noise_warning(data, Method::LeastSquares)) warnings.push_back(*warning);
   return detail::finish(Method::LeastSquares, data, X_s, {}, std::move(warnings));
 }
 

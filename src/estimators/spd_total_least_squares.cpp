@@ -5,6 +5,8 @@
 
 #include "estimators/diagnostics.hpp"
 #include "estimators/kernels.hpp"
+#include "estimators/psd_ls_kernel.hpp"
+#include "estimators/spd_ml_kernel.hpp"
 #include "estimators/spd_tls_kernel.hpp"
 
 namespace spdfit {
@@ -12,22 +14,52 @@ namespace spdfit {
 using Eigen::Index;
 using Eigen::MatrixXd;
 
+namespace {
+
+// Sigma_A = 0: the criterion is sum_i r_i^T Sigma_B^-1 r_i, a convex quadratic, and its infimum over
+// the positive definite matrices is weighted psd-ls's minimum over the semidefinite ones (floor 0),
+// solved exactly there with its certificate, on the boundary too.
+FitResult exact_a(const detail::DynamicReduction& data) {
+  FitResult result = detail::psd_least_squares_scaled(data, 0.0);
+  result.method = Method::SpdTotalLeastSquares;
+  if (result.ok() && !detail::clearly_positive_definite(result.X)) {
+    result.warnings.push_back(
+        "the infimum of the likelihood criterion over the positive definite matrices is on the boundary: A is "
+        "exact, so it is weighted least squares, whose minimizer over the positive semidefinite matrices is "
+        "singular (smallest eigenvalue " + detail::format_number(result.diagnostics.min_eigenvalue.value_or(0.0)) +
+        ")");
+  }
+  return result;
+}
+
+}  // namespace
+
 FitResult spd_total_least_squares(const Reduction& reduction) {
   const detail::DynamicReduction& data = detail::data_of(reduction, Method::SpdTotalLeastSquares);
   const Index n = data.n;
   constexpr Method method = Method::SpdTotalLeastSquares;
 
-  // In the factor's units the criterion is 2^-2ea f, with the noise ratio r_s.
-  const std::optional<double> r_s = detail::spd_tls_noise_ratio(data);
-  if (!r_s) {
-    return detail::failure(method, data,
-                           "spd-tls: the noise ratio " + detail::format_number(data.options.noise_ratio) +
-                               " times the ratio of the scales of A and B is out of floating-point range: "
-                               "rescale A and B to comparable sizes (and the noise ratio with them)");
-  }
-
+  // With a noise model the likelihood criterion, dimensionless (the same in the factor's units);
+  // without, the TLS criterion, 2^-2ea f in the factor's units with the noise ratio r_s.
+  const std::optional<detail::ScaledNoise> noise = detail::scaled_noise(data);
+  if (noise && noise->a_zero) return exact_a(data);
+  const std::string criterion_name = noise ? "likelihood criterion" : "TLS criterion";
+  const int criterion_exponent = noise ? 0 : 2 * data.exponent_a;
   detail::SpdTlsKernel<Eigen::Dynamic> k;
-  if (!detail::spd_tls_solve(data, *r_s, data.options.max_iterations, k)) {
+  bool started = false;
+  if (noise) {
+    started = detail::spd_ml_solve(data, *noise, data.options.max_iterations, k);
+  } else {
+    const std::optional<double> r_s = detail::spd_tls_noise_ratio(data);
+    if (!r_s) {
+      return detail::failure(method, data,
+                             "spd-tls: the noise ratio " + detail::format_number(data.options.noise_ratio) +
+                                 " times the ratio of the scales of A and B is out of floating-point range: "
+                                 "rescale A and B to comparable sizes (and the noise ratio with them)");
+    }
+    started = detail::spd_tls_solve(data, *r_s, data.options.max_iterations, k);
+  }
+  if (!started) {
     return detail::failure(
         method, data,
         "spd-tls: no positive definite starting point: " +
@@ -41,26 +73,27 @@ FitResult spd_total_least_squares(const Reduction& reduction) {
   if (k.unbounded) {
     return detail::failure(
         method, data,
-        "spd-tls: the TLS criterion has no minimizer over the positive definite matrices: it keeps "
-        "decreasing as an eigenvalue of X grows without bound (the data are too noisy for total least "
-        "squares: few rows m for n, or noise comparable to the signal); use spde, or collect more data");
+        "spd-tls: the " + criterion_name +
+            " has no minimizer over the positive definite matrices: it keeps "
+            "decreasing as an eigenvalue of X grows without bound (the data are too noisy for total least "
+            "squares: few rows m for n, or noise comparable to the signal); use spde, or collect more data");
   }
   std::vector<std::string> warnings;
   Diagnostics d;
   d.iterations = k.iterations;
-  // ||X^1/2 grad f X^1/2|| has the units of f: 2^2ea times its scaled value.
-  d.gradient_norm = std::ldexp(k.gradient_norm, 2 * data.exponent_a);
+  // ||X^1/2 grad f X^1/2|| has the units of f.
+  d.gradient_norm = std::ldexp(k.gradient_norm, criterion_exponent);
   d.converged = k.converged;
   if (!k.converged) {
     warnings.push_back("spd-tls did not converge in " + std::to_string(k.iterations) +
                        " iterations (||X^1/2 grad f X^1/2||_F = " + detail::format_number(*d.gradient_norm) +
-                       " against the criterion f = " +
-                       detail::format_number(std::ldexp(k.criterion, 2 * data.exponent_a)) +
+                       " against the " + criterion_name + " f = " +
+                       detail::format_number(std::ldexp(k.criterion, criterion_exponent)) +
                        "): returning the best iterate; raise the iteration limit (" +
                        std::to_string(data.options.max_iterations) + ")");
   }
   if (k.boundary_zeros > 0) {
-    warnings.push_back("the infimum of the TLS criterion over the positive definite matrices is on the boundary: "
+    warnings.push_back("the infimum of the " + criterion_name + " over the positive definite matrices is on the boundary: "
                        "the criterion keeps decreasing as " + std::to_string(k.boundary_zeros) +
                        " eigenvalue(s) of X go to zero, so the estimate is the positive semidefinite limit "
                        "(rank " + std::to_string(n - k.boundary_zeros) + "), not positive definite");

@@ -4,6 +4,7 @@
 
 #include "estimators/diagnostics.hpp"
 #include "estimators/kernels.hpp"
+#include "estimators/noise_weights.hpp"
 #include "numerics/linalg.hpp"
 
 namespace spdfit {
@@ -49,18 +50,32 @@ FitResult symmetric_procrustes(const Reduction& reduction) {
   const Index r = data.rank_a;
   std::vector<std::string> warnings;
   MatrixXd X_s;
-  detail::procrustes_kernel(data, X_s);
+  // With a noise model, min sum_i r_i^T Sigma_B^-1 r_i over symmetric X is the unweighted problem
+  // on the whitened data (whiten_b): X = C Y C with Y their symmetric Procrustes estimate.
+  const std::optional<detail::ScaledNoise> noise = detail::scaled_noise(data);
+  std::optional<detail::WhitenedB> whitened;
+  if (noise) {
+    whitened = detail::whiten_b(data, *noise, 0.0, true);
+    MatrixXd Y_s;
+    detail::procrustes_kernel(whitened->data, Y_s);
+    X_s = detail::unwhiten_b(*whitened, Y_s);
+    if (auto warning = detail::ignored_noise_warning(data, Method::SymmetricProcrustes)) warnings.push_back(*warning);
+  } else {
+    detail::procrustes_kernel(data, X_s);
+  }
 
   if (r < n) {
     warnings.push_back("A is rank-deficient (rank " + std::to_string(r) + " < n = " + std::to_string(n) +
                        "): the symmetric minimizer is not unique; returning the one of minimum norm");
   }
 
-  // Theorem 3.2 (3): A^T B + B^T A positive definite implies a positive definite estimate.
+  // Theorem 3.2 (3): A^T B + B^T A positive definite implies a positive definite estimate (with a
+  // noise model, for the whitened data whose estimate Y is congruent to X).
   // Reported with every diagnostic; otherwise computed only for the warning below.
-  const auto cross_term_positive_definite = [&data]() {
+  const detail::DynamicReduction& fitted = whitened ? whitened->data : data;
+  const auto cross_term_positive_definite = [&fitted]() {
     MatrixXd cross;
-    detail::multiply(data.R11, true, data.R12, false, cross);
+    detail::multiply(fitted.R11, true, fitted.R12, false, cross);
     Eigen::VectorXd w;
     return detail::symmetric_eigen(MatrixXd(cross + cross.transpose()), w) && w(0) > 0.0;
   };

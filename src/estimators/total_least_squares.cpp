@@ -8,6 +8,7 @@
 #include <string>
 
 #include "estimators/diagnostics.hpp"
+#include "estimators/generalized_tls.hpp"
 #include "estimators/kernels.hpp"
 #include "numerics/linalg.hpp"
 #include "spdfit/nearest_spd.hpp"
@@ -72,7 +73,46 @@ struct TlsCore {
   std::string error;  // empty on success
 };
 
+// Generalized TLS with the noise model (generalized_tls.hpp): the TLS diagnostics are those of the
+// whitened data, in units of the noise's standard deviation; least squares when A is exact.
+TlsCore generalized_tls_core(const detail::DynamicReduction& data, const detail::ScaledNoise& noise) {
+  TlsCore out;
+  detail::GeneralizedTls k;
+  detail::generalized_tls(data, noise, k);
+  if (k.least_squares) {
+    out.X_s = std::move(k.X_s);
+    if (data.rank_a < data.n) {
+      out.warnings.push_back("A is rank-deficient (rank " + std::to_string(data.rank_a) + " < n = " +
+                             std::to_string(data.n) +
+                             "): returning the minimum-norm least-squares solution from the edited SVD");
+    }
+    return out;
+  }
+  Diagnostics& d = out.diagnostics;
+  d.tls_sigma_n = k.sigma_n;
+  d.tls_sigma_n1 = k.sigma_n1;
+  d.tls_correction_norm = k.correction;
+  d.tls_v22_min_singular_value = k.v22_min;
+  if (!k.exists) {
+    out.error = "tls: no generalized total least-squares solution exists: V22 is singular (smallest singular value " +
+                detail::format_number(k.v22_min) +
+                "), so the smallest singular subspace of the whitened [A B] contains directions with no B part";
+    return out;
+  }
+  if (!k.unique) {
+    out.warnings.push_back("sigma_n = " + detail::format_number(k.sigma_n) + " and sigma_{n+1} = " +
+                           detail::format_number(k.sigma_n1) +
+                           " of the whitened [A B] are equal to working precision, so the generalized TLS "
+                           "solution is not unique");
+  }
+  out.X_s = std::move(k.X_s);
+  return out;
+}
+
 TlsCore tls_core(const detail::DynamicReduction& data) {
+  if (const std::optional<detail::ScaledNoise> noise = detail::scaled_noise(data)) {
+    return generalized_tls_core(data, *noise);
+  }
   TlsCore out;
   detail::TlsKernel<Eigen::Dynamic> k;
   detail::tls_kernel(data, k);

@@ -8,6 +8,8 @@
 #include <string>
 
 #include "spdfit/fit_options.hpp"
+#include "spdfit/method.hpp"
+#include "spdfit/options.hpp"
 #include "spdfit/reduction.hpp"
 
 namespace spdfit::detail {
@@ -77,12 +79,18 @@ constexpr bool uses_vectors_a(Method method) {
          method == Method::PsdLeastSquares || method == Method::Auto;
 }
 
+/// Why `method` cannot use the noise model `model` (FitOptions::noise), or nothing when it can or
+/// there is none (estimators/noise_weights.hpp says what each method needs).
+std::optional<std::string> noise_refusal(const std::optional<NoiseModel>& model, Method method);
+
 /// data_of for `method`: also throws std::invalid_argument when B's columns differ from A's and
-/// the method does not fit a non-square X (non_square_refusal), and std::logic_error when the
+/// the method does not fit a non-square X (non_square_refusal) or cannot use the noise model
+/// (noise_refusal), and std::logic_error when the
 /// reduction lacks R11's singular vectors the method needs (made by reduce_for another method).
 inline const DynamicReduction& data_of(const Reduction& reduction, Method method) {
   const DynamicReduction& data = data_of(reduction);
   if (auto refusal = non_square_refusal(method, data.n, data.d)) throw std::invalid_argument(*refusal);
+  if (auto refusal = noise_refusal(data.options.noise, method)) throw OptionError(*refusal);
   if (uses_vectors_a(method) && data.V_a.rows() != data.n) {
     throw std::logic_error(std::string("this Reduction was made for another method, without the singular vectors ") +
                            std::string(to_string(method)) + " needs: make one with spdfit::reduce");

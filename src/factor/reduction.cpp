@@ -100,6 +100,8 @@ SPDFIT_FOR_EACH_MAX_N(SPDFIT_INSTANTIATE)
 
 namespace detail {
 
+Reduction reduction_of(std::shared_ptr<const DynamicReduction> data) { return Reduction(std::move(data)); }
+
 // The reduction, with R11's singular vectors or without them (reduce and reduce_for).
 Reduction reduce_with(const TriangularFactor& factor, const FitOptions& options, bool vectors_a) {
   std::string error;
@@ -110,6 +112,8 @@ Reduction reduce_with(const TriangularFactor& factor, const FitOptions& options,
   }
   auto r = std::make_shared<detail::DynamicReduction>();
   r->options = options;
+  // The noise model completed to the data's sizes, or refused (naming the option or rest file).
+  if (options.noise) r->options.noise = options.noise->resolved(n, factor.d());
   detail::reduce_into(factor.R(), factor.rows(), n, factor.exponent_a(), factor.exponent_b(), *r, vectors_a);
   // A property of the data, computed once for every method that reports it.
   if (options.diagnostics && options.reported_diagnostics) r->noise_var = detail::noise_variance(*r);

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "factor/basic_reduction.hpp"
 #include "io/split_file.hpp"
 #include "pipeline/pair_checks.hpp"
 #include "spdfit/options.hpp"
@@ -232,6 +233,10 @@ DistributedFit fit_files_distributed(const std::string& a_path, const std::strin
   if (m < n) throw detail::fewer_samples_than_columns(a_path, m, n);
   detail::check_same_rows(a_path, m, b_path, b->rows());
   detail::check_method_fits(method, b_path, a->columns(), d);
+  // The noise model (every process has the options) against the data's sizes, and what the
+  // method needs of it, alike on every process.
+  if (auto refusal = detail::noise_refusal(options.noise, method)) throw OptionError(*refusal);
+  if (options.noise) static_cast<void>(options.noise->resolved(a->columns(), d));
 
   const bool bootstrap = options.bootstrap > 0;
   const std::vector<std::uint64_t> first =

@@ -83,21 +83,36 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
                     const std::optional<StreamOptions>& stream, const io::ReadOptions& read) {
   std::string error;
   if (!options.is_valid(&error)) throw OptionError(error);
+  // A noise model the method cannot use is refused before any file is read.
+  if (auto refusal = detail::noise_refusal(options.noise, method)) throw OptionError(*refusal);
   std::optional<StreamOptions> streamed = stream;
   if (streamed) streamed->read = read;  // one way of reading, whichever path
+  auto readers = [&] {
+    detail::PairReaders pair(a_path, b_path, read);
+    // The noise model's sizes against the data's columns, at the first block, not after the pass.
+    if (options.noise) {
+      pair.check_columns = [noise = &*options.noise](Eigen::Index n, Eigen::Index d) {
+        static_cast<void>(noise->resolved(n, d));
+      };
+    }
+    return pair;
+  };
   if (streamed && options.bootstrap > 0) {
+    if (streamed->block_rows < 1) throw std::invalid_argument("block_rows must be at least 1");
     // The streaming bootstrap: Poisson counts on fixed row groups, all in the one pass.
     return detail::fit_streamed_bootstrap(
         method, options,
-        detail::stream_resampled_factors(method, a_path, b_path, *streamed, options.bootstrap, options.seed), a_path);
+        detail::stream_resampled_factors(method, readers(), *streamed, options.bootstrap, options.seed), a_path);
   }
   if (streamed) {
+    if (streamed->block_rows < 1) throw std::invalid_argument("block_rows must be at least 1");
     detail::PairInfo info;
-    const TriangularFactor factor = detail::stream_factor_for(method, a_path, b_path, *streamed, &info);
+    const TriangularFactor factor = detail::stream_factor_for(method, readers(), *streamed, &info);
     return detail::fit_streamed(method, options, factor, info, a_path);
   }
   DataPair data = read_pair(a_path, b_path, read);
   detail::check_method_fits(method, b_path, data.A.cols(), data.B.cols());
+  if (options.noise) static_cast<void>(options.noise->resolved(data.A.cols(), data.B.cols()));
   detail::check_enough_rows_for(method, a_path, data.A.rows(), data.A.cols(), data.B.cols());
   FitResult result = fit(data.A, data.B, method, options);
   attach_read_info(result, {std::move(data.warnings), std::move(data.a_names), std::move(data.b_names)});

@@ -215,9 +215,17 @@ const std::vector<OptionSpec<FitRequest>>& fit_option_table() {
 bool FitRequest::is_valid(std::string* error) const { return options_in_range(*this, fit_option_table(), error); }
 
 bool FitOptions::is_valid(std::string* error) const {
+  if (noise && noise_ratio != 1.0) {
+    if (error) {
+      *error = "`noise_ratio` cannot be combined with a noise model (" + noise->option_a() + ", " +
+               noise->option_b() + "): the noise model gives the noise in A and in B, and so their ratio";
+    }
+    return false;
+  }
   FitRequest request;
   request.options = *this;
   request.options.progress = nullptr;  // a copy of the options' numbers only
+  request.options.noise.reset();       // the table checks the numbers; the model checked itself
   return request.is_valid(error);
 }
 

@@ -1,6 +1,7 @@
 #include "spdfit/stream.hpp"
 
 #include <deque>
+#include <functional>
 #include <future>
 #include <memory>
 #include <optional>
@@ -48,7 +49,8 @@ class PairReader {
         whole_(readers.whole),
         block_rows_(options.block_rows),
         side_by_side_(side_by_side),
-        method_(method) {}
+        method_(method),
+        check_columns_(std::move(readers.check_columns)) {}
 
   /// How much of A has been read, in [0, 1].
   double fraction_read() const { return a_.fraction_read(); }
@@ -110,8 +112,14 @@ class PairReader {
 
   // Blocks are full until a file ends, so a difference in rows shows as blocks of different
   // sizes; the columns are checked against the method at the first block.
-  void check(Index got_a, Index got_b) const {
-    if (got_a > 0 && got_b > 0) detail::check_method_fits(method_, b_.path(), a_.columns(), b_.columns());
+  void check(Index got_a, Index got_b) {
+    if (got_a > 0 && got_b > 0) {
+      detail::check_method_fits(method_, b_.path(), a_.columns(), b_.columns());
+      if (check_columns_) {
+        check_columns_(a_.columns(), b_.columns());
+        check_columns_ = nullptr;  // once
+      }
+    }
     if (got_a == got_b) return;
     const std::string problem =
         got_a < got_b ? "B has more than " + detail::rows_text(a_.rows_read()) + " but A (" + a_.path() + ") has " +
@@ -125,6 +133,7 @@ class PairReader {
   Index block_rows_;
   bool side_by_side_;
   std::optional<Method> method_;
+  std::function<void(Index, Index)> check_columns_;
   bool started_ = false;
   std::unique_ptr<detail::TaskPool> b_thread_;  // reads B beside A, from the second block on
 };

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,6 +32,9 @@ struct PairReaders {
   io::RowReader a, b;
   bool whole = true;
   std::uint64_t first_row = 0;
+  /// Called with A's and B's column counts at the first block (both files opened and read), to
+  /// refuse data that will not fit before the whole pass: the noise model's sizes (fit_files).
+  std::function<void(Eigen::Index, Eigen::Index)> check_columns;
 };
 
 /// stream_factor for data that `method` (when given) will fit: B with a column count the method

@@ -9,6 +9,7 @@
 
 #include "estimators/diagnostics.hpp"
 #include "estimators/kernels.hpp"
+#include "estimators/noise_weights.hpp"
 #include "estimators/psd_ls_kernel.hpp"
 #include "factor/basic_reduction.hpp"
 #include "numerics/linalg.hpp"
@@ -77,6 +78,8 @@ bool at_boundary(const FitResult& full) { return full.diagnostics.reason && full
 }  // namespace
 
 FitResult fit_replicate(const Reduction& data, const FitResult& full) {
+  // spde, when auto chose it with a noise model, ran without the model: so do its replicates.
+  if (full.method == Method::Spde && data_of(data).options.noise) return fit(without_noise(data), Method::Spde);
   if (!at_boundary(full)) return fit(data, full.method);
   const DynamicReduction& reduced = data_of(data);
   return psd_least_squares_scaled(reduced, auto_floor(reduced));

@@ -222,6 +222,29 @@ TEST_F(DistributedTest, TheIterativeMethodsAgreeToTheirTolerance) {
   }
 }
 
+// The noise model reaches the fit on process 0 (the options are every process's own, not sent),
+// and a model of another size is refused on every process alike.
+TEST_F(DistributedTest, ANoiseModelIsTheSingleProcessFitsAndIsCheckedEverywhere) {
+  MakeData(400, 3, 7);
+  FitOptions options;
+  options.noise = NoiseModel::from_std((Eigen::VectorXd(3) << 0.1, 0.2, 0.1).finished(), Eigen::VectorXd::Constant(1, 0.3));
+  for (Method method : {Method::SpdTotalLeastSquares, Method::Auto, Method::TotalLeastSquares}) {
+    const FitResult single = SingleProcess(method, options);
+    ASSERT_TRUE(single.ok()) << single.message;
+    ASSERT_TRUE(single.diagnostics.noise_model);
+    const std::vector<Outcome> outcomes = run_processes(3, a_path_, b_path_, method, options);
+    ASSERT_TRUE(outcomes[0].fit && outcomes[0].fit->result) << outcomes[0].error;
+    EXPECT_LT(test::relative_error(outcomes[0].fit->result->X, single.X), 1e-8) << to_string(method);
+    EXPECT_TRUE(outcomes[0].fit->result->diagnostics.noise_model);
+  }
+  options.noise = NoiseModel::from_std(Eigen::VectorXd::Constant(2, 0.1), Eigen::VectorXd::Constant(1, 0.3));
+  const std::vector<Outcome> refused = run_processes(3, a_path_, b_path_, Method::SpdTotalLeastSquares, options);
+  for (const Outcome& outcome : refused) {
+    EXPECT_FALSE(outcome.fit);
+    EXPECT_NE(outcome.error.find("`noise_std_a` has 2 values but A has 3 columns"), std::string::npos) << outcome.error;
+  }
+}
+
 TEST_F(DistributedTest, AGivenProcessCountGivesTheSameBitsRunToRun) {
   MakeData(999, 3, 3);
   const std::vector<Outcome> first = run_processes(3, a_path_, b_path_, Method::Spde);

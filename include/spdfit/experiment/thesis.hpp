@@ -3,6 +3,7 @@
 
 #include <array>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -31,6 +32,27 @@ inline constexpr std::array<ThesisReportedRun, 3> kThesisReportedRuns = {{
     {3, 1.28, 2.9120, 3.7761, 2.0083},
 }};
 
+/// The noise model the methods of an experiment are fitted with (FitOptions::noise).
+enum class FitNoise {
+  None,  ///< none: the methods assume equal noise in every column of A and B
+  True,  ///< the generator's true covariances (hexapod::true_noise_model)
+  Rest,  ///< the sample covariances of the trial's rest rows (SimulationOptions::rest_samples)
+};
+
+/// "none", "true" or "rest".
+constexpr std::string_view to_string(FitNoise noise) {
+  switch (noise) {
+    case FitNoise::None:
+      return "none";
+    case FitNoise::True:
+      return "true";
+    case FitNoise::Rest:
+      return "rest";
+  }
+  return "unknown";
+}
+std::optional<FitNoise> parse_fit_noise(std::string_view name);
+
 /// The set-up of the thesis experiment: the appendix-B generator with M_p of eq. 6.1.
 struct ThesisExperimentOptions {
   /// samples (m = 12), noise_var (required), signal_var (25/3), distribution (uniform).
@@ -40,12 +62,21 @@ struct ThesisExperimentOptions {
   /// The methods to run, in the order results list them (default: kSourceDocumentMethods, the
   /// thesis' six). Must be non-empty and without repeats.
   std::vector<Method> methods{kSourceDocumentMethods.begin(), kSourceDocumentMethods.end()};
+  /// The noise models every method is fitted with, each in turn (results noise model by noise
+  /// model, each with every method): with the per-column noise of simulation.noise_std_a and
+  /// noise_std_b, {None, True, Rest} compares equal noise assumed, the true covariances and a rest
+  /// segment's (Rest needs simulation.rest_samples >= 2). spde, which takes no noise model, runs
+  /// with None only. Non-empty, without repeats.
+  std::vector<FitNoise> noise_models{FitNoise::None};
 };
 
 /// One method's errors over the trials.
 struct MethodErrors {
   Method method = Method::Spde;
-  std::vector<double> errors;  ///< ||M_p - M_hat||_F per trial; NaN where the method failed
+  FitNoise noise = FitNoise::None;  ///< the noise model it was fitted with
+  /// ||M_p - M_hat / scale_b||_F per trial (in the truth's units, whatever simulation.scale_b);
+  /// NaN where the method failed
+  std::vector<double> errors;
   Summary summary;             ///< of `errors`
 };
 
@@ -54,15 +85,15 @@ struct ThesisExperimentResult {
   ThesisExperimentOptions options;  ///< as run (truth filled in)
   std::size_t trials = 0;
   std::uint64_t seed = 0;
-  std::vector<MethodErrors> methods;  ///< in the options' order
+  std::vector<MethodErrors> methods;  ///< in the options' order (noise model by noise model)
 
-  /// The errors of `method`.
-  const MethodErrors& of(Method method) const;
+  /// The errors of `method` (fitted with `noise`); throws std::invalid_argument when it was not run.
+  const MethodErrors& of(Method method, FitNoise noise = FitNoise::None) const;
 };
 
 /// Repeats the thesis experiment: in trial k, simulate (hexapod::simulate with the trial's own
-/// Random) and run the options' estimators (experiment::estimate); record each one's Frobenius error against
-/// the truth. Runs on options' threads; the numbers depend only on the seed (run_trials).
+/// Random) and run the options' estimators (experiment::estimate without a noise model, fit with
+/// one); record each one's Frobenius error against the truth. Runs on options' threads; the numbers depend only on the seed (run_trials).
 /// Throws std::invalid_argument on invalid options. Cost O(trials (m n^2 + n^3)).
 ThesisExperimentResult run_thesis_experiment(const ThesisExperimentOptions& options,
                                              const MonteCarloOptions& monte_carlo);

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "spdfit/noise_model.hpp"
 #include "spdfit/random.hpp"
 
 namespace spdfit::hexapod {
@@ -37,9 +38,27 @@ struct SimulationOptions {
   /// draws 10 (rand - 0.5), uniform on [-5, 5]: S = 25/3 (its text rounds this to 8.2).
   double signal_var = 25.0 / 3.0;
   NoiseDistribution distribution = NoiseDistribution::Uniform;
+  /// Standard deviations of the noise in A, one for every column or one for all (then noise_var
+  /// must be 0): sensors with noise levels of their own. 0 means exact.
+  std::optional<Eigen::VectorXd> noise_std_a;
+  /// The same for B (then force_noise_var must be unset), in B's units before scale_b.
+  std::optional<Eigen::VectorXd> noise_std_b;
+  /// Rows recorded at rest, drawn after the data (Measurements::rest_A, rest_B): zero accelerations
+  /// plus A's noise, and the constant force rest_force plus B's noise. 0: none.
+  Eigen::Index rest_samples = 0;
+  /// The force at rest (one value per column of B, before scale_b); empty means truth (1, ..., 1)^T,
+  /// the load of a unit acceleration along every strut. Its value does not change the rest rows'
+  /// covariance, only their mean.
+  Eigen::VectorXd rest_force;
+  /// A change of B's units: B, B_true and the rest rows of B are multiplied by this after they are
+  /// drawn (1e-3: newtons to kilonewtons), so that the true X is truth * scale_b. 1: none.
+  double scale_b = 1.0;
 
   /// True when usable (samples >= 1, noise_var and force_noise_var >= 0, signal_var > 0, all
-  /// finite); otherwise `error` says why.
+  /// finite; standard deviations finite and >= 0, not together with noise_var != 0 or
+  /// force_noise_var; rest_samples >= 0; rest_force finite; scale_b finite and > 0); otherwise
+  /// `error` says why. The sizes of noise_std_a, noise_std_b and rest_force are checked against
+  /// the truth by simulate.
   bool is_valid(std::string* error = nullptr) const;
 };
 
@@ -49,15 +68,22 @@ struct Measurements {
   Eigen::MatrixXd B;       ///< measured base forces, m x n (eq. 6.4)
   Eigen::MatrixXd A_true;  ///< true accelerations
   Eigen::MatrixXd B_true;  ///< true forces A_true M (eq. 6.2 in row form, f_b^T = p_ddot^T M)
+  /// With SimulationOptions::rest_samples = N > 0: N rows recorded at rest (accelerations zero,
+  /// forces constant) with the data's noise; empty otherwise.
+  Eigen::MatrixXd rest_A, rest_B;
 };
 
 /// The thesis generator (appendix B): A_true uniform with variance S; B_true = A_true M;
 /// A = A_true + noise, B = B_true + noise, with independent noise of variance V in every
-/// entry (of variance force_noise_var in B, when given). Draws in the M-file's order (A_true, A's noise, B's
-/// noise), each matrix column by column as MATLAB's rand([m, n]) fills it, from `random` (so the numbers are
-/// reproducible; see Random). `truth` is n x n; the thesis' is thesis_mass_matrix().
+/// entry (of variance force_noise_var in B, when given; of the standard deviations noise_std_a,
+/// noise_std_b per column, when given). Draws in the M-file's order (A_true, A's noise, B's
+/// noise), each matrix column by column as MATLAB's rand([m, n]) fills it, then the rest rows
+/// (rest_A's noise, rest_B's noise), from `random` (so the numbers are reproducible; see Random).
+/// Finally B, B_true and rest_B are multiplied by scale_b. `truth` is n x n; the thesis' is
+/// thesis_mass_matrix().
 ///
-/// Throws std::invalid_argument when the options are invalid or `truth` is not square.
+/// Throws std::invalid_argument when the options are invalid, `truth` is not square, or
+/// noise_std_a, noise_std_b or rest_force has a size other than 1 (rest_force: n) or n.
 /// Cost O(m n^2).
 Measurements simulate(const Eigen::MatrixXd& truth, const SimulationOptions& options, Random& random);
 
@@ -74,5 +100,16 @@ void simulate_into(const Eigen::MatrixXd& truth, const SimulationOptions& option
 /// Adds independent noise of variance `variance` to every entry of `out` (any shape), column
 /// by column. Draws as many numbers for variance 0 as for any other.
 void add_noise(Eigen::MatrixXd& out, double variance, NoiseDistribution distribution, Random& random);
+
+/// Adds independent noise of standard deviation std_dev(j) to every entry of column j of `out`
+/// (std_dev of length 1: the same for every column), column by column as add_noise draws.
+void add_noise(Eigen::MatrixXd& out, const Eigen::VectorXd& std_dev, NoiseDistribution distribution, Random& random);
+
+/// The noise model of the generator for data with n columns (A and B): Sigma_A = diag(std_a^2)
+/// (noise_var I without noise_std_a), Sigma_B = diag(std_b^2) scale_b^2 (force_noise_var or
+/// noise_var without noise_std_b), as standard deviations (NoiseSource::Std): the true covariances
+/// that a fit given them knows. Throws std::invalid_argument when the options are invalid or a
+/// size is not 1 or n.
+NoiseModel true_noise_model(const SimulationOptions& options, Eigen::Index n);
 
 }  // namespace spdfit::hexapod

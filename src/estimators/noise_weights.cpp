@@ -1,0 +1,129 @@
+#include "estimators/noise_weights.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <memory>
+#include <utility>
+
+#include "estimators/kernels.hpp"
+#include "numerics/linalg.hpp"
+
+namespace spdfit::detail {
+
+using Eigen::Index;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+std::optional<ScaledNoise> scaled_noise(const DynamicReduction& data) {
+  const std::optional<NoiseModel>& model = data.options.noise;
+  if (!model) return std::nullopt;
+  ScaledNoise out;
+  // A 2^-ea has the noise e 2^-ea, of covariance Sigma_A 2^-2ea (exact: powers of two).
+  out.cov_a = times_power_of_two(model->cov_a(), -2 * data.exponent_a);
+  out.cov_b = times_power_of_two(model->cov_b(), -2 * data.exponent_b);
+  out.a_zero = model->a_is_zero();
+  out.a_definite = model->a_is_positive_definite();
+  out.b_definite = model->b_is_positive_definite();
+  return out;
+}
+
+std::optional<std::string> noise_refusal(const std::optional<NoiseModel>& model, Method method) {
+  if (!model) return std::nullopt;
+  const std::string name(to_string(method));
+  const std::string a = model->option_a(), b = model->option_b();
+  switch (method) {
+    case Method::LeastSquares:
+      return std::nullopt;
+    case Method::Spde:
+      return "spde takes no noise model (it assumes equal noise in every column of A and B, in the units "
+             "given): with one (" + a + ", " + b + "), use auto or spd-tls, the maximum-likelihood estimate";
+    case Method::SymmetricProcrustes:
+    case Method::PsdLeastSquares:
+      if (model->b_is_positive_definite()) return std::nullopt;
+      return name + " models noise in B only and weights each row's residual by the inverse of B's noise "
+                    "covariance, but the covariance " + b + " gives is singular (B has exact columns or "
+                    "directions): give B's noise, or use ls or spd-tls";
+    case Method::TotalLeastSquares:
+    case Method::TotalLeastSquaresSymmetric:
+    case Method::TotalLeastSquaresPsd:
+      if (model->a_is_zero() || model->b_is_positive_definite()) return std::nullopt;
+      return name + " with a noise model is generalized total least squares, which needs B's noise covariance (" +
+             b + ") positive definite unless A is exact (" + a +
+             " zero: least squares): B has exact columns or directions here; use spd-tls";
+    case Method::SpdTotalLeastSquares:
+    case Method::Auto:
+      if (model->a_is_positive_definite() || model->b_is_positive_definite()) return std::nullopt;
+      return name + " with a noise model is the maximum-likelihood estimate, which needs X Sigma_A X + Sigma_B "
+                    "positive definite for every positive definite X, so Sigma_A (" + a + ") or Sigma_B (" + b +
+                    ") positive definite: both are singular (exact columns or directions in A and in B)";
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> ignored_noise_warning(const DynamicReduction& data, Method method) {
+  const std::optional<NoiseModel>& model = data.options.noise;
+  if (!model || model->a_is_zero()) return std::nullopt;
+  if (method == Method::LeastSquares) {
+    return "ls models noise in B only and is A^+ B whatever the weight: the noise in A that " + model->option_a() +
+           " gives is ignored (it biases least squares towards zero; tls and spd-tls model it)";
+  }
+  if (method == Method::SymmetricProcrustes || method == Method::PsdLeastSquares) {
+    return std::string(to_string(method)) + " models noise in B only (weighted by " + model->option_b() +
+           "): the noise in A that " + model->option_a() +
+           " gives is ignored (it biases least squares towards zero; spd-tls models it)";
+  }
+  return std::nullopt;
+}
+
+Reduction without_noise(const Reduction& data) {
+  auto copy = std::make_shared<DynamicReduction>(data_of(data));
+  copy->options.noise.reset();
+  return reduction_of(std::move(copy));
+}
+
+WhitenedB whiten_b(const DynamicReduction& data, const ScaledNoise& noise, double floor_s, bool vectors_a) {
+  const Index n = data.n, d = data.d;
+  WhitenedB out;
+  out.floor_s = floor_s;
+  // C = Sigma_B^1/2 and C^-1 from one eigendecomposition (Sigma_B > 0, checked by the caller).
+  const Eigen::SelfAdjointEigenSolver<MatrixXd> eig(noise.cov_b);
+  const MatrixXd& V = eig.eigenvectors();
+  const VectorXd root = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  out.C_s = symmetric_part(MatrixXd(V * root.asDiagonal() * V.transpose()));
+  const MatrixXd C_inv = symmetric_part(MatrixXd(V * root.cwiseInverse().asDiagonal() * V.transpose()));
+
+  // [A B] = Q R gives [A C, (B - floor A) C^-1] = Q [R11 C, (R12 - floor R11) C^-1; 0, R22 C^-1].
+  MatrixXd top_b = data.R12;
+  if (floor_s > 0.0) top_b -= floor_s * data.R11;
+  MatrixXd Rw = MatrixXd::Zero(n + d, n + d);
+  Rw.topLeftCorner(n, n).noalias() = data.R11 * out.C_s;
+  Rw.topRightCorner(n, d).noalias() = top_b * C_inv;
+  Rw.bottomRightCorner(d, d).noalias() = data.R22 * C_inv;
+  // Each block scaled by a power of two to entries below 1, as TriangularFactor stores data.
+  const int ka = scale_exponent(Rw.leftCols(n)).value_or(0);
+  const int kb = scale_exponent(Rw.rightCols(d)).value_or(0);
+  auto left = Rw.leftCols(n);
+  auto right = Rw.rightCols(d);
+  multiply_by_power_of_two(left, -ka);
+  multiply_by_power_of_two(right, -kb);
+  MatrixXd R;
+  triangular_factor_into<MatrixXd>(Rw, R);
+
+  out.data.options = data.options;
+  out.data.options.noise.reset();
+  // A_s C_s = A C 2^-(ea + eb) and (B_s - floor_s A_s) C_s^-1 = (B - floor A) C^-1: the whitened
+  // data's exponents are ea + eb + ka and kb, and X_s = floor_s I + 2^(kb - ka) C_s Y_s C_s.
+  reduce_into(R, data.m, n, data.exponent_a + data.exponent_b + ka, kb, out.data, vectors_a);
+  out.shift = kb - ka;
+  return out;
+}
+
+MatrixXd unwhiten_b(const WhitenedB& w, const MatrixXd& Y_s) {
+  MatrixXd X = w.C_s * Y_s * w.C_s;
+  multiply_by_power_of_two(X, w.shift);
+  X = symmetric_part(X);
+  X.diagonal().array() += w.floor_s;
+  return X;
+}
+
+}  // namespace spdfit::detail

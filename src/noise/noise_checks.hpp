@@ -1,0 +1,29 @@
+// Internal: the checks and classification of a noise model's covariance matrices, shared by its
+// factories.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+
+namespace spdfit::detail {
+
+/// What a symmetric covariance matrix is, to working precision.
+struct CovarianceClass {
+  bool zero = true;               ///< every entry exactly 0
+  bool positive_definite = false;  ///< lambda_min > 64 n eps |lambda_max|
+  bool semidefinite = true;        ///< lambda_min >= -64 n eps |lambda_max|
+  double min_eigenvalue = 0.0, max_eigenvalue = 0.0;
+};
+
+/// The class of the symmetric S (an empty S is zero). Cost O(n^3).
+CovarianceClass classify_covariance(const Eigen::MatrixXd& S);
+
+/// S's symmetric part, after checking that S is a covariance matrix: non-empty, square, finite,
+/// symmetric to 1e-10 of its largest entry, positive semidefinite to rounding. Throws
+/// std::invalid_argument naming `option` (a library name in backticks) otherwise.
+Eigen::MatrixXd checked_covariance(const Eigen::MatrixXd& S, const std::string& option);
+
+/// "%.6g"-style text for the noise model's messages.
+std::string number(double value);
+
+}  // namespace spdfit::detail

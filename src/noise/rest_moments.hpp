@@ -1,0 +1,31 @@
+// Internal: the mean and the centered sum of squares of rows arriving a block at a time, merged
+// stably, for the covariances of a noise model's rest rows.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+
+namespace spdfit::detail {
+
+/// The mean and M2 = sum_i (x_i - mean)(x_i - mean)^T of the rows seen so far. Each block is
+/// centered about its own mean before its squares are summed, and blocks merge by Chan, Golub and
+/// LeVeque's update (M2 = M2_a + M2_b + delta delta^T n_a n_b / n, delta the difference of the
+/// means), so that a large constant offset (a static load) costs no accuracy, as the textbook
+/// sum of squares minus N mean^2 would. Cost O(k c^2) per block of k rows and c columns.
+class RowMoments {
+ public:
+  /// Adds the rows of `block` (k x c, finite; c fixed by the first block).
+  void add(const Eigen::Ref<const Eigen::MatrixXd>& block);
+
+  std::uint64_t rows() const { return rows_; }
+  const Eigen::VectorXd& mean() const { return mean_; }
+  /// The sample covariance M2 / (N - 1), exactly symmetric; needs N >= 2.
+  Eigen::MatrixXd covariance() const;
+
+ private:
+  std::uint64_t rows_ = 0;
+  Eigen::VectorXd mean_;
+  Eigen::MatrixXd m2_;
+};
+
+}  // namespace spdfit::detail
