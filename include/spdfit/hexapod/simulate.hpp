@@ -8,7 +8,9 @@
 
 #include <Eigen/Core>
 
+#include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/random.hpp"
+#include "spdfit/rigid_body.hpp"
 
 namespace spdfit::hexapod {
 
@@ -74,5 +76,14 @@ void simulate_into(const Eigen::MatrixXd& truth, const SimulationOptions& option
 /// Adds independent noise of variance `variance` to every entry of `out` (any shape), column
 /// by column. Draws as many numbers for variance 0 as for any other.
 void add_noise(Eigen::MatrixXd& out, double variance, NoiseDistribution distribution, Random& random);
+
+/// simulate() of a hexapod whose true payload differs from the geometry's nominal one: the truth
+/// is joint_space_mass_matrix(geometry, payload) (model.hpp; the payload's centre of mass offset
+/// from {P}'s origin and its inertia about it), so that physical identification
+/// (hexapod/physical.hpp) has a payload to recover that the geometry file does not state. Same
+/// draws as simulate(truth, options, seed). Throws std::invalid_argument for an invalid geometry
+/// or a payload that is not well formed (is_well_formed). Cost O(m n^2).
+Measurements simulate(const Geometry& geometry, const RigidBodyInertia& payload, const SimulationOptions& options,
+                      std::uint64_t seed);
 
 }  // namespace spdfit::hexapod
