@@ -25,7 +25,10 @@ namespace {
 constexpr double kDesignTolerance = 1e-10;
 // Where the least-squares start lies on the boundary of the cone, the errors-in-variables
 // iteration starts this fraction of P's largest eigenvalue inside.
-constexpr double kStartInside = 1e-4;
+constexpr double kStartInside = 1e-2;
+// The rounding of the pseudo-inertia's computed eigenvalues (from theta, through the 4 x 4
+// eigensolver), relative to the largest: what "physically consistent" allows below zero.
+constexpr double kConsistencyRounding = 64.0 * std::numeric_limits<double>::epsilon();
 // Symmetry of the noise covariances, relative to their largest entry.
 constexpr double kSymmetryTolerance = 1e-12;
 
@@ -154,8 +157,8 @@ PhysicalEstimate fit_physical(const TriangularFactor& factor, const PhysicalMode
   if (rank < model.parameters) {
     throw std::invalid_argument(
         "the data cannot identify the payload's " + reached_groups(model, null_space) + ": A has rank " +
-        std::to_string(out.rank_a) + " of 6 (m = " + std::to_string(out.m) +
-        " rows), so the forces determine only " + std::to_string(rank) + " of the " +
+        std::to_string(out.rank_a) + " of 6 (m = " + std::to_string(out.m) + (out.m == 1 ? " row" : " rows") +
+        "), so the forces determine only " + std::to_string(rank) + " of the " +
         std::to_string(model.parameters) +
         " parameters; log more samples that excite the payload in every direction");
   }
@@ -197,7 +200,8 @@ PhysicalEstimate fit_physical(const TriangularFactor& factor, const PhysicalMode
         // The criterion is not convex: two starts, the lowest local minimum wins. The barrier path
         // from the certified least-squares fit, and Newton's method without constraints from the
         // unconstrained least-squares fit: its minimum, when inside the cone, is a KKT point with
-        // zero multipliers; when outside, the barrier path from it pushed inside is a third start.
+        // zero multipliers; when outside, the face it points to (or the barrier path from it pushed
+        // inside) is a third start.
         std::optional<SolveResult> best;
         auto consider = [&](const SolveResult& r, bool usable) {
           iterations += r.iterations;
@@ -213,7 +217,16 @@ PhysicalEstimate fit_physical(const TriangularFactor& factor, const PhysicalMode
         if (!free_inside || !strictly_feasible(model, theta_ls)) {
           consider(solve_constrained(eiv, model, start, budget()), true);
           if (free.converged && !free_inside && free.theta.allFinite()) {
-            consider(solve_constrained(eiv, model, pushed_inside(model, free.theta, kStartInside), budget()), true);
+            // From the unconstrained minimum: the face its clipped pseudo-inertia lies on, or the
+            // barrier path from it pushed inside.
+            int steps = 0;
+            const std::optional<SolveResult> face = solve_on_face(eiv, model, free.theta, budget(), &steps);
+            iterations += steps;
+            if (face) {
+              consider(*face, true);
+            } else {
+              consider(solve_constrained(eiv, model, pushed_inside(model, free.theta, kStartInside), budget()), true);
+            }
           }
         }
         theta = best->theta;
@@ -252,10 +265,14 @@ PhysicalEstimate fit_physical(const TriangularFactor& factor, const PhysicalMode
   out.strut_mass = struts > 0 ? Eigen::VectorXd(physical.tail(struts)) : Eigen::VectorXd(geometry.strut_mass);
   out.M_p = model_mass_matrix(model, physical);
   out.M_p_eigenvalues = Eigen::SelfAdjointEigenSolver<Matrix6d>(out.M_p, Eigen::EigenvaluesOnly).eigenvalues();
-  out.pseudo_inertia_min_eig =
+  const Eigen::Vector4d pseudo =
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(scaled_pseudo_inertia(physical), Eigen::EigenvaluesOnly)
-          .eigenvalues()(0);
-  out.physically_consistent = out.pseudo_inertia_min_eig >= 0.0 && out.strut_mass.minCoeff() >= 0.0;
+          .eigenvalues();
+  out.pseudo_inertia_min_eig = pseudo(0);
+  // An estimate on the boundary (a rank-deficient pseudo-inertia) has computed eigenvalues of
+  // +-rounding there: consistent to the rounding of P's eigenvalues.
+  const double rounding = kConsistencyRounding * std::abs(pseudo(3));
+  out.physically_consistent = pseudo(0) >= -rounding && out.strut_mass.minCoeff() >= -rounding;
   const double unscale = used.criterion == PhysicalCriterion::LeastSquares
                              ? std::ldexp(1.0, 2 * factor.exponent_b())
                              : 1.0;  // the errors-in-variables criterion is invariant under the scaling

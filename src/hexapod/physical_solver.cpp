@@ -34,8 +34,13 @@ constexpr double kFinalDecrement = 1e-26;
 constexpr double kRoundingMultiple = 64.0;
 // Steps taken with the predicted decrease below the rounding level before a stage counts as done.
 constexpr int kRoundingSteps = 2;
-// Newton steps of the unconstrained polish tried after the first stage.
+// Newton steps of a face solve tried after a barrier stage, and the fraction of P's largest
+// eigenvalue below which an eigenvalue counts as leaving the face (as in solve_on_face).
 constexpr int kPolishSteps = 12;
+constexpr double kFaceGuess = 1e-3;
+// Strictly inside the cone: P's eigenvalues and the strut masses above this fraction of P's largest
+// eigenvalue (the barrier and its Hessian stay finite and resolvable).
+constexpr double kInteriorFraction = 1e-13;
 // No minimizer: the unconstrained iterates grew beyond this multiple of the start's size.
 constexpr double kUnboundedRatio = 1e8;
 // An eigenvalue of P (or a strut mass) below this fraction of P's largest counts as on the
@@ -327,10 +332,15 @@ ParamVector unconstrained_least_squares(const PhysicalData& data, const Physical
 }
 
 bool strictly_feasible(const PhysicalModel& model, const ParamVector& theta) {
+  // A Cholesky factorization succeeds on a semidefinite P with rounding-level pivots; the barrier
+  // needs P clearly inside.
+  const Eigen::Vector4d d =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(scaled_pseudo_inertia(theta), Eigen::EigenvaluesOnly).eigenvalues();
+  const double floor = kInteriorFraction * d.maxCoeff();
+  if (!(d.minCoeff() > floor) || !std::isfinite(d.maxCoeff())) return false;
   for (int a = kPayloadParameters; a < model.parameters; ++a)
-    if (!(theta(a) > 0.0)) return false;
-  const Eigen::LLT<Eigen::Matrix4d> llt(scaled_pseudo_inertia(theta));
-  return llt.info() == Eigen::Success && (llt.matrixLLT().diagonal().array() > 0.0).all();
+    if (!(theta(a) > floor)) return false;
+  return true;
 }
 
 ParamVector pushed_inside(const PhysicalModel& model, const ParamVector& theta, double fraction) {
@@ -357,7 +367,7 @@ SolveResult solve_constrained(const PhysicalData& data, const PhysicalModel& mod
   }
   const double mu_final = kFinalBarrier / nu;
   double mu = std::max(kInitialBarrier * ev.f / nu, mu_final);
-  bool first = true;
+  bool tried[5] = {false, false, false, false, false};  // face solves tried, by rank
   for (;;) {
     const bool last = mu <= mu_final;
     const StageEnd end = newton(data, model, mu, true, last ? kFinalDecrement : kCentering * mu, max_iterations,
@@ -375,22 +385,22 @@ SolveResult solve_constrained(const PhysicalData& data, const PhysicalModel& mod
       out.converged = true;
       break;
     }
-    if (first) {
-      // The polish: the unconstrained minimum, when Newton's method reaches it without leaving the
-      // open cone, is the constrained one (its multipliers are zero).
-      first = false;
-      ParamVector polished = out.theta;
+    // The face the iterate points to, solved once per rank: quadratic convergence to a minimizer
+    // on the boundary, where the path would need many more stages.
+    const Eigen::Vector4d d =
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(scaled_pseudo_inertia(out.theta), Eigen::EigenvaluesOnly)
+            .eigenvalues();
+    const auto rank = static_cast<int>((d.array() > kFaceGuess * d.maxCoeff()).count());
+    if (!tried[rank]) {
+      tried[rank] = true;
       int steps = 0;
-      const StageEnd polish = newton(data, model, 0.0, true, kFinalDecrement,
-                                     std::min(kPolishSteps, max_iterations - out.iterations), steps, polished);
+      const std::optional<SolveResult> face =
+          solve_on_face(data, model, out.theta, std::min(kPolishSteps, max_iterations - out.iterations), &steps);
       out.iterations += steps;
-      if (polish == StageEnd::Converged && evaluate(data, model, polished, 2, ev)) {
-        const Eigen::LLT<ParamMatrix> llt(ev.H);
-        if (llt.info() == Eigen::Success && strictly_feasible(model, polished)) {
-          out.theta = polished;
-          out.converged = true;
-          break;
-        }
+      if (face) {
+        out.theta = face->theta;
+        out.converged = true;
+        break;
       }
     }
     mu = std::max(mu * kBarrierDecrease, mu_final);

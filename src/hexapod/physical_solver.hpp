@@ -4,6 +4,8 @@
 // result. Everything works in the triangular factor's scaled units (TriangularFactor).
 #pragma once
 
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "hexapod/physical_model.hpp"
@@ -71,10 +73,20 @@ struct SolveResult {
 
 /// min f over the cone, from the strictly feasible theta0: barrier stages mu_k decreasing
 /// geometrically to rounding level, each solved by Newton's method with a backtracking line search
-/// that keeps P > 0; after the first stage, an unconstrained Newton polish that is accepted when
-/// it converges to a local minimum strictly inside the cone (then the constraints are inactive).
+/// that keeps P > 0; after each stage whose iterate points to a face not tried yet, the face solve
+/// (solve_on_face), accepted when it reaches a KKT point (then the path stops there).
 SolveResult solve_constrained(const PhysicalData& data, const PhysicalModel& model, const ParamVector& theta0,
                               int max_iterations);
+
+/// min f over the face of the cone that `guess` (any theta_s, inside the cone or not) points to:
+/// the rank r of P = the eigenvalues of P(guess) above 1e-3 of its largest, P = L L^T with L
+/// 4 x r (Burer-Monteiro, so no constraint is left), the strut masses above the same fraction
+/// free and the others fixed at 0; Newton's method with a Levenberg-Marquardt shift from the
+/// factor of guess's clipped P, at most max_steps steps. The result when it converges to a point
+/// that satisfies the KKT conditions of the whole problem (the multipliers of the active
+/// constraints >= -1e-9), else nothing; *steps_taken counts the steps either way.
+std::optional<SolveResult> solve_on_face(const PhysicalData& data, const PhysicalModel& model, const ParamVector& guess,
+                                         int max_steps, int* steps_taken = nullptr);
 
 /// min f without constraints, from theta0: Newton's method with a Levenberg-Marquardt shift and
 /// a backtracking line search.

@@ -45,9 +45,12 @@ InertiaRepairResult repair_inertia(const RigidBodyInertia& body, const InertiaRe
   // that a repair is idempotent.
   out.changed = sigma.minCoeff() < out.floor - kRounding * sigma.cwiseAbs().maxCoeff();
   if (out.changed) {
+    // Sigma' = Sigma + V diag(max(sigma, floor) - sigma) V^T, applied as the change of I it makes
+    // (I is linear in Sigma), so that the directions the clip leaves alone keep their digits.
     const Eigen::Matrix3d& V = solver.eigenvectors();
-    const Eigen::Matrix3d repaired_sigma = V * sigma.cwiseMax(out.floor).asDiagonal() * V.transpose();
-    Eigen::Matrix3d I = inertia_from_second_moment(repaired_sigma);
+    const Eigen::Vector3d raise = (out.floor - sigma.array()).max(0.0).matrix();
+    const Eigen::Matrix3d change = V * raise.asDiagonal() * V.transpose();
+    const Eigen::Matrix3d I = inertia + inertia_from_second_moment(0.5 * (change + change.transpose()));
     out.repaired.inertia = 0.5 * (I + I.transpose());
     out.distance = (out.repaired.inertia - body.inertia).norm();
   }

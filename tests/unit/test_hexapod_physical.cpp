@@ -287,10 +287,11 @@ TEST(HexapodPhysical, StaysConsistentWhereTheUnconstrainedFitDoesNot) {
     const hexapod::PhysicalEstimate physical = hexapod::identify_physical(data.A, data.B, geometry, options);
     ASSERT_TRUE(physical.ok()) << physical.message;
     EXPECT_TRUE(physical.physically_consistent) << "seed " << seed;
-    EXPECT_GE(physical.pseudo_inertia_min_eig, 0.0);
-    // Every principal moment at most the sum of the other two.
+    // On the boundary to rounding: P's eigenvalues are ~10 kg, rounding ~1e-15 of that.
+    EXPECT_GE(physical.pseudo_inertia_min_eig, -1e-13);
+    // Every principal moment at most the sum of the other two (to rounding).
     const Eigen::Vector3d I = physical.principal.moments;
-    EXPECT_LE(I(2), I(0) + I(1)) << "seed " << seed;
+    EXPECT_LE(I(2), I(0) + I(1) + 64 * test::kEps * I(2)) << "seed " << seed;
     options.consistent = false;
     const hexapod::PhysicalEstimate grey = hexapod::identify_physical(data.A, data.B, geometry, options);
     ASSERT_TRUE(grey.ok());

@@ -142,7 +142,10 @@ struct PhysicalEstimate {
   /// lambda_min of the pseudo-inertia about {P}'s origin scaled to kg (diag(1/L, 1/L, 1/L, 1) J
   /// diag(1/L, 1/L, 1/L, 1), L = design.length_scale): >= 0 exactly when the payload is physical.
   double pseudo_inertia_min_eig = 0.0;
-  bool physically_consistent = false;  ///< pseudo_inertia_min_eig >= 0 and every strut mass >= 0
+  /// pseudo_inertia_min_eig and every strut mass >= 0, to the rounding of the pseudo-inertia's
+  /// eigenvalues (64 eps of the largest): an estimate on the boundary is exactly rank-deficient,
+  /// and its computed smallest eigenvalue is +-1e-15 relative.
+  bool physically_consistent = false;
   PhysicalCertificate certificate;
   /// The convex least-squares start (ErrorsInVariables) or the estimate itself (LeastSquares), as
   /// psd-ls certifies its estimate: the KKT numbers of that convex problem, whose duality gap
