@@ -10,6 +10,7 @@
 
 #include "cli.hpp"
 #include "output.hpp"
+#include "validators.hpp"
 #include "spdfit/inertia_repair.hpp"
 
 namespace spdfit::cli {
@@ -48,13 +49,12 @@ Command add_inertia_command(CLI::App& app, const GlobalOptions& /*global*/) {
   repair->add_option("--min-eig-rel", options->min_eig_rel,
                      "Floor of the second moments as a fraction of the largest: each principal moment stays below "
                      "the sum of the other two by twice that (default 1e-6, kept through 7 printed digits; 0: the "
-                     "plain projection)");
+                     "plain projection)")
+      ->check(relative_floor());
 
   auto run = [options]() {
     InertiaRepairOptions repair_options;
     repair_options.min_eig_rel = options->min_eig_rel;
-    std::string error;
-    if (!repair_options.is_valid(&error)) throw UsageError("--min-eig-rel must be a number in [0, 1)");
     if (is_urdf(options->input)) {
       const UrdfRepairResult result = repair_urdf_file(options->input, repair_options);
       std::cerr << urdf_repair_report(result);

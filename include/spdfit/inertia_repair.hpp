@@ -98,9 +98,10 @@ struct UrdfRepairResult {
 };
 
 /// Checks every <link>'s <inertial> of a URDF document and repairs (repair_inertia) those that are
-/// not consistent: the six attributes ixx, ixy, ixz, iyy, iyz, izz of a repaired link's
-/// <inertia> element get the repaired values (shortest text that reads back exactly); every other
-/// byte of the document, comments, formatting and other elements included, is kept. The inertia is
+/// not consistent: those of the six attributes ixx, ixy, ixz, iyy, iyz, izz of a repaired link's
+/// <inertia> element whose value the repair changed get the repaired values (the shortest text
+/// that reads back exactly); every other byte of the document, comments, formatting, the other
+/// attributes and elements included, is kept. The inertia is
 /// taken in the inertial frame's axes (its <origin rpy>, kept), the centre of mass is <origin xyz>
 /// (default 0 0 0), the mass <mass value>. Links without <inertial> are left alone.
 ///

@@ -236,6 +236,7 @@ UrdfRepairResult repair_urdf(const std::string& text, const std::string& source,
       const Eigen::Matrix3d& I = repair.result.repaired.inertia;
       const double repaired[6] = {I(0, 0), I(0, 1), I(0, 2), I(1, 1), I(1, 2), I(2, 2)};
       for (int k = 0; k < 6; ++k) {
+        if (repaired[k] == v[k]) continue;  // an entry the repair left alone keeps its text
         const auto& attributes = tags[index];
         const auto span = std::find_if(attributes.begin(), attributes.end(),
                                        [&](const AttributeSpan& a) { return a.name == kInertiaAttributes[k]; });
