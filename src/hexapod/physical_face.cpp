@@ -17,15 +17,6 @@ namespace spdfit::hexapod::detail {
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
-const double kRoot2 = std::sqrt(2.0);
-constexpr double kArmijo = 1e-4;
-constexpr double kMinStep = 1e-12;
-constexpr double kFinalDecrement = 1e-26;
-constexpr double kRoundingMultiple = 64.0;
-constexpr int kRoundingSteps = 2;
-// An eigenvalue of P (or a strut mass) below this fraction of P's largest eigenvalue is taken to
-// be on the boundary: the face's rank leaves it out (or the strut mass is fixed at 0).
-constexpr double kActiveGuess = 1e-3;
 // The multipliers of the active constraints must be >= -kDualTolerance (dimensionless, as the
 // certificate's dual_min_eig): rounding is ~1e-14 there, a wrong face gives O(1e-3) and more.
 constexpr double kDualTolerance = 1e-9;
@@ -34,11 +25,6 @@ constexpr double kDualTolerance = 1e-9;
 using FaceVector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 22, 1>;
 using FaceMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 22, 22>;
 using Factor = Eigen::Matrix<double, 4, Eigen::Dynamic, Eigen::ColMajor, 4, 4>;
-
-double coordinate(const Eigen::Matrix4d& S, int a) {
-  const int i = kPairs[a][0], j = kPairs[a][1];
-  return i == j ? S(i, i) : kRoot2 * S(i, j);
-}
 
 struct Face {
   int rank = 4;
@@ -86,14 +72,7 @@ bool evaluate_face(const PhysicalData& data, const PhysicalModel& model, const F
   H = J.transpose() * ev.H * J;
   // The curvature of P = L L^T itself: 2 <Z, dL dL^T>, Z = df/dP.
   Eigen::Matrix4d Z = Eigen::Matrix4d::Zero();
-  for (int a = 0; a < kPayloadParameters; ++a) {
-    const int i = kPairs[a][0], j = kPairs[a][1];
-    if (i == j) {
-      Z(i, i) = ev.g(a);
-    } else {
-      Z(i, j) = Z(j, i) = ev.g(a) / kRoot2;
-    }
-  }
+  for (int a = 0; a < kPayloadParameters; ++a) Z += ev.g(a) * basis_matrix(a);
   for (int l = 0; l < r; ++l)
     for (int k = 0; k < 4; ++k)
       for (int k2 = 0; k2 < 4; ++k2) H(k + 4 * l, k2 + 4 * l) += 2.0 * Z(k, k2);

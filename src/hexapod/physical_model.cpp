@@ -86,6 +86,22 @@ PhysicalModel physical_model(const Geometry& geometry, StrutMasses strut_masses)
   return model;
 }
 
+Eigen::Matrix4d basis_matrix(int a) {
+  Eigen::Matrix4d E = Eigen::Matrix4d::Zero();
+  const int i = kPairs[a][0], j = kPairs[a][1];
+  if (i == j) {
+    E(i, i) = 1.0;
+  } else {
+    E(i, j) = E(j, i) = 1.0 / kRoot2;
+  }
+  return E;
+}
+
+double coordinate(const Eigen::Matrix4d& S, int a) {
+  const int i = kPairs[a][0], j = kPairs[a][1];
+  return i == j ? S(i, i) : kRoot2 * S(i, j);
+}
+
 Eigen::Matrix4d scaled_pseudo_inertia(const ParamVector& theta) {
   Eigen::Matrix4d P = Eigen::Matrix4d::Zero();
   for (int a = 0; a < kPayloadParameters; ++a) {

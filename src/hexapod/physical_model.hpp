@@ -26,6 +26,10 @@ using ParamMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen:
 inline constexpr int kPairs[kPayloadParameters][2] = {{0, 0}, {1, 1}, {2, 2}, {3, 3}, {0, 1},
                                                        {0, 2}, {1, 2}, {0, 3}, {1, 3}, {2, 3}};
 
+/// The basis matrix E_a, and <S, E_a> for a symmetric S (a coordinate of S).
+Eigen::Matrix4d basis_matrix(int a);
+double coordinate(const Eigen::Matrix4d& S, int a);
+
 /// M_p(theta) = M0 + sum_a theta_a D_a.
 struct PhysicalModel {
   StrutMasses strut_masses = StrutMasses::Geometry;
