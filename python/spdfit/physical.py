@@ -57,7 +57,7 @@ def _optional_matrix(name, value):
 
 
 def identify(A, B, geometry=None, *, strut_masses="geometry", criterion="eiv", consistent=True, noise_cov_a=None,
-             noise_cov_b=None, max_iterations=None, rank_tolerance=None, bootstrap=0, confidence=None, seed=None,
+             noise_cov_b=None, max_iter=None, rank_tolerance=None, bootstrap=0, confidence=None, seed=None,
              threads=0):
     """The payload's mass, centre of mass and inertia (and strut masses) from A and B.
 
@@ -82,7 +82,7 @@ def identify(A, B, geometry=None, *, strut_masses="geometry", criterion="eiv", c
         Enforce physical consistency (default); False is the unconstrained grey-box fit.
     noise_cov_a, noise_cov_b : array_like, optional
         6 x 6 noise covariances of a row of A and of B (default: identity, equal noise).
-    max_iterations : int, optional
+    max_iter : int, optional
         Newton steps at most (default 500).
     rank_tolerance : float, optional
         Relative cut-off of A's numerical rank (default: max(m, 6) eps).
@@ -124,7 +124,7 @@ def identify(A, B, geometry=None, *, strut_masses="geometry", criterion="eiv", c
 
     text = _core.identify(_as_matrix("A", A), _as_matrix("B", B), _geometry(geometry), strut_masses, criterion,
                           bool(consistent), _optional_matrix("noise_cov_a", noise_cov_a),
-                          _optional_matrix("noise_cov_b", noise_cov_b), max_iterations, rank_tolerance,
+                          _optional_matrix("noise_cov_b", noise_cov_b), max_iter, rank_tolerance,
                           int(bootstrap), confidence, seed, int(threads))
     result = _arrays(_json.loads(text))
     if result["status"] != "success":

@@ -10,7 +10,7 @@ _GeometrySource = Union[None, Geometry, str, os.PathLike[str], Dict[str, Any]]
 
 def identify(A: npt.ArrayLike, B: npt.ArrayLike, geometry: _GeometrySource = ..., *, strut_masses: str = ...,
              criterion: str = ..., consistent: bool = ..., noise_cov_a: Optional[npt.ArrayLike] = ...,
-             noise_cov_b: Optional[npt.ArrayLike] = ..., max_iterations: Optional[int] = ...,
+             noise_cov_b: Optional[npt.ArrayLike] = ..., max_iter: Optional[int] = ...,
              rank_tolerance: Optional[float] = ..., bootstrap: int = ..., confidence: Optional[float] = ...,
              seed: Optional[int] = ..., threads: int = ...) -> Dict[str, Any]: ...
 def design(geometry: _GeometrySource = ..., strut_masses: str = ...) -> Dict[str, Any]: ...

@@ -45,7 +45,7 @@ void bind_physical(py::module_& parent) {
       "identify",
       [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Geometry& geometry, const std::string& strut_masses,
          const std::string& criterion, bool consistent, std::optional<Eigen::MatrixXd> noise_cov_a,
-         std::optional<Eigen::MatrixXd> noise_cov_b, std::optional<int> max_iterations,
+         std::optional<Eigen::MatrixXd> noise_cov_b, std::optional<int> max_iter,
          std::optional<double> rank_tolerance, int bootstrap, std::optional<double> confidence,
          std::optional<std::uint64_t> seed, unsigned threads) {
         PhysicalOptions options;
@@ -60,7 +60,7 @@ void bind_physical(py::module_& parent) {
         options.consistent = consistent;
         if (noise_cov_a) options.noise_cov_a = *noise_cov_a;
         if (noise_cov_b) options.noise_cov_b = *noise_cov_b;
-        if (max_iterations) options.max_iterations = *max_iterations;
+        if (max_iter) options.max_iterations = *max_iter;
         if (rank_tolerance) options.rank_tolerance = *rank_tolerance;
         options.bootstrap = bootstrap;
         if (confidence) options.confidence = *confidence;
@@ -74,7 +74,7 @@ void bind_physical(py::module_& parent) {
         return text;
       },
       py::arg("A"), py::arg("B"), py::arg("geometry"), py::arg("strut_masses"), py::arg("criterion"),
-      py::arg("consistent"), py::arg("noise_cov_a"), py::arg("noise_cov_b"), py::arg("max_iterations"),
+      py::arg("consistent"), py::arg("noise_cov_a"), py::arg("noise_cov_b"), py::arg("max_iter"),
       py::arg("rank_tolerance"), py::arg("bootstrap"), py::arg("confidence"), py::arg("seed"), py::arg("threads"));
 
   m.def(

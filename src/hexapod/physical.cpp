@@ -105,7 +105,9 @@ bool PhysicalOptions::is_valid(std::string* error) const {
     return fail("`noise_cov_a` and `noise_cov_b` are both singular: at least one must be positive definite");
   }
   if (max_iterations < 1) return fail("`max_iterations` must be at least 1");
-  if (!is_valid_rank_tolerance(rank_tolerance, "rank_tolerance", error)) return false;
+  if (rank_tolerance && !(*rank_tolerance >= 0.0 && *rank_tolerance < 1.0)) {
+    return fail("`rank_tolerance` must be a number in [0, 1)");
+  }
   if (bootstrap < 0) return fail("`bootstrap` must be a number of replicates >= 0");
   if (!(confidence > 0.0 && confidence < 1.0)) {
     return fail("`confidence` must be a fraction strictly between 0 and 1 (0.95 for 95%)");
@@ -147,12 +149,12 @@ PhysicalEstimate fit_physical(const TriangularFactor& factor, const PhysicalMode
   PhysicalData ls = physical_data(factor, model, PhysicalCriterion::LeastSquares, options.noise_cov_a,
                                   options.noise_cov_b);
   const Eigen::VectorXd sa = Eigen::JacobiSVD<Eigen::MatrixXd>(Eigen::MatrixXd(ls.R11)).singularValues();
-  out.rank_a = numerical_rank(sa, rank_cutoff(options.rank_tolerance, std::max<Eigen::Index>(out.m, 6), 6));
+  out.rank_a = numerical_rank(sa, rank_cutoff(options.rank_tolerance.value_or(-1.0), std::max<Eigen::Index>(out.m, 6), 6));
 
   // Identifiability from the data: the 36 x p design of theta -> R11 M(theta).
   Eigen::Index rank = 0;
   Eigen::MatrixXd null_space;
-  const double cutoff = rank_cutoff(options.rank_tolerance, 36, model.parameters);
+  const double cutoff = rank_cutoff(options.rank_tolerance.value_or(-1.0), 36, model.parameters);
   const ParamVector theta_ls = unconstrained_least_squares(ls, model, cutoff, &rank, &null_space);
   if (rank < model.parameters) {
     throw std::invalid_argument(
@@ -260,7 +262,12 @@ PhysicalEstimate fit_physical(const TriangularFactor& factor, const PhysicalMode
   out.converged = converged;
   const ParamVector physical = theta / used.theta_scale;
   out.payload = payload_of(model, physical);
-  out.principal = out.payload.mass > 0.0 ? principal_inertia(out.payload.inertia) : PrincipalInertia{};
+  if (out.payload.mass > 0.0) {
+    out.principal = principal_inertia(out.payload.inertia);
+  } else {  // an unconstrained fit's mass <= 0: no centre of mass, no principal axes
+    out.principal.moments.setConstant(std::numeric_limits<double>::quiet_NaN());
+    out.principal.axes.setConstant(std::numeric_limits<double>::quiet_NaN());
+  }
   const int struts = model.parameters - kPayloadParameters;
   out.strut_mass = struts > 0 ? Eigen::VectorXd(physical.tail(struts)) : Eigen::VectorXd(geometry.strut_mass);
   out.M_p = model_mass_matrix(model, physical);

@@ -60,8 +60,9 @@ struct PhysicalOptions {
   Eigen::MatrixXd noise_cov_a, noise_cov_b;
   /// Newton steps at most (all barrier stages together), an integer >= 1.
   int max_iterations = 500;
-  /// The relative cut-off of A's numerical rank (spdfit/rank.hpp; negative: the default rule).
-  double rank_tolerance = -1.0;
+  /// The relative cut-off of A's numerical rank (spdfit/rank.hpp), a number in [0, 1); nothing
+  /// means the default rule, as FitOptions::rank_tolerance.
+  std::optional<double> rank_tolerance;
   /// Bootstrap replicates (0: none): multinomial resamples of the rows of [A B], each refitted with
   /// the same options; needs the rows (the overload taking A and B).
   int bootstrap = 0;
