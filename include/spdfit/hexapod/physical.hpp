@@ -77,8 +77,9 @@ struct PhysicalOptions {
 /// The first-order optimality (KKT) conditions of the local minimum found, for the problem
 /// min f(theta) over P(theta) >= 0, s >= 0 (P the pseudo-inertia scaled to kg, s the estimated
 /// strut masses, f the criterion). The multipliers are the gradient's parts Z = df/dP and
-/// lambda = df/ds. Every number is made dimensionless by f0, the criterion at M_p = 0 (the data's
-/// own scale), and ||theta||: stationarity is the gradient along the face of the cone that P and
+/// lambda = df/ds. Every number is made dimensionless by f0 (the data's own scale: the criterion
+/// with all of B unexplained, sum_i b_i^T W^-1 b_i with the start's weight W; ||B||_F^2 for least
+/// squares) and ||theta||: stationarity is the gradient along the face of the cone that P and
 /// s lie on (zero at a KKT point), dual_min_eig the smallest eigenvalue of Z and entry of lambda
 /// (>= 0 at a KKT point), complementarity <P, Z> + s . lambda (zero at a KKT point). The
 /// criterion is not convex, so no certificate can prove a global minimum.
@@ -172,11 +173,15 @@ struct PhysicalEstimate {
 ///
 /// ^P M_x as payload_mass_matrix(geometry, payload) (model.hpp): linear in the ten inertial
 /// parameters. Minimizes options.criterion over them subject to physical consistency (the
-/// pseudo-inertia pseudo_inertia(payload) >= 0, strut masses >= 0) by a primal barrier method:
-/// Newton steps with the exact Hessian on the criterion plus mu (-log det P - sum log s), mu
-/// decreased to rounding level, from the convex least-squares fit (itself solved to a certified
-/// duality gap), and a final unconstrained Newton polish when the minimum is interior. Works from
-/// the triangular factor of [A B] (the criterion depends on the data only through R^T R).
+/// pseudo-inertia pseudo_inertia(payload) >= 0, strut masses >= 0) with spdfit's own method: the
+/// convex least-squares fit first (solved to a certified duality gap: start_certificate); then,
+/// since the errors-in-variables criterion is not convex, two starts whose lower local minimum
+/// wins: a primal barrier path from the least-squares fit (Newton steps with the exact Hessian on
+/// the criterion plus mu (-log det P - sum log s), mu decreased to rounding level) and Newton's
+/// method without constraints from the unconstrained least-squares fit; between barrier stages, and
+/// from an unconstrained minimum outside the cone, a face solve (the criterion over P = L L^T of the
+/// rank the iterate points to) that stops the path at a KKT point. Works from the triangular factor
+/// of [A B] (the criterion depends on the data only through R^T R).
 ///
 /// Errors: std::invalid_argument, naming the field or parameter, for invalid options or geometry,
 /// A and B not m x 6 or not finite, a parameter that the geometry confounds (strut_masses common
