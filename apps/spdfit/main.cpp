@@ -82,6 +82,7 @@ int main(int argc, char** argv) {
       add_hexapod_command(app, global),
       add_experiment_command(app, global),
       add_demo_command(app, global),
+      add_inertia_command(app, global),
   };
 
   try {

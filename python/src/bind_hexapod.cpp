@@ -52,7 +52,7 @@ void bind_hexapod(py::module_& parent) {
         "The built-in cubic-configuration hexapod (mutually orthogonal struts).");
   m.def("read_geometry", &read_geometry, py::arg("path"));
   m.def("parse_geometry", &parse_geometry, py::arg("text"), py::arg("source") = "<geometry>");
-  m.def("joint_space_mass_matrix", &joint_space_mass_matrix, py::arg("geometry"));
+  m.def("joint_space_mass_matrix", py::overload_cast<const Geometry&>(&joint_space_mass_matrix), py::arg("geometry"));
   py::class_<ModelDescription>(m, "ModelDescription", "What hexapod::describe reports about a hexapod.")
       .def_property_readonly("jacobian", copied(&ModelDescription::jacobian))
       .def_property_readonly("jacobian_condition", copied(&ModelDescription::jacobian_condition))

@@ -18,6 +18,7 @@ PYBIND11_MODULE(_spdfit, m) {
   spdfit::python::bind_linear_system(m);
   spdfit::python::bind_linkage(m);
   spdfit::python::bind_hexapod(m);
+  spdfit::python::bind_physical(m);
   spdfit::python::bind_experiment(m);
   spdfit::python::bind_blas_core(m);
   // The library's messages name options by their library names in backticks (OptionError and

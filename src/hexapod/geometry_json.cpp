@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/json_document.hpp"
 #include "io/read_file.hpp"
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/io.hpp"
@@ -102,14 +103,7 @@ class Reader {
     return v;
   }
 
-  static std::string describe(const json& value) {
-    if (value.is_array()) return "an array of " + std::to_string(value.size()) + " entries";
-    if (value.is_object()) return "an object";
-    if (value.is_string()) return "the string " + value.dump();
-    if (value.is_boolean()) return value.dump();
-    if (value.is_null()) return "null";
-    return "the number " + value.dump();
-  }
+  static std::string describe(const json& value) { return io::detail::describe_json(value); }
 
  private:
   const json& root_;
@@ -120,80 +114,10 @@ class Reader {
 // text's for long arrays (each number becomes a JSON value), and is checked before reading.
 constexpr std::size_t kMaxGeometryBytes = std::size_t{1} << 20;
 
-// The file format nests three levels ({"base_points": [[x, y, z], ...]}); anything much deeper is
-// not a geometry, and refusing it before parsing keeps the parser's memory and stack bounded.
-constexpr int kMaxNesting = 64;
-
-// 1-based line and column of a byte offset, for parse errors.
-std::pair<std::size_t, std::size_t> line_and_column(const std::string& text, std::size_t byte) {
-  byte = std::min(byte, text.size());
-  std::size_t line = 1, column = 1;
-  for (std::size_t i = 0; i + 1 < byte; ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      column = 1;
-    } else {
-      ++column;
-    }
-  }
-  return {line, column};
-}
-
-// Throws a DataError at the first '[' or '{' (outside strings) that opens level kMaxNesting + 1.
-void check_nesting(const std::string& text, const std::string& source) {
-  int depth = 0;
-  bool in_string = false;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (in_string) {
-      if (c == '\\') {
-        ++i;
-      } else if (c == '"') {
-        in_string = false;
-      }
-    } else if (c == '"') {
-      in_string = true;
-    } else if (c == '[' || c == '{') {
-      if (++depth > kMaxNesting) {
-        const auto [line, column] = line_and_column(text, i + 1);
-        throw io::DataError(source, line, column,
-                            "JSON nested more than " + std::to_string(kMaxNesting) +
-                                " levels deep; a geometry file needs 3");
-      }
-    } else if ((c == ']' || c == '}') && depth > 0) {
-      --depth;
-    }
-  }
-}
-
 }  // namespace
 
 Geometry parse_geometry(const std::string& text, const std::string& source) {
-  if (text.size() > kMaxGeometryBytes) {
-    throw io::DataError(source, 0, 0,
-                        "is " + std::to_string(text.size()) + " bytes long; at most " +
-                            std::to_string(kMaxGeometryBytes) + " are accepted for a geometry file");
-  }
-  check_nesting(text, source);
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::parse_error& e) {
-    const auto [line, column] = line_and_column(text, e.byte);
-    std::string problem = e.what();
-    // nlohmann's message starts "[json.exception.parse_error.101] parse error at line ...: "; keep
-    // the part after the last ": " that explains the problem.
-    const std::size_t colon = problem.find("parse error");
-    if (colon != std::string::npos) problem = problem.substr(colon);
-    throw io::DataError(source, line, column, "not valid JSON: " + problem);
-  } catch (const json::exception& e) {
-    // The parser reports a number beyond the double range ("1e999") as out_of_range, without a
-    // position; keep its explanation after the "[json.exception...] " tag.
-    std::string problem = e.what();
-    const std::size_t tag_end = problem.find("] ");
-    if (tag_end != std::string::npos) problem = problem.substr(tag_end + 2);
-    throw io::DataError(source, 0, 0, "not valid JSON: " + problem);
-  }
+  const json root = io::detail::parse_json_document(text, source, kMaxGeometryBytes, "a geometry file", 3);
   Reader in(root, source);
   if (!root.is_object()) in.fail("a geometry file must hold a JSON object {\"base_points\": ..., ...}");
   for (const auto& item : root.items()) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -53,6 +54,44 @@ Matrix6d joint_space_mass_matrix(const Geometry& geometry) {
   const Eigen::PartialPivLU<Matrix6d> lu(J.transpose());
   const Matrix6d Y = lu.solve(Mx);
   Matrix6d Mp = lu.solve(Y.transpose());  // = (Y J^-1)^T = M_p^T, and M_p is symmetric
+  Mp = 0.5 * (Mp + Mp.transpose()).eval();
+  Mp.diagonal() += geometry.strut_mass;
+  return Mp;
+}
+
+RigidBodyInertia nominal_payload(const Geometry& geometry) {
+  RigidBodyInertia payload;
+  payload.mass = geometry.payload_mass;
+  payload.inertia = geometry.payload_inertia;
+  return payload;
+}
+
+Matrix6d payload_mass_matrix(const Geometry& geometry, const RigidBodyInertia& payload) {
+  detail::require_valid(geometry);
+  std::string error;
+  if (!is_well_formed(payload, &error)) throw std::invalid_argument("invalid payload: " + error);
+  const double m = payload.mass;
+  Eigen::Matrix3d cx;  // [c]x
+  cx << 0.0, -payload.center_of_mass.z(), payload.center_of_mass.y(),  //
+      payload.center_of_mass.z(), 0.0, -payload.center_of_mass.x(),    //
+      -payload.center_of_mass.y(), payload.center_of_mass.x(), 0.0;
+  Matrix6d Px;
+  Px.topLeftCorner<3, 3>() = m * Eigen::Matrix3d::Identity();
+  Px.topRightCorner<3, 3>() = -m * cx;
+  Px.bottomLeftCorner<3, 3>() = m * cx;
+  Px.bottomRightCorner<3, 3>() = 0.5 * (payload.inertia + payload.inertia.transpose()) - m * cx * cx;
+  Matrix6d R = Matrix6d::Zero();
+  R.topLeftCorner<3, 3>() = geometry.payload_rotation;
+  R.bottomRightCorner<3, 3>() = geometry.payload_rotation;
+  Matrix6d Bx = R * Px * R.transpose();
+  return 0.5 * (Bx + Bx.transpose());
+}
+
+Matrix6d joint_space_mass_matrix(const Geometry& geometry, const RigidBodyInertia& payload) {
+  const Matrix6d Mx = payload_mass_matrix(geometry, payload);  // checks validity
+  const Eigen::PartialPivLU<Matrix6d> lu(detail::jacobian_unchecked(geometry).transpose());
+  const Matrix6d Y = lu.solve(Mx);
+  Matrix6d Mp = lu.solve(Y.transpose());
   Mp = 0.5 * (Mp + Mp.transpose()).eval();
   Mp.diagonal() += geometry.strut_mass;
   return Mp;

@@ -1,4 +1,4 @@
-"""Every public function of the package (the functions in the __all__ of spdfit, spdfit.hexapod,
+"""Every public function of the package (the functions in the __all__ of spdfit, spdfit.hexapod, spdfit.physical,
 spdfit.linkage and spdfit.experiment, and the classes there written in Python, such as
 spdfit.Factor, with their public methods) has a docstring in the NumPy format, parsed with numpydoc
 (Debian's python3-numpydoc): a summary, Parameters naming exactly the function's parameters (a
@@ -17,10 +17,11 @@ import spdfit
 import spdfit.experiment
 import spdfit.hexapod
 import spdfit.linkage
+import spdfit.physical
 
 docscrape = pytest.importorskip("numpydoc.docscrape", reason="numpydoc is not installed (Debian: python3-numpydoc)")
 
-MODULES = [spdfit, spdfit.hexapod, spdfit.linkage, spdfit.experiment]
+MODULES = [spdfit, spdfit.hexapod, spdfit.linkage, spdfit.experiment, spdfit.physical]
 
 
 def is_python_class(value):

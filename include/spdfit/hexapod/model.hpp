@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 
 #include "spdfit/hexapod/geometry.hpp"
+#include "spdfit/rigid_body.hpp"
 
 namespace spdfit::hexapod {
 
@@ -47,6 +48,28 @@ Matrix6d payload_mass_matrix(const Geometry& geometry);
 /// f_b = M_p p_ddot (eq. 3.1/6.2). Symmetric positive definite for a valid geometry; made
 /// exactly symmetric. Computed by solving with J's LU factorization, not by inverting it.
 Matrix6d joint_space_mass_matrix(const Geometry& geometry);
+
+/// The geometry's nominal payload as a rigid body in {P}: payload_mass, centre of mass at {P}'s
+/// origin, payload_inertia.
+RigidBodyInertia nominal_payload(const Geometry& geometry);
+
+/// ^B M_x of a payload that differs from the geometry's nominal one: mass m, centre of mass c
+/// (in {P}'s axes, relative to {P}'s origin, the nominal centre of mass) and inertia I_c about
+/// its centre of mass ({P} axes), in the twist coordinates of {P}'s origin:
+///
+///     ^P M_x = [ m 1       -m [c]x          ]     ^B M_x = R ^P M_x R^T,
+///              [ m [c]x    I_c - m [c]x^2   ]
+///
+/// ([c]x the cross-product matrix; I_c - m [c]x^2 is the inertia about {P}'s origin), so that
+/// (1/2) x_dot^T ^B M_x x_dot is the payload's kinetic energy for the twist x_dot of {P}'s origin.
+/// With c = 0 this is payload_mass_matrix(geometry) for that mass and inertia. The payload must be
+/// well formed (is_well_formed; else std::invalid_argument); it need not be physically
+/// consistent (the unconstrained estimates that are not still have a matrix).
+Matrix6d payload_mass_matrix(const Geometry& geometry, const RigidBodyInertia& payload);
+
+/// M_p = J^-T ^B M_x J^-1 + M_s for that payload (^B M_x as above, M_s the geometry's strut
+/// masses): joint_space_mass_matrix(geometry) when the payload is nominal_payload(geometry).
+Matrix6d joint_space_mass_matrix(const Geometry& geometry, const RigidBodyInertia& payload);
 
 /// The modal frequencies sqrt(lambda_i) / (2 pi) in Hz, ascending, where lambda_i are the
 /// eigenvalues of M_p^-1 K (thesis section 2.2), K = diag(strut_stiffness). Undamped.

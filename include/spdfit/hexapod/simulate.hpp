@@ -9,7 +9,10 @@
 #include <Eigen/Core>
 
 #include "spdfit/noise_model.hpp"
+
+#include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/random.hpp"
+#include "spdfit/rigid_body.hpp"
 
 namespace spdfit::hexapod {
 
@@ -111,5 +114,14 @@ void add_noise(Eigen::MatrixXd& out, const Eigen::VectorXd& std_dev, NoiseDistri
 /// that a fit given them knows. Throws std::invalid_argument when the options are invalid or a
 /// size is not 1 or n.
 NoiseModel true_noise_model(const SimulationOptions& options, Eigen::Index n);
+
+/// simulate() of a hexapod whose true payload differs from the geometry's nominal one: the truth
+/// is joint_space_mass_matrix(geometry, payload) (model.hpp; the payload's centre of mass offset
+/// from {P}'s origin and its inertia about it), so that physical identification
+/// (hexapod/physical.hpp) has a payload to recover that the geometry file does not state. Same
+/// draws as simulate(truth, options, seed). Throws std::invalid_argument for an invalid geometry
+/// or a payload that is not well formed (is_well_formed). Cost O(m n^2).
+Measurements simulate(const Geometry& geometry, const RigidBodyInertia& payload, const SimulationOptions& options,
+                      std::uint64_t seed);
 
 }  // namespace spdfit::hexapod

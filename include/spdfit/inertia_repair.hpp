@@ -1,0 +1,123 @@
+// The nearest physically consistent rigid-body inertia: a CAD or URDF inertia whose principal
+// moments break the triangle inequality, repaired in closed form (`spdfit inertia repair`).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "spdfit/rigid_body.hpp"
+
+namespace spdfit {
+
+/// Options of repair_inertia.
+struct InertiaRepairOptions {
+  /// The relative floor of the repaired second moment's eigenvalues: sigma_i' >= min_eig_rel *
+  /// max_i |sigma_i|, so that each principal moment is below the sum of the other two by at
+  /// least 2 min_eig_rel times the body's largest second moment. The default 1e-6 keeps that
+  /// margin through rounding to 7 significant digits (the strict triangle checks of simulators
+  /// and URDF parsers pass on the printed numbers) while moving the inertia by a negligible
+  /// amount. A finite number in [0, 1); 0 gives the plain projection onto the semidefinite cone.
+  double min_eig_rel = 1e-6;
+
+  /// True when usable; otherwise `error` says why, naming `min_eig_rel`.
+  bool is_valid(std::string* error = nullptr) const;
+};
+
+/// The optimality conditions of the projection min ||Sigma' - Sigma_c||_F over Sigma' >= floor 1:
+/// Sigma' is the minimizer exactly when primal_min_eig >= 0, dual_min_eig >= 0 and
+/// complementarity = 0 (the dual variable is Z = Sigma' - Sigma_c). Computed from the returned
+/// inertia itself, in its units (kg m^2; complementarity kg^2 m^4).
+struct InertiaRepairCertificate {
+  double primal_min_eig = 0.0;   ///< lambda_min(Sigma' - floor 1)
+  double dual_min_eig = 0.0;     ///< lambda_min(Sigma' - Sigma_c)
+  double complementarity = 0.0;  ///< <Sigma' - floor 1, Sigma' - Sigma_c>
+};
+
+/// What repair_inertia returns.
+struct InertiaRepairResult {
+  RigidBodyInertia input;     ///< as given
+  RigidBodyInertia repaired;  ///< mass and centre of mass kept; the inertia repaired (or the input's, unchanged)
+  bool changed = false;       ///< false: the input already met the floor and comes back bit for bit
+  double distance = 0.0;      ///< ||I' - I_c||_F (kg m^2)
+  double floor = 0.0;         ///< the floor applied to the second moment's eigenvalues (kg m^2)
+  Eigen::Vector3d principal_moments_before = Eigen::Vector3d::Zero();  ///< of the input, ascending
+  Eigen::Vector3d principal_moments = Eigen::Vector3d::Zero();         ///< of the result, ascending
+  /// Eigenvalues of the input's second moment Sigma_c, ascending: a negative one is a broken
+  /// triangle inequality (by twice its size).
+  Eigen::Vector3d second_moments_before = Eigen::Vector3d::Zero();
+  InertiaRepairCertificate certificate;
+};
+
+/// The nearest physically consistent inertia with the same mass and centre of mass. The second
+/// moment about the centre of mass Sigma_c = (1/2) tr(I_c) 1 - I_c = V diag(sigma) V^T is
+/// replaced by its nearest matrix in the Frobenius norm with eigenvalues >= floor (a closed-form
+/// eigenvalue clip, Higham 1988: V diag(max(sigma_i, floor)) V^T), floor = options.min_eig_rel
+/// max_i |sigma_i|, and I' = tr(Sigma') 1 - Sigma'. About the centre of mass the pseudo-inertia is
+/// [Sigma_c 0; 0 m], so for a fixed centre of mass and mass this is also the nearest consistent
+/// pseudo-inertia. An input whose sigma_i are all >= floor is returned unchanged (changed =
+/// false, distance 0). The repair commutes with rotations, so the inertia may be given in any
+/// axes (a URDF inertial frame's).
+///
+/// Preconditions: is_well_formed(body) and options.is_valid() (else std::invalid_argument with
+/// the message, naming the field). Cost O(1) (one 3 x 3 eigendecomposition).
+InertiaRepairResult repair_inertia(const RigidBodyInertia& body, const InertiaRepairOptions& options = {});
+
+/// Reads a body from JSON text: {"mass": m, "center_of_mass": [x, y, z], "inertia": [[3x3]]}
+/// (SI units, the inertia about the centre of mass). Keys starting with '_' are ignored, and so
+/// are the keys inertia_repair_json adds (its output reads back); any other unknown key, a missing key, a value of the wrong shape or type, or a body that is not
+/// well formed (is_well_formed) is an io::DataError naming `source` and the key (with line and
+/// column for malformed JSON).
+RigidBodyInertia parse_rigid_body(const std::string& text, const std::string& source);
+
+/// parse_rigid_body on the file at `path` (at most 1 MiB; io::DataError naming it otherwise, or
+/// when it is not a readable regular file).
+RigidBodyInertia read_rigid_body(const std::string& path);
+
+/// The result as JSON text: {"mass", "center_of_mass", "inertia", "changed", "distance",
+/// "certificate": {"primal_min_eig", "dual_min_eig", "complementarity"}, "min_eig" (the floor),
+/// "principal_moments", "principal_moments_before", "second_moments_before"}. The first three
+/// are the repaired body, in the input format, so the output can be read back by
+/// parse_rigid_body; numbers round-trip exactly.
+std::string inertia_repair_json(const InertiaRepairResult& result);
+
+/// One URDF link's <inertial> as checked.
+struct UrdfLinkRepair {
+  std::string link;       ///< the link's name attribute
+  std::size_t line = 0;   ///< the line of its <inertia> element
+  InertiaRepairResult result;
+};
+
+/// What repair_urdf returns.
+struct UrdfRepairResult {
+  std::string text;                    ///< the URDF with the repaired inertias, otherwise unchanged byte for byte
+  std::vector<UrdfLinkRepair> links;   ///< every link with an <inertial>, in document order
+  /// How many links were repaired.
+  std::size_t changed() const;
+};
+
+/// Checks every <link>'s <inertial> of a URDF document and repairs (repair_inertia) those that are
+/// not consistent: those of the six attributes ixx, ixy, ixz, iyy, iyz, izz of a repaired link's
+/// <inertia> element whose value the repair changed get the repaired values (the shortest text
+/// that reads back exactly); every other byte of the document, comments, formatting, the other
+/// attributes and elements included, is kept. The inertia is
+/// taken in the inertial frame's axes (its <origin rpy>, kept), the centre of mass is <origin xyz>
+/// (default 0 0 0), the mass <mass value>. Links without <inertial> are left alone.
+///
+/// Errors (io::DataError naming `source`, the line and the link): XML that does not parse, a root
+/// that is not <robot>, an <inertial> without <mass> or <inertia>, a missing or non-numeric
+/// attribute, a mass that is not positive, an invalid `options` (std::invalid_argument).
+/// Cost O(size of the document).
+UrdfRepairResult repair_urdf(const std::string& text, const std::string& source,
+                             const InertiaRepairOptions& options = {});
+
+/// What repair_urdf did, for people: one line per link with an <inertial> (consistent, or repaired
+/// with its principal moments before and after and how far the inertia moved), then "K of N links
+/// repaired".
+std::string urdf_repair_report(const UrdfRepairResult& result);
+
+/// repair_urdf on the file at `path` (at most 64 MiB).
+UrdfRepairResult repair_urdf_file(const std::string& path, const InertiaRepairOptions& options = {});
+
+}  // namespace spdfit

@@ -1,0 +1,22 @@
+"""Type stubs for spdfit.physical (see physical.py for the documentation)."""
+import os
+from typing import Any, Dict, List, Optional, Tuple, Union
+
+import numpy.typing as npt
+
+from .hexapod import Geometry
+
+_GeometrySource = Union[None, Geometry, str, os.PathLike[str], Dict[str, Any]]
+
+def identify(A: npt.ArrayLike, B: npt.ArrayLike, geometry: _GeometrySource = ..., *, strut_masses: str = ...,
+             criterion: str = ..., consistent: bool = ..., noise_cov_a: Optional[npt.ArrayLike] = ...,
+             noise_cov_b: Optional[npt.ArrayLike] = ..., max_iter: Optional[int] = ...,
+             rank_tolerance: Optional[float] = ..., bootstrap: int = ..., confidence: Optional[float] = ...,
+             seed: Optional[int] = ..., threads: int = ...) -> Dict[str, Any]: ...
+def design(geometry: _GeometrySource = ..., strut_masses: str = ...) -> Dict[str, Any]: ...
+def mass_matrix(geometry: _GeometrySource = ..., *, mass: float, center_of_mass: npt.ArrayLike,
+                inertia: npt.ArrayLike) -> npt.NDArray[Any]: ...
+def inertia_repair(mass: float, center_of_mass: npt.ArrayLike, inertia: npt.ArrayLike, *,
+                   min_eig_rel: Optional[float] = ...) -> Dict[str, Any]: ...
+def inertia_repair_urdf(text: str, *, min_eig_rel: Optional[float] = ...,
+                        source: str = ...) -> Tuple[str, str, List[Dict[str, Any]]]: ...

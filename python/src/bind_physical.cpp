@@ -1,0 +1,136 @@
+// spdfit.physical: physical identification of a hexapod's payload and rigid-body inertia repair;
+// python/spdfit/physical.py is the public face. Results cross as the library's JSON (the same keys
+// as the command line's), which the Python side turns into NumPy arrays.
+#include <pybind11/eigen.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "bindings.hpp"
+#include "spdfit/hexapod/model.hpp"
+#include "spdfit/hexapod/physical.hpp"
+#include "spdfit/inertia_repair.hpp"
+
+namespace py = pybind11;
+
+namespace spdfit::python {
+
+using namespace spdfit::hexapod;
+
+namespace {
+
+RigidBodyInertia body_of(double mass, const Eigen::Vector3d& center_of_mass, const Eigen::Matrix3d& inertia) {
+  RigidBodyInertia body;
+  body.mass = mass;
+  body.center_of_mass = center_of_mass;
+  body.inertia = inertia;
+  return body;
+}
+
+InertiaRepairOptions repair_options(std::optional<double> min_eig_rel) {
+  InertiaRepairOptions options;
+  if (min_eig_rel) options.min_eig_rel = *min_eig_rel;
+  return options;
+}
+
+}  // namespace
+
+void bind_physical(py::module_& parent) {
+  py::module_ m = parent.def_submodule("physical", "Physical identification of a hexapod payload; inertia repair.");
+
+  m.def(
+      "identify",
+      [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Geometry& geometry, const std::string& strut_masses,
+         const std::string& criterion, bool consistent, std::optional<Eigen::MatrixXd> noise_cov_a,
+         std::optional<Eigen::MatrixXd> noise_cov_b, std::optional<int> max_iter,
+         std::optional<double> rank_tolerance, int bootstrap, std::optional<double> confidence,
+         std::optional<std::uint64_t> seed, unsigned threads) {
+        PhysicalOptions options;
+        const auto struts = parse_strut_masses(strut_masses);
+        if (!struts) {
+          throw std::invalid_argument("strut_masses must be 'geometry', 'common' or 'each', got '" + strut_masses + "'");
+        }
+        options.strut_masses = *struts;
+        const auto kind = parse_physical_criterion(criterion);
+        if (!kind) throw std::invalid_argument("criterion must be 'eiv' or 'ls', got '" + criterion + "'");
+        options.criterion = *kind;
+        options.consistent = consistent;
+        if (noise_cov_a) options.noise_cov_a = *noise_cov_a;
+        if (noise_cov_b) options.noise_cov_b = *noise_cov_b;
+        if (max_iter) options.max_iterations = *max_iter;
+        if (rank_tolerance) options.rank_tolerance = *rank_tolerance;
+        options.bootstrap = bootstrap;
+        if (confidence) options.confidence = *confidence;
+        if (seed) options.seed = *seed;
+        options.threads = threads;
+        std::string text;
+        {
+          py::gil_scoped_release release;
+          text = physical_json(identify_physical(A, B, geometry, options));
+        }
+        return text;
+      },
+      py::arg("A"), py::arg("B"), py::arg("geometry"), py::arg("strut_masses"), py::arg("criterion"),
+      py::arg("consistent"), py::arg("noise_cov_a"), py::arg("noise_cov_b"), py::arg("max_iter"),
+      py::arg("rank_tolerance"), py::arg("bootstrap"), py::arg("confidence"), py::arg("seed"), py::arg("threads"));
+
+  m.def(
+      "design",
+      [](const Geometry& geometry, const std::string& strut_masses) {
+        const auto struts = parse_strut_masses(strut_masses);
+        if (!struts) {
+          throw std::invalid_argument("strut_masses must be 'geometry', 'common' or 'each', got '" + strut_masses + "'");
+        }
+        const PhysicalDesign d = physical_design(geometry, *struts);
+        py::dict out;
+        out["parameters"] = d.parameters;
+        out["rank"] = d.rank;
+        out["condition"] = d.condition;
+        out["length_scale"] = d.length_scale;
+        out["null_space"] = d.null_space;
+        out["confounded"] = d.confounded;
+        return out;
+      },
+      py::arg("geometry"), py::arg("strut_masses"));
+
+  m.def(
+      "mass_matrix",
+      [](const Geometry& geometry, double mass, const Eigen::Vector3d& center_of_mass, const Eigen::Matrix3d& inertia) {
+        return Eigen::MatrixXd(joint_space_mass_matrix(geometry, body_of(mass, center_of_mass, inertia)));
+      },
+      py::arg("geometry"), py::arg("mass"), py::arg("center_of_mass"), py::arg("inertia"));
+
+  m.def(
+      "repair_inertia",
+      [](double mass, const Eigen::Vector3d& center_of_mass, const Eigen::Matrix3d& inertia,
+         std::optional<double> min_eig_rel) {
+        return inertia_repair_json(repair_inertia(body_of(mass, center_of_mass, inertia), repair_options(min_eig_rel)));
+      },
+      py::arg("mass"), py::arg("center_of_mass"), py::arg("inertia"), py::arg("min_eig_rel"));
+
+  m.def(
+      "repair_urdf",
+      [](const std::string& text, const std::string& source, std::optional<double> min_eig_rel) {
+        const UrdfRepairResult r = repair_urdf(text, source, repair_options(min_eig_rel));
+        py::list links;
+        for (const UrdfLinkRepair& l : r.links) {
+          py::dict link;
+          link["link"] = l.link;
+          link["line"] = l.line;
+          link["changed"] = l.result.changed;
+          link["distance"] = l.result.distance;
+          link["mass"] = l.result.repaired.mass;
+          link["center_of_mass"] = Eigen::Vector3d(l.result.repaired.center_of_mass);
+          link["inertia_before"] = Eigen::Matrix3d(l.result.input.inertia);
+          link["inertia"] = Eigen::Matrix3d(l.result.repaired.inertia);
+          links.append(link);
+        }
+        return py::make_tuple(r.text, urdf_repair_report(r), links);
+      },
+      py::arg("text"), py::arg("source"), py::arg("min_eig_rel"));
+}
+
+}  // namespace spdfit::python

@@ -1,0 +1,372 @@
+#include "spdfit/hexapod/physical.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "estimators/diagnostics.hpp"
+#include "hexapod/kinematics.hpp"
+#include "hexapod/physical_fit.hpp"
+#include "hexapod/physical_solver.hpp"
+#include "spdfit/hexapod/model.hpp"
+#include "spdfit/rank.hpp"
+
+namespace spdfit::hexapod {
+
+namespace {
+
+// A singular value of the 21 x p design below this fraction of the largest is a confounded
+// combination: exact confounding (the cubic hexapod's common strut mass) gives about 1e-16, and a
+// parameter known to only 1e-10 of the others' scale is not estimated from measured data.
+constexpr double kDesignTolerance = 1e-10;
+// Where the least-squares start lies on the boundary of the cone, the errors-in-variables
+// iteration starts this fraction of P's largest eigenvalue inside.
+constexpr double kStartInside = 1e-2;
+// The rounding of the pseudo-inertia's computed eigenvalues (from theta, through the 4 x 4
+// eigensolver), relative to the largest: what "physically consistent" allows below zero.
+constexpr double kConsistencyRounding = 64.0 * std::numeric_limits<double>::epsilon();
+// Symmetry of the noise covariances, relative to their largest entry.
+constexpr double kSymmetryTolerance = 1e-12;
+
+bool valid_covariance(const Eigen::MatrixXd& S, const char* name, bool& definite, std::string* error) {
+  definite = true;
+  if (S.size() == 0) return true;
+  auto fail = [error](const std::string& message) {
+    if (error) *error = message;
+    return false;
+  };
+  if (S.rows() != 6 || S.cols() != 6) {
+    return fail(std::string("`") + name + "` must be 6 x 6 (one row and column per strut), not " +
+                std::to_string(S.rows()) + " x " + std::to_string(S.cols()));
+  }
+  if (!S.allFinite()) return fail(std::string("`") + name + "` must have finite entries");
+  if ((S - S.transpose()).cwiseAbs().maxCoeff() > kSymmetryTolerance * S.cwiseAbs().maxCoeff()) {
+    return fail(std::string("`") + name + "` must be symmetric");
+  }
+  const Eigen::VectorXd w = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(0.5 * (S + S.transpose()),
+                                                                           Eigen::EigenvaluesOnly)
+                                .eigenvalues();
+  const double rounding = 64.0 * std::numeric_limits<double>::epsilon() * std::max(w.cwiseAbs().maxCoeff(), 0.0);
+  if (w(0) < -rounding) return fail(std::string("`") + name + "` must be positive semidefinite (a covariance)");
+  definite = w(0) > rounding;
+  return true;
+}
+
+std::string list_text(const Eigen::VectorXd& v) {
+  std::string out;
+  for (Eigen::Index i = 0; i < v.size(); ++i) out += (i ? ", " : "") + spdfit::detail::format_number(v(i));
+  return out;
+}
+
+}  // namespace
+
+std::string_view to_string(StrutMasses strut_masses) {
+  switch (strut_masses) {
+    case StrutMasses::Common:
+      return "common";
+    case StrutMasses::Each:
+      return "each";
+    case StrutMasses::Geometry:
+      break;
+  }
+  return "geometry";
+}
+
+std::optional<StrutMasses> parse_strut_masses(std::string_view name) {
+  if (name == "geometry") return StrutMasses::Geometry;
+  if (name == "common") return StrutMasses::Common;
+  if (name == "each") return StrutMasses::Each;
+  return std::nullopt;
+}
+
+std::string_view to_string(PhysicalCriterion criterion) {
+  return criterion == PhysicalCriterion::LeastSquares ? "ls" : "eiv";
+}
+
+std::optional<PhysicalCriterion> parse_physical_criterion(std::string_view name) {
+  if (name == "eiv") return PhysicalCriterion::ErrorsInVariables;
+  if (name == "ls") return PhysicalCriterion::LeastSquares;
+  return std::nullopt;
+}
+
+bool PhysicalOptions::is_valid(std::string* error) const {
+  auto fail = [error](const std::string& message) {
+    if (error) *error = message;
+    return false;
+  };
+  bool definite_a = true, definite_b = true;
+  if (!valid_covariance(noise_cov_a, "noise_cov_a", definite_a, error)) return false;
+  if (!valid_covariance(noise_cov_b, "noise_cov_b", definite_b, error)) return false;
+  if (!definite_a && !definite_b) {
+    return fail("`noise_cov_a` and `noise_cov_b` are both singular: at least one must be positive definite");
+  }
+  if (max_iterations < 1) return fail("`max_iterations` must be at least 1");
+  if (rank_tolerance && !(*rank_tolerance >= 0.0 && *rank_tolerance < 1.0)) {
+    return fail("`rank_tolerance` must be a number in [0, 1)");
+  }
+  if (bootstrap < 0) return fail("`bootstrap` must be a number of replicates >= 0");
+  if (!(confidence > 0.0 && confidence < 1.0)) {
+    return fail("`confidence` must be a fraction strictly between 0 and 1 (0.95 for 95%)");
+  }
+  return true;
+}
+
+PhysicalDesign physical_design(const Geometry& geometry, StrutMasses strut_masses) {
+  const detail::PhysicalModel model = detail::physical_model(geometry, strut_masses);
+  PhysicalDesign design;
+  design.parameters = model.parameters;
+  design.length_scale = model.length;
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(detail::design_matrix(model), Eigen::ComputeFullV);
+  const Eigen::VectorXd& s = svd.singularValues();
+  design.rank = numerical_rank(s, kDesignTolerance);
+  design.condition = design.rank == model.parameters ? s(0) / s(model.parameters - 1)
+                                                     : std::numeric_limits<double>::infinity();
+  design.null_space = svd.matrixV().rightCols(model.parameters - design.rank);
+  for (Eigen::Index k = 0; k < design.null_space.cols(); ++k) {
+    design.confounded += (k ? "; " : "") + detail::describe_combination(model, design.null_space.col(k));
+  }
+  return design;
+}
+
+namespace detail {
+
+PhysicalEstimate fit_physical(const TriangularFactor& factor, const PhysicalModel& model, const Geometry& geometry,
+                              const PhysicalOptions& options, bool reported) {
+  PhysicalEstimate out;
+  out.criterion_kind = options.criterion;
+  out.strut_masses = options.strut_masses;
+  out.consistent_requested = options.consistent;
+  out.m = factor.rows();
+  if (factor.n() != 6 || factor.d() != 6) {
+    throw std::invalid_argument("physical identification needs 6 columns in A and in B (one per strut), not " +
+                                std::to_string(factor.n()) + " and " + std::to_string(factor.d()));
+  }
+
+  PhysicalData ls = physical_data(factor, model, PhysicalCriterion::LeastSquares, options.noise_cov_a,
+                                  options.noise_cov_b);
+  const Eigen::VectorXd sa = Eigen::JacobiSVD<Eigen::MatrixXd>(Eigen::MatrixXd(ls.R11)).singularValues();
+  out.rank_a = numerical_rank(sa, rank_cutoff(options.rank_tolerance.value_or(-1.0), std::max<Eigen::Index>(out.m, 6), 6));
+
+  // Identifiability from the data: the 36 x p design of theta -> R11 M(theta).
+  Eigen::Index rank = 0;
+  Eigen::MatrixXd null_space;
+  const double cutoff = rank_cutoff(options.rank_tolerance.value_or(-1.0), 36, model.parameters);
+  const ParamVector theta_ls = unconstrained_least_squares(ls, model, cutoff, &rank, &null_space);
+  if (rank < model.parameters) {
+    throw std::invalid_argument(
+        "the data cannot identify the payload's " + reached_groups(model, null_space) + ": A has rank " +
+        std::to_string(out.rank_a) + " of 6 (m = " + std::to_string(out.m) + (out.m == 1 ? " row" : " rows") +
+        "), so the forces determine only " + std::to_string(rank) + " of the " +
+        std::to_string(model.parameters) +
+        " parameters; log more samples that excite the payload in every direction");
+  }
+  ls.f0 = ls.R12.squaredNorm() + ls.R22.squaredNorm();
+  if (!(ls.f0 > 0.0)) ls.f0 = 1.0;
+
+  ParamVector theta = theta_ls;
+  int iterations = 0;
+  bool converged = true;
+  std::string failure;
+  PhysicalData eiv;
+  const bool is_eiv = options.criterion == PhysicalCriterion::ErrorsInVariables;
+  if (options.consistent) {
+    // The convex least-squares fit: the unconstrained one when it is strictly feasible, else the
+    // barrier path from it pushed inside.
+    if (!strictly_feasible(model, theta_ls)) {
+      const SolveResult start = solve_constrained(ls, model, pushed_inside(model, theta_ls, kStartInside),
+                                                  options.max_iterations);
+      theta = start.theta;
+      iterations += start.iterations;
+      converged = start.converged;
+      failure = start.message;
+    }
+    if (reported) {
+      const PhysicalCertificate c = kkt_certificate(ls, model, theta);
+      out.start_certificate.primal_min_eig = c.primal_min_eig;
+      out.start_certificate.dual_min_eig = c.dual_min_eig;
+      out.start_certificate.complementarity = c.complementarity;
+      out.start_certificate.duality_gap = std::abs(c.complementarity);
+    }
+    if (is_eiv && converged) {
+      eiv = ls;
+      eiv.criterion = PhysicalCriterion::ErrorsInVariables;
+      const ParamVector start = strictly_feasible(model, theta) ? theta : pushed_inside(model, theta, kStartInside);
+      if (!set_normalization(eiv, model, start)) {
+        failure = "the noise covariances make the criterion's weight singular at the start";
+        converged = false;
+      } else {
+        // The criterion is not convex: two starts, the lowest local minimum wins. The barrier path
+        // from the certified least-squares fit, and Newton's method without constraints from the
+        // unconstrained least-squares fit: its minimum, when inside the cone, is a KKT point with
+        // zero multipliers; when outside, the face it points to (or the barrier path from it pushed
+        // inside) is a third start.
+        std::optional<SolveResult> best;
+        auto consider = [&](const SolveResult& r, bool usable) {
+          iterations += r.iterations;
+          if (!usable) return;
+          const bool better = !best || (r.converged && !best->converged) ||
+                              (r.converged == best->converged && r.f < best->f);
+          if (better) best = r;
+        };
+        const auto budget = [&] { return std::max(options.max_iterations - iterations, 1); };
+        const SolveResult free = solve_unconstrained(eiv, model, theta_ls, budget());
+        const bool free_inside = free.converged && strictly_feasible(model, free.theta);
+        consider(free, free_inside);
+        if (!free_inside || !strictly_feasible(model, theta_ls)) {
+          consider(solve_constrained(eiv, model, start, budget()), true);
+          if (free.converged && !free_inside && free.theta.allFinite()) {
+            // From the unconstrained minimum: the face its clipped pseudo-inertia lies on, or the
+            // barrier path from it pushed inside.
+            int steps = 0;
+            const std::optional<SolveResult> face = solve_on_face(eiv, model, free.theta, budget(), &steps);
+            iterations += steps;
+            if (face) {
+              consider(*face, true);
+            } else {
+              consider(solve_constrained(eiv, model, pushed_inside(model, free.theta, kStartInside), budget()), true);
+            }
+          }
+        }
+        theta = best->theta;
+        converged = best->converged;
+        failure = best->message;
+      }
+    }
+  } else if (is_eiv) {
+    eiv = ls;
+    eiv.criterion = PhysicalCriterion::ErrorsInVariables;
+    if (!set_normalization(eiv, model, theta_ls)) {
+      failure = "the noise covariances make the criterion's weight singular at the start";
+      converged = false;
+    } else {
+      const SolveResult fit = solve_unconstrained(eiv, model, theta_ls, options.max_iterations);
+      theta = fit.theta;
+      iterations = fit.iterations;
+      converged = fit.converged;
+      failure = fit.message;
+    }
+  }
+  const PhysicalData& used = is_eiv ? eiv : ls;
+  if (!theta.allFinite()) {
+    out.status = Status::NumericalFailure;
+    out.message = "physical identification failed: " + (failure.empty() ? std::string("no finite estimate") : failure);
+    return out;
+  }
+
+  out.status = Status::Success;
+  out.iterations = iterations;
+  out.converged = converged;
+  const ParamVector physical = theta / used.theta_scale;
+  out.payload = payload_of(model, physical);
+  if (out.payload.mass > 0.0) {
+    out.principal = principal_inertia(out.payload.inertia);
+  } else {  // an unconstrained fit's mass <= 0: no centre of mass, no principal axes
+    out.principal.moments.setConstant(std::numeric_limits<double>::quiet_NaN());
+    out.principal.axes.setConstant(std::numeric_limits<double>::quiet_NaN());
+  }
+  const int struts = model.parameters - kPayloadParameters;
+  out.strut_mass = struts > 0 ? Eigen::VectorXd(physical.tail(struts)) : Eigen::VectorXd(geometry.strut_mass);
+  out.M_p = model_mass_matrix(model, physical);
+  out.M_p_eigenvalues = Eigen::SelfAdjointEigenSolver<Matrix6d>(out.M_p, Eigen::EigenvaluesOnly).eigenvalues();
+  const Eigen::Vector4d pseudo =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(scaled_pseudo_inertia(physical), Eigen::EigenvaluesOnly)
+          .eigenvalues();
+  out.pseudo_inertia_min_eig = pseudo(0);
+  // An estimate on the boundary (a rank-deficient pseudo-inertia) has computed eigenvalues of
+  // +-rounding there: consistent to the rounding of P's eigenvalues.
+  const double rounding = kConsistencyRounding * std::abs(pseudo(3));
+  out.physically_consistent = pseudo(0) >= -rounding && out.strut_mass.minCoeff() >= -rounding;
+  const double unscale = used.criterion == PhysicalCriterion::LeastSquares
+                             ? std::ldexp(1.0, 2 * factor.exponent_b())
+                             : 1.0;  // the errors-in-variables criterion is invariant under the scaling
+  Evaluation ev;
+  out.criterion = evaluate(used, model, theta, 0, ev) ? ev.f * used.f0 * unscale
+                                                      : std::numeric_limits<double>::quiet_NaN();
+  if (!reported) return out;
+
+  if (options.consistent) out.certificate = kkt_certificate(used, model, theta);
+  if ((geometry.strut_stiffness.array() > 0.0).all() && out.M_p_eigenvalues(0) > 0.0) {
+    try {
+      out.modes_hz = Vector6d(modal_frequencies_hz(Eigen::MatrixXd(out.M_p),
+                                                    Eigen::MatrixXd(geometry.strut_stiffness.asDiagonal())));
+    } catch (const std::invalid_argument&) {
+      // positive definite by its eigenvalues but not by Cholesky: no modes
+    }
+  }
+  if (!converged) {
+    out.warnings.push_back("the optimizer did not converge" + (failure.empty() ? std::string() : ": " + failure) +
+                           "; the estimate is the last iterate");
+  }
+  if (!options.consistent && !out.physically_consistent) {
+    out.warnings.push_back(
+        "the unconstrained estimate is not physically consistent (the pseudo-inertia's smallest eigenvalue is " +
+        spdfit::detail::format_number(out.pseudo_inertia_min_eig) + " kg" +
+        (out.strut_mass.minCoeff() < 0.0 ? ", strut masses " + list_text(out.strut_mass) + " kg" : std::string()) +
+        "): no rigid body has these mass properties");
+  }
+  if (options.consistent && out.pseudo_inertia_min_eig <= 1e-6 * out.payload.mass) {
+    out.warnings.push_back(
+        "the estimate lies on the boundary of physical consistency (the pseudo-inertia's smallest eigenvalue is " +
+        spdfit::detail::format_number(out.pseudo_inertia_min_eig) +
+        " kg): the constraint is active, as for a payload whose mass lies on a plane or a line");
+  }
+  if (options.consistent && struts > 0 && out.strut_mass.minCoeff() <= 1e-9 * out.payload.mass) {
+    out.warnings.push_back("an estimated strut mass is at its bound 0: strut masses " + list_text(out.strut_mass) +
+                           " kg");
+  }
+  return out;
+}
+
+}  // namespace detail
+
+namespace {
+
+PhysicalEstimate identify_from_factor(const TriangularFactor& factor, const Geometry& geometry,
+                                      const PhysicalOptions& options, detail::PhysicalModel& model) {
+  std::string error;
+  if (!options.is_valid(&error)) throw std::invalid_argument(error);
+  detail::require_valid(geometry);
+  const PhysicalDesign design = physical_design(geometry, options.strut_masses);
+  if (design.rank < design.parameters) {
+    throw std::invalid_argument(
+        "`strut_masses` = " + std::string(to_string(options.strut_masses)) +
+        " cannot be estimated on this geometry: " + design.confounded + " (the map from the " +
+        std::to_string(design.parameters) + " parameters to M_p has rank " + std::to_string(design.rank) +
+        "); use the geometry's strut masses (`strut_masses` = geometry)");
+  }
+  model = detail::physical_model(geometry, options.strut_masses);
+  PhysicalEstimate out = detail::fit_physical(factor, model, geometry, options);
+  out.design = design;
+  return out;
+}
+
+}  // namespace
+
+PhysicalEstimate identify_physical(const TriangularFactor& factor, const Geometry& geometry,
+                                   const PhysicalOptions& options) {
+  if (options.bootstrap > 0) {
+    throw std::invalid_argument("`bootstrap` needs the rows of A and B: pass them instead of their factor");
+  }
+  detail::PhysicalModel model;
+  return identify_from_factor(factor, geometry, options, model);
+}
+
+PhysicalEstimate identify_physical(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Geometry& geometry,
+                                   const PhysicalOptions& options) {
+  if (A.cols() != 6 || B.cols() != 6 || A.rows() != B.rows()) {
+    throw std::invalid_argument("physical identification needs A and B of m x 6 (one column per strut), not " +
+                                std::to_string(A.rows()) + " x " + std::to_string(A.cols()) + " and " +
+                                std::to_string(B.rows()) + " x " + std::to_string(B.cols()));
+  }
+  if (A.rows() == 0) throw std::invalid_argument("physical identification needs at least one row of data");
+  detail::PhysicalModel model;
+  PhysicalEstimate out = identify_from_factor(TriangularFactor::from_data(A, B), geometry, options, model);
+  if (options.bootstrap > 0 && out.ok()) detail::bootstrap_physical(out, A, B, model, geometry, options);
+  return out;
+}
+
+}  // namespace spdfit::hexapod

@@ -1,0 +1,25 @@
+// Internal: one physical identification from a triangular factor (physical.cpp), shared by the
+// public entry points and the bootstrap's replicates (physical_bootstrap.cpp).
+#pragma once
+
+#include <Eigen/Core>
+
+#include "hexapod/physical_model.hpp"
+#include "spdfit/hexapod/physical.hpp"
+#include "spdfit/triangular_factor.hpp"
+
+namespace spdfit::hexapod::detail {
+
+/// The estimate from `factor` with the model of `geometry` (options valid, the design of full
+/// rank; the caller checks both). `reported` off leaves out what only a report needs (the
+/// certificates, the modes, the warnings): the bootstrap's replicates. Throws
+/// std::invalid_argument when the data cannot identify a parameter.
+PhysicalEstimate fit_physical(const TriangularFactor& factor, const PhysicalModel& model, const Geometry& geometry,
+                              const PhysicalOptions& options, bool reported = true);
+
+/// Fills estimate.bootstrap: options.bootstrap multinomial resamples of the rows of A and B, each
+/// refitted by fit_physical on options.threads threads.
+void bootstrap_physical(PhysicalEstimate& estimate, const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
+                        const PhysicalModel& model, const Geometry& geometry, const PhysicalOptions& options);
+
+}  // namespace spdfit::hexapod::detail

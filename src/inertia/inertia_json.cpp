@@ -1,0 +1,116 @@
+// Rigid-body inertia files (JSON) in and repair results out. Every error names the file and the key.
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "io/json_document.hpp"
+#include "io/read_file.hpp"
+#include "spdfit/inertia_repair.hpp"
+#include "spdfit/io.hpp"
+
+namespace spdfit {
+
+namespace {
+
+using nlohmann::json;
+
+// An inertia file is a few hundred bytes.
+constexpr std::size_t kMaxInertiaBytes = std::size_t{1} << 20;
+
+constexpr const char* kKeyList = "mass, center_of_mass, inertia";
+
+// The keys inertia_repair_json adds: its output reads back as input (and is repaired again,
+// unchanged), so they are accepted and ignored.
+bool is_repair_key(const std::string& key) {
+  for (const char* k : {"changed", "distance", "certificate", "min_eig", "principal_moments",
+                        "principal_moments_before", "second_moments_before"}) {
+    if (key == k) return true;
+  }
+  return false;
+}
+
+[[noreturn]] void fail(const std::string& source, const std::string& problem) {
+  throw io::DataError(source, 0, 0, problem);
+}
+
+double number(const json& value, const std::string& where, const std::string& source) {
+  if (!value.is_number()) fail(source, where + " must be a number, found " + io::detail::describe_json(value));
+  return value.get<double>();
+}
+
+Eigen::Vector3d vector3(const json& value, const std::string& where, const std::string& source) {
+  if (!value.is_array() || value.size() != 3) {
+    fail(source, where + " must be [x, y, z] (3 numbers), found " + io::detail::describe_json(value));
+  }
+  return {number(value[0], where + "[0]", source), number(value[1], where + "[1]", source),
+          number(value[2], where + "[2]", source)};
+}
+
+const json& require(const json& root, const char* key, const char* what, const std::string& source) {
+  const auto it = root.find(key);
+  if (it == root.end()) fail(source, std::string("missing key \"") + key + "\" (" + what + ")");
+  return *it;
+}
+
+nlohmann::ordered_json vector_json(const Eigen::Vector3d& v) { return {v(0), v(1), v(2)}; }
+
+nlohmann::ordered_json matrix_json(const Eigen::Matrix3d& M) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (int i = 0; i < 3; ++i) out.push_back(vector_json(M.row(i).transpose()));
+  return out;
+}
+
+}  // namespace
+
+RigidBodyInertia parse_rigid_body(const std::string& text, const std::string& source) {
+  const json root = io::detail::parse_json_document(text, source, kMaxInertiaBytes, "an inertia file", 3);
+  if (!root.is_object()) {
+    fail(source, "an inertia file must hold a JSON object {\"mass\": m, \"center_of_mass\": [x, y, z], "
+                 "\"inertia\": [[3x3]]}; found " + io::detail::describe_json(root));
+  }
+  for (const auto& item : root.items()) {
+    const std::string& key = item.key();
+    if (!key.empty() && key[0] == '_') continue;  // comments
+    if (key != "mass" && key != "center_of_mass" && key != "inertia" && !is_repair_key(key)) {
+      fail(source, "unknown key \"" + key + "\" (the keys are " + kKeyList + "; keys starting with '_' are ignored)");
+    }
+  }
+  RigidBodyInertia body;
+  body.mass = number(require(root, "mass", "the body's mass in kg", source), "mass", source);
+  body.center_of_mass = vector3(
+      require(root, "center_of_mass", "the centre of mass [x, y, z] in metres", source), "center_of_mass", source);
+  const json& inertia = require(root, "inertia", "the 3x3 inertia tensor about the centre of mass, kg m^2", source);
+  if (!inertia.is_array() || inertia.size() != 3) {
+    fail(source, "inertia must be a 3x3 matrix [[a, b, c], [d, e, f], [g, h, i]]; found " +
+                     io::detail::describe_json(inertia));
+  }
+  for (int i = 0; i < 3; ++i) {
+    body.inertia.row(i) = vector3(inertia[i], "inertia[" + std::to_string(i) + "]", source).transpose();
+  }
+  std::string error;
+  if (!is_well_formed(body, &error)) fail(source, error);
+  return body;
+}
+
+RigidBodyInertia read_rigid_body(const std::string& path) {
+  return parse_rigid_body(io::detail::read_file(path, kMaxInertiaBytes, "an inertia file"), path);
+}
+
+std::string inertia_repair_json(const InertiaRepairResult& result) {
+  nlohmann::ordered_json out;
+  out["mass"] = result.repaired.mass;
+  out["center_of_mass"] = vector_json(result.repaired.center_of_mass);
+  out["inertia"] = matrix_json(result.repaired.inertia);
+  out["changed"] = result.changed;
+  out["distance"] = result.distance;
+  out["certificate"] = {{"primal_min_eig", result.certificate.primal_min_eig},
+                        {"dual_min_eig", result.certificate.dual_min_eig},
+                        {"complementarity", result.certificate.complementarity}};
+  out["min_eig"] = result.floor;
+  out["principal_moments"] = vector_json(result.principal_moments);
+  out["principal_moments_before"] = vector_json(result.principal_moments_before);
+  out["second_moments_before"] = vector_json(result.second_moments_before);
+  return out.dump(2) + "\n";
+}
+
+}  // namespace spdfit
