@@ -8,9 +8,8 @@
 
 #include <Eigen/Core>
 
-#include "spdfit/noise_model.hpp"
-
 #include "spdfit/hexapod/geometry.hpp"
+#include "spdfit/noise_model.hpp"
 #include "spdfit/random.hpp"
 #include "spdfit/rigid_body.hpp"
 
