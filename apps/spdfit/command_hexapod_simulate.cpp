@@ -1,0 +1,125 @@
+// spdfit hexapod simulate --noise-var V --out DIR [...]: accelerations A and base forces
+// B = A M_p with noise, the thesis' appendix-B generator, written as files.
+#include <filesystem>
+#include <memory>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "hexapod_commands.hpp"
+#include "input.hpp"
+#include "output.hpp"
+#include "spdfit/hexapod/geometry.hpp"
+#include "spdfit/hexapod/model.hpp"
+#include "spdfit/hexapod/simulate.hpp"
+#include "spdfit/io.hpp"
+#include "validators.hpp"
+
+namespace spdfit::cli {
+
+Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global) {
+  struct Cli {
+    hexapod::SimulationOptions options;
+    std::string distribution = "uniform", truth = "thesis", geometry, out;
+    std::uint64_t seed = 1;
+    double force_noise_var = 0.0;
+  };
+  auto cli = std::make_shared<Cli>();
+  CLI::App* sub = parent.add_subcommand(
+      "simulate",
+      "Simulated accelerations A and base forces B = A M_p with noise (the thesis' appendix-B generator)");
+  sub->add_option("--samples", cli->options.samples, "Samples m (rows of A and B)")
+      ->check(CLI::Range(Eigen::Index{1}, Eigen::Index{100000000}))
+      ->capture_default_str();
+  sub->add_option("--noise-var", cli->options.noise_var, "Variance V of the noise in every entry of A and B")
+      ->required()
+      ->check(non_negative());
+  auto* force_noise =
+      sub->add_option(
+             "--force-noise-var", cli->force_noise_var,
+             "Variance of the noise in B when it differs from A's (default: --noise-var, as the thesis)")
+          ->check(non_negative());
+  sub->add_option(
+         "--signal-var", cli->options.signal_var,
+         "Variance S of the true accelerations, uniform on [-sqrt(3 S), sqrt(3 S)] (default 25/3: [-5, 5])")
+      ->check(positive());
+  sub->add_option("--distribution", cli->distribution,
+                  "Noise distribution: uniform (the thesis') or gaussian")
+      ->check(CLI::IsMember({"uniform", "gaussian"}))
+      ->capture_default_str();
+  auto* truth =
+      sub->add_option("--truth", cli->truth, "True M_p: 'thesis' (eq. 6.1) or a matrix file (n x n)")
+          ->capture_default_str();
+  auto* geometry =
+      sub->add_option("--geometry", cli->geometry, "Use the M_p of this geometry file as the truth");
+  geometry->excludes(truth);
+  sub->add_option(
+         "--seed", cli->seed,
+         "Seed; the data are those of trial 0 of 'spdfit experiment thesis' with the same seed and settings")
+      ->capture_default_str();
+  sub->add_option("--out", cli->out, "Directory to write A.csv, B.csv, truth.csv and simulation.json to")
+      ->required();
+
+  auto run = [cli, force_noise, &global]() {
+    Eigen::MatrixXd M;
+    std::string truth_source;
+    if (!cli->geometry.empty()) {
+      M = hexapod::joint_space_mass_matrix(hexapod::read_geometry(cli->geometry));
+      truth_source = "geometry " + cli->geometry;
+    } else if (cli->truth == "thesis") {
+      M = hexapod::thesis_mass_matrix();
+      truth_source = "thesis eq. 6.1";
+    } else {
+      M = load_matrix(cli->truth, global);
+      if (M.rows() != M.cols()) {
+        throw io::DataError(
+            cli->truth, 0, 0,
+            "the true M_p must be square, not " + std::to_string(M.rows()) + "x" + std::to_string(M.cols()));
+      }
+      if (!M.isApprox(M.transpose())) warn(global, cli->truth + ": the true M_p is not symmetric");
+      truth_source = cli->truth;
+    }
+    hexapod::SimulationOptions options = cli->options;
+    options.distribution = *hexapod::parse_noise_distribution(cli->distribution);
+    if (force_noise->count() > 0) options.force_noise_var = cli->force_noise_var;
+    if (options.samples < M.rows()) {
+      warn(global, "fewer samples (" + std::to_string(options.samples) + ") than M_p has columns (" +
+                       std::to_string(M.rows()) + "): the estimators need m >= n");
+    }
+    const hexapod::Measurements data = hexapod::simulate(M, options, cli->seed);
+
+    namespace fs = std::filesystem;
+    std::error_code error;
+    fs::create_directories(cli->out, error);
+    if (error) throw io::DataError(cli->out, 0, 0, "cannot create the output directory: " + error.message());
+    const fs::path dir(cli->out);
+    io::write_csv((dir / "A.csv").string(), data.A);
+    io::write_csv((dir / "B.csv").string(), data.B);
+    io::write_csv((dir / "truth.csv").string(), M);
+    nlohmann::json settings;
+    settings["samples"] = options.samples;
+    settings["noise_var"] = options.noise_var;
+    settings["force_noise_var"] = options.force_noise_var.value_or(options.noise_var);
+    settings["signal_var"] = options.signal_var;
+    settings["distribution"] = cli->distribution;
+    settings["truth"] = truth_source;
+    settings["seed"] = cli->seed;
+    settings["files"] = {{"A", "A.csv"}, {"B", "B.csv"}, {"truth", "truth.csv"}};
+    emit(settings.dump(2) + "\n", (dir / "simulation.json").string());
+
+    std::ostringstream out;
+    out << "wrote " << (dir / "A.csv").string() << " (" << data.A.rows() << "x" << data.A.cols()
+        << " accelerations), " << (dir / "B.csv").string() << " (forces), " << (dir / "truth.csv").string()
+        << " (M_p: " << truth_source << "), " << (dir / "simulation.json").string() << "\n";
+    // The next step only when it can succeed: identify needs at least as many samples as columns.
+    if (options.samples >= M.rows()) {
+      out << "identify M_p from them with:\n  spdfit hexapod identify " << (dir / "A.csv").string() << ' '
+          << (dir / "B.csv").string() << " --truth " << (dir / "truth.csv").string() << "\n";
+    }
+    emit(out.str(), "");
+  };
+  return {sub, run};
+}
+
+}  // namespace spdfit::cli
