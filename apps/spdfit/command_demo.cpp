@@ -11,6 +11,7 @@
 #include "demo_report.hpp"
 #include "experiment_output.hpp"
 #include "output.hpp"
+#include "spdfit/format.hpp"
 
 namespace spdfit::cli {
 
@@ -75,7 +76,7 @@ Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
       experiment::Paper2x2Options options;
       options.std_a = std_a;
       monte_carlo.progress =
-          trials_progress(global, "demo: 2x2 example, std_a = " + trimmed(std_a));
+          trials_progress(global, "demo: 2x2 example, std_a = " + format_number(std_a));
       paper.push_back(experiment::run_paper_2x2(options, monte_carlo));
     }
     monte_carlo.trials = cli->trials_beyond;
@@ -85,7 +86,7 @@ Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
         options.simulation.noise_var = width * width / 12.0;  // uniform of width nm
         options.simulation.samples = m;
         options.methods = demo::beyond_methods();
-        monte_carlo.progress = trials_progress(global, "demo: nm = " + trimmed(width) + ", m = " + std::to_string(m));
+        monte_carlo.progress = trials_progress(global, "demo: nm = " + format_number(width) + ", m = " + std::to_string(m));
         results.beyond.push_back(experiment::run_thesis_experiment(options, monte_carlo));
       }
     }

@@ -9,6 +9,7 @@
 #include "cli.hpp"
 #include "experiment_output.hpp"
 #include "output.hpp"
+#include "spdfit/format.hpp"
 #include "spdfit/experiment/paper.hpp"
 #include "spdfit/experiment/thesis.hpp"
 #include "spdfit/io.hpp"
@@ -133,7 +134,7 @@ hexapod::SimulationOptions simulation_options(const SimulationCli& simulation) {
 std::string describe(const hexapod::SimulationOptions& s) {
   std::ostringstream out;
   out << "m = " << s.samples << " samples of 6 strut accelerations (uniform, variance "
-      << fixed(s.signal_var, 3) << "),\n"
+      << format_fixed(s.signal_var, 3) << "),\n"
       << hexapod::to_string(s.distribution) << " noise of variance " << s.noise_var;
   if (s.force_noise_var && *s.force_noise_var != s.noise_var) {
     out << " in every entry of A and " << *s.force_noise_var << " in every entry of B";

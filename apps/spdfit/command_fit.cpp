@@ -17,6 +17,7 @@
 #include "table_options.hpp"
 #include "spdfit/distributed.hpp"
 #include "spdfit/fit_request.hpp"
+#include "spdfit/render.hpp"
 
 namespace spdfit::cli {
 
@@ -160,14 +161,13 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
       warn(global, "--bootstrap's standard errors and intervals are shown with --json or --report; this prints X only");
     }
     if (options->json) {
-      nlohmann::json out = result_json(result);
-      if (world.active()) {  // how the work was divided among the processes
-        out["processes"] = world.size();
-        out["rows_per_process"] = rows_per_process;
-      }
-      emit(out.dump(2) + "\n", options->output);
+      // Under mpirun, also how the work was divided among the processes.
+      emit(world.active() ? with_fields(to_json(result), {{"processes", world.size()},
+                                                          {"rows_per_process", rows_per_process}})
+                          : to_json(result),
+           options->output);
     } else if (options->report) {
-      emit(fit_report(result), options->output);
+      emit(report(result, report_hints()), options->output);
     } else if (options->header) {
       emit(labelled_matrix_csv(result), options->output);
     } else {

@@ -7,15 +7,8 @@
 #include <CLI/CLI.hpp>
 
 #include "hexapod_commands.hpp"
-#include "output.hpp"
 
 namespace spdfit::cli {
-
-std::string vector_text(const Eigen::VectorXd& v, int digits) {
-  std::string out;
-  for (Eigen::Index i = 0; i < v.size(); ++i) out += (i ? "  " : "") + fixed(v(i), digits);
-  return out;
-}
 
 Command add_hexapod_command(CLI::App& app, const GlobalOptions& global) {
   CLI::App* sub =

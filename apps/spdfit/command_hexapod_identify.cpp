@@ -1,12 +1,9 @@
 // spdfit hexapod identify A B [--truth T] [--geometry G | --stiffness K] [--bootstrap N] [--json]:
 // M_p identified from measured accelerations and forces by every estimator.
-#include <algorithm>
-#include <cstdio>
 #include <memory>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include "bootstrap_options.hpp"
 #include "hexapod_commands.hpp"
@@ -14,6 +11,7 @@
 #include "output.hpp"
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/hexapod/identify.hpp"
+#include "spdfit/hexapod/render.hpp"
 #include "spdfit/io.hpp"
 
 namespace spdfit::cli {
@@ -43,95 +41,6 @@ Eigen::MatrixXd parse_stiffness(const std::string& text, Eigen::Index n) {
                      " comma-separated numbers, not " + std::to_string(values.size()));
   }
   return Eigen::Map<const Eigen::VectorXd>(values.data(), n).asDiagonal();
-}
-
-// Each symmetric estimate's eigenvalues and modes with their bootstrap intervals.
-std::string bootstrap_report(const std::vector<hexapod::MethodIdentification>& methods,
-                             const hexapod::IdentifyOptions& options) {
-  std::ostringstream out;
-  out << "\nbootstrap: " << options.fit.bootstrap << " resamples of the rows (seed " << options.fit.seed
-      << "); value +- standard error   [" << percent_text(options.fit.confidence)
-      << " interval]; values closer than their standard errors share one interval\n";
-  for (const hexapod::MethodIdentification& m : methods) {
-    const auto& b = m.result.bootstrap;
-    if (!b || !b->eigenvalues) continue;
-    out << to_string(m.result.method) << " (" << b->failed << " of " << b->replicates << " resamples failed)\n"
-        << "  eigenvalues (kg)\n"
-        << spectrum_text(*b->eigenvalues, "    ");
-    if (m.modes_uncertainty) out << "  modes (Hz)\n" << spectrum_text(*m.modes_uncertainty, "    ");
-  }
-  return out.str();
-}
-
-std::string identify_report(const std::vector<hexapod::MethodIdentification>& methods,
-                            const hexapod::IdentifyOptions& options) {
-  std::ostringstream out;
-  const Diagnostics& data = methods.front().result.diagnostics;
-  char line[320];
-  std::snprintf(line, sizeof line,
-                "data: m = %ld samples of n = %ld struts; cond(A) = %.3g, cond(B) = %.3g (rank %ld, %ld)\n\n",
-                static_cast<long>(data.m), static_cast<long>(data.n), data.cond_a, data.cond_b,
-                static_cast<long>(data.rank_a), static_cast<long>(data.rank_b));
-  out << line;
-  std::vector<std::string> titles;
-  std::vector<Eigen::MatrixXd> matrices;
-  if (options.truth) {
-    titles.emplace_back("truth");
-    matrices.push_back(*options.truth);
-  }
-  for (const hexapod::MethodIdentification& m : methods) {
-    if (!m.result.ok()) continue;
-    titles.emplace_back(to_string(m.result.method));
-    matrices.push_back(m.result.X);
-  }
-  out << "Estimates of M_p\n" << side_by_side(titles, matrices);
-
-  std::snprintf(line, sizeof line, "%-11s %-10s %-10s %12s %12s %12s%s\n", "method", "symmetric", "definite",
-                "residual", "area", "min eig", options.truth ? "  error ||M_hat - truth||_F" : "");
-  out << line;
-  for (const hexapod::MethodIdentification& m : methods) {
-    const FitResult& r = m.result;
-    const std::string name(to_string(r.method));
-    if (!r.ok()) {
-      out << name << std::string(12 - std::min<std::size_t>(name.size(), 11), ' ') << "failed: " << r.message
-          << '\n';
-      continue;
-    }
-    const Diagnostics& d = r.diagnostics;
-    std::snprintf(line, sizeof line, "%-11s %-10s %-10s %12s %12s %12s%s\n", name.c_str(),
-                  d.symmetric ? "yes" : "no", d.positive_definite ? "positive" : (d.symmetric ? "no" : "-"),
-                  fixed(d.residual_norm).c_str(), d.area_criterion ? fixed(*d.area_criterion).c_str() : "-",
-                  d.min_eigenvalue ? fixed(*d.min_eigenvalue).c_str() : "-",
-                  m.error_vs_truth ? ("  " + fixed(*m.error_vs_truth)).c_str() : "");
-    out << line;
-  }
-  out << "\neigenvalues (kg)" << (options.stiffness ? " and modes sqrt(eig(M_hat^-1 K)) / 2 pi (Hz)" : "")
-      << "\n";
-  for (const hexapod::MethodIdentification& m : methods) {
-    if (!m.result.ok()) continue;
-    const std::string name(to_string(m.result.method));
-    std::snprintf(line, sizeof line, "%-11s ", name.c_str());
-    if (!m.eigenvalues) {
-      out << line << "not symmetric, so not a mass matrix: no eigenvalues or modes shown\n";
-      continue;
-    }
-    out << line << vector_text(*m.eigenvalues, 4) << '\n';
-    if (options.stiffness) {
-      out << std::string(12, ' ')
-          << (m.modes_hz ? vector_text(*m.modes_hz, 2) + " Hz" : "not positive definite: no modes") << '\n';
-    }
-  }
-  if (options.fit.bootstrap > 0) out << bootstrap_report(methods, options);
-  if (options.truth) {
-    const hexapod::MethodIdentification* best = nullptr;
-    for (const hexapod::MethodIdentification& m : methods) {
-      if (m.error_vs_truth && (!best || *m.error_vs_truth < *best->error_vs_truth)) best = &m;
-    }
-    if (best)
-      out << "\nclosest to the truth: " << to_string(best->result.method) << " (error "
-          << fixed(*best->error_vs_truth) << ")\n";
-  }
-  return out.str();
 }
 
 }  // namespace
@@ -191,25 +100,7 @@ Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
       for (const std::string& w : m.result.warnings)
         warn(global, std::string(to_string(m.result.method)) + ": " + w);
     }
-    if (!cli->json) {
-      emit(identify_report(methods, options), cli->output);
-      return;
-    }
-    nlohmann::json out;
-    out["m"] = data.A.rows();
-    out["n"] = n;
-    if (options.truth) out["truth"] = matrix_json(*options.truth);
-    out["stiffness"] = options.stiffness ? matrix_json(*options.stiffness) : nlohmann::json(nullptr);
-    out["methods"] = nlohmann::json::object();
-    for (const hexapod::MethodIdentification& m : methods) {
-      nlohmann::json j = result_json(m.result);
-      if (m.eigenvalues) j["eigenvalues"] = vector_json(*m.eigenvalues);
-      if (m.modes_hz) j["modes_hz"] = vector_json(*m.modes_hz);
-      if (m.error_vs_truth) j["error_vs_truth"] = number_json(*m.error_vs_truth);
-      if (m.modes_uncertainty) j["bootstrap"]["modes_hz"] = spectrum_json(*m.modes_uncertainty);
-      out["methods"][std::string(to_string(m.result.method))] = std::move(j);
-    }
-    emit(out.dump(2) + "\n", cli->output);
+    emit(cli->json ? hexapod::to_json(methods, options) : hexapod::report(methods, options), cli->output);
   };
   return {sub, run};
 }

@@ -7,6 +7,7 @@
 
 #include "hexapod_commands.hpp"
 #include "output.hpp"
+#include "spdfit/format.hpp"
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/hexapod/model.hpp"
 
@@ -18,6 +19,13 @@ constexpr const char* kBuiltInName = "built-in cubic-configuration hexapod (docs
 
 hexapod::Geometry load_geometry(const std::string& path) {
   return path.empty() ? hexapod::cubic_geometry() : hexapod::read_geometry(path);
+}
+
+// The entries of v with `digits` decimals, two spaces apart.
+std::string vector_text(const Eigen::VectorXd& v, int digits) {
+  std::string out;
+  for (Eigen::Index i = 0; i < v.size(); ++i) out += (i ? "  " : "") + format_fixed(v(i), digits);
+  return out;
 }
 
 }  // namespace
@@ -61,13 +69,13 @@ Command add_hexapod_model(CLI::App& parent, const GlobalOptions&) {
     }
     std::ostringstream out;
     out << "Hexapod: " << source << "\n"
-        << "payload " << fixed(geometry.payload_mass, 3)
+        << "payload " << format_fixed(geometry.payload_mass, 3)
         << " kg; strut lengths (m): " << vector_text(model.strut_lengths, 4) << "\n\n"
         << "Jacobian J, l_dot = J [v; w] (rows: struts; v, w of the payload's centre of mass in {B} axes); "
-        << "cond(J) = " << fixed(model.jacobian_condition, 2) << "\n"
-        << side_by_side({"J"}, {Eigen::MatrixXd(model.jacobian)})
+        << "cond(J) = " << format_fixed(model.jacobian_condition, 2) << "\n"
+        << format_side_by_side({"J"}, {Eigen::MatrixXd(model.jacobian)})
         << "Joint-space mass-inertia matrix (thesis eq. 2.12), kg\n"
-        << side_by_side({"M_p"}, {Eigen::MatrixXd(model.mass_matrix)})
+        << format_side_by_side({"M_p"}, {Eigen::MatrixXd(model.mass_matrix)})
         << "eigenvalues of M_p (kg): " << vector_text(model.mass_matrix_eigenvalues, 4)
         << "\nmodes sqrt(eig(M_p^-1 K)) / 2 pi (Hz), K = diag(strut_stiffness): " << vector_text(model.modes_hz, 2)
         << "\n";

@@ -8,8 +8,10 @@
 #include "cli.hpp"
 #include "input.hpp"
 #include "output.hpp"
+#include "spdfit/format.hpp"
 #include "spdfit/io.hpp"
 #include "spdfit/nearest_request.hpp"
+#include "spdfit/render.hpp"
 #include "table_options.hpp"
 
 namespace spdfit::cli {
@@ -39,26 +41,13 @@ std::vector<double> read_weights(const std::string& path, Eigen::Index n, const 
   return std::vector<double>(W.data(), W.data() + n);
 }
 
-nlohmann::json result_json(const NearestRequest& options, const NearestResult& result, Eigen::Index n,
-                           EigenvalueFloor floor) {
-  nlohmann::json out;
-  out["n"] = n;
-  out["corr"] = options.corr;
-  out["keep_diag"] = options.keep_diag;
-  out["via_corr"] = options.via_corr;
-  out["min_eig"] = number_json(result.min_eig);
-  out["min_eig_rel"] = floor.relative ? nlohmann::json(floor.value) : nlohmann::json(nullptr);
-  out["alpha"] = options.alpha.value_or(0.0);
-  out["X"] = matrix_json(result.X);
-  out["distance"] = number_json(result.distance);
-  out["clipped"] = result.clipped;
-  out["min_eigenvalue_before"] = number_json(result.min_eigenvalue_before);
-  out["iterations"] = result.iterations;
-  out["gradient_norm"] = number_json(result.gradient_norm);
-  out["converged"] = result.converged;
-  out["cholesky"] = result.cholesky_ok;
-  out["warnings"] = result.warnings;
-  return out;
+// The result's JSON (the library's) with the options the repair ran with.
+std::string result_json(const NearestRequest& options, const NearestResult& result, EigenvalueFloor floor) {
+  return with_fields(to_json(result), {{"corr", options.corr},
+                                       {"keep_diag", options.keep_diag},
+                                       {"via_corr", options.via_corr},
+                                       {"min_eig_rel", floor.relative ? nlohmann::json(floor.value) : nlohmann::json(nullptr)},
+                                       {"alpha", options.alpha.value_or(0.0)}});
 }
 }  // namespace
 
@@ -99,8 +88,8 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
     if (!request.newton() && result.clipped > 0) {
       // The clip's note, as the command has always printed it (the library leaves it to `clipped`).
       result.warnings.push_back(std::to_string(result.clipped) + " eigenvalue(s) of the symmetric part were below " +
-                                trimmed(result.min_eig) +
-                                (floor.relative ? " (" + trimmed(floor.value) + " x the largest eigenvalue)" : "") +
+                                format_number(result.min_eig) +
+                                (floor.relative ? " (" + format_number(floor.value) + " x the largest eigenvalue)" : "") +
                                 " and were raised to it");
     }
     for (const std::string& w : result.warnings) warn(global, w);
@@ -108,7 +97,7 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
       emit_matrix(result.X, options->output);
       return;
     }
-    emit(result_json(request, result, X.rows(), floor).dump(2) + "\n", options->output);
+    emit(result_json(request, result, floor), options->output);
   };
   return {sub, run};
 }

@@ -1,12 +1,12 @@
-#include <algorithm>
-#include <limits>
 // The demo's explanation. Every statement is chosen by comparing the numbers just computed
 // (paired differences and their standard errors); none is fixed text about which method wins.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "demo_report.hpp"
+#include "spdfit/format.hpp"
 #include "experiment_output.hpp"
 
 namespace spdfit::cli::demo {
@@ -88,7 +88,7 @@ std::string thesis_statements(const std::vector<ThesisExperimentResult>& thesis,
     previous_gain = gain;
     weakest = std::min(weakest, -c[i].mean_difference / c[i].standard_error);
     gains += std::string(i ? ", " : "") + percent(gain) +
-             " at V = " + trimmed(thesis[i].options.simulation.noise_var);
+             " at V = " + format_number(thesis[i].options.simulation.noise_var);
     losses += std::string(i ? ", " : "") + percent(1.0 - c[i].fraction_lower);
   }
   std::string text;
@@ -97,12 +97,12 @@ std::string thesis_statements(const std::vector<ThesisExperimentResult>& thesis,
         "Hexapod, thesis set-up: SPDE's mean error is below symmetric Procrustes' at all three noise levels, "
         "by " +
         gains + (growing ? ", growing with the noise" : "") + ". The smallest of these differences is " +
-        fixed(weakest, 0) + " standard errors of the trial-by-trial difference: far beyond chance.";
+        format_fixed(weakest, 0) + " standard errors of the trial-by-trial difference: far beyond chance.";
   } else {
     text = "Hexapod, thesis set-up, SPDE against symmetric Procrustes:";
     for (std::size_t i = 0; i < thesis.size(); ++i) {
       const Order o = order_of(c[i]);
-      text += std::string(i ? ";" : "") + " at V = " + trimmed(thesis[i].options.simulation.noise_var) + " " +
+      text += std::string(i ? ";" : "") + " at V = " + format_number(thesis[i].options.simulation.noise_var) + " " +
               (o == Order::Lower    ? "SPDE's mean error is lower"
                : o == Order::Higher ? "SPDE's mean error is higher"
                                     : "no significant difference");
@@ -131,9 +131,9 @@ std::string thesis_statements(const std::vector<ThesisExperimentResult>& thesis,
   if (tls.mean > 1.1 * tls.median && tls.max > 5.0 * tls.median) {
     out << bullet(
         "TLS made symmetric (eq. 4.38) is erratic: at V = " +
-        trimmed(thesis.back().options.simulation.noise_var) + " its mean error " + trimmed(tls.mean) +
-        " is pulled far above its median " + trimmed(tls.median) + " by a few runs with errors up to " +
-        trimmed(tls.max) + " (SPDE's largest: " + trimmed(spde_high.max) +
+        format_number(thesis.back().options.simulation.noise_var) + " its mean error " + format_number(tls.mean) +
+        " is pulled far above its median " + format_number(tls.median) + " by a few runs with errors up to " +
+        format_number(tls.max) + " (SPDE's largest: " + format_number(spde_high.max) +
         "): its formula -V12 V22^-1 divides by V22, which is nearly singular in a few runs, and nothing "
         "guards against that.");
   }
@@ -157,12 +157,12 @@ std::string paper_statements(const std::vector<EntryExperimentResult>& paper, Fa
   std::string text;
   if (from < paper.size()) {
     const EntryExperimentResult& last = paper.back();
-    text = "2x2 example: from std_a = " + trimmed(levels_2x2()[from]) +
+    text = "2x2 example: from std_a = " + format_number(levels_2x2()[from]) +
            " on, SPDE's mean absolute error is below Procrustes' for x11, x12 and x22; at std_a = " +
-           trimmed(levels_2x2().back()) + " it is";
+           format_number(levels_2x2().back()) + " it is";
     for (Eigen::Index e = 0; e < 3; ++e) {
-      text += std::string(e ? "," : "") + " " + trimmed(last.of(Method::Spde).mae(e)) + " against " +
-              trimmed(last.of(Method::SymmetricProcrustes).mae(e)) + " for " + kEntryNames[e];
+      text += std::string(e ? "," : "") + " " + format_number(last.of(Method::Spde).mae(e)) + " against " +
+              format_number(last.of(Method::SymmetricProcrustes).mae(e)) + " for " + kEntryNames[e];
     }
     text += ".";
   } else {
@@ -192,9 +192,9 @@ std::string paper_statements(const std::vector<EntryExperimentResult>& paper, Fa
   (tls_2x2.std.array() / spde_2x2.std.array()).maxCoeff(&worst);
   if (tls_2x2.std(worst) > 5.0 * spde_2x2.std(worst)) {
     out << bullet(
-        "TLS allows for noise in A too, but is unstable: at std_a = " + trimmed(levels_2x2().back()) +
-        " the standard deviation of its " + kEntryNames[worst] + " error is " + trimmed(tls_2x2.std(worst)) +
-        " against SPDE's " + trimmed(spde_2x2.std(worst)) +
+        "TLS allows for noise in A too, but is unstable: at std_a = " + format_number(levels_2x2().back()) +
+        " the standard deviation of its " + kEntryNames[worst] + " error is " + format_number(tls_2x2.std(worst)) +
+        " against SPDE's " + format_number(spde_2x2.std(worst)) +
         " (the paper attributes this to TLS not enforcing positive definiteness).");
   }
 
@@ -212,7 +212,7 @@ std::string samples_statements(const std::vector<ThesisExperimentResult>& sample
     const double from_mean = middle.of(method).summary.mean, to_mean = most.of(method).summary.mean;
     const std::string name(to_string(method));
     return name + (name.back() == 's' ? "' by " : "'s by ") + percent(1.0 - to_mean / from_mean) + " (" +
-           trimmed(from_mean) + " to " + trimmed(to_mean) + ")";
+           format_number(from_mean) + " to " + format_number(to_mean) + ")";
   };
   auto fall_fraction = [&](Method method) {
     return 1.0 - most.of(method).summary.mean / middle.of(method).summary.mean;
@@ -225,7 +225,7 @@ std::string samples_statements(const std::vector<ThesisExperimentResult>& sample
     const PairedComparison edge = compare_paired(most.of(best_large).errors, most.of(Method::Spde).errors);
     text += " At m = " + std::to_string(most.options.simulation.samples) + " " +
             std::string(to_string(best_large)) + " is the most accurate" +
-            (order_of(edge) == Order::Lower ? " (" + fixed(-edge.mean_difference / edge.standard_error, 0) +
+            (order_of(edge) == Order::Lower ? " (" + format_fixed(-edge.mean_difference / edge.standard_error, 0) +
                                                   " standard errors below spde)"
                                             : std::string(", though not significantly below spde")) +
             ".";
@@ -269,13 +269,13 @@ std::string beyond_statements(const std::vector<ThesisExperimentResult>& beyond)
       const double ratio = r.of(Method::Auto).summary.mean / best;
       if (ratio > worst_ratio) {
         worst_ratio = ratio;
-        worst_point = "nm = " + trimmed(width) + ", m = " + std::to_string(m);
+        worst_point = "nm = " + format_number(width) + ", m = " + std::to_string(m);
       }
       const bool tls_better = r.of(Method::SpdTotalLeastSquares).summary.mean < r.of(Method::Spde).summary.mean;
       if (tls_better && first_tls < 0) first_tls = m;
       if (!tls_better && first_tls >= 0) tls_stays = false;
     }
-    crossover += std::string(crossover.empty() ? "" : "; ") + "at nm = " + trimmed(width) + ", " +
+    crossover += std::string(crossover.empty() ? "" : "; ") + "at nm = " + format_number(width) + ", " +
                  (first_tls < 0 ? std::string("spde is lower at every m")
                                 : "spd-tls is lower than spde from m = " + std::to_string(first_tls) +
                                       (tls_stays ? " on" : " (not at every larger m)"));

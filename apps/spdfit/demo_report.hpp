@@ -42,7 +42,7 @@ std::string tables(const Results& results);
 std::string findings(const Results& results);
 
 /// Text helpers shared by both: `text` wrapped at kWidth columns (the first line starting with
-/// `first`, the others with `rest`); a "* " bullet; "12%" (and output.hpp's trimmed, "%.3g").
+/// `first`, the others with `rest`); a "* " bullet; "12%" (spdfit/format.hpp formats the numbers).
 inline constexpr std::size_t kWidth = 98;
 std::string wrap(const std::string& text, const std::string& first = "", const std::string& rest = "");
 std::string bullet(const std::string& text);

@@ -7,6 +7,7 @@
 #include "demo_report.hpp"
 #include "experiment_output.hpp"
 #include "output.hpp"
+#include "spdfit/format.hpp"
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/hexapod/identify.hpp"
 #include "spdfit/hexapod/model.hpp"
@@ -78,14 +79,14 @@ std::string section_model() {
   const double gap = (Mp - hexapod::thesis_mass_matrix()).cwiseAbs().maxCoeff();
   const hexapod::Vector6d modes = hexapod::modal_frequencies_hz(geometry);
   std::ostringstream text;
-  text << "The built-in cubic-configuration hexapod (payload " << fixed(geometry.payload_mass, 2)
-       << " kg, struts on six edges of a " << trimmed(hexapod::CubicGeometryParameters{}.edge)
+  text << "The built-in cubic-configuration hexapod (payload " << format_fixed(geometry.payload_mass, 2)
+       << " kg, struts on six edges of a " << format_number(hexapod::CubicGeometryParameters{}.edge)
        << " m cube) has the joint-space mass-inertia matrix M_p = J^-T M_x J^-1 + M_s of thesis eq. 2.12. It "
-       << "differs from the UW hexapod's M_p, eq. 6.1, by at most " << trimmed(gap)
+       << "differs from the UW hexapod's M_p, eq. 6.1, by at most " << format_number(gap)
        << " kg in any entry. With strut "
-       << "stiffness " << fixed(geometry.strut_stiffness(0), 0)
+       << "stiffness " << format_fixed(geometry.strut_stiffness(0), 0)
        << " N/m its modes sqrt(eig(M_p^-1 K)) / 2 pi are";
-  for (int i = 0; i < 6; ++i) text << (i ? ", " : " ") << fixed(modes(i), 2);
+  for (int i = 0; i < 6; ++i) text << (i ? ", " : " ") << format_fixed(modes(i), 2);
   text << " Hz. The experiments below use eq. 6.1 as the truth, like the thesis.";
   std::ostringstream out;
   out << "== 1. The hexapod (thesis ch. 2)\n\n" << wrap(text.str()) << '\n';
@@ -111,13 +112,13 @@ std::string section_thesis(const std::vector<ThesisExperimentResult>& results, s
     const Method method = m.result.method;
     if (m.result.ok() && (method == Method::SymmetricProcrustes ||
                           method == Method::TotalLeastSquaresSymmetric || method == Method::Spde)) {
-      titles.push_back(std::string(to_string(method)) + " (error " + fixed(*m.error_vs_truth) + ")");
+      titles.push_back(std::string(to_string(method)) + " (error " + format_fixed(*m.error_vs_truth) + ")");
       matrices.push_back(m.result.X);
     }
   }
   out << "One run of Experiment 2 (V = " << shown.options.simulation.noise_var << "), as in the thesis' "
       << "eq. 6.11-6.16:\n\n"
-      << side_by_side(titles, matrices, 4, kWidth + 12);
+      << format_side_by_side(titles, matrices, 4, kWidth + 12);
 
   out << "One run of each experiment, error ||M_p - M_hat||_F (our trial 0 | the thesis' single run):\n\n";
   std::snprintf(line, sizeof line, "%-4s %6s   %10s %10s %10s   |  %10s %10s %10s\n", "exp", "V",
@@ -128,9 +129,9 @@ std::string section_thesis(const std::vector<ThesisExperimentResult>& results, s
     const experiment::ThesisReportedRun& thesis = experiment::kThesisReportedRuns[i];
     std::snprintf(
         line, sizeof line, "%-4d %6.3f   %10s %10s %10s   |  %10.4f %10.4f %10.4f\n", thesis.experiment,
-        r.options.simulation.noise_var, fixed(r.of(Method::SymmetricProcrustes).errors[0]).c_str(),
-        fixed(r.of(Method::TotalLeastSquaresSymmetric).errors[0]).c_str(),
-        fixed(r.of(Method::Spde).errors[0]).c_str(), thesis.procrustes, thesis.tls_sym, thesis.spde);
+        r.options.simulation.noise_var, format_fixed(r.of(Method::SymmetricProcrustes).errors[0]).c_str(),
+        format_fixed(r.of(Method::TotalLeastSquaresSymmetric).errors[0]).c_str(),
+        format_fixed(r.of(Method::Spde).errors[0]).c_str(), thesis.procrustes, thesis.tls_sym, thesis.spde);
     out << line;
   }
 
@@ -150,9 +151,9 @@ std::string section_thesis(const std::vector<ThesisExperimentResult>& results, s
     std::string means = line, errors(means.size(), ' ');
     for (Method method : kSourceDocumentMethods) {
       const experiment::Summary& s = r.of(method).summary;
-      std::snprintf(line, sizeof line, " %10s", fixed(s.mean, 3).c_str());
+      std::snprintf(line, sizeof line, " %10s", format_fixed(s.mean, 3).c_str());
       means += line;
-      std::snprintf(line, sizeof line, " %10s", ("(" + fixed(s.standard_error(), 3) + ")").c_str());
+      std::snprintf(line, sizeof line, " %10s", ("(" + format_fixed(s.standard_error(), 3) + ")").c_str());
       errors += line;
     }
     const PairedComparison c =
@@ -176,7 +177,7 @@ std::string section_samples(const std::vector<ThesisExperimentResult>& thesis,
                             const std::vector<ThesisExperimentResult>& samples) {
   std::ostringstream out;
   char line[200];
-  out << "== 4. More samples: Experiment 2's noise (V = " << trimmed(thesis[1].options.simulation.noise_var)
+  out << "== 4. More samples: Experiment 2's noise (V = " << format_number(thesis[1].options.simulation.noise_var)
       << ") with m = 12, " << sample_sizes()[0] << " and " << sample_sizes()[1] << " samples\n\n";
   std::snprintf(line, sizeof line, "%6s %8s", "m", "trials");
   out << line;
@@ -193,8 +194,8 @@ std::string section_samples(const std::vector<ThesisExperimentResult>& thesis,
     out << line;
     for (Method method : {Method::SymmetricProcrustes, Method::TotalLeastSquaresSymmetric, Method::Spde}) {
       const experiment::Summary& s = r->of(method).summary;
-      std::snprintf(line, sizeof line, " %9s +- %5s", fixed(s.mean, 3).c_str(),
-                    fixed(s.standard_error(), 3).c_str());
+      std::snprintf(line, sizeof line, " %9s +- %5s", format_fixed(s.mean, 3).c_str(),
+                    format_fixed(s.standard_error(), 3).c_str());
       out << line;
     }
     out << '\n';
@@ -218,7 +219,7 @@ std::string section_beyond(const std::vector<ThesisExperimentResult>& beyond) {
   out << "   auto/best\n";
   for (const ThesisExperimentResult& r : beyond) {
     const double width = std::sqrt(12.0 * r.options.simulation.noise_var);
-    std::snprintf(line, sizeof line, "%5s %6ld", trimmed(width).c_str(),
+    std::snprintf(line, sizeof line, "%5s %6ld", format_number(width).c_str(),
                   static_cast<long>(r.options.simulation.samples));
     out << line;
     double best = std::numeric_limits<double>::infinity();
@@ -228,10 +229,10 @@ std::string section_beyond(const std::vector<ThesisExperimentResult>& beyond) {
     for (Method method : beyond_methods()) {
       const double mean = r.of(method).summary.mean;
       const bool lowest = method != Method::Auto && mean == best;
-      std::snprintf(line, sizeof line, " %11s", (fixed(mean, 3) + (lowest ? "*" : " ")).c_str());
+      std::snprintf(line, sizeof line, " %11s", (format_fixed(mean, 3) + (lowest ? "*" : " ")).c_str());
       out << line;
     }
-    std::snprintf(line, sizeof line, "   %9s\n", fixed(r.of(Method::Auto).summary.mean / best, 3).c_str());
+    std::snprintf(line, sizeof line, "   %9s\n", format_fixed(r.of(Method::Auto).summary.mean / best, 3).c_str());
     out << line;
   }
   out << '\n';

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "output.hpp"
+#include "spdfit/format.hpp"
 #include "progress_line.hpp"
 #include "spdfit/io.hpp"
 
@@ -55,9 +56,9 @@ std::string thesis_table(const experiment::ThesisExperimentResult& result) {
   for (const experiment::MethodErrors& m : result.methods) {
     const experiment::Summary& s = m.summary;
     std::snprintf(line, sizeof line, "%-11s %9s %9s %9s %9s %11s %9zu\n",
-                  std::string(to_string(m.method)).c_str(), fixed(s.mean).c_str(),
-                  fixed(s.standard_error()).c_str(), fixed(s.std).c_str(), fixed(s.median).c_str(),
-                  fixed(s.max).c_str(), s.failures);
+                  std::string(to_string(m.method)).c_str(), format_fixed(s.mean).c_str(),
+                  format_fixed(s.standard_error()).c_str(), format_fixed(s.std).c_str(), format_fixed(s.median).c_str(),
+                  format_fixed(s.max).c_str(), s.failures);
     out << line;
   }
   return out.str();
@@ -69,8 +70,8 @@ std::string paired_line(const experiment::ThesisExperimentResult& result, Method
   std::snprintf(
       line, sizeof line,
       "%s - %s, trial by trial: mean difference %s +- %s (s.e.); %s lower in %.1f%% of %zu trials\n",
-      std::string(to_string(a)).c_str(), std::string(to_string(b)).c_str(), fixed(c.mean_difference).c_str(),
-      fixed(c.standard_error).c_str(), std::string(to_string(a)).c_str(), 100.0 * c.fraction_lower, c.count);
+      std::string(to_string(a)).c_str(), std::string(to_string(b)).c_str(), format_fixed(c.mean_difference).c_str(),
+      format_fixed(c.standard_error).c_str(), std::string(to_string(a)).c_str(), 100.0 * c.fraction_lower, c.count);
   return line;
 }
 
@@ -127,11 +128,11 @@ std::string entry_table(const experiment::EntryExperimentResult& result, const s
   for (std::size_t e = 0; e < result.entries.size(); ++e) {
     const auto [i, j] = result.entries[e];
     std::snprintf(cell, sizeof cell, "%-6s %8s", entry_name(entry_prefix, i, j).c_str(),
-                  fixed(result.truth(i, j)).c_str());
+                  format_fixed(result.truth(i, j)).c_str());
     out << cell;
     for (const experiment::EntryStatistics& s : result.methods) {
       const auto k = static_cast<Eigen::Index>(e);
-      std::snprintf(cell, sizeof cell, "   %12s %10s", fixed(s.mae(k)).c_str(), fixed(s.std(k)).c_str());
+      std::snprintf(cell, sizeof cell, "   %12s %10s", format_fixed(s.mae(k)).c_str(), format_fixed(s.std(k)).c_str());
       out << cell;
     }
     out << '\n';
@@ -190,8 +191,8 @@ std::string sweep_table(const std::vector<double>& levels,
     std::snprintf(cell, sizeof cell, "%5.2f ", levels[l]);
     out << cell;
     for (const experiment::EntryStatistics& s : results[l].methods) {
-      std::snprintf(cell, sizeof cell, "   %8s %8s %8s", fixed(s.mae(0), 3).c_str(),
-                    fixed(s.mae(1), 3).c_str(), fixed(s.mae(2), 3).c_str());
+      std::snprintf(cell, sizeof cell, "   %8s %8s %8s", format_fixed(s.mae(0), 3).c_str(),
+                    format_fixed(s.mae(1), 3).c_str(), format_fixed(s.mae(2), 3).c_str());
       out << cell;
     }
     out << '\n';

@@ -2,10 +2,6 @@
 // command_hexapod.cpp registers them under `hexapod`.
 #pragma once
 
-#include <string>
-
-#include <Eigen/Core>
-
 #include "cli.hpp"
 
 namespace CLI {
@@ -20,8 +16,5 @@ Command add_hexapod_model(CLI::App& parent, const GlobalOptions& global);
 Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global);
 /// `hexapod identify`: M_p from A and B with every estimator (command_hexapod_identify.cpp).
 Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global);
-
-/// The entries of v with `digits` decimals, two spaces apart (output.hpp's fixed).
-std::string vector_text(const Eigen::VectorXd& v, int digits);
 
 }  // namespace spdfit::cli

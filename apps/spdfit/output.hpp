@@ -1,4 +1,5 @@
-// Formatting results for people (tables) and programs (CSV, JSON).
+// Writing results: CSV, JSON documents the command builds itself (the results' own come from the
+// library, spdfit/render.hpp), and files.
 #pragma once
 
 #include <string>
@@ -8,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "spdfit/fit_result.hpp"
+#include "spdfit/render.hpp"
 
 namespace spdfit::cli {
 
@@ -18,28 +20,13 @@ nlohmann::json vector_json(const Eigen::VectorXd& v);
 /// A finite number, or null for +-inf and NaN (JSON has no infinities).
 nlohmann::json number_json(double value);
 
-/// {"method", "m", "n", "X", "diagnostics": {...}, "warnings": [...]}: the fit contract.
-nlohmann::json result_json(const FitResult& result);
+/// `document` (a JSON object's text, as the library renders it) with `fields` added, as the
+/// command prints it (indented by 2, a final newline): what the command adds to a result, such as
+/// the options it ran with.
+std::string with_fields(const std::string& document, const nlohmann::json& fields);
 
-/// The bootstrap's uncertainty of sorted values (eigenvalues, modes) as JSON: estimate,
-/// standard_errors, lower, upper, clusters (lists of 0-based indices) and failed.
-nlohmann::json spectrum_json(const SpectrumUncertainty& s);
-
-/// fit --report: X with its bootstrap standard errors (when there are any), its eigenvalues with
-/// their intervals, and the noise estimate, as a table for people.
-std::string fit_report(const FitResult& result);
-
-/// Sorted values with their intervals, one line each, clusters marked ("  1  3.6527  [3.61, 3.70]").
-std::string spectrum_text(const SpectrumUncertainty& s, const std::string& indent);
-
-/// "%.*f"-style text with `digits` decimals (scientific from 1e5 on), or "-" for NaN.
-std::string fixed(double value, int digits = 4);
-
-/// A number in three significant digits ("%.3g"), for messages and prose.
-std::string trimmed(double value);
-
-/// A confidence level as a percentage: "95%" for 0.95.
-std::string percent_text(double level);
+/// How fit --report refers to the command line's own options (the library's report, spdfit/render.hpp).
+const ReportHints& report_hints();
 
 /// The matrix as CSV text (io::write_csv).
 std::string matrix_csv(const Eigen::MatrixXd& M);
@@ -59,9 +46,5 @@ std::string labelled_matrix_csv(const FitResult& result);
 /// A usage error when `path` names a binary matrix format (.npy) that cannot hold the text output
 /// `what` (e.g. "--json").
 void check_text_output(const std::string& path, const std::string& what);
-
-/// Matrices printed side by side under their titles (`digits` decimals), wrapped to `width`.
-std::string side_by_side(const std::vector<std::string>& titles, const std::vector<Eigen::MatrixXd>& matrices,
-                         int digits = 4, std::size_t width = 120);
 
 }  // namespace spdfit::cli

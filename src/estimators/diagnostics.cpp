@@ -2,7 +2,6 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
 #include "estimators/kernels.hpp"
@@ -81,16 +80,6 @@ FitResult checked(Method method, MatrixXd X, Diagnostics d, std::vector<std::str
   }
   return result;
 }
-
-}  // namespace
-
-std::string format_number(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3g", value);
-  return buffer;
-}
-
-namespace {
 
 // A B, on the BLAS for large products (multiply).
 MatrixXd product(const MatrixXd& A, const MatrixXd& B) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "spdfit/fit_result.hpp"
+#include "spdfit/format.hpp"
 #include "factor/basic_reduction.hpp"
 
 namespace spdfit::detail {
@@ -29,7 +30,7 @@ std::optional<double> scaled_area_criterion(const DynamicReduction& data, const 
 std::optional<double> scaled_area_criterion(const DynamicReduction& data, const Eigen::VectorXd& lambda,
                                             const Eigen::MatrixXd& vectors);
 
-/// "1.5e+08"-style text for messages.
-std::string format_number(double value);
+/// Numbers in messages: the library's formatter, Precision::Brief by default ("1.5e+08").
+using spdfit::format_number;
 
 }  // namespace spdfit::detail

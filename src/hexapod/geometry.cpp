@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -11,6 +10,7 @@
 #include <Eigen/SVD>
 
 #include "kinematics.hpp"
+#include "spdfit/format.hpp"
 
 namespace spdfit::hexapod {
 
@@ -27,11 +27,7 @@ constexpr double kRotationTolerance = 1e-6;
 // whose Plucker coordinates agree to this fraction lie on the same line.
 constexpr double kCoincidenceTolerance = 1e-9;
 
-std::string number(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", value);
-  return buffer;
-}
+std::string number(double value) { return format_number(value, Precision::Full); }
 
 std::string vector_text(const Eigen::Vector3d& v) {
   return "(" + number(v.x()) + ", " + number(v.y()) + ", " + number(v.z()) + ")";

@@ -5,6 +5,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "spdfit/compare.hpp"
 #include "spdfit/fit.hpp"
 #include "spdfit/hexapod/model.hpp"
 #include "numerics/parallel.hpp"
@@ -83,7 +84,7 @@ std::vector<MethodIdentification> identify(const Eigen::MatrixXd& A, const Eigen
     m.result = std::move(result);
     const FitResult& r = m.result;
     if (r.ok()) {
-      if (options.truth) m.error_vs_truth = (r.X - *options.truth).norm();
+      if (options.truth) m.error_vs_truth = error_vs_truth(r, *options.truth);
       if (r.diagnostics.symmetric) {
         m.eigenvalues =
             Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(r.X, Eigen::EigenvaluesOnly).eigenvalues();

@@ -9,6 +9,7 @@
 
 #include "numerics/least_squares.hpp"
 #include "numerics/linalg.hpp"
+#include "spdfit/format.hpp"
 #include "spdfit/rank.hpp"
 #include "linear_system/linear_system_explanation.hpp"
 
@@ -175,8 +176,8 @@ LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A_in, const Eigen::Re
   // solution's error.
   const double scaled_rcond = 1.0 / r.scaled_condition_number;
   if (scaled_rcond < options.rcond_warning) {
-    r.warnings.push_back("A is ill-conditioned: reciprocal condition number " + detail::short_number(scaled_rcond) +
-                         " < " + detail::short_number(options.rcond_warning) +
+    r.warnings.push_back("A is ill-conditioned: reciprocal condition number " + format_number(scaled_rcond, Precision::Medium) +
+                         " < " + format_number(options.rcond_warning, Precision::Medium) +
                          " with its columns scaled to unit norm (notes 002, section 3.7.2)");
   }
   r.explanation = detail::explain(r);

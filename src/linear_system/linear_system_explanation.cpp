@@ -1,20 +1,13 @@
 #include "linear_system/linear_system_explanation.hpp"
 
 #include <cmath>
-#include <cstdio>
 
+#include "spdfit/format.hpp"
 #include "spdfit/rank.hpp"
 
 namespace spdfit::detail {
 
 using Eigen::Index;
-
-std::string short_number(double value) {
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.4g", value);
-  return buffer;
-}
 
 namespace {
 
@@ -65,7 +58,7 @@ std::string plural(Index count, const std::string& word) {
 std::string explain_column(const LinearSystemResult& r, const ColumnClassification& c) {
   const Index n = r.n, m = r.m, rank = r.rank;
   const std::string things = noun(n);
-  const std::string residual = short_number(c.residual_norm);
+  const std::string residual = format_number(c.residual_norm, Precision::Medium);
   std::string out;
   if (rank == 0) {
     if (c.consistent) {
@@ -132,12 +125,12 @@ std::string explain(const LinearSystemResult& r) {
     const bool roundoff = r.threshold == default_rank_tolerance(r.m, r.n);
     const std::string was = edited_nonzero == 1 ? "was" : "were";
     if (roundoff) {
-      out += " (" + plural(edited_nonzero, "nonzero singular value") + " of the column-scaled A below " + short_number(r.threshold) +
+      out += " (" + plural(edited_nonzero, "nonzero singular value") + " of the column-scaled A below " + format_number(r.threshold, Precision::Medium) +
              " * sigma_max " + (edited_nonzero == 1 ? "is" : "are") + " roundoff and " + was +
              " edited to zero, notes 002 section 3.8.)";
     } else {
       out += " (" + plural(edited_nonzero, "nonzero singular value") + " of the column-scaled A below the chosen threshold " +
-             short_number(r.threshold) + " * sigma_max " + was +
+             format_number(r.threshold, Precision::Medium) + " * sigma_max " + was +
              " edited to zero, notes 002 section 3.8: not roundoff, so check that the threshold suits the data.)";
     }
   }

@@ -7,9 +7,6 @@
 
 namespace spdfit::detail {
 
-/// A number in 4 significant digits ("inf" for infinity), for messages.
-std::string short_number(double value);
-
 /// The classification of a solved system in the terms of notes 002 section 3.3.2: the
 /// equations as lines, planes or hyperplanes, what they have in common, finite or at infinity.
 std::string explain(const LinearSystemResult& r);

@@ -16,6 +16,7 @@
 #include "numerics/parallel.hpp"
 #include "spdfit/experiment/statistics.hpp"
 #include "spdfit/fit.hpp"
+#include "spdfit/format.hpp"
 #include "spdfit/random.hpp"
 
 namespace spdfit::detail {
@@ -119,11 +120,7 @@ Moments moments(std::vector<double> values, double level) {
   return {summary.mean, summary.std, quantile(values, 0.5 * (1.0 - level)), quantile(values, 0.5 * (1.0 + level))};
 }
 
-std::string percent(double fraction) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g%%", 100.0 * fraction);
-  return text;
-}
+std::string percent(double fraction) { return format_percent(fraction); }
 
 }  // namespace
 

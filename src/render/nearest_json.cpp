@@ -1,0 +1,45 @@
+// A repair's result as JSON (the result part of `spdfit nearest --json`).
+#include "render/json_values.hpp"
+
+namespace spdfit {
+
+using detail::Json;
+
+std::string to_json(const NearestResult& r, JsonStyle style) {
+  Json out;
+  out["n"] = r.X.rows();
+  out["min_eig"] = detail::number_json(r.min_eig, style);
+  out["X"] = detail::matrix_json(r.X, style);
+  out["distance"] = detail::number_json(r.distance, style);
+  out["clipped"] = r.clipped;
+  out["min_eigenvalue_before"] = detail::number_json(r.min_eigenvalue_before, style);
+  out["iterations"] = r.iterations;
+  out["gradient_norm"] = detail::number_json(r.gradient_norm, style);
+  out["converged"] = r.converged;
+  out["cholesky"] = r.cholesky_ok;
+  out["warnings"] = r.warnings;
+  return detail::dump(out, style);
+}
+
+template <>
+NearestResult from_json<NearestResult>(const std::string& text) {
+  const std::string type = "NearestResult";
+  const Json object = detail::parse_object(text, type);
+  const auto number = [&](const char* key) {
+    return detail::number_from(detail::field(object, key, type), type + " '" + key + "'");
+  };
+  NearestResult r;
+  r.X = detail::matrix_from(detail::field(object, "X", type), type + " 'X'");
+  r.min_eig = number("min_eig");
+  r.distance = number("distance");
+  r.clipped = detail::value_from<Eigen::Index>(object, "clipped", type);
+  r.min_eigenvalue_before = number("min_eigenvalue_before");
+  r.iterations = detail::value_from<int>(object, "iterations", type);
+  r.gradient_norm = number("gradient_norm");
+  r.converged = detail::value_from<bool>(object, "converged", type);
+  r.cholesky_ok = detail::value_from<bool>(object, "cholesky", type);
+  r.warnings = detail::value_from<std::vector<std::string>>(object, "warnings", type);
+  return r;
+}
+
+}  // namespace spdfit
