@@ -8,7 +8,6 @@
 #include "cli.hpp"
 #include "input.hpp"
 #include "output.hpp"
-#include "spdfit/format.hpp"
 #include "spdfit/io.hpp"
 #include "spdfit/nearest_request.hpp"
 #include "spdfit/render.hpp"
@@ -84,13 +83,6 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
       result = nearest(X, request);
     } catch (const std::invalid_argument& e) {
       throw io::DataError(options->path, 0, 0, e.what());
-    }
-    if (!request.newton() && result.clipped > 0) {
-      // The clip's note, as the command has always printed it (the library leaves it to `clipped`).
-      result.warnings.push_back(std::to_string(result.clipped) + " eigenvalue(s) of the symmetric part were below " +
-                                format_number(result.min_eig) +
-                                (floor.relative ? " (" + format_number(floor.value) + " x the largest eigenvalue)" : "") +
-                                " and were raised to it");
     }
     for (const std::string& w : result.warnings) warn(global, w);
     if (!options->json) {

@@ -54,8 +54,9 @@ using NearestSpdResult = NearestResult;
 ///
 /// Computed in units where the largest entry is of order one (an exact power-of-two scaling), so
 /// that entries anywhere from denormal to near the largest double work. Warns (in `warnings`)
-/// when X is not symmetric to rounding, and when the floor moves X by more than the repair itself
-/// (a floor too large for the matrix's scale).
+/// when X is not symmetric to rounding, when the floor moves X by more than the repair itself
+/// (a floor too large for the matrix's scale), and when it raised eigenvalues to the floor (how
+/// many, and the floor).
 ///
 /// Preconditions: X square, non-empty, finite; min_eig finite and >= 0; a relative floor < 1 and
 /// a largest eigenvalue > 0 (else std::invalid_argument). Failure: std::runtime_error when the

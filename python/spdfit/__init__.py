@@ -932,14 +932,20 @@ def nearest_spd(X, min_eig=None, *, full_output=False, **options):
     Warns
     -----
     SpdfitWarning
-        A non-symmetric X, a floor that moved X more than the repair itself, no convergence.
+        A non-symmetric X, eigenvalues raised to the floor (how many), a floor that moved X more than the
+        repair itself, no convergence.
 
     Examples
     --------
-    >>> import numpy as np, spdfit
-    >>> spdfit.nearest_spd([[1., 2.], [2., 1.]], min_eig=0).round(12)
+    >>> import numpy as np, spdfit, warnings
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     X = spdfit.nearest_spd([[1., 2.], [2., 1.]], min_eig=0)
+    >>> X.round(12)
     array([[1.5, 1.5],
            [1.5, 1.5]])
+    >>> print(caught[0].message)  # what the repair changed, as `spdfit nearest` says it
+    nearest_spd: 1 eigenvalue(s) of the symmetric part were below 0 and were raised to it
     >>> S = np.array([[4., 2., 2.1], [2., 3., 2.9], [2.1, 2.9, 2.]])
     >>> r = spdfit.nearest_spd(S, keep_diag=True, full_output=True)
     >>> np.diag(r.X), r.clipped, r.cholesky_ok

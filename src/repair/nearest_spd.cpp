@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "estimators/kernels.hpp"
+#include "spdfit/format.hpp"
 #include "numerics/linalg.hpp"
 #include "repair/repair.hpp"
 
@@ -103,6 +104,14 @@ NearestResult nearest_spd(const Eigen::Ref<const MatrixXd>& X, EigenvalueFloor f
   if (auto w = detail::asymmetry_warning(X)) out.warnings.push_back(*w);
   if (auto w = detail::floor_warning(info.min_eig, info.floor_change, info.repair, X.norm(), info.max_before)) {
     out.warnings.push_back(*w);
+  }
+  if (out.clipped > 0) {
+    // The repair changed the spectrum: say how much of it, so that a user who expected an
+    // already valid matrix learns that it was not.
+    out.warnings.push_back(std::to_string(out.clipped) + " eigenvalue(s) of the symmetric part were below " +
+                           format_number(out.min_eig) +
+                           (floor.relative ? " (" + format_number(floor.value) + " x the largest eigenvalue)" : "") +
+                           " and were raised to it");
   }
   return out;
 }

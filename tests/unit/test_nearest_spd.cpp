@@ -5,6 +5,7 @@
 #include <Eigen/SVD>
 #include <vector>
 
+#include "spdfit/format.hpp"
 #include "spdfit/nearest_spd.hpp"
 #include "test_support.hpp"
 
@@ -130,7 +131,11 @@ TEST(NearestSpd, RelativeFloorFollowsTheScale) {
       eig.eigenvectors() * eig.eigenvalues().cwiseMax(floor).asDiagonal() * eig.eigenvectors().transpose();
   EXPECT_LT((r.X - expected).norm(), 1e-13 * X.norm());
   EXPECT_TRUE(r.cholesky_ok);
-  EXPECT_TRUE(r.warnings.empty());
+  // Only the note of the clip: how many eigenvalues were raised, to which floor.
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_EQ(r.warnings[0], std::to_string(r.clipped) + " eigenvalue(s) of the symmetric part were below " +
+                               format_number(r.min_eig) + " (1e-08 x the largest eigenvalue) and were raised to it");
+  EXPECT_EQ(r.clipped, (eig.eigenvalues().array() < floor).count());
   const NearestSpdResult tiny = nearest_spd(X * std::ldexp(1.0, -40), EigenvalueFloor::relative_to_largest(1e-8));
   EXPECT_EQ(tiny.X, r.X * std::ldexp(1.0, -40));
   // Nothing positive to be relative to: an error, not a silent zero matrix.
@@ -146,9 +151,12 @@ TEST(NearestSpd, WarnsWhenTheFloorMovesMoreThanTheRepair) {
   Generator g(58);
   const MatrixXd X = Generator::symmetrize(g.gaussian(6, 6)) * 1e-8;
   const NearestSpdResult r = nearest_spd(X, 1e-6);
-  ASSERT_EQ(r.warnings.size(), 1u);
+  ASSERT_EQ(r.warnings.size(), 2u);  // and the clip's note, which every clip gives
   EXPECT_NE(r.warnings[0].find("more than the repair itself"), std::string::npos);
-  EXPECT_TRUE(nearest_spd(X).warnings.empty());  // floor 0: no floor, no warning
+  EXPECT_EQ(r.warnings[1], "6 eigenvalue(s) of the symmetric part were below 1e-06 and were raised to it");
+  // floor 0: no floor, no floor warning; the clip's note only
+  ASSERT_EQ(nearest_spd(X).warnings.size(), 1u);
+  EXPECT_NE(nearest_spd(X).warnings[0].find("were below 0 and were raised to it"), std::string::npos);
   MatrixXd asymmetric = MatrixXd::Identity(3, 3);
   asymmetric(0, 1) = 0.1;
   ASSERT_EQ(nearest_spd(asymmetric).warnings.size(), 1u);
