@@ -10,6 +10,7 @@
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/hexapod/identify.hpp"
 #include "spdfit/hexapod/model.hpp"
+#include "spdfit/hexapod/render.hpp"
 #include "spdfit/hexapod/simulate.hpp"
 #include "spdfit/random.hpp"
 
@@ -113,10 +114,13 @@ void bind_hexapod(py::module_& parent) {
       .def_property_readonly("error_vs_truth", copied(&MethodIdentification::error_vs_truth))
       .def_property_readonly("modes_uncertainty", copied(&MethodIdentification::modes_uncertainty),
                              "with bootstrap=N and a stiffness: the modes' SpectrumUncertainty")
-      .def(pickle_fields<MethodIdentification>(
-          "MethodIdentification", state_field(&MethodIdentification::result),
-          state_field(&MethodIdentification::eigenvalues), state_field(&MethodIdentification::modes_hz),
-          state_field(&MethodIdentification::error_vs_truth), state_field(&MethodIdentification::modes_uncertainty)));
+      .def(pickle_json<MethodIdentification>(
+          "MethodIdentification",
+          [](const MethodIdentification& method, JsonStyle style) { return hexapod::to_json(method, style); }))
+      .def("__repr__", [](const MethodIdentification& method) {
+        return "MethodIdentification(method='" + std::string(to_string(method.result.method)) + "')\n" +
+               report(method.result, python_report_hints());
+      });
   m.def(
       "identify",
       [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, std::optional<Eigen::MatrixXd> truth,

@@ -8,6 +8,7 @@
 #include "bindings.hpp"
 #include "pickle.hpp"
 #include "spdfit/linear_system.hpp"
+#include "spdfit/render.hpp"
 
 namespace py = pybind11;
 
@@ -28,21 +29,16 @@ auto result_field(Member LinearSystemResult::*member) {
   return [member](const SolveResult& r) -> Member { return r.*member; };
 }
 
-// The enumerators of the enums pickled by name (pickle.hpp).
-constexpr std::array<SystemShape, 3> kSystemShapes = {SystemShape::Underdetermined, SystemShape::Determined,
-                                                      SystemShape::Overdetermined};
+// The state's payload: the library's exact JSON of the result, and whether b was 1-D.
+py::tuple solve_payload(const SolveResult& r) {
+  return py::make_tuple(to_json(static_cast<const LinearSystemResult&>(r), JsonStyle::Exact), r.vector_b);
+}
 
-// The status in a state: the library has no name for it, so the names are FitResult's.
-auto solve_status_field() {
-  return state_field(
-      [](const LinearSystemResult& r) { return std::string(r.ok() ? "success" : "numerical_failure"); },
-      [](LinearSystemResult& r, const py::object& value) {
-        const auto name = value.cast<std::string>();
-        if (name != "success" && name != "numerical_failure") {
-          throw std::runtime_error("cannot unpickle LinearSystemResult: unknown status '" + name + "'");
-        }
-        r.status = name == "success" ? SolveStatus::Success : SolveStatus::NumericalFailure;
-      });
+SolveResult solve_result_from(const py::tuple& state) {
+  const char* what = "LinearSystemResult";
+  const auto payload = checked_payload(state, what).cast<py::tuple>();
+  check_state(payload, 2, what);
+  return SolveResult{object_from_json<LinearSystemResult>(py::object(payload[0]), what), payload[1].cast<bool>()};
 }
 
 }  // namespace
@@ -55,11 +51,10 @@ void bind_linear_system(py::module_& m) {
       .def_property_readonly("augmented_rank", copied(&ColumnClassification::augmented_rank))
       .def_property_readonly("residual_norm", copied(&ColumnClassification::residual_norm))
       .def_property_readonly("backward_error", copied(&ColumnClassification::backward_error))
-      .def(pickle_fields<ColumnClassification>(
-          "ColumnClassification", state_field(&ColumnClassification::consistent),
-          state_field(&ColumnClassification::finite_solution_dimension),
-          state_field(&ColumnClassification::at_infinity_dimension), state_field(&ColumnClassification::augmented_rank),
-          state_field(&ColumnClassification::residual_norm), state_field(&ColumnClassification::backward_error)));
+      .def(pickle_json<ColumnClassification>(
+          "ColumnClassification", [](const ColumnClassification& c, JsonStyle style) { return to_json(c, style); }))
+      .def("__repr__",
+           [](const ColumnClassification& c) { return repr_from_json("ColumnClassification", to_json(c)); });
 
   py::class_<SolveResult>(m, "LinearSystemResult",
                           "Rank, consistency, solution sets and the minimum-norm least-squares "
@@ -102,30 +97,15 @@ void bind_linear_system(py::module_& m) {
       .def_property_readonly("range", result_field(&LinearSystemResult::range), "orthonormal columns")
       .def_property_readonly("explanation", result_field(&LinearSystemResult::explanation))
       .def_property_readonly("warnings", result_field(&LinearSystemResult::warnings))
-      .def(pickle_fields<SolveResult>(
-          "LinearSystemResult", solve_status_field(), state_field(&LinearSystemResult::message),
-          state_field(&LinearSystemResult::m), state_field(&LinearSystemResult::n), state_field(&LinearSystemResult::p),
-          enum_field(&LinearSystemResult::shape, kSystemShapes, "LinearSystemResult", "shape"),
-          state_field(&LinearSystemResult::singular_values), state_field(&LinearSystemResult::threshold),
-          state_field(&LinearSystemResult::rank), state_field(&LinearSystemResult::nullity),
-          state_field(&LinearSystemResult::condition_number),
-          state_field(&LinearSystemResult::reciprocal_condition_number),
-          state_field(&LinearSystemResult::effective_condition_number),
-          state_field(&LinearSystemResult::scaled_singular_values),
-          state_field(&LinearSystemResult::scaled_condition_number), state_field(&LinearSystemResult::refinement_steps),
-          state_field(&LinearSystemResult::consistent), state_field(&LinearSystemResult::finite_solution_dimension),
-          state_field(&LinearSystemResult::at_infinity_dimension), state_field(&LinearSystemResult::columns),
-          state_field(&LinearSystemResult::solution), state_field(&LinearSystemResult::residual_norm),
-          state_field(&LinearSystemResult::null_space), state_field(&LinearSystemResult::range),
-          state_field(&LinearSystemResult::explanation), state_field(&LinearSystemResult::warnings),
-          state_field(&SolveResult::vector_b)))
+      .def(py::pickle([](const SolveResult& r) { return py::make_tuple(kPickleFormat, solve_payload(r)); },
+                      &solve_result_from))
       .def("__repr__", [](const SolveResult& r) {
         std::ostringstream out;
         out << "LinearSystemResult(rank=" << r.rank << ", nullity=" << r.nullity
             << ", consistent=" << (r.consistent ? "True" : "False")
             << ", finite_solution_dimension=" << r.finite_solution_dimension
             << ", at_infinity_dimension=" << r.at_infinity_dimension << ")\n"
-            << r.explanation;
+            << report(r);
         return out.str();
       });
 

@@ -1,78 +1,21 @@
 // The result classes of the estimators and repairs (FitResult, Diagnostics, Bootstrap, NearestResult
-// and their parts): read-only attributes, pickling and repr.
+// and their parts): read-only attributes; pickling and repr from the library's rendering.
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <cmath>
-#include <sstream>
 
 #include "bindings.hpp"
 #include "pickle.hpp"
 #include "spdfit/fit_result.hpp"
 #include "spdfit/nearest_spd.hpp"
+#include "spdfit/render.hpp"
 
 namespace py = pybind11;
 
 namespace spdfit::python {
 
 namespace {
-
-// Every Status, for unpickling it by name (pickle.hpp).
-constexpr std::array<Status, 3> kStatuses = {Status::NotComputed, Status::Success, Status::NumericalFailure};
-
-// Diagnostics has its own pickle, not pickle_fields: it also reads the 30-field state pickled
-// before B could have d != n columns.
-py::tuple diagnostics_state(const Diagnostics& d) {
-  std::optional<std::string> chosen;
-  if (d.chosen_method) chosen = std::string(to_string(*d.chosen_method));
-  return py::make_tuple(d.m, d.n, d.rank_a, d.rank_b, d.cond_a, d.cond_b, d.singular_values_a, d.singular_values_b,
-                        d.residual_norm, d.symmetric, d.min_eigenvalue, d.max_eigenvalue, d.positive_definite,
-                        d.positive_semidefinite, d.area_criterion, d.area_criterion_minimum,
-                        d.cross_term_positive_definite, d.tls_sigma_n, d.tls_sigma_n1, d.tls_correction_norm,
-                        d.tls_v22_min_singular_value, d.noise_sigma, d.iterations, d.gradient_norm, d.converged,
-                        d.certificate, chosen, d.reason, d.cond_a_scaled, d.cond_b_scaled, d.d);
-}
-
-Diagnostics diagnostics_from(const py::tuple& t) {
-  // 30 fields: pickled before B could have d != n columns (then d = n).
-  if (t.size() != 30) check_state(t, 31, "Diagnostics");
-  Diagnostics d;
-  d.m = t[0].cast<Eigen::Index>();
-  d.n = t[1].cast<Eigen::Index>();
-  d.rank_a = t[2].cast<Eigen::Index>();
-  d.rank_b = t[3].cast<Eigen::Index>();
-  d.cond_a = t[4].cast<double>();
-  d.cond_b = t[5].cast<double>();
-  d.singular_values_a = t[6].cast<Eigen::VectorXd>();
-  d.singular_values_b = t[7].cast<Eigen::VectorXd>();
-  d.residual_norm = t[8].cast<double>();
-  d.symmetric = t[9].cast<bool>();
-  d.min_eigenvalue = t[10].cast<std::optional<double>>();
-  d.max_eigenvalue = t[11].cast<std::optional<double>>();
-  d.positive_definite = t[12].cast<bool>();
-  d.positive_semidefinite = t[13].cast<bool>();
-  d.area_criterion = t[14].cast<std::optional<double>>();
-  d.area_criterion_minimum = t[15].cast<std::optional<double>>();
-  d.cross_term_positive_definite = t[16].cast<std::optional<bool>>();
-  d.tls_sigma_n = t[17].cast<std::optional<double>>();
-  d.tls_sigma_n1 = t[18].cast<std::optional<double>>();
-  d.tls_correction_norm = t[19].cast<std::optional<double>>();
-  d.tls_v22_min_singular_value = t[20].cast<std::optional<double>>();
-  d.noise_sigma = t[21].cast<std::optional<double>>();
-  d.iterations = t[22].cast<std::optional<int>>();
-  d.gradient_norm = t[23].cast<std::optional<double>>();
-  d.converged = t[24].cast<std::optional<bool>>();
-  d.certificate = t[25].cast<std::optional<PsdCertificate>>();
-  if (auto chosen = t[26].cast<std::optional<std::string>>()) {
-    d.chosen_method = enum_from(*chosen, kSelectableMethods, "Diagnostics", "method");
-  }
-  d.reason = t[27].cast<std::optional<AutoReason>>();
-  d.cond_a_scaled = t[28].cast<double>();
-  d.cond_b_scaled = t[29].cast<double>();
-  d.d = t.size() > 30 ? t[30].cast<Eigen::Index>() : d.n;
-  return d;
-}
 
 // The getter of a FitResult attribute that is a field of its bootstrap: a copy, or None without one.
 template <typename Member>
@@ -83,21 +26,16 @@ auto from_bootstrap(Member Bootstrap::*member) {
   };
 }
 
-std::string repr(const FitResult& r) {
-  std::ostringstream out;
-  out << "FitResult(method='" << to_string(r.method) << "', ";
-  if (!r.ok()) {
-    out << "failed: " << r.message << ")";
-    return out.str();
-  }
-  const Diagnostics& d = r.diagnostics;
-  out << "n=" << d.n << ", m=" << d.m << ", residual_norm=" << d.residual_norm;
-  if (d.symmetric) out << ", positive_definite=" << (d.positive_definite ? "True" : "False");
-  if (d.area_criterion) out << ", area_criterion=" << *d.area_criterion;
-  if (!r.warnings.empty()) out << ", warnings=" << r.warnings.size();
-  if (r.bootstrap) out << ", bootstrap=" << r.bootstrap->replicates - r.bootstrap->failed << " replicates";
-  out << ")\nX =\n" << r.X;
-  return out.str();
+// The repr of the parts: every field of the library's JSON.
+template <typename Class>
+auto json_repr(const char* name) {
+  return [name](const Class& object) { return repr_from_json(name, to_json(object)); };
+}
+
+// A result's to_json as a pickle_json renderer.
+template <typename Class>
+std::string exact_json(const Class& object, JsonStyle style) {
+  return to_json(object, style);
 }
 
 }  // namespace
@@ -111,20 +49,13 @@ void bind_results(py::module_& m) {
       .def_property_readonly("complementarity", copied(&PsdCertificate::complementarity), "<X - min_eig I, S>")
       .def_property_readonly("duality_gap", copied(&PsdCertificate::duality_gap),
                     "|complementarity| / (||A^T A||_2 ||X||_F + ||A^T B||_F)")
-      .def(pickle_fields<PsdCertificate>(
-          "PsdCertificate", state_field(&PsdCertificate::primal_min_eig), state_field(&PsdCertificate::dual_min_eig),
-          state_field(&PsdCertificate::complementarity), state_field(&PsdCertificate::duality_gap)))
-      .def("__repr__", [](const PsdCertificate& c) {
-        std::ostringstream out;
-        out << "PsdCertificate(primal_min_eig=" << c.primal_min_eig << ", dual_min_eig=" << c.dual_min_eig
-            << ", complementarity=" << c.complementarity << ", duality_gap=" << c.duality_gap << ")";
-        return out.str();
-      });
+      .def(pickle_json<PsdCertificate>("PsdCertificate", &exact_json<PsdCertificate>))
+      .def("__repr__", json_repr<PsdCertificate>("PsdCertificate"));
   py::class_<AutoReason>(m, "AutoReason", "Why auto chose its method: a stable code and a sentence.")
       .def_property_readonly("code", copied(&AutoReason::code))
       .def_property_readonly("text", copied(&AutoReason::text))
-      .def(pickle_fields<AutoReason>("AutoReason", state_field(&AutoReason::code), state_field(&AutoReason::text)))
-      .def("__repr__", [](const AutoReason& r) { return "AutoReason(code='" + r.code + "', text='" + r.text + "')"; });
+      .def(pickle_json<AutoReason>("AutoReason", &exact_json<AutoReason>))
+      .def("__repr__", json_repr<AutoReason>("AutoReason"));
 
   py::class_<Diagnostics>(m, "Diagnostics",
                           "What an estimate is checked by: ranks and condition numbers of A and B, the "
@@ -175,26 +106,15 @@ void bind_results(py::module_& m) {
           },
           "auto: the method it ran")
       .def_property_readonly("reason", copied(&Diagnostics::reason), "auto: why (code, text)")
-      .def(py::pickle(&diagnostics_state, &diagnostics_from))
-      .def("__repr__", [](const Diagnostics& d) {
-        std::ostringstream out;
-        out << "Diagnostics(m=" << d.m << ", n=" << d.n << ", rank_a=" << d.rank_a << ", rank_b=" << d.rank_b
-            << ", cond_a=" << d.cond_a << ", cond_b=" << d.cond_b << ", residual_norm=" << d.residual_norm
-            << ")";
-        return out.str();
-      });
+      .def(pickle_json<Diagnostics>("Diagnostics", &exact_json<Diagnostics>))
+      .def("__repr__", json_repr<Diagnostics>("Diagnostics"));
 
   py::class_<Interval>(m, "Interval", "A bootstrap percentile interval: the central `level` fraction of the replicates.")
       .def_property_readonly("level", copied(&Interval::level))
       .def_property_readonly("lower", copied(&Interval::lower))
       .def_property_readonly("upper", copied(&Interval::upper))
-      .def(pickle_fields<Interval>("Interval", state_field(&Interval::level), state_field(&Interval::lower),
-                                   state_field(&Interval::upper)))
-      .def("__repr__", [](const Interval& i) {
-        std::ostringstream out;
-        out << "Interval(level=" << i.level << ")\nlower =\n" << i.lower << "\nupper =\n" << i.upper;
-        return out.str();
-      });
+      .def(pickle_json<Interval>("Interval", &exact_json<Interval>))
+      .def("__repr__", json_repr<Interval>("Interval"));
   py::class_<SpectrumUncertainty>(m, "SpectrumUncertainty",
                                   "Bootstrap uncertainty of sorted values (eigenvalues, modes); values closer than "
                                   "their standard errors form a cluster that shares one interval.")
@@ -204,17 +124,8 @@ void bind_results(py::module_& m) {
       .def_property_readonly("upper", copied(&SpectrumUncertainty::upper))
       .def_property_readonly("clusters", copied(&SpectrumUncertainty::clusters), "lists of 0-based indices")
       .def_property_readonly("failed", copied(&SpectrumUncertainty::failed), "replicates without the values")
-      .def(pickle_fields<SpectrumUncertainty>(
-          "SpectrumUncertainty", state_field(&SpectrumUncertainty::estimate),
-          state_field(&SpectrumUncertainty::standard_errors), state_field(&SpectrumUncertainty::lower),
-          state_field(&SpectrumUncertainty::upper), state_field(&SpectrumUncertainty::clusters),
-          state_field(&SpectrumUncertainty::failed)))
-      .def("__repr__", [](const SpectrumUncertainty& s) {
-        std::ostringstream out;
-        out << "SpectrumUncertainty(estimate=" << s.estimate.transpose()
-            << ", standard_errors=" << s.standard_errors.transpose() << ")";
-        return out.str();
-      });
+      .def(pickle_json<SpectrumUncertainty>("SpectrumUncertainty", &exact_json<SpectrumUncertainty>))
+      .def("__repr__", json_repr<SpectrumUncertainty>("SpectrumUncertainty"));
   py::class_<Bootstrap>(m, "Bootstrap", "How the bootstrap ran and what it found (FitResult.bootstrap).")
       .def_property_readonly("replicates", copied(&Bootstrap::replicates), "requested")
       .def_property_readonly("failed", copied(&Bootstrap::failed), "replicates without an estimate, left out")
@@ -228,18 +139,8 @@ void bind_results(py::module_& m) {
       .def_property_readonly("bias", copied(&Bootstrap::bias))
       .def_property_readonly("interval", copied(&Bootstrap::interval))
       .def_property_readonly("eigenvalues", copied(&Bootstrap::eigenvalues), "SpectrumUncertainty, when X is symmetric")
-      .def(pickle_fields<Bootstrap>(
-          "Bootstrap", state_field(&Bootstrap::replicates), state_field(&Bootstrap::failed),
-          state_field(&Bootstrap::seed), enum_field(&Bootstrap::method, kSelectableMethods, "Bootstrap", "method"),
-          state_field(&Bootstrap::scheme), state_field(&Bootstrap::group_rows), state_field(&Bootstrap::groups),
-          state_field(&Bootstrap::standard_errors), state_field(&Bootstrap::bias), state_field(&Bootstrap::interval),
-          state_field(&Bootstrap::eigenvalues)))
-      .def("__repr__", [](const Bootstrap& b) {
-        std::ostringstream out;
-        out << "Bootstrap(replicates=" << b.replicates << ", failed=" << b.failed << ", seed=" << b.seed
-            << ", method='" << to_string(b.method) << "', scheme='" << b.scheme << "')";
-        return out.str();
-      });
+      .def(pickle_json<Bootstrap>("Bootstrap", &exact_json<Bootstrap>))
+      .def("__repr__", json_repr<Bootstrap>("Bootstrap"));
 
   py::class_<FitResult>(m, "FitResult", "An estimate of X in A X ~= B with its diagnostics and warnings.")
       .def_property_readonly("method", [](const FitResult& r) { return std::string(to_string(r.method)); })
@@ -262,13 +163,11 @@ void bind_results(py::module_& m) {
                              "names of X's rows: A's column names from its file's header (fit_files), else []")
       .def_property_readonly("column_names", copied(&FitResult::column_names),
                              "names of X's columns: B's column names from its file's header, else []")
-      .def(pickle_fields<FitResult>(
-          "FitResult", enum_field(&FitResult::method, kSelectableMethods, "FitResult", "method"),
-          enum_field(&FitResult::status, kStatuses, "FitResult", "status"), state_field(&FitResult::message),
-          state_field(&FitResult::X), state_field(&FitResult::diagnostics), state_field(&FitResult::warnings),
-          state_field(&FitResult::bootstrap), state_field(&FitResult::row_names),
-          state_field(&FitResult::column_names)))
-      .def("__repr__", &repr);
+      .def(pickle_json<FitResult>("FitResult", &exact_json<FitResult>))
+      .def("__repr__", [](const FitResult& r) {
+        return "FitResult(method='" + std::string(to_string(r.method)) + "', status='" + to_string(r.status) +
+               "')\n" + report(r, python_report_hints());
+      });
 
 
   py::class_<NearestResult>(m, "NearestResult",
@@ -288,21 +187,8 @@ void bind_results(py::module_& m) {
       .def_property_readonly("cholesky_ok", copied(&NearestResult::cholesky_ok),
                              "whether X has a Cholesky factorization (positive definite)")
       .def_property_readonly("warnings", copied(&NearestResult::warnings))
-      .def("__repr__",
-           [](const NearestResult& r) {
-             std::ostringstream out;
-             out << "NearestResult(distance=" << r.distance << ", clipped=" << r.clipped << ", min_eig=" << r.min_eig
-                 << ", iterations=" << r.iterations << ", converged=" << (r.converged ? "True" : "False")
-                 << ", cholesky_ok=" << (r.cholesky_ok ? "True" : "False") << ")\nX =\n"
-                 << r.X;
-             return out.str();
-           })
-      .def(pickle_fields<NearestResult>(
-          "NearestResult", state_field(&NearestResult::X), state_field(&NearestResult::distance),
-          state_field(&NearestResult::clipped), state_field(&NearestResult::min_eigenvalue_before),
-          state_field(&NearestResult::min_eig), state_field(&NearestResult::iterations),
-          state_field(&NearestResult::gradient_norm), state_field(&NearestResult::converged),
-          state_field(&NearestResult::cholesky_ok), state_field(&NearestResult::warnings)));
+      .def("__repr__", [](const NearestResult& r) { return "NearestResult\n" + report(r); })
+      .def(pickle_json<NearestResult>("NearestResult", &exact_json<NearestResult>));
 }
 
 }  // namespace spdfit::python

@@ -3,6 +3,7 @@
 
 #include <pybind11/pybind11.h>
 
+#include "spdfit/render.hpp"
 
 namespace spdfit::python {
 
@@ -12,6 +13,13 @@ namespace spdfit::python {
 template <typename Class, typename Member>
 auto copied(Member Class::*member) {
   return [member](const Class& object) -> Member { return object.*member; };
+}
+
+/// How a report (spdfit/render.hpp) refers to Python's means: the keyword bootstrap=N and the
+/// result's interval and bias attributes.
+inline const ReportHints& python_report_hints() {
+  static const ReportHints hints{"bootstrap=N, e.g. 1000", "the interval and bias attributes"};
+  return hints;
 }
 
 void bind_results(pybind11::module_& m);

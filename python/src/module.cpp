@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "bindings.hpp"
+#include "pickle.hpp"
 #include "spdfit/options.hpp"
 #include "spdfit/version.hpp"
 
@@ -21,6 +22,7 @@ PYBIND11_MODULE(_spdfit, m) {
   spdfit::python::bind_physical(m);
   spdfit::python::bind_experiment(m);
   spdfit::python::bind_blas_core(m);
+  spdfit::python::enable_every_protocol(m);  // after every pickled class is bound
   // The library's messages name options by their library names in backticks (OptionError and
   // other misuse): Python says them with its own keywords, as a ValueError.
   pybind11::register_exception_translator([](std::exception_ptr p) {

@@ -169,11 +169,6 @@ def test_read_matrix_and_data_error(tmp_path):
     assert issubclass(spdfit.DataError, ValueError)
 
 
-def test_repr_is_readable(problem):
-    text = repr(spdfit.spde(*problem))
-    assert text.startswith("FitResult(method='spde'") and "X =" in text
-
-
 def test_gil_is_released_during_fits():
     """Threads running fits overlap (the GIL is released in C++): a smoke test of correctness
     under concurrency; the timing is not asserted."""

@@ -1,9 +1,15 @@
-"""Results pickle (issue 18), so multiprocessing and joblib can return them: every attribute
-survives the round trip, for every method, a failure, and through a process pool; so do the
-results of solve, spdfit.linkage, spdfit.hexapod and spdfit.experiment, and the plain options
-classes."""
+"""Results pickle, so multiprocessing and joblib can return them: every attribute survives the
+round trip, for every method, a failure, and through a process pool; so do the results of solve,
+spdfit.linkage, spdfit.hexapod and spdfit.experiment, and the plain options classes. Every class
+pickles under every protocol, 0 to 5, and copies with copy.copy and copy.deepcopy; a state carries
+its pickle format's number and a state of another format (another version of spdfit) is refused
+with a message. The library's results travel as their exact JSON (spdfit/render.hpp), +-inf and
+NaN included."""
 import concurrent.futures
+import copy
 import functools
+import io
+import json
 import math
 import pickle
 import warnings
@@ -17,6 +23,9 @@ import spdfit.hexapod as hx
 import spdfit.linkage as lk
 import thesis_reference as ref
 from spdfit import _spdfit
+
+# The pickle format of this build (pickle.hpp's kPickleFormat): every state is (FORMAT, payload).
+FORMAT = 1
 
 FIELDS = ["m", "n", "rank_a", "rank_b", "cond_a", "cond_b", "residual_norm", "symmetric", "positive_definite",
           "positive_semidefinite", "min_eigenvalue", "max_eigenvalue", "area_criterion", "area_criterion_minimum",
@@ -101,9 +110,12 @@ def test_results_come_back_from_a_process_pool():
         same(result, fit_one(seed))
 
 
-def test_a_truncated_state_is_refused():
-    with pytest.raises(RuntimeError, match="expected 9 fields"):
-        spdfit.FitResult.__new__(spdfit.FitResult).__setstate__(("spde",))
+def test_a_state_of_no_format_is_refused():
+    # The fields' tuple of the releases before pickles had a format number.
+    with pytest.raises(pickle.UnpicklingError, match=r"cannot unpickle FitResult: it was pickled by another "
+                                                     r"version of spdfit \(a state of no pickle format\); this spdfit "
+                                                     r"\(.*\) reads format 1 only"):
+        spdfit.FitResult.__new__(spdfit.FitResult).__setstate__(("spde", "success", "", np.eye(2)))
 
 
 # ---- Every class of the module ----------------------------------------------------------------
@@ -196,7 +208,7 @@ def simulation_options():
     """SimulationOptions away from every default (Python can only make the defaults: the state
     is the way in)."""
     options = _spdfit.hexapod.SimulationOptions.__new__(_spdfit.hexapod.SimulationOptions)
-    options.__setstate__((30, 0.5, 0.25, 2.0, "gaussian"))
+    options.__setstate__((FORMAT, (30, 0.5, 0.25, 2.0, "gaussian")))
     return options
 
 
@@ -216,7 +228,7 @@ def identified(truth_and_modes):
 # Objects made through the public API, with their optional parts present and absent.
 EXAMPLES = {
     "fit, auto": lambda: quiet(spdfit.fit, *ref.thesis_generator(30, 6, 1.0, np.random.default_rng(8))[:2]),
-    "nearest_spd": lambda: spdfit.nearest_spd(np.array([[2.0, 3.0], [3.0, 1.0]]), full_output=True),
+    "nearest_spd": lambda: quiet(spdfit.nearest_spd, np.array([[2.0, 3.0], [3.0, 1.0]]), full_output=True),
     "solve, full rank, 3 right-hand sides": lambda: spdfit.solve(gaussian(7, 4), gaussian(7, 3, seed=6)),
     "solve, rank-deficient": lambda: quiet(spdfit.solve, gaussian(7, 2) @ gaussian(2, 4, seed=6),
                                            gaussian(7, 2, seed=7)),
@@ -299,13 +311,15 @@ def test_the_comparison_sees_a_difference():
     with pytest.raises(AssertionError, match="result.a4"):
         assert_same(lk.FourBar(1, 2, 3, 4), lk.FourBar(1, 2, 3, 5))
     original = example("synthesize, steering")
-    state = list(original.__getstate__())
-    structural = list(state[13].__getstate__())
+    version, state = original.__getstate__()
+    state = list(state)
+    version, structural = state[13].__getstate__()
+    structural = list(structural)
     structural[0] = structural[0] + np.array([0.0, 0.0, 1e-15])
     state[13] = type(original.structural).__new__(type(original.structural))
-    state[13].__setstate__(tuple(structural))
+    state[13].__setstate__((version, tuple(structural)))
     changed = type(original).__new__(type(original))
-    changed.__setstate__(tuple(state))
+    changed.__setstate__((version, tuple(state)))
     with pytest.raises(AssertionError, match="result.structural.k"):
         assert_same(changed, original)
 
@@ -325,13 +339,13 @@ def test_stream_options_keep_their_read_options():
     # carries allow_nonfinite and the index column as read_table's index_col spells it.
     for read in [(False, None), (True, True), (False, False)]:
         options = _spdfit.StreamOptions.__new__(_spdfit.StreamOptions)
-        options.__setstate__((64, 2, read))
-        assert pickle.loads(pickle.dumps(options)).__getstate__() == (64, 2, read)
+        options.__setstate__((FORMAT, (64, 2, read)))
+        assert pickle.loads(pickle.dumps(options)).__getstate__() == (FORMAT, (64, 2, read))
 
 
 def test_the_thesis_experiment_keeps_its_options():
     back = round_trip(example("thesis"))
-    simulation, truth, methods = back.__getstate__()[0]
+    simulation, truth, methods = back.__getstate__()[1][0]
     assert (simulation.samples, simulation.noise_var, simulation.force_noise_var, simulation.distribution) == \
            (14, 0.86, 0.4, "gaussian")
     assert np.array_equal(truth, hx.thesis_mass_matrix()) and methods == ["tls", "spde", "psd-ls"]
@@ -367,40 +381,180 @@ def first_instances():
     return found
 
 
-# The classes whose state is a tuple of fields (pickle.hpp); TriangularFactor's is the library's
-# serialization, whose checks test_factor.py corrupts byte by byte.
-TUPLE_STATES = sorted(set(module_classes()) - {"TriangularFactor"})
+# The classes whose payload is the library's exact JSON (spdfit/render.hpp); the others' is the
+# tuple of their fields (pickle.hpp), but TriangularFactor's, the library's serialization, whose
+# checks test_factor.py corrupts byte by byte.
+JSON_STATES = ["AutoReason", "Bootstrap", "ColumnClassification", "Diagnostics", "FitResult", "Interval",
+               "LinearSystemResult", "MethodIdentification", "NearestResult", "PsdCertificate",
+               "SpectrumUncertainty"]
+TUPLE_STATES = sorted(set(module_classes()) - set(JSON_STATES) - {"TriangularFactor"})
+
+
+def test_the_state_lists_cover_every_class():
+    assert set(JSON_STATES) <= set(module_classes())
+    for name, (cls, obj) in first_instances().items():
+        if name == "TriangularFactor":
+            continue
+        version, payload = obj.__getstate__()
+        assert version == FORMAT, name
+        if name == "LinearSystemResult":  # the JSON and whether b was 1-D
+            payload = payload[0]
+        assert isinstance(payload, str if name in JSON_STATES else tuple), name
+
+
+@pytest.mark.parametrize("name", sorted(set(module_classes())))
+@pytest.mark.parametrize("protocol", range(pickle.HIGHEST_PROTOCOL + 1))
+def test_every_class_pickles_under_every_protocol(name, protocol):
+    # Protocols 0 and 1 used to abort the interpreter (object.__new__ on a pybind11 class).
+    cls, obj = first_instances()[name]
+    back = pickle.loads(pickle.dumps(obj, protocol=protocol))
+    assert type(back) is cls
+    assert_same(back, obj, name)
+
+
+@pytest.mark.parametrize("name", sorted(set(module_classes())))
+def test_every_class_copies(name):
+    cls, obj = first_instances()[name]
+    for copied in (copy.copy(obj), copy.deepcopy(obj)):
+        assert type(copied) is cls and copied is not obj
+        assert_same(copied, obj, name)
+
+
+def test_the_examples_under_every_protocol_in_a_process_pool():
+    # What multiprocessing does with them, through the oldest protocol too.
+    for label in ["fit, auto", "solve, 1-D b", "identify, bootstrap and modes", "thesis"]:
+        obj = example(label)
+        for protocol in (0, 1, 2, pickle.HIGHEST_PROTOCOL):
+            assert_same(pickle.loads(pickle.dumps(obj, protocol=protocol)), obj, label)
+
+
+@pytest.mark.parametrize("name", sorted(set(module_classes()) - {"TriangularFactor"}))
+def test_a_state_of_another_format_is_refused(name):
+    cls, obj = first_instances()[name]
+    version, payload = obj.__getstate__()
+    for state, says in [((version + 1, payload), f"pickle format {version + 1}"),
+                        ((0, payload), "pickle format 0"),
+                        (payload if isinstance(payload, tuple) and len(payload) != 2 else ("x", payload),
+                         "a state of no pickle format")]:
+        with pytest.raises(pickle.UnpicklingError, match=f"cannot unpickle {name}: it was pickled by another version "
+                                                         f"of spdfit \\({says}\\); this spdfit .* reads format "
+                                                         f"{FORMAT} only: recompute it, or unpickle it with the "
+                                                         f"spdfit that pickled it"):
+            cls.__new__(cls).__setstate__(state)
+
+
+class OtherFormatPickler(pickle.Pickler):
+    """Pickles the module's objects as another version of spdfit would: a state of the next format."""
+
+    def reducer_override(self, obj):
+        if isinstance(obj, spdfit.FitResult):
+            function, arguments, (version, payload) = obj.__reduce__()
+            return function, arguments, (version + 1, payload)
+        return NotImplemented
+
+
+def test_a_pickle_of_another_format_is_refused_by_pickle_loads():
+    # As a user meets it: the bytes of another version's pickle.
+    buffer = io.BytesIO()
+    OtherFormatPickler(buffer, protocol=2).dump(example("fit, auto"))
+    with pytest.raises(pickle.UnpicklingError, match=f"cannot unpickle FitResult: it was pickled by another version "
+                                                     f"of spdfit \\(pickle format {FORMAT + 1}\\)"):
+        pickle.loads(buffer.getvalue())
 
 
 @pytest.mark.parametrize("name", TUPLE_STATES)
 def test_a_state_of_the_wrong_length_is_refused(name):
     cls, obj = first_instances()[name]
-    state = obj.__getstate__()
-    # Two fields short, not one: Diagnostics also reads the 30-field state of before d existed.
-    for wrong in (state[:-2], state + (None,), ()):
-        with pytest.raises(RuntimeError, match=f"cannot unpickle {name}: expected {len(state)} fields, "
-                                               f"got {len(wrong)}"):
-            cls.__new__(cls).__setstate__(wrong)
+    version, state = obj.__getstate__()
+    for wrong in (state[:-1], state + (None,), ()):
+        with pytest.raises(pickle.UnpicklingError, match=f"cannot unpickle {name}: expected {len(state)} fields, "
+                                                         f"got {len(wrong)}"):
+            cls.__new__(cls).__setstate__((version, wrong))
+
+
+@pytest.mark.parametrize("name", JSON_STATES)
+def test_a_json_state_that_is_not_the_classes_is_refused(name):
+    cls, obj = first_instances()[name]
+    version, state = obj.__getstate__()
+    if name == "LinearSystemResult":  # (JSON, whether b was 1-D)
+        text, vector_b = state
+        with pytest.raises(pickle.UnpicklingError, match="cannot unpickle LinearSystemResult: expected 2 fields"):
+            cls.__new__(cls).__setstate__((version, (text,)))
+        wrap = lambda t: (t, vector_b)  # noqa: E731
+    else:
+        text, wrap = state, (lambda t: t)
+    with pytest.raises(pickle.UnpicklingError, match=f"cannot unpickle {name}: the text is not JSON"):
+        cls.__new__(cls).__setstate__((version, wrap(text[:-1])))
+    with pytest.raises(pickle.UnpicklingError, match=f"cannot unpickle {name}: the JSON has no '"):
+        cls.__new__(cls).__setstate__((version, wrap("{}")))
 
 
 @pytest.mark.parametrize("label,index,message", [
     ("synthesize, steering", 0, "cannot unpickle SynthesisResult: unknown status 'bogus'"),
     ("analyze, crank-rocker", 2, "cannot unpickle Analysis: unknown Grashof type 'bogus'"),
-    ("solve, rank-deficient", 0, "cannot unpickle LinearSystemResult: unknown status 'bogus'"),
-    ("solve, rank-deficient", 5, "cannot unpickle LinearSystemResult: unknown shape 'bogus'"),
     ("SimulationOptions", 4, "cannot unpickle SimulationOptions: unknown distribution 'bogus'"),
 ])
 def test_an_unknown_name_in_a_state_is_refused(label, index, message):
     obj = example(label)
-    state = list(obj.__getstate__())
+    version, state = obj.__getstate__()
+    state = list(state)
     state[index] = "bogus"
-    with pytest.raises(RuntimeError, match=message):
-        type(obj).__new__(type(obj)).__setstate__(tuple(state))
+    with pytest.raises(pickle.UnpicklingError, match=message):
+        type(obj).__new__(type(obj)).__setstate__((version, tuple(state)))
+
+
+@pytest.mark.parametrize("label,key,message", [
+    ("fit, auto", "method", "cannot unpickle FitResult: unknown method 'bogus'"),
+    ("fit, auto", "status", "cannot unpickle FitResult: unknown status 'bogus'"),
+    ("solve, rank-deficient", "shape", "cannot unpickle LinearSystemResult: unknown shape 'bogus'"),
+    ("solve, rank-deficient", "status", 'cannot unpickle LinearSystemResult: unknown status "bogus"'),
+])
+def test_an_unknown_name_in_a_json_state_is_refused(label, key, message):
+    obj = example(label)
+    version, state = obj.__getstate__()
+    text = state[0] if isinstance(state, tuple) else state
+    document = json.loads(text)
+    document[key] = "bogus"
+    text = json.dumps(document)
+    with pytest.raises(pickle.UnpicklingError, match=message):
+        type(obj).__new__(type(obj)).__setstate__((version, (text, state[1]) if isinstance(state, tuple) else text))
 
 
 def test_nested_options_of_the_wrong_length_are_refused():
     result = example("thesis")
-    state = list(result.__getstate__())
+    version, state = result.__getstate__()
+    state = list(state)
     state[0] = state[0][:2]
-    with pytest.raises(RuntimeError, match="cannot unpickle ThesisExperimentResult's options: expected 3 fields, got 2"):
-        type(result).__new__(type(result)).__setstate__(tuple(state))
+    with pytest.raises(pickle.UnpicklingError,
+                       match="cannot unpickle ThesisExperimentResult's options: expected 3 fields, got 2"):
+        type(result).__new__(type(result)).__setstate__((version, tuple(state)))
+
+
+def test_infinities_and_nan_survive_exactly():
+    # cond(A) is +inf for a singular A; a bootstrap whose replicates all fail has NaN intervals.
+    A = np.array([[1.0, 0.0], [2.0, 0.0], [3.0, 0.0]])
+    result = quiet(spdfit.fit, A, A, "ls")
+    assert result.diagnostics.cond_a == math.inf
+    for protocol in range(pickle.HIGHEST_PROTOCOL + 1):
+        back = pickle.loads(pickle.dumps(result, protocol=protocol))
+        assert back.diagnostics.cond_a == math.inf
+        assert_same(back, result)
+    # Every non-finite value in every place a number can be: the state's JSON edited, then pickled.
+    version, text = result.__getstate__()
+    document = json.loads(text)
+    document["X"][0] = ["-inf", "nan"]
+    document["diagnostics"]["residual_norm"] = "nan"
+    document["diagnostics"]["noise_sigma"] = "-inf"
+    edited = spdfit.FitResult.__new__(spdfit.FitResult)
+    edited.__setstate__((version, json.dumps(document)))
+    assert edited.X[0, 0] == -math.inf and math.isnan(edited.X[0, 1])
+    back = pickle.loads(pickle.dumps(edited, protocol=0))
+    assert back.X[0, 0] == -math.inf and math.isnan(back.X[0, 1]) and math.isnan(back.diagnostics.residual_norm)
+    assert back.diagnostics.noise_sigma == -math.inf
+    # Every double, bit for bit: -0.0, subnormals, the largest.
+    document["X"][0] = [-0.0, 5e-324]
+    document["X"][1] = [1.7976931348623157e308, 0.1]
+    edited.__setstate__((version, json.dumps(document)))
+    back = pickle.loads(pickle.dumps(edited))
+    assert np.array_equal(back.X.view(np.uint64), edited.X.view(np.uint64))
+    assert math.copysign(1.0, back.X[0, 0]) == -1.0
