@@ -148,9 +148,9 @@ Json bootstrap_details_json(const Bootstrap& b, JsonStyle style) {
 }
 
 // `details` as bootstrap_details_json wrote it, `estimates` the object with standard_errors,
-// interval and bias (the result in the fit contract, the same object for a Bootstrap alone).
-Bootstrap bootstrap_from(const Json& details, const Json& estimates, const std::string& type) {
-  const std::string what = type + " bootstrap";
+// interval and bias (the result in the fit contract, the same object for a Bootstrap alone);
+// `what` names it in errors.
+Bootstrap bootstrap_from(const Json& details, const Json& estimates, const std::string& what) {
   Bootstrap b;
   b.replicates = value_from<int>(details, "replicates", what);
   b.failed = value_from<int>(details, "failed", what);
@@ -233,7 +233,7 @@ FitResult fit_result_from(const Json& object, const std::string& type) {
   if (optional_field(object, "error")) r.message = value_from<std::string>(object, "error", type);
   // (A hexapod identification's entry may hold only the modes' intervals there.)
   const Json* details = optional_field(object, "bootstrap");
-  if (details && details->contains("replicates")) r.bootstrap = bootstrap_from(*details, object, type);
+  if (details && details->contains("replicates")) r.bootstrap = bootstrap_from(*details, object, type + " bootstrap");
   return r;
 }
 
