@@ -231,13 +231,10 @@ Command add_paper_hexapod(CLI::App& parent, const GlobalOptions& global) {
         << ". |e|: mean absolute error; std e: standard deviation of the error.\n\n"
         << entry_table(result, "m");
     if (has_both(result, Method::Spde, Method::SymmetricProcrustes)) {
-      const experiment::EntryStatistics& spde = result.of(Method::Spde);
-      const experiment::EntryStatistics& procrustes = result.of(Method::SymmetricProcrustes);
-      const long mae_wins = (spde.mae.array() < procrustes.mae.array()).count();
-      const long std_wins = (spde.std.array() < procrustes.std.array()).count();
+      const experiment::EntryExperimentResult::Wins wins = result.wins(Method::Spde, Method::SymmetricProcrustes);
       out << '\n'
-          << "spde has the smaller mean absolute error on " << mae_wins << " of " << result.entries.size()
-          << " entries and the smaller standard deviation on " << std_wins << ".\n";
+          << "spde has the smaller mean absolute error on " << wins.mae << " of " << wins.entries
+          << " entries and the smaller standard deviation on " << wins.std << ".\n";
     }
     emit(out.str(), cli->common.output);
   };

@@ -2,7 +2,6 @@
 // (paired differences and their standard errors); none is fixed text about which method wins.
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <sstream>
 
 #include "demo_report.hpp"
@@ -13,52 +12,18 @@ namespace spdfit::cli::demo {
 
 namespace {
 
-using experiment::compare_paired;
 using experiment::EntryExperimentResult;
 using experiment::PairedComparison;
 using experiment::ThesisExperimentResult;
 
-// A difference counts as real when it exceeds this many standard errors of the paired mean
-// difference (a tie passes by chance with probability 0.3%).
-constexpr double kSignificance = 3.0;
+using experiment::order_of;
+using experiment::Order;
 
 const char* const kEntryNames[] = {"x11", "x12", "x22"};
 
-enum class Order { Lower, Tie, Higher };
-
-Order order_of(const PairedComparison& c) {
-  if (c.mean_difference + kSignificance * c.standard_error < 0) return Order::Lower;
-  if (c.mean_difference - kSignificance * c.standard_error > 0) return Order::Higher;
-  return Order::Tie;
-}
-
-std::vector<double> absolute_errors(const experiment::EntryStatistics& s, Eigen::Index entry) {
-  std::vector<double> out(static_cast<std::size_t>(s.errors.rows()));
-  for (Eigen::Index k = 0; k < s.errors.rows(); ++k)
-    out[static_cast<std::size_t>(k)] = std::abs(s.errors(k, entry));
-  return out;
-}
-
-// |e_spde| - |e_procrustes| for each entry, trial by trial.
-std::vector<PairedComparison> spde_vs_procrustes(const EntryExperimentResult& r) {
-  std::vector<PairedComparison> out;
-  for (Eigen::Index e = 0; e < 3; ++e) {
-    out.push_back(compare_paired(absolute_errors(r.of(Method::Spde), e),
-                                 absolute_errors(r.of(Method::SymmetricProcrustes), e)));
-  }
-  return out;
-}
-
-const Method kCompared[] = {Method::SymmetricProcrustes, Method::TotalLeastSquaresSymmetric, Method::Spde};
-
-// The method among kCompared with the smallest mean error.
-Method best_of(const ThesisExperimentResult& r) {
-  Method best = kCompared[0];
-  for (Method method : kCompared) {
-    if (r.of(method).summary.mean < r.of(best).summary.mean) best = method;
-  }
-  return best;
-}
+// The seed documents' three main methods, which the conclusion ranks.
+const std::vector<Method> kCompared = {Method::SymmetricProcrustes, Method::TotalLeastSquaresSymmetric,
+                                       Method::Spde};
 
 // What the statements found, for the conclusion.
 struct Facts {
@@ -75,7 +40,7 @@ std::string thesis_statements(const std::vector<ThesisExperimentResult>& thesis,
   // SPDE against Procrustes at each level, trial by trial.
   std::vector<PairedComparison> c;
   for (const ThesisExperimentResult& r : thesis) {
-    c.push_back(compare_paired(r.of(Method::Spde).errors, r.of(Method::SymmetricProcrustes).errors));
+    c.push_back(r.compare(Method::Spde, Method::SymmetricProcrustes));
   }
   bool all_lower = true, growing = true;  // SPDE below Procrustes at every level; gain growing
   double previous_gain = -1, weakest = INFINITY;
@@ -118,8 +83,7 @@ std::string thesis_statements(const std::vector<ThesisExperimentResult>& thesis,
   bool ls_worse = true;
   for (const ThesisExperimentResult& r : thesis) {
     ls_worse =
-        ls_worse && order_of(compare_paired(r.of(Method::LeastSquares).errors,
-                                            r.of(Method::SymmetricProcrustes).errors)) == Order::Higher;
+        ls_worse && order_of(r.compare(Method::LeastSquares, Method::SymmetricProcrustes)) == Order::Higher;
   }
   if (ls_worse) {
     out << bullet(
@@ -146,7 +110,7 @@ std::string thesis_statements(const std::vector<ThesisExperimentResult>& thesis,
 std::string paper_statements(const std::vector<EntryExperimentResult>& paper, Facts& facts) {
   std::ostringstream out;
   std::vector<std::vector<PairedComparison>> entry(paper.size());
-  for (std::size_t l = 0; l < paper.size(); ++l) entry[l] = spde_vs_procrustes(paper[l]);
+  for (std::size_t l = 0; l < paper.size(); ++l) entry[l] = paper[l].compare(Method::Spde, Method::SymmetricProcrustes);
   std::size_t from = paper.size();
   for (std::size_t l = paper.size(); l-- > 0;) {
     bool wins = true;
@@ -206,7 +170,7 @@ std::string paper_statements(const std::vector<EntryExperimentResult>& paper, Fa
 // Experiment 2 with more samples: how the errors fall, and who is most accurate at the end.
 std::string samples_statements(const std::vector<ThesisExperimentResult>& samples, Facts& facts) {
   const ThesisExperimentResult& most = samples.back();
-  const Method best_large = best_of(most);
+  const Method best_large = most.best_of(kCompared);
   const ThesisExperimentResult& middle = samples.front();
   auto fall = [&](Method method) {
     const double from_mean = middle.of(method).summary.mean, to_mean = most.of(method).summary.mean;
@@ -222,7 +186,7 @@ std::string samples_statements(const std::vector<ThesisExperimentResult>& sample
                      fall(Method::Spde) + ", " + fall(Method::TotalLeastSquaresSymmetric) + ", " +
                      fall(Method::SymmetricProcrustes) + ".";
   if (best_large != Method::Spde) {
-    const PairedComparison edge = compare_paired(most.of(best_large).errors, most.of(Method::Spde).errors);
+    const PairedComparison edge = most.compare(best_large, Method::Spde);
     text += " At m = " + std::to_string(most.options.simulation.samples) + " " +
             std::string(to_string(best_large)) + " is the most accurate" +
             (order_of(edge) == Order::Lower ? " (" + format_fixed(-edge.mean_difference / edge.standard_error, 0) +
@@ -262,10 +226,7 @@ std::string beyond_statements(const std::vector<ThesisExperimentResult>& beyond)
     bool tls_stays = true;
     for (Eigen::Index m : beyond_sizes()) {
       const ThesisExperimentResult& r = beyond[i++];
-      double best = std::numeric_limits<double>::infinity();
-      for (Method method : beyond_methods()) {
-        if (method != Method::Auto) best = std::min(best, r.of(method).summary.mean);
-      }
+      const double best = r.of(r.best_of(beyond_estimators())).summary.mean;
       const double ratio = r.of(Method::Auto).summary.mean / best;
       if (ratio > worst_ratio) {
         worst_ratio = ratio;
@@ -297,7 +258,7 @@ std::string findings(const Results& results) {
   // The conclusion follows from the statements above.
   bool spde_best_small = true;
   for (const ThesisExperimentResult& r : results.thesis) {
-    spde_best_small = spde_best_small && best_of(r) == Method::Spde;
+    spde_best_small = spde_best_small && r.best_of(kCompared) == Method::Spde;
   }
   std::string conclusion = "In short:";
   if (spde_best_small && facts.spde_below_procrustes && facts.spde_wins_somewhere) {
@@ -319,10 +280,8 @@ std::string findings(const Results& results) {
   bool spd_tls_best_large = true;
   for (std::size_t w = 0; w < beyond_widths().size(); ++w) {
     const ThesisExperimentResult& r = results.beyond[(w + 1) * beyond_sizes().size() - 1];
-    for (Method method : beyond_methods()) {
-      if (method != Method::Auto && r.of(method).summary.mean < r.of(Method::SpdTotalLeastSquares).summary.mean) {
-        spd_tls_best_large = false;
-      }
+    if (r.of(r.best_of(beyond_estimators())).summary.mean < r.of(Method::SpdTotalLeastSquares).summary.mean) {
+      spd_tls_best_large = false;
     }
   }
   if (spd_tls_best_large) {

@@ -29,6 +29,8 @@ struct Results {
 const std::vector<double>& beyond_widths();
 const std::vector<Eigen::Index>& beyond_sizes();
 const std::vector<Method>& beyond_methods();
+/// beyond_methods() but auto: the methods auto is measured against.
+const std::vector<Method>& beyond_estimators();
 
 /// The 2x2 example's noise levels std_a, and the larger sample sizes Experiment 2 is rerun at.
 const std::vector<double>& levels_2x2();

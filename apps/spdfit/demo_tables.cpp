@@ -1,6 +1,5 @@
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <cstdio>
 #include <sstream>
 
@@ -15,10 +14,20 @@
 
 namespace spdfit::cli::demo {
 
-using experiment::compare_paired;
 using experiment::EntryExperimentResult;
 using experiment::PairedComparison;
 using experiment::ThesisExperimentResult;
+
+const std::vector<Method>& beyond_estimators() {
+  static const std::vector<Method> methods = [] {
+    std::vector<Method> out;
+    for (Method method : beyond_methods()) {
+      if (method != Method::Auto) out.push_back(method);
+    }
+    return out;
+  }();
+  return methods;
+}
 
 const std::vector<double>& levels_2x2() {
   static const std::vector<double> levels = {0.0, 0.5, 1.0, 1.5, 1.9};
@@ -156,8 +165,7 @@ std::string section_thesis(const std::vector<ThesisExperimentResult>& results, s
       std::snprintf(line, sizeof line, " %10s", ("(" + format_fixed(s.standard_error(), 3) + ")").c_str());
       errors += line;
     }
-    const PairedComparison c =
-        compare_paired(r.of(Method::Spde).errors, r.of(Method::SymmetricProcrustes).errors);
+    const PairedComparison c = r.compare(Method::Spde, Method::SymmetricProcrustes);
     out << means << "   in " << percent(c.fraction_lower) << " of the trials\n" << errors << '\n';
   }
   out << '\n';
@@ -222,10 +230,7 @@ std::string section_beyond(const std::vector<ThesisExperimentResult>& beyond) {
     std::snprintf(line, sizeof line, "%5s %6ld", format_number(width).c_str(),
                   static_cast<long>(r.options.simulation.samples));
     out << line;
-    double best = std::numeric_limits<double>::infinity();
-    for (Method method : beyond_methods()) {
-      if (method != Method::Auto) best = std::min(best, r.of(method).summary.mean);
-    }
+    const double best = r.of(r.best_of(beyond_estimators())).summary.mean;
     for (Method method : beyond_methods()) {
       const double mean = r.of(method).summary.mean;
       const bool lowest = method != Method::Auto && mean == best;

@@ -65,7 +65,7 @@ std::string thesis_table(const experiment::ThesisExperimentResult& result) {
 }
 
 std::string paired_line(const experiment::ThesisExperimentResult& result, Method a, Method b) {
-  const experiment::PairedComparison c = experiment::compare_paired(result.of(a).errors, result.of(b).errors);
+  const experiment::PairedComparison c = result.compare(a, b);
   char line[240];
   std::snprintf(
       line, sizeof line,

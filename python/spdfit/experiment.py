@@ -15,6 +15,11 @@ MethodErrors = _core.MethodErrors
 ThesisExperimentResult = _core.ThesisExperimentResult
 EntryStatistics = _core.EntryStatistics
 EntryExperimentResult = _core.EntryExperimentResult
+PairedComparison = _core.PairedComparison
+
+# How many standard errors of the paired mean difference make a difference real (the library's
+# rule: PairedComparison.order, the statements of `spdfit demo`).
+SIGNIFICANCE = _core.SIGNIFICANCE
 
 # The thesis' experiments 1-3: noise variances (its M-file's nm = 1, 3.2, 3.9; V = nm^2 / 12), as
 # the library's table of its reported runs gives them.
@@ -27,8 +32,9 @@ THESIS_REPORTED = {run[0]: tuple(run[1:]) for run in _core.THESIS_REPORTED_RUNS}
 # The library's defaults (the thesis' chapter-6 set-up, the paper's), not retyped here.
 _DEFAULTS = _core.DEFAULTS
 
-__all__ = ["EntryExperimentResult", "EntryStatistics", "MethodErrors", "Summary", "THESIS_NOISE_VARIANCES",
-           "THESIS_REPORTED", "ThesisExperimentResult", "paper_2x2", "paper_2x2_sweep", "paper_hexapod", "thesis"]
+__all__ = ["EntryExperimentResult", "EntryStatistics", "MethodErrors", "PairedComparison", "SIGNIFICANCE", "Summary",
+           "THESIS_NOISE_VARIANCES", "THESIS_REPORTED", "ThesisExperimentResult", "paper_2x2", "paper_2x2_sweep",
+           "paper_hexapod", "thesis"]
 
 
 def _names(methods):

@@ -5,11 +5,13 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "keywords.hpp"
 #include "pickle.hpp"
 #include "spdfit/experiment/monte_carlo.hpp"
 #include "spdfit/experiment/paper.hpp"
 #include "spdfit/experiment/statistics.hpp"
 #include "spdfit/experiment/thesis.hpp"
+#include "spdfit/format.hpp"
 #include "spdfit/hexapod/simulate.hpp"
 
 namespace py = pybind11;
@@ -46,6 +48,9 @@ hexapod::SimulationOptions simulation(Eigen::Index samples, double noise_var, st
 }
 
 std::string method_name(Method m) { return std::string(to_string(m)); }
+
+// The method a comparison names (keywords.hpp's method_from: a ValueError listing the methods).
+Method named(const std::string& name) { return method_from(py::str(name)); }
 
 // The methods named (ValueError for an unknown name), or `defaults` when none are given; the
 // library refuses an empty list or a repeat (experiment::check_methods).
@@ -103,6 +108,31 @@ void bind_experiment(py::module_& parent) {
   defaults["paper_2x2_std_b"] = Paper2x2Options{}.std_b;
   m.attr("DEFAULTS") = defaults;
 
+  m.attr("SIGNIFICANCE") = kSignificance;
+  py::class_<PairedComparison>(m, "PairedComparison",
+                               "Two methods compared on the same trials: the differences a - b where both are "
+                               "finite.")
+      .def_property_readonly("count", copied(&PairedComparison::count), "trials compared")
+      .def_property_readonly("mean_difference", copied(&PairedComparison::mean_difference), "mean of a - b")
+      .def_property_readonly("standard_error", copied(&PairedComparison::standard_error),
+                             "of mean_difference: std(a - b) / sqrt(count)")
+      .def_property_readonly("fraction_lower", copied(&PairedComparison::fraction_lower),
+                             "fraction of the trials with a < b")
+      .def(
+          "order", [](const PairedComparison& c, double significance) { return to_string(order_of(c, significance)); },
+          py::arg("significance") = kSignificance,
+          "'lower' when a's mean is below b's by more than `significance` standard errors of the difference, "
+          "'higher' when above, 'tie' otherwise (the rule of `spdfit demo`'s statements)")
+      .def(pickle_fields<PairedComparison>(
+          "PairedComparison", state_field(&PairedComparison::count), state_field(&PairedComparison::mean_difference),
+          state_field(&PairedComparison::standard_error), state_field(&PairedComparison::fraction_lower)))
+      .def("__repr__", [](const PairedComparison& c) {
+        return "PairedComparison(count=" + std::to_string(c.count) +
+               ", mean_difference=" + format_number(c.mean_difference, Precision::Full) +
+               ", standard_error=" + format_number(c.standard_error, Precision::Full) +
+               ", fraction_lower=" + format_number(c.fraction_lower, Precision::Full) + ")";
+      });
+
   py::class_<Summary>(m, "Summary")
       .def_property_readonly("count", copied(&Summary::count))
       .def_property_readonly("failures", copied(&Summary::failures))
@@ -132,6 +162,20 @@ void bind_experiment(py::module_& parent) {
       .def_property_readonly("seed", copied(&ThesisExperimentResult::seed))
       .def_property_readonly("methods", copied(&ThesisExperimentResult::methods))
       .def_property_readonly("truth", [](const ThesisExperimentResult& r) { return r.options.truth; })
+      .def(
+          "best_of",
+          [](const ThesisExperimentResult& r, const std::vector<std::string>& among) {
+            std::vector<Method> methods;
+            for (const std::string& name : among) methods.push_back(named(name));
+            return method_name(r.best_of(methods));
+          },
+          py::arg("among"), "The method among `among` (names) with the smallest mean error.")
+      .def(
+          "compare",
+          [](const ThesisExperimentResult& r, const std::string& a, const std::string& b) {
+            return r.compare(named(a), named(b));
+          },
+          py::arg("a"), py::arg("b"), "Method a against b trial by trial (PairedComparison of their errors).")
       .def(pickle_fields<ThesisExperimentResult>(
           "ThesisExperimentResult", thesis_options_field(), state_field(&ThesisExperimentResult::trials),
           state_field(&ThesisExperimentResult::seed), state_field(&ThesisExperimentResult::methods)));
@@ -156,6 +200,26 @@ void bind_experiment(py::module_& parent) {
       .def_property_readonly("truth", copied(&EntryExperimentResult::truth))
       .def_property_readonly("entries", copied(&EntryExperimentResult::entries))
       .def_property_readonly("methods", copied(&EntryExperimentResult::methods))
+      .def(
+          "compare",
+          [](const EntryExperimentResult& r, const std::string& a, const std::string& b) {
+            return r.compare(named(a), named(b));
+          },
+          py::arg("a"), py::arg("b"),
+          "Method a against b on each entry, trial by trial: a PairedComparison of |e_a| and |e_b| per entry.")
+      .def(
+          "wins",
+          [](const EntryExperimentResult& r, const std::string& a, const std::string& b) {
+            const EntryExperimentResult::Wins wins = r.wins(named(a), named(b));
+            py::dict out;
+            out["mae"] = wins.mae;
+            out["std"] = wins.std;
+            out["entries"] = wins.entries;
+            return out;
+          },
+          py::arg("a"), py::arg("b"),
+          "{'mae': on how many entries a's mean absolute error is below b's, 'std': the same for the standard "
+          "deviation of the error, 'entries': of how many}")
       .def(pickle_fields<EntryExperimentResult>(
           "EntryExperimentResult", state_field(&EntryExperimentResult::trials),
           state_field(&EntryExperimentResult::seed), state_field(&EntryExperimentResult::truth),

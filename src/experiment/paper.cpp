@@ -56,6 +56,27 @@ const EntryStatistics& EntryExperimentResult::of(Method method) const {
   throw std::invalid_argument("experiment result: method " + std::string(to_string(method)) + " was not run");
 }
 
+std::vector<PairedComparison> EntryExperimentResult::compare(Method a, Method b) const {
+  const EntryStatistics &x = of(a), &y = of(b);
+  std::vector<PairedComparison> out;
+  std::vector<double> abs_a(static_cast<std::size_t>(x.errors.rows())), abs_b(static_cast<std::size_t>(y.errors.rows()));
+  for (Eigen::Index e = 0; e < x.errors.cols(); ++e) {
+    for (Eigen::Index k = 0; k < x.errors.rows(); ++k) abs_a[static_cast<std::size_t>(k)] = std::abs(x.errors(k, e));
+    for (Eigen::Index k = 0; k < y.errors.rows(); ++k) abs_b[static_cast<std::size_t>(k)] = std::abs(y.errors(k, e));
+    out.push_back(compare_paired(abs_a, abs_b));
+  }
+  return out;
+}
+
+EntryExperimentResult::Wins EntryExperimentResult::wins(Method a, Method b) const {
+  const EntryStatistics &x = of(a), &y = of(b);
+  Wins out;
+  out.mae = static_cast<std::size_t>((x.mae.array() < y.mae.array()).count());
+  out.std = static_cast<std::size_t>((x.std.array() < y.std.array()).count());
+  out.entries = entries.size();
+  return out;
+}
+
 EntryExperimentResult run_paper_hexapod(const PaperHexapodOptions& options,
                                         const MonteCarloOptions& monte_carlo) {
   const Eigen::MatrixXd truth = options.truth.size() ? options.truth : hexapod::thesis_mass_matrix();

@@ -57,6 +57,24 @@ Summary summarize(std::vector<double> values) {
   return s;
 }
 
+const char* to_string(Order order) {
+  switch (order) {
+    case Order::Lower:
+      return "lower";
+    case Order::Tie:
+      return "tie";
+    case Order::Higher:
+      return "higher";
+  }
+  return "unknown";
+}
+
+Order order_of(const PairedComparison& c, double significance) {
+  if (c.mean_difference + significance * c.standard_error < 0) return Order::Lower;
+  if (c.mean_difference - significance * c.standard_error > 0) return Order::Higher;
+  return Order::Tie;
+}
+
 PairedComparison compare_paired(const std::vector<double>& a, const std::vector<double>& b) {
   if (a.size() != b.size()) throw std::invalid_argument("compare_paired: the samples differ in length");
   Moments moments;

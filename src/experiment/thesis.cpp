@@ -25,6 +25,19 @@ const MethodErrors& ThesisExperimentResult::of(Method method, FitNoise noise) co
                               " with noise model " + std::string(to_string(noise)));
 }
 
+Method ThesisExperimentResult::best_of(const std::vector<Method>& among, FitNoise noise) const {
+  if (among.empty()) throw std::invalid_argument("ThesisExperimentResult::best_of: no methods to choose from");
+  Method best = among.front();
+  for (Method method : among) {
+    if (of(method, noise).summary.mean < of(best, noise).summary.mean) best = method;
+  }
+  return best;
+}
+
+PairedComparison ThesisExperimentResult::compare(Method a, Method b, FitNoise noise) const {
+  return compare_paired(of(a, noise).errors, of(b, noise).errors);
+}
+
 namespace {
 
 // One run of the experiment: a method with a noise model.

@@ -252,6 +252,8 @@ EXAMPLES = {
                                 distribution="gaussian", methods=["tls", "spde", "psd-ls"]),
     "paper_2x2": lambda: ex.paper_2x2(0.5, trials=40, seed=2, threads=1),
     "paper_hexapod": lambda: ex.paper_hexapod(trials=3, threads=1),
+    "paired comparison": lambda: example("thesis").compare("spde", "tls"),
+    "paired comparisons per entry": lambda: example("paper_2x2").compare("spde", "procrustes"),
     "StreamOptions": stream_options,
     "TriangularFactor": lambda: _spdfit.TriangularFactor.from_data(gaussian(9, 3), gaussian(9, 2, seed=6)),
 }

@@ -23,6 +23,19 @@ struct EntryExperimentResult {
 
   /// The statistics of `method`; throws std::invalid_argument when it was not run.
   const EntryStatistics& of(Method method) const;
+
+  /// Method a against b on each entry (in `entries`' order), trial by trial: compare_paired of
+  /// the absolute errors |e_a| and |e_b|. Throws std::invalid_argument for a method not run.
+  /// Cost O(trials x entries).
+  std::vector<PairedComparison> compare(Method a, Method b) const;
+
+  /// On how many entries a has the smaller mean absolute error than b, and on how many the
+  /// smaller standard deviation of the error (the paper's Figure 2 read entry by entry).
+  struct Wins {
+    std::size_t mae = 0, std = 0;
+    std::size_t entries = 0;  ///< of how many
+  };
+  Wins wins(Method a, Method b) const;
 };
 
 // ---- Figure 2: the hexapod -------------------------------------------------------------------

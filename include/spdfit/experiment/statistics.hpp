@@ -43,6 +43,20 @@ struct PairedComparison {
 /// Compares a and b (same length) trial by trial. Cost O(n).
 PairedComparison compare_paired(const std::vector<double>& a, const std::vector<double>& b);
 
+/// How many standard errors of the paired mean difference make a difference between two methods
+/// real: under a normal mean difference, a tie passes for a difference with probability 0.3%.
+inline constexpr double kSignificance = 3.0;
+
+/// Whether a's values are significantly below b's, within the noise of each other, or above.
+enum class Order { Lower, Tie, Higher };
+
+/// "lower", "tie", "higher".
+const char* to_string(Order order);
+
+/// Lower when mean_difference + significance * standard_error < 0, Higher when
+/// mean_difference - significance * standard_error > 0, Tie otherwise (also for no trials).
+Order order_of(const PairedComparison& comparison, double significance = kSignificance);
+
 /// The independent entries (i, j), i <= j, of a symmetric n x n matrix, row by row:
 /// (0,0), (0,1), ..., (0,n-1), (1,1), ...: n (n + 1) / 2 of them (21 for n = 6).
 std::vector<std::pair<Eigen::Index, Eigen::Index>> upper_triangle_entries(Eigen::Index n);

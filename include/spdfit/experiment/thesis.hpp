@@ -89,6 +89,15 @@ struct ThesisExperimentResult {
 
   /// The errors of `method` (fitted with `noise`); throws std::invalid_argument when it was not run.
   const MethodErrors& of(Method method, FitNoise noise = FitNoise::None) const;
+
+  /// The method among `among` (fitted with `noise`) with the smallest mean error, the first of
+  /// equal means. Throws std::invalid_argument when `among` is empty or names a method not run.
+  Method best_of(const std::vector<Method>& among, FitNoise noise = FitNoise::None) const;
+
+  /// Method a against b trial by trial (compare_paired of their errors), both fitted with
+  /// `noise`; order_of says whether a is significantly more accurate. Throws
+  /// std::invalid_argument for a method that was not run.
+  PairedComparison compare(Method a, Method b, FitNoise noise = FitNoise::None) const;
 };
 
 /// Repeats the thesis experiment: in trial k, simulate (hexapod::simulate with the trial's own
