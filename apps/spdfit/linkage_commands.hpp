@@ -10,6 +10,7 @@
 
 #include "cli.hpp"
 #include "linkage_arguments.hpp"
+#include "spdfit/format.hpp"
 #include "spdfit/linkage/analysis.hpp"
 
 namespace spdfit::cli {
@@ -39,12 +40,7 @@ void run_synthesize(const SynthesizeOptionsCli& options, const GlobalOptions& gl
 void run_analyze(const AnalyzeOptionsCli& options);
 
 /// Numbers for people: 6 significant digits, or 4 decimals; "-" for NaN.
-inline std::string g(double value) {
-  if (std::isnan(value)) return "-";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", value);
-  return buffer;
-}
+inline std::string g(double value) { return std::isnan(value) ? "-" : format_number(value, Precision::Full); }
 inline std::string f4(double value) {
   if (std::isnan(value)) return "-";
   char buffer[32];
