@@ -28,5 +28,9 @@ int main() {
               spdfit::kVersion, *r.diagnostics.area_criterion, *r.diagnostics.area_criterion_minimum,
               r.diagnostics.positive_definite ? "yes" : "no");
   for (const std::string& warning : r.warnings) std::printf("warning: %s\n", warning.c_str());
-  return 0;
+
+  // The result as JSON and back (spdfit/render.hpp): exact, every double bit for bit.
+  const spdfit::FitResult back = spdfit::from_json<spdfit::FitResult>(spdfit::to_json(r, spdfit::JsonStyle::Exact));
+  std::printf("read back from its JSON: %s\n", back.X == r.X ? "the same X" : "another X");
+  return back.X == r.X ? 0 : 1;
 }
