@@ -15,6 +15,7 @@ namespace spdfit {
 
 namespace detail {
 class RowMoments;
+struct NoiseModelJson;
 }
 
 /// Where a noise model's covariances come from.
@@ -128,6 +129,7 @@ class NoiseModel {
   NoiseModel resolved(Eigen::Index n, Eigen::Index d) const;
 
  private:
+  friend struct detail::NoiseModelJson;  // the JSON rendering (render/noise_model_json.cpp) reads and restores it
   NoiseModel() = default;
   // The model of the rest rows' moments (rest_covariance.cpp), with its warnings.
   static NoiseModel from_rest_moments(const detail::RowMoments& a, const detail::RowMoments& b,

@@ -87,6 +87,7 @@ Json diagnostics_json(const Diagnostics& d, JsonStyle style) {
   put_optional(out, "gradient_norm", d.gradient_norm, style);
   if (d.converged) out["converged"] = *d.converged;
   if (d.certificate) out["certificate"] = certificate_json(*d.certificate, style);
+  if (d.noise_model) out["noise_model"] = noise_model_json(*d.noise_model, style);
   if (d.chosen_method) out["chosen_method"] = std::string(to_string(*d.chosen_method));
   if (d.reason) out["reason"] = reason_json(*d.reason);
   return out;
@@ -129,6 +130,7 @@ Diagnostics diagnostics_from(const Json& object, const Json& shape, const std::s
   d.gradient_norm = optional("gradient_norm");
   if (optional_field(object, "converged")) d.converged = value_from<bool>(object, "converged", what);
   if (const Json* c = optional_field(object, "certificate")) d.certificate = certificate_from(*c, what + " certificate");
+  if (const Json* m = optional_field(object, "noise_model")) d.noise_model = noise_model_from(*m, what + " noise_model");
   if (optional_field(object, "chosen_method")) d.chosen_method = method_from(object, "chosen_method", what);
   if (const Json* r = optional_field(object, "reason")) d.reason = reason_from(*r, what + " reason");
   return d;

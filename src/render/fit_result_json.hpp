@@ -14,6 +14,12 @@ Json fit_result_json(const FitResult& result, JsonStyle style);
 /// The result that fit_result_json wrote; std::invalid_argument naming `type` and the field.
 FitResult fit_result_from(const Json& object, const std::string& type);
 
+/// A noise model: source ("std", "cov", "rest"), cov_a and cov_b (when resolved), std_a and std_b
+/// (standard deviations), rest_rows, rest_mean_a and rest_mean_b, rest_a_path and rest_b_path (rest
+/// rows), warnings; each when it has a value (render/noise_model_json.cpp).
+Json noise_model_json(const NoiseModel& model, JsonStyle style);
+NoiseModel noise_model_from(const Json& object, const std::string& type);
+
 /// estimate, standard_errors, lower, upper, clusters (lists of 0-based indices), failed.
 Json spectrum_json(const SpectrumUncertainty& spectrum, JsonStyle style);
 SpectrumUncertainty spectrum_from(const Json& object, const std::string& type);

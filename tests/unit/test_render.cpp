@@ -16,6 +16,7 @@
 #include "spdfit/hexapod/simulate.hpp"
 #include "spdfit/hexapod/model.hpp"
 #include "spdfit/nearest_correlation.hpp"
+#include "spdfit/noise_model.hpp"
 #include "spdfit/render.hpp"
 #include "test_support.hpp"
 
@@ -255,6 +256,42 @@ TEST(RenderJson, BootstrapsRoundTripInBothSchemes) {
   streamed.bootstrap->groups = 3;
   expect_same(from_json<FitResult>(to_json(streamed, JsonStyle::Exact)), streamed);
   expect_same(from_json<FitResult>(to_json(streamed, JsonStyle::Contract)), streamed);
+}
+
+void expect_same(const NoiseModel& a, const NoiseModel& b) {
+  EXPECT_EQ(a.source(), b.source());
+  EXPECT_TRUE(same_matrix(a.cov_a(), b.cov_a()));
+  EXPECT_TRUE(same_matrix(a.cov_b(), b.cov_b()));
+  EXPECT_TRUE(same_matrix(a.std_a(), b.std_a()));
+  EXPECT_TRUE(same_matrix(a.std_b(), b.std_b()));
+  EXPECT_EQ(a.rest_rows(), b.rest_rows());
+  EXPECT_TRUE(same_matrix(a.rest_mean_a(), b.rest_mean_a()));
+  EXPECT_TRUE(same_matrix(a.rest_mean_b(), b.rest_mean_b()));
+  EXPECT_EQ(a.rest_a_path(), b.rest_a_path());
+  EXPECT_EQ(a.warnings(), b.warnings());
+  EXPECT_EQ(std::make_tuple(a.a_is_zero(), a.a_is_positive_definite(), a.b_is_positive_definite()),
+            std::make_tuple(b.a_is_zero(), b.a_is_positive_definite(), b.b_is_positive_definite()));
+}
+
+TEST(RenderJson, TheNoiseModelOfAFitRoundTrips) {
+  const auto [A, B] = hexapod_data(60, 15);
+  Generator g(16);
+  const std::vector<NoiseModel> models = {
+      NoiseModel::from_std(0.3, 0.7),
+      NoiseModel::from_cov(test::Generator(17).spd(6), test::Generator(18).spd(6)),
+      NoiseModel::from_rest(0.2 * g.gaussian(40, 6), 0.5 * g.gaussian(40, 6) + MatrixXd::Constant(40, 6, 3.0)),
+  };
+  for (const NoiseModel& model : models) {
+    SCOPED_TRACE(std::string(to_string(model.source())));
+    FitOptions options;
+    options.noise = model;
+    const FitResult r = fit(A, B, Method::SpdTotalLeastSquares, options);
+    ASSERT_TRUE(r.ok() && r.diagnostics.noise_model.has_value()) << r.message;
+    const FitResult back = from_json<FitResult>(to_json(r, JsonStyle::Exact));
+    expect_same(back, r);
+    ASSERT_TRUE(back.diagnostics.noise_model.has_value());
+    expect_same(*back.diagnostics.noise_model, *r.diagnostics.noise_model);
+  }
 }
 
 TEST(RenderJson, PartsRoundTripOnTheirOwn) {
