@@ -129,7 +129,9 @@ bool evaluate(const PhysicalData& data, const PhysicalModel& model, const ParamV
 ParamVector unconstrained_least_squares(const PhysicalData& data, const PhysicalModel& model, double cutoff,
                                         Eigen::Index* rank, Eigen::MatrixXd* null_space) {
   const int p = model.parameters;
-  Eigen::Matrix<double, 36, Eigen::Dynamic, Eigen::ColMajor, 36, kMaxPhysicalParameters> Phi(36, p);
+  // Dynamic storage: Eigen 3.4's JacobiSVD of a fixed-row, dynamic-column matrix resizes a fixed
+  // 36-vector in its QR preconditioner (an assertion in builds that keep them).
+  Eigen::MatrixXd Phi(36, p);
   const Matrix6d target = data.R12 - data.R11 * data.M0;
   ParamVector column_scale(p);
   for (int a = 0; a < p; ++a) {
@@ -138,13 +140,13 @@ ParamVector unconstrained_least_squares(const PhysicalData& data, const Physical
     Phi.col(a) = Eigen::Map<const Eigen::Matrix<double, 36, 1>>(data.X[static_cast<std::size_t>(a)].data()) *
                  column_scale(a);
   }
-  const Eigen::JacobiSVD<decltype(Phi)> svd(Phi, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Phi, Eigen::ComputeThinU | Eigen::ComputeThinV);
   const auto& s = svd.singularValues();
   Eigen::Index r = 0;
   while (r < p && s(r) > cutoff * s(0)) ++r;
   if (rank) *rank = r;
   if (null_space) *null_space = column_scale.asDiagonal() * svd.matrixV().rightCols(p - r);
-  const Eigen::Matrix<double, 36, 1> y = Eigen::Map<const Eigen::Matrix<double, 36, 1>>(target.data());
+  const Eigen::VectorXd y = Eigen::Map<const Eigen::Matrix<double, 36, 1>>(target.data());
   ParamVector coefficients = ParamVector::Zero(p);
   const ParamVector Uty = svd.matrixU().leftCols(r).transpose() * y;
   for (Eigen::Index k = 0; k < r; ++k) coefficients += svd.matrixV().col(k) * (Uty(k) / s(k));
