@@ -10,7 +10,7 @@ build=build-sanitize
 jobs=$(nproc 2>/dev/null || echo 2)
 # Debug keeps Eigen's bounds assertions on; the sanitizer option adds -O1 so the tests stay fast.
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++-14 \
-  -DSPDFIT_FUZZ=ON -DSPDFIT_BUILD_BENCHMARKS=OFF >/dev/null
+  -DSPDFIT_FUZZ=ON -DSPDFIT_BUILD_BENCHMARKS=OFF -DSPDFIT_OCTAVE=OFF >/dev/null
 cmake --build "$build" --parallel "$jobs"
 
 # Stack use after return and initialization order are off by default; leaks are on.

@@ -1,0 +1,172 @@
+// spdfit_mex: the one MEX function behind the spdfit package's M-files (+spdfit/*.m), which call
+// it as spdfit_mex('fit', A, B, method, name, value, ...), spdfit_mex('nearest', C, ...) and
+// spdfit_mex('solve', A, b, ...). It converts MATLAB's arrays, runs the library, and returns the
+// estimate and the library's JSON rendering of the result as a struct.
+//
+// No C++ exception crosses into MATLAB: everything that can throw runs inside `run`, whose
+// objects are destroyed before mexErrMsgIdAndTxt (which does not return) raises the error with
+// an identifier: 'spdfit:UsageError' (an option or argument misused), 'spdfit:DataError' (data
+// the library cannot fit) or 'spdfit:NumericalError' (valid data without an answer).
+#include <cstring>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "mex.h"
+#include "mex_arrays.hpp"
+#include "mex_options.hpp"
+#include "spdfit/fit.hpp"
+#include "spdfit/render.hpp"
+
+namespace spdfit::matlab {
+
+namespace {
+
+struct NumericalError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// The identifier of a library warning, by what it says, so that users can silence one kind.
+const char* warning_id(const std::string& text) {
+  const auto has = [&](const char* part) { return text.find(part) != std::string::npos; };
+  if (has("not positive definite") || has("not positive semidefinite")) return "spdfit:notPositiveDefinite";
+  if (has("rank-deficient")) return "spdfit:rankDeficient";
+  if (has("ill-conditioned")) return "spdfit:illConditioned";
+  if (has("did not converge") || has("not converged")) return "spdfit:notConverged";
+  if (has("noise model")) return "spdfit:noiseModel";
+  if (has("bootstrap")) return "spdfit:bootstrap";
+  if (has("eigenvalue(s)")) return "spdfit:eigenvaluesRaised";
+  if (has("not symmetric") || has("asymmetr")) return "spdfit:notSymmetric";
+  return "spdfit:warning";
+}
+
+// The warnings as an n x 2 cell {identifier, text}, which spdfit_call.m raises with `warning`
+// (MATLAB and Octave would prefix the MEX function's name to a warning raised here).
+mxArray* warnings_cell(const std::vector<std::string>& warnings) {
+  mxArray* out = mxCreateCellMatrix(warnings.size(), 2);
+  for (std::size_t k = 0; k < warnings.size(); ++k) {
+    const std::string text = spell_options(warnings[k], Frontend::Matlab);
+    mxSetCell(out, static_cast<mwIndex>(k), mxCreateString(warning_id(text)));
+    mxSetCell(out, static_cast<mwIndex>(k + warnings.size()), mxCreateString(text.c_str()));
+  }
+  return out;
+}
+
+// The name-value pairs from argument `first` on.
+std::vector<NameValue> pairs_from(std::string_view function, int nrhs, const mxArray* prhs[], int first) {
+  if ((nrhs - first) % 2 != 0) {
+    throw UsageError("spdfit." + std::string(function) + ": options come in name-value pairs ('" +
+                     std::string(function == "fit" ? "Bootstrap', 1000" : "MaxIterations', 500") + ")");
+  }
+  std::vector<NameValue> out;
+  for (int k = first; k < nrhs; k += 2) {
+    const std::string name = read_text(prhs[k], "an option's name (argument " + std::to_string(k) + ")");
+    out.push_back(read_name_value(name, prhs[k + 1], option_type(function, name)));
+  }
+  return out;
+}
+
+void need_arguments(std::string_view function, int nrhs, int at_least, const char* usage) {
+  if (nrhs < at_least) throw UsageError("spdfit." + std::string(function) + " needs " + usage);
+}
+
+void fit_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
+  need_arguments("fit", nrhs, 3, "A and B: [X, info] = spdfit.fit(A, B, method, name, value, ...)");
+  Eigen::MatrixXd A = read_matrix(prhs[1], "A");
+  Eigen::MatrixXd B = read_matrix(prhs[2], "B");
+  // Row vectors where columns are meant (one unknown): m samples of a scalar X, as the CLI's
+  // reader takes a file of one row.
+  if (A.rows() == 1 && B.rows() == 1 && A.cols() > 1 && A.cols() == B.cols()) {
+    A.transposeInPlace();
+    B.transposeInPlace();
+  }
+  // The fourth argument is the method when it names one, or when the arguments after it pair up;
+  // otherwise it is an option's name ('Bootstrap', 1000 without a method).
+  bool has_method = false;
+  if (nrhs >= 4 && mxIsChar(prhs[3])) {
+    has_method = parse_method(read_text(prhs[3], "the method")).has_value() || (nrhs - 4) % 2 == 0;
+  }
+  const std::string method = has_method ? read_text(prhs[3], "the method") : "auto";
+  const FitRequest request = fit_request(method, pairs_from("fit", nrhs, prhs, has_method ? 4 : 3));
+  const FitResult result = fit(A, B, request.method, request.options);
+  if (!result.ok()) throw NumericalError(result.message);
+  plhs[0] = write_matrix(result.X);
+  plhs[1] = want_info ? write_json(to_json(result)) : mxCreateDoubleMatrix(0, 0, mxREAL);
+  plhs[2] = warnings_cell(result.warnings);
+}
+
+void nearest_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
+  need_arguments("nearest", nrhs, 2, "C: [X, info] = spdfit.nearest(C, name, value, ...)");
+  const Eigen::MatrixXd C = read_matrix(prhs[1], "C");
+  const NearestRequest request = nearest_request(pairs_from("nearest", nrhs, prhs, 2));
+  const NearestResult result = nearest(C, request);
+  plhs[0] = write_matrix(result.X);
+  plhs[1] = want_info ? write_json(to_json(result)) : mxCreateDoubleMatrix(0, 0, mxREAL);
+  plhs[2] = warnings_cell(result.warnings);
+}
+
+void solve_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
+  need_arguments("solve", nrhs, 3, "A and b: [x, info] = spdfit.solve(A, b, name, value, ...)");
+  const Eigen::MatrixXd A = read_matrix(prhs[1], "A");
+  Eigen::MatrixXd b = read_matrix(prhs[2], "b");
+  if (b.rows() == 1 && b.cols() == A.rows() && A.rows() > 1) b.transposeInPlace();
+  const LinearSystemOptions options = solve_options(pairs_from("solve", nrhs, prhs, 3));
+  const LinearSystemResult result = solve(A, b, options);
+  if (result.status != SolveStatus::Success) throw NumericalError(result.message);
+  plhs[0] = write_matrix(result.solution);
+  plhs[1] = want_info ? write_json(to_json(result)) : mxCreateDoubleMatrix(0, 0, mxREAL);
+  plhs[2] = warnings_cell(result.warnings);
+}
+
+// spdfit_mex(COMMAND, WANT_INFO, arguments...) -> [estimate, info, warnings]: the arguments after
+// the first two are the package function's, which the commands index from 1 (prhs + 1).
+void run(int nlhs, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
+  if (nrhs < 2 || nlhs != 3) {
+    throw UsageError("spdfit_mex is called by the spdfit package's functions (spdfit.fit, ...), not directly");
+  }
+  const std::string command = read_text(prhs[0], "the command");
+  const bool want_info = mxIsLogicalScalarTrue(prhs[1]);
+  if (command == "fit") return fit_command(want_info, plhs, nrhs - 1, prhs + 1);
+  if (command == "nearest") return nearest_command(want_info, plhs, nrhs - 1, prhs + 1);
+  if (command == "solve") return solve_command(want_info, plhs, nrhs - 1, prhs + 1);
+  throw UsageError("spdfit_mex has no command '" + command + "'");
+}
+
+}  // namespace
+
+}  // namespace spdfit::matlab
+
+extern "C" __attribute__((visibility("default"))) void mexFunction(int nlhs, mxArray* plhs[], int nrhs,
+                                                                   const mxArray* prhs[]) {
+  // Outside every scope that owns memory: mexErrMsgIdAndTxt does not return.
+  static std::string message;
+  const char* id = nullptr;
+  try {
+    spdfit::matlab::run(nlhs, plhs, nrhs, prhs);
+  } catch (const spdfit::matlab::UsageError& e) {
+    id = "spdfit:UsageError";
+    message = e.what();
+  } catch (const spdfit::OptionError& e) {
+    id = "spdfit:UsageError";
+    message = spdfit::spell_options(e.what(), spdfit::Frontend::Matlab);
+  } catch (const spdfit::matlab::NumericalError& e) {
+    id = "spdfit:NumericalError";
+    message = spdfit::spell_options(e.what(), spdfit::Frontend::Matlab);
+  } catch (const spdfit::matlab::DataError& e) {
+    id = "spdfit:DataError";
+    message = e.what();
+  } catch (const std::invalid_argument& e) {
+    id = "spdfit:DataError";
+    message = spdfit::spell_options(e.what(), spdfit::Frontend::Matlab);
+  } catch (const std::bad_alloc&) {
+    id = "spdfit:OutOfMemory";
+    message = "out of memory";
+  } catch (const std::exception& e) {
+    id = "spdfit:Error";
+    message = e.what();
+  } catch (...) {
+    id = "spdfit:Error";
+    message = "an unknown error";
+  }
+  if (id != nullptr) mexErrMsgIdAndTxt(id, "%s", message.c_str());
+}

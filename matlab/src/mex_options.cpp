@@ -1,0 +1,167 @@
+#include "mex_options.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+namespace spdfit::matlab {
+
+namespace {
+
+bool same_name(std::string_view a, std::string_view b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+           return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
+         });
+}
+
+// The fit options spdfit.fit takes: those of the in-memory fit. The stream's read files.
+bool fit_takes(std::string_view name) { return name != "stream" && name != "block_rows"; }
+
+// spdfit.solve's options (LinearSystemOptions), which have no table of their own yet.
+struct SolveOption {
+  std::string_view name;
+  std::string_view help;
+  std::string_view default_text;
+};
+constexpr SolveOption kSolveOptions[] = {
+    {"threshold",
+     "Relative singular-value cut-off for the rank, applied to A with its columns scaled to unit norm: sigma_i "
+     "counts as zero when sigma_i <= Threshold * sigma_max.",
+     "max(m, n) eps"},
+    {"rcond_warning", "The reciprocal condition number (of the column-scaled A) below which a warning says that A "
+                      "is ill-conditioned.",
+     "1e-12"},
+};
+
+std::string type_name(OptionType type) {
+  switch (value_shape(type)) {
+    case ValueShape::Boolean: return "logical";
+    case ValueShape::Integer: return "integer";
+    case ValueShape::Real: return "real";
+    case ValueShape::Text: return "text";
+    case ValueShape::List: return "vector";
+  }
+  return "real";
+}
+
+template <typename Request>
+std::vector<MatlabOption> help_of(const std::vector<OptionSpec<Request>>& table, bool (*takes)(std::string_view)) {
+  std::vector<MatlabOption> out;
+  for (const OptionSpec<Request>& spec : table) {
+    if (takes && !takes(spec.name)) continue;
+    out.push_back({camel_case(spec.name), type_name(spec.type), spell_options(spec.help, Frontend::Matlab),
+                   std::string(spec.default_text)});
+  }
+  return out;
+}
+
+template <typename Request>
+const OptionSpec<Request>& spec_named(const std::vector<OptionSpec<Request>>& table, std::string_view typed,
+                                      bool (*takes)(std::string_view), std::string_view function) {
+  std::string names;
+  for (const OptionSpec<Request>& spec : table) {
+    if (takes && !takes(spec.name)) continue;
+    if (same_name(camel_case(spec.name), typed)) return spec;
+    names += (names.empty() ? "" : ", ") + camel_case(spec.name);
+  }
+  throw OptionError("spdfit." + std::string(function) + " has no option '" + std::string(typed) + "' (its options: " +
+                    names + ")");
+}
+
+// Sets each pair in `request` and returns the library names given (those not left at [] ).
+template <typename Request>
+std::vector<std::string_view> set_pairs(Request& request, const std::vector<OptionSpec<Request>>& table,
+                                        const std::vector<NameValue>& pairs, bool (*takes)(std::string_view),
+                                        std::string_view function) {
+  std::vector<std::string_view> given;
+  for (const NameValue& pair : pairs) {
+    const OptionSpec<Request>& spec = spec_named(table, pair.name, takes, function);
+    if (std::find(given.begin(), given.end(), spec.name) != given.end()) {
+      throw OptionError("`" + std::string(spec.name) + "` is given twice");
+    }
+    if (pair.empty) {
+      if (!spec.nullable) throw OptionError("`" + std::string(spec.name) + "` cannot be [] (it has no default to stand for)");
+      continue;
+    }
+    set_option(request, spec, pair.value);
+    given.push_back(spec.name);
+  }
+  return given;
+}
+
+}  // namespace
+
+ValueShape value_shape(OptionType type) {
+  switch (type) {
+    case OptionType::Flag:
+    case OptionType::Boolean: return ValueShape::Boolean;
+    case OptionType::Integer: return ValueShape::Integer;
+    case OptionType::Real: return ValueShape::Real;
+    case OptionType::Text: return ValueShape::Text;
+    case OptionType::RealList:
+    case OptionType::Vector: return ValueShape::List;
+  }
+  return ValueShape::Real;
+}
+
+std::vector<MatlabOption> option_help(std::string_view function) {
+  if (function == "fit") return help_of(fit_option_table(), &fit_takes);
+  if (function == "nearest") return help_of(nearest_option_table(), nullptr);
+  std::vector<MatlabOption> out;
+  for (const SolveOption& o : kSolveOptions) {
+    out.push_back({camel_case(o.name), "real", std::string(o.help), std::string(o.default_text)});
+  }
+  return out;
+}
+
+OptionType option_type(std::string_view function, std::string_view typed_name) {
+  if (function == "fit") return spec_named(fit_option_table(), typed_name, &fit_takes, function).type;
+  if (function == "nearest") return spec_named(nearest_option_table(), typed_name, nullptr, function).type;
+  std::string names;
+  for (const SolveOption& o : kSolveOptions) {
+    if (same_name(camel_case(o.name), typed_name)) return OptionType::Real;
+    names += (names.empty() ? "" : ", ") + camel_case(o.name);
+  }
+  throw OptionError("spdfit.solve has no option '" + std::string(typed_name) + "' (its options: " + names + ")");
+}
+
+FitRequest fit_request(std::string_view method, const std::vector<NameValue>& pairs) {
+  FitRequest request;
+  const std::optional<Method> parsed = parse_method(method);
+  if (!parsed) {
+    std::string names;
+    for (Method m : kSelectableMethods) names += (names.empty() ? "" : ", ") + std::string(to_string(m));
+    throw OptionError("unknown method '" + std::string(method) + "' (methods: " + names + ")");
+  }
+  request.method = *parsed;
+  const std::vector<std::string_view> given = set_pairs(request, fit_option_table(), pairs, &fit_takes, "fit");
+  check_fit_request(request, given);
+  return request;
+}
+
+NearestRequest nearest_request(const std::vector<NameValue>& pairs) {
+  NearestRequest request;
+  const std::vector<std::string_view> given = set_pairs(request, nearest_option_table(), pairs, nullptr, "nearest");
+  check_nearest_request(given);
+  return request;
+}
+
+LinearSystemOptions solve_options(const std::vector<NameValue>& pairs) {
+  LinearSystemOptions options;
+  for (const NameValue& pair : pairs) {
+    if (pair.empty) continue;
+    const double value = std::get<double>(pair.value);
+    const bool threshold = same_name(pair.name, "Threshold");
+    const NumberRange range = threshold ? NumberRange{0.0, 1.0, false, true} : NumberRange{0.0, 1.0};
+    if (!(std::abs(value) <= std::numeric_limits<double>::max()) || !range.contains(value)) {
+      throw OptionError(std::string(threshold ? "`threshold`" : "`rcond_warning`") + " must be a " +
+                        range.describe(false) + ", got " + value_text(value));
+    }
+    (threshold ? options.threshold : options.rcond_warning) = value;
+  }
+  return options;
+}
+
+}  // namespace spdfit::matlab

@@ -1,0 +1,52 @@
+// The MATLAB/Octave front end's options: the name-value pairs of each function, read through the
+// library's option tables (fit_option_table, nearest_option_table) and spelled as MATLAB spells
+// them, the library name in CamelCase ('MaxIterations'), matched without regard to case as
+// MATLAB's own functions match theirs.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "spdfit/fit_request.hpp"
+#include "spdfit/linear_system.hpp"
+#include "spdfit/nearest_request.hpp"
+
+namespace spdfit::matlab {
+
+/// One name-value pair as the gateway received it: the name as typed and a reader of its value.
+struct NameValue {
+  std::string name;
+  OptionValue value;
+  bool empty = false;  ///< the value was [] (the option's default, where the option allows it)
+};
+
+/// How a value of `type` is read from MATLAB: a logical or 0/1 scalar, an integer-valued scalar, a
+/// real scalar, a character vector, or a numeric vector.
+enum class ValueShape { Boolean, Integer, Real, Text, List };
+ValueShape value_shape(OptionType type);
+
+/// A MATLAB function's option, as its help text lists it.
+struct MatlabOption {
+  std::string name;  ///< 'MaxIterations'
+  std::string type;  ///< "logical", "integer", "real", "text", "vector"
+  std::string help;  ///< the table's help text, option names spelled for MATLAB
+  std::string default_text;
+};
+
+/// The options of `function` ("fit": the fit table without the stream's, which reads files;
+/// "nearest": the nearest table; "solve"), for its generated help text.
+std::vector<MatlabOption> option_help(std::string_view function);
+
+/// The type each name-value pair of `function` ("fit", "nearest", "solve") needs, by the name a
+/// user typed (case-insensitive); throws OptionError for a name the function does not take.
+OptionType option_type(std::string_view function, std::string_view typed_name);
+
+/// The request for spdfit.fit with `method` and the pairs given: each value checked against the
+/// table's type and range, each option checked against the method and the table's rules. Throws
+/// OptionError, spelled for MATLAB.
+FitRequest fit_request(std::string_view method, const std::vector<NameValue>& pairs);
+NearestRequest nearest_request(const std::vector<NameValue>& pairs);
+LinearSystemOptions solve_options(const std::vector<NameValue>& pairs);
+
+}  // namespace spdfit::matlab

@@ -1,0 +1,226 @@
+function test_spdfit_mex()
+% The MATLAB/Octave interface against the command-line tool on the same data, its input types,
+% warning and error identifiers, help text, memory across calls and what the MEX links. Run by
+% CTest under Octave (matlab/CMakeLists.txt) with SPDFIT_CLI and SPDFIT_MEX set.
+cli = getenv('SPDFIT_CLI');
+assert(~isempty(cli), 'SPDFIT_CLI is not set');
+work = tempname();
+mkdir(work);
+cleanup = onCleanup(@() remove_folder(work));
+[A, B] = sample_data();
+write_csv(fullfile(work, 'A.csv'), A);
+write_csv(fullfile(work, 'B.csv'), B);
+
+methods = {'ls', 'procrustes', 'tls', 'tls-sym', 'tls-psd', 'spde', 'spd-tls', 'psd-ls', 'auto'};
+for k = 1:numel(methods)
+  [X, info] = spdfit.fit(A, B, methods{k});
+  ref = cli_json(cli, sprintf('fit --method %s --json "%s" "%s"', methods{k}, fullfile(work, 'A.csv'), ...
+                              fullfile(work, 'B.csv')));
+  assert_close(X, ref.X, 1e-13, ['fit ' methods{k}]);
+  assert_same_fields(info, ref, ['fit ' methods{k}]);
+end
+
+% The bootstrap: the same replicates as the CLI's (one generator per replicate, keyed by the seed).
+[X, info] = spdfit.fit(A, B, 'spd-tls', 'Bootstrap', 50, 'Seed', 3, 'Confidence', 0.9);
+ref = cli_json(cli, sprintf('fit --method spd-tls --bootstrap 50 --seed 3 --confidence 0.9 --json "%s" "%s"', ...
+                            fullfile(work, 'A.csv'), fullfile(work, 'B.csv')));
+assert_close(X, ref.X, 1e-13, 'bootstrap X');
+assert_close(info.standard_errors, ref.standard_errors, 1e-12, 'bootstrap standard errors');
+assert(info.bootstrap.replicates == 50, 'bootstrap replicates');
+
+% nearest, its corr and keep-diagonal repairs.
+C = [2 -1 0 0; -1 2 -1 0; 0 -1 2 -1; 0 0 -1 2] - 0.9 * ones(4) + 0.9 * eye(4);
+C(1, 4) = 0.95; C(4, 1) = 0.95;
+write_csv(fullfile(work, 'C.csv'), C);
+cases = {{}, ''; {'Corr', true}, '--corr'; {'MinEigRel', 1e-6}, '--min-eig-rel 1e-6'};
+for k = 1:size(cases, 1)
+  [X, info] = spdfit.nearest(C, cases{k, 1}{:});
+  ref = cli_json(cli, sprintf('nearest %s --json "%s"', cases{k, 2}, fullfile(work, 'C.csv')));
+  assert_close(X, ref.X, 1e-13, ['nearest ' cases{k, 2}]);
+  assert(abs(info.distance - ref.distance) <= 1e-13 * max(1, ref.distance), 'nearest distance');
+end
+
+% solve, with a rank-deficient A.
+As = [1 2 3; 2 4 6; 1 0 1; 0 1 1];
+bs = [6; 12; 2; 2];
+write_csv(fullfile(work, 'As.csv'), As);
+write_csv(fullfile(work, 'bs.csv'), bs);
+[x, info] = spdfit.solve(As, bs);
+ref = cli_json(cli, sprintf('solve --json "%s" "%s"', fullfile(work, 'As.csv'), fullfile(work, 'bs.csv')));
+assert_close(x, ref.solution, 1e-13, 'solve');
+assert(info.rank == ref.rank, 'solve rank');
+assert_close(spdfit.solve(As, bs'), x, 0, 'solve with b as a row');
+
+% Input types: single, integers and logical convert; a row vector A with a row vector B is one
+% variable.
+X = spdfit.fit(A, B, 'ls');
+assert_close(spdfit.fit(single(A), single(B), 'ls'), X, 1e-6, 'single');
+Ai = int32(round(10 * A));
+Bi = int32(round(10 * B));
+assert_close(spdfit.fit(Ai, Bi, 'ls'), spdfit.fit(double(Ai), double(Bi), 'ls'), 0, 'int32');
+assert_close(spdfit.fit(uint8(abs(Ai)), uint8(abs(Bi)), 'ls'), spdfit.fit(abs(double(Ai)), abs(double(Bi)), 'ls'), ...
+             0, 'uint8');
+L = logical(mod(reshape(1:60, 20, 3), 2));
+assert_close(spdfit.fit(L, double(L) * 2 + [L(2:end, :); L(1, :)] * 0.1, 'ls'), ...
+             spdfit.fit(double(L), double(L) * 2 + double([L(2:end, :); L(1, :)]) * 0.1, 'ls'), 0, 'logical');
+a = (1:10) / 3;
+assert_close(spdfit.fit(a, 2 * a, 'ls'), 2, 1e-14, 'row vectors');
+assert_close(spdfit.fit(A, B, "spde"), spdfit.fit(A, B, 'spde'), 0, 'a string method');
+
+% Errors and their identifiers.
+expect_error(@() spdfit.fit(sparse(A), B), 'spdfit:UsageError', 'sparse');
+expect_error(@() spdfit.fit(A + 1i, B), 'spdfit:UsageError', 'complex');
+expect_error(@() spdfit.fit({A}, B), 'spdfit:UsageError', 'cell');
+An = A; An(3, 2) = NaN;
+expect_error(@() spdfit.fit(An, B), 'spdfit:DataError', 'A(3,2) is NaN');
+Bn = B; Bn(5, 1) = Inf;
+expect_error(@() spdfit.fit(A, Bn), 'spdfit:DataError', 'B(5,1) is Inf');
+expect_error(@() spdfit.fit([], B), 'spdfit:DataError', 'A is empty');
+expect_error(@() spdfit.fit(A, B(1:end - 1, :)), 'spdfit:DataError', 'rows');
+expect_error(@() spdfit.fit(A, B, 'nosuch'), 'spdfit:UsageError', 'unknown method');
+expect_error(@() spdfit.fit(A, B, 'spde', 'NoSuchOption', 1), 'spdfit:UsageError', 'no option');
+expect_error(@() spdfit.fit(A, B, 'spde', 'Bootstrap'), 'spdfit:UsageError', 'name-value pairs');
+expect_error(@() spdfit.fit(A, B, 'spde', 'Bootstrap', 2.5), 'spdfit:UsageError', 'integer');
+expect_error(@() spdfit.fit(A, B, 'spde', 'Confidence', 0.9), 'spdfit:UsageError', 'Bootstrap');
+expect_error(@() spdfit.fit(A, B, 'ls', 'MaxIterations', 10), 'spdfit:UsageError', 'MaxIterations');
+expect_error(@() spdfit.fit(A, B, 'spd-tls', 'MaxIterations', -1), 'spdfit:UsageError', 'MaxIterations');
+expect_error(@() spdfit.nearest(C, 'Corr', 'yes'), 'spdfit:UsageError', 'Corr');
+expect_error(@() spdfit.nearest(C, 'KeepDiag', true, 'ViaCorr', true), 'spdfit:UsageError', 'KeepDiag');
+expect_error(@() spdfit.nearest(C, 'Alpha', 0.1), 'spdfit:UsageError', 'Alpha');
+expect_error(@() spdfit.solve(As, [1; 2]), 'spdfit:DataError', 'rows');
+expect_error(@() spdfit.solve(As, bs, 'Threshold', -1), 'spdfit:UsageError', 'Threshold');
+% Option names are not case-sensitive; [] is the default.
+assert_close(spdfit.fit(A, B, 'spd-tls', 'maxiterations', 300), spdfit.fit(A, B, 'spd-tls'), 0, 'case');
+assert_close(spdfit.fit(A, B, 'spd-tls', 'RankTolerance', []), spdfit.fit(A, B, 'spd-tls'), 0, '[] default');
+
+% Warnings carry identifiers, so that users can silence them.
+Ar = [A(:, 1), A(:, 1), A(:, 3)];
+state = warning();
+restore = onCleanup(@() warning(state));
+expect_warning(@() spdfit.fit(Ar, B, 'ls'), 'spdfit:rankDeficient');
+expect_warning(@() spdfit.nearest([1 2; 2 1]), 'spdfit:eigenvaluesRaised');
+% Silenced by its identifier, a warning is not raised (and the result still lists it).
+warning('off', 'spdfit:eigenvaluesRaised');
+lastwarn('', '');
+[~, info] = spdfit.nearest([1 2; 2 1]);
+[~, id] = lastwarn();
+assert(isempty(id) && ~isempty(info.warnings), 'a silenced warning');
+warning(state);
+
+% Help from the M-files, with the option table's options.
+text = help('spdfit.fit');
+assert(~isempty(strfind(text, '''Bootstrap''')) && ~isempty(strfind(text, '''MaxIterations''')), 'help spdfit.fit');
+assert(isempty(strfind(text, '''Stream''')), 'help spdfit.fit lists the stream''s options');
+assert(~isempty(strfind(help('spdfit.nearest'), '''KeepDiag''')), 'help spdfit.nearest');
+assert(~isempty(strfind(help('spdfit.solve'), '''Threshold''')), 'help spdfit.solve');
+
+% A large fit, 100 times: it completes and memory does not grow across calls.
+m = 1e6;
+Al = sin((1:m)' * [0.37, 1.1, 2.3, 0.71, 1.9, 2.9]);
+Bl = Al * (eye(6) + 0.1);
+Xl = spdfit.fit(Al, Bl, 'spde');
+assert(norm(Xl - (eye(6) + 0.1), 'fro') < 1e-9, 'the large fit');
+before = resident_kib();
+for k = 1:100
+  spdfit.fit(Al, Bl, 'ls');
+end
+growth = resident_kib() - before;
+assert(growth < 20 * 1024, sprintf('memory grew by %d KiB over 100 fits of %d x 6', growth, m));
+
+% The MEX links no file reader (libmatio, HDF5): it is a core without them, as MATLAB needs.
+[status, dynamic] = system(['readelf -d "' getenv('SPDFIT_MEX') '"']);
+assert(status == 0, 'readelf');
+assert(isempty(strfind(dynamic, 'matio')) && isempty(strfind(dynamic, 'hdf5')), ['the MEX links: ' dynamic]);
+assert(isempty(strfind(dynamic, 'libstdc++')), 'the MEX links libstdc++ dynamically');
+% docs/matlab.md's examples run as written.
+run_doc_examples(fullfile(getenv('SPDFIT_SOURCE_DIR'), 'docs', 'matlab.md'));
+run_doc_examples(fullfile(getenv('SPDFIT_SOURCE_DIR'), 'README.md'));
+disp('test_spdfit_mex: all passed');
+end
+
+function [A, B] = sample_data()
+% Deterministic data (no random state to record): 40 samples of a 3x3 SPD X, both sides perturbed.
+m = 40;
+M = [4 1 0.5; 1 3 0.2; 0.5 0.2 2];
+A = [sin((1:m)' * 0.7), cos((1:m)' * 1.3), sin((1:m)' * 2.9 + 1)];
+B = A * M + 0.01 * cos((1:m)' * [5.1, 3.7, 8.3]);
+A = A + 0.01 * sin((1:m)' * [4.3, 9.1, 6.7]);
+end
+
+function write_csv(path, X)
+f = fopen(path, 'w');
+for i = 1:size(X, 1)
+  fprintf(f, '%s\n', strjoin(arrayfun(@(v) sprintf('%.17g', v), X(i, :), 'UniformOutput', false), ','));
+end
+fclose(f);
+end
+
+function doc = cli_json(cli, args)
+[status, out] = system(['"' cli '" ' args ' 2>/dev/null']);
+assert(status == 0, sprintf('spdfit %s exited %d', args, status));
+doc = jsondecode(out);
+end
+
+function assert_close(actual, expected, rel, what)
+assert(isequal(size(actual), size(expected)), sprintf('%s: size %s, expected %s', what, mat2str(size(actual)), ...
+                                                      mat2str(size(expected))));
+scale = max(1, norm(expected(:), Inf));
+err = norm(actual(:) - expected(:), Inf);
+assert(err <= rel * scale, sprintf('%s: differs by %g (relative tolerance %g)', what, err / scale, rel));
+end
+
+function assert_same_fields(info, ref, what)
+missing = setdiff(fieldnames(info), fieldnames(ref));
+assert(isempty(missing), sprintf('%s: fields not in the CLI''s JSON: %s', what, strjoin(missing', ', ')));
+missing = setdiff(fieldnames(ref), fieldnames(info));
+assert(isempty(missing), sprintf('%s: CLI JSON fields not in info: %s', what, strjoin(missing', ', ')));
+end
+
+function expect_error(f, id, part)
+try
+  f();
+catch err
+  assert(strcmp(err.identifier, id), sprintf('expected %s (%s), got %s: %s', id, part, err.identifier, err.message));
+  assert(~isempty(strfind(err.message, part)), sprintf('message "%s" does not say "%s"', err.message, part));
+  assert(isempty(strfind(err.message, 'spdfit_mex')), ['message names the MEX: ' err.message]);
+  return;
+end
+error('no error raised (expected %s: %s)', id, part);
+end
+
+function expect_warning(f, id)
+% Only `id` is on, so that lastwarn is the warning the call raised with that identifier.
+state = warning();
+warning('off', 'all');
+warning('on', id);
+lastwarn('', '');
+f();
+[~, got] = lastwarn();
+warning(state);
+assert(strcmp(got, id), sprintf('expected the warning %s, got "%s"', id, got));
+end
+
+function remove_folder(path)
+confirm_recursive_rmdir(false);
+rmdir(path, 's');
+end
+
+function kib = resident_kib()
+text = fileread('/proc/self/status');
+token = regexp(text, 'VmRSS:\s*(\d+)', 'tokens', 'once');
+kib = str2double(token{1});
+end
+
+function run_doc_examples(page)
+% Every ```matlab block of the page, in order, in one workspace of its own.
+text = fileread(page);
+blocks = regexp(text, '```matlab\n(.*?)```', 'tokens');
+assert(~isempty(blocks), ['no examples in ' page]);
+for k = 1:numel(blocks)
+  try
+    evalc(blocks{k}{1});
+  catch err
+    error('%s, example %d: %s', page, k, err.message);
+  end
+end
+end
