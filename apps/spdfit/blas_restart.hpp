@@ -1,4 +1,4 @@
-// Fast BLAS kernels without the user's help (issue 19, item 1). OpenBLAS chooses its kernels once,
+// Fast BLAS kernels without the user's help. OpenBLAS chooses its kernels once,
 // when it loads, before main runs; on a CPU it does not recognise, Debian's 0.3.21 falls back to
 // generic SSE3 ones. spdfit then restarts itself once, with OPENBLAS_CORETYPE naming the CPU's
 // kernels, and says so under --verbose. The rule is numerics/blas_core.hpp's, shared with the

@@ -1,7 +1,7 @@
 // The MPI side of `mpirun -n K spdfit fit --stream`: a plugin (spdfit-mpi.so, built from
 // apps/mpi/) that the command line opens only when an MPI launcher started it. Linked into the
-// command line, Open MPI's libraries (libmpi, libopen-rte, libopen-pal, hwloc, libevent) took
-// 1.5–2 ms of every start, a run under mpirun or not (issue 19).
+// command line, Open MPI's libraries (libmpi, libopen-rte, libopen-pal, hwloc, libevent) slowed
+// every start, a run under mpirun or not (bench/startup_times.sh).
 #pragma once
 
 #include <string>

@@ -75,7 +75,7 @@ struct Diagnostics {
   std::optional<double> min_eigenvalue;  ///< of X, when X is symmetric
   std::optional<double> max_eigenvalue;  ///< of X, when X is symmetric
   bool positive_definite = false;        ///< X symmetric with every eigenvalue > 0
-  bool positive_semidefinite = false;    ///< X symmetric, eigenvalues >= -n eps ||X||
+  bool positive_semidefinite = false;    ///< X symmetric, eigenvalues >= -4 n eps max|lambda| (rounding)
 
   /// The area criterion ||A Y - B Y^-T||_F^2 with X = Y Y^T (Chen & McInroy, Definition II.1),
   /// for a symmetric positive definite X; for a semidefinite X of rank r the criterion

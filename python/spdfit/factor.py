@@ -1,4 +1,4 @@
-"""spdfit.Factor: the data's triangular factor as a value that merges (issue 20).
+"""spdfit.Factor: the data's triangular factor as a value that merges.
 
 Every estimate needs only R, the (n + d) x (n + d) triangular factor of the Householder QR of
 [A B], and the factors of disjoint row sets merge into the factor of their union (TSQR). So a fit

@@ -1,4 +1,4 @@
-// The triangular factor of [A B] as a Python value (issue 20): made from data or from a file
+// The triangular factor of [A B] as a Python value: made from data or from a file
 // pair, merged, estimated from, and sent between processes as the library's own validated bytes
 // (TriangularFactor::serialize), which are also its pickle. python/spdfit/factor.py is the public
 // face (spdfit.Factor): it checks the arguments' types, warns and raises NumericalError.

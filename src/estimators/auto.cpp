@@ -9,6 +9,7 @@
 
 #include "estimators/auto_settle.hpp"
 #include "estimators/diagnostics.hpp"
+#include "factor/reduce.hpp"
 #include "estimators/kernels.hpp"
 #include "estimators/psd_ls_kernel.hpp"
 #include "numerics/linalg.hpp"

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "estimators/kernels.hpp"
+#include "factor/basic_reduction.hpp"
 #include "numerics/linalg.hpp"
 
 namespace spdfit::detail {

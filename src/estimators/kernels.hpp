@@ -14,43 +14,10 @@
 #include <string>
 
 #include "spdfit/fit_result.hpp"
-#include "spdfit/nearest_spd.hpp"
 
 #include "factor/basic_reduction.hpp"
 
 namespace spdfit::detail {
-
-/// Throws std::invalid_argument unless A is k x n, B is k x d, and both are finite (the data
-/// checks of TriangularFactor, shared with the small-problem path).
-void check_data(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
-                Eigen::Index n, Eigen::Index d);
-/// check_data's two halves: the shapes, and NaN or Inf in A or B.
-void check_shapes(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
-                  Eigen::Index n, Eigen::Index d);
-void check_finite(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B);
-
-/// The message for data with fewer rows m than columns n.
-std::string too_few_rows(Eigen::Index m, Eigen::Index n);
-
-/// The compile-time bounds on n the kernels are instantiated for: Eigen::Dynamic, and the small
-/// bounds of small_problem.hpp.
-#define SPDFIT_FOR_EACH_MAX_N(INSTANTIATE) INSTANTIATE(Eigen::Dynamic) INSTANTIATE(2) INSTANTIATE(8)
-
-template <int MaxN>
-using SquareMatrix = typename BasicReduction<MaxN>::Matrix;
-
-/// Fills `out` (all but `options`, which the caller sets) from the (n + d) x (n + d) triangular
-/// factor R of the data (A with n columns, B with d = R.cols() - n) scaled by 2^-exponent_a,
-/// 2^-exponent_b, accumulated from m >= n rows: the SVD of R11, the triangular factor of B and
-/// its singular values, the ranks. Cost O((n + d)^3). Without `vectors_a`, R11's singular
-/// vectors U_a and V_a are left empty (uses_vectors_a says which methods need them).
-template <int MaxN>
-void reduce_into(const typename BasicReduction<MaxN>::Factor& R, Eigen::Index m, Eigen::Index n, int exponent_a,
-                 int exponent_b, BasicReduction<MaxN>& out, bool vectors_a = true);
-
-/// The reduction `method` needs and no more (reduce computes everything, for any method): for
-/// one method's fit, without R11's singular vectors when the method does not use them.
-Reduction reduce_for(const TriangularFactor& factor, const FitOptions& options, Method method);
 
 /// Least squares in scaled units: back substitution in R11 for full-rank A, else the
 /// minimum-norm solution from the edited SVD.
@@ -97,39 +64,6 @@ struct TlsKernel {
 };
 template <int MaxN>
 void tls_kernel(const BasicReduction<MaxN>& data, TlsKernel<MaxN>& out);
-
-/// The (n + d) x (n + d) factor of [A, B / noise_ratio] in a common scaling 2^-e of A and B (what
-/// TLS and the noise estimate decompose).
-template <int MaxN>
-void tls_factor(const BasicReduction<MaxN>& data, typename BasicReduction<MaxN>::Factor& R, int& e);
-
-/// The noise estimate sigma^2 = sum_{i>n} s_i^2 / (d (m - n)), s_i the singular values of
-/// [A, B / noise_ratio] in the data's units (of A): unbiased for independent noise of variance
-/// sigma^2 in every entry of A (and noise_ratio^2 sigma^2 in B) when A_true X = B_true. Nothing
-/// when m <= n. Cost O((n + d)^3).
-template <int MaxN>
-std::optional<double> noise_variance(const BasicReduction<MaxN>& data);
-
-/// What nearest_spd_kernel reports besides the matrix.
-struct NearestSpdInfo {
-  Eigen::Index clipped = 0;   ///< eigenvalues raised to the floor
-  double min_before = 0.0;    ///< smallest eigenvalue of the symmetric part, in X's units
-  double max_before = 0.0;    ///< largest eigenvalue of the symmetric part, in X's units
-  double min_eig = 0.0;       ///< the floor applied, in X's units (a relative floor resolved)
-  double distance = 0.0;      ///< ||X - Y||_F
-  double repair = 0.0;        ///< ||X - Y_0||_F, Y_0 the answer for the floor 0
-  double floor_change = 0.0;  ///< ||Y - Y_0||_F, what the floor alone moved
-};
-
-/// Higham's nearest symmetric Y to X with eigenvalues >= the floor (see nearest_spd), computed
-/// in units where the largest entry of X (or an absolute floor) is in [0.5, 1), an exact
-/// power-of-two scaling, and written into y in X's units. X finite, the floor valid. Returns
-/// false when the eigensolver did not converge, or when a relative floor meets a largest
-/// eigenvalue <= 0 (info->max_before says which). `info`, when given, is filled (the distances
-/// cost norms that the estimators do not need).
-template <int MaxN>
-bool nearest_spd_kernel(const SquareMatrix<MaxN>& X, EigenvalueFloor floor, SquareMatrix<MaxN>& y,
-                        NearestSpdInfo* info = nullptr);
 
 /// What auto (auto.hpp) chooses, and the numbers it chose by.
 struct AutoChoice {

@@ -5,7 +5,7 @@
 #include <memory>
 #include <utility>
 
-#include "estimators/kernels.hpp"
+#include "factor/reduce.hpp"
 #include "numerics/linalg.hpp"
 
 namespace spdfit::detail {

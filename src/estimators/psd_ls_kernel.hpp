@@ -19,7 +19,7 @@ struct PsdLsKernel {
   double duality_gap = 0.0;      ///< |complementarity| / (||R11||_2^2 ||X_s||_F + ||R11^T R12||_F)
 };
 
-/// The tolerance on the relative KKT residual (issue 14).
+/// The tolerance on the relative KKT residual: the certificate's, near double's rounding level.
 inline constexpr double kPsdLsTolerance = 1e-12;
 
 /// Minimizes ||R11 X_s - R12||_F over symmetric X_s >= epsilon_s I (epsilon_s >= 0): the

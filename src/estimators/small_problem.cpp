@@ -4,6 +4,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "factor/data_checks.hpp"
+#include "factor/reduce.hpp"
+#include "repair/nearest_spd_kernel.hpp"
 #include "estimators/kernels.hpp"
 #include "estimators/psd_ls_kernel.hpp"
 #include "estimators/spd_tls_kernel.hpp"

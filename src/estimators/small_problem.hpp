@@ -11,12 +11,10 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "factor/basic_reduction.hpp"  // kSmallProblemMaxN
 #include "spdfit/method.hpp"
 
 namespace spdfit::detail {
-
-/// The largest n the small-problem path handles.
-constexpr int kSmallProblemMaxN = 8;
 
 /// Runs `methods` on A, B (m x n each, finite, m >= n, n <= kSmallProblemMaxN) with the default
 /// FitOptions: X[i] becomes method i's estimate in the data's units, or an empty matrix where

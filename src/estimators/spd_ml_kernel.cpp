@@ -8,6 +8,7 @@
 #include "estimators/generalized_tls.hpp"
 #include "estimators/newton_common.hpp"
 #include "numerics/linalg.hpp"
+#include "repair/nearest_spd_kernel.hpp"
 
 namespace spdfit::detail {
 

@@ -9,6 +9,8 @@
 
 #include "estimators/diagnostics.hpp"
 #include "estimators/generalized_tls.hpp"
+#include "factor/data_checks.hpp"
+#include "factor/reduce.hpp"
 #include "estimators/kernels.hpp"
 #include "numerics/linalg.hpp"
 #include "spdfit/nearest_spd.hpp"

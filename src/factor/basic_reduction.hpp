@@ -22,11 +22,20 @@ namespace spdfit::detail {
 ///
 /// B has d columns: d = n except for the n x d X of ls and tls (only they accept d != n).
 ///
-/// Built by reduce_into (kernels.hpp) in O(n^3) from a triangular factor.
+/// Built by reduce_into (reduce.hpp) in O(n^3) from a triangular factor.
 ///
 /// MaxN bounds n at compile time: the small-problem path (Monte Carlo experiments) uses
-/// BasicReduction<2> and BasicReduction<8> whose matrices live on the stack; the public
+/// BasicReduction<2> and BasicReduction<kSmallProblemMaxN> whose matrices live on the stack; the public
 /// spdfit::Reduction holds a BasicReduction<Eigen::Dynamic>.
+/// The largest n of the small-problem path (small_problem.hpp), whose matrices live on the stack.
+constexpr int kSmallProblemMaxN = 8;
+
+/// The compile-time bounds on n the kernels are instantiated for: Eigen::Dynamic, and the small
+/// bounds 2 and kSmallProblemMaxN. Each kernel's file instantiates it with
+/// SPDFIT_FOR_EACH_MAX_N(ITS_INSTANTIATION_MACRO).
+#define SPDFIT_FOR_EACH_MAX_N(INSTANTIATE) \
+  INSTANTIATE(Eigen::Dynamic) INSTANTIATE(2) INSTANTIATE(::spdfit::detail::kSmallProblemMaxN)
+
 template <int MaxN = Eigen::Dynamic>
 struct BasicReduction {
   using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, MaxN, MaxN>;
@@ -51,11 +60,15 @@ struct BasicReduction {
   /// may exceed 1 / kIllConditionedRcond, for the warning.
   double cond_a_scaled = 0.0, cond_b_scaled = 0.0;
   FitOptions options;
-  /// The noise estimate sigma^2 (noise_variance, kernels.hpp), in A's units: set by reduce when
+  /// The noise estimate sigma^2 (noise_variance, reduce.hpp), in A's units: set by reduce when
   /// options.diagnostics, options.reported_diagnostics and m > n, for every method's diagnostics to
   /// report.
   std::optional<double> noise_var;
 };
+
+/// A square matrix of at most MaxN rows (MaxN = Eigen::Dynamic: any).
+template <int MaxN>
+using SquareMatrix = typename BasicReduction<MaxN>::Matrix;
 
 /// The lecture notes (002, section 3.7.2) call a matrix ill-conditioned when its reciprocal
 /// condition number is below 1e-12: estimates may then have lost about 12 digits or more. The

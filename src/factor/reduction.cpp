@@ -7,7 +7,8 @@
 #include <string>
 #include <utility>
 
-#include "estimators/kernels.hpp"
+#include "factor/data_checks.hpp"
+#include "factor/reduce.hpp"
 #include "numerics/least_squares.hpp"
 #include "numerics/linalg.hpp"
 
@@ -81,7 +82,7 @@ std::optional<double> noise_variance(const BasicReduction<MaxN>& data) {
   BasicSvd<Factor> dec;
   svd_into(R, dec, false, false);
   // Under the TLS model the d smallest singular values of [A, B / r] carry only noise: their
-  // squares sum to sigma^2 times d (m - n) in expectation (issue 14's unbiased estimate). At
+  // squares sum to sigma^2 times d (m - n) in expectation (the unbiased estimate). At
   // m < n + d the factor's bottom rows are zero, and so are the trailing singular values.
   const double tail = dec.s.tail(d).norm();
   return std::ldexp(tail * tail / (static_cast<double>(d) * static_cast<double>(m - n)), 2 * e);

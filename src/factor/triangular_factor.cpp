@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "estimators/kernels.hpp"
+#include "factor/data_checks.hpp"
 #include "numerics/linalg.hpp"
 
 namespace spdfit {

@@ -1,8 +1,8 @@
 // Internal: libmatio (.mat files) and libzip (.npz archives), opened at their first use instead
 // of at every start of a program. Linked in, they and what they pull in (libhdf5, and through it
-// curl, TLS, Kerberos and LDAP: 35 of the 55 shared objects the command line loaded) took about
-// 6.5 ms of its 13 ms start, paid by every run, most of which read no .mat or .npz file (issue 19;
-// bench/startup_times.sh).
+// curl, TLS, Kerberos and LDAP: most of the shared objects the command line loaded) took about
+// half of its start, paid by every run, most of which read no .mat or .npz file
+// (bench/startup_times.sh measures it; docs/performance.md has the numbers).
 #pragma once
 
 #include <matio.h>
@@ -33,7 +33,7 @@ struct Libzip {
 
 /// libmatio's functions, the library loaded at the first call (thread-safe; once per process).
 /// Throws DataError naming `file` ("reading it needs libmatio ...") when the library or one of
-/// its functions cannot be loaded. Cost: the first call about 6 ms, later ones nothing.
+/// its functions cannot be loaded. Cost: the first call loads the libraries, later ones nothing.
 const Matio& matio(const std::string& file);
 
 /// libmatio's functions once matio(file) has returned them (for closing files and freeing

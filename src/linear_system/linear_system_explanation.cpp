@@ -121,7 +121,7 @@ std::string explain(const LinearSystemResult& r) {
   for (Index i = r.rank; i < s.size(); ++i) edited_nonzero += s(i) > 0.0;
   if (edited_nonzero > 0) {
     // Only the default cut-off, max(m, n) eps, marks a value as roundoff; a threshold the user
-    // chose cuts values that may be real (issue 18).
+    // chose cuts values that may be real.
     const bool roundoff = r.threshold == default_rank_tolerance(r.m, r.n);
     const std::string was = edited_nonzero == 1 ? "was" : "were";
     if (roundoff) {

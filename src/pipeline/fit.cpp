@@ -3,6 +3,7 @@
 #include <array>
 #include <optional>
 
+#include "factor/reduce.hpp"
 #include "estimators/kernels.hpp"
 #include "estimators/noise_weights.hpp"
 #include "spdfit/auto.hpp"

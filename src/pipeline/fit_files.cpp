@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "estimators/kernels.hpp"
+#include "factor/reduce.hpp"
 #include "pipeline/pair_checks.hpp"
 #include "spdfit/options.hpp"
 #include "pipeline/stream_resampling.hpp"

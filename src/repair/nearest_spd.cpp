@@ -5,7 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "estimators/kernels.hpp"
+#include "repair/nearest_spd_kernel.hpp"
 #include "spdfit/format.hpp"
 #include "numerics/linalg.hpp"
 #include "repair/repair.hpp"

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "estimators/diagnostics.hpp"
+#include "factor/reduce.hpp"
 #include "estimators/kernels.hpp"
 #include "estimators/noise_weights.hpp"
 #include "estimators/psd_ls_kernel.hpp"
