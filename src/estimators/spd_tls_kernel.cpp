@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "estimators/newton_common.hpp"
 #include "numerics/linalg.hpp"
@@ -63,21 +64,194 @@ double spd_tls_criterion(const BasicReduction<MaxN>& data, const SquareMatrix<Ma
 // How a Newton run on one face ended.
 enum class NewtonEnd { Failed, Converged, Stopped, Boundary, Unbounded };
 
+namespace {
+
+// The derivatives of f at a point, in the eigenbasis of its X.
+template <int MaxN>
+struct Derivatives {
+  using Matrix = SquareMatrix<MaxN>;
+  Matrix At, M, E, F;  // R11 Q, Q^T R11^T G Q, E = Gt^T Gt + R22t^T R22t, F = K E K
+  Matrix g, gS;        // the Euclidean gradient and the Riemannian one, X^1/2 g X^1/2
+  typename BasicReduction<MaxN>::Vector sqrt_lambda;
+  double gnorm = 0.0;  // ||gS||_F
+};
+
+// The Euclidean gradient in the eigenbasis of X (K = diag(k) commutes with X = diag(lambda)):
+// grad f = R11^T G K + K G^T R11 - X F - F X with F = K E K, so with M = Q^T R11^T G Q,
+// g_ij = M_ij k_j + k_i M_ji - (lambda_i + lambda_j) F_ij; and the Riemannian gradient
+// X^1/2 grad f X^1/2 (the derivative in S at S = 0).
+template <int MaxN>
+void gradient(const BasicReduction<MaxN>& data, const Point<MaxN>& cur, Derivatives<MaxN>& d) {
+  const Index n = data.n;
+  const auto& lambda = cur.lambda;
+  const auto& k = cur.k;
+  d.sqrt_lambda = lambda.cwiseSqrt();
+  d.At.noalias() = data.R11 * cur.Q;
+  d.M.noalias() = d.At.transpose() * cur.Gt;
+  d.E.noalias() = cur.Gt.transpose() * cur.Gt;
+  d.E.noalias() += cur.R22t.transpose() * cur.R22t;
+  d.F = k.asDiagonal() * d.E * k.asDiagonal();
+  d.g.resize(n, n);
+  for (Index j = 0; j < n; ++j)
+    for (Index i = 0; i < n; ++i) d.g(i, j) = d.M(i, j) * k(j) + k(i) * d.M(j, i) - (lambda(i) + lambda(j)) * d.F(i, j);
+  d.gS = d.sqrt_lambda.asDiagonal() * d.g * d.sqrt_lambda.asDiagonal();
+  d.gnorm = d.gS.norm();
+}
+
+// Where the iteration leaves the open cone: Boundary when an eigenvalue is driven towards zero
+// while the criterion still decreases along it (g_ii > 0: its limit is 0, and the caller
+// continues on the face without it; `zero` marks them), Unbounded when an eigenvalue grows past
+// any sensible size while f still decreases along it (no minimizer); nothing otherwise.
+template <int MaxN>
+std::optional<NewtonEnd> leaves_the_cone(const Point<MaxN>& cur, const Derivatives<MaxN>& d, double data_scale,
+                                         double infinity,
+                                         Eigen::Matrix<bool, Eigen::Dynamic, 1, Eigen::ColMajor, MaxN, 1>& zero) {
+  const auto& lambda = cur.lambda;
+  const Index n = lambda.size();
+  const double scale = std::max(lambda.maxCoeff(), data_scale);
+  zero.resize(n);
+  for (Index i = 0; i < n; ++i) zero(i) = lambda(i) <= kBoundaryRatio * scale && d.g(i, i) > 0.0;
+  if (zero.any()) return NewtonEnd::Boundary;
+  for (Index i = 0; i < n; ++i)
+    if (lambda(i) >= infinity && d.g(i, i) < 0.0) return NewtonEnd::Unbounded;
+  return std::nullopt;
+}
+
+// The rounding level of gS: each term's rounding error, from the sizes of what it cancels.
+template <int MaxN>
+double gradient_rounding_floor(const BasicReduction<MaxN>& data, const Point<MaxN>& cur, const Derivatives<MaxN>& d) {
+  using Matrix = SquareMatrix<MaxN>;
+  const Index n = data.n;
+  const auto& lambda = cur.lambda;
+  const auto& k = cur.k;
+  const Matrix Gabs = (data.R11.cwiseAbs() * cur.X.cwiseAbs() + data.R12.cwiseAbs()) * cur.Q.cwiseAbs();
+  const Matrix Mabs = d.At.cwiseAbs().transpose() * Gabs;
+  const Matrix Eabs = cur.Gt.cwiseAbs().transpose() * Gabs;
+  double floor2 = 0.0;
+  for (Index j = 0; j < n; ++j)
+    for (Index i = 0; i < n; ++i) {
+      const double t = d.sqrt_lambda(i) * d.sqrt_lambda(j) *
+                       (Mabs(i, j) * k(j) + k(i) * Mabs(j, i) +
+                        (lambda(i) + lambda(j)) * k(i) * k(j) * (Eabs(i, j) + Eabs(j, i)));
+      floor2 += t * t;
+    }
+  return kRoundingMultiple * static_cast<double>(n) * kEps * std::sqrt(floor2);
+}
+
+// Newton's model of f(X^1/2 exp(S) X^1/2) in the symmetric S (eigenbasis):
+// f + <gS, S> + sum_abc phi(a,b,c) S_ab S_bc with
+// phi = sqrt(l_a l_c) (l_b h(a,b,c) + g_ac / 2), where f(X + D) = f + <g, D> +
+// sum_abc h D_ab D_bc + O(D^3) and (K' the derivative of K, c_bc = (l_b + l_c) k_b k_c)
+// h = k_b P_ac - (M_ac c_bc + M_ca c_ba) - F_ac + F_ac (l_a + l_b)(l_b + l_c) k_b.
+// Coordinates: S_ii = s_ii, S_ij = S_ji = s_ij / sqrt(2), so that |s| = ||S||_F.
+template <int MaxN, typename PMatrix, typename PVector>
+void newton_model(const Point<MaxN>& cur, const Derivatives<MaxN>& d, PMatrix& H, PVector& grad) {
+  using Matrix = SquareMatrix<MaxN>;
+  const auto& lambda = cur.lambda;
+  const auto& k = cur.k;
+  const Index n = lambda.size();
+  const double root2 = std::sqrt(2.0);
+  const Matrix P = d.At.transpose() * d.At;
+  H.setZero();
+  for (Index b = 0; b < n; ++b)
+    for (Index a = 0; a < n; ++a) {
+      const double beta_ab = a == b ? 1.0 : 1.0 / root2;
+      const Index pab = packed(a, b);
+      for (Index c = 0; c < n; ++c) {
+        const double beta_bc = b == c ? 1.0 : 1.0 / root2;
+        const double c_bc = (lambda(b) + lambda(c)) * k(b) * k(c);
+        const double c_ba = (lambda(b) + lambda(a)) * k(b) * k(a);
+        const double h = k(b) * P(a, c) - (d.M(a, c) * c_bc + d.M(c, a) * c_ba) - d.F(a, c) +
+                         d.F(a, c) * (lambda(a) + lambda(b)) * (lambda(b) + lambda(c)) * k(b);
+        const double phi = d.sqrt_lambda(a) * d.sqrt_lambda(c) * (lambda(b) * h + 0.5 * d.g(a, c));
+        H(pab, packed(b, c)) += phi * beta_ab * beta_bc;
+      }
+    }
+  H = (H + H.transpose()).eval();
+  for (Index j = 0; j < n; ++j)
+    for (Index i = 0; i <= j; ++i) grad(packed(i, j)) = i == j ? d.gS(i, i) : root2 * d.gS(i, j);
+}
+
+// The step s minimizing the model within the trust region: the Newton step of H + mu I, with the
+// Levenberg-Marquardt shift mu the smallest of 0, 1e-8 |H|, 1e-7 |H|, ... making it positive
+// definite, cut back to the radius. False for a non-finite H. Sets `step` = |s| and `predicted`,
+// the model's decrease.
+template <typename PMatrix, typename PVector>
+bool trust_region_step(const PMatrix& H, const PVector& grad, double gnorm, double radius, PMatrix& Hmu,
+                       Eigen::LLT<PMatrix>& llt, PVector& s, double& step, double& predicted) {
+  const double h_scale = std::max(H.diagonal().cwiseAbs().maxCoeff(), gnorm);
+  double mu = 0.0;
+  for (;;) {
+    Hmu = H;
+    Hmu.diagonal().array() += mu;
+    llt.compute(Hmu);
+    if (llt.info() == Eigen::Success && (llt.matrixLLT().diagonal().array() > 0.0).all()) break;
+    mu = mu == 0.0 ? 1e-8 * h_scale : 10.0 * mu;
+    if (!(mu < 1e30 * h_scale)) return false;
+  }
+  s = -llt.solve(grad);
+  step = s.norm();
+  if (step > radius) {
+    s *= radius / step;
+    step = radius;
+  }
+  predicted = -(grad.dot(s) + 0.5 * s.dot(H * s));
+  return true;
+}
+
+// The trial point X^1/2 Z X^1/2 with Z = exp(S) = V exp(sigma) V^T, or for small steps its
+// second-order Taylor polynomial I + S + S^2 / 2, positive definite for every S (1 + x + x^2/2
+// > 0) and agreeing with exp to third order: Newton's quadratic convergence is kept. In the
+// eigenbasis of X, T = Lambda^1/2 Z Lambda^1/2; X_trial = Q T Q^T. False when the eigensolver
+// fails.
+template <int MaxN, typename PVector>
+bool trial_point(const Point<MaxN>& cur, const Derivatives<MaxN>& d, const PVector& s, double step,
+                 SquareMatrix<MaxN>& T, Point<MaxN>& trial) {
+  using Matrix = SquareMatrix<MaxN>;
+  const Index n = cur.lambda.size();
+  const double root2 = std::sqrt(2.0);
+  Matrix S(n, n), Z;
+  for (Index j = 0; j < n; ++j)
+    for (Index i = 0; i <= j; ++i) {
+      const double v = i == j ? s(packed(i, j)) : s(packed(i, j)) / root2;
+      S(i, j) = v;
+      S(j, i) = v;
+    }
+  if (step <= kTaylorRadius) {
+    Z.noalias() = 0.5 * S * S;
+    Z += S;
+    Z.diagonal().array() += 1.0;
+  } else {
+    T = S;
+    Z = Matrix::Identity(n, n);  // V
+    if (!jacobi_eigen(T, Z)) return false;
+    Z = Z * T.diagonal().array().exp().matrix().asDiagonal() * Z.transpose();
+  }
+  T = d.sqrt_lambda.asDiagonal() * Z * d.sqrt_lambda.asDiagonal();
+  T = symmetric_part(T);
+  trial.X.noalias() = cur.Q * T * cur.Q.transpose();
+  trial.X = symmetric_part(trial.X);
+  return true;
+}
+
+}  // namespace
+
 // Newton's method on the positive definite k x k matrices, k = data.n (the whole problem, or a
-// face X = U Y U^T of the boundary, whose data are R11 U, R12 U, R22 U). On Boundary, `zero`
-// marks the eigenvalues of cur (in cur.Q) heading to zero.
+// face X = U Y U^T of the boundary, whose data are R11 U, R12 U, R22 U), a Riemannian trust
+// region in the metric of the cone: at each iterate the gradient, the exits from the cone, the
+// convergence test against the gradient's rounding level, Newton's model, its step within the
+// region, the trial point on the cone, and the region's update. On Boundary, `zero` marks the
+// eigenvalues of cur (in cur.Q) heading to zero.
 template <int MaxN>
 NewtonEnd newton(const BasicReduction<MaxN>& data, double r2, double infinity, const SquareMatrix<MaxN>& X0,
                  int max_iterations,
                  Point<MaxN>& cur, double& gnorm, int& iterations,
                  Eigen::Matrix<bool, Eigen::Dynamic, 1, Eigen::ColMajor, MaxN, 1>& zero) {
   using Matrix = SquareMatrix<MaxN>;
-  using Vector = typename BasicReduction<MaxN>::Vector;
   constexpr int kMaxP = MaxN == Eigen::Dynamic ? Eigen::Dynamic : MaxN * (MaxN + 1) / 2;
   using PMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kMaxP, kMaxP>;
   using PVector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxP, 1>;
   const Index n = data.n, np = n * (n + 1) / 2;
-  const double root2 = std::sqrt(2.0);
   const double norm_a = data.R11.norm();
   const double data_scale = norm_a > 0.0 ? data.R12.norm() / norm_a : 0.0;
 
@@ -86,8 +260,8 @@ NewtonEnd newton(const BasicReduction<MaxN>& data, double r2, double infinity, c
   cur.X = X0;
   if (!evaluate<MaxN>(data, r2, X0, Matrix::Identity(n, n), cur)) return NewtonEnd::Failed;
 
-  Matrix At, M, E, F, g, gS, S, Z, T;
-  Vector sqrt_lambda;
+  Derivatives<MaxN> d;
+  Matrix T;
   PMatrix H(np, np), Hmu(np, np);
   PVector grad(np), s(np);
   Eigen::LLT<PMatrix> llt(np);
@@ -95,123 +269,18 @@ NewtonEnd newton(const BasicReduction<MaxN>& data, double r2, double infinity, c
   gnorm = 0.0;
 
   for (;;) {
-    // The Euclidean gradient in the eigenbasis of X (K = diag(k) commutes with X = diag(lambda)):
-    // grad f = R11^T G K + K G^T R11 - X F - F X with F = K E K, so with M = Q^T R11^T G Q,
-    // g_ij = M_ij k_j + k_i M_ji - (lambda_i + lambda_j) F_ij.
-    const auto& lambda = cur.lambda;
-    const auto& k = cur.k;
-    sqrt_lambda = lambda.cwiseSqrt();
-    At.noalias() = data.R11 * cur.Q;
-    M.noalias() = At.transpose() * cur.Gt;
-    E.noalias() = cur.Gt.transpose() * cur.Gt;
-    E.noalias() += cur.R22t.transpose() * cur.R22t;
-    F = k.asDiagonal() * E * k.asDiagonal();
-    g.resize(n, n);
-    for (Index j = 0; j < n; ++j)
-      for (Index i = 0; i < n; ++i) g(i, j) = M(i, j) * k(j) + k(i) * M(j, i) - (lambda(i) + lambda(j)) * F(i, j);
-    // The Riemannian gradient X^1/2 grad f X^1/2 (the derivative in S at S = 0).
-    gS = sqrt_lambda.asDiagonal() * g * sqrt_lambda.asDiagonal();
-    gnorm = gS.norm();
-
-    // The boundary: an eigenvalue driven towards zero while the criterion still decreases along
-    // it (g_ii > 0) has the limit 0; the caller continues on the face without it.
-    const double scale = std::max(lambda.maxCoeff(), data_scale);
-    zero.resize(n);
-    for (Index i = 0; i < n; ++i) zero(i) = lambda(i) <= kBoundaryRatio * scale && g(i, i) > 0.0;
-    if (zero.any()) return NewtonEnd::Boundary;
-    // No minimizer: an eigenvalue grows past any sensible size while f still decreases along it.
-    for (Index i = 0; i < n; ++i)
-      if (lambda(i) >= infinity && g(i, i) < 0.0) return NewtonEnd::Unbounded;
-
-    // The rounding level of gS: each term's rounding error, from the sizes of what it cancels.
-    {
-      const Matrix Gabs = (data.R11.cwiseAbs() * cur.X.cwiseAbs() + data.R12.cwiseAbs()) * cur.Q.cwiseAbs();
-      const Matrix Mabs = At.cwiseAbs().transpose() * Gabs;
-      const Matrix Eabs = cur.Gt.cwiseAbs().transpose() * Gabs;
-      double floor2 = 0.0;
-      for (Index j = 0; j < n; ++j)
-        for (Index i = 0; i < n; ++i) {
-          const double t = sqrt_lambda(i) * sqrt_lambda(j) *
-                           (Mabs(i, j) * k(j) + k(i) * Mabs(j, i) +
-                            (lambda(i) + lambda(j)) * k(i) * k(j) * (Eabs(i, j) + Eabs(j, i)));
-          floor2 += t * t;
-        }
-      const double floor = kRoundingMultiple * static_cast<double>(n) * kEps * std::sqrt(floor2);
-      if (gnorm <= kGradientTolerance * cur.f || gnorm <= floor) return NewtonEnd::Converged;
+    gradient(data, cur, d);
+    gnorm = d.gnorm;
+    if (auto end = leaves_the_cone(cur, d, data_scale, infinity, zero)) return *end;
+    if (gnorm <= kGradientTolerance * cur.f || gnorm <= gradient_rounding_floor(data, cur, d)) {
+      return NewtonEnd::Converged;
     }
     if (iterations >= max_iterations || radius < kMinRadius) return NewtonEnd::Stopped;
 
-    // Newton's model of f(X^1/2 exp(S) X^1/2) in the symmetric S (eigenbasis):
-    // f + <gS, S> + sum_abc phi(a,b,c) S_ab S_bc with
-    // phi = sqrt(l_a l_c) (l_b h(a,b,c) + g_ac / 2), where f(X + D) = f + <g, D> +
-    // sum_abc h D_ab D_bc + O(D^3) and (K' the derivative of K, c_bc = (l_b + l_c) k_b k_c)
-    // h = k_b P_ac - (M_ac c_bc + M_ca c_ba) - F_ac + F_ac (l_a + l_b)(l_b + l_c) k_b.
-    // Coordinates: S_ii = s_ii, S_ij = S_ji = s_ij / sqrt(2), so that |s| = ||S||_F.
-    const Matrix P = At.transpose() * At;
-    H.setZero();
-    for (Index b = 0; b < n; ++b)
-      for (Index a = 0; a < n; ++a) {
-        const double beta_ab = a == b ? 1.0 : 1.0 / root2;
-        const Index pab = packed(a, b);
-        for (Index c = 0; c < n; ++c) {
-          const double beta_bc = b == c ? 1.0 : 1.0 / root2;
-          const double c_bc = (lambda(b) + lambda(c)) * k(b) * k(c);
-          const double c_ba = (lambda(b) + lambda(a)) * k(b) * k(a);
-          const double h = k(b) * P(a, c) - (M(a, c) * c_bc + M(c, a) * c_ba) - F(a, c) +
-                           F(a, c) * (lambda(a) + lambda(b)) * (lambda(b) + lambda(c)) * k(b);
-          const double phi = sqrt_lambda(a) * sqrt_lambda(c) * (lambda(b) * h + 0.5 * g(a, c));
-          H(pab, packed(b, c)) += phi * beta_ab * beta_bc;
-        }
-      }
-    H = (H + H.transpose()).eval();
-    for (Index j = 0; j < n; ++j)
-      for (Index i = 0; i <= j; ++i) grad(packed(i, j)) = i == j ? gS(i, i) : root2 * gS(i, j);
-
-    // Levenberg-Marquardt shift: the smallest of 0, 1e-8 |H|, 1e-7 |H|, ... making H + mu I
-    // positive definite.
-    const double h_scale = std::max(H.diagonal().cwiseAbs().maxCoeff(), gnorm);
-    double mu = 0.0;
-    for (;;) {
-      Hmu = H;
-      Hmu.diagonal().array() += mu;
-      llt.compute(Hmu);
-      if (llt.info() == Eigen::Success && (llt.matrixLLT().diagonal().array() > 0.0).all()) break;
-      mu = mu == 0.0 ? 1e-8 * h_scale : 10.0 * mu;
-      if (!(mu < 1e30 * h_scale)) return NewtonEnd::Failed;  // non-finite H
-    }
-    s = -llt.solve(grad);
-    double step = s.norm();
-    if (step > radius) {
-      s *= radius / step;
-      step = radius;
-    }
-    const double predicted = -(grad.dot(s) + 0.5 * s.dot(H * s));
-
-    // The trial point X^1/2 Z X^1/2 with Z = exp(S) = V exp(sigma) V^T, or for small steps its
-    // second-order Taylor polynomial I + S + S^2 / 2, positive definite for every S (1 + x + x^2/2
-    // > 0) and agreeing with exp to third order: Newton's quadratic convergence is kept. In the
-    // eigenbasis of X, T = Lambda^1/2 Z Lambda^1/2; X_trial = Q T Q^T.
-    S.resize(n, n);
-    for (Index j = 0; j < n; ++j)
-      for (Index i = 0; i <= j; ++i) {
-        const double v = i == j ? s(packed(i, j)) : s(packed(i, j)) / root2;
-        S(i, j) = v;
-        S(j, i) = v;
-      }
-    if (step <= kTaylorRadius) {
-      Z.noalias() = 0.5 * S * S;
-      Z += S;
-      Z.diagonal().array() += 1.0;
-    } else {
-      T = S;
-      Z = Matrix::Identity(n, n);  // V
-      if (!jacobi_eigen(T, Z)) return NewtonEnd::Failed;
-      Z = Z * T.diagonal().array().exp().matrix().asDiagonal() * Z.transpose();
-    }
-    T = sqrt_lambda.asDiagonal() * Z * sqrt_lambda.asDiagonal();
-    T = symmetric_part(T);
-    trial.X.noalias() = cur.Q * T * cur.Q.transpose();
-    trial.X = symmetric_part(trial.X);
+    newton_model(cur, d, H, grad);
+    double step = 0.0, predicted = 0.0;
+    if (!trust_region_step(H, grad, gnorm, radius, Hmu, llt, s, step, predicted)) return NewtonEnd::Failed;
+    if (!trial_point(cur, d, s, step, T, trial)) return NewtonEnd::Failed;
     ++iterations;
 
     const bool valid = evaluate<MaxN>(data, r2, T, cur.Q, trial);
@@ -234,7 +303,6 @@ NewtonEnd newton(const BasicReduction<MaxN>& data, double r2, double infinity, c
     }
     if (ratio > kAcceptRatio) std::swap(cur, trial);
   }
-
 }
 
 template <int MaxN>
