@@ -40,7 +40,7 @@ Command add_solve_command(CLI::App& app, const GlobalOptions& global) {
   auto run = [options, &global]() {
     if (options->threshold >= 1.0) throw UsageError("--threshold must be below 1");
     LinearSystemOptions solve_options;
-    solve_options.threshold = options->threshold;
+    if (options->threshold >= 0.0) solve_options.rank_tolerance = options->threshold;
     const Eigen::MatrixXd A = load_matrix(options->a_path, global);
     if (A.cols() > solve_options.max_unknowns) {
       throw io::DataError(options->a_path, 0, 0,

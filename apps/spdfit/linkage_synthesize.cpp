@@ -217,8 +217,10 @@ void run_synthesize(const SynthesizeOptionsCli& o, const GlobalOptions& global) 
   options.fit_dial_zeros = o.fit_dial_zeros;
   options.gauss_newton.tolerance = o.tolerance;
   options.gauss_newton.max_iterations = o.max_iterations;
-  options.threshold = o.threshold;
-  options.gauss_newton.threshold = o.threshold;
+  if (o.threshold >= 0.0) {
+    options.rank_tolerance = o.threshold;
+    options.gauss_newton.rank_tolerance = o.threshold;
+  }
   const Prescribed p = prescribe(o, options);
   const SynthesisResult r = synthesize(p.pairs.delta_psi, p.pairs.delta_phi, p.weights, options);
   for (const std::string& w : r.warnings) warn(global, w);

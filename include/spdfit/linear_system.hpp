@@ -2,6 +2,7 @@
 // minimum-norm least-squares solution from the edited SVD, and the evidence behind both.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,14 +12,21 @@
 namespace spdfit {
 
 /// Options for solve().
+#pragma GCC diagnostic push
+// The deprecated field below must not warn in the copies the compiler writes for every user.
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
 struct LinearSystemOptions {
-  /// Relative singular-value cut-off: sigma_i is treated as zero when sigma_i <= threshold *
+  /// Relative singular-value cut-off: sigma_i is treated as zero when sigma_i <= rank_tolerance *
   /// sigma_max (and always when sigma_i == 0), for the singular values of A with its columns
   /// scaled to unit norm (so that the rank does not depend on the units of the unknowns; see
-  /// solve()). A negative value (the default) means
-  /// max(m, n) * machine epsilon, the editing rule of the lecture notes (shared/seeds/
-  /// 002_fe976fdf53be9def.txt, section 3.8).
-  double threshold = -1.0;
+  /// solve()). Nothing (the default) means max(m, n) * machine epsilon, the editing rule of the
+  /// lecture notes (shared/seeds/002_fe976fdf53be9def.txt, section 3.8). The same name as
+  /// FitOptions::rank_tolerance; the command line spells it --threshold, Python threshold.
+  std::optional<double> rank_tolerance;
+
+  /// The old name of rank_tolerance (negative: the default), used when rank_tolerance is not set;
+  /// removed in the next release.
+  [[deprecated("use rank_tolerance")]] double threshold = -1.0;
 
   /// The reciprocal condition number below which A counts as ill-conditioned and a warning is
   /// added (notes 002, section 3.7.2: "if lambda(A) < 1e-12, A is ill-conditioned"), judged on
@@ -36,6 +44,7 @@ struct LinearSystemOptions {
   /// The cut-off used for an m x n matrix.
   double cutoff(Eigen::Index m, Eigen::Index n) const;
 };
+#pragma GCC diagnostic pop
 
 /// How the notes classify A x = b by the number of equations m and unknowns n (section 3.3.2).
 enum class SystemShape {
@@ -78,6 +87,9 @@ enum class SolveStatus {
 };
 
 /// The result of solve(A, B): everything the notes read off the SVD of A.
+#pragma GCC diagnostic push
+// The deprecated field below must not warn in the copies the compiler writes for every user.
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
 struct LinearSystemResult {
   /// NumericalFailure only when the solution does not fit in a double (b huge against A); the
   /// classification is still filled in, the solution is empty and `message` says why.
@@ -88,7 +100,9 @@ struct LinearSystemResult {
   SystemShape shape = SystemShape::Determined;
 
   Eigen::VectorXd singular_values;   ///< of A, descending (min(m, n) of them)
-  double threshold = 0.0;            ///< the relative cut-off that was used
+  double rank_tolerance = 0.0;       ///< the relative cut-off that was used
+  /// The old name of rank_tolerance (the same value); removed in the next release.
+  [[deprecated("use rank_tolerance")]] double threshold = 0.0;
   /// Number of singular values kept: decided on scaled_singular_values, those of A D with the
   /// columns of A D of about unit norm (D = diag of powers of two), not on singular_values.
   Eigen::Index rank = 0;
@@ -125,6 +139,7 @@ struct LinearSystemResult {
 
   bool ok() const { return status == SolveStatus::Success; }
 };
+#pragma GCC diagnostic pop
 
 /// Solves and classifies A x = b for each column of B (notes 002 sections 3.3.2 and 3.7-3.8).
 ///

@@ -159,7 +159,11 @@ LinearSystemOptions solve_options(const std::vector<NameValue>& pairs) {
       throw OptionError(std::string(threshold ? "`threshold`" : "`rcond_warning`") + " must be a " +
                         range.describe(false) + ", got " + value_text(value));
     }
-    (threshold ? options.threshold : options.rcond_warning) = value;
+    if (threshold) {
+      options.rank_tolerance = value;
+    } else {
+      options.rcond_warning = value;
+    }
   }
   return options;
 }

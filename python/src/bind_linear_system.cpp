@@ -66,7 +66,7 @@ void bind_linear_system(py::module_& m) {
       .def_property_readonly("p", result_field(&LinearSystemResult::p), "number of right-hand sides (1 for a 1-D b)")
       .def_property_readonly("shape", [](const SolveResult& r) { return std::string(to_string(r.shape)); })
       .def_property_readonly("singular_values", result_field(&LinearSystemResult::singular_values))
-      .def_property_readonly("threshold", result_field(&LinearSystemResult::threshold))
+      .def_property_readonly("threshold", result_field(&LinearSystemResult::rank_tolerance))
       .def_property_readonly("rank", result_field(&LinearSystemResult::rank))
       .def_property_readonly("nullity", result_field(&LinearSystemResult::nullity))
       .def_property_readonly("condition_number", result_field(&LinearSystemResult::condition_number))
@@ -113,7 +113,7 @@ void bind_linear_system(py::module_& m) {
       "solve",
       [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, std::optional<double> threshold, bool vector_b) {
         LinearSystemOptions options;
-        if (threshold) options.threshold = *threshold;
+        options.rank_tolerance = threshold;
         std::string error;
         if (!options.is_valid(&error)) throw std::invalid_argument(error);
         if (vector_b && B.cols() != 1) throw std::invalid_argument("vector_b=True needs b with one column");

@@ -31,6 +31,12 @@ constexpr std::array<SynthesisStatus, 4> kSynthesisStatuses = {
     SynthesisStatus::Success, SynthesisStatus::NoRealLinkage, SynthesisStatus::NotAssemblable,
     SynthesisStatus::Diverged};
 
+// GaussNewtonOptions.threshold as Python has it: the rank tolerance, negative for the default rule.
+double gauss_newton_threshold(const GaussNewtonOptions& options) { return options.rank_tolerance.value_or(-1.0); }
+void set_gauss_newton_threshold(GaussNewtonOptions& options, double value) {
+  options.rank_tolerance = value < 0.0 ? std::nullopt : std::optional<double>(value);
+}
+
 }  // namespace
 
 void bind_linkage(py::module_& parent) {
@@ -125,11 +131,14 @@ void bind_linkage(py::module_& parent) {
       .def(py::init<>())
       .def_readwrite("tolerance", &GaussNewtonOptions::tolerance)
       .def_readwrite("max_iterations", &GaussNewtonOptions::max_iterations)
-      .def_readwrite("threshold", &GaussNewtonOptions::threshold,
-                     "relative singular-value cut-off of each step (negative: max(m, n) eps)")
-      .def(pickle_fields<GaussNewtonOptions>("GaussNewtonOptions", state_field(&GaussNewtonOptions::tolerance),
-                                             state_field(&GaussNewtonOptions::max_iterations),
-                                             state_field(&GaussNewtonOptions::threshold)));
+      .def_property("threshold", &gauss_newton_threshold, &set_gauss_newton_threshold,
+                    "relative singular-value cut-off of each step (negative: max(m, n) eps)")
+      .def(pickle_fields<GaussNewtonOptions>(
+          "GaussNewtonOptions", state_field(&GaussNewtonOptions::tolerance),
+          state_field(&GaussNewtonOptions::max_iterations),
+          state_field(&gauss_newton_threshold, [](GaussNewtonOptions& options, const py::object& value) {
+            set_gauss_newton_threshold(options, value.cast<double>());
+          })));
 
   m.def(
       "synthesize",

@@ -1,3 +1,4 @@
+#include "numerics/requested_rank_tolerance.hpp"
 #include "spdfit/linear_system.hpp"
 
 #include <algorithm>
@@ -48,7 +49,7 @@ const char* to_string(SystemShape shape) {
 }
 
 bool LinearSystemOptions::is_valid(std::string* error) const {
-  if (!is_valid_rank_tolerance(threshold, "threshold", error)) return false;
+  if (!is_valid_rank_tolerance(detail::requested_rank_tolerance(*this), "threshold", error)) return false;
   if (!(rcond_warning >= 0.0) || !(rcond_warning <= 1.0)) {
     if (error) *error = "rcond_warning must lie in [0, 1]";
     return false;
@@ -60,7 +61,9 @@ bool LinearSystemOptions::is_valid(std::string* error) const {
   return true;
 }
 
-double LinearSystemOptions::cutoff(Index m, Index n) const { return rank_cutoff(threshold, m, n); }
+double LinearSystemOptions::cutoff(Index m, Index n) const {
+  return rank_cutoff(detail::requested_rank_tolerance(*this), m, n);
+}
 
 LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A_in, const Eigen::Ref<const MatrixXd>& B_in,
                          const LinearSystemOptions& options) {
@@ -96,11 +99,15 @@ LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A_in, const Eigen::Re
   r.p = B.cols();
   r.shape = r.m < r.n ? SystemShape::Underdetermined
                       : (r.m == r.n ? SystemShape::Determined : SystemShape::Overdetermined);
-  r.threshold = options.cutoff(r.m, r.n);
+  r.rank_tolerance = options.cutoff(r.m, r.n);
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
+  r.threshold = r.rank_tolerance;  // the deprecated name's copy
+#pragma GCC diagnostic pop
 
   // The solution and the rank decision, made on A with its columns scaled to unit norm so that
   // it does not depend on the units of the unknowns (numerics/least_squares.hpp).
-  const detail::LeastSquaresSolution ls = detail::equilibrated_least_squares(A, B, r.threshold);
+  const detail::LeastSquaresSolution ls = detail::equilibrated_least_squares(A, B, r.rank_tolerance);
   r.rank = ls.rank;
   r.nullity = r.n - r.rank;
   r.refinement_steps = ls.refinement_steps;
@@ -144,7 +151,7 @@ LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A_in, const Eigen::Re
     const double scaled_max = ls.scaled.s(0);
     const double scale = bnorm > 0.0 ? (scaled_max > 0.0 ? scaled_max : 1.0) / bnorm : 0.0;
     M.col(r.n) = -scale * B.col(j);
-    c.augmented_rank = numerical_rank(detail::singular_values(M), r.threshold);
+    c.augmented_rank = numerical_rank(detail::singular_values(M), r.rank_tolerance);
     // Appending a column cannot lower the rank; a count below rank A only happens when a
     // singular value sits right at the cut-off, and then the column is consistent.
     c.consistent = c.augmented_rank <= r.rank;

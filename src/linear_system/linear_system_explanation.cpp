@@ -122,15 +122,15 @@ std::string explain(const LinearSystemResult& r) {
   if (edited_nonzero > 0) {
     // Only the default cut-off, max(m, n) eps, marks a value as roundoff; a threshold the user
     // chose cuts values that may be real.
-    const bool roundoff = r.threshold == default_rank_tolerance(r.m, r.n);
+    const bool roundoff = r.rank_tolerance == default_rank_tolerance(r.m, r.n);
     const std::string was = edited_nonzero == 1 ? "was" : "were";
     if (roundoff) {
-      out += " (" + plural(edited_nonzero, "nonzero singular value") + " of the column-scaled A below " + format_number(r.threshold, Precision::Medium) +
+      out += " (" + plural(edited_nonzero, "nonzero singular value") + " of the column-scaled A below " + format_number(r.rank_tolerance, Precision::Medium) +
              " * sigma_max " + (edited_nonzero == 1 ? "is" : "are") + " roundoff and " + was +
              " edited to zero, notes 002 section 3.8.)";
     } else {
       out += " (" + plural(edited_nonzero, "nonzero singular value") + " of the column-scaled A below the chosen threshold " +
-             format_number(r.threshold, Precision::Medium) + " * sigma_max " + was +
+             format_number(r.rank_tolerance, Precision::Medium) + " * sigma_max " + was +
              " edited to zero, notes 002 section 3.8: not roundoff, so check that the threshold suits the data.)";
     }
   }

@@ -1,3 +1,4 @@
+#include "numerics/requested_rank_tolerance.hpp"
 #include "spdfit/linkage/structural_error.hpp"
 
 #include <cmath>
@@ -83,7 +84,7 @@ StructuralRefinement refine_structural_error(const Eigen::Vector3d& k0, const Ei
   detail::GaussNewtonSettings settings;
   settings.tolerance = options.tolerance;
   settings.max_iterations = options.max_iterations;
-  settings.threshold = options.threshold;
+  settings.threshold = spdfit::detail::requested_rank_tolerance(options);
   const detail::GaussNewtonOutcome gn = detail::gauss_newton(model, k0, settings);
   out.k = gn.x;
   out.iterations = gn.iterations;

@@ -1,3 +1,4 @@
+#include "numerics/requested_rank_tolerance.hpp"
 #include "spdfit/linkage/synthesis.hpp"
 
 #include <cmath>
@@ -94,8 +95,8 @@ bool SynthesisOptions::is_valid(std::string* error) const {
     return fail("the Gauss-Newton tolerance must be a positive number");
   }
   if (gauss_newton.max_iterations < 1) return fail("the Gauss-Newton iteration limit must be at least 1");
-  return is_valid_rank_tolerance(threshold, "threshold", error) &&
-         is_valid_rank_tolerance(gauss_newton.threshold, "the Gauss-Newton threshold", error);
+  return is_valid_rank_tolerance(spdfit::detail::requested_rank_tolerance(*this), "threshold", error) &&
+         is_valid_rank_tolerance(spdfit::detail::requested_rank_tolerance(gauss_newton), "the Gauss-Newton threshold", error);
 }
 
 SynthesisResult synthesize(const Eigen::Ref<const VectorXd>& delta_psi_in,
@@ -114,7 +115,7 @@ SynthesisResult synthesize(const Eigen::Ref<const VectorXd>& delta_psi_in,
   detail::GaussNewtonSettings settings;
   settings.tolerance = options.gauss_newton.tolerance;
   settings.max_iterations = options.gauss_newton.max_iterations;
-  settings.threshold = options.gauss_newton.threshold;
+  settings.threshold = spdfit::detail::requested_rank_tolerance(options.gauss_newton);
 
   // 1. The design-error solution (section 3.4), with the dial zeros when they are unknowns (eq. 3.7).
   Eigen::Vector3d k_design;
@@ -125,10 +126,10 @@ SynthesisResult synthesize(const Eigen::Ref<const VectorXd>& delta_psi_in,
     if (options.alpha || options.beta) {
       start.zeros = zeros;
       start.k = design_error_synthesis(plus(zeros.alpha, delta_psi), plus(zeros.beta, delta_phi), weights,
-                                       options.threshold)
+                                       spdfit::detail::requested_rank_tolerance(options))
                     .k;
     } else {
-      grid_start = detail::dial_zero_grid_start(delta_psi, delta_phi, weights, options.threshold);
+      grid_start = detail::dial_zero_grid_start(delta_psi, delta_phi, weights, spdfit::detail::requested_rank_tolerance(options));
       if (!grid_start) {
         r.status = SynthesisStatus::NoRealLinkage;
         r.message =
@@ -150,7 +151,7 @@ SynthesisResult synthesize(const Eigen::Ref<const VectorXd>& delta_psi_in,
   }
   r.psi = plus(zeros.alpha, delta_psi);
   r.phi = plus(zeros.beta, delta_phi);
-  const DesignErrorSolution design = design_error_synthesis(r.psi, r.phi, weights, options.threshold);
+  const DesignErrorSolution design = design_error_synthesis(r.psi, r.phi, weights, spdfit::detail::requested_rank_tolerance(options));
   if (!options.fit_dial_zeros) k_design = design.k;
   r.rank = design.rank;
   r.condition_number = design.condition_number;

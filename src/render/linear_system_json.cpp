@@ -61,7 +61,7 @@ std::string to_json(const LinearSystemResult& r, JsonStyle style) {
   out["n"] = r.n;
   out["shape"] = to_string(r.shape);
   out["singular_values"] = detail::vector_json(r.singular_values, style);
-  out["threshold"] = r.threshold;
+  out["threshold"] = r.rank_tolerance;  // the JSON keeps its key
   out["reciprocal_condition_number"] = number_json(r.reciprocal_condition_number, style);
   out["effective_condition_number"] = number_json(r.effective_condition_number, style);
   out["scaled_singular_values"] = detail::vector_json(r.scaled_singular_values, style);
@@ -119,7 +119,11 @@ LinearSystemResult from_json<LinearSystemResult>(const std::string& text) {
   }
   if (!known) throw std::invalid_argument(type + ": unknown shape '" + shape + "'");
   r.singular_values = vector("singular_values");
-  r.threshold = number("threshold");
+  r.rank_tolerance = number("threshold");
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
+  r.threshold = r.rank_tolerance;
+#pragma GCC diagnostic pop
   r.rank = detail::value_from<Eigen::Index>(object, "rank", type);
   r.nullity = detail::value_from<Eigen::Index>(object, "nullity", type);
   r.condition_number = number("condition_number");

@@ -26,7 +26,7 @@ std::string report(const LinearSystemResult& r) {
       << " (reciprocal " << number(r.reciprocal_condition_number) << ")\n";
   out << "singular values: " << vector_text(r.singular_values) << "\n";
   out << "with unit-norm columns: " << vector_text(r.scaled_singular_values) << ", condition number "
-      << number(r.scaled_condition_number) << " (the rank's cut-off: " << number(r.threshold) << " * sigma_max)\n";
+      << number(r.scaled_condition_number) << " (the rank's cut-off: " << number(r.rank_tolerance) << " * sigma_max)\n";
   out << "finite solutions: dimension " << r.finite_solution_dimension << "; at infinity: dimension "
       << r.at_infinity_dimension << " (-1: none)\n";
   for (Eigen::Index j = 0; j < r.p && j < r.solution.cols(); ++j) {

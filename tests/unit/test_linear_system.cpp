@@ -228,13 +228,24 @@ TEST(LinearSystem, ThresholdEditsSmallSingularValues) {
   EXPECT_EQ(exact.rank, 2);
   EXPECT_NEAR(exact.condition_number, 1e10, 1e10 * 1e-5);
   LinearSystemOptions options;
-  options.threshold = 1e-8;
+  options.rank_tolerance = 1e-8;
   const LinearSystemResult edited = solve(A, b, options);
   EXPECT_EQ(edited.rank, 1);
   EXPECT_EQ(edited.nullity, 1);
-  EXPECT_EQ(edited.threshold, 1e-8);
+  EXPECT_EQ(edited.rank_tolerance, 1e-8);
   EXPECT_LT(edited.solution.norm(), 1e-3 * exact.solution.norm());  // no 1/sigma = 1e10 blow-up
   EXPECT_TRUE(contains(edited.explanation, "edited to zero"));
+
+  // The deprecated name of the option and of the result's field still work, for one release.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
+  LinearSystemOptions old_name;
+  old_name.threshold = 1e-8;
+  const LinearSystemResult old = solve(A, b, old_name);
+  EXPECT_EQ(old.rank, 1);
+  EXPECT_EQ(old.threshold, 1e-8);
+  EXPECT_EQ(old.rank_tolerance, 1e-8);
+#pragma GCC diagnostic pop
 }
 
 // The minimum-norm solution is A^+ b, computed here by a different decomposition.
@@ -267,7 +278,7 @@ TEST(LinearSystem, BadInputThrows) {
   EXPECT_THROW(solve(bad, VectorXd::Ones(2)), std::invalid_argument);
   EXPECT_THROW(solve(A, VectorXd::Constant(2, std::numeric_limits<double>::infinity())), std::invalid_argument);
   LinearSystemOptions options;
-  options.threshold = 1.5;
+  options.rank_tolerance = 1.5;
   EXPECT_THROW(solve(A, VectorXd::Ones(2), options), std::invalid_argument);
 }
 

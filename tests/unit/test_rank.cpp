@@ -76,9 +76,9 @@ TEST(Rank, SolveUsesTheStrictRuleAtATie) {
   while (t * s(0) < s(1)) t = std::nextafter(t, 1.0);
   ASSERT_EQ(t * s(0), s(1));
   LinearSystemOptions at_tie, below_tie;
-  at_tie.threshold = t;
-  below_tie.threshold = std::nextafter(t, 0.0);
-  ASSERT_LT(below_tie.threshold * s(0), s(1));
+  at_tie.rank_tolerance = t;
+  below_tie.rank_tolerance = std::nextafter(t, 0.0);
+  ASSERT_LT(*below_tie.rank_tolerance * s(0), s(1));
   EXPECT_EQ(solve(A, b, at_tie).rank, 1);
   EXPECT_EQ(solve(A, b, below_tie).rank, 2);
 }

@@ -369,7 +369,7 @@ void expect_same(const LinearSystemResult& a, const LinearSystemResult& b) {
                      a.finite_solution_dimension, a.at_infinity_dimension),
             std::tie(b.m, b.n, b.p, b.shape, b.rank, b.nullity, b.refinement_steps, b.consistent,
                      b.finite_solution_dimension, b.at_infinity_dimension));
-  for (auto [x, y] : {std::pair{a.threshold, b.threshold}, {a.condition_number, b.condition_number},
+  for (auto [x, y] : {std::pair{a.rank_tolerance, b.rank_tolerance}, {a.condition_number, b.condition_number},
                       {a.reciprocal_condition_number, b.reciprocal_condition_number},
                       {a.effective_condition_number, b.effective_condition_number},
                       {a.scaled_condition_number, b.scaled_condition_number}, {a.residual_norm, b.residual_norm}}) {

@@ -21,7 +21,7 @@ struct DesignErrorSolution {
 /// (radians; psi_i, phi_i already include the dial zeros) and diagonal weights w (empty: W = I).
 /// Solved as min ||W^(1/2) (S k - b)|| by the Householder QR of W^(1/2) S, never through the
 /// normal equations S^T W S (which square the condition number, notes 3.4 and 3.6.2); when
-/// W^(1/2) S is rank-deficient under the cut-off `threshold` (relative; negative: max(m, 3) eps)
+/// W^(1/2) S is rank-deficient under the cut-off `rank_tolerance` (relative; negative: max(m, 3) eps)
 /// k is the minimum-norm solution of the edited SVD. With exactly 3 positions and a
 /// nonsingular S this is the precision-point synthesis of section 3.3.3: d = 0.
 ///
@@ -29,6 +29,6 @@ struct DesignErrorSolution {
 /// length (else std::invalid_argument). Cost: O(m) (S has 3 columns).
 DesignErrorSolution design_error_synthesis(const Eigen::Ref<const Eigen::VectorXd>& psi,
                                            const Eigen::Ref<const Eigen::VectorXd>& phi,
-                                           const Eigen::Ref<const Eigen::VectorXd>& weights, double threshold = -1.0);
+                                           const Eigen::Ref<const Eigen::VectorXd>& weights, double rank_tolerance = -1.0);
 
 }  // namespace spdfit::linkage

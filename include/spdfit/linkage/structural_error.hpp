@@ -30,15 +30,22 @@ std::optional<int> nearest_branch(const Eigen::Vector3d& k, const Eigen::Ref<con
                                   const Eigen::Ref<const Eigen::VectorXd>& phi, const Eigen::Ref<const Eigen::VectorXd>& weights);
 
 /// Options for the Gauss-Newton iteration.
+#pragma GCC diagnostic push
+// The deprecated field below must not warn in the copies the compiler writes for every user.
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
 struct GaussNewtonOptions {
   /// Stop when ||Delta k|| < tolerance (notes 3.6.1: "stop when ||Delta k|| < epsilon"). The
   /// Freudenstein parameters of practical linkages are of order 1, so 1e-10 is about ten digits.
   double tolerance = 1e-10;
   int max_iterations = 100;
-  /// Relative singular-value cut-off for each step's least-squares problem (negative: max(m, n)
+  /// Relative singular-value cut-off for each step's least-squares problem (nothing: max(m, n)
   /// eps, notes 3.8).
-  double threshold = -1.0;
+  std::optional<double> rank_tolerance;
+  /// The old name of rank_tolerance (negative: the default), used when rank_tolerance is not set;
+  /// removed in the next release.
+  [[deprecated("use rank_tolerance")]] double threshold = -1.0;
 };
+#pragma GCC diagnostic pop
 
 /// The outcome of a Gauss-Newton refinement.
 struct StructuralRefinement {

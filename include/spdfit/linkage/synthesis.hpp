@@ -17,6 +17,9 @@
 namespace spdfit::linkage {
 
 /// Options for synthesize().
+#pragma GCC diagnostic push
+// The deprecated field below must not warn in the copies the compiler writes for every user.
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
 struct SynthesisOptions {
   /// Dial zeros (eq. 3.6, radians): psi = alpha + delta_psi, phi = beta + delta_phi. Absent
   /// means 0, so that the pairs are the absolute angles. With fit_dial_zeros, present values are
@@ -30,11 +33,15 @@ struct SynthesisOptions {
   /// Run the structural-error Gauss-Newton refinement (section 3.6) after the design solution.
   bool refine = true;
   GaussNewtonOptions gauss_newton;
-  /// Relative singular-value cut-off for the synthesis matrix (negative: max(m, n) eps, notes 3.8).
-  double threshold = -1.0;
+  /// Relative singular-value cut-off for the synthesis matrix (nothing: max(m, n) eps, notes 3.8).
+  std::optional<double> rank_tolerance;
+  /// The old name of rank_tolerance (negative: the default), used when rank_tolerance is not set;
+  /// removed in the next release.
+  [[deprecated("use rank_tolerance")]] double threshold = -1.0;
 
   bool is_valid(std::string* error = nullptr) const;
 };
+#pragma GCC diagnostic pop
 
 /// One solution: the parameters, the linkage, and its errors.
 struct LinkageSolution {
