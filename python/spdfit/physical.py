@@ -56,9 +56,9 @@ def _optional_matrix(name, value):
     return None if value is None else _as_matrix(name, value)
 
 
-def identify(A, B, geometry=None, *, strut_masses="geometry", criterion="eiv", consistent=True, noise_cov_a=None,
-             noise_cov_b=None, max_iter=None, rank_tolerance=None, bootstrap=0, confidence=None, seed=None,
-             threads=0, fit_strut_mass=None):
+def identify(A, B, geometry=None, *, strut_masses="geometry", fit_strut_mass=None, criterion="eiv", consistent=True,
+             noise_cov_a=None, noise_cov_b=None, max_iter=None, rank_tolerance=None, bootstrap=0, confidence=None,
+             seed=None, threads=0):
     """The payload's mass, centre of mass and inertia (and strut masses) from A and B.
 
     Fits M_p(theta) = J^-T R M_x(theta) R^T J^-1 + diag(strut masses), linear in the ten inertial
