@@ -1,5 +1,6 @@
 // The physical estimate in `spdfit hexapod identify --physical`: its JSON object and its report
 // for people, each parameter beside the geometry's nominal (CAD) value.
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <string>
