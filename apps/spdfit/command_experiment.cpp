@@ -9,6 +9,7 @@
 #include "cli.hpp"
 #include "experiment_output.hpp"
 #include "output.hpp"
+#include "payload_options.hpp"
 #include "spdfit/format.hpp"
 #include "spdfit/experiment/paper.hpp"
 #include "spdfit/experiment/physical.hpp"
@@ -341,6 +342,7 @@ Command add_physical(CLI::App& parent, const GlobalOptions& global) {
     std::string distribution = "uniform", geometry;
     double force_noise_var = 0.0;
     CLI::Option* force_noise = nullptr;
+    PayloadCli payload;
   };
   auto cli = std::make_shared<Cli>();
   CLI::App* sub = parent.add_subcommand(
@@ -361,6 +363,7 @@ Command add_physical(CLI::App& parent, const GlobalOptions& global) {
       ->check(CLI::IsMember({"uniform", "gaussian"}))
       ->capture_default_str();
   sub->add_option("--geometry", cli->geometry, "Hexapod geometry file (default: the built-in cubic hexapod)");
+  add_payload_options(sub, cli->payload, "The true payload's");
   add_common(sub, cli->common, 200);
   std::string variants, generic;
   for (const std::string& v : experiment::physical_variant_names()) variants += (variants.empty() ? "" : ", ") + v;
@@ -381,6 +384,9 @@ Command add_physical(CLI::App& parent, const GlobalOptions& global) {
     options.simulation.distribution = *hexapod::parse_noise_distribution(cli->distribution);
     if (cli->force_noise->count() > 0) options.simulation.force_noise_var = cli->force_noise_var;
     if (!cli->geometry.empty()) options.geometry = hexapod::read_geometry(cli->geometry);
+    if (cli->payload.given()) {
+      options.payload = payload_of(cli->payload, options.geometry ? *options.geometry : hexapod::cubic_geometry());
+    }
     if (!cli->methods.empty()) {
       try {
         experiment::set_estimators(options, cli->methods);

@@ -71,6 +71,13 @@ std::string to_json(const PhysicalExperimentResult& result) {
   out["distribution"] = std::string(hexapod::to_string(s.distribution));
   out["trials"] = result.trials;
   out["seed"] = result.seed;
+  if (const std::optional<RigidBodyInertia>& p = result.options.payload) {
+    json inertia = json::array();
+    for (int i = 0; i < 3; ++i) inertia.push_back({number(p->inertia(i, 0)), number(p->inertia(i, 1)), number(p->inertia(i, 2))});
+    out["payload"] = {{"mass", number(p->mass)},
+                      {"center_of_mass", {number(p->center_of_mass(0)), number(p->center_of_mass(1)), number(p->center_of_mass(2))}},
+                      {"inertia", inertia}};
+  }
   json truth = json::array();
   for (Eigen::Index i = 0; i < result.truth.rows(); ++i) {
     json row = json::array();
@@ -109,7 +116,15 @@ std::string report(const PhysicalExperimentResult& result) {
   const hexapod::SimulationOptions& s = result.options.simulation;
   std::ostringstream out;
   out << "Physical identification experiment: " << (result.options.geometry ? "the given hexapod" : "the built-in hexapod")
-      << ", M_p of " << (result.options.payload ? "the given payload" : "its nominal payload") << ";\n"
+      << ", M_p of its nominal payload";
+  if (const std::optional<RigidBodyInertia>& p = result.options.payload) {
+    const PrincipalInertia principal = principal_inertia(p->inertia);
+    out << " replaced by a payload of " << format_number(p->mass, Precision::Full) << " kg, centre of mass ("
+        << format_number(p->center_of_mass(0)) << ", " << format_number(p->center_of_mass(1)) << ", "
+        << format_number(p->center_of_mass(2)) << ") m, principal moments " << format_number(principal.moments(0))
+        << ", " << format_number(principal.moments(1)) << ", " << format_number(principal.moments(2)) << " kg m^2";
+  }
+  out << ";\n"
       << hexapod::to_string(s.distribution) << " noise of variance " << format_number(s.noise_var, Precision::Medium)
       << " in every entry of A";
   if (s.force_noise_var && *s.force_noise_var != s.noise_var) {

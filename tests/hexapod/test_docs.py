@@ -111,6 +111,29 @@ def test_physical_table_is_what_the_command_produces(cli_json):
 
 
 @full_size
+def test_thin_rod_table_is_what_the_command_produces(cli_json):
+    """The thin rod (11.973 kg, 0.45 m long, 4.5 mm thick) given as --payload-inertia."""
+    rows = table_rows("thin-rod-table")
+    assert len(rows) == 4
+    out = cli_json("experiment", "physical", "--trials", 1000, "--seed", 1, "--payload-inertia",
+                   "4.0408875e-05,0.20206457943750003,0.20206457943750003",
+                   "--methods", "spde,spd-tls,physical,grey-box-tls,grey-box-ls")
+    mass, length, thickness = 11.973, 0.45, 0.0045
+    across, along = mass * thickness ** 2 / 12, mass * length ** 2 / 12
+    np.testing.assert_allclose(np.diag(out["payload"]["inertia"]), [2 * across, along + across, along + across],
+                               rtol=1e-15)
+    for cells, row in zip(rows, out["rows"]):
+        m, best, physical, physical_bad, grey_tls, grey_tls_bad, grey_ls, grey_ls_bad = cells
+        s = row["methods"]
+        assert int(m) == row["samples"]
+        assert best == f"{s[row['best_generic']]['mean']:.3f} ({row['best_generic']})", m
+        assert [physical, grey_tls, grey_ls] == [f"{s[k]['mean']:.3f}" for k in ("physical", "grey-box-tls",
+                                                                                 "grey-box-ls")], m
+        assert [physical_bad, grey_tls_bad, grey_ls_bad] == [
+            str(s[k]["inconsistent"]) for k in ("physical", "grey-box-tls", "grey-box-ls")], m
+
+
+@full_size
 def test_readme_hexapod_commands_run(spdfit_cli, tmp_path):
     """The README's "The hexapod" block: each `spdfit ...` line (comments dropped) runs."""
     text = (SOURCE_DIR / "README.md").read_text()

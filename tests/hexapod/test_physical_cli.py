@@ -171,3 +171,11 @@ def test_experiment_physical_methods_and_errors(cli, cli_json):
     assert "unknown method 'nonsense'" in proc.stderr
     proc = cli("experiment", "physical", "--samples", 5, expect=2)
     assert "--samples" in proc.stderr
+
+
+def test_experiment_physical_takes_a_payload(cli_json):
+    doc = cli_json("experiment", "physical", "--samples", 30, "--trials", 5, "--methods", "physical",
+                   "--payload-mass", 14, "--payload-com", "0.01,0,0")
+    assert doc["payload"]["mass"] == 14 and doc["payload"]["center_of_mass"] == [0.01, 0, 0]
+    nominal = cli_json("experiment", "physical", "--samples", 30, "--trials", 5, "--methods", "physical")
+    assert "payload" not in nominal and doc["truth"] != nominal["truth"]

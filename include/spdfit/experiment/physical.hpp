@@ -107,7 +107,8 @@ std::optional<PhysicalComparison> compare_to_generic(const PhysicalExperimentRes
                                                      const PhysicalExperimentRow& row);
 
 /// `spdfit experiment physical --json`: {"experiment": "physical", "noise_var", "force_noise_var",
-/// "signal_var", "distribution", "trials", "seed", "truth" [6x6], "methods" (generic, then
+/// "signal_var", "distribution", "trials", "seed", "payload" (with options.payload: {"mass",
+/// "center_of_mass", "inertia"}), "truth" [6x6], "methods" (generic, then
 /// variants, by name), "rows": [{"samples", "methods": {name: {"mean", "std", "median", "max",
 /// "min", "standard_error", "count", "failures", "inconsistent"}}, "best_generic" and
 /// "physical_ratio" (compare_to_generic, null when it has none)}]}; NaN as null. Cost O(rows
