@@ -11,6 +11,7 @@
 #include "input.hpp"
 #include "output.hpp"
 #include "table_options.hpp"
+#include "spdfit/fit_request.hpp"
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/hexapod/identify.hpp"
 #include "spdfit/hexapod/physical_request.hpp"
@@ -54,6 +55,7 @@ Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
     bool json = false, physical = false;
     BootstrapCli bootstrap;
     std::unique_ptr<TableOptions<hexapod::PhysicalOptions>> physical_options;
+    std::unique_ptr<TableOptions<FitRequest>> fit_limits;
   };
   auto cli = std::make_shared<Cli>();
   CLI::App* sub = parent.add_subcommand(
@@ -71,6 +73,12 @@ Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
                 "Also fit the payload's mass, centre of mass and inertia (physically consistent) with the "
                 "Jacobian of --geometry known, each beside the geometry's nominal value");
   cli->physical_options = std::make_unique<TableOptions<hexapod::PhysicalOptions>>(*sub, hexapod::physical_option_table());
+  // The fit's iteration limit and rank cut-off, for every estimator and the physical fit alike.
+  std::vector<std::string_view> not_here;
+  for (const OptionSpec<FitRequest>& spec : fit_option_table()) {
+    if (spec.name != "max_iterations" && spec.name != "rank_tolerance") not_here.push_back(spec.name);
+  }
+  cli->fit_limits = std::make_unique<TableOptions<FitRequest>>(*sub, fit_option_table(), not_here);
   sub->add_flag("--json", cli->json, "Print every result as JSON");
   sub->add_option("-o,--output", cli->output, "Write to FILE instead of stdout");
   add_bootstrap_options(*sub, cli->bootstrap,
@@ -111,9 +119,13 @@ Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
     } else if (!cli->stiffness.empty()) {
       options.stiffness = parse_stiffness(cli->stiffness, n);
     }
+    FitRequest limits;
+    limits.options = options.fit;
+    cli->fit_limits->apply(limits);
+    options.fit = limits.options;
     hexapod::PhysicalOptions physical_options;
     cli->physical_options->apply(physical_options);
-    hexapod::apply_fit_options(options.fit, {}, physical_options);
+    hexapod::apply_fit_options(options.fit, cli->fit_limits->given(), physical_options);
     const std::vector<hexapod::MethodIdentification> methods = hexapod::identify(data.A, data.B, options);
     for (const hexapod::MethodIdentification& m : methods) {
       for (const std::string& w : m.result.warnings)

@@ -70,8 +70,8 @@ std::vector<Spec> make_table() {
   unconstrained.name = "unconstrained";
   unconstrained.cli = "--unconstrained";
   unconstrained.type = OptionType::Flag;
-  unconstrained.help = "The physical fit without the consistency constraint (the grey-box fit, for comparison): "
-                       "`consistent` false";
+  unconstrained.help = "The physical fit without the consistency constraint: the grey-box fit of the same model, "
+                       "for comparison, which may return a payload that cannot exist";
   unconstrained.nullable = false;
   unconstrained.set = [](PhysicalOptions& o, const OptionValue& v) {
     if (std::get<bool>(v)) o.consistent = false;

@@ -179,3 +179,17 @@ def test_experiment_physical_takes_a_payload(cli_json):
     assert doc["payload"]["mass"] == 14 and doc["payload"]["center_of_mass"] == [0.01, 0, 0]
     nominal = cli_json("experiment", "physical", "--samples", 30, "--trials", 5, "--methods", "physical")
     assert "payload" not in nominal and doc["truth"] != nominal["truth"]
+
+
+def test_iteration_limit_reaches_every_fit(cli, tmp_path):
+    g = write_geometry(cli, tmp_path)
+    cli("hexapod", "simulate", "--geometry", g, "--samples", 100, "--noise-var", 0.86, "--out", "run")
+    proc = cli("hexapod", "identify", "run/A.csv", "run/B.csv", "--geometry", g, "--physical", "--max-iter", 1,
+               "--json")
+    doc = json.loads(proc.stdout)
+    assert not doc["physical"]["converged"]
+    assert "spdfit: warning: physical: the optimizer did not converge: stopped after --max-iter = 1" in proc.stderr
+    assert any("did not converge in 1 iterations" in w for w in doc["methods"]["spd-tls"]["warnings"])
+    default = json.loads(cli("hexapod", "identify", "run/A.csv", "run/B.csv", "--geometry", g, "--physical",
+                             "--json").stdout)
+    assert default["physical"]["converged"]
