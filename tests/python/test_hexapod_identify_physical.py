@@ -71,3 +71,7 @@ def test_bad_physical_options():
         hx.identify(sim.A, sim.B, physical=True, consistent=1)
     with pytest.raises(TypeError, match="unexpected keyword argument 'nonsense'"):
         hx.identify(sim.A, sim.B, physical=True, nonsense=1)
+
+
+def test_the_package_imports_physical():
+    assert spdfit.physical is ph and "identify" in dir(spdfit.physical)
