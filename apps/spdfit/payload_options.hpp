@@ -3,10 +3,9 @@
 // `experiment physical`.
 #pragma once
 
-#include <string>
-
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/rigid_body.hpp"

@@ -2,10 +2,9 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
-
-#include <nlohmann/json.hpp>
 
 #include "spdfit/experiment/physical.hpp"
 #include "spdfit/format.hpp"
@@ -19,7 +18,9 @@ using json = nlohmann::ordered_json;
 json number(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
 
 // Whether the row's k-th estimator is a generic method (they come first).
-bool generic(const PhysicalExperimentResult& result, std::size_t k) { return k < result.options.methods.size(); }
+bool generic(const PhysicalExperimentResult& result, std::size_t k) {
+  return k < result.options.methods.size();
+}
 
 }  // namespace
 
@@ -73,10 +74,13 @@ std::string to_json(const PhysicalExperimentResult& result) {
   out["seed"] = result.seed;
   if (const std::optional<RigidBodyInertia>& p = result.options.payload) {
     json inertia = json::array();
-    for (int i = 0; i < 3; ++i) inertia.push_back({number(p->inertia(i, 0)), number(p->inertia(i, 1)), number(p->inertia(i, 2))});
-    out["payload"] = {{"mass", number(p->mass)},
-                      {"center_of_mass", {number(p->center_of_mass(0)), number(p->center_of_mass(1)), number(p->center_of_mass(2))}},
-                      {"inertia", inertia}};
+    for (int i = 0; i < 3; ++i)
+      inertia.push_back({number(p->inertia(i, 0)), number(p->inertia(i, 1)), number(p->inertia(i, 2))});
+    out["payload"] = {
+        {"mass", number(p->mass)},
+        {"center_of_mass",
+         {number(p->center_of_mass(0)), number(p->center_of_mass(1)), number(p->center_of_mass(2))}},
+        {"inertia", inertia}};
   }
   json truth = json::array();
   for (Eigen::Index i = 0; i < result.truth.rows(); ++i) {
@@ -96,11 +100,10 @@ std::string to_json(const PhysicalExperimentResult& result) {
     json methods = json::object();
     for (const PhysicalMethodErrors& m : row.methods) {
       const Summary& x = m.summary;
-      methods[m.name] = {{"mean", number(x.mean)},     {"std", number(x.std)},
-                         {"median", number(x.median)}, {"max", number(x.max)},
-                         {"min", number(x.min)},       {"standard_error", number(x.standard_error())},
-                         {"count", x.count},           {"failures", x.failures},
-                         {"inconsistent", m.inconsistent}};
+      methods[m.name] = {
+          {"mean", number(x.mean)}, {"std", number(x.std)},   {"median", number(x.median)},
+          {"max", number(x.max)},   {"min", number(x.min)},   {"standard_error", number(x.standard_error())},
+          {"count", x.count},       {"failures", x.failures}, {"inconsistent", m.inconsistent}};
     }
     r["methods"] = methods;
     const std::optional<PhysicalComparison> c = compare_to_generic(result, row);
@@ -115,18 +118,20 @@ std::string to_json(const PhysicalExperimentResult& result) {
 std::string report(const PhysicalExperimentResult& result) {
   const hexapod::SimulationOptions& s = result.options.simulation;
   std::ostringstream out;
-  out << "Physical identification experiment: " << (result.options.geometry ? "the given hexapod" : "the built-in hexapod")
+  out << "Physical identification experiment: "
+      << (result.options.geometry ? "the given hexapod" : "the built-in hexapod")
       << ", M_p of its nominal payload";
   if (const std::optional<RigidBodyInertia>& p = result.options.payload) {
     const PrincipalInertia principal = principal_inertia(p->inertia);
     out << " replaced by a payload of " << format_number(p->mass, Precision::Full) << " kg, centre of mass ("
         << format_number(p->center_of_mass(0)) << ", " << format_number(p->center_of_mass(1)) << ", "
-        << format_number(p->center_of_mass(2)) << ") m, principal moments " << format_number(principal.moments(0))
-        << ", " << format_number(principal.moments(1)) << ", " << format_number(principal.moments(2)) << " kg m^2";
+        << format_number(p->center_of_mass(2)) << ") m, principal moments "
+        << format_number(principal.moments(0)) << ", " << format_number(principal.moments(1)) << ", "
+        << format_number(principal.moments(2)) << " kg m^2";
   }
   out << ";\n"
-      << hexapod::to_string(s.distribution) << " noise of variance " << format_number(s.noise_var, Precision::Medium)
-      << " in every entry of A";
+      << hexapod::to_string(s.distribution) << " noise of variance "
+      << format_number(s.noise_var, Precision::Medium) << " in every entry of A";
   if (s.force_noise_var && *s.force_noise_var != s.noise_var) {
     out << " and " << format_number(*s.force_noise_var, Precision::Medium) << " in every entry of B";
   } else {
@@ -148,7 +153,8 @@ std::string report(const PhysicalExperimentResult& result) {
     std::snprintf(cell, sizeof cell, "%6ld", static_cast<long>(row.samples));
     out << cell;
     for (const PhysicalMethodErrors& m : row.methods) {
-      const std::string text = format_fixed(m.summary.mean, 3) + " +- " + format_fixed(m.summary.standard_error(), 3);
+      const std::string text =
+          format_fixed(m.summary.mean, 3) + " +- " + format_fixed(m.summary.standard_error(), 3);
       std::snprintf(cell, sizeof cell, "  %17s", text.c_str());
       out << cell;
       any_inconsistent = any_inconsistent || m.inconsistent > 0;
@@ -158,7 +164,8 @@ std::string report(const PhysicalExperimentResult& result) {
     }
     out << "\n";
   }
-  out << "\nEstimates not physically consistent (generic: not positive definite), of " << result.trials << ":";
+  out << "\nEstimates not physically consistent (generic: not positive definite), of " << result.trials
+      << ":";
   if (!any_inconsistent) {
     out << " none\n";
     return out.str();

@@ -2,10 +2,9 @@
 // for people, each parameter beside the geometry's nominal (CAD) value.
 #include <cmath>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "spdfit/format.hpp"
 #include "spdfit/hexapod/render.hpp"
@@ -31,12 +30,14 @@ struct Row {
 
 std::string row_text(const Row& r, bool bootstrap) {
   char line[256];
-  std::snprintf(line, sizeof line, "  %-28s %12s %12s", r.name.c_str(), format_number(r.estimate, Precision::Full).c_str(),
+  std::snprintf(line, sizeof line, "  %-28s %12s %12s", r.name.c_str(),
+                format_number(r.estimate, Precision::Full).c_str(),
                 r.nominal ? format_number(*r.nominal, Precision::Full).c_str() : "-");
   std::string out = line;
   if (bootstrap && r.se) {
     std::snprintf(line, sizeof line, " %11s   [%s, %s]", format_number(*r.se, Precision::Medium).c_str(),
-                  format_number(*r.lower, Precision::Medium).c_str(), format_number(*r.upper, Precision::Medium).c_str());
+                  format_number(*r.lower, Precision::Medium).c_str(),
+                  format_number(*r.upper, Precision::Medium).c_str());
     out += line;
   }
   return out + "\n";
@@ -71,7 +72,8 @@ std::string to_json(const PhysicalEstimate& estimate, const IdentifyOptions& opt
   nlohmann::ordered_json out = nlohmann::ordered_json::parse(physical_json(estimate));
   if (const Eigen::MatrixXd* truth = truth_of(options); truth && estimate.ok()) {
     const double error = (estimate.M_p - *truth).norm();
-    out["error_vs_truth"] = std::isfinite(error) ? nlohmann::ordered_json(error) : nlohmann::ordered_json(nullptr);
+    out["error_vs_truth"] =
+        std::isfinite(error) ? nlohmann::ordered_json(error) : nlohmann::ordered_json(nullptr);
   }
   return out.dump(2) + "\n";
 }
@@ -80,8 +82,8 @@ std::string report(const PhysicalEstimate& e, const Geometry& geometry, const Id
   std::ostringstream out;
   const std::string criterion =
       e.criterion_kind == PhysicalCriterion::ErrorsInVariables ? "errors in variables" : "least squares";
-  out << "Physical estimate (" << criterion << ", " << (e.consistent_requested ? "physically consistent" : "unconstrained")
-      << "; strut masses "
+  out << "Physical estimate (" << criterion << ", "
+      << (e.consistent_requested ? "physically consistent" : "unconstrained") << "; strut masses "
       << (e.strut_masses == StrutMasses::Geometry ? std::string("from the geometry")
                                                   : "estimated, " + std::string(to_string(e.strut_masses)))
       << ")\n";
@@ -104,19 +106,23 @@ std::string report(const PhysicalEstimate& e, const Geometry& geometry, const Id
   std::vector<Row> rows;
   add_rows(rows, {"mass (kg)"}, Eigen::MatrixXd::Constant(1, 1, e.payload.mass),
            Eigen::MatrixXd::Constant(1, 1, geometry.payload_mass), boot ? &b->mass : nullptr, {{0, 0}});
-  add_rows(rows, {"centre of mass x (m)", "centre of mass y (m)", "centre of mass z (m)"}, e.payload.center_of_mass,
-           Eigen::MatrixXd(Eigen::Vector3d::Zero()), boot ? &b->center_of_mass : nullptr, {{0, 0}, {1, 0}, {2, 0}});
-  add_rows(rows, {"inertia xx (kg m^2)", "inertia yy (kg m^2)", "inertia zz (kg m^2)", "inertia xy (kg m^2)",
-                  "inertia xz (kg m^2)", "inertia yz (kg m^2)"},
+  add_rows(rows, {"centre of mass x (m)", "centre of mass y (m)", "centre of mass z (m)"},
+           e.payload.center_of_mass, Eigen::MatrixXd(Eigen::Vector3d::Zero()),
+           boot ? &b->center_of_mass : nullptr, {{0, 0}, {1, 0}, {2, 0}});
+  add_rows(rows,
+           {"inertia xx (kg m^2)", "inertia yy (kg m^2)", "inertia zz (kg m^2)", "inertia xy (kg m^2)",
+            "inertia xz (kg m^2)", "inertia yz (kg m^2)"},
            e.payload.inertia, Eigen::MatrixXd(geometry.payload_inertia), boot ? &b->inertia : nullptr,
            {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}});
   const PrincipalInertia nominal_principal = principal_inertia(geometry.payload_inertia);
-  add_rows(rows, {"principal moment 1 (kg m^2)", "principal moment 2 (kg m^2)", "principal moment 3 (kg m^2)"},
-           e.principal.moments, Eigen::MatrixXd(nominal_principal.moments), boot ? &b->principal_moments : nullptr,
-           {{0, 0}, {1, 0}, {2, 0}});
+  add_rows(rows,
+           {"principal moment 1 (kg m^2)", "principal moment 2 (kg m^2)", "principal moment 3 (kg m^2)"},
+           e.principal.moments, Eigen::MatrixXd(nominal_principal.moments),
+           boot ? &b->principal_moments : nullptr, {{0, 0}, {1, 0}, {2, 0}});
   if (e.strut_masses == StrutMasses::Common) {
     add_rows(rows, {"strut mass, common (kg)"}, e.strut_mass,
-             Eigen::MatrixXd::Constant(1, 1, geometry.strut_mass.mean()), boot ? &b->strut_mass : nullptr, {{0, 0}});
+             Eigen::MatrixXd::Constant(1, 1, geometry.strut_mass.mean()), boot ? &b->strut_mass : nullptr,
+             {{0, 0}});
   } else if (e.strut_masses == StrutMasses::Each) {
     std::vector<std::string> names;
     std::vector<std::pair<int, int>> entries;
@@ -124,16 +130,18 @@ std::string report(const PhysicalEstimate& e, const Geometry& geometry, const Id
       names.push_back("strut mass " + std::to_string(i + 1) + " (kg)");
       entries.emplace_back(i, 0);
     }
-    add_rows(rows, names, e.strut_mass, Eigen::MatrixXd(geometry.strut_mass), boot ? &b->strut_mass : nullptr, entries);
+    add_rows(rows, names, e.strut_mass, Eigen::MatrixXd(geometry.strut_mass), boot ? &b->strut_mass : nullptr,
+             entries);
   }
   for (const Row& r : rows) out << row_text(r, boot);
   if (e.strut_masses == StrutMasses::Geometry) {
-    out << "  strut masses (kg), from the geometry, not estimated: " << vector_text(geometry.strut_mass, 4) << "\n";
+    out << "  strut masses (kg), from the geometry, not estimated: " << vector_text(geometry.strut_mass, 4)
+        << "\n";
   }
   out << "  principal axes (columns)\n";
   for (int i = 0; i < 3; ++i) {
-    std::snprintf(line, sizeof line, "    %9.5f %9.5f %9.5f\n", e.principal.axes(i, 0), e.principal.axes(i, 1),
-                  e.principal.axes(i, 2));
+    std::snprintf(line, sizeof line, "    %9.5f %9.5f %9.5f\n", e.principal.axes(i, 0),
+                  e.principal.axes(i, 1), e.principal.axes(i, 2));
     out << line;
   }
 
@@ -147,8 +155,8 @@ std::string report(const PhysicalEstimate& e, const Geometry& geometry, const Id
   out << "\n" << format_side_by_side(titles, matrices);
   if (truth) out << "error ||M_p(theta) - truth||_F = " << format_fixed((e.M_p - *truth).norm()) << "\n";
   if (boot) {
-    out << "eigenvalues (kg), " << b->replicates << " bootstrap resamples (" << b->failed << " failed, seed " << b->seed
-        << "): value +- standard error   [interval]\n"
+    out << "eigenvalues (kg), " << b->replicates << " bootstrap resamples (" << b->failed << " failed, seed "
+        << b->seed << "): value +- standard error   [interval]\n"
         << report(b->M_p_eigenvalues, "  ");
     if (b->modes_hz) out << "modes (Hz)\n" << report(*b->modes_hz, "  ");
   } else {
@@ -157,10 +165,11 @@ std::string report(const PhysicalEstimate& e, const Geometry& geometry, const Id
   }
   out << "pseudo-inertia min eig " << format_number(e.pseudo_inertia_min_eig) << " kg ("
       << (e.physically_consistent ? "physically consistent" : "NOT physically consistent") << ")\n"
-      << "criterion " << format_number(e.criterion, Precision::Full) << ", " << e.iterations << " Newton steps, "
-      << (e.converged ? "converged" : "NOT converged") << "; KKT certificate: stationarity "
-      << format_number(e.certificate.stationarity) << ", primal min eig " << format_number(e.certificate.primal_min_eig)
-      << ", dual min eig " << format_number(e.certificate.dual_min_eig) << ", complementarity "
+      << "criterion " << format_number(e.criterion, Precision::Full) << ", " << e.iterations
+      << " Newton steps, " << (e.converged ? "converged" : "NOT converged")
+      << "; KKT certificate: stationarity " << format_number(e.certificate.stationarity)
+      << ", primal min eig " << format_number(e.certificate.primal_min_eig) << ", dual min eig "
+      << format_number(e.certificate.dual_min_eig) << ", complementarity "
       << format_number(e.certificate.complementarity) << "\n"
       << "design: rank " << e.design.rank << " of " << e.design.parameters << " parameters, condition "
       << format_number(e.design.condition) << "\n";

@@ -19,8 +19,9 @@ std::vector<Spec> make_table() {
   struts.python = "fit_strut_mass";
   struts.type = OptionType::Text;
   struts.value_name = "common|each";
-  struts.help = "Estimate the struts' moving masses too: one mass common to the six struts, or each strut's "
-                "(only where the geometry identifies them; 'geometry' takes the geometry's, not estimated)";
+  struts.help =
+      "Estimate the struts' moving masses too: one mass common to the six struts, or each strut's "
+      "(only where the geometry identifies them; 'geometry' takes the geometry's, not estimated)";
   struts.default_text = "geometry";
   struts.set = [](PhysicalOptions& o, const OptionValue& v) {
     const std::string& name = std::get<std::string>(v);
@@ -39,8 +40,9 @@ std::vector<Spec> make_table() {
   criterion.python = "criterion";
   criterion.type = OptionType::Text;
   criterion.value_name = "eiv|ls";
-  criterion.help = "The physical fit's criterion: errors in variables (eiv: noise in A and B, consistent as m "
-                   "grows) or least squares (ls: noise in B only, biased towards a lighter payload when A is noisy)";
+  criterion.help =
+      "The physical fit's criterion: errors in variables (eiv: noise in A and B, consistent as m "
+      "grows) or least squares (ls: noise in B only, biased towards a lighter payload when A is noisy)";
   criterion.default_text = "eiv";
   criterion.set = [](PhysicalOptions& o, const OptionValue& v) {
     const std::string& name = std::get<std::string>(v);
@@ -57,9 +59,10 @@ std::vector<Spec> make_table() {
   consistent.name = "consistent";
   consistent.python = "consistent";
   consistent.type = OptionType::Boolean;
-  consistent.help = "Enforce physical consistency (the payload's pseudo-inertia positive semidefinite, strut "
-                    "masses non-negative); False is the unconstrained grey-box fit of the same model, which may "
-                    "return a payload that cannot exist";
+  consistent.help =
+      "Enforce physical consistency (the payload's pseudo-inertia positive semidefinite, strut "
+      "masses non-negative); False is the unconstrained grey-box fit of the same model, which may "
+      "return a payload that cannot exist";
   consistent.default_text = "True";
   consistent.nullable = false;
   consistent.set = [](PhysicalOptions& o, const OptionValue& v) { o.consistent = std::get<bool>(v); };
@@ -70,8 +73,9 @@ std::vector<Spec> make_table() {
   unconstrained.name = "unconstrained";
   unconstrained.cli = "--unconstrained";
   unconstrained.type = OptionType::Flag;
-  unconstrained.help = "The physical fit without the consistency constraint: the grey-box fit of the same model, "
-                       "for comparison, which may return a payload that cannot exist";
+  unconstrained.help =
+      "The physical fit without the consistency constraint: the grey-box fit of the same model, "
+      "for comparison, which may return a payload that cannot exist";
   unconstrained.nullable = false;
   unconstrained.set = [](PhysicalOptions& o, const OptionValue& v) {
     if (std::get<bool>(v)) o.consistent = false;
@@ -88,7 +92,8 @@ const std::vector<OptionSpec<PhysicalOptions>>& physical_option_table() {
   return table;
 }
 
-void apply_fit_options(const FitOptions& fit, const std::vector<std::string_view>& given, PhysicalOptions& options) {
+void apply_fit_options(const FitOptions& fit, const std::vector<std::string_view>& given,
+                       PhysicalOptions& options) {
   options.bootstrap = fit.bootstrap;
   options.confidence = fit.confidence;
   options.seed = fit.seed;

@@ -37,7 +37,8 @@ TEST(PhysicalOptionTable, SetsTheFieldsAndRefusesUnknownValues) {
     set_option(options, spec("strut_masses"), OptionValue{std::string("some")});
     FAIL() << "an unknown strut-mass source was accepted";
   } catch (const OptionError& e) {
-    EXPECT_EQ(spell_options(e.what(), Frontend::Cli), "--fit-strut-mass must be common, each or geometry, got 'some'");
+    EXPECT_EQ(spell_options(e.what(), Frontend::Cli),
+              "--fit-strut-mass must be common, each or geometry, got 'some'");
   }
   EXPECT_THROW(set_option(options, spec("criterion"), OptionValue{std::string("tls")}), OptionError);
   EXPECT_THROW(set_option(options, spec("consistent"), OptionValue{std::string("yes")}), OptionError);
@@ -55,8 +56,10 @@ TEST(PhysicalOptionTable, DefaultsAreTheLibrarysAndEveryOptionIsOffered) {
 
 TEST(PhysicalOptionTable, MessagesNameStrutMassesAsEachFrontEndSpellsIt) {
   const std::string message = "`strut_masses` = common cannot be estimated on this geometry";
-  EXPECT_EQ(spell_options(message, Frontend::Cli), "--fit-strut-mass = common cannot be estimated on this geometry");
-  EXPECT_EQ(spell_options(message, Frontend::Python), "fit_strut_mass = common cannot be estimated on this geometry");
+  EXPECT_EQ(spell_options(message, Frontend::Cli),
+            "--fit-strut-mass = common cannot be estimated on this geometry");
+  EXPECT_EQ(spell_options(message, Frontend::Python),
+            "fit_strut_mass = common cannot be estimated on this geometry");
   EXPECT_EQ(spell_option("criterion", Frontend::Cli), "--physical-criterion");
 }
 
@@ -94,7 +97,8 @@ TEST(PhysicalExperiment, ComparesPhysicalWithTheBestGenericMethod) {
   result.options.variants = {"grey-box-ls", "physical"};
   experiment::PhysicalExperimentRow row;
   row.samples = 30;
-  row.methods = {errors("spde", 1.5), errors("spd-tls", 1.2), errors("grey-box-ls", 0.3), errors("physical", 0.6)};
+  row.methods = {errors("spde", 1.5), errors("spd-tls", 1.2), errors("grey-box-ls", 0.3),
+                 errors("physical", 0.6)};
   const auto c = experiment::compare_to_generic(result, row);
   ASSERT_TRUE(c.has_value());
   EXPECT_EQ(c->best_generic, "spd-tls");  // grey-box-ls is lower but not a generic method

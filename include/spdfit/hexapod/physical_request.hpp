@@ -25,6 +25,7 @@ const std::vector<OptionSpec<PhysicalOptions>>& physical_option_table();
 /// the bootstrap's replicates, level, seed and threads, and max_iterations and rank_tolerance
 /// when the user gave them (`given`: library names; their defaults differ: 200 Newton steps for
 /// the generic iterative methods, 500 for the physical fit's barrier path).
-void apply_fit_options(const FitOptions& fit, const std::vector<std::string_view>& given, PhysicalOptions& options);
+void apply_fit_options(const FitOptions& fit, const std::vector<std::string_view>& given,
+                       PhysicalOptions& options);
 
 }  // namespace spdfit::hexapod
