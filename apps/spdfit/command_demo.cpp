@@ -20,7 +20,8 @@ using experiment::ThesisExperimentResult;
 
 Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
   struct Cli {
-    std::size_t trials = 2000, trials_2x2 = 10000, trials_samples = 300, trials_beyond = 200, trials_physical = 100;
+    std::size_t trials = 2000, trials_2x2 = 10000, trials_samples = 300, trials_beyond = 200,
+                trials_physical = 100;
     std::uint64_t seed = 1;
     unsigned threads = 0;
   };
@@ -123,7 +124,8 @@ Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
         static_cast<unsigned long long>(cli->seed), 3 * cli->trials,
         demo::sample_sizes().size() * cli->trials_samples, demo::levels_2x2().size() * cli->trials_2x2,
         demo::beyond_widths().size() * demo::beyond_sizes().size() * cli->trials_beyond,
-        demo::physical_sizes().size() * cli->trials_physical, experiment::resolve_threads(cli->threads), seconds);
+        demo::physical_sizes().size() * cli->trials_physical, experiment::resolve_threads(cli->threads),
+        seconds);
     out << '\n' << demo::wrap(line);
     emit(out.str(), "");
   };

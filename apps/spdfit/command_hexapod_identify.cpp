@@ -1,22 +1,21 @@
 // spdfit hexapod identify A B [--truth T] [--geometry G | --stiffness K] [--physical
 // [--fit-strut-mass common|each]] [--bootstrap N] [--json]: M_p identified from measured
 // accelerations and forces by every estimator, and with --physical the payload's mass properties.
+#include <CLI/CLI.hpp>
 #include <memory>
 #include <sstream>
-
-#include <CLI/CLI.hpp>
 
 #include "bootstrap_options.hpp"
 #include "hexapod_commands.hpp"
 #include "input.hpp"
 #include "output.hpp"
-#include "table_options.hpp"
 #include "spdfit/fit_request.hpp"
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/hexapod/identify.hpp"
 #include "spdfit/hexapod/physical_request.hpp"
 #include "spdfit/hexapod/render.hpp"
 #include "spdfit/io.hpp"
+#include "table_options.hpp"
 
 namespace spdfit::cli {
 
@@ -72,7 +71,8 @@ Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
   sub->add_flag("--physical", cli->physical,
                 "Also fit the payload's mass, centre of mass and inertia (physically consistent) with the "
                 "Jacobian of --geometry known, each beside the geometry's nominal value");
-  cli->physical_options = std::make_unique<TableOptions<hexapod::PhysicalOptions>>(*sub, hexapod::physical_option_table());
+  cli->physical_options =
+      std::make_unique<TableOptions<hexapod::PhysicalOptions>>(*sub, hexapod::physical_option_table());
   // The fit's iteration limit and rank cut-off, for every estimator and the physical fit alike.
   std::vector<std::string_view> not_here;
   for (const OptionSpec<FitRequest>& spec : fit_option_table()) {
@@ -108,7 +108,8 @@ Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
       throw UsageError(spell_option(physical_given.front(), Frontend::Cli) + " needs --physical");
     }
     if (cli->physical && cli->geometry.empty()) {
-      throw UsageError("--physical needs --geometry: the Jacobian and the nominal payload come from the geometry file");
+      throw UsageError(
+          "--physical needs --geometry: the Jacobian and the nominal payload come from the geometry file");
     }
     hexapod::Geometry geometry;
     if (!cli->geometry.empty()) {
@@ -137,9 +138,11 @@ Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
     }
     // A parameter the geometry confounds, or data that cannot identify one: std::invalid_argument
     // naming it, a data error.
-    const hexapod::PhysicalEstimate physical = hexapod::identify_physical(data.A, data.B, geometry, physical_options);
+    const hexapod::PhysicalEstimate physical =
+        hexapod::identify_physical(data.A, data.B, geometry, physical_options);
     for (const std::string& w : physical.warnings) warn(global, "physical: " + w);
-    emit(cli->json ? hexapod::to_json(methods, options, physical) : hexapod::report(methods, options, physical, geometry),
+    emit(cli->json ? hexapod::to_json(methods, options, physical)
+                   : hexapod::report(methods, options, physical, geometry),
          cli->output);
     // The report says why too; the exit status tells a script that the fit asked for failed.
     if (!physical.ok()) throw DataFailure("the physical fit failed: " + physical.message);

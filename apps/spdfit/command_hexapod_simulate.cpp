@@ -1,22 +1,21 @@
 // spdfit hexapod simulate --noise-var V --out DIR [...]: accelerations A and base forces
 // B = A M_p with noise, the thesis' appendix-B generator, written as files.
+#include <CLI/CLI.hpp>
 #include <filesystem>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
-
-#include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include "hexapod_commands.hpp"
 #include "input.hpp"
 #include "output.hpp"
+#include "payload_options.hpp"
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/hexapod/model.hpp"
 #include "spdfit/hexapod/simulate.hpp"
 #include "spdfit/io.hpp"
 #include "spdfit/rigid_body.hpp"
-#include "payload_options.hpp"
 #include "validators.hpp"
 
 namespace spdfit::cli {
@@ -72,7 +71,8 @@ Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global) {
     std::optional<hexapod::Geometry> geometry_read;
     std::optional<RigidBodyInertia> payload;
     if (cli->payload.given() && cli->geometry.empty()) {
-      throw UsageError("--payload-mass, --payload-com and --payload-inertia change the payload of --geometry: give it");
+      throw UsageError(
+          "--payload-mass, --payload-com and --payload-inertia change the payload of --geometry: give it");
     }
     if (!cli->geometry.empty()) {
       geometry_read = hexapod::read_geometry(cli->geometry);
@@ -105,8 +105,9 @@ Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global) {
                        std::to_string(M.rows()) + "): the estimators need m >= n");
     }
     // The payload's simulate draws what simulate(M, options, seed) draws for its M.
-    const hexapod::Measurements data =
-        payload ? hexapod::simulate(*geometry_read, *payload, options, cli->seed) : hexapod::simulate(M, options, cli->seed);
+    const hexapod::Measurements data = payload
+                                           ? hexapod::simulate(*geometry_read, *payload, options, cli->seed)
+                                           : hexapod::simulate(M, options, cli->seed);
 
     namespace fs = std::filesystem;
     std::error_code error;

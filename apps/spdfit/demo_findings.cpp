@@ -6,8 +6,8 @@
 #include <sstream>
 
 #include "demo_report.hpp"
-#include "spdfit/format.hpp"
 #include "experiment_output.hpp"
+#include "spdfit/format.hpp"
 
 namespace spdfit::cli::demo {
 
@@ -266,12 +266,14 @@ std::string physical_statements(const std::optional<experiment::PhysicalExperime
     }
   }
   if (!(high > 0.0)) return "";
-  std::string text = "Section 6: with the geometry known, fitting the payload's mass, centre of mass and inertia gives M_p with " +
-                     format_fixed(low, 2) + (high > low ? " to " + format_fixed(high, 2) : std::string()) +
-                     " times the error of the best generic method at every m, and " +
-                     (inconsistent == 0 ? std::string("every physical estimate is a body that can exist")
-                                        : std::to_string(inconsistent) + " physical estimates are not consistent") +
-                     ".";
+  std::string text =
+      "Section 6: with the geometry known, fitting the payload's mass, centre of mass and inertia gives M_p "
+      "with " +
+      format_fixed(low, 2) + (high > low ? " to " + format_fixed(high, 2) : std::string()) +
+      " times the error of the best generic method at every m, and " +
+      (inconsistent == 0 ? std::string("every physical estimate is a body that can exist")
+                         : std::to_string(inconsistent) + " physical estimates are not consistent") +
+      ".";
   return bullet(text);
 }
 

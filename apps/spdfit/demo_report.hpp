@@ -2,15 +2,13 @@
 // them (demo_findings.cpp).
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
-
 #include "output.hpp"
-#include <optional>
-
 #include "spdfit/experiment/paper.hpp"
 #include "spdfit/experiment/physical.hpp"
 #include "spdfit/experiment/thesis.hpp"

@@ -292,8 +292,9 @@ void bind_experiment(py::module_& parent) {
   m.def("paper_2x2_design", &paper_2x2_design);
   m.def(
       "physical",
-      [](std::optional<std::vector<Eigen::Index>> samples, std::optional<double> noise_var, std::size_t trials,
-         std::uint64_t seed, unsigned threads, std::optional<std::vector<std::string>> methods) {
+      [](std::optional<std::vector<Eigen::Index>> samples, std::optional<double> noise_var,
+         std::size_t trials, std::uint64_t seed, unsigned threads,
+         std::optional<std::vector<std::string>> methods) {
         PhysicalExperimentOptions options;
         if (samples) options.samples = *samples;
         if (noise_var) options.simulation.noise_var = *noise_var;

@@ -147,7 +147,8 @@ void bind_hexapod(py::module_& parent) {
         identify_options.stiffness = std::move(stiffness);
         identify_options.fit = fit_request("hexapod.identify", fit_keywords, FitRequest{}, given).options;
         check_option_combination(fit_option_table(), given);
-        PhysicalOptions physical_options = physical_request("hexapod.identify.physical", physical_keywords, physical_given);
+        PhysicalOptions physical_options =
+            physical_request("hexapod.identify.physical", physical_keywords, physical_given);
         apply_fit_options(identify_options.fit, given, physical_options);
         const Geometry hexapod_geometry = geometry ? *geometry : cubic_geometry();
         if (geometry && !identify_options.stiffness) {
@@ -158,7 +159,9 @@ void bind_hexapod(py::module_& parent) {
         {
           py::gil_scoped_release release;
           methods = identify(A, B, identify_options);
-          if (physical) physical_text = to_json(identify_physical(A, B, hexapod_geometry, physical_options), identify_options);
+          if (physical)
+            physical_text =
+                to_json(identify_physical(A, B, hexapod_geometry, physical_options), identify_options);
         }
         return py::make_tuple(methods, physical_text);
       },

@@ -61,7 +61,8 @@ const Entry& entry(std::string_view name) {
 std::vector<Keyword> keywords(const Entry& entry, std::optional<Method> method) {
   if (entry.table == "nearest") return keywords_of(nearest_option_table(), entry, static_cast<NearestRequest*>(nullptr));
   if (entry.table == "physical") {
-    return keywords_of(hexapod::physical_option_table(), entry, static_cast<hexapod::PhysicalOptions*>(nullptr));
+    return keywords_of(hexapod::physical_option_table(), entry,
+                       static_cast<hexapod::PhysicalOptions*>(nullptr));
   }
   FitRequest request;
   if (method) request.method = *method;

@@ -1,6 +1,6 @@
-// Which of the library's options (fit_option_table, nearest_option_table, physical_option_table) each Python function
-// takes as keyword arguments: the one list that the module binds, the docstrings document and
-// the type stubs declare (python/stubgen.cpp writes them from it at build time).
+// Which of the library's options (fit_option_table, nearest_option_table, physical_option_table) each Python
+// function takes as keyword arguments: the one list that the module binds, the docstrings document and the
+// type stubs declare (python/stubgen.cpp writes them from it at build time).
 #pragma once
 
 #include <optional>

@@ -132,7 +132,8 @@ NearestRequest nearest_request(std::string_view entry_name, const py::dict& kwar
 
 hexapod::PhysicalOptions physical_request(std::string_view entry_name, const py::dict& kwargs,
                                           std::vector<std::string_view>& given) {
-  return request_from(hexapod::physical_option_table(), entry(entry_name), kwargs, hexapod::PhysicalOptions{}, given);
+  return request_from(hexapod::physical_option_table(), entry(entry_name), kwargs, hexapod::PhysicalOptions{},
+                      given);
 }
 
 Method method_from(const py::handle& method) {

@@ -152,7 +152,8 @@ std::string closest_line(const std::vector<MethodIdentification>& methods, const
     errors.push_back(m.error_vs_truth);
     names.emplace_back(to_string(m.result.method));
   }
-  if (physical && physical->ok() && options.truth && options.truth->rows() == 6 && options.truth->cols() == 6) {
+  if (physical && physical->ok() && options.truth && options.truth->rows() == 6 &&
+      options.truth->cols() == 6) {
     errors.push_back((physical->M_p - *options.truth).norm());
     names.emplace_back("physical");
   }

@@ -41,7 +41,8 @@ std::string to_json(const std::vector<MethodIdentification>& methods, const Iden
 /// (and with a bootstrap its standard error and interval); M_p(theta) (beside options.truth and
 /// with its error when given), its eigenvalues and modes (with their intervals), the certificate
 /// of the minimum found and the design's rank and condition. Cost O(1).
-std::string report(const PhysicalEstimate& estimate, const Geometry& geometry, const IdentifyOptions& options = {});
+std::string report(const PhysicalEstimate& estimate, const Geometry& geometry,
+                   const IdentifyOptions& options = {});
 
 /// `spdfit hexapod identify --physical`: report(methods, options), then the physical estimate
 /// (report(physical, geometry, options)) and, with a truth, which estimate is closest to it,
