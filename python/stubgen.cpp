@@ -1,6 +1,6 @@
 // Writes the type stubs of the spdfit package from their sources in python/spdfit/: a function
 // whose keywords come from the library's option tables is written there with `**options: Any`
-// and a trailing `# options: ENTRY` (entries.hpp), all on one line, and gets its keyword-only
+// and a trailing `# options: ENTRY [ENTRY...]` (entries.hpp), all on one line, and gets its keyword-only
 // parameters here, each annotated from its option's type, so that a new option in a table is in
 // the stubs too.
 //
@@ -9,6 +9,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "src/entries.hpp"
 
@@ -24,7 +25,13 @@ std::string expanded(const std::string& line, const std::string& entry_name) {
   if (!star) parameters = "*, ";
   bool first = true;
   const std::string before = line.substr(0, at);
-  for (const spdfit::python::Keyword& k : spdfit::python::keywords(entry_name)) {
+  // Several entries, space-separated, give their keywords in turn.
+  std::vector<spdfit::python::Keyword> all;
+  std::istringstream names(entry_name);
+  for (std::string name; names >> name;) {
+    for (const spdfit::python::Keyword& k : spdfit::python::keywords(name)) all.push_back(k);
+  }
+  for (const spdfit::python::Keyword& k : all) {
     // A keyword the function spells out itself (nearest_spd's positional min_eig) is not repeated.
     const std::string spelled = std::string(k.python) + ":";
     if (before.find(" " + spelled) != std::string::npos || before.find("(" + spelled) != std::string::npos) continue;

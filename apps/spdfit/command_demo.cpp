@@ -20,7 +20,8 @@ using experiment::ThesisExperimentResult;
 
 Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
   struct Cli {
-    std::size_t trials = 2000, trials_2x2 = 10000, trials_samples = 300, trials_beyond = 200;
+    std::size_t trials = 2000, trials_2x2 = 10000, trials_samples = 300, trials_beyond = 200,
+                trials_physical = 100;
     std::uint64_t seed = 1;
     unsigned threads = 0;
   };
@@ -40,6 +41,10 @@ Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str();
   sub->add_option("--trials-beyond", cli->trials_beyond,
                   "Monte Carlo trials at each point of section 5 (the methods beyond the seeds against m)")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{10000000}))
+      ->capture_default_str();
+  sub->add_option("--trials-physical", cli->trials_physical,
+                  "Monte Carlo trials at each m of section 6 (physical identification of the payload)")
       ->check(CLI::Range(std::size_t{1}, std::size_t{10000000}))
       ->capture_default_str();
   sub->add_option("--seed", cli->seed, "Seed of every experiment")->capture_default_str();
@@ -90,6 +95,13 @@ Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
         results.beyond.push_back(experiment::run_thesis_experiment(options, monte_carlo));
       }
     }
+    monte_carlo.trials = cli->trials_physical;
+    {
+      experiment::PhysicalExperimentOptions options;
+      options.samples = demo::physical_sizes();
+      monte_carlo.progress = trials_progress(global, "demo: physical identification");
+      results.physical = experiment::run_physical_experiment(options, monte_carlo);
+    }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     std::ostringstream out;
@@ -107,12 +119,13 @@ Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
     char line[200];
     std::snprintf(
         line, sizeof line,
-        "(seed %llu; %zu + %zu + %zu + %zu trials on %u threads in %.1f s. Reproduce any table with "
+        "(seed %llu; %zu + %zu + %zu + %zu + %zu trials on %u threads in %.1f s. Reproduce any table with "
         "'spdfit experiment ...', see docs/hexapod.md.)",
         static_cast<unsigned long long>(cli->seed), 3 * cli->trials,
         demo::sample_sizes().size() * cli->trials_samples, demo::levels_2x2().size() * cli->trials_2x2,
         demo::beyond_widths().size() * demo::beyond_sizes().size() * cli->trials_beyond,
-        experiment::resolve_threads(cli->threads), seconds);
+        demo::physical_sizes().size() * cli->trials_physical, experiment::resolve_threads(cli->threads),
+        seconds);
     out << '\n' << demo::wrap(line);
     emit(out.str(), "");
   };

@@ -1,18 +1,21 @@
 // spdfit experiment thesis|paper-hexapod|paper-2x2: the seeds' Monte Carlo experiments.
+#include <CLI/CLI.hpp>
 #include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
 #include "cli.hpp"
 #include "experiment_output.hpp"
 #include "output.hpp"
-#include "spdfit/format.hpp"
+#include "payload_options.hpp"
 #include "spdfit/experiment/paper.hpp"
+#include "spdfit/experiment/physical.hpp"
 #include "spdfit/experiment/thesis.hpp"
+#include "spdfit/format.hpp"
+#include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/io.hpp"
+#include "spdfit/options.hpp"
 #include "validators.hpp"
 
 namespace spdfit::cli {
@@ -329,13 +332,89 @@ Command add_paper_2x2(CLI::App& parent, const GlobalOptions& global) {
   return {sub, run};
 }
 
+Command add_physical(CLI::App& parent, const GlobalOptions& global) {
+  struct Cli {
+    CommonCli common;
+    experiment::PhysicalExperimentOptions options;
+    std::vector<Eigen::Index> samples;
+    std::vector<std::string> methods;
+    std::string distribution = "uniform", geometry;
+    double force_noise_var = 0.0;
+    CLI::Option* force_noise = nullptr;
+    PayloadCli payload;
+  };
+  auto cli = std::make_shared<Cli>();
+  CLI::App* sub = parent.add_subcommand(
+      "physical",
+      "Physical identification of the payload against the generic estimators: error of M_p over m, and how "
+      "often each estimate is physically consistent");
+  const experiment::PhysicalExperimentOptions defaults;
+  sub->add_option("--samples", cli->samples, "Comma-separated numbers of samples m (default 12,30,100,1000)")
+      ->delimiter(',')
+      ->check(CLI::Range(Eigen::Index{6}, Eigen::Index{100000000}));
+  sub->add_option("--noise-var", cli->options.simulation.noise_var,
+                  "Variance of the noise in every entry of A and B (default 3.2^2/12: uniform of width 3.2)")
+      ->check(non_negative());
+  cli->force_noise = sub->add_option("--force-noise-var", cli->force_noise_var,
+                                     "Variance of the noise in B when it differs from A's")
+                         ->check(non_negative());
+  sub->add_option("--distribution", cli->distribution, "Noise distribution: uniform or gaussian")
+      ->check(CLI::IsMember({"uniform", "gaussian"}))
+      ->capture_default_str();
+  sub->add_option("--geometry", cli->geometry, "Hexapod geometry file (default: the built-in cubic hexapod)");
+  add_payload_options(sub, cli->payload, "The true payload's");
+  add_common(sub, cli->common, 200);
+  std::string variants, generic;
+  for (const std::string& v : experiment::physical_variant_names())
+    variants += (variants.empty() ? "" : ", ") + v;
+  for (Method m : kSelectableMethods) generic += (generic.empty() ? "" : ", ") + std::string(to_string(m));
+  sub->add_option("--methods", cli->methods,
+                  "Comma-separated estimators: generic methods (" + generic + ") and physical variants (" +
+                      variants +
+                      ", with :common or :each to estimate the strut masses) (default: spde,spd-tls,physical,"
+                      "grey-box-ls,grey-box-tls)")
+      ->delimiter(',');
+  sub->footer(
+      "physical: spdfit's estimator (errors in variables, physically consistent); physical-ls: its convex "
+      "least-\n"
+      "squares start; grey-box-tls and grey-box-ls: the same model without the consistency constraint.");
+
+  auto run = [cli, &global]() {
+    if (!cli->common.csv.empty()) throw UsageError("experiment physical writes no CSV: use --json");
+    experiment::PhysicalExperimentOptions options = cli->options;
+    if (!cli->samples.empty()) options.samples = cli->samples;
+    options.simulation.distribution = *hexapod::parse_noise_distribution(cli->distribution);
+    if (cli->force_noise->count() > 0) options.simulation.force_noise_var = cli->force_noise_var;
+    if (!cli->geometry.empty()) options.geometry = hexapod::read_geometry(cli->geometry);
+    if (cli->payload.given()) {
+      options.payload =
+          payload_of(cli->payload, options.geometry ? *options.geometry : hexapod::cubic_geometry());
+    }
+    if (!cli->methods.empty()) {
+      try {
+        experiment::set_estimators(options, cli->methods);
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("--methods: ") + e.what());
+      }
+    }
+    std::string error;
+    if (!options.is_valid(&error))
+      throw UsageError("experiment physical: " + spell_options(error, Frontend::Cli));
+    const experiment::PhysicalExperimentResult result =
+        experiment::run_physical_experiment(options, monte_carlo(cli->common, "experiment physical", global));
+    emit(cli->common.json ? experiment::to_json(result) : experiment::report(result), cli->common.output);
+  };
+  return {sub, run};
+}
+
 }  // namespace
 
 Command add_experiment_command(CLI::App& app, const GlobalOptions& global) {
   CLI::App* sub = app.add_subcommand("experiment", "Monte Carlo experiments of the source documents");
   sub->require_subcommand(1);
-  auto children = std::make_shared<std::vector<Command>>(std::vector<Command>{
-      add_thesis(*sub, global), add_paper_hexapod(*sub, global), add_paper_2x2(*sub, global)});
+  auto children = std::make_shared<std::vector<Command>>(
+      std::vector<Command>{add_thesis(*sub, global), add_paper_hexapod(*sub, global),
+                           add_paper_2x2(*sub, global), add_physical(*sub, global)});
   auto run = [children]() {
     for (const Command& child : *children) {
       if (child.app->parsed()) child.run();

@@ -1,18 +1,21 @@
-// spdfit hexapod identify A B [--truth T] [--geometry G | --stiffness K] [--bootstrap N] [--json]:
-// M_p identified from measured accelerations and forces by every estimator.
+// spdfit hexapod identify A B [--truth T] [--geometry G | --stiffness K] [--physical
+// [--fit-strut-mass common|each]] [--bootstrap N] [--json]: M_p identified from measured
+// accelerations and forces by every estimator, and with --physical the payload's mass properties.
+#include <CLI/CLI.hpp>
 #include <memory>
 #include <sstream>
-
-#include <CLI/CLI.hpp>
 
 #include "bootstrap_options.hpp"
 #include "hexapod_commands.hpp"
 #include "input.hpp"
 #include "output.hpp"
+#include "spdfit/fit_request.hpp"
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/hexapod/identify.hpp"
+#include "spdfit/hexapod/physical_request.hpp"
 #include "spdfit/hexapod/render.hpp"
 #include "spdfit/io.hpp"
+#include "table_options.hpp"
 
 namespace spdfit::cli {
 
@@ -48,8 +51,10 @@ Eigen::MatrixXd parse_stiffness(const std::string& text, Eigen::Index n) {
 Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
   struct Cli {
     std::string a_path, b_path, truth, geometry, stiffness, output;
-    bool json = false;
+    bool json = false, physical = false;
     BootstrapCli bootstrap;
+    std::unique_ptr<TableOptions<hexapod::PhysicalOptions>> physical_options;
+    std::unique_ptr<TableOptions<FitRequest>> fit_limits;
   };
   auto cli = std::make_shared<Cli>();
   CLI::App* sub = parent.add_subcommand(
@@ -63,6 +68,17 @@ Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
       sub->add_option("--stiffness", cli->stiffness,
                       "Strut stiffness (N/m) for the modes: one number, or one per strut, comma-separated");
   stiffness->excludes(geometry);
+  sub->add_flag("--physical", cli->physical,
+                "Also fit the payload's mass, centre of mass and inertia (physically consistent) with the "
+                "Jacobian of --geometry known, each beside the geometry's nominal value");
+  cli->physical_options =
+      std::make_unique<TableOptions<hexapod::PhysicalOptions>>(*sub, hexapod::physical_option_table());
+  // The fit's iteration limit and rank cut-off, for every estimator and the physical fit alike.
+  std::vector<std::string_view> not_here;
+  for (const OptionSpec<FitRequest>& spec : fit_option_table()) {
+    if (spec.name != "max_iterations" && spec.name != "rank_tolerance") not_here.push_back(spec.name);
+  }
+  cli->fit_limits = std::make_unique<TableOptions<FitRequest>>(*sub, fit_option_table(), not_here);
   sub->add_flag("--json", cli->json, "Print every result as JSON");
   sub->add_option("-o,--output", cli->output, "Write to FILE instead of stdout");
   add_bootstrap_options(*sub, cli->bootstrap,
@@ -87,20 +103,49 @@ Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
                             "the true M_p must be " + std::to_string(n) + "x" + std::to_string(n));
       }
     }
+    const std::vector<std::string_view> physical_given = cli->physical_options->given();
+    if (!cli->physical && !physical_given.empty()) {
+      throw UsageError(spell_option(physical_given.front(), Frontend::Cli) + " needs --physical");
+    }
+    if (cli->physical && cli->geometry.empty()) {
+      throw UsageError(
+          "--physical needs --geometry: the Jacobian and the nominal payload come from the geometry file");
+    }
+    hexapod::Geometry geometry;
     if (!cli->geometry.empty()) {
-      const hexapod::Geometry geometry = hexapod::read_geometry(cli->geometry);
+      geometry = hexapod::read_geometry(cli->geometry);
       if (n != 6)
         throw io::DataError(cli->a_path, 0, 0, "a hexapod geometry needs data with 6 columns (struts)");
       options.stiffness = Eigen::MatrixXd(geometry.strut_stiffness.asDiagonal());
     } else if (!cli->stiffness.empty()) {
       options.stiffness = parse_stiffness(cli->stiffness, n);
     }
+    FitRequest limits;
+    limits.options = options.fit;
+    cli->fit_limits->apply(limits);
+    options.fit = limits.options;
+    hexapod::PhysicalOptions physical_options;
+    cli->physical_options->apply(physical_options);
+    hexapod::apply_fit_options(options.fit, cli->fit_limits->given(), physical_options);
     const std::vector<hexapod::MethodIdentification> methods = hexapod::identify(data.A, data.B, options);
     for (const hexapod::MethodIdentification& m : methods) {
       for (const std::string& w : m.result.warnings)
         warn(global, std::string(to_string(m.result.method)) + ": " + w);
     }
-    emit(cli->json ? hexapod::to_json(methods, options) : hexapod::report(methods, options), cli->output);
+    if (!cli->physical) {
+      emit(cli->json ? hexapod::to_json(methods, options) : hexapod::report(methods, options), cli->output);
+      return;
+    }
+    // A parameter the geometry confounds, or data that cannot identify one: std::invalid_argument
+    // naming it, a data error.
+    const hexapod::PhysicalEstimate physical =
+        hexapod::identify_physical(data.A, data.B, geometry, physical_options);
+    for (const std::string& w : physical.warnings) warn(global, "physical: " + w);
+    emit(cli->json ? hexapod::to_json(methods, options, physical)
+                   : hexapod::report(methods, options, physical, geometry),
+         cli->output);
+    // The report says why too; the exit status tells a script that the fit asked for failed.
+    if (!physical.ok()) throw DataFailure("the physical fit failed: " + physical.message);
   };
   return {sub, run};
 }

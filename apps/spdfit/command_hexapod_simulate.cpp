@@ -1,19 +1,21 @@
 // spdfit hexapod simulate --noise-var V --out DIR [...]: accelerations A and base forces
 // B = A M_p with noise, the thesis' appendix-B generator, written as files.
+#include <CLI/CLI.hpp>
 #include <filesystem>
 #include <memory>
-#include <sstream>
-
-#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
 
 #include "hexapod_commands.hpp"
 #include "input.hpp"
 #include "output.hpp"
+#include "payload_options.hpp"
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/hexapod/model.hpp"
 #include "spdfit/hexapod/simulate.hpp"
 #include "spdfit/io.hpp"
+#include "spdfit/rigid_body.hpp"
 #include "validators.hpp"
 
 namespace spdfit::cli {
@@ -24,6 +26,7 @@ Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global) {
     std::string distribution = "uniform", truth = "thesis", geometry, out;
     std::uint64_t seed = 1;
     double force_noise_var = 0.0;
+    PayloadCli payload;
   };
   auto cli = std::make_shared<Cli>();
   CLI::App* sub = parent.add_subcommand(
@@ -54,6 +57,7 @@ Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global) {
   auto* geometry =
       sub->add_option("--geometry", cli->geometry, "Use the M_p of this geometry file as the truth");
   geometry->excludes(truth);
+  add_payload_options(sub, cli->payload, "With --geometry: the true payload's");
   sub->add_option(
          "--seed", cli->seed,
          "Seed; the data are those of trial 0 of 'spdfit experiment thesis' with the same seed and settings")
@@ -64,9 +68,22 @@ Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global) {
   auto run = [cli, force_noise, &global]() {
     Eigen::MatrixXd M;
     std::string truth_source;
+    std::optional<hexapod::Geometry> geometry_read;
+    std::optional<RigidBodyInertia> payload;
+    if (cli->payload.given() && cli->geometry.empty()) {
+      throw UsageError(
+          "--payload-mass, --payload-com and --payload-inertia change the payload of --geometry: give it");
+    }
     if (!cli->geometry.empty()) {
-      M = hexapod::joint_space_mass_matrix(hexapod::read_geometry(cli->geometry));
-      truth_source = "geometry " + cli->geometry;
+      geometry_read = hexapod::read_geometry(cli->geometry);
+      if (cli->payload.given()) {
+        payload = payload_of(cli->payload, *geometry_read);
+        M = hexapod::joint_space_mass_matrix(*geometry_read, *payload);
+        truth_source = "geometry " + cli->geometry + " with the payload of --payload-*";
+      } else {
+        M = hexapod::joint_space_mass_matrix(*geometry_read);
+        truth_source = "geometry " + cli->geometry;
+      }
     } else if (cli->truth == "thesis") {
       M = hexapod::thesis_mass_matrix();
       truth_source = "thesis eq. 6.1";
@@ -87,7 +104,10 @@ Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global) {
       warn(global, "fewer samples (" + std::to_string(options.samples) + ") than M_p has columns (" +
                        std::to_string(M.rows()) + "): the estimators need m >= n");
     }
-    const hexapod::Measurements data = hexapod::simulate(M, options, cli->seed);
+    // The payload's simulate draws what simulate(M, options, seed) draws for its M.
+    const hexapod::Measurements data = payload
+                                           ? hexapod::simulate(*geometry_read, *payload, options, cli->seed)
+                                           : hexapod::simulate(M, options, cli->seed);
 
     namespace fs = std::filesystem;
     std::error_code error;
@@ -104,6 +124,7 @@ Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global) {
     settings["signal_var"] = options.signal_var;
     settings["distribution"] = cli->distribution;
     settings["truth"] = truth_source;
+    if (payload) settings["payload"] = payload_json(*payload);
     settings["seed"] = cli->seed;
     settings["files"] = {{"A", "A.csv"}, {"B", "B.csv"}, {"truth", "truth.csv"}};
     emit(settings.dump(2) + "\n", (dir / "simulation.json").string());
@@ -115,7 +136,8 @@ Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global) {
     // The next step only when it can succeed: identify needs at least as many samples as columns.
     if (options.samples >= M.rows()) {
       out << "identify M_p from them with:\n  spdfit hexapod identify " << (dir / "A.csv").string() << ' '
-          << (dir / "B.csv").string() << " --truth " << (dir / "truth.csv").string() << "\n";
+          << (dir / "B.csv").string() << " --truth " << (dir / "truth.csv").string()
+          << (payload ? " --physical --geometry " + cli->geometry : std::string()) << "\n";
     }
     emit(out.str(), "");
   };

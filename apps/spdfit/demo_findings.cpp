@@ -2,11 +2,12 @@
 // (paired differences and their standard errors); none is fixed text about which method wins.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "demo_report.hpp"
-#include "spdfit/format.hpp"
 #include "experiment_output.hpp"
+#include "spdfit/format.hpp"
 
 namespace spdfit::cli::demo {
 
@@ -247,6 +248,37 @@ std::string beyond_statements(const std::vector<ThesisExperimentResult>& beyond)
   return out.str();
 }
 
+namespace {
+
+// Section 6: how much closer the physical estimate is than the best generic one, and whether
+// every physical estimate could be a body.
+std::string physical_statements(const std::optional<experiment::PhysicalExperimentResult>& physical) {
+  if (!physical) return "";
+  double low = std::numeric_limits<double>::infinity(), high = 0.0;
+  std::size_t inconsistent = 0;
+  for (const experiment::PhysicalExperimentRow& row : physical->rows) {
+    if (const auto c = experiment::compare_to_generic(*physical, row)) {
+      low = std::min(low, c->ratio);
+      high = std::max(high, c->ratio);
+    }
+    for (const experiment::PhysicalMethodErrors& m : row.methods) {
+      if (m.name == "physical") inconsistent += m.inconsistent;
+    }
+  }
+  if (!(high > 0.0)) return "";
+  std::string text =
+      "Section 6: with the geometry known, fitting the payload's mass, centre of mass and inertia gives M_p "
+      "with " +
+      format_fixed(low, 2) + (high > low ? " to " + format_fixed(high, 2) : std::string()) +
+      " times the error of the best generic method at every m, and " +
+      (inconsistent == 0 ? std::string("every physical estimate is a body that can exist")
+                         : std::to_string(inconsistent) + " physical estimates are not consistent") +
+      ".";
+  return bullet(text);
+}
+
+}  // namespace
+
 std::string findings(const Results& results) {
   Facts facts;
   std::string out = "== What the numbers show\n\n";
@@ -254,6 +286,7 @@ std::string findings(const Results& results) {
   out += paper_statements(results.paper, facts);
   out += samples_statements(results.samples, facts);
   out += beyond_statements(results.beyond);
+  out += physical_statements(results.physical);
 
   // The conclusion follows from the statements above.
   bool spde_best_small = true;

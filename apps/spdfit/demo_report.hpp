@@ -2,14 +2,15 @@
 // them (demo_findings.cpp).
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
-
 #include "output.hpp"
 #include "spdfit/experiment/paper.hpp"
+#include "spdfit/experiment/physical.hpp"
 #include "spdfit/experiment/thesis.hpp"
 
 namespace spdfit::cli::demo {
@@ -23,7 +24,12 @@ struct Results {
   /// Beyond the seeds: every (width, m) of beyond_widths() x beyond_sizes(), widths outer,
   /// running beyond_methods().
   std::vector<experiment::ThesisExperimentResult> beyond;
+  /// Section 6: physical identification of the payload against the generic methods.
+  std::optional<experiment::PhysicalExperimentResult> physical;
 };
+
+/// Section 6's sample sizes (its other settings are the physical experiment's defaults).
+const std::vector<Eigen::Index>& physical_sizes();
 
 /// Section 5's uniform noise widths nm (variance nm^2 / 12), sample sizes and methods.
 const std::vector<double>& beyond_widths();
@@ -36,8 +42,8 @@ const std::vector<Method>& beyond_estimators();
 const std::vector<double>& levels_2x2();
 const std::vector<Eigen::Index>& sample_sizes();
 
-/// Sections 1-5: the built-in hexapod, the thesis' experiments, the 2x2 example, more samples,
-/// and the methods beyond the seeds against m.
+/// Sections 1-6: the built-in hexapod, the thesis' experiments, the 2x2 example, more samples,
+/// the methods beyond the seeds against m, and physical identification of the payload.
 std::string tables(const Results& results);
 
 /// "What the numbers show": each statement chosen by comparing the numbers in `results`.

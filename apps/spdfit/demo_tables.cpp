@@ -244,11 +244,25 @@ std::string section_beyond(const std::vector<ThesisExperimentResult>& beyond) {
   return out.str();
 }
 
+std::string section_physical(const std::optional<experiment::PhysicalExperimentResult>& physical) {
+  if (!physical) return "";
+  return "== 6. Beyond M_p: the payload itself. With the geometry known, M_p has only the payload's mass,\n"
+         "centre of mass and inertia (`spdfit hexapod identify --physical`); fitting those, physically\n"
+         "consistent, against the generic estimates of M_p (`spdfit experiment physical`)\n\n" +
+         experiment::report(*physical) + "\n";
+}
+
 }  // namespace
+
+const std::vector<Eigen::Index>& physical_sizes() {
+  static const std::vector<Eigen::Index> sizes{12, 100, 1000};
+  return sizes;
+}
 
 std::string tables(const Results& results) {
   return section_model() + section_thesis(results.thesis, results.seed) + section_2x2(results.paper) +
-         section_samples(results.thesis, results.samples) + section_beyond(results.beyond);
+         section_samples(results.thesis, results.samples) + section_beyond(results.beyond) +
+         section_physical(results.physical);
 }
 
 }  // namespace spdfit::cli::demo

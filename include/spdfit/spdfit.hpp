@@ -23,6 +23,7 @@
 #include "spdfit/hexapod/identify.hpp"
 #include "spdfit/hexapod/model.hpp"
 #include "spdfit/hexapod/physical.hpp"
+#include "spdfit/hexapod/physical_request.hpp"
 #include "spdfit/hexapod/render.hpp"
 #include "spdfit/hexapod/simulate.hpp"
 #include "spdfit/inertia_repair.hpp"

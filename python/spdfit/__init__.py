@@ -163,12 +163,13 @@ def _option_doc(keyword, kind, text, default_text, default):
     return "    " + head + "\n" + body
 
 
-def _takes_options(entry, *, given=()):
+def _takes_options(*entries, given=()):
     """Gives a function of signature (..., **options) the keyword-only parameters of the library's
-    table entry `entry` ("fit", "fit_files", "fit:spde", ...) but those in `given` (parameters it
-    spells out itself), after its own, with the defaults the library says to show, and fills the
-    "{options}" line of its docstring (the last of its Parameters) with their documentation."""
-    keywords = [k for k in _KEYWORDS[entry] if k[0] not in given]
+    table entries `entries` ("fit", "fit_files", "fit:spde", ...; several in order) but those in
+    `given` (parameters it spells out itself), after its own, with the defaults the library says
+    to show, and fills the "{options}" line of its docstring (the last of its Parameters) with
+    their documentation."""
+    keywords = [k for entry in entries for k in _KEYWORDS[entry] if k[0] not in given]
 
     def decorate(function):
         import inspect
@@ -1113,5 +1114,5 @@ def solve(A, b, *, threshold=None):
 
 
 # Submodules (imported last: they use the helpers above).
-from . import experiment, hexapod, linkage  # noqa: E402
+from . import experiment, hexapod, linkage, physical  # noqa: E402
 from .factor import Factor  # noqa: E402

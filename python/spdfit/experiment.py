@@ -5,6 +5,7 @@ a given seed gives the same numbers whatever the number of threads.
     paper_hexapod()            the paper's Figure 2: per-entry error statistics, Procrustes vs SPDE
     paper_2x2(std_a)           the paper's second example (Figure 3) at one noise level
     paper_2x2_sweep()          the same for std_a = 0, 0.1, ..., 1.9
+    physical()                 physical identification of the payload against the generic methods
 """
 from . import _as_matrix
 from ._spdfit import experiment as _core
@@ -34,7 +35,7 @@ _DEFAULTS = _core.DEFAULTS
 
 __all__ = ["EntryExperimentResult", "EntryStatistics", "MethodErrors", "PairedComparison", "SIGNIFICANCE", "Summary",
            "THESIS_NOISE_VARIANCES", "THESIS_REPORTED", "ThesisExperimentResult", "paper_2x2", "paper_2x2_sweep",
-           "paper_hexapod", "thesis"]
+           "paper_hexapod", "physical", "thesis"]
 
 
 def _names(methods):
@@ -225,3 +226,55 @@ def paper_2x2_sweep(levels=None, *, std_b=_DEFAULTS["paper_2x2_std_b"], trials=1
     levels = list(_core.paper_2x2_sweep_levels() if levels is None else map(float, levels))
     return list(zip(levels, _core.paper_2x2_sweep(levels, float(std_b), int(trials), int(seed), int(threads),
                                                   _names(methods))))
+
+
+def physical(*, samples=None, noise_var=None, trials=200, seed=1, threads=0, methods=None):
+    """Physical identification of the hexapod's payload against the generic estimators.
+
+    The error ||M_hat - M_p||_F of M_p over m on the thesis' set-up (the built-in hexapod and its
+    nominal payload, uniform noise), for generic methods and the physical variants ("physical":
+    errors in variables, physically consistent; "physical-ls"; "grey-box-tls" and "grey-box-ls",
+    the same model unconstrained). Same numbers as `spdfit experiment physical --json`.
+
+    Parameters
+    ----------
+    samples : list of int, optional
+        The numbers of samples m (default 12, 30, 100, 1000).
+    noise_var : float, optional
+        The noise variance in every entry of A and B (default 3.2^2 / 12: uniform of width 3.2).
+    trials : int, default 200
+        Monte Carlo trials per m.
+    seed : int, default 1
+        The random seed.
+    threads : int, default 0
+        Threads for the trials (0: one per core); the numbers do not depend on it.
+    methods : list of str, optional
+        Generic method names and physical variants, as `--methods` (default spde, spd-tls,
+        physical, grey-box-ls, grey-box-tls).
+
+    Returns
+    -------
+    dict
+        The JSON of `spdfit experiment physical --json`: "rows", one per m, each with "samples",
+        "methods" ({name: {"mean", "standard_error", ..., "inconsistent"}}), "best_generic" and
+        "physical_ratio" (physical's mean error over the best generic method's).
+
+    Raises
+    ------
+    ValueError
+        An unknown method or variant, m < 6, bad noise or trials.
+
+    Examples
+    --------
+    >>> import spdfit.experiment as ex
+    >>> r = ex.physical(samples=[30], trials=20, seed=1)
+    >>> row = r["rows"][0]
+    >>> row["best_generic"] in ("spde", "spd-tls"), row["physical_ratio"] < 1, row["methods"]["physical"]["inconsistent"]
+    (True, True, 0)
+    """
+    import json
+
+    text = _core.physical(None if samples is None else [int(m) for m in samples],
+                          None if noise_var is None else float(noise_var), int(trials), int(seed), int(threads),
+                          _names(methods))
+    return json.loads(text)

@@ -1,5 +1,5 @@
 """Type stubs for spdfit.experiment (see experiment.py for the documentation)."""
-from typing import Dict, Iterable, List, Optional, Sequence, Tuple
+from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple
 
 import numpy as np
 import numpy.typing as npt
@@ -101,3 +101,5 @@ def paper_2x2(std_a: float, *, std_b: float = ..., trials: int = ..., seed: int 
 def paper_2x2_sweep(levels: Optional[Iterable[float]] = ..., *, std_b: float = ..., trials: int = ...,
                     seed: int = ..., threads: int = ...,
                     methods: Optional[Sequence[str]] = ...) -> List[Tuple[float, EntryExperimentResult]]: ...
+def physical(*, samples: Optional[Sequence[int]] = ..., noise_var: Optional[float] = ..., trials: int = ...,
+             seed: int = ..., threads: int = ..., methods: Optional[Sequence[str]] = ...) -> Dict[str, Any]: ...

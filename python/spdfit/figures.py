@@ -14,6 +14,8 @@ draws, into DIR (default ./figures):
   hexapod_model        the built-in hexapod's geometry and its mode frequencies
   error_vs_samples     mean error against the number of samples m (log-log), one line per method,
                        at two noise levels: which method to choose for how much data
+  physical_vs_generic  mean error of M_p against m (log-log): physical identification of the
+                       payload against the generic estimators and the best of them at each m
 
 Each plot_* function takes the data its *_data function returns (the experiment functions'
 results, unchanged), so what is drawn is what the library computed.
@@ -257,6 +259,50 @@ def plot_error_vs_samples(data):
     return fig
 
 
+# ---- 7. Physical identification against the generic estimators -------------------------------
+
+PHYSICAL_SIZES = (12, 30, 100, 300, 1000)
+PHYSICAL_STYLES = {"physical": {"color": "#d62728", "marker": "o", "linewidth": 2.5,
+                                "label": "physical (errors in variables, consistent)"},
+                   "grey-box-ls": {"color": "#8c564b", "marker": "^", "linestyle": ":",
+                                   "label": "grey-box least squares (unconstrained)"},
+                   "grey-box-tls": {"color": "#bcbd22", "marker": "v", "linestyle": ":",
+                                    "label": "grey-box TLS (unconstrained)"}}
+
+
+def physical_data(trials=200, seed=1):
+    """spdfit.experiment.physical's result (a dict) on the thesis' set-up at each m."""
+    return experiment.physical(samples=list(PHYSICAL_SIZES), trials=trials, seed=seed)
+
+
+def plot_physical(data):
+    fig, ax = plt.subplots(figsize=(8.5, 5.2))
+    sizes = [row["samples"] for row in data["rows"]]
+    for name in data["methods"]:
+        means = [row["methods"][name]["mean"] for row in data["rows"]]
+        style = PHYSICAL_STYLES.get(name, {"color": COLORS.get(name, "#000000"), "marker": "s",
+                                           "label": LABELS.get(name, name)})
+        ax.plot(sizes, means, **style)
+    best = [row["methods"][row["best_generic"]]["mean"] for row in data["rows"] if row["best_generic"]]
+    if len(best) == len(sizes):
+        ax.plot(sizes, best, color="#000000", linestyle="--", linewidth=1, label="best generic method at each m")
+        for m, row in zip(sizes, data["rows"]):
+            ratio = row["physical_ratio"]
+            if ratio is not None:
+                ax.annotate(f"{ratio:.2f}x", (m, row["methods"]["physical"]["mean"]), textcoords="offset points",
+                            xytext=(0, -14), ha="center", fontsize=8, color="#d62728")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("samples m")
+    ax.set_ylabel("mean error ||M_p - M_hat||_F (kg)")
+    ax.set_title(f"Physical identification vs generic SPD estimates ({data['trials']} trials per point; "
+                 "ratio to the best generic)", fontsize=10)
+    ax.grid(which="both", alpha=0.3)
+    ax.legend(loc="lower left", fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
 FIGURES = {
     "thesis_experiments": (thesis_data, plot_thesis),
     "paper_figure2": (paper_figure2_data, plot_paper_figure2),
@@ -264,6 +310,7 @@ FIGURES = {
     "linkage_steering": (linkage_data, plot_linkage),
     "hexapod_model": (hexapod_data, plot_hexapod),
     "error_vs_samples": (error_vs_samples_data, plot_error_vs_samples),
+    "physical_vs_generic": (physical_data, plot_physical),
 }
 
 

@@ -125,6 +125,10 @@ def geometry(source=None):
     raise ValueError(f"geometry must be None, a Geometry, a path or a dict, got {type(source).__name__}")
 
 
+# geometry() under a name that identify()'s parameter `geometry` does not hide.
+_geometry = geometry
+
+
 def model(geometry_source=None):
     """The Jacobian, the mass-inertia matrix and the modes of a hexapod.
 
@@ -226,14 +230,21 @@ def simulate(samples=_SIMULATION.samples, noise_var=0.86, *, seed=1, truth="thes
     return Simulation(A, B, M, A_true, B_true)
 
 
-@_takes_options("hexapod.identify")
-def identify(A, B, *, truth=None, stiffness=None, **options):
+@_takes_options("hexapod.identify", "hexapod.identify.physical")
+def identify(A, B, *, truth=None, stiffness=None, geometry=None, physical=False, **options):
     """Every estimator on accelerations A and forces B, with eigenvalues, modes and errors.
 
-    The options are spdfit.fit's (each method takes those that apply to it). bootstrap=N > 0 adds
-    each method's bootstrap to its result (result.standard_errors, result.bootstrap.eigenvalues)
-    and, with a stiffness, the modes' intervals (modes_uncertainty): N resamples of the rows, each
-    refitted by every estimator.
+    The options are spdfit.fit's (each method takes those that apply to it) and, with
+    physical=True, the physical fit's. bootstrap=N > 0 adds each method's bootstrap to its result
+    (result.standard_errors, result.bootstrap.eigenvalues) and, with a stiffness, the modes'
+    intervals (modes_uncertainty): N resamples of the rows, each refitted by every estimator (and
+    the physical fit).
+
+    physical=True also fits the payload's mass, centre of mass and inertia (and with
+    fit_strut_mass the struts' moving masses) with the geometry's Jacobian known, physically
+    consistent (spdfit.physical.identify): under the key "physical", the dict of
+    ``spdfit hexapod identify --physical --json``'s ``physical`` object, with error_vs_truth when a
+    truth is given. max_iter and rank_tolerance, when given, apply to the physical fit too.
 
     Parameters
     ----------
@@ -243,20 +254,29 @@ def identify(A, B, *, truth=None, stiffness=None, **options):
         A known M_p: each method's error_vs_truth is ||M_p - M_hat||_F.
     stiffness : array_like, optional
         The stiffness matrix K: each method's modes_hz are its modes sqrt(eig(M_hat^-1 K)) / 2 pi.
+    geometry : None, Geometry, str, os.PathLike or dict, optional
+        The hexapod (as `geometry` takes it): the Jacobian and nominal payload of the physical fit
+        (None: the built-in cubic hexapod), and the modes' stiffness when `stiffness` is not given.
+    physical : bool, optional
+        Also fit the payload's physical parameters (default False).
     {options}
 
     Returns
     -------
-    dict of str to MethodIdentification
+    dict
         {method: MethodIdentification} with the FitResult, the eigenvalues, the modes and the error
-        against the truth.
+        against the truth; with physical=True also "physical": a dict (vectors and matrices as
+        NumPy arrays).
 
     Raises
     ------
     ValueError
-        Bad input: shapes (a truth or stiffness that is not n x n), NaN/Inf, m < n, bad options.
+        Bad input: shapes (a truth or stiffness that is not n x n), NaN/Inf, m < n, bad options; a
+        strut mass the geometry confounds (the message names the combination).
     TypeError
-        An option of the wrong type.
+        An option of the wrong type, or a physical fit's option without physical=True.
+    NumericalError
+        The physical fit failed on valid data.
 
     Examples
     --------
@@ -268,8 +288,34 @@ def identify(A, B, *, truth=None, stiffness=None, **options):
     >>> e = estimates["spd-tls"]
     >>> e.result.diagnostics.positive_definite, e.error_vs_truth < estimates["procrustes"].error_vs_truth
     (True, True)
+
+    With the geometry known, the payload's physical parameters:
+
+    >>> g = hx.cubic_geometry()
+    >>> sim = hx.simulate(samples=200, noise_var=0.86, truth=g, seed=1)
+    >>> out = hx.identify(sim.A, sim.B, truth=sim.truth, geometry=g, physical=True)
+    >>> p = out["physical"]
+    >>> p["physically_consistent"], abs(p["mass"] - g.payload_mass) < 1.0
+    (True, True)
+    >>> bool(p["error_vs_truth"] < out["spd-tls"].error_vs_truth)
+    True
     """
-    results = _core.identify(_as_matrix("A", A), _as_matrix("B", B),
-                             None if truth is None else _as_matrix("truth", truth),
-                             None if stiffness is None else _as_matrix("stiffness", stiffness), options)
-    return {r.result.method: r for r in results}
+    import warnings
+
+    from . import NumericalError, SpdfitWarning
+
+    results, physical_text = _core.identify(_as_matrix("A", A), _as_matrix("B", B),
+                                            None if truth is None else _as_matrix("truth", truth),
+                                            None if stiffness is None else _as_matrix("stiffness", stiffness),
+                                            None if geometry is None else _geometry(geometry),
+                                            bool(physical), options)
+    out = {r.result.method: r for r in results}
+    if physical_text is not None:
+        from .physical import _arrays
+        estimate = _arrays(_json.loads(physical_text))
+        if estimate["status"] != "success":
+            raise NumericalError(estimate.get("error", "physical identification failed"), estimate)
+        for message in estimate["warnings"]:
+            warnings.warn(f"physical: {message}", SpdfitWarning, stacklevel=2)
+        out["physical"] = estimate
+    return out

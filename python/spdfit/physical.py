@@ -56,9 +56,9 @@ def _optional_matrix(name, value):
     return None if value is None else _as_matrix(name, value)
 
 
-def identify(A, B, geometry=None, *, strut_masses="geometry", criterion="eiv", consistent=True, noise_cov_a=None,
-             noise_cov_b=None, max_iter=None, rank_tolerance=None, bootstrap=0, confidence=None, seed=None,
-             threads=0):
+def identify(A, B, geometry=None, *, strut_masses="geometry", fit_strut_mass=None, criterion="eiv", consistent=True,
+             noise_cov_a=None, noise_cov_b=None, max_iter=None, rank_tolerance=None, bootstrap=0, confidence=None,
+             seed=None, threads=0):
     """The payload's mass, centre of mass and inertia (and strut masses) from A and B.
 
     Fits M_p(theta) = J^-T R M_x(theta) R^T J^-1 + diag(strut masses), linear in the ten inertial
@@ -76,6 +76,9 @@ def identify(A, B, geometry=None, *, strut_masses="geometry", criterion="eiv", c
     strut_masses : {'geometry', 'common', 'each'}, optional
         The geometry's strut masses (default), or one or six estimated (only where the geometry
         identifies them).
+    fit_strut_mass : {'common', 'each', 'geometry'}, optional
+        The same as strut_masses, spelled as spdfit.hexapod.identify and the command line's
+        --fit-strut-mass spell it (and as error messages name it); give one of the two.
     criterion : {'eiv', 'ls'}, optional
         Errors in variables (default) or least squares (noise in B only).
     consistent : bool, optional
@@ -122,6 +125,10 @@ def identify(A, B, geometry=None, *, strut_masses="geometry", criterion="eiv", c
     """
     import warnings
 
+    if fit_strut_mass is not None:
+        if strut_masses != "geometry":
+            raise ValueError("give fit_strut_mass or strut_masses, not both")
+        strut_masses = fit_strut_mass
     text = _core.identify(_as_matrix("A", A), _as_matrix("B", B), _geometry(geometry), strut_masses, criterion,
                           bool(consistent), _optional_matrix("noise_cov_a", noise_cov_a),
                           _optional_matrix("noise_cov_b", noise_cov_b), max_iter, rank_tolerance,

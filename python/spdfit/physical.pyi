@@ -8,7 +8,7 @@ from .hexapod import Geometry
 
 _GeometrySource = Union[None, Geometry, str, os.PathLike[str], Dict[str, Any]]
 
-def identify(A: npt.ArrayLike, B: npt.ArrayLike, geometry: _GeometrySource = ..., *, strut_masses: str = ...,
+def identify(A: npt.ArrayLike, B: npt.ArrayLike, geometry: _GeometrySource = ..., *, strut_masses: str = ..., fit_strut_mass: Optional[str] = ...,
              criterion: str = ..., consistent: bool = ..., noise_cov_a: Optional[npt.ArrayLike] = ...,
              noise_cov_b: Optional[npt.ArrayLike] = ..., max_iter: Optional[int] = ...,
              rank_tolerance: Optional[float] = ..., bootstrap: int = ..., confidence: Optional[float] = ...,

@@ -9,6 +9,7 @@
 #include "pickle.hpp"
 #include "spdfit/experiment/monte_carlo.hpp"
 #include "spdfit/experiment/paper.hpp"
+#include "spdfit/experiment/physical.hpp"
 #include "spdfit/experiment/statistics.hpp"
 #include "spdfit/experiment/thesis.hpp"
 #include "spdfit/format.hpp"
@@ -289,6 +290,27 @@ void bind_experiment(py::module_& parent) {
   m.def("paper_2x2_sweep_levels", &paper_2x2_sweep_levels);
   m.def("paper_2x2_truth", &paper_2x2_truth);
   m.def("paper_2x2_design", &paper_2x2_design);
+  m.def(
+      "physical",
+      [](std::optional<std::vector<Eigen::Index>> samples, std::optional<double> noise_var,
+         std::size_t trials, std::uint64_t seed, unsigned threads,
+         std::optional<std::vector<std::string>> methods) {
+        PhysicalExperimentOptions options;
+        if (samples) options.samples = *samples;
+        if (noise_var) options.simulation.noise_var = *noise_var;
+        if (methods) set_estimators(options, *methods);
+        std::string error;
+        if (!options.is_valid(&error)) throw std::invalid_argument(error);
+        const MonteCarloOptions mc = monte_carlo(trials, seed, threads);
+        std::string text;
+        {
+          py::gil_scoped_release release;
+          text = to_json(run_physical_experiment(options, mc));
+        }
+        return text;
+      },
+      py::arg("samples"), py::arg("noise_var"), py::arg("trials"), py::arg("seed"), py::arg("threads"),
+      py::arg("methods"));
 }
 
 }  // namespace spdfit::python

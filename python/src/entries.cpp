@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "spdfit/fit_request.hpp"
+#include "spdfit/hexapod/physical_request.hpp"
 #include "spdfit/nearest_request.hpp"
 
 namespace spdfit::python {
@@ -43,6 +44,7 @@ const std::vector<Entry>& entries() {
       {"fit_all", "fit", {}, {"stream", "bootstrap"}},
       {"Factor.fit", "fit", {}, {"stream", "bootstrap"}},
       {"hexapod.identify", "fit", {}, {"stream"}},
+      {"hexapod.identify.physical", "physical", {}, {}},
       {"nearest_spd", "nearest", {}, {"corr"}},
       {"nearest_correlation", "nearest", {"corr"}, {"keep_diag", "via_corr"}},
   };
@@ -58,6 +60,10 @@ const Entry& entry(std::string_view name) {
 
 std::vector<Keyword> keywords(const Entry& entry, std::optional<Method> method) {
   if (entry.table == "nearest") return keywords_of(nearest_option_table(), entry, static_cast<NearestRequest*>(nullptr));
+  if (entry.table == "physical") {
+    return keywords_of(hexapod::physical_option_table(), entry,
+                       static_cast<hexapod::PhysicalOptions*>(nullptr));
+  }
   FitRequest request;
   if (method) request.method = *method;
   return keywords_of(fit_option_table(), entry, method ? &request : nullptr);

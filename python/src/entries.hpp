@@ -1,6 +1,6 @@
-// Which of the library's options (fit_option_table, nearest_option_table) each Python function
-// takes as keyword arguments: the one list that the module binds, the docstrings document and
-// the type stubs declare (python/stubgen.cpp writes them from it at build time).
+// Which of the library's options (fit_option_table, nearest_option_table, physical_option_table) each Python
+// function takes as keyword arguments: the one list that the module binds, the docstrings document and the
+// type stubs declare (python/stubgen.cpp writes them from it at build time).
 #pragma once
 
 #include <optional>
@@ -31,7 +31,7 @@ struct Keyword {
 /// those it cannot take (an in-memory fit does not stream, fit_all does not bootstrap).
 struct Entry {
   std::string_view name;   ///< the Python function ("fit", "fit_files", "Factor.fit", ...)
-  std::string_view table;  ///< "fit" or "nearest"
+  std::string_view table;  ///< "fit", "nearest" or "physical" (hexapod::physical_option_table)
   std::vector<std::string_view> implied;
   std::vector<std::string_view> unavailable;
 };

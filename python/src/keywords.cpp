@@ -130,6 +130,12 @@ NearestRequest nearest_request(std::string_view entry_name, const py::dict& kwar
   return request_from(nearest_option_table(), entry(entry_name), kwargs, NearestRequest{}, given);
 }
 
+hexapod::PhysicalOptions physical_request(std::string_view entry_name, const py::dict& kwargs,
+                                          std::vector<std::string_view>& given) {
+  return request_from(hexapod::physical_option_table(), entry(entry_name), kwargs, hexapod::PhysicalOptions{},
+                      given);
+}
+
 Method method_from(const py::handle& method) {
   std::string known;
   for (Method m : kSelectableMethods) known += (known.empty() ? "" : ", ") + std::string(to_string(m));

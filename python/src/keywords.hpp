@@ -9,6 +9,7 @@
 
 #include "entries.hpp"
 #include "spdfit/fit_request.hpp"
+#include "spdfit/hexapod/physical_request.hpp"
 #include "spdfit/method.hpp"
 #include "spdfit/nearest_request.hpp"
 
@@ -29,6 +30,8 @@ FitRequest fit_request(std::string_view entry, const pybind11::dict& kwargs, Fit
                        std::vector<std::string_view>& given);
 NearestRequest nearest_request(std::string_view entry, const pybind11::dict& kwargs,
                                std::vector<std::string_view>& given);
+hexapod::PhysicalOptions physical_request(std::string_view entry, const pybind11::dict& kwargs,
+                                          std::vector<std::string_view>& given);
 
 /// The method a Python call names; an OptionError (a ValueError) listing the methods for a name
 /// that is none of them, a TypeError for a value that is not a str.

@@ -53,8 +53,10 @@ std::string to_json(const MethodIdentification& method, JsonStyle style) {
   return detail::dump(method_json(method, style), style);
 }
 
-std::string to_json(const std::vector<MethodIdentification>& methods, const IdentifyOptions& options,
-                    JsonStyle style) {
+namespace {
+
+Json identify_json(const std::vector<MethodIdentification>& methods, const IdentifyOptions& options,
+                   JsonStyle style) {
   Json out;
   out["m"] = methods.empty() ? Eigen::Index{0} : methods.front().result.diagnostics.m;
   out["n"] = methods.empty() ? Eigen::Index{0} : methods.front().result.diagnostics.n;
@@ -62,11 +64,27 @@ std::string to_json(const std::vector<MethodIdentification>& methods, const Iden
   out["stiffness"] = options.stiffness ? detail::matrix_json(*options.stiffness, style) : Json(nullptr);
   out["methods"] = Json::object();
   for (const MethodIdentification& m : methods) out["methods"][std::string(to_string(m.result.method))] = method_json(m, style);
-  return detail::dump(out, style);
+  return out;
 }
 
-std::string report(const std::vector<MethodIdentification>& methods, const IdentifyOptions& options) {
-  if (methods.empty()) return "no estimates\n";
+}  // namespace
+
+std::string to_json(const std::vector<MethodIdentification>& methods, const IdentifyOptions& options,
+                    JsonStyle style) {
+  return detail::dump(identify_json(methods, options, style), style);
+}
+
+std::string to_json(const std::vector<MethodIdentification>& methods, const IdentifyOptions& options,
+                    const PhysicalEstimate& physical) {
+  Json out = identify_json(methods, options, JsonStyle::Contract);
+  out["physical"] = Json::parse(to_json(physical, options));
+  return detail::dump(out, JsonStyle::Contract);
+}
+
+namespace {
+
+// The report of every estimator but the closing line naming the one closest to the truth.
+std::string methods_report(const std::vector<MethodIdentification>& methods, const IdentifyOptions& options) {
   std::ostringstream out;
   const Diagnostics& data = methods.front().result.diagnostics;
   char line[320];
@@ -122,13 +140,39 @@ std::string report(const std::vector<MethodIdentification>& methods, const Ident
     }
   }
   if (options.fit.bootstrap > 0) out << bootstrap_report(methods, options);
-  std::vector<std::optional<double>> errors;
-  for (const MethodIdentification& m : methods) errors.push_back(m.error_vs_truth);
-  if (const auto best = closest_to_truth(errors)) {
-    out << "\nclosest to the truth: " << to_string(methods[*best].result.method) << " (error "
-        << format_fixed(*methods[*best].error_vs_truth) << ")\n";
-  }
   return out.str();
+}
+
+// "closest to the truth: NAME (error E)" among the methods and, when given, the physical estimate.
+std::string closest_line(const std::vector<MethodIdentification>& methods, const PhysicalEstimate* physical,
+                         const IdentifyOptions& options) {
+  std::vector<std::optional<double>> errors;
+  std::vector<std::string> names;
+  for (const MethodIdentification& m : methods) {
+    errors.push_back(m.error_vs_truth);
+    names.emplace_back(to_string(m.result.method));
+  }
+  if (physical && physical->ok() && options.truth && options.truth->rows() == 6 &&
+      options.truth->cols() == 6) {
+    errors.push_back((physical->M_p - *options.truth).norm());
+    names.emplace_back("physical");
+  }
+  const auto best = closest_to_truth(errors);
+  if (!best) return "";
+  return "\nclosest to the truth: " + names[*best] + " (error " + format_fixed(*errors[*best]) + ")\n";
+}
+
+}  // namespace
+
+std::string report(const std::vector<MethodIdentification>& methods, const IdentifyOptions& options) {
+  if (methods.empty()) return "no estimates\n";
+  return methods_report(methods, options) + closest_line(methods, nullptr, options);
+}
+
+std::string report(const std::vector<MethodIdentification>& methods, const IdentifyOptions& options,
+                   const PhysicalEstimate& physical, const Geometry& geometry) {
+  std::string out = methods.empty() ? std::string("no estimates\n") : methods_report(methods, options);
+  return out + "\n" + report(physical, geometry, options) + closest_line(methods, &physical, options);
 }
 
 }  // namespace spdfit::hexapod

@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "spdfit/fit_request.hpp"
+#include "spdfit/hexapod/physical_request.hpp"
 #include "spdfit/nearest_request.hpp"
 
 namespace spdfit {
@@ -68,6 +69,7 @@ std::string spell_option(std::string_view name, Frontend frontend) {
   if (frontend == Frontend::Matlab) return camel_case(name);
   if (auto spelled = spelling_in(fit_option_table(), name, frontend)) return *spelled;
   if (auto spelled = spelling_in(nearest_option_table(), name, frontend)) return *spelled;
+  if (auto spelled = spelling_in(hexapod::physical_option_table(), name, frontend)) return *spelled;
   // An option of no table (the linkage's alpha and beta) follows the convention the tables keep:
   // "--max-iter" on the command line, the name in Python.
   if (frontend == Frontend::Python) return std::string(name);

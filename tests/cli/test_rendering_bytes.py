@@ -79,6 +79,8 @@ CASES = {
     "experiment_paper_2x2": ["experiment", "paper-2x2", "--std-a", "1", "--trials", "500"],
     "experiment_paper_2x2_sweep": ["experiment", "paper-2x2", "--sweep", "--trials", "300"],
     "experiment_paper_2x2_json": ["experiment", "paper-2x2", "--std-a", "1", "--trials", "500", "--json"],
+    "experiment_physical": ["experiment", "physical", "--samples", "12,100", "--trials", "50"],
+    "experiment_physical_json": ["experiment", "physical", "--samples", "12,100", "--trials", "50", "--json"],
     "demo": ["demo", "--trials", "200", "--trials-2x2", "300", "--trials-samples", "50", "--trials-beyond", "40"],
 }
 

@@ -1,6 +1,6 @@
 """docs/hexapod.md stays true: every `$ spdfit ...` command in it runs (in order, in one scratch
-directory) with the exit status and the output lines the page shows, and its two results tables
-are what the commands they name produce."""
+directory) with the exit status and the output lines the page shows, and its results tables are
+what the commands they name produce."""
 import json
 import re
 import shlex
@@ -88,6 +88,49 @@ def test_paper_2x2_table_is_what_the_commands_produce(cli_json):
             runs[std_a] = cli_json("experiment", "paper-2x2", "--std-a", std_a, "--seed", 1)
         assert runs[std_a]["trials"] == 10000
         assert mae == [f"{x:.3f}" for x in runs[std_a]["methods"][method]["mae"]], (std_a, method)
+
+
+@full_size
+def test_physical_table_is_what_the_command_produces(cli_json):
+    rows = table_rows("physical-table")
+    assert len(rows) == 4
+    out = cli_json("experiment", "physical", "--trials", 1000, "--seed", 1, "--methods",
+                   "spde,spd-tls,physical,physical-ls,grey-box-ls,grey-box-tls")
+    assert out["trials"] == 1000
+    for cells, row in zip(rows, out["rows"]):
+        m, spde, spd_tls, physical, ratio, physical_ls, grey_ls, grey_tls, grey_tls_inconsistent = cells
+        s = row["methods"]
+        assert int(m) == row["samples"]
+        assert [spde, spd_tls, physical_ls, grey_ls, grey_tls] == [
+            f"{s[k]['mean']:.3f}" for k in ("spde", "spd-tls", "physical-ls", "grey-box-ls", "grey-box-tls")], m
+        assert physical == f"{s['physical']['mean']:.3f} ± {s['physical']['standard_error']:.3f}", m
+        assert ratio == f"{row['physical_ratio']:.3f}", m
+        count = s["grey-box-tls"]["inconsistent"]
+        assert grey_tls_inconsistent == (f"{count} of 1000" if count else "0"), m
+        assert s["physical"]["inconsistent"] == 0, m
+
+
+@full_size
+def test_thin_rod_table_is_what_the_command_produces(cli_json):
+    """The thin rod (11.973 kg, 0.45 m long, 4.5 mm thick) given as --payload-inertia."""
+    rows = table_rows("thin-rod-table")
+    assert len(rows) == 4
+    out = cli_json("experiment", "physical", "--trials", 1000, "--seed", 1, "--payload-inertia",
+                   "4.0408875e-05,0.20206457943750003,0.20206457943750003",
+                   "--methods", "spde,spd-tls,physical,grey-box-tls,grey-box-ls")
+    mass, length, thickness = 11.973, 0.45, 0.0045
+    across, along = mass * thickness ** 2 / 12, mass * length ** 2 / 12
+    np.testing.assert_allclose(np.diag(out["payload"]["inertia"]), [2 * across, along + across, along + across],
+                               rtol=1e-15)
+    for cells, row in zip(rows, out["rows"]):
+        m, best, physical, physical_bad, grey_tls, grey_tls_bad, grey_ls, grey_ls_bad = cells
+        s = row["methods"]
+        assert int(m) == row["samples"]
+        assert best == f"{s[row['best_generic']]['mean']:.3f} ({row['best_generic']})", m
+        assert [physical, grey_tls, grey_ls] == [f"{s[k]['mean']:.3f}" for k in ("physical", "grey-box-tls",
+                                                                                 "grey-box-ls")], m
+        assert [physical_bad, grey_tls_bad, grey_ls_bad] == [
+            str(s[k]["inconsistent"]) for k in ("physical", "grey-box-tls", "grey-box-ls")], m
 
 
 @full_size

@@ -65,3 +65,16 @@ def test_the_usage_line_names_only_real_options(capsys):
     shown = capsys.readouterr().out
     for option in set(re.findall(r"--[a-z-]+", figures.__doc__)):
         assert f"  {option}" in shown.split("options:")[-1], option
+
+
+def test_physical_figure_plots_the_experiment_means():
+    data = figures.physical_data(trials=10, seed=4)
+    direct = experiment.physical(samples=list(figures.PHYSICAL_SIZES), trials=10, seed=4)
+    assert data == direct
+    fig = figures.plot_physical(data)
+    lines = {line.get_label(): line for line in fig.axes[0].get_lines()}
+    physical = lines[figures.PHYSICAL_STYLES["physical"]["label"]]
+    assert np.array_equal(physical.get_xdata(), figures.PHYSICAL_SIZES)
+    assert np.array_equal(physical.get_ydata(), [row["methods"]["physical"]["mean"] for row in direct["rows"]])
+    best = lines["best generic method at each m"].get_ydata()
+    assert np.array_equal(best, [min(row["methods"][k]["mean"] for k in ("spde", "spd-tls")) for row in direct["rows"]])

@@ -211,7 +211,7 @@ def test_a_common_strut_mass_is_confounded_on_the_cubic_hexapod():
     d = ph.design(None, "common")
     assert (d["parameters"], d["rank"]) == (11, 10)
     A = np.random.default_rng(5).uniform(-5, 5, (40, 6))
-    with pytest.raises(ValueError, match=r"strut_masses = common cannot be estimated on this geometry: adding 1 kg"):
+    with pytest.raises(ValueError, match=r"fit_strut_mass = common cannot be estimated on this geometry: adding 1 kg"):
         ph.identify(A, A @ hx.thesis_mass_matrix(), strut_masses="common")
 
 

@@ -41,6 +41,13 @@ std::vector<std::string> physical_variant_names();
 
 /// The set-up; the defaults are the table: the built-in hexapod, uniform noise of width 3.2
 /// (variance 3.2^2 / 12) in every entry of A and B, m = 12, 30, 100 and 1000.
+struct PhysicalExperimentOptions;
+
+/// Sets options.methods and options.variants from names of either (a front end's --methods list,
+/// in its order): generic methods (kSelectableMethods) and physical variants (physical_variant).
+/// Throws std::invalid_argument naming an unknown name. Repeats are left to is_valid.
+void set_estimators(PhysicalExperimentOptions& options, const std::vector<std::string>& names);
+
 struct PhysicalExperimentOptions {
   std::optional<hexapod::Geometry> geometry;       ///< nothing: hexapod::cubic_geometry()
   std::optional<RigidBodyInertia> payload;         ///< the true payload; nothing: the geometry's nominal one
@@ -88,5 +95,29 @@ struct PhysicalExperimentResult {
 /// std::invalid_argument on invalid options. Cost O(trials sum(m)).
 PhysicalExperimentResult run_physical_experiment(const PhysicalExperimentOptions& options,
                                                  const MonteCarloOptions& monte_carlo);
+
+/// At one m: the generic method with the lowest mean error, and the mean error of the variant
+/// "physical" relative to it (the goal is <= 0.6); nothing where either is missing (no
+/// generic method or no "physical" variant ran, or every trial of one failed).
+struct PhysicalComparison {
+  std::string best_generic;
+  double ratio = 0.0;  ///< mean error of "physical" / mean error of best_generic
+};
+std::optional<PhysicalComparison> compare_to_generic(const PhysicalExperimentResult& result,
+                                                     const PhysicalExperimentRow& row);
+
+/// `spdfit experiment physical --json`: {"experiment": "physical", "noise_var", "force_noise_var",
+/// "signal_var", "distribution", "trials", "seed", "payload" (with options.payload: {"mass",
+/// "center_of_mass", "inertia"}), "truth" [6x6], "methods" (generic, then
+/// variants, by name), "rows": [{"samples", "methods": {name: {"mean", "std", "median", "max",
+/// "min", "standard_error", "count", "failures", "inconsistent"}}, "best_generic" and
+/// "physical_ratio" (compare_to_generic, null when it has none)}]}; NaN as null. Cost O(rows
+/// methods).
+std::string to_json(const PhysicalExperimentResult& result);
+
+/// The experiment as a table for people: one row per m, each estimator's mean error with its
+/// standard error, the ratio of "physical" to the best generic method, then how many estimates
+/// were not physically consistent. Cost O(rows methods).
+std::string report(const PhysicalExperimentResult& result);
 
 }  // namespace spdfit::experiment

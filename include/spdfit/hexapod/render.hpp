@@ -5,7 +5,9 @@
 #include <string>
 #include <vector>
 
+#include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/hexapod/identify.hpp"
+#include "spdfit/hexapod/physical.hpp"
 #include "spdfit/render.hpp"
 
 namespace spdfit::hexapod {
@@ -24,6 +26,29 @@ std::string to_json(const std::vector<MethodIdentification>& methods, const Iden
 /// their diagnostics and errors, their eigenvalues and modes, the bootstrap's intervals (with
 /// options.fit.bootstrap > 0) and the estimate closest to the truth. Cost O(methods n^2).
 std::string report(const std::vector<MethodIdentification>& methods, const IdentifyOptions& options);
+
+/// The physical estimate as the identify document's `physical` object: physical_json's keys, and
+/// error_vs_truth (||M_p(theta) - truth||_F) when options.truth is given. Cost O(1).
+std::string to_json(const PhysicalEstimate& estimate, const IdentifyOptions& options);
+
+/// `spdfit hexapod identify --physical --json`: the document of to_json(methods, options) with
+/// the physical estimate under "physical" (to_json(estimate, options)). Cost O(methods n^2).
+std::string to_json(const std::vector<MethodIdentification>& methods, const IdentifyOptions& options,
+                    const PhysicalEstimate& physical);
+
+/// The physical estimate for people: the payload's mass, centre of mass, inertia about it,
+/// principal moments and axes and the strut masses, each beside the geometry's nominal value
+/// (and with a bootstrap its standard error and interval); M_p(theta) (beside options.truth and
+/// with its error when given), its eigenvalues and modes (with their intervals), the certificate
+/// of the minimum found and the design's rank and condition. Cost O(1).
+std::string report(const PhysicalEstimate& estimate, const Geometry& geometry,
+                   const IdentifyOptions& options = {});
+
+/// `spdfit hexapod identify --physical`: report(methods, options), then the physical estimate
+/// (report(physical, geometry, options)) and, with a truth, which estimate is closest to it,
+/// the physical one included. Cost O(methods n^2).
+std::string report(const std::vector<MethodIdentification>& methods, const IdentifyOptions& options,
+                   const PhysicalEstimate& physical, const Geometry& geometry);
 
 }  // namespace spdfit::hexapod
 

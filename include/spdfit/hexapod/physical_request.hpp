@@ -1,0 +1,31 @@
+// The options of physical identification (hexapod/physical.hpp) declared once: the table from
+// which `spdfit hexapod identify --physical` registers its options and Python's
+// spdfit.hexapod.identify(..., physical=True) binds its keywords.
+#pragma once
+
+#include <string_view>
+#include <vector>
+
+#include "spdfit/fit_options.hpp"
+#include "spdfit/hexapod/physical.hpp"
+#include "spdfit/options.hpp"
+
+namespace spdfit::hexapod {
+
+/// The options of PhysicalOptions that front ends offer, in the order help lists them:
+/// strut_masses (the command line's --fit-strut-mass, Python's fit_strut_mass), criterion,
+/// consistent (Python) and unconstrained (the command line's --unconstrained: consistent false).
+/// Not among them: the noise covariances (matrices); and the options the fit's table
+/// (fit_option_table) has under the same names, max_iterations, rank_tolerance and the
+/// bootstrap's four, which a front end that runs every estimator too takes once for all of its
+/// fits (apply_fit_options).
+const std::vector<OptionSpec<PhysicalOptions>>& physical_option_table();
+
+/// The options the physical fit shares with the fit's table, copied from `fit` into `options`:
+/// the bootstrap's replicates, level, seed and threads, and max_iterations and rank_tolerance
+/// when the user gave them (`given`: library names; their defaults differ: 200 Newton steps for
+/// the generic iterative methods, 500 for the physical fit's barrier path).
+void apply_fit_options(const FitOptions& fit, const std::vector<std::string_view>& given,
+                       PhysicalOptions& options);
+
+}  // namespace spdfit::hexapod
