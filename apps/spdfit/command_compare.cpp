@@ -6,9 +6,10 @@
 #include "cli.hpp"
 #include "input.hpp"
 #include "output.hpp"
-#include "validators.hpp"
+#include "table_options.hpp"
 #include "spdfit/compare.hpp"
 #include "spdfit/fit_files.hpp"
+#include "spdfit/fit_request.hpp"
 #include "spdfit/io.hpp"
 #include "spdfit/render.hpp"
 
@@ -19,7 +20,7 @@ namespace {
 struct CompareOptionsCli {
   std::string a_path, b_path, truth_path, output;
   bool json = false;
-  double noise_ratio = 1.0;
+  std::unique_ptr<TableOptions<FitRequest>> table;
 };
 
 }  // namespace
@@ -30,9 +31,9 @@ Command add_compare_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--truth", options->truth_path, "File of the true X, to report each method's error");
   sub->add_flag("--json", options->json, "Print every result as JSON");
   sub->add_option("-o,--output", options->output, "Write to FILE instead of stdout");
-  sub->add_option("--noise-ratio", options->noise_ratio,
-                  "sigma_B / sigma_A for the total least-squares methods and the noise estimate (default 1)")
-      ->check(positive());
+  // The fit options that every method shares: the noise (its ratio, or a noise model).
+  options->table = std::make_unique<TableOptions<FitRequest>>(
+      *sub, fit_option_table(), all_but(fit_option_table(), noise_option_names()));
   sub->add_option("A", options->a_path, "File of A (m x n): delimited text or .npy")->required();
   sub->add_option("B", options->b_path, "File of B (m x n; m x d for ls and tls, X n x d): delimited text or .npy")->required();
 
@@ -46,8 +47,11 @@ Command add_compare_command(CLI::App& app, const GlobalOptions& global) {
                                                            "x" + std::to_string(data.B.cols()));
       }
     }
-    FitOptions fit_options;
-    fit_options.noise_ratio = options->noise_ratio;
+    FitRequest request;
+    request.read = global.read;
+    options->table->apply(request);
+    check_fit_options(request, options->table->given());
+    const FitOptions fit_options = resolved_fit_options(request, data.A.cols(), data.B.cols());
     const Comparison comparison = compare(data.A, data.B, fit_options, truth);
     for (const FitResult& r : comparison.results) {
       for (const std::string& w : r.warnings) warn(global, std::string(to_string(r.method)) + ": " + w);

@@ -1,4 +1,6 @@
 // spdfit experiment thesis|paper-hexapod|paper-2x2: the seeds' Monte Carlo experiments.
+#include <algorithm>
+#include <cmath>
 #include <CLI/CLI.hpp>
 #include <memory>
 #include <sstream>
@@ -9,6 +11,7 @@
 #include "experiment_output.hpp"
 #include "output.hpp"
 #include "payload_options.hpp"
+#include "simulation_noise_options.hpp"
 #include "spdfit/experiment/paper.hpp"
 #include "spdfit/experiment/physical.hpp"
 #include "spdfit/experiment/thesis.hpp"
@@ -98,6 +101,9 @@ struct SimulationCli {
   std::string distribution = "uniform";
   double force_noise_var = 0.0;
   CLI::Option* force_noise = nullptr;
+  CLI::Option* noise_var = nullptr;
+  bool noise_required = false;
+  SimulationNoiseCli noise;
 };
 
 void add_simulation(CLI::App* sub, SimulationCli& simulation, bool noise_required) {
@@ -105,11 +111,9 @@ void add_simulation(CLI::App* sub, SimulationCli& simulation, bool noise_require
       sub->add_option("--noise-var", simulation.options.noise_var,
                       "Variance V of the noise in every entry of A and B (thesis: 0.082, 0.86, 1.28)")
           ->check(non_negative());
-  if (noise_required) {
-    noise->required();
-  } else {
-    noise->capture_default_str();
-  }
+  simulation.noise_var = noise;
+  simulation.noise_required = noise_required;
+  if (!noise_required) noise->capture_default_str();
   simulation.force_noise =
       sub->add_option(
              "--force-noise-var", simulation.force_noise_var,
@@ -125,12 +129,18 @@ void add_simulation(CLI::App* sub, SimulationCli& simulation, bool noise_require
                   "Noise distribution: uniform (the thesis') or gaussian")
       ->check(CLI::IsMember({"uniform", "gaussian"}))
       ->capture_default_str();
+  add_simulation_noise_options(*sub, simulation.noise, noise);
 }
 
 hexapod::SimulationOptions simulation_options(const SimulationCli& simulation) {
+  if (simulation.noise_required && simulation.noise_var->count() == 0 && !gives_noise_std(simulation.noise)) {
+    throw UsageError("give the noise: --noise-var V, or --noise-std-a S and --noise-std-b S");
+  }
   hexapod::SimulationOptions options = simulation.options;
+  if (gives_noise_std(simulation.noise)) options.noise_var = 0.0;  // the per-sensor deviations instead
   options.distribution = *hexapod::parse_noise_distribution(simulation.distribution);
   if (simulation.force_noise->count() > 0) options.force_noise_var = simulation.force_noise_var;
+  apply_simulation_noise_options(simulation.noise, options);
   return options;
 }
 
@@ -139,11 +149,25 @@ std::string describe(const hexapod::SimulationOptions& s) {
   out << "m = " << s.samples << " samples of 6 strut accelerations (uniform, variance "
       << format_fixed(s.signal_var, 3) << "),\n"
       << hexapod::to_string(s.distribution) << " noise of variance " << s.noise_var;
-  if (s.force_noise_var && *s.force_noise_var != s.noise_var) {
+  if (s.noise_std_a || s.noise_std_b) {
+    const auto list = [](const std::optional<Eigen::VectorXd>& v, double variance) {
+      if (!v) return format_number(std::sqrt(variance), Precision::Medium);
+      std::string text;
+      for (Eigen::Index i = 0; i < v->size(); ++i) text += (i ? ", " : "") + format_number((*v)(i), Precision::Medium);
+      return text;
+    };
+    out.str("");
+    out << "m = " << s.samples << " samples of 6 strut accelerations (uniform, variance "
+        << format_fixed(s.signal_var, 3) << "),\n"
+        << hexapod::to_string(s.distribution) << " noise of standard deviation " << list(s.noise_std_a, s.noise_var)
+        << " in A and " << list(s.noise_std_b, s.force_noise_var.value_or(s.noise_var)) << " in B";
+  } else if (s.force_noise_var && *s.force_noise_var != s.noise_var) {
     out << " in every entry of A and " << *s.force_noise_var << " in every entry of B";
   } else {
     out << " in every entry of A and B";
   }
+  if (s.scale_b != 1.0) out << ", B scaled by " << format_number(s.scale_b, Precision::Medium);
+  if (s.rest_samples > 0) out << ", " << s.rest_samples << " rows at rest";
   return out.str();
 }
 
@@ -152,6 +176,7 @@ Command add_thesis(CLI::App& parent, const GlobalOptions& global) {
     CommonCli common;
     SimulationCli simulation;
     std::vector<std::string> methods;
+    std::vector<std::string> fit_noise;
   };
   auto cli = std::make_shared<Cli>();
   CLI::App* sub = parent.add_subcommand(
@@ -160,12 +185,33 @@ Command add_thesis(CLI::App& parent, const GlobalOptions& global) {
   add_simulation(sub, cli->simulation, true);
   add_common(sub, cli->common, 1000);
   add_methods(sub, cli->methods, experiment::ThesisExperimentOptions{}.methods);
+  sub->add_option("--fit-noise", cli->fit_noise,
+                  "Comma-separated noise models to fit every method with, each in turn: none (equal noise "
+                  "assumed), true (the generator's covariances), rest (the covariances of the trial's "
+                  "--rest-samples rows); spde runs with none only (default: none)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"none", "true", "rest"}));
   sub->footer("--csv FILE writes each trial's error ||M_p - M_hat||_F per method (one row per trial).");
 
   auto run = [cli, &global]() {
     experiment::ThesisExperimentOptions options;
     options.simulation = simulation_options(cli->simulation);
     options.methods = chosen_methods(cli->methods, options.methods);
+    if (!cli->fit_noise.empty()) {
+      options.noise_models.clear();
+      for (const std::string& name : cli->fit_noise) {
+        const experiment::FitNoise noise = *experiment::parse_fit_noise(name);
+        for (experiment::FitNoise earlier : options.noise_models) {
+          if (earlier == noise) throw UsageError("--fit-noise: " + name + " is listed twice");
+        }
+        options.noise_models.push_back(noise);
+      }
+      const bool rest = std::find(options.noise_models.begin(), options.noise_models.end(),
+                                  experiment::FitNoise::Rest) != options.noise_models.end();
+      if (rest && options.simulation.rest_samples < 2) {
+        throw UsageError("--fit-noise rest needs --rest-samples N (N >= 2): the rows recorded at rest");
+      }
+    }
     const experiment::ThesisExperimentResult result =
         experiment::run_thesis_experiment(options, monte_carlo(cli->common, "experiment thesis", global));
     if (!cli->common.csv.empty()) emit(thesis_csv(result), cli->common.csv);

@@ -54,7 +54,7 @@ Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
     bool json = false, physical = false;
     BootstrapCli bootstrap;
     std::unique_ptr<TableOptions<hexapod::PhysicalOptions>> physical_options;
-    std::unique_ptr<TableOptions<FitRequest>> fit_limits;
+    std::unique_ptr<TableOptions<FitRequest>> fit_options;
   };
   auto cli = std::make_shared<Cli>();
   CLI::App* sub = parent.add_subcommand(
@@ -73,12 +73,12 @@ Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
                 "Jacobian of --geometry known, each beside the geometry's nominal value");
   cli->physical_options =
       std::make_unique<TableOptions<hexapod::PhysicalOptions>>(*sub, hexapod::physical_option_table());
-  // The fit's iteration limit and rank cut-off, for every estimator and the physical fit alike.
-  std::vector<std::string_view> not_here;
-  for (const OptionSpec<FitRequest>& spec : fit_option_table()) {
-    if (spec.name != "max_iterations" && spec.name != "rank_tolerance") not_here.push_back(spec.name);
-  }
-  cli->fit_limits = std::make_unique<TableOptions<FitRequest>>(*sub, fit_option_table(), not_here);
+  // The fit's iteration limit and rank cut-off, for every estimator and the physical fit alike, and
+  // the noise (its ratio or a noise model), for every estimator.
+  std::vector<std::string_view> here = noise_option_names();
+  here.insert(here.end(), {"max_iterations", "rank_tolerance"});
+  cli->fit_options = std::make_unique<TableOptions<FitRequest>>(*sub, fit_option_table(),
+                                                                all_but(fit_option_table(), here));
   sub->add_flag("--json", cli->json, "Print every result as JSON");
   sub->add_option("-o,--output", cli->output, "Write to FILE instead of stdout");
   add_bootstrap_options(*sub, cli->bootstrap,
@@ -120,13 +120,15 @@ Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
     } else if (!cli->stiffness.empty()) {
       options.stiffness = parse_stiffness(cli->stiffness, n);
     }
-    FitRequest limits;
-    limits.options = options.fit;
-    cli->fit_limits->apply(limits);
-    options.fit = limits.options;
+    FitRequest request;
+    request.options = options.fit;
+    request.read = global.read;
+    cli->fit_options->apply(request);
+    check_fit_options(request, cli->fit_options->given());
+    options.fit = resolved_fit_options(request, n, n);
     hexapod::PhysicalOptions physical_options;
     cli->physical_options->apply(physical_options);
-    hexapod::apply_fit_options(options.fit, cli->fit_limits->given(), physical_options);
+    hexapod::apply_fit_options(options.fit, cli->fit_options->given(), physical_options);
     const std::vector<hexapod::MethodIdentification> methods = hexapod::identify(data.A, data.B, options);
     for (const hexapod::MethodIdentification& m : methods) {
       for (const std::string& w : m.result.warnings)

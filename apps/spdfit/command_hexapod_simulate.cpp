@@ -11,6 +11,7 @@
 #include "input.hpp"
 #include "output.hpp"
 #include "payload_options.hpp"
+#include "simulation_noise_options.hpp"
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/hexapod/model.hpp"
 #include "spdfit/hexapod/simulate.hpp"
@@ -27,6 +28,7 @@ Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global) {
     std::uint64_t seed = 1;
     double force_noise_var = 0.0;
     PayloadCli payload;
+    SimulationNoiseCli noise;
   };
   auto cli = std::make_shared<Cli>();
   CLI::App* sub = parent.add_subcommand(
@@ -35,9 +37,10 @@ Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global) {
   sub->add_option("--samples", cli->options.samples, "Samples m (rows of A and B)")
       ->check(CLI::Range(Eigen::Index{1}, Eigen::Index{100000000}))
       ->capture_default_str();
-  sub->add_option("--noise-var", cli->options.noise_var, "Variance V of the noise in every entry of A and B")
-      ->required()
-      ->check(non_negative());
+  auto* noise_var =
+      sub->add_option("--noise-var", cli->options.noise_var,
+                      "Variance V of the noise in every entry of A and B (or --noise-std-a and --noise-std-b)")
+          ->check(non_negative());
   auto* force_noise =
       sub->add_option(
              "--force-noise-var", cli->force_noise_var,
@@ -62,10 +65,16 @@ Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global) {
          "--seed", cli->seed,
          "Seed; the data are those of trial 0 of 'spdfit experiment thesis' with the same seed and settings")
       ->capture_default_str();
-  sub->add_option("--out", cli->out, "Directory to write A.csv, B.csv, truth.csv and simulation.json to")
+  sub->add_option("--out", cli->out,
+                  "Directory to write A.csv, B.csv, truth.csv and simulation.json to (and rest_A.csv, rest_B.csv "
+                  "with --rest-samples)")
       ->required();
+  add_simulation_noise_options(*sub, cli->noise, noise_var);
 
-  auto run = [cli, force_noise, &global]() {
+  auto run = [cli, force_noise, noise_var, &global]() {
+    if (noise_var->count() == 0 && !gives_noise_std(cli->noise)) {
+      throw UsageError("give the noise: --noise-var V, or --noise-std-a S and --noise-std-b S");
+    }
     Eigen::MatrixXd M;
     std::string truth_source;
     std::optional<hexapod::Geometry> geometry_read;
@@ -100,6 +109,7 @@ Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global) {
     hexapod::SimulationOptions options = cli->options;
     options.distribution = *hexapod::parse_noise_distribution(cli->distribution);
     if (force_noise->count() > 0) options.force_noise_var = cli->force_noise_var;
+    apply_simulation_noise_options(cli->noise, options);
     if (options.samples < M.rows()) {
       warn(global, "fewer samples (" + std::to_string(options.samples) + ") than M_p has columns (" +
                        std::to_string(M.rows()) + "): the estimators need m >= n");
@@ -116,7 +126,12 @@ Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global) {
     const fs::path dir(cli->out);
     io::write_csv((dir / "A.csv").string(), data.A);
     io::write_csv((dir / "B.csv").string(), data.B);
-    io::write_csv((dir / "truth.csv").string(), M);
+    // The true X of the data written: M_p in B's units over A's.
+    io::write_csv((dir / "truth.csv").string(), M * options.scale_b);
+    if (options.rest_samples > 0) {
+      io::write_csv((dir / "rest_A.csv").string(), data.rest_A);
+      io::write_csv((dir / "rest_B.csv").string(), data.rest_B);
+    }
     nlohmann::json settings;
     settings["samples"] = options.samples;
     settings["noise_var"] = options.noise_var;
@@ -126,18 +141,35 @@ Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global) {
     settings["truth"] = truth_source;
     if (payload) settings["payload"] = payload_json(*payload);
     settings["seed"] = cli->seed;
+    if (options.noise_std_a) settings["noise_std_a"] = std::vector<double>(options.noise_std_a->begin(), options.noise_std_a->end());
+    if (options.noise_std_b) settings["noise_std_b"] = std::vector<double>(options.noise_std_b->begin(), options.noise_std_b->end());
+    settings["scale_b"] = options.scale_b;
+    settings["rest_samples"] = options.rest_samples;
     settings["files"] = {{"A", "A.csv"}, {"B", "B.csv"}, {"truth", "truth.csv"}};
+    if (options.rest_samples > 0) {
+      settings["files"]["rest_A"] = "rest_A.csv";
+      settings["files"]["rest_B"] = "rest_B.csv";
+    }
     emit(settings.dump(2) + "\n", (dir / "simulation.json").string());
 
     std::ostringstream out;
     out << "wrote " << (dir / "A.csv").string() << " (" << data.A.rows() << "x" << data.A.cols()
         << " accelerations), " << (dir / "B.csv").string() << " (forces), " << (dir / "truth.csv").string()
-        << " (M_p: " << truth_source << "), " << (dir / "simulation.json").string() << "\n";
+        << " (M_p: " << truth_source << "), " << (dir / "simulation.json").string();
+    if (options.rest_samples > 0) {
+      out << ", " << (dir / "rest_A.csv").string() << " and " << (dir / "rest_B.csv").string() << " ("
+          << options.rest_samples << " rows at rest)";
+    }
+    out << "\n";
     // The next step only when it can succeed: identify needs at least as many samples as columns.
     if (options.samples >= M.rows()) {
       out << "identify M_p from them with:\n  spdfit hexapod identify " << (dir / "A.csv").string() << ' '
           << (dir / "B.csv").string() << " --truth " << (dir / "truth.csv").string()
-          << (payload ? " --physical --geometry " + cli->geometry : std::string()) << "\n";
+          << (payload ? " --physical --geometry " + cli->geometry : std::string());
+      if (options.rest_samples > 0) {
+        out << " --rest-a " << (dir / "rest_A.csv").string() << " --rest-b " << (dir / "rest_B.csv").string();
+      }
+      out << "\n";
     }
     emit(out.str(), "");
   };

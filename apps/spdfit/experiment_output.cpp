@@ -1,5 +1,6 @@
 #include "experiment_output.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -29,6 +30,18 @@ json summary_json(const experiment::Summary& s) {
           {"failures", s.failures}};
 }
 
+namespace {
+
+// A method's label in the thesis experiment's outputs: its name, and the noise model it was fitted
+// with when that is not none ("spd-tls/rest").
+std::string method_label(const experiment::MethodErrors& m) {
+  std::string label(to_string(m.method));
+  if (m.noise != experiment::FitNoise::None) label += "/" + std::string(to_string(m.noise));
+  return label;
+}
+
+}  // namespace
+
 json thesis_json(const experiment::ThesisExperimentResult& result) {
   json out;
   out["experiment"] = "thesis";
@@ -42,7 +55,7 @@ json thesis_json(const experiment::ThesisExperimentResult& result) {
   out["distribution"] = std::string(hexapod::to_string(result.options.simulation.distribution));
   out["methods"] = json::object();
   for (const experiment::MethodErrors& m : result.methods) {
-    out["methods"][std::string(to_string(m.method))] = summary_json(m.summary);
+    out["methods"][method_label(m)] = summary_json(m.summary);
   }
   return out;
 }
@@ -50,13 +63,15 @@ json thesis_json(const experiment::ThesisExperimentResult& result) {
 std::string thesis_table(const experiment::ThesisExperimentResult& result) {
   std::ostringstream out;
   char line[200];
-  std::snprintf(line, sizeof line, "%-11s %9s %9s %9s %9s %11s %9s\n", "method", "mean", "+- s.e.", "std",
+  // The method column: 11 wide, wider for labels with a noise model ("spd-tls/rest").
+  int width = 11;
+  for (const experiment::MethodErrors& m : result.methods) width = std::max(width, int(method_label(m).size()));
+  std::snprintf(line, sizeof line, "%-*s %9s %9s %9s %9s %11s %9s\n", width, "method", "mean", "+- s.e.", "std",
                 "median", "max", "failures");
   out << line;
   for (const experiment::MethodErrors& m : result.methods) {
     const experiment::Summary& s = m.summary;
-    std::snprintf(line, sizeof line, "%-11s %9s %9s %9s %9s %11s %9zu\n",
-                  std::string(to_string(m.method)).c_str(), format_fixed(s.mean).c_str(),
+    std::snprintf(line, sizeof line, "%-*s %9s %9s %9s %9s %11s %9zu\n", width, method_label(m).c_str(), format_fixed(s.mean).c_str(),
                   format_fixed(s.standard_error()).c_str(), format_fixed(s.std).c_str(), format_fixed(s.median).c_str(),
                   format_fixed(s.max).c_str(), s.failures);
     out << line;
@@ -78,7 +93,7 @@ std::string paired_line(const experiment::ThesisExperimentResult& result, Method
 std::string thesis_csv(const experiment::ThesisExperimentResult& result) {
   std::ostringstream out;
   out << "trial";
-  for (const experiment::MethodErrors& m : result.methods) out << ',' << to_string(m.method);
+  for (const experiment::MethodErrors& m : result.methods) out << ',' << method_label(m);
   out << '\n';
   for (std::size_t k = 0; k < result.trials; ++k) {
     out << k;

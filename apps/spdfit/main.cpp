@@ -130,7 +130,8 @@ int main(int argc, char** argv) {
     std::cerr << "spdfit: error: " << e.what() << "\nRun 'spdfit " << command << "--help' for usage.\n";
     return kExitUsageError;
   } catch (const spdfit::io::DataError& e) {
-    std::cerr << "spdfit: error: " << e.what() << '\n';
+    // A file's problem may name the option that gave the file (`rest_a`): spelled as here.
+    std::cerr << "spdfit: error: " << spdfit::spell_options(e.what(), spdfit::Frontend::Cli) << '\n';
     return kExitDataError;
   } catch (const DataFailure& e) {
     std::cerr << "spdfit: error: " << spdfit::spell_options(e.what(), spdfit::Frontend::Cli) << '\n';

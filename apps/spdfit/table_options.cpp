@@ -59,6 +59,22 @@ std::string cli_help(std::string_view help, std::string_view default_text) {
 
 void throw_usage(const std::exception& error) { throw UsageError(spell_options(error.what(), Frontend::Cli)); }
 
+void check_fit_options(const FitRequest& request, const std::vector<std::string_view>& given) {
+  try {
+    check_fit_request(request, given);
+  } catch (const OptionError& e) {
+    throw_usage(e);
+  }
+}
+
+FitOptions resolved_fit_options(const FitRequest& request, Eigen::Index n, Eigen::Index d) {
+  try {
+    return request.resolved_options(n, d);
+  } catch (const OptionError& e) {
+    throw_usage(e);
+  }
+}
+
 OptionValue parse_option_text(OptionType type, std::string_view spelling, const std::string& text) {
   switch (type) {
     case OptionType::Integer:

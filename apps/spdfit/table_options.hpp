@@ -12,10 +12,25 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "spdfit/fit_request.hpp"
 #include "spdfit/options.hpp"
 #include "validators.hpp"
 
 namespace spdfit::cli {
+
+/// The names of `table`'s options but those in `keep`: the `leave_out` of a command that takes
+/// only some of a table's options.
+template <typename Request>
+std::vector<std::string_view> all_but(const std::vector<OptionSpec<Request>>& table,
+                                      const std::vector<std::string_view>& keep) {
+  std::vector<std::string_view> out;
+  for (const OptionSpec<Request>& spec : table) {
+    bool kept = false;
+    for (std::string_view k : keep) kept = kept || k == spec.name;
+    if (!kept) out.push_back(spec.name);
+  }
+  return out;
+}
 
 /// The validator of a number option with `range`: "'TEXT' is not a <what the range says>".
 CLI::Validator range_validator(const NumberRange& range, bool integer);
@@ -27,6 +42,13 @@ std::string cli_help(std::string_view help, std::string_view default_text);
 /// A library message about options (OptionError) as the command line says it: a UsageError with
 /// the options spelled as here.
 [[noreturn]] void throw_usage(const std::exception& error);
+
+/// check_fit_request; its OptionError as a UsageError.
+void check_fit_options(const FitRequest& request, const std::vector<std::string_view>& given);
+
+/// request.resolved_options(n, d) (the noise model read from its files and numbers); an
+/// OptionError as a UsageError, an io::DataError naming a file as it is.
+FitOptions resolved_fit_options(const FitRequest& request, Eigen::Index n, Eigen::Index d);
 
 /// Reads the numbers of a kVector option's file (the command line's reader of data files).
 using VectorReader = std::function<std::vector<double>(const std::string& path)>;

@@ -16,6 +16,20 @@
 
 namespace spdfit {
 
+/// A noise model's sources as a front end without NoiseModel objects gives them: files and numbers
+/// (the options rest_a and rest_b, noise_std_a and noise_std_b, noise_cov_a and noise_cov_b; the
+/// table allows one pair). FitRequest::resolved_options reads them into FitOptions::noise.
+struct NoiseInputs {
+  std::string rest_a, rest_b;       ///< files of rows recorded at rest (NoiseModel::from_rest_files)
+  std::vector<double> std_a, std_b; ///< standard deviations, one or one per column (from_std)
+  std::string cov_a, cov_b;         ///< files of the covariance matrices (from_cov)
+
+  /// Whether no source is given.
+  bool empty() const {
+    return rest_a.empty() && rest_b.empty() && std_a.empty() && std_b.empty() && cov_a.empty() && cov_b.empty();
+  }
+};
+
 /// Everything a fit needs besides the data: the method, the estimators' options (with the one
 /// thread count, FitOptions::threads, which the stream and the bootstrap share), and for data in
 /// files whether they are streamed and how they are read.
@@ -32,6 +46,21 @@ struct FitRequest {
   /// Told the fraction of A's file read while streaming (StreamOptions::progress); the bootstrap's
   /// progress is options.progress.
   ProgressCallback read_progress;
+  /// The noise model in files and numbers, for front ends that give it so (the command line);
+  /// others set options.noise. Not together with options.noise.
+  NoiseInputs noise_inputs;
+
+  /// `options` with the noise model of noise_inputs (none given: `options` as they are): the rest
+  /// files streamed block_rows at a time with `read`, the covariance files read with `read`.
+  /// Throws OptionError naming the option for numbers the model refuses (a negative standard
+  /// deviation, ...) or for noise_inputs given together with options.noise; io::DataError naming
+  /// the file for a file that cannot be read, a covariance that is not square, symmetric or
+  /// positive semidefinite, or rest files with too few rows or different row counts. The sizes
+  /// are checked against the data by the fit (NoiseModel::resolved). Cost: reading the files.
+  FitOptions resolved_options() const;
+  /// resolved_options() for data with n columns in A and d in B, the model's sizes checked
+  /// (NoiseModel::resolved): a covariance file of another size is an io::DataError naming it.
+  FitOptions resolved_options(Eigen::Index n, Eigen::Index d) const;
 
   /// The options of the stream: block_rows, options.threads, read and read_progress.
   StreamOptions stream_options() const;
@@ -42,11 +71,17 @@ struct FitRequest {
 };
 
 /// The options of a FitRequest, in the order help lists them: rank_tolerance, noise_ratio,
-/// max_iterations, min_eig, bootstrap, confidence, seed, threads, reported_diagnostics, stream,
+/// noise (a NoiseModel: Python), rest_a, rest_b, noise_std_a, noise_std_b, noise_cov_a,
+/// noise_cov_b (its sources in files and numbers: the command line), max_iterations, min_eig, bootstrap, confidence, seed, threads, reported_diagnostics, stream,
 /// block_rows. The method is not among them (each front end takes it as an argument of its own).
 /// The command line registers its options from this table, Python its keyword arguments and
 /// MATLAB its name-value pairs; adding an option here (and its field) is all a front end needs.
 const std::vector<OptionSpec<FitRequest>>& fit_option_table();
+
+/// The library names of the options about the noise: noise_ratio, noise, and the noise model's
+/// sources (rest_a, rest_b, noise_std_a, noise_std_b, noise_cov_a, noise_cov_b). A front end whose
+/// function fits every method (compare, hexapod identify) takes these of the table.
+const std::vector<std::string_view>& noise_option_names();
 
 /// Checks the options a user gave (`given`: library names) for the request's method: that each
 /// applies to it (an option such as noise_ratio given with a method that does not take it) and
@@ -54,7 +89,9 @@ const std::vector<OptionSpec<FitRequest>>& fit_option_table();
 /// message names options by their library names in backticks (spell_options).
 void check_fit_request(const FitRequest& request, const std::vector<std::string_view>& given);
 
-/// The fit of A and B in files (fit_files) as the request says: streamed when request.stream.
+/// The fit of A and B in files (fit_files) as the request says: streamed when request.stream,
+/// with the noise model of resolved_options(). A size of a noise model's covariance file that does
+/// not fit the data is an io::DataError naming that file.
 FitResult fit_files(const std::string& a_path, const std::string& b_path, const FitRequest& request);
 
 }  // namespace spdfit

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -15,6 +16,8 @@
 #include <vector>
 
 namespace spdfit {
+
+class NoiseModel;
 
 /// The front ends, each of which spells an option its own way: the library by its name
 /// (`max_iterations`), the command line as "--max-iter", Python as max_iter, MATLAB as
@@ -30,10 +33,14 @@ enum class OptionType {
   Text,     ///< a string (a file name)
   RealList, ///< real numbers: one, or one per column (the command line: comma-separated)
   Vector,   ///< n real numbers (the command line reads them from a file: one column or one row)
+  /// A noise model (noise_model.hpp): Python's spdfit.NoiseModel. The command line has none:
+  /// it gives a model's sources as options of their own (files and numbers).
+  Noise,
 };
 
 /// The values an option can take, as a front end hands them over.
-using OptionValue = std::variant<bool, std::int64_t, double, std::string, std::vector<double>>;
+using OptionValue = std::variant<bool, std::int64_t, double, std::string, std::vector<double>,
+                                 std::shared_ptr<const NoiseModel>>;
 
 /// The interval an integer or real option's value must lie in.
 struct NumberRange {
@@ -73,7 +80,7 @@ struct OptionSpec {
   /// for counts and switches (bootstrap, threads, flags), whose default value front ends show
   /// and whose "no value" is more likely a mistake: then a type error.
   bool nullable = true;
-  NumberRange range;  ///< kInteger and kReal only
+  NumberRange range;  ///< Integer, Real and each value of a RealList
   /// Whether the option takes effect for a request (its method, its kind of repair); nullptr for
   /// every request. Given where it does not apply, the option is an error (misplaced_option).
   bool (*applies)(const Request&) = nullptr;
@@ -150,9 +157,22 @@ OptionValue checked_value(const OptionSpec<Request>& spec, OptionValue value) {
       if (!std::holds_alternative<std::string>(value)) wrong("text");
       break;
     case OptionType::RealList:
+      if (!std::holds_alternative<std::vector<double>>(value)) wrong("a list of real numbers");
+      if (std::get<std::vector<double>>(value).empty()) wrong("one number or a list of numbers, not an empty list");
+      for (double v : std::get<std::vector<double>>(value)) {
+        if (!(std::abs(v) <= std::numeric_limits<double>::max()) || !spec.range.contains(v)) {
+          wrong("a list of numbers, each a " + spec.range.describe(false));
+        }
+      }
+      break;
     case OptionType::Vector:
       if (!std::holds_alternative<std::vector<double>>(value)) wrong("a list of real numbers");
       break;
+    case OptionType::Noise: {
+      const auto* model = std::get_if<std::shared_ptr<const NoiseModel>>(&value);
+      if (model == nullptr || *model == nullptr) wrong("a noise model");
+      break;
+    }
   }
   return value;
 }

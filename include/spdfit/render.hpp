@@ -46,11 +46,15 @@ std::string to_json(const LinearSystemResult& result, JsonStyle style = JsonStyl
 std::string to_json(const ColumnClassification& column, JsonStyle style = JsonStyle::Contract);
 /// `spdfit compare --json`: m, n, d and the results, each with its error_vs_truth.
 std::string to_json(const Comparison& comparison, JsonStyle style = JsonStyle::Contract);
+/// A noise model, as a FitResult's diagnostics hold it: source, cov_a, cov_b, std_a, std_b,
+/// rest_rows, rest_mean_a, rest_mean_b, rest_a_path, rest_b_path (each where it has a value) and
+/// warnings.
+std::string to_json(const NoiseModel& model, JsonStyle style = JsonStyle::Contract);
 
 /// The object that to_json wrote, from its text in either style (Contract's null reads as NaN, so
 /// a Contract text loses the sign of an infinity; keys Contract leaves out take their defaults).
 /// Defined for FitResult, Diagnostics, PsdCertificate, AutoReason, Interval, SpectrumUncertainty,
-/// Bootstrap, NearestResult, LinearSystemResult, ColumnClassification and
+/// Bootstrap, NoiseModel, NearestResult, LinearSystemResult, ColumnClassification and
 /// hexapod::MethodIdentification. Throws std::invalid_argument, naming the class and the field,
 /// for text that is not such a document. Cost O(length of the text).
 template <typename T>
@@ -63,6 +67,7 @@ template <> AutoReason from_json<AutoReason>(const std::string& text);
 template <> Interval from_json<Interval>(const std::string& text);
 template <> SpectrumUncertainty from_json<SpectrumUncertainty>(const std::string& text);
 template <> Bootstrap from_json<Bootstrap>(const std::string& text);
+template <> NoiseModel from_json<NoiseModel>(const std::string& text);
 template <> NearestResult from_json<NearestResult>(const std::string& text);
 template <> LinearSystemResult from_json<LinearSystemResult>(const std::string& text);
 template <> ColumnClassification from_json<ColumnClassification>(const std::string& text);

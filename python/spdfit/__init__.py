@@ -28,7 +28,7 @@ import numpy as _np
 
 from . import _spdfit
 from ._spdfit import (AutoReason, DataError, Diagnostics, FitResult, LinearSystemResult, NearestResult,
-                      PsdCertificate, Bootstrap, Interval, SpectrumUncertainty)
+                      NoiseModel, PsdCertificate, Bootstrap, Interval, SpectrumUncertainty)
 
 # The repairs' one result class, under the names each function's documentation uses.
 NearestSpdResult = NearestCorrelationResult = NearestResult
@@ -39,7 +39,7 @@ __version__ = _spdfit.__version__
 METHODS = _spdfit.METHODS
 
 __all__ = [
-    "METHODS", "DataError", "Diagnostics", "Factor", "FitResult", "NearestSpdResult", "NumericalError",
+    "METHODS", "DataError", "Diagnostics", "Factor", "FitResult", "NearestSpdResult", "NoiseModel", "NumericalError",
     "LinearSystemResult", "SpdfitWarning", "area_criterion", "solve", "fit", "fit_all", "fit_files",
     "least_squares", "nearest_spd", "nearest_correlation", "read_matrix",
     "read_table", "spde", "symmetric_procrustes", "total_least_squares", "total_least_squares_psd",
@@ -350,8 +350,8 @@ def _checked(result, stacklevel=3):
 def fit(A, B, method="auto", **options):
     """Estimate X in A X ~= B with `method` (one of METHODS).
 
-    The default, "auto", chooses spde, spd-tls or psd-ls from the data and always returns a positive
-    definite X; result.method is the method it ran and result.diagnostics.reason says why (the
+    The default, "auto", chooses spde, spd-tls or psd-ls from the data (and the noise model,
+    noise=) and returns a positive definite X, or a warning says that it could not; result.method is the method it ran and result.diagnostics.reason says why (the
     default was "spde" before; docs/changes.md). "ls" and "tls" also take B with d != n columns (X
     n x d, as numpy.linalg.lstsq returns for several right-hand sides; tls then needs m >= n + d); the
     other methods estimate a symmetric X.
@@ -848,7 +848,12 @@ def psd_least_squares(A, B, **options):
 @_shared_doc
 @_takes_options("fit:auto")
 def auto_fit(A, B, **options):
-    """fit(A, B, "auto"): spde, spd-tls or psd-ls, chosen from the data, always positive definite.
+    """fit(A, B, "auto"): spde, spd-tls or psd-ls, chosen from the data (and the noise model, noise=).
+
+    The estimate is positive definite, or a warning says that it is not: when the chosen method
+    ends on the boundary and psd-ls, auto's fallback, does not give a positive definite matrix
+    either. Without noise=, auto assumes equal noise in every column of A and B in the units
+    given, and its reason says so.
 
     result.method is the method it ran; result.diagnostics.chosen_method and .reason (code, text)
     say which and why.

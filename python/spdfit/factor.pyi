@@ -4,7 +4,7 @@ from typing import Any, Optional, Union
 import numpy.typing as npt
 
 from . import _Method, _PathLike
-from ._spdfit import FitResult
+from ._spdfit import FitResult, NoiseModel
 
 class Factor:
     def __init__(self, n: int, d: Optional[int] = ...) -> None: ...

@@ -5,7 +5,7 @@ from typing import Any, Dict, NamedTuple, Optional, Union
 import numpy as np
 import numpy.typing as npt
 
-from ._spdfit import FitResult, SpectrumUncertainty, _Pybind11Type
+from ._spdfit import FitResult, NoiseModel, SpectrumUncertainty, _Pybind11Type
 
 _Array = npt.NDArray[np.float64]
 

@@ -83,10 +83,23 @@ void bind_hexapod(py::module_& parent) {
       .def_property_readonly("signal_var", copied(&SimulationOptions::signal_var))
       .def_property_readonly("distribution",
                              [](const SimulationOptions& o) { return std::string(to_string(o.distribution)); })
+      .def_property_readonly("noise_std_a", copied(&SimulationOptions::noise_std_a),
+                             "standard deviations of the noise in A, one or one per column (None: noise_var)")
+      .def_property_readonly("noise_std_b", copied(&SimulationOptions::noise_std_b),
+                             "the same for B, in B's units before scale_b (None: force_noise_var or noise_var)")
+      .def_property_readonly("rest_samples", copied(&SimulationOptions::rest_samples),
+                             "rows recorded at rest drawn after the data (0: none)")
+      .def_property_readonly("rest_force", copied(&SimulationOptions::rest_force),
+                             "the force at rest, one per column of B (empty: truth times (1, ..., 1))")
+      .def_property_readonly("scale_b", copied(&SimulationOptions::scale_b),
+                             "the factor B is multiplied by after it is drawn (0.001: newtons to kilonewtons)")
       .def(pickle_fields<SimulationOptions>(
           "SimulationOptions", state_field(&SimulationOptions::samples), state_field(&SimulationOptions::noise_var),
           state_field(&SimulationOptions::force_noise_var), state_field(&SimulationOptions::signal_var),
-          enum_field(&SimulationOptions::distribution, kNoiseDistributions, "SimulationOptions", "distribution")));
+          enum_field(&SimulationOptions::distribution, kNoiseDistributions, "SimulationOptions", "distribution"),
+          state_field(&SimulationOptions::noise_std_a), state_field(&SimulationOptions::noise_std_b),
+          state_field(&SimulationOptions::rest_samples), state_field(&SimulationOptions::rest_force),
+          state_field(&SimulationOptions::scale_b)));
 
   m.def(
       "simulate",

@@ -61,6 +61,9 @@ void bind_results(py::module_& m) {
                           "What an estimate is checked by: ranks and condition numbers of A and B, the "
                           "residual, definiteness, the area criterion and method-specific values "
                           "(None where not defined).")
+      .def_property_readonly("noise_model", copied(&Diagnostics::noise_model),
+                             "the noise model the estimate used (NoiseModel), or None: then it assumed equal noise "
+                             "in every column of A and B, in the units given")
       .def_property_readonly("m", copied(&Diagnostics::m), "rows (samples)")
       .def_property_readonly("n", copied(&Diagnostics::n), "A's columns; X is n x d")
       .def_property_readonly("d", copied(&Diagnostics::d),

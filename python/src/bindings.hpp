@@ -23,6 +23,7 @@ inline const ReportHints& python_report_hints() {
 }
 
 void bind_results(pybind11::module_& m);
+void bind_noise(pybind11::module_& m);
 void bind_estimators(pybind11::module_& m);
 void bind_io(pybind11::module_& m);
 void bind_linear_system(pybind11::module_& m);

@@ -101,6 +101,9 @@ std::string annotation(const Keyword& keyword) {
     case OptionType::Vector:
       type = "npt.ArrayLike";
       break;
+    case OptionType::Noise:
+      type = "NoiseModel";
+      break;
   }
   return keyword.nullable ? "Optional[" + type + "]" : type;
 }

@@ -4,7 +4,11 @@
 #include <pybind11/stl.h>
 
 #include <cstdint>
+#include <memory>
 #include <string>
+#include <type_traits>
+
+#include "spdfit/noise_model.hpp"
 
 namespace py = pybind11;
 
@@ -38,6 +42,8 @@ const char* type_text(OptionType type) {
       return "float or sequence of float";
     case OptionType::Vector:
       return "array_like";
+    case OptionType::Noise:
+      return "NoiseModel";
   }
   return "object";
 }
@@ -116,6 +122,9 @@ OptionValue keyword_value(const Keyword& keyword, const py::handle& value) {
       return real_vector(keyword, value);
     case OptionType::Vector:
       return real_vector(keyword, value);
+    case OptionType::Noise:
+      if (!py::isinstance<NoiseModel>(value)) wrong_type(keyword, "a spdfit.NoiseModel", value);
+      return std::make_shared<const NoiseModel>(value.cast<const NoiseModel&>());
   }
   wrong_type(keyword, "a value", value);
 }
@@ -153,7 +162,17 @@ py::dict keyword_table() {
     py::list list;
     for (const Keyword& k : keywords) {
       py::object value = py::none();
-      if (k.default_value) value = std::visit([](const auto& v) -> py::object { return py::cast(v); }, *k.default_value);
+      if (k.default_value) {
+        value = std::visit(
+            [](const auto& v) -> py::object {
+              if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::shared_ptr<const NoiseModel>>) {
+                return py::none();  // a noise model has no default but None
+              } else {
+                return py::cast(v);
+              }
+            },
+            *k.default_value);
+      }
       list.append(
           py::make_tuple(std::string(k.python), type_text(k.type), k.help, std::string(k.default_text), value));
     }

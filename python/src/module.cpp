@@ -13,6 +13,7 @@ PYBIND11_MODULE(_spdfit, m) {
   m.doc() = "Compiled core of spdfit; use the `spdfit` package instead.";
   m.attr("__version__") = spdfit::kVersion;
   spdfit::python::bind_io(m);
+  spdfit::python::bind_noise(m);
   spdfit::python::bind_results(m);
   spdfit::python::bind_estimators(m);
   spdfit::python::bind_factor(m);

@@ -27,7 +27,7 @@ namespace spdfit::python {
 
 /// The number of the pickles' format: one more whenever a state changes. Pickles made before
 /// states had a number are format 0.
-inline constexpr int kPickleFormat = 1;
+inline constexpr int kPickleFormat = 2;
 
 /// Raises pickle.UnpicklingError with `message` (what pickle.loads raises for a bad pickle).
 [[noreturn]] void refuse_state(const std::string& message);

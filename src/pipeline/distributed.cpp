@@ -13,6 +13,7 @@
 
 #include "factor/basic_reduction.hpp"
 #include "io/split_file.hpp"
+#include "pipeline/noise_files.hpp"
 #include "pipeline/pair_checks.hpp"
 #include "spdfit/options.hpp"
 #include "pipeline/stream_resampling.hpp"
@@ -300,8 +301,11 @@ DistributedFit fit_files_distributed(const std::string& a_path, const std::strin
 
 DistributedFit fit_files_distributed(const std::string& a_path, const std::string& b_path,
                                      const FitRequest& request, Channel& channel) {
-  return fit_files_distributed(a_path, b_path, request.method, request.options, request.stream_options(),
-                               request.read, channel);
+  const FitOptions options = request.resolved_options();
+  return detail::naming_noise_files(request.noise_inputs, [&] {
+    return fit_files_distributed(a_path, b_path, request.method, options, request.stream_options(), request.read,
+                                 channel);
+  });
 }
 
 }  // namespace spdfit

@@ -5,7 +5,9 @@
 #include <limits>
 #include <utility>
 
+#include "pipeline/noise_files.hpp"
 #include "spdfit/fit_files.hpp"
+#include "spdfit/noise_model.hpp"
 
 namespace spdfit {
 
@@ -19,6 +21,44 @@ constexpr double kMaxBlockRows = double(std::int64_t{1} << 24);
 double real(const OptionValue& v) { return std::get<double>(v); }
 std::int64_t integer(const OptionValue& v) { return std::get<std::int64_t>(v); }
 bool boolean(const OptionValue& v) { return std::get<bool>(v); }
+const std::string& text(const OptionValue& v) { return std::get<std::string>(v); }
+const std::vector<double>& reals(const OptionValue& v) { return std::get<std::vector<double>>(v); }
+
+// Every method but spde takes a noise model (spde's area criterion has none).
+bool takes_noise_model(const FitRequest& r) { return r.method != Method::Spde; }
+constexpr std::string_view kNoiseAppliesTo =
+    "the methods with a noise model (its maximum-likelihood fit: auto or spd-tls; spde has none)";
+
+// The options of a noise model's sources: one pair, not with noise_ratio (the model gives the ratio).
+const std::vector<std::string_view> kNoiseOptions = {"noise",       "rest_a",      "rest_b",     "noise_std_a",
+                                                     "noise_std_b", "noise_cov_a", "noise_cov_b"};
+
+// The options that `name`'s pair cannot be given with: noise_ratio and the other sources.
+std::vector<std::string_view> noise_excludes(std::string_view name, std::string_view partner) {
+  std::vector<std::string_view> out = {"noise_ratio"};
+  for (std::string_view other : kNoiseOptions) {
+    if (other != name && other != partner) out.push_back(other);
+  }
+  return out;
+}
+
+// One side of a pair of noise options (rest_a and rest_b, ...): the other side is needed too.
+Spec noise_source(std::string_view name, std::string_view partner, std::string_view cli, OptionType type,
+                  std::string_view value_name, std::string_view help, std::string_view needs_message) {
+  Spec spec;
+  spec.name = name;
+  spec.cli = cli;
+  spec.type = type;
+  spec.value_name = value_name;
+  spec.help = help;
+  spec.applies = takes_noise_model;
+  spec.applies_to = kNoiseAppliesTo;
+  spec.needs = {partner};
+  spec.needs_message = needs_message;
+  spec.excludes = noise_excludes(name, partner);
+  if (type == OptionType::RealList) spec.range = {0.0, std::numeric_limits<double>::infinity()};
+  return spec;
+}
 
 std::vector<Spec> make_table() {
   std::vector<Spec> table;
@@ -55,6 +95,62 @@ std::vector<Spec> make_table() {
   ratio.set = [](FitRequest& r, const OptionValue& v) { r.options.noise_ratio = real(v); };
   ratio.get = [](const FitRequest& r) -> std::optional<OptionValue> { return r.options.noise_ratio; };
   table.push_back(ratio);
+
+  Spec noise;
+  noise.name = "noise";
+  noise.python = "noise";
+  noise.type = OptionType::Noise;
+  noise.help = "The noise model: the covariances of the noise in each row of A and of B (NoiseModel). spd-tls and "
+               "auto become the maximum-likelihood fit, psd-ls and procrustes weighted by B's noise, tls, tls-sym "
+               "and tls-psd generalized total least squares. Default: equal noise in every column of A and B, "
+               "in the units given";
+  noise.applies = takes_noise_model;
+  noise.applies_to = kNoiseAppliesTo;
+  noise.excludes = noise_excludes("noise", "noise");
+  noise.set = [](FitRequest& r, const OptionValue& v) {
+    r.options.noise = *std::get<std::shared_ptr<const NoiseModel>>(v);
+  };
+  table.push_back(noise);
+
+  const std::string_view rest_pair = "`rest_a` and `rest_b` come together: the rows of A and of B recorded at rest";
+  Spec rest_a = noise_source("rest_a", "rest_b", "--rest-a", OptionType::Text, "FILE",
+                             "Rows of A recorded with the machine at rest (accelerations zero; any format A "
+                             "takes, streamed): the noise model's Sigma_A is their sample covariance. "
+                             "Default: equal noise in every column of A and B, in the units given",
+                             rest_pair);
+  rest_a.set = [](FitRequest& r, const OptionValue& v) { r.noise_inputs.rest_a = text(v); };
+  table.push_back(rest_a);
+  Spec rest_b = noise_source("rest_b", "rest_a", "--rest-b", OptionType::Text, "FILE",
+                             "Rows of B recorded at rest, as many as `rest_a`'s (forces constant): Sigma_B is "
+                             "their sample covariance about their mean, so a static load is not noise",
+                             rest_pair);
+  rest_b.set = [](FitRequest& r, const OptionValue& v) { r.noise_inputs.rest_b = text(v); };
+  table.push_back(rest_b);
+
+  const std::string_view std_pair =
+      "`noise_std_a` and `noise_std_b` come together: give the noise of both sides (0: exact)";
+  Spec std_a = noise_source("noise_std_a", "noise_std_b", "--noise-std-a", OptionType::RealList, "S",
+                            "Standard deviation of the noise in A: one for every column, or one per column "
+                            "(comma-separated); 0 means exact",
+                            std_pair);
+  std_a.set = [](FitRequest& r, const OptionValue& v) { r.noise_inputs.std_a = reals(v); };
+  table.push_back(std_a);
+  Spec std_b = noise_source("noise_std_b", "noise_std_a", "--noise-std-b", OptionType::RealList, "S",
+                            "Standard deviation of the noise in B, as `noise_std_a`", std_pair);
+  std_b.set = [](FitRequest& r, const OptionValue& v) { r.noise_inputs.std_b = reals(v); };
+  table.push_back(std_b);
+
+  const std::string_view cov_pair = "`noise_cov_a` and `noise_cov_b` come together: give the covariances of both";
+  Spec cov_a = noise_source("noise_cov_a", "noise_cov_b", "--noise-cov-a", OptionType::Text, "FILE",
+                            "File of Sigma_A, the covariance of the noise in a row of A (n x n, symmetric positive "
+                            "semidefinite)",
+                            cov_pair);
+  cov_a.set = [](FitRequest& r, const OptionValue& v) { r.noise_inputs.cov_a = text(v); };
+  table.push_back(cov_a);
+  Spec cov_b = noise_source("noise_cov_b", "noise_cov_a", "--noise-cov-b", OptionType::Text, "FILE",
+                            "File of Sigma_B, the covariance of the noise in a row of B (d x d)", cov_pair);
+  cov_b.set = [](FitRequest& r, const OptionValue& v) { r.noise_inputs.cov_b = text(v); };
+  table.push_back(cov_b);
 
   Spec iterations;
   iterations.name = "max_iterations";
@@ -212,6 +308,45 @@ const std::vector<OptionSpec<FitRequest>>& fit_option_table() {
   return table;
 }
 
+FitOptions FitRequest::resolved_options() const {
+  if (noise_inputs.empty()) return options;
+  if (options.noise) {
+    throw OptionError("give the noise model as `noise` or as its files and numbers, not both");
+  }
+  FitOptions out = options;
+  const NoiseInputs& in = noise_inputs;
+  if (!in.rest_a.empty() || !in.rest_b.empty()) {
+    if (in.rest_a.empty() || in.rest_b.empty()) throw OptionError("`rest_a` and `rest_b` come together");
+    out.noise = NoiseModel::from_rest_files(in.rest_a, in.rest_b, read, block_rows);
+  } else if (!in.std_a.empty() || !in.std_b.empty()) {
+    const auto vector = [](const std::vector<double>& v) {
+      return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(v.data(), Eigen::Index(v.size())));
+    };
+    out.noise = NoiseModel::from_std(vector(in.std_a), vector(in.std_b));
+  } else {
+    if (in.cov_a.empty() || in.cov_b.empty()) throw OptionError("`noise_cov_a` and `noise_cov_b` come together");
+    const Eigen::MatrixXd cov_a = io::read_matrix(in.cov_a, read);
+    const Eigen::MatrixXd cov_b = io::read_matrix(in.cov_b, read);
+    out.noise = detail::naming_noise_files(in, [&] { return NoiseModel::from_cov(cov_a, cov_b); });
+  }
+  return out;
+}
+
+FitOptions FitRequest::resolved_options(Eigen::Index n, Eigen::Index d) const {
+  FitOptions out = resolved_options();
+  if (out.noise) out.noise = detail::naming_noise_files(noise_inputs, [&] { return out.noise->resolved(n, d); });
+  return out;
+}
+
+const std::vector<std::string_view>& noise_option_names() {
+  static const std::vector<std::string_view> names = [] {
+    std::vector<std::string_view> out = {"noise_ratio"};
+    out.insert(out.end(), kNoiseOptions.begin(), kNoiseOptions.end());
+    return out;
+  }();
+  return names;
+}
+
 bool FitRequest::is_valid(std::string* error) const { return options_in_range(*this, fit_option_table(), error); }
 
 bool FitOptions::is_valid(std::string* error) const {
@@ -247,7 +382,10 @@ void check_fit_request(const FitRequest& request, const std::vector<std::string_
 FitResult fit_files(const std::string& a_path, const std::string& b_path, const FitRequest& request) {
   std::optional<StreamOptions> stream;
   if (request.stream) stream = request.stream_options();
-  return fit_files(a_path, b_path, request.method, request.options, stream, request.read);
+  const FitOptions options = request.resolved_options();
+  return detail::naming_noise_files(request.noise_inputs, [&] {
+    return fit_files(a_path, b_path, request.method, options, stream, request.read);
+  });
 }
 
 }  // namespace spdfit

@@ -100,6 +100,7 @@ std::string value_text(const OptionValue& value) {
   if (const std::int64_t* i = std::get_if<std::int64_t>(&value)) return std::to_string(*i);
   if (const double* d = std::get_if<double>(&value)) return number_text(*d);
   if (const std::string* s = std::get_if<std::string>(&value)) return "'" + *s + "'";
+  if (std::holds_alternative<std::shared_ptr<const NoiseModel>>(value)) return "a noise model";
   const auto& list = std::get<std::vector<double>>(value);
   std::string text;
   for (double v : list) text += (text.empty() ? "" : ",") + number_text(v);

@@ -17,6 +17,35 @@ int decimals_for(double standard_error) {
   return std::clamp(1 - static_cast<int>(std::floor(std::log10(standard_error))), 0, 12);
 }
 
+// The standard deviations of a covariance's diagonal, "0.2, 0.4, 0.8" (one value when all are equal).
+std::string deviations(const Eigen::MatrixXd& cov) {
+  const Eigen::VectorXd s = cov.diagonal().cwiseMax(0.0).cwiseSqrt();
+  if (s.size() > 0 && (s.array() == s(0)).all()) return format_number(s(0), Precision::Medium);
+  std::string text;
+  for (Eigen::Index i = 0; i < s.size(); ++i) text += (i == 0 ? "" : ", ") + format_number(s(i), Precision::Medium);
+  return text;
+}
+
+// The noise model in one line: where it came from and the noise standard deviations per column.
+std::string noise_model_line(const Diagnostics& d) {
+  if (!d.noise_model) {
+    return "noise model: assumed-equal (the same noise in every column of A and B, in the units given)\n";
+  }
+  const NoiseModel& m = *d.noise_model;
+  std::string text = "noise model: " + std::string(to_string(m.source()));
+  if (m.source() == NoiseSource::Rest && m.rest_rows()) {
+    text += " (" + std::to_string(*m.rest_rows()) + " rows" +
+            (m.rest_a_path().empty() ? std::string() : " of " + m.rest_a_path() + ", " + m.rest_b_path()) + ")";
+  }
+  if (m.is_resolved()) {
+    text += "; noise std in A " + deviations(m.cov_a()) + "; in B " + deviations(m.cov_b());
+  } else {
+    text += "; noise std in A " + deviations(Eigen::MatrixXd(m.std_a().cwiseAbs2().asDiagonal())) + "; in B " +
+            deviations(Eigen::MatrixXd(m.std_b().cwiseAbs2().asDiagonal()));
+  }
+  return text + "\n";
+}
+
 }  // namespace
 
 std::string report(const SpectrumUncertainty& s, const std::string& indent) {
@@ -98,6 +127,7 @@ std::string report(const FitResult& result, const ReportHints& hints) {
     out << "noise estimate: sigma = " << format_number(*d.noise_sigma, Precision::Full)
         << " in every entry of A (times the noise ratio in B)\n";
   }
+  out << noise_model_line(d);
   return out.str();
 }
 

@@ -9,6 +9,10 @@ namespace spdfit::detail {
 
 namespace {
 
+// The noise model's source in the JSON of an estimate without one (NoiseModel's sources are
+// "std", "cov" and "rest").
+constexpr const char* kAssumedEqual = "assumed-equal";
+
 // The names the JSON gives the enums, read back by name so that a reordering of the enumerators
 // changes nothing.
 Method method_from(const Json& object, const char* key, const std::string& type) {
@@ -87,7 +91,8 @@ Json diagnostics_json(const Diagnostics& d, JsonStyle style) {
   put_optional(out, "gradient_norm", d.gradient_norm, style);
   if (d.converged) out["converged"] = *d.converged;
   if (d.certificate) out["certificate"] = certificate_json(*d.certificate, style);
-  if (d.noise_model) out["noise_model"] = noise_model_json(*d.noise_model, style);
+  // Without a model the estimate assumed equal noise in every column of A and B: said so.
+  out["noise_model"] = d.noise_model ? noise_model_json(*d.noise_model, style) : Json{{"source", kAssumedEqual}};
   if (d.chosen_method) out["chosen_method"] = std::string(to_string(*d.chosen_method));
   if (d.reason) out["reason"] = reason_json(*d.reason);
   return out;
@@ -130,7 +135,12 @@ Diagnostics diagnostics_from(const Json& object, const Json& shape, const std::s
   d.gradient_norm = optional("gradient_norm");
   if (optional_field(object, "converged")) d.converged = value_from<bool>(object, "converged", what);
   if (const Json* c = optional_field(object, "certificate")) d.certificate = certificate_from(*c, what + " certificate");
-  if (const Json* m = optional_field(object, "noise_model")) d.noise_model = noise_model_from(*m, what + " noise_model");
+  if (const Json* m = optional_field(object, "noise_model")) {
+    const Json* source = optional_field(*m, "source");
+    if (!(source && source->is_string() && source->get<std::string>() == kAssumedEqual)) {
+      d.noise_model = noise_model_from(*m, what + " noise_model");
+    }
+  }
   if (optional_field(object, "chosen_method")) d.chosen_method = method_from(object, "chosen_method", what);
   if (const Json* r = optional_field(object, "reason")) d.reason = reason_from(*r, what + " reason");
   return d;

@@ -4,6 +4,7 @@
 
 #include "render/fit_result_json.hpp"
 #include "spdfit/noise_model.hpp"
+#include "spdfit/render.hpp"
 
 namespace spdfit::detail {
 
@@ -61,3 +62,16 @@ Json noise_model_json(const NoiseModel& model, JsonStyle style) { return NoiseMo
 NoiseModel noise_model_from(const Json& object, const std::string& type) { return NoiseModelJson::read(object, type); }
 
 }  // namespace spdfit::detail
+
+namespace spdfit {
+
+std::string to_json(const NoiseModel& model, JsonStyle style) {
+  return detail::dump(detail::noise_model_json(model, style), style);
+}
+
+template <>
+NoiseModel from_json<NoiseModel>(const std::string& text) {
+  return detail::noise_model_from(detail::parse_object(text, "NoiseModel"), "NoiseModel");
+}
+
+}  // namespace spdfit

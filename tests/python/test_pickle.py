@@ -25,7 +25,7 @@ import thesis_reference as ref
 from spdfit import _spdfit
 
 # The pickle format of this build (pickle.hpp's kPickleFormat): every state is (FORMAT, payload).
-FORMAT = 1
+FORMAT = 2
 
 FIELDS = ["m", "n", "rank_a", "rank_b", "cond_a", "cond_b", "residual_norm", "symmetric", "positive_definite",
           "positive_semidefinite", "min_eigenvalue", "max_eigenvalue", "area_criterion", "area_criterion_minimum",
@@ -208,7 +208,8 @@ def simulation_options():
     """SimulationOptions away from every default (Python can only make the defaults: the state
     is the way in)."""
     options = _spdfit.hexapod.SimulationOptions.__new__(_spdfit.hexapod.SimulationOptions)
-    options.__setstate__((FORMAT, (30, 0.5, 0.25, 2.0, "gaussian")))
+    options.__setstate__((FORMAT, (30, 0.0, 0.25, 2.0, "gaussian", np.array([0.2, 0.4, 0.8, 0.2, 0.4, 0.8]),
+                                   np.array([3.0]), 2000, np.arange(1.0, 7.0), 1e-3)))
     return options
 
 
@@ -333,7 +334,11 @@ def test_options_keep_their_values():
     assert (back.block_rows, back.threads) == (1000, 3)
     back = round_trip(example("SimulationOptions"))
     assert (back.samples, back.noise_var, back.force_noise_var, back.signal_var, back.distribution) == \
-           (30, 0.5, 0.25, 2.0, "gaussian")
+           (30, 0.0, 0.25, 2.0, "gaussian")
+    assert np.array_equal(back.noise_std_a, [0.2, 0.4, 0.8, 0.2, 0.4, 0.8])
+    assert np.array_equal(back.noise_std_b, [3.0])
+    assert (back.rest_samples, back.scale_b) == (2000, 1e-3)
+    assert np.array_equal(back.rest_force, np.arange(1.0, 7.0))
 
 
 def test_stream_options_keep_their_read_options():
