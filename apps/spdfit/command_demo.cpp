@@ -40,7 +40,8 @@ Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
       ->check(CLI::Range(std::size_t{1}, std::size_t{10000000}))
       ->capture_default_str();
   sub->add_option("--trials-beyond", cli->trials_beyond,
-                  "Monte Carlo trials at each point of section 5 (the methods beyond the seeds against m)")
+                  "Monte Carlo trials at each point of section 5 (the methods beyond the seeds against m) and in "
+                  "section 7 (units and noise)")
       ->check(CLI::Range(std::size_t{1}, std::size_t{10000000}))
       ->capture_default_str();
   sub->add_option("--trials-physical", cli->trials_physical,
@@ -102,6 +103,9 @@ Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
       monte_carlo.progress = trials_progress(global, "demo: physical identification");
       results.physical = experiment::run_physical_experiment(options, monte_carlo);
     }
+    monte_carlo.trials = cli->trials_beyond;
+    monte_carlo.progress = trials_progress(global, "demo: units and noise");
+    results.units = experiment::run_thesis_experiment(demo::units_options(), monte_carlo);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     std::ostringstream out;
@@ -119,13 +123,13 @@ Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
     char line[200];
     std::snprintf(
         line, sizeof line,
-        "(seed %llu; %zu + %zu + %zu + %zu + %zu trials on %u threads in %.1f s. Reproduce any table with "
+        "(seed %llu; %zu + %zu + %zu + %zu + %zu + %zu trials on %u threads in %.1f s. Reproduce any table with "
         "'spdfit experiment ...', see docs/hexapod.md.)",
         static_cast<unsigned long long>(cli->seed), 3 * cli->trials,
         demo::sample_sizes().size() * cli->trials_samples, demo::levels_2x2().size() * cli->trials_2x2,
         demo::beyond_widths().size() * demo::beyond_sizes().size() * cli->trials_beyond,
-        demo::physical_sizes().size() * cli->trials_physical, experiment::resolve_threads(cli->threads),
-        seconds);
+        demo::physical_sizes().size() * cli->trials_physical, cli->trials_beyond,
+        experiment::resolve_threads(cli->threads), seconds);
     out << '\n' << demo::wrap(line);
     emit(out.str(), "");
   };

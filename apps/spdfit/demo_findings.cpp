@@ -279,6 +279,23 @@ std::string physical_statements(const std::optional<experiment::PhysicalExperime
 
 }  // namespace
 
+// Section 7: what the rest segment gains when the units and sensors differ.
+std::string units_statements(const ThesisExperimentResult& units) {
+  const double assumed = units.of(Method::Auto, experiment::FitNoise::None).summary.mean;
+  const double rest = units.of(Method::Auto, experiment::FitNoise::Rest).summary.mean;
+  std::string text = "Section 7: with forces in kN and sensors of different noise, auto assuming equal noise errs by " +
+                     format_fixed(assumed, 3) + "; given the rest segment's covariances it errs by " +
+                     format_fixed(rest, 3);
+  if (rest < assumed) {
+    text += " (" + format_number(assumed / rest, Precision::Brief) +
+            " times less), whatever the units: record a few seconds at rest and give them with "
+            "--rest-a and --rest-b.";
+  } else {
+    text += ": here the noise model does not help.";
+  }
+  return bullet(text);
+}
+
 std::string findings(const Results& results) {
   Facts facts;
   std::string out = "== What the numbers show\n\n";
@@ -287,6 +304,7 @@ std::string findings(const Results& results) {
   out += samples_statements(results.samples, facts);
   out += beyond_statements(results.beyond);
   out += physical_statements(results.physical);
+  out += units_statements(results.units);
 
   // The conclusion follows from the statements above.
   bool spde_best_small = true;

@@ -26,10 +26,17 @@ struct Results {
   std::vector<experiment::ThesisExperimentResult> beyond;
   /// Section 6: physical identification of the payload against the generic methods.
   std::optional<experiment::PhysicalExperimentResult> physical;
+  /// Section 7, units and noise: units_options() fitted without a noise model and with the rest
+  /// segment's.
+  experiment::ThesisExperimentResult units;
 };
 
 /// Section 6's sample sizes (its other settings are the physical experiment's defaults).
 const std::vector<Eigen::Index>& physical_sizes();
+
+/// Section 7's experiment: per-sensor Gaussian noise, B in kN, a rest segment; auto and spd-tls
+/// fitted assuming equal noise and with the rest rows' covariances.
+experiment::ThesisExperimentOptions units_options();
 
 /// Section 5's uniform noise widths nm (variance nm^2 / 12), sample sizes and methods.
 const std::vector<double>& beyond_widths();
@@ -42,8 +49,9 @@ const std::vector<Method>& beyond_estimators();
 const std::vector<double>& levels_2x2();
 const std::vector<Eigen::Index>& sample_sizes();
 
-/// Sections 1-6: the built-in hexapod, the thesis' experiments, the 2x2 example, more samples,
-/// the methods beyond the seeds against m, and physical identification of the payload.
+/// Sections 1-7: the built-in hexapod, the thesis' experiments, the 2x2 example, more samples,
+/// the methods beyond the seeds against m, physical identification of the payload (6), and units
+/// and noise (7).
 std::string tables(const Results& results);
 
 /// "What the numbers show": each statement chosen by comparing the numbers in `results`.

@@ -252,6 +252,36 @@ std::string section_physical(const std::optional<experiment::PhysicalExperimentR
          experiment::report(*physical) + "\n";
 }
 
+// The standard deviations of a side, "0.2, 0.4, 0.8, ...".
+std::string deviations(const Eigen::VectorXd& s) {
+  std::string text;
+  for (Eigen::Index i = 0; i < s.size(); ++i) text += (i == 0 ? "" : ", ") + format_number(s(i));
+  return text;
+}
+
+std::string section_units(const ThesisExperimentResult& r) {
+  std::ostringstream out;
+  const hexapod::SimulationOptions& s = r.options.simulation;
+  out << wrap("== 7. Units and noise. The thesis model with Gaussian noise of each sensor's own standard "
+              "deviation (A: " + deviations(*s.noise_std_a) + "; B: " + deviations(*s.noise_std_b) +
+              " N), forces written in kN, m = " + std::to_string(s.samples) + ", and " +
+              std::to_string(s.rest_samples) + " rows recorded at rest; mean error ||M_p - M_hat||_F in N "
+              "over " + std::to_string(r.trials) + " trials, without a noise model (equal noise assumed in "
+              "every column, in the units given) and with the rest rows' covariances (--rest-a, --rest-b)")
+      << "\n\n";
+  char line[200];
+  std::snprintf(line, sizeof line, "%-9s %22s %22s\n", "method", "equal noise assumed", "rest segment");
+  out << line;
+  for (Method method : r.options.methods) {
+    std::snprintf(line, sizeof line, "%-9s %22s %22s\n", std::string(to_string(method)).c_str(),
+                  format_fixed(r.of(method, experiment::FitNoise::None).summary.mean, 3).c_str(),
+                  format_fixed(r.of(method, experiment::FitNoise::Rest).summary.mean, 3).c_str());
+    out << line;
+  }
+  out << '\n';
+  return out.str();
+}
+
 }  // namespace
 
 const std::vector<Eigen::Index>& physical_sizes() {
@@ -259,10 +289,24 @@ const std::vector<Eigen::Index>& physical_sizes() {
   return sizes;
 }
 
+experiment::ThesisExperimentOptions units_options() {
+  experiment::ThesisExperimentOptions options;
+  hexapod::SimulationOptions& s = options.simulation;
+  s.samples = 1000;
+  s.distribution = hexapod::NoiseDistribution::Gaussian;
+  s.noise_std_a = (Eigen::VectorXd(6) << 0.2, 0.4, 0.8, 0.2, 0.4, 0.8).finished();
+  s.noise_std_b = (Eigen::VectorXd(6) << 3.0, 1.0, 0.3, 3.0, 1.0, 0.3).finished();
+  s.rest_samples = 2000;
+  s.scale_b = 1e-3;  // newtons to kilonewtons
+  options.methods = {Method::Auto, Method::SpdTotalLeastSquares};
+  options.noise_models = {experiment::FitNoise::None, experiment::FitNoise::Rest};
+  return options;
+}
+
 std::string tables(const Results& results) {
   return section_model() + section_thesis(results.thesis, results.seed) + section_2x2(results.paper) +
          section_samples(results.thesis, results.samples) + section_beyond(results.beyond) +
-         section_physical(results.physical);
+         section_physical(results.physical) + section_units(results.units);
 }
 
 }  // namespace spdfit::cli::demo
