@@ -12,6 +12,7 @@
 #include "bindings.hpp"
 #include "pickle.hpp"
 #include "spdfit/noise_model.hpp"
+#include "spdfit/options.hpp"
 #include "spdfit/render.hpp"
 
 namespace py = pybind11;
