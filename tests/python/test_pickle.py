@@ -114,7 +114,7 @@ def test_a_state_of_no_format_is_refused():
     # The fields' tuple of the releases before pickles had a format number.
     with pytest.raises(pickle.UnpicklingError, match=r"cannot unpickle FitResult: it was pickled by another "
                                                      r"version of spdfit \(a state of no pickle format\); this spdfit "
-                                                     r"\(.*\) reads format 1 only"):
+                                                     rf"\(.*\) reads format {FORMAT} only"):
         spdfit.FitResult.__new__(spdfit.FitResult).__setstate__(("spde", "success", "", np.eye(2)))
 
 
@@ -256,6 +256,10 @@ EXAMPLES = {
     "paired comparison": lambda: example("thesis").compare("spde", "tls"),
     "paired comparisons per entry": lambda: example("paper_2x2").compare("spde", "procrustes"),
     "StreamOptions": stream_options,
+    "NoiseModel": lambda: spdfit.NoiseModel.from_rest(gaussian(30, 3) * [0.2, 0.4, 0.8],
+                                                      5.0 + gaussian(30, 2, seed=6) * [3.0, 0.3]),
+    "NoiseModel, std": lambda: spdfit.NoiseModel.from_std([0.2, 0.0, 0.5], 1.0),
+    "NoiseModel, cov": lambda: spdfit.NoiseModel(cov_a=np.diag([1.0, 2.0]), cov_b=np.array([[2.0, 0.5], [0.5, 1.0]])),
     "TriangularFactor": lambda: _spdfit.TriangularFactor.from_data(gaussian(9, 3), gaussian(9, 2, seed=6)),
 }
 
@@ -392,7 +396,7 @@ def first_instances():
 # tuple of their fields (pickle.hpp), but TriangularFactor's, the library's serialization, whose
 # checks test_factor.py corrupts byte by byte.
 JSON_STATES = ["AutoReason", "Bootstrap", "ColumnClassification", "Diagnostics", "FitResult", "Interval",
-               "LinearSystemResult", "MethodIdentification", "NearestResult", "PsdCertificate",
+               "LinearSystemResult", "MethodIdentification", "NearestResult", "NoiseModel", "PsdCertificate",
                "SpectrumUncertainty"]
 TUPLE_STATES = sorted(set(module_classes()) - set(JSON_STATES) - {"TriangularFactor"})
 

@@ -147,7 +147,8 @@ def test_the_best_method_is_the_smallest_mean():
 
 def paired(count, mean_difference, standard_error, fraction_lower=0.5):
     c = ex.PairedComparison.__new__(ex.PairedComparison)
-    c.__setstate__((1, (count, mean_difference, standard_error, fraction_lower)))
+    pickle_format = spdfit._spdfit.hexapod.SimulationOptions().__getstate__()[0]  # this build's (pickle.hpp)
+    c.__setstate__((pickle_format, (count, mean_difference, standard_error, fraction_lower)))
     return c
 
 
