@@ -16,8 +16,16 @@ bool same_name(std::string_view a, std::string_view b) {
          });
 }
 
-// The fit options spdfit.fit takes: those of the in-memory fit. The stream's read files.
-bool fit_takes(std::string_view name) { return name != "stream" && name != "block_rows"; }
+// The fit options spdfit.fit takes: those of the in-memory fit. The stream's read files; the noise
+// model (a NoiseModel, or its files and numbers, which the in-memory fit does not read) has no
+// MATLAB form yet.
+bool fit_takes(std::string_view name) {
+  if (name == "stream" || name == "block_rows") return false;
+  for (std::string_view noise : noise_option_names()) {
+    if (name == noise && name != "noise_ratio") return false;
+  }
+  return true;
+}
 
 // spdfit.solve's options (LinearSystemOptions), which have no table of their own yet.
 struct SolveOption {
@@ -102,6 +110,7 @@ ValueShape value_shape(OptionType type) {
     case OptionType::Text: return ValueShape::Text;
     case OptionType::RealList:
     case OptionType::Vector: return ValueShape::List;
+    case OptionType::Noise: return ValueShape::List;  // not offered (fit_takes)
   }
   return ValueShape::Real;
 }
