@@ -24,6 +24,16 @@ bool boolean(const OptionValue& v) { return std::get<bool>(v); }
 const std::string& text(const OptionValue& v) { return std::get<std::string>(v); }
 const std::vector<double>& reals(const OptionValue& v) { return std::get<std::vector<double>>(v); }
 
+// A noise input's value for the table's getters: nothing when not given.
+std::optional<OptionValue> text_value(const std::string& value) {
+  if (value.empty()) return std::nullopt;
+  return value;
+}
+std::optional<OptionValue> list_value(const std::vector<double>& values) {
+  if (values.empty()) return std::nullopt;
+  return values;
+}
+
 // Every method but spde takes a noise model (spde's area criterion has none).
 bool takes_noise_model(const FitRequest& r) { return r.method != Method::Spde; }
 constexpr std::string_view kNoiseAppliesTo =
@@ -110,6 +120,10 @@ std::vector<Spec> make_table() {
   noise.set = [](FitRequest& r, const OptionValue& v) {
     r.options.noise = *std::get<std::shared_ptr<const NoiseModel>>(v);
   };
+  noise.get = [](const FitRequest& r) -> std::optional<OptionValue> {
+    if (!r.options.noise) return std::nullopt;
+    return std::make_shared<const NoiseModel>(*r.options.noise);
+  };
   table.push_back(noise);
 
   const std::string_view rest_pair = "`rest_a` and `rest_b` come together: the rows of A and of B recorded at rest";
@@ -119,12 +133,14 @@ std::vector<Spec> make_table() {
                              "Default: equal noise in every column of A and B, in the units given",
                              rest_pair);
   rest_a.set = [](FitRequest& r, const OptionValue& v) { r.noise_inputs.rest_a = text(v); };
+  rest_a.get = [](const FitRequest& r) { return text_value(r.noise_inputs.rest_a); };
   table.push_back(rest_a);
   Spec rest_b = noise_source("rest_b", "rest_a", "--rest-b", OptionType::Text, "FILE",
                              "Rows of B recorded at rest, as many as `rest_a`'s (forces constant): Sigma_B is "
                              "their sample covariance about their mean, so a static load is not noise",
                              rest_pair);
   rest_b.set = [](FitRequest& r, const OptionValue& v) { r.noise_inputs.rest_b = text(v); };
+  rest_b.get = [](const FitRequest& r) { return text_value(r.noise_inputs.rest_b); };
   table.push_back(rest_b);
 
   const std::string_view std_pair =
@@ -134,10 +150,12 @@ std::vector<Spec> make_table() {
                             "(comma-separated); 0 means exact",
                             std_pair);
   std_a.set = [](FitRequest& r, const OptionValue& v) { r.noise_inputs.std_a = reals(v); };
+  std_a.get = [](const FitRequest& r) { return list_value(r.noise_inputs.std_a); };
   table.push_back(std_a);
   Spec std_b = noise_source("noise_std_b", "noise_std_a", "--noise-std-b", OptionType::RealList, "S",
                             "Standard deviation of the noise in B, as `noise_std_a`", std_pair);
   std_b.set = [](FitRequest& r, const OptionValue& v) { r.noise_inputs.std_b = reals(v); };
+  std_b.get = [](const FitRequest& r) { return list_value(r.noise_inputs.std_b); };
   table.push_back(std_b);
 
   const std::string_view cov_pair = "`noise_cov_a` and `noise_cov_b` come together: give the covariances of both";
@@ -146,10 +164,12 @@ std::vector<Spec> make_table() {
                             "semidefinite)",
                             cov_pair);
   cov_a.set = [](FitRequest& r, const OptionValue& v) { r.noise_inputs.cov_a = text(v); };
+  cov_a.get = [](const FitRequest& r) { return text_value(r.noise_inputs.cov_a); };
   table.push_back(cov_a);
   Spec cov_b = noise_source("noise_cov_b", "noise_cov_a", "--noise-cov-b", OptionType::Text, "FILE",
                             "File of Sigma_B, the covariance of the noise in a row of B (d x d)", cov_pair);
   cov_b.set = [](FitRequest& r, const OptionValue& v) { r.noise_inputs.cov_b = text(v); };
+  cov_b.get = [](const FitRequest& r) { return text_value(r.noise_inputs.cov_b); };
   table.push_back(cov_b);
 
   Spec iterations;

@@ -111,6 +111,36 @@ TEST(OptionTable, CombinationRules) {
   EXPECT_EQ(message_of([&] { check_nearest_request({"weights", "keep_diag"}); }), "");
 }
 
+TEST(OptionTable, TheNoiseModelsSourcesArePairsThatExcludeEachOtherAndTheRatio) {
+  FitRequest request;
+  request.method = Method::SpdTotalLeastSquares;
+  set_option(request, fit_spec("noise_std_a"), std::vector<double>{0.5});
+  set_option(request, fit_spec("noise_std_b"), std::vector<double>{1.0, 2.0});
+  check_fit_request(request, {"noise_std_a", "noise_std_b"});
+  const FitOptions options = request.resolved_options(3, 2);
+  ASSERT_TRUE(options.noise.has_value());
+  EXPECT_EQ(options.noise->source(), NoiseSource::Std);
+  // One standard deviation for every column, one per column: diag(std^2), exactly.
+  EXPECT_EQ(options.noise->cov_a(), Eigen::MatrixXd(0.25 * Eigen::MatrixXd::Identity(3, 3)));
+  EXPECT_EQ(options.noise->cov_b(), Eigen::MatrixXd(Eigen::Vector2d(1.0, 4.0).asDiagonal()));
+  EXPECT_NE(message_of([&] { set_option(request, fit_spec("noise_std_a"), std::vector<double>{0.1, -1.0}); })
+                .find("`noise_std_a` must be a list of numbers, each a finite number >= 0"),
+            std::string::npos);
+  EXPECT_EQ(message_of([&] { check_fit_request(request, {"noise_std_a", "noise_std_b", "noise_ratio"}); }),
+            "give `noise_std_a` or `noise_ratio`, not both");
+  EXPECT_EQ(message_of([&] { check_fit_request(request, {"rest_a", "rest_b", "noise_std_a", "noise_std_b"}); }),
+            "give `rest_a` or `noise_std_a`, not both");
+  EXPECT_EQ(message_of([&] { check_fit_request(request, {"rest_a"}); }),
+            "`rest_a` and `rest_b` come together: the rows of A and of B recorded at rest");
+  request.method = Method::Spde;
+  const std::string spde = message_of([&] { check_fit_request(request, {"noise_std_a", "noise_std_b"}); });
+  EXPECT_NE(spde.find("auto or spd-tls"), std::string::npos) << spde;
+  EXPECT_NE(spde.find("not to spde"), std::string::npos) << spde;
+  // The model's sizes against the data's, naming the option.
+  request.method = Method::SpdTotalLeastSquares;
+  EXPECT_NE(message_of([&] { request.resolved_options(3, 3); }).find("`noise_std_b`"), std::string::npos);
+}
+
 TEST(OptionSpelling, EachFrontEndHasItsOwn) {
   const std::string message = "`max_iterations` must be at least 1; see `block_rows` and `dial_zero`";
   EXPECT_EQ(spell_options(message, Frontend::Cli), "--max-iter must be at least 1; see --block-rows and --dial-zero");
