@@ -102,6 +102,12 @@ void apply_fit_options(const FitOptions& fit, const std::vector<std::string_view
     if (name == "max_iterations") options.max_iterations = fit.max_iterations;
     if (name == "rank_tolerance") options.rank_tolerance = fit.rank_tolerance;
   }
+  if (fit.noise) {
+    // The physical fit is of the six struts: standard deviations per side become 6 x 6.
+    const NoiseModel model = fit.noise->resolved(6, 6);
+    options.noise_cov_a = model.cov_a();
+    options.noise_cov_b = model.cov_b();
+  }
 }
 
 }  // namespace spdfit::hexapod

@@ -156,3 +156,18 @@ def test_the_keyword_is_in_the_signatures():
     for function in (spdfit.fit, spdfit.fit_files, spdfit.Factor.fit, hx.identify):
         assert "noise" in inspect.signature(function).parameters
     assert "noise" not in inspect.signature(spdfit.spde).parameters
+
+
+def test_the_physical_fit_weighs_by_the_noise_model():
+    """hexapod.identify(physical=True, noise=...) gives the physical fit the model's covariances:
+    the same library call as spdfit.physical.identify with noise_cov_a, noise_cov_b, bit for bit."""
+    import spdfit.physical as ph
+    g = hx.cubic_geometry()
+    sim = hx.simulate(samples=100, noise_var=0.5, truth=g, seed=4)
+    cov_a, cov_b = np.diag(STD_A ** 2), np.diag(STD_B ** 2)
+    out = quiet(hx.identify, sim.A, sim.B, geometry=g, physical=True,
+                noise=spdfit.NoiseModel(cov_a=cov_a, cov_b=cov_b))["physical"]
+    alone = quiet(ph.identify, sim.A, sim.B, g, noise_cov_a=cov_a, noise_cov_b=cov_b)
+    unweighted = quiet(ph.identify, sim.A, sim.B, g)
+    np.testing.assert_array_equal(out["M_p"], alone["M_p"])
+    assert not np.array_equal(out["M_p"], unweighted["M_p"])

@@ -24,7 +24,9 @@ const std::vector<OptionSpec<PhysicalOptions>>& physical_option_table();
 /// The options the physical fit shares with the fit's table, copied from `fit` into `options`:
 /// the bootstrap's replicates, level, seed and threads, and max_iterations and rank_tolerance
 /// when the user gave them (`given`: library names; their defaults differ: 200 Newton steps for
-/// the generic iterative methods, 500 for the physical fit's barrier path).
+/// the generic iterative methods, 500 for the physical fit's barrier path), and the noise model's
+/// covariances (for 6 x 6: NoiseModel::resolved, whose errors it throws) as noise_cov_a and
+/// noise_cov_b when `fit` has one, so that the physical fit weighs the data as the estimators do.
 void apply_fit_options(const FitOptions& fit, const std::vector<std::string_view>& given,
                        PhysicalOptions& options);
 
