@@ -268,7 +268,7 @@ std::string section_units(const ThesisExperimentResult& r) {
               std::to_string(s.rest_samples) + " rows recorded at rest; mean error ||M_p - M_hat||_F in N "
               "over " + std::to_string(r.trials) + " trials, without a noise model (equal noise assumed in "
               "every column, in the units given) and with the rest rows' covariances (--rest-a, --rest-b)")
-      << "\n\n";
+      << "\n";
   char line[200];
   std::snprintf(line, sizeof line, "%-9s %22s %22s\n", "method", "equal noise assumed", "rest segment");
   out << line;
