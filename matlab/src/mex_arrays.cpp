@@ -167,13 +167,13 @@ std::string read_text(const mxArray* array, const std::string& what) {
   return out;
 }
 
-NameValue read_name_value(const std::string& name, const mxArray* value, OptionType type) {
-  NameValue out{name, OptionValue{}, false};
+NameValue read_name_value(const std::string& name, const mxArray* value, ValueShape shape) {
+  NameValue out{name, OptionValue{}, false, Eigen::MatrixXd()};
   if (mxIsEmpty(value) && (mxIsDouble(value) || mxIsCell(value))) {
     out.empty = true;
     return out;
   }
-  switch (value_shape(type)) {
+  switch (shape) {
     case ValueShape::Boolean: {
       const double v = scalar(value, name, "true or false");
       if (v != 0.0 && v != 1.0) throw UsageError("'" + name + "' must be true or false, got " + value_text(v));
@@ -196,6 +196,7 @@ NameValue read_name_value(const std::string& name, const mxArray* value, OptionT
       out.value = std::vector<double>(v.data(), v.data() + v.size());
       break;
     }
+    case ValueShape::Matrix: out.matrix = read_matrix(value, "'" + name + "'"); break;
   }
   return out;
 }

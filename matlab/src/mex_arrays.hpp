@@ -32,7 +32,7 @@ std::string read_text(const mxArray* array, const std::string& what);
 
 /// The value of option `name` (as typed) of `type`. UsageError for a value of the wrong kind; its
 /// range is checked by the option table.
-NameValue read_name_value(const std::string& name, const mxArray* value, OptionType type);
+NameValue read_name_value(const std::string& name, const mxArray* value, ValueShape shape);
 
 /// A double matrix with X's entries.
 mxArray* write_matrix(const Eigen::MatrixXd& X);

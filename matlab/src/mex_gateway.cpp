@@ -61,7 +61,7 @@ std::vector<NameValue> pairs_from(std::string_view function, int nrhs, const mxA
   std::vector<NameValue> out;
   for (int k = first; k < nrhs; k += 2) {
     const std::string name = read_text(prhs[k], "an option's name (argument " + std::to_string(k) + ")");
-    out.push_back(read_name_value(name, prhs[k + 1], option_type(function, name)));
+    out.push_back(read_name_value(name, prhs[k + 1], option_shape(function, name)));
   }
   return out;
 }
@@ -87,8 +87,9 @@ void fit_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* prhs[
     has_method = parse_method(read_text(prhs[3], "the method")).has_value() || (nrhs - 4) % 2 == 0;
   }
   const std::string method = has_method ? read_text(prhs[3], "the method") : "auto";
-  const FitRequest request = fit_request(method, pairs_from("fit", nrhs, prhs, has_method ? 4 : 3));
-  const FitResult result = fit(A, B, request.method, request.options);
+  const std::vector<NameValue> pairs = pairs_from("fit", nrhs, prhs, has_method ? 4 : 3);
+  const FitRequest request = fit_request(method, pairs);
+  const FitResult result = fit(A, B, request.method, fit_options(request, pairs, A.cols(), B.cols()));
   if (!result.ok()) throw NumericalError(result.message);
   plhs[0] = write_matrix(result.X);
   plhs[1] = want_info ? write_json(to_json(result)) : mxCreateDoubleMatrix(0, 0, mxREAL);

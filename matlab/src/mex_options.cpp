@@ -16,15 +16,13 @@ bool same_name(std::string_view a, std::string_view b) {
          });
 }
 
-// The fit options spdfit.fit takes: those of the in-memory fit. The stream's read files; the noise
-// model (a NoiseModel, or its files and numbers, which the in-memory fit does not read) has no
-// MATLAB form yet.
-bool fit_takes(std::string_view name) {
-  if (name == "stream" || name == "block_rows") return false;
-  for (std::string_view noise : noise_option_names()) {
-    if (name == noise && name != "noise_ratio") return false;
-  }
-  return true;
+// The fit options spdfit.fit takes: those of the in-memory fit. The stream's read files, and
+// `noise` is Python's NoiseModel object: MATLAB gives the model's numbers and matrices instead.
+bool fit_takes(std::string_view name) { return name != "stream" && name != "block_rows" && name != "noise"; }
+
+// The noise options whose command-line value is a file, which MATLAB takes as a matrix.
+bool matrix_option(std::string_view name) {
+  return name == "rest_a" || name == "rest_b" || name == "noise_cov_a" || name == "noise_cov_b";
 }
 
 // spdfit.solve's options (LinearSystemOptions), which have no table of their own yet.
@@ -43,15 +41,30 @@ constexpr SolveOption kSolveOptions[] = {
      "1e-12"},
 };
 
-std::string type_name(OptionType type) {
-  switch (value_shape(type)) {
+std::string type_name(ValueShape shape) {
+  switch (shape) {
     case ValueShape::Boolean: return "logical";
     case ValueShape::Integer: return "integer";
     case ValueShape::Real: return "real";
     case ValueShape::Text: return "text";
     case ValueShape::List: return "vector";
+    case ValueShape::Matrix: return "matrix";
   }
   return "real";
+}
+
+// The help of a matrix option, whose table help speaks of the command line's file.
+std::string matrix_help(std::string_view name) {
+  if (name == "rest_a") {
+    return "Rows of A recorded at rest (accelerations zero), at least 2 rows with A's columns: Sigma_A is their "
+           "sample covariance about their mean. Needs 'RestB'.";
+  }
+  if (name == "rest_b") {
+    return "Rows of B recorded at rest, as many as 'RestA''s (forces constant): Sigma_B is their sample "
+           "covariance about their mean.";
+  }
+  if (name == "noise_cov_a") return "Sigma_A, the covariance of the noise in a row of A (symmetric PSD). Needs 'NoiseCovB'.";
+  return "Sigma_B, the covariance of the noise in a row of B (symmetric PSD).";
 }
 
 template <typename Request>
@@ -59,7 +72,9 @@ std::vector<MatlabOption> help_of(const std::vector<OptionSpec<Request>>& table,
   std::vector<MatlabOption> out;
   for (const OptionSpec<Request>& spec : table) {
     if (takes && !takes(spec.name)) continue;
-    out.push_back({camel_case(spec.name), type_name(spec.type), spell_options(spec.help, Frontend::Matlab),
+    std::string help = spell_options(spec.help, Frontend::Matlab);
+    if (matrix_option(spec.name)) help = matrix_help(spec.name);
+    out.push_back({camel_case(spec.name), type_name(matlab_shape(spec.name, spec.type)), help,
                    std::string(spec.default_text)});
   }
   return out;
@@ -93,7 +108,7 @@ std::vector<std::string_view> set_pairs(Request& request, const std::vector<Opti
       if (!spec.nullable) throw OptionError("`" + std::string(spec.name) + "` cannot be [] (it has no default to stand for)");
       continue;
     }
-    set_option(request, spec, pair.value);
+    if (pair.matrix.size() == 0) set_option(request, spec, pair.value);  // matrices: fit_options
     given.push_back(spec.name);
   }
   return given;
@@ -115,6 +130,10 @@ ValueShape value_shape(OptionType type) {
   return ValueShape::Real;
 }
 
+ValueShape matlab_shape(std::string_view name, OptionType type) {
+  return matrix_option(name) ? ValueShape::Matrix : value_shape(type);
+}
+
 std::vector<MatlabOption> option_help(std::string_view function) {
   if (function == "fit") return help_of(fit_option_table(), &fit_takes);
   if (function == "nearest") return help_of(nearest_option_table(), nullptr);
@@ -125,12 +144,15 @@ std::vector<MatlabOption> option_help(std::string_view function) {
   return out;
 }
 
-OptionType option_type(std::string_view function, std::string_view typed_name) {
-  if (function == "fit") return spec_named(fit_option_table(), typed_name, &fit_takes, function).type;
-  if (function == "nearest") return spec_named(nearest_option_table(), typed_name, nullptr, function).type;
+ValueShape option_shape(std::string_view function, std::string_view typed_name) {
+  if (function == "fit") {
+    const OptionSpec<FitRequest>& spec = spec_named(fit_option_table(), typed_name, &fit_takes, function);
+    return matlab_shape(spec.name, spec.type);
+  }
+  if (function == "nearest") return value_shape(spec_named(nearest_option_table(), typed_name, nullptr, function).type);
   std::string names;
   for (const SolveOption& o : kSolveOptions) {
-    if (same_name(camel_case(o.name), typed_name)) return OptionType::Real;
+    if (same_name(camel_case(o.name), typed_name)) return ValueShape::Real;
     names += (names.empty() ? "" : ", ") + camel_case(o.name);
   }
   throw OptionError("spdfit.solve has no option '" + std::string(typed_name) + "' (its options: " + names + ")");
@@ -148,6 +170,28 @@ FitRequest fit_request(std::string_view method, const std::vector<NameValue>& pa
   const std::vector<std::string_view> given = set_pairs(request, fit_option_table(), pairs, &fit_takes, "fit");
   check_fit_request(request, given);
   return request;
+}
+
+FitOptions fit_options(const FitRequest& request, const std::vector<NameValue>& pairs, Eigen::Index n,
+                       Eigen::Index d) {
+  const Eigen::MatrixXd* matrices[4] = {nullptr, nullptr, nullptr, nullptr};  // rest_a, rest_b, cov_a, cov_b
+  for (const NameValue& pair : pairs) {
+    if (pair.matrix.size() == 0) continue;
+    const std::string_view name = spec_named(fit_option_table(), pair.name, &fit_takes, "fit").name;
+    const int slot = name == "rest_a" ? 0 : name == "rest_b" ? 1 : name == "noise_cov_a" ? 2 : 3;
+    matrices[slot] = &pair.matrix;
+  }
+  if (matrices[0] && matrices[1]) {
+    FitOptions options = request.options;
+    options.noise = NoiseModel::from_rest(*matrices[0], *matrices[1]);
+    return options;
+  }
+  if (matrices[2] && matrices[3]) {
+    FitOptions options = request.options;
+    options.noise = NoiseModel::from_cov(*matrices[2], *matrices[3]);
+    return options;
+  }
+  return request.resolved_options(n, d);
 }
 
 NearestRequest nearest_request(const std::vector<NameValue>& pairs) {

@@ -4,6 +4,7 @@
 // MATLAB's own functions match theirs.
 #pragma once
 
+#include <Eigen/Core>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -19,12 +20,18 @@ struct NameValue {
   std::string name;
   OptionValue value;
   bool empty = false;  ///< the value was [] (the option's default, where the option allows it)
+  Eigen::MatrixXd matrix;  ///< the value of a matrix option (ValueShape::Matrix)
 };
 
 /// How a value of `type` is read from MATLAB: a logical or 0/1 scalar, an integer-valued scalar, a
 /// real scalar, a character vector, or a numeric vector.
-enum class ValueShape { Boolean, Integer, Real, Text, List };
+enum class ValueShape { Boolean, Integer, Real, Text, List, Matrix };
 ValueShape value_shape(OptionType type);
+
+/// How option `name` (the library's) is read from MATLAB: its table type's shape, except the noise
+/// model's rest rows and covariances, which the command line reads from files and MATLAB takes as
+/// matrices ('RestA', 'RestB', 'NoiseCovA', 'NoiseCovB').
+ValueShape matlab_shape(std::string_view name, OptionType type);
 
 /// A MATLAB function's option, as its help text lists it.
 struct MatlabOption {
@@ -38,14 +45,20 @@ struct MatlabOption {
 /// "nearest": the nearest table; "solve"), for its generated help text.
 std::vector<MatlabOption> option_help(std::string_view function);
 
-/// The type each name-value pair of `function` ("fit", "nearest", "solve") needs, by the name a
+/// The shape each name-value pair of `function` ("fit", "nearest", "solve") needs, by the name a
 /// user typed (case-insensitive); throws OptionError for a name the function does not take.
-OptionType option_type(std::string_view function, std::string_view typed_name);
+ValueShape option_shape(std::string_view function, std::string_view typed_name);
 
 /// The request for spdfit.fit with `method` and the pairs given: each value checked against the
 /// table's type and range, each option checked against the method and the table's rules. Throws
 /// OptionError, spelled for MATLAB.
 FitRequest fit_request(std::string_view method, const std::vector<NameValue>& pairs);
+
+/// The fit's options for data with n columns in A and d in B: request.options with the noise
+/// model the pairs gave (rest rows or covariances as matrices, standard deviations as numbers).
+/// Throws std::invalid_argument or OptionError for a model the data or the library refuse.
+FitOptions fit_options(const FitRequest& request, const std::vector<NameValue>& pairs, Eigen::Index n,
+                       Eigen::Index d);
 NearestRequest nearest_request(const std::vector<NameValue>& pairs);
 LinearSystemOptions solve_options(const std::vector<NameValue>& pairs);
 

@@ -28,6 +28,34 @@ assert_close(X, ref.X, 1e-13, 'bootstrap X');
 assert_close(info.standard_errors, ref.standard_errors, 1e-12, 'bootstrap standard errors');
 assert(info.bootstrap.replicates == 50, 'bootstrap replicates');
 
+% The noise model: rest rows and covariances as matrices, standard deviations as numbers, against
+% the CLI's files and lists.
+t = (1:200)';
+RA = 0.01 * [sin(3.1 * t), cos(1.7 * t), sin(5.3 * t + 2)];
+RB = [5, -2, 1] + [0.3 * cos(2.3 * t), 0.1 * sin(4.1 * t), 0.2 * cos(0.9 * t + 1)];
+write_csv(fullfile(work, 'RA.csv'), RA);
+write_csv(fullfile(work, 'RB.csv'), RB);
+[X, info] = spdfit.fit(A, B, 'spd-tls', 'RestA', RA, 'RestB', RB);
+ref = cli_json(cli, sprintf('fit --method spd-tls --rest-a "%s" --rest-b "%s" --json "%s" "%s"', ...
+                            fullfile(work, 'RA.csv'), fullfile(work, 'RB.csv'), fullfile(work, 'A.csv'), ...
+                            fullfile(work, 'B.csv')));
+assert_close(X, ref.X, 1e-12, 'fit with rest rows');
+assert(strcmp(info.diagnostics.noise_model.source, 'rest'), 'the noise model''s source');
+assert_close(info.diagnostics.noise_model.cov_b, cov(RB), 1e-12, 'Sigma_B from the rest rows');
+[X, info] = spdfit.fit(A, B, 'auto', 'NoiseStdA', [0.01 0.02 0.03], 'NoiseStdB', 0.1);
+ref = cli_json(cli, sprintf('fit --method auto --noise-std-a 0.01,0.02,0.03 --noise-std-b 0.1 --json "%s" "%s"', ...
+                            fullfile(work, 'A.csv'), fullfile(work, 'B.csv')));
+assert_close(X, ref.X, 1e-12, 'fit with standard deviations');
+assert(strcmp(info.diagnostics.noise_model.source, 'std'), 'the std source');
+X = spdfit.fit(A, B, 'psd-ls', 'NoiseCovA', zeros(3), 'NoiseCovB', diag([1 4 9]));
+Xw = spdfit.fit(A, B, 'psd-ls', 'NoiseStdA', 0, 'NoiseStdB', [1 2 3]);
+assert_close(X, Xw, 1e-12, 'covariances as matrices equal the same standard deviations');
+expect_error(@() spdfit.fit(A, B, 'spd-tls', 'RestA', RA), 'spdfit:UsageError', 'RestB');
+expect_error(@() spdfit.fit(A, B, 'spde', 'NoiseStdA', 0.1, 'NoiseStdB', 0.1), 'spdfit:UsageError', 'spd-tls');
+expect_error(@() spdfit.fit(A, B, 'spd-tls', 'NoiseStdA', 0.1, 'NoiseStdB', 0.1, 'NoiseRatio', 2), ...
+             'spdfit:UsageError', 'NoiseRatio');
+expect_error(@() spdfit.fit(A, B, 'spd-tls', 'RestA', RA(:, 1:2), 'RestB', RB), 'spdfit:UsageError', 'RestA');
+
 % nearest, its corr and keep-diagonal repairs.
 C = [2 -1 0 0; -1 2 -1 0; 0 -1 2 -1; 0 0 -1 2] - 0.9 * ones(4) + 0.9 * eye(4);
 C(1, 4) = 0.95; C(4, 1) = 0.95;
@@ -111,6 +139,7 @@ warning(state);
 text = help('spdfit.fit');
 assert(~isempty(strfind(text, '''Bootstrap''')) && ~isempty(strfind(text, '''MaxIterations''')), 'help spdfit.fit');
 assert(isempty(strfind(text, '''Stream''')), 'help spdfit.fit lists the stream''s options');
+assert(~isempty(strfind(text, '''RestA'' (matrix')) && ~isempty(strfind(text, '''NoiseStdB''')), 'help: noise options');
 assert(~isempty(strfind(help('spdfit.nearest'), '''KeepDiag''')), 'help spdfit.nearest');
 assert(~isempty(strfind(help('spdfit.solve'), '''Threshold''')), 'help spdfit.solve');
 
