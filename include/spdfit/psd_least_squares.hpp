@@ -15,9 +15,14 @@ namespace spdfit {
 ///
 /// Method: from the triangular factor (never A^T A), in the eigenbasis of R11^T R11, where the
 /// objective is a diagonal quadratic over the semidefinite cone: symmetric Procrustes if
-/// feasible; else spectral projected gradient (Barzilai-Borwein steps with a non-monotone
-/// safeguard), preconditioned by a diagonal congruence, and, once the iterates' rank settles, an
-/// exact solve on the face of the cone they identify. It stops when the relative KKT residual
+/// feasible; else, for full-rank A, a semismooth Newton method on the cone's normal map
+/// (preconditioned by a diagonal congruence; each step one symmetric eigendecomposition and a
+/// conjugate-gradient solve on the face the iterate identifies, quadratically convergent where
+/// the minimizer is strictly complementary). Where that does not pass the test below
+/// (rank-deficient A, a degenerate minimizer at rounding level), spectral projected gradient
+/// (Barzilai-Borwein steps with a non-monotone safeguard) goes on from its iterate, with exact
+/// solves on the face of the cone the iterates identify once their rank settles. It stops when
+/// the relative KKT residual
 ///
 ///     ||Y - P(Y - S / ||A^T A||_2)||_F ||A^T A||_2 / (||A^T A||_2 ||X||_F + ||A^T B||_F) <= 1e-12,
 ///
@@ -39,7 +44,7 @@ namespace spdfit {
 /// (else std::invalid_argument naming the option).
 ///
 /// Preconditions: as least_squares. Cost: O(m n^2) for the factor, then O(n^3) per iteration
-/// (0 when Procrustes is feasible; typically a few).
+/// (0 when Procrustes is feasible; typically 3 to 5 Newton steps).
 FitResult psd_least_squares(const Reduction& data);
 FitResult psd_least_squares(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
                             const FitOptions& options = {});

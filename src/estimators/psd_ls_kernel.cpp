@@ -16,6 +16,11 @@ namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
+// The Newton method's target for ||F||_F / ||G||_F in the preconditioned units: a few hundred
+// times the rounding of F's evaluation (an eigendecomposition, backward error about n eps), well
+// below what the KKT tolerance asks for; the KKT test in the original units decides.
+constexpr double kNewtonStop = 1e-14;
+
 // The problem in the eigenbasis of H = R11^T R11 = V diag(h) V^T (V from the SVD of R11, h = s^2
 // with the singular values under the rank cut-off edited to zero). With Y = X - epsilon I and
 // Yt = V^T Y V (the orthogonal change keeps the cone):
@@ -178,11 +183,6 @@ bool psd_ls_kernel(const BasicReduction<MaxN>& data, double epsilon_s, int max_i
       const double kkt = kkt_residual(p, Yt);
       if (kkt >= 0.0) best_kkt = kkt;  // an eigensolver failure leaves it unconverged
       done = true;
-    } else {
-      // The fallback, whatever happens below: the projection of Procrustes, feasible.
-      if (!project<MaxN>(Yt, best)) return false;
-      const double kkt = kkt_residual(p, best);
-      if (kkt >= 0.0) best_kkt = kkt;  // NaN (no finite residual) stays +inf: not converged
     }
   }
 
@@ -204,50 +204,73 @@ bool psd_ls_kernel(const BasicReduction<MaxN>& data, double epsilon_s, int max_i
 
     Matrix W, Wnext, P, candidate, g, gnext;
     Index rank = 0, previous_rank = -1;
-    const Matrix Wstart = d.asDiagonal() * Yt * d.asDiagonal();
-    if (!project<MaxN>(symmetric_part(Wstart), W, &P, &rank)) return false;
-    if (face_solve(p, range_basis<MaxN>(d, P), candidate) && consider(candidate)) done = true;
-    // The objective in W (up to a constant) and its gradient c o W - G.
-    auto objective = [&](const Matrix& X) { return 0.5 * cw.cwiseProduct(X).cwiseProduct(X).sum() - Gw.cwiseProduct(X).sum(); };
-    g = cw.cwiseProduct(W) - Gw;
-    double phi = objective(W);
-    // Spectral projected gradient (Birgin, Martinez and Raydan 2000): Barzilai-Borwein steps,
-    // safeguarded to [1 / L, 1] (the curvature lies in [1, L]), with a non-monotone acceptance
-    // over the last kMemory objective values; a step that fails it is redone with 1 / L, which
-    // always decreases the objective (sufficient decrease of projected gradient).
-    constexpr int kMemory = 8;
-    double recent[kMemory];
-    for (double& v : recent) v = phi;
-    double alpha = 1.0 / lipschitz, next_try = 1e-3;
-    while (!done && out.iterations < max_iterations) {
-      ++out.iterations;
-      previous_rank = rank;
-      if (!project<MaxN>(symmetric_part(Matrix(W - alpha * g)), Wnext, &P, &rank)) return false;
-      double phi_next = objective(Wnext);
-      const double reference = *std::max_element(recent, recent + kMemory);
-      if (phi_next > reference - 1e-4 * g.cwiseProduct(W - Wnext).sum() && alpha > 1.0 / lipschitz) {
-        alpha = 1.0 / lipschitz;
-        if (!project<MaxN>(symmetric_part(Matrix(W - alpha * g)), Wnext, &P, &rank)) return false;
-        phi_next = objective(Wnext);
+    // Procrustes in W: the Newton method's start, or projected gradient's after its projection.
+    Matrix start = symmetric_part(Matrix(d.asDiagonal() * Yt * d.asDiagonal()));
+    if (r == n) {
+      // The semismooth Newton method (psd_ls_newton.hpp), for full-rank A: in W the curvature is
+      // positive and well conditioned. Its iterate is exactly feasible; the KKT test in the
+      // original units decides, and where it fails projected gradient goes on from the iterate.
+      PsdLsNewton<Matrix, Vector> newton(cw, Gw);
+      const double scale = std::max(Gw.norm(), std::numeric_limits<double>::min());
+      Matrix Z = start;
+      newton.solve(Z, kNewtonStop * scale, scale, max_iterations, start, rank, out.newton);
+      if (out.newton.iterations < 0) return false;  // an eigensolver failed
+      out.iterations = out.newton.iterations;
+      if (consider(symmetric_part(Matrix(d.cwiseInverse().asDiagonal() * start * d.cwiseInverse().asDiagonal())))) {
+        done = out.newton_solved = true;
       }
-      gnext = cw.cwiseProduct(Wnext) - Gw;
-      const Matrix step = Wnext - W;
-      const double sy = step.cwiseProduct(gnext - g).sum(), ss = step.squaredNorm();
-      alpha = sy > 0.0 ? std::clamp(ss / sy, 1.0 / lipschitz, 1.0) : 1.0;
-      const double moved = std::sqrt(ss) / std::max(Wnext.norm(), std::numeric_limits<double>::min());
-      W = Wnext;
-      g = gnext;
-      phi = phi_next;
-      recent[out.iterations % kMemory] = phi;
-      // Once the rank has settled and the iterates move little, the face W identifies, solved
-      // exactly: the minimizer as soon as the face is right to the tolerance. Each try costs
-      // three eigendecompositions, an iteration one: the next try waits until the iterates move
-      // 100 times less.
-      if (rank != previous_rank || moved > next_try) continue;
-      next_try = moved * 1e-2;
+    }
+    if (!done) {
+      if (!project<MaxN>(start, W, &P, &rank)) return false;
       if (face_solve(p, range_basis<MaxN>(d, P), candidate) && consider(candidate)) done = true;
     }
-    if (!done) consider(d.cwiseInverse().asDiagonal() * W * d.cwiseInverse().asDiagonal());
+    if (!done) {
+      // The objective in W (up to a constant) and its gradient c o W - G.
+      auto objective = [&](const Matrix& X) { return 0.5 * cw.cwiseProduct(X).cwiseProduct(X).sum() - Gw.cwiseProduct(X).sum(); };
+      g = cw.cwiseProduct(W) - Gw;
+      double phi = objective(W);
+      // Spectral projected gradient (Birgin, Martinez and Raydan 2000): Barzilai-Borwein steps,
+      // safeguarded to [1 / L, 1] (the curvature lies in [1, L]), with a non-monotone acceptance
+      // over the last kMemory objective values; a step that fails it is redone with 1 / L, which
+      // always decreases the objective (sufficient decrease of projected gradient).
+      constexpr int kMemory = 8;
+      double recent[kMemory];
+      for (double& v : recent) v = phi;
+      double alpha = 1.0 / lipschitz, next_try = 1e-3;
+      while (!done && out.iterations < max_iterations) {
+        ++out.iterations;
+        previous_rank = rank;
+        if (!project<MaxN>(symmetric_part(Matrix(W - alpha * g)), Wnext, &P, &rank)) return false;
+        double phi_next = objective(Wnext);
+        const double reference = *std::max_element(recent, recent + kMemory);
+        if (phi_next > reference - 1e-4 * g.cwiseProduct(W - Wnext).sum() && alpha > 1.0 / lipschitz) {
+          alpha = 1.0 / lipschitz;
+          if (!project<MaxN>(symmetric_part(Matrix(W - alpha * g)), Wnext, &P, &rank)) return false;
+          phi_next = objective(Wnext);
+        }
+        gnext = cw.cwiseProduct(Wnext) - Gw;
+        const Matrix step = Wnext - W;
+        const double sy = step.cwiseProduct(gnext - g).sum(), ss = step.squaredNorm();
+        alpha = sy > 0.0 ? std::clamp(ss / sy, 1.0 / lipschitz, 1.0) : 1.0;
+        const double moved = std::sqrt(ss) / std::max(Wnext.norm(), std::numeric_limits<double>::min());
+        W = Wnext;
+        g = gnext;
+        phi = phi_next;
+        recent[out.iterations % kMemory] = phi;
+        // Once the rank has settled and the iterates move little, the face W identifies, solved
+        // exactly: the minimizer as soon as the face is right to the tolerance. Each try costs
+        // three eigendecompositions, an iteration one: the next try waits until the iterates move
+        // 100 times less.
+        if (rank != previous_rank || moved > next_try) continue;
+        next_try = moved * 1e-2;
+        if (face_solve(p, range_basis<MaxN>(d, P), candidate) && consider(candidate)) done = true;
+      }
+      if (!done) consider(d.cwiseInverse().asDiagonal() * W * d.cwiseInverse().asDiagonal());
+    }
+  }
+  if (best.size() == 0) {
+    // No iterate had a finite KKT residual: the projection of Procrustes, feasible.
+    if (!project<MaxN>(Yt, best)) return false;
   }
 
   out.kkt_residual = best_kkt;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "estimators/kernels.hpp"
+#include "estimators/psd_ls_newton.hpp"
 
 namespace spdfit::detail {
 
@@ -10,7 +11,9 @@ namespace spdfit::detail {
 template <int MaxN>
 struct PsdLsKernel {
   SquareMatrix<MaxN> X_s;        ///< the estimate, >= epsilon_s I
-  int iterations = 0;            ///< projected-gradient iterations (0: Procrustes was feasible)
+  int iterations = 0;            ///< Newton and projected-gradient iterations (0: Procrustes was feasible)
+  PsdLsNewtonInfo newton;        ///< the Newton method's steps and residuals (none when it did not run)
+  bool newton_solved = false;    ///< the Newton iterate passed the KKT test (no projected gradient ran)
   double kkt_residual = 0.0;     ///< relative KKT residual of X_s (see psd_least_squares.hpp)
   bool converged = false;        ///< kkt_residual <= the tolerance
   double primal_min_eig = 0.0;   ///< lambda_min(X_s - epsilon_s I)
@@ -23,12 +26,14 @@ struct PsdLsKernel {
 inline constexpr double kPsdLsTolerance = 1e-12;
 
 /// Minimizes ||R11 X_s - R12||_F over symmetric X_s >= epsilon_s I (epsilon_s >= 0): the
-/// symmetric Procrustes solution when it is feasible, else spectral projected gradient
-/// (Barzilai-Borwein steps, non-monotone) in the eigenbasis of R11^T R11, diagonally
-/// preconditioned by a congruence (which keeps the cone), and, once the rank settles, exact
-/// solves on the face the iterate identifies, accepted when its KKT residual is below kPsdLsTolerance. At most max_iterations
-/// iterations; then the feasible point with the smallest KKT residual. Returns false when an
-/// eigensolver fails. O(n^3) per iteration.
+/// symmetric Procrustes solution when it is feasible, else, in the eigenbasis of R11^T R11
+/// diagonally preconditioned by a congruence (which keeps the cone), the semismooth Newton
+/// method of psd_ls_newton.hpp from Procrustes (full-rank A), accepted when its KKT residual is
+/// below kPsdLsTolerance. Where it is not (rank-deficient A, a failed line search, rounding),
+/// spectral projected gradient (Barzilai-Borwein steps, non-monotone) from the best point so
+/// far and, once the rank settles, exact solves on the face the iterate identifies. At most
+/// max_iterations iterations of both together; then the feasible point with the smallest KKT
+/// residual. Returns false when an eigensolver fails. O(n^3) per iteration.
 template <int MaxN>
 bool psd_ls_kernel(const BasicReduction<MaxN>& data, double epsilon_s, int max_iterations, PsdLsKernel<MaxN>& out);
 
