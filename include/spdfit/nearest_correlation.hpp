@@ -14,10 +14,13 @@ struct NearestCorrelationOptions {
   /// Diagonal weights w (n positive finite numbers): the distance is ||W^1/2 (X - C) W^1/2||_F with
   /// W = diag(w). Empty (the default): all ones, the Frobenius norm.
   Eigen::VectorXd weights;
-  /// The smallest eigenvalue allowed: X >= floor I exactly (the constraint is part of the
-  /// problem, not a clip afterwards). A relative floor is relative to the largest eigenvalue of
-  /// the input's symmetric part (nearest_via_correlation: of the correlation matrix it repairs).
-  /// It must stay below every diagonal entry of the result. Default 0: semidefinite.
+  /// The smallest eigenvalue allowed, an exact constraint of the problem (not a clip afterwards).
+  /// Absolute: X >= floor I, below every diagonal entry of the result. Relative: nearest_correlation
+  /// X >= floor lambda_max I, lambda_max the largest eigenvalue of C's symmetric part; for the
+  /// diagonal-keeping repairs it is a floor of the correlation matrix, D^-1/2 X D^-1/2 >= floor
+  /// lambda_max I with D = diag(C) and lambda_max the largest eigenvalue of D^-1/2 C D^-1/2
+  /// (nearest_keep_diagonal: X >= floor lambda_max D), below every variance whatever their
+  /// units. Default 0: semidefinite.
   EigenvalueFloor floor;
   /// NAG g02ab's name for a unit diagonal's floor: the result is (1 - alpha) X~ + alpha I with
   /// X~ the nearest correlation matrix to (C - alpha I) / (1 - alpha), so every eigenvalue is
@@ -28,7 +31,9 @@ struct NearestCorrelationOptions {
   /// solve); then the best iterate with converged = false and a warning. >= 1.
   int max_iterations = 200;
   /// Stop when the dual gradient ||diag(X) - d||_2 (in the weighted problem) is at most
-  /// tolerance * sqrt(n) * max(d). > 0.
+  /// tolerance * sqrt(n) * max(d), or at most the rounding of its own evaluation when that is
+  /// larger: 2 sqrt(n) eps ||G + diag(y)||_2 for the dual matrix G + diag(y) (C's entries far
+  /// larger than d, as a covariance given for a correlation, can put it there). > 0.
   double tolerance = 1e-10;
 
   /// True when the options are usable for an n x n matrix; otherwise `error` says why.
@@ -52,8 +57,11 @@ NearestResult nearest_correlation(const Eigen::Ref<const Eigen::MatrixXd>& C,
                                   const NearestCorrelationOptions& options = {});
 
 /// The nearest symmetric matrix to C with C's diagonal and eigenvalues >= the floor (the same
-/// Newton method): a covariance repair that keeps the variances. Preconditions as
-/// nearest_correlation, and C's diagonal entries > 0 and above the floor; alpha 0.
+/// Newton method): a covariance repair that keeps the variances. A relative floor is of the
+/// correlation matrix (X >= floor lambda_max D, see NearestCorrelationOptions::floor; `min_eig` in
+/// the result is that floor, in correlation units), so EigenvalueFloor::kRepairDefault is always
+/// feasible and X factors by Cholesky. Preconditions as nearest_correlation, and C's diagonal
+/// entries >= 0 and above an absolute floor, > 0 with a relative one; alpha 0.
 NearestResult nearest_keep_diagonal(const Eigen::Ref<const Eigen::MatrixXd>& C,
                                     const NearestCorrelationOptions& options = {});
 

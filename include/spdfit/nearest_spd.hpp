@@ -9,7 +9,9 @@
 namespace spdfit {
 
 /// The smallest eigenvalue a repair allows: `value` itself, or with `relative` set, value times
-/// the largest eigenvalue of the input's symmetric part (so that repairing s C gives s X).
+/// the largest eigenvalue of the input's symmetric part (so that repairing s C gives s X); the
+/// diagonal-keeping repairs apply a relative floor to the correlation matrix instead (see
+/// NearestCorrelationOptions::floor).
 struct EigenvalueFloor {
   double value = 0.0;
   bool relative = false;
@@ -36,10 +38,10 @@ struct NearestResult {
   double distance = 0.0;               ///< from the input: ||X_in - X||_F (weighted where weights are given)
   Eigen::Index clipped = 0;            ///< eigenvalues raised to the floor (the Newton methods: those at it)
   double min_eigenvalue_before = 0.0;  ///< of the symmetric part of the input
-  double min_eig = 0.0;                ///< the floor applied, in the input's units (a relative floor resolved)
+  double min_eig = 0.0;                ///< the floor applied, in the input's units (a relative floor resolved); of the correlation matrix for via_corr, and for keep_diag with a relative floor
   int iterations = 0;                  ///< Newton iterations (0: the direct eigenvalue clip)
   double gradient_norm = 0.0;          ///< the Newton methods' final ||diag(X) - d||_2 before the rescaling
-  bool converged = true;               ///< the Newton methods: gradient_norm <= tolerance sqrt(n)
+  bool converged = true;               ///< the Newton methods: gradient_norm met the stopping test (NearestCorrelationOptions::tolerance)
   bool cholesky_ok = false;            ///< whether X has a Cholesky factorization (positive definite)
   std::vector<std::string> warnings;   ///< asymmetric input, a floor that moved X more than the repair, ...
 };

@@ -17,12 +17,20 @@ using Eigen::VectorXd;
 
 namespace {
 
-// min ||W^1/2 (X - C) W^1/2||_F over symmetric X with diag(X) = d and X >= floor I, W = diag(w).
+// min ||W^1/2 (X - C) W^1/2||_F over symmetric X with diag(X) = d and X >= F, W = diag(w), F the
+// floor's diagonal: floor I, or with floor_of_correlation floor D, D = diag(d) (the correlation
+// matrix D^-1/2 X D^-1/2 >= floor I: the diagonal-keeping repair's relative floor).
 struct FixedDiagonalProblem {
   MatrixXd S;  // the symmetric part of C
-  VectorXd d;  // every entry > floor
+  VectorXd d;  // every entry > the floor's
   VectorXd w;  // every entry > 0
   double floor = 0.0;
+  bool floor_of_correlation = false;
+  const char* option = "`min_eig`";  // the option the floor came from, for messages
+
+  VectorXd floors() const {
+    return floor_of_correlation ? VectorXd(floor * d) : VectorXd::Constant(d.size(), floor);
+  }
 };
 
 // The dual of min ||X - G||_F^2 / 2 over X >= 0 with diag(X) = b (Qi & Sun 2006):
@@ -125,6 +133,9 @@ class Jacobian {
   VectorXd diagonal_;
 };
 
+// The margin of the stopping test over the rounding level of the dual gradient (see solve).
+constexpr double kGradientRounding = 2.0;
+
 // Preconditioned conjugate gradients for (V + mu I) d = rhs, to a relative residual `tol`.
 VectorXd pcg(const Jacobian& V, double mu, const VectorXd& rhs, double tol, int max_iterations) {
   const Index n = rhs.size();
@@ -159,20 +170,21 @@ struct Solution {
   Index clipped = 0;
 };
 
-// Qi & Sun's Newton method on the dual, in X~ = W^1/2 (X - floor I) W^1/2: min ||X~ - G||_F over
-// X~ >= 0 with diag(X~) = b, G = W^1/2 (S - floor I) W^1/2, b = w o (d - floor). The floor is thus
-// an exact constraint (X >= floor I), not a clip afterwards. Computed in units where max(b) is
-// in [0.5, 1) (an exact power-of-two scaling), so that repairing s C gives s X. With unit weights
-// and diag(S) = d, the first dual matrix G + diag(y0) is (S - floor I) scaled: `spectrum`, S's
-// eigendecomposition when given, then serves for it.
+// Qi & Sun's Newton method on the dual, in X~ = W^1/2 (X - F) W^1/2: min ||X~ - G||_F over X~ >= 0
+// with diag(X~) = b, G = W^1/2 (S - F) W^1/2, b = w o (d - diag(F)), F = p.floors(). The floor is
+// thus an exact constraint (X >= F), not a clip afterwards. Computed in units where max(b) is in
+// [0.5, 1) (an exact power-of-two scaling), so that repairing s C gives s X. With unit weights,
+// diag(S) = d and F = floor I, the first dual matrix G + diag(y0) is (S - floor I) scaled:
+// `spectrum`, S's eigendecomposition when given, then serves for it.
 Solution solve(const FixedDiagonalProblem& p, const NearestCorrelationOptions& options,
                const Spectrum* spectrum = nullptr) {
   const Index n = p.S.rows();
   const VectorXd root = p.w.cwiseSqrt();
-  const VectorXd target = p.d.array() - p.floor;
+  const VectorXd f = p.floors();
+  const VectorXd target = p.d - f;
   const int e = detail::scale_exponent(p.w.cwiseProduct(target).maxCoeff()).value_or(0);
   MatrixXd G = p.S;
-  G.diagonal().array() -= p.floor;
+  G.diagonal() -= f;
   G = root.asDiagonal() * G * root.asDiagonal();
   detail::multiply_by_power_of_two(G, -e);
   const VectorXd b = detail::times_power_of_two(p.w.cwiseProduct(target), -e);
@@ -180,21 +192,36 @@ Solution solve(const FixedDiagonalProblem& p, const NearestCorrelationOptions& o
   Solution out;
   Dual dual{G, b, {}, {}, 0.0, {}};
   VectorXd y = b - G.diagonal();
-  if (spectrum && spectrum->P.size() && y.isZero(0.0)) {
+  if (spectrum && spectrum->P.size() && !p.floor_of_correlation && y.isZero(0.0)) {
     dual.lambda = detail::times_power_of_two((spectrum->lambda.array() - p.floor).matrix(), -e);
     dual.P = spectrum->P;
     dual.finish(y, true);
   } else if (!dual.evaluate(y, true)) {
     throw std::runtime_error("the eigensolver did not converge");
   }
-  const double stop = options.tolerance * std::sqrt(static_cast<double>(n)) * b.maxCoeff();
+  const double requested = options.tolerance * std::sqrt(static_cast<double>(n)) * b.maxCoeff();
+  // F is computed from an eigendecomposition of M = G + diag(y), exact for M + E with ||E||_2 about
+  // eps ||M||_2; the projection is non-expansive, so F carries an error up to about
+  // sqrt(n) eps ||M||_2, which no iteration removes. Where that exceeds the requested tolerance
+  // (a C whose entries are far larger than the diagonal it is given), the stop is at that
+  // rounding level, with kGradientRounding's margin over it.
+  const double root_n = std::sqrt(static_cast<double>(n));
+  auto stop = [&]() {
+    const double norm_m = std::max(std::abs(dual.lambda(0)), std::abs(dual.lambda(n - 1)));
+    return std::max(requested, kGradientRounding * root_n * std::numeric_limits<double>::epsilon() * norm_m);
+  };
   constexpr double kArmijo = 1e-4;
+  const double initial = std::max(dual.F.norm(), std::numeric_limits<double>::min());
   for (; out.iterations < options.max_iterations; ++out.iterations) {
     const double gradient = dual.F.norm();
-    if (gradient <= stop) break;
+    if (gradient <= stop()) break;
     const Jacobian V(dual);
     const double mu = std::min(1e-2, gradient) * 1e-6;
-    const VectorXd step = pcg(V, mu, -dual.F, std::min(1e-2, gradient), 200);
+    // The conjugate gradients' relative tolerance (the inexact Newton method's forcing term)
+    // follows the gradient relative to its start, which keeps the local rate quadratic whatever
+    // the units of C (in absolute units it stays at its cap while the gradient is large, as for a
+    // C whose entries dwarf the diagonal asked for, and the steps are then poor).
+    const VectorXd step = pcg(V, mu, -dual.F, std::min(1e-2, gradient / initial), 200);
     // Armijo backtracking on theta (convex, so the Newton step is a descent direction).
     const double slope = dual.F.dot(step);
     const double theta0 = dual.theta;
@@ -223,7 +250,7 @@ Solution solve(const FixedDiagonalProblem& p, const NearestCorrelationOptions& o
     }
   }
   const double gradient = dual.F.norm();
-  out.converged = gradient <= stop;
+  out.converged = gradient <= stop();
   out.gradient_norm = std::ldexp(gradient, e);
 
   // X~ = (G + diag y)_+ = Q Q^T with Q = P1 diag(lambda_+)^1/2 (BLAS for large n), back to X.
@@ -240,8 +267,7 @@ Solution solve(const FixedDiagonalProblem& p, const NearestCorrelationOptions& o
   const VectorXd diagonal = X.diagonal().cwiseMax(std::numeric_limits<double>::min());
   const VectorXd scale = target.cwiseQuotient(diagonal).cwiseSqrt();
   X = scale.asDiagonal() * X * scale.asDiagonal();
-  X.diagonal().array() += p.floor;
-  X.diagonal() = p.d;
+  X.diagonal() = p.d;  // X's diagonal plus the floor's, exactly
   detail::make_symmetric_from_lower(X);
   out.X = std::move(X);
   return out;
@@ -252,14 +278,17 @@ double weighted_distance(const MatrixXd& X, const Eigen::Ref<const MatrixXd>& C,
   return (root.asDiagonal() * (X - C) * root.asDiagonal()).stableNorm();  // any scale
 }
 
-// Throws std::invalid_argument, naming `function`, when a variance (diagonal entry) is negative,
-// or zero where `zero_allowed` is false.
-void check_variances(const char* function, const VectorXd& d, bool zero_allowed) {
+// Throws std::invalid_argument when a variance (diagonal entry) is negative, or zero where
+// `zero_allowed` is false (`why` then says what needs it positive).
+void check_variances(const VectorXd& d, bool zero_allowed, const char* why = "") {
   for (Index i = 0; i < d.size(); ++i) {
-    if (d(i) < 0.0 || (!zero_allowed && d(i) == 0.0)) {
-      throw std::invalid_argument(std::string(function) + ": diagonal entry " + std::to_string(i + 1) + " is " +
-                                  detail::format_number(d(i)) + ": a covariance's variances must be " +
-                                  (zero_allowed ? ">= 0" : "> 0"));
+    if (d(i) < 0.0) {
+      throw std::invalid_argument("diagonal entry " + std::to_string(i + 1) + " is " + detail::format_number(d(i)) +
+                                  ": a covariance's variances must be >= 0");
+    }
+    if (!zero_allowed && d(i) == 0.0) {
+      throw std::invalid_argument("diagonal entry " + std::to_string(i + 1) + " is 0, and " + why +
+                                  ": drop that variable, or give it a variance");
     }
   }
 }
@@ -275,22 +304,37 @@ struct Prepared {
   MatrixXd S;
   VectorXd w;
   double lambda_min = 0.0, lambda_max = 0.0;
+  // With a floor of the correlation matrix: the extreme eigenvalues of D^-1/2 S D^-1/2.
+  double correlation_min = 0.0, correlation_max = 0.0;
   Spectrum spectrum;  // with eigenvectors when the Newton method's first step can use them
   std::vector<std::string> warnings;
 };
 
-// `d` the diagonal the repair keeps (empty: C's own).
-Prepared prepare(const char* function, const Eigen::Ref<const MatrixXd>& C, const NearestCorrelationOptions& options,
-                 const VectorXd& d) {
-  detail::check_repair_input(function, C, options.floor);
+// `d` the diagonal the repair keeps (empty: C's own); `of_correlation`: the floor applies to the
+// correlation matrix D^-1/2 X D^-1/2 (C's variances all > 0).
+Prepared prepare(const Eigen::Ref<const MatrixXd>& C, const NearestCorrelationOptions& options, const VectorXd& d,
+                 bool of_correlation = false) {
+  detail::check_repair_input(C, options.floor);
   std::string error;
-  if (!options.is_valid(C.rows(), &error)) throw std::invalid_argument(std::string(function) + ": " + error);
+  if (!options.is_valid(C.rows(), &error)) throw std::invalid_argument(error);
   Prepared out;
-  out.S = detail::symmetric_part(MatrixXd(C));
+  out.S = detail::symmetric_part(C);
   out.w = weights_or_ones(options, C.rows());
-  const bool vectors = options.weights.size() == 0 && (d.size() == 0 || out.S.diagonal() == d);
+  const bool vectors =
+      !of_correlation && options.weights.size() == 0 && (d.size() == 0 || out.S.diagonal() == d);
   if (!detail::symmetric_eigen(out.S, out.spectrum.lambda, vectors ? &out.spectrum.P : nullptr)) {
-    throw std::runtime_error(std::string(function) + ": the eigensolver did not converge");
+    throw std::runtime_error("repairing the matrix: the eigensolver did not converge");
+  }
+  if (of_correlation) {
+    const VectorXd inverse = out.S.diagonal().cwiseSqrt().cwiseInverse();
+    MatrixXd R = inverse.asDiagonal() * out.S * inverse.asDiagonal();
+    R.diagonal().setOnes();
+    VectorXd lambda;
+    if (!detail::symmetric_eigen(R, lambda)) {
+      throw std::runtime_error("repairing the matrix: the eigensolver did not converge");
+    }
+    out.correlation_min = lambda(0);
+    out.correlation_max = lambda(lambda.size() - 1);
   }
   out.lambda_min = out.spectrum.lambda(0);
   out.lambda_max = out.spectrum.lambda(out.spectrum.lambda.size() - 1);
@@ -301,7 +345,7 @@ Prepared prepare(const char* function, const Eigen::Ref<const MatrixXd>& C, cons
 // Whether the floor's own change ||X - X0|| (X0 the answer without it, all in the W-norm) can
 // exceed the repair r = ||X0 - C||, judged without X0. X and X0 are projections of C onto nested
 // convex sets, so ||X - X0||^2 <= D^2 - r^2 (D = ||X - C||), and the floor dominates only if
-// r < D / sqrt 2. Z = (1 - a) X0 + a diag(d), a = floor / min(d), is admissible, so D <= r + delta
+// r < D / sqrt 2. Z = (1 - a) X0 + a diag(d), a = max_i F_ii / d_i, is admissible, so D <= r + delta
 // with delta = a (sum w_i d_i + ||w o d||) >= a ||X0 - diag(d)||_W, and the floor dominates only if
 // r < delta / (sqrt 2 - 1). r is at least C's distance to the semidefinite matrices and to those
 // with diagonal d: when that bound passes either test the floor cannot dominate.
@@ -315,7 +359,7 @@ bool floor_may_dominate(const FixedDiagonalProblem& p, const Prepared& prepared,
   const double to_cone = lambda.cwiseMin(0.0).norm();
   const double to_diagonal = p.w.cwiseProduct(p.S.diagonal() - p.d).norm();
   const double repair_bound = std::max(to_cone, to_diagonal);
-  const double a = p.floor / p.d.minCoeff();
+  const double a = p.floors().cwiseQuotient(p.d).maxCoeff();
   const double delta = a * (p.w.dot(p.d) + p.w.cwiseProduct(p.d).norm());
   return repair_bound < distance / std::sqrt(2.0) && repair_bound < delta / (std::sqrt(2.0) - 1.0);
 }
@@ -324,29 +368,38 @@ bool floor_may_dominate(const FixedDiagonalProblem& p, const Prepared& prepared,
 // the shortcut when S is already admissible, the warnings (not converged; a floor that moved X
 // more than the repair itself, measured by solving once more without it when floor_may_dominate
 // cannot rule it out).
-NearestResult repair(const char* function, const Eigen::Ref<const MatrixXd>& C, const FixedDiagonalProblem& p,
-                     const Prepared& prepared, const NearestCorrelationOptions& options) {
+NearestResult repair(const Eigen::Ref<const MatrixXd>& C, const FixedDiagonalProblem& p, const Prepared& prepared,
+                     const NearestCorrelationOptions& options) {
   NearestResult out;
   out.min_eigenvalue_before = prepared.lambda_min;
   out.min_eig = p.floor;
   out.warnings = prepared.warnings;
+  if (p.floor_of_correlation && !(p.floor < 1.0)) {
+    throw std::invalid_argument("the eigenvalue floor of the correlation matrix D^-1/2 X D^-1/2, " +
+                                std::string(p.option) + " times its largest eigenvalue " +
+                                detail::format_number(prepared.correlation_max) + ", is " +
+                                detail::format_number(p.floor) + ", not below its unit diagonal: lower " + p.option);
+  }
+  const VectorXd f = p.floors();
   for (Index i = 0; i < p.d.size(); ++i) {
-    if (!(p.d(i) > p.floor)) {
-      throw std::invalid_argument(std::string(function) + ": the eigenvalue floor " + detail::format_number(p.floor) +
-                                  " is not below diagonal entry " + std::to_string(i + 1) + ", which is " +
+    if (!(p.d(i) > f(i))) {
+      throw std::invalid_argument("the eigenvalue floor " + detail::format_number(f(i)) + " (" + p.option +
+                                  ") is not below diagonal entry " + std::to_string(i + 1) + ", which is " +
                                   detail::format_number(p.d(i)) +
                                   (p.d(i) == 0.0 ? " (a zero variance: drop that variable, or give it a variance)"
-                                                 : ": lower the floor, or the diagonal cannot be kept"));
+                                                 : std::string(": lower ") + p.option +
+                                                       ", or the diagonal cannot be kept"));
     }
   }
-  if (prepared.lambda_min >= p.floor && p.S.diagonal() == p.d) {
+  const bool admissible = p.floor_of_correlation ? prepared.correlation_min >= p.floor : prepared.lambda_min >= p.floor;
+  if (admissible && p.S.diagonal() == p.d) {
     out.X = p.S;  // already admissible
   } else {
     Solution s;
     try {
       s = solve(p, options, &prepared.spectrum);
     } catch (const std::runtime_error& e) {
-      throw std::runtime_error(std::string(function) + ": " + e.what());
+      throw std::runtime_error(std::string("repairing the matrix: ") + e.what());
     }
     out.X = std::move(s.X);
     out.iterations = s.iterations;
@@ -368,7 +421,8 @@ NearestResult repair(const char* function, const Eigen::Ref<const MatrixXd>& C, 
     const MatrixXd X0 = solve(plain, options, &prepared.spectrum).X;
     if (auto w = detail::floor_warning(p.floor, weighted_distance(out.X, X0, p.w), weighted_distance(X0, C, p.w),
                                        weighted_distance(MatrixXd::Zero(C.rows(), C.cols()), C, p.w),
-                                       prepared.lambda_max)) {
+                                       p.floor_of_correlation ? prepared.correlation_max : prepared.lambda_max,
+                                       p.floor_of_correlation)) {
       out.warnings.push_back(*w);
     }
   }
@@ -376,8 +430,13 @@ NearestResult repair(const char* function, const Eigen::Ref<const MatrixXd>& C, 
 }
 
 // The absolute floor of the options: alpha, or the floor resolved against lambda_max.
-double floor_of(const char* function, const NearestCorrelationOptions& options, double lambda_max) {
-  return options.alpha > 0.0 ? options.alpha : detail::resolve_floor(function, options.floor, lambda_max);
+double floor_of(const NearestCorrelationOptions& options, double lambda_max) {
+  return options.alpha > 0.0 ? options.alpha : detail::resolve_floor(options.floor, lambda_max);
+}
+
+// The option the floor of `options` came from, for messages.
+const char* option_of(const NearestCorrelationOptions& options) {
+  return options.alpha > 0.0 ? "`alpha`" : detail::floor_option(options.floor);
 }
 
 }  // namespace
@@ -408,10 +467,9 @@ bool NearestCorrelationOptions::is_valid(Index n, std::string* error) const {
 }
 
 NearestResult nearest_correlation(const Eigen::Ref<const MatrixXd>& C, const NearestCorrelationOptions& options) {
-  constexpr const char* kName = "nearest_correlation";
   const Index n = C.rows();
-  Prepared prepared = prepare(kName, C, options, VectorXd::Ones(n));
-  const double floor = floor_of(kName, options, prepared.lambda_max);
+  Prepared prepared = prepare(C, options, VectorXd::Ones(n));
+  const double floor = floor_of(options, prepared.lambda_max);
   // A covariance given for a correlation: its variances would be thrown away (and a small-scale
   // one becomes about I), more often a wrong option than intended.
   const double off = (prepared.S.diagonal().array() - 1.0).abs().maxCoeff();
@@ -422,28 +480,30 @@ NearestResult nearest_correlation(const Eigen::Ref<const MatrixXd>& C, const Nea
                                 "): it was repaired to a correlation matrix (unit diagonal); to keep a covariance's variances "
                                 "instead, repair it with its diagonal kept (`keep_diag` or `via_corr`)");
   }
-  FixedDiagonalProblem p{std::move(prepared.S), VectorXd::Ones(n), prepared.w, floor};
-  return repair(kName, C, p, prepared, options);
+  FixedDiagonalProblem p{std::move(prepared.S), VectorXd::Ones(n), prepared.w, floor, false, option_of(options)};
+  return repair(C, p, prepared, options);
 }
 
 NearestResult nearest_keep_diagonal(const Eigen::Ref<const MatrixXd>& C, const NearestCorrelationOptions& options) {
-  constexpr const char* kName = "nearest_keep_diagonal";
   if (options.alpha > 0.0) {
-    throw std::invalid_argument(std::string(kName) + ": alpha is for a unit diagonal: give a floor instead");
+    throw std::invalid_argument("`alpha` is the floor of a unit diagonal, not for `keep_diag`: give `min_eig` or `min_eig_rel`");
   }
-  check_variances(kName, C.diagonal(), true);
-  Prepared prepared = prepare(kName, C, options, VectorXd());
-  const double floor = floor_of(kName, options, prepared.lambda_max);
+  // A relative floor applies to the correlation matrix D^-1/2 X D^-1/2 (X >= floor D): below every
+  // variance whatever their scales, where one relative to C's largest eigenvalue can exceed the
+  // smallest variance of a covariance whose variables have different units.
+  const bool of_correlation = options.floor.relative && options.floor.value > 0.0;
+  check_variances(C.diagonal(), !of_correlation, "a relative floor (`min_eig_rel`) applies to the correlation matrix");
+  Prepared prepared = prepare(C, options, VectorXd(), of_correlation);
+  const double floor = floor_of(options, of_correlation ? prepared.correlation_max : prepared.lambda_max);
   VectorXd d = C.diagonal();  // the variances exactly as given (S's diagonal can differ for subnormals)
-  FixedDiagonalProblem p{std::move(prepared.S), std::move(d), prepared.w, floor};
-  return repair(kName, C, p, prepared, options);
+  FixedDiagonalProblem p{std::move(prepared.S), std::move(d), prepared.w, floor, of_correlation, option_of(options)};
+  return repair(C, p, prepared, options);
 }
 
 NearestResult nearest_via_correlation(const Eigen::Ref<const MatrixXd>& C, const NearestCorrelationOptions& options) {
-  constexpr const char* kName = "nearest_via_correlation";
-  detail::check_repair_input(kName, C, options.floor);
-  const MatrixXd S = detail::symmetric_part(MatrixXd(C));
-  check_variances(kName, S.diagonal(), false);
+  detail::check_repair_input(C, options.floor);
+  const MatrixXd S = detail::symmetric_part(C);
+  check_variances(S.diagonal(), false, "`via_corr` divides by the standard deviations");
   const VectorXd D = S.diagonal().cwiseSqrt();
   const VectorXd inverse = D.cwiseInverse();
   MatrixXd R = inverse.asDiagonal() * S * inverse.asDiagonal();
@@ -454,7 +514,7 @@ NearestResult nearest_via_correlation(const Eigen::Ref<const MatrixXd>& C, const
   out.X.diagonal() = S.diagonal();
   detail::make_symmetric_from_lower(out.X);
   VectorXd lambda;
-  if (!detail::symmetric_eigen(S, lambda)) throw std::runtime_error(std::string(kName) + ": the eigensolver did not converge");
+  if (!detail::symmetric_eigen(S, lambda)) throw std::runtime_error("repairing the matrix: the eigensolver did not converge");
   out.min_eigenvalue_before = lambda(0);
   out.distance = weighted_distance(out.X, C, weights_or_ones(options, C.rows()));
   out.cholesky_ok = detail::has_cholesky(out.X);

@@ -71,8 +71,10 @@ std::vector<Spec> make_table() {
   relative.python = "min_eig_rel";
   relative.type = OptionType::Real;
   relative.value_name = "NUMBER";
-  relative.help = "Smallest eigenvalue allowed, relative: R times the largest eigenvalue of X's symmetric part "
-                  "(1e-8 when no floor is given: positive definite, Cholesky-factorable)";
+  relative.help = "Smallest eigenvalue allowed, relative: R times the largest eigenvalue of X's symmetric part; "
+                  "with `keep_diag` or `via_corr`, of its correlation matrix D^-1/2 X D^-1/2 (D = diag(X)), a floor "
+                  "below every variance whatever their units (1e-8 when no floor is given: positive definite, "
+                  "Cholesky-factorable)";
   relative.default_text = "1e-8";
   relative.range = {0.0, 1.0, false, true};
   relative.set = [](NearestRequest& r, const OptionValue& v) { r.min_eig_rel = real(v); };

@@ -83,18 +83,18 @@ SPDFIT_FOR_EACH_MAX_N(SPDFIT_INSTANTIATE)
 }  // namespace detail
 
 NearestResult nearest_spd(const Eigen::Ref<const MatrixXd>& X, EigenvalueFloor floor) {
-  detail::check_repair_input("nearest_spd", X, floor);
+  detail::check_repair_input(X, floor);
   NearestResult out;
   detail::NearestSpdInfo info;
   info.max_before = std::numeric_limits<double>::quiet_NaN();  // set once the eigenvalues are known
   if (!detail::nearest_spd_kernel<Eigen::Dynamic>(X, floor, out.X, &info)) {
     // A relative floor without a positive eigenvalue to be relative to: resolve_floor says so.
-    if (!std::isnan(info.max_before)) detail::resolve_floor("nearest_spd", floor, info.max_before);
-    throw std::runtime_error("nearest_spd: the symmetric eigensolver did not converge");
+    if (!std::isnan(info.max_before)) detail::resolve_floor(floor, info.max_before);
+    throw std::runtime_error("repairing the matrix: the symmetric eigensolver did not converge");
   }
   if (!out.X.allFinite()) {
     // Possible only for a min_eig or entries within a factor n of the largest double.
-    throw std::runtime_error("nearest_spd: the nearest matrix overflows the range of double precision numbers");
+    throw std::runtime_error("the repaired matrix overflows the range of double precision numbers");
   }
   out.clipped = info.clipped;
   out.min_eigenvalue_before = info.min_before;

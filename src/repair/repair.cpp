@@ -13,8 +13,10 @@ bool EigenvalueFloor::is_valid(std::string* error) const {
     if (error) *error = std::move(why);
     return false;
   };
-  if (!std::isfinite(value) || value < 0.0) return fail("the eigenvalue floor must be a finite number >= 0");
-  if (relative && value >= 1.0) return fail("a relative eigenvalue floor must be below 1");
+  if (!std::isfinite(value) || value < 0.0) {
+    return fail(std::string(relative ? "`min_eig_rel`" : "`min_eig`") + " must be a finite number >= 0");
+  }
+  if (relative && value >= 1.0) return fail("`min_eig_rel` (a relative eigenvalue floor) must be below 1");
   return true;
 }
 
@@ -31,15 +33,17 @@ EigenvalueFloor EigenvalueFloor::chosen(std::optional<double> min_eig, std::opti
 
 namespace detail {
 
-void check_repair_input(const char* function, const Eigen::Ref<const Eigen::MatrixXd>& C, EigenvalueFloor floor) {
+void check_repair_input(const Eigen::Ref<const Eigen::MatrixXd>& C, EigenvalueFloor floor) {
   if (C.rows() == 0 || C.rows() != C.cols()) {
-    throw std::invalid_argument(std::string(function) + " needs a non-empty square matrix, not " +
-                                std::to_string(C.rows()) + "x" + std::to_string(C.cols()));
+    throw std::invalid_argument("the matrix to repair must be square and non-empty, not " + std::to_string(C.rows()) +
+                                "x" + std::to_string(C.cols()));
   }
-  if (!C.allFinite()) throw std::invalid_argument(std::string(function) + ": the matrix contains NaN or Inf");
+  if (!C.allFinite()) throw std::invalid_argument("the matrix to repair contains NaN or Inf");
   std::string error;
-  if (!floor.is_valid(&error)) throw std::invalid_argument(std::string(function) + ": " + error);
+  if (!floor.is_valid(&error)) throw std::invalid_argument(error);
 }
+
+const char* floor_option(EigenvalueFloor floor) { return floor.relative ? "`min_eig_rel`" : "`min_eig`"; }
 
 std::optional<std::string> asymmetry_warning(const Eigen::Ref<const Eigen::MatrixXd>& C) {
   const double norm = C.norm();
@@ -49,21 +53,23 @@ std::optional<std::string> asymmetry_warning(const Eigen::Ref<const Eigen::Matri
          ", more than rounding): its symmetric part (X + X^T) / 2 was used; is it the right file?";
 }
 
-double resolve_floor(const char* function, EigenvalueFloor floor, double lambda_max) {
+double resolve_floor(EigenvalueFloor floor, double lambda_max) {
   if (!floor.relative || floor.value == 0.0) return floor.value;
   if (!(lambda_max > 0.0)) {
-    throw std::invalid_argument(std::string(function) + ": the matrix has no positive eigenvalue (the largest is " +
-                                format_number(lambda_max) +
-                                "), so a floor relative to it is undefined (the nearest semidefinite matrix is 0): give an absolute floor");
+    throw std::invalid_argument("the matrix has no positive eigenvalue (the largest is " + format_number(lambda_max) +
+                                "), so a floor relative to it (`min_eig_rel`) is undefined (the nearest semidefinite "
+                                "matrix is 0): give an absolute floor (`min_eig`)");
   }
   return floor.value * lambda_max;
 }
 
 std::optional<std::string> floor_warning(double floor, double floor_change, double repair, double scale,
-                                         double lambda_max) {
+                                         double lambda_max, bool of_correlation) {
   if (!(floor_change > repair) || !(floor_change > 1e-6 * scale)) return std::nullopt;
-  return "the eigenvalue floor " + format_number(floor) + " moved the matrix by " + format_number(floor_change) +
-         ", more than the repair itself (" + format_number(repair) + "); the matrix repaired has largest eigenvalue " +
+  return std::string("the eigenvalue floor ") + format_number(floor) +
+         (of_correlation ? " of the correlation matrix D^-1/2 X D^-1/2" : "") + " moved the matrix by " +
+         format_number(floor_change) + ", more than the repair itself (" + format_number(repair) + "); the " +
+         (of_correlation ? "correlation matrix" : "matrix") + " repaired has largest eigenvalue " +
          format_number(lambda_max) + ": a floor meant for another scale does this (a relative floor follows the scale)";
 }
 

@@ -10,22 +10,27 @@
 
 namespace spdfit::detail {
 
-/// Throws std::invalid_argument, naming `function`, unless C is square, non-empty and finite and
-/// the floor is valid.
-void check_repair_input(const char* function, const Eigen::Ref<const Eigen::MatrixXd>& C, EigenvalueFloor floor);
+/// Throws std::invalid_argument unless C is square, non-empty and finite and the floor is valid.
+/// The repairs' messages name options (`min_eig`, `min_eig_rel`, in backticks for the front ends
+/// to spell), never the library's functions.
+void check_repair_input(const Eigen::Ref<const Eigen::MatrixXd>& C, EigenvalueFloor floor);
 
 /// A warning when C is not symmetric to rounding (more often a wrong file than noise).
 std::optional<std::string> asymmetry_warning(const Eigen::Ref<const Eigen::MatrixXd>& C);
 
 /// A floor resolved to an absolute one: a relative floor times the largest eigenvalue
-/// `lambda_max` of the input's symmetric part. Throws std::invalid_argument, naming `function`,
-/// when a relative floor meets lambda_max <= 0 (nothing to be relative to).
-double resolve_floor(const char* function, EigenvalueFloor floor, double lambda_max);
+/// `lambda_max` of the input's symmetric part. Throws std::invalid_argument when a relative floor
+/// meets lambda_max <= 0 (nothing to be relative to).
+double resolve_floor(EigenvalueFloor floor, double lambda_max);
+
+/// The option a floor came from, in backticks: `min_eig_rel` for a relative one, else `min_eig`.
+const char* floor_option(EigenvalueFloor floor);
 
 /// Whether the floor's own change of the matrix (`floor_change`, in the distance's norm) calls for a
 /// warning: more than the repair itself (`repair`) and more than rounding of `scale` (the input's
-/// norm). The warning then names the floor and the input's largest eigenvalue.
+/// norm). The warning then names the floor and the largest eigenvalue of the matrix it applies to
+/// (`of_correlation`: the correlation matrix D^-1/2 X D^-1/2 of a diagonal-keeping repair).
 std::optional<std::string> floor_warning(double floor, double floor_change, double repair, double scale,
-                                         double lambda_max);
+                                         double lambda_max, bool of_correlation = false);
 
 }  // namespace spdfit::detail

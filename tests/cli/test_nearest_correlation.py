@@ -75,3 +75,16 @@ def test_not_converged_and_asymmetric_input_warn(spdfit, tmp_path):
     C[0, 1] += 0.5
     np.savetxt(tmp_path / "A.csv", C, delimiter=",")
     assert "not symmetric" in spdfit("nearest", "--corr", tmp_path / "A.csv").stderr
+
+
+def test_r_matrix_symw_converges(spdfit):
+    """R Matrix's nearPD test matrix symW (tests/data/r_matrix), entries up to 1.8e8, as a
+    correlation: the Newton method stops at its gradient's rounding level and says converged
+    (tests/python/test_nearest_correlation.py checks the answer's optimality)."""
+    from spdfit_testing import SOURCE_DIR
+    out = spdfit("nearest", "--corr", "--min-eig", "0", "--json", SOURCE_DIR / "tests" / "data" / "r_matrix" / "symW.csv")
+    assert out.returncode == 0, out.stderr
+    assert "the diagonal is not 1" in out.stderr
+    j = json.loads(out.stdout)
+    assert j["converged"] and j["iterations"] < 200
+    assert np.all(np.diag(np.array(j["X"])) == 1.0)

@@ -6,7 +6,7 @@ import json
 import numpy as np
 import pytest
 
-from spdfit_testing import indefinite_covariance
+from spdfit_testing import indefinite_covariance, pairwise_covariance, sensor_log
 
 
 def save(tmp_path, name, M):
@@ -154,3 +154,19 @@ def test_output_by_extension(spdfit, tmp_path):
                  ["fit", "--method", "ls", "--report", "-o", tmp_path / "R.npy", A, B]):
         out = spdfit(*args)
         assert out.returncode == 2 and "holds a matrix only" in out.stderr
+
+
+@pytest.mark.parametrize("option", ["--keep-diag", "--via-corr"])
+def test_pairwise_deleted_covariance_of_sensors_in_many_units(spdfit, tmp_path, option):
+    """`df.cov()` of sensors with scales from 1e-3 to 300 and stretches of missing values: the
+    default floor (of the correlation matrix) is below every variance, so the repair succeeds,
+    keeps the variances and factors (tests/python/test_pairwise_covariance.py has the rest)."""
+    S = pairwise_covariance(sensor_log())
+    out = spdfit("nearest", option, "--json", save(tmp_path, "S.csv", S))
+    assert out.returncode == 0, out.stderr
+    assert out.stderr == ""
+    j = json.loads(out.stdout)
+    assert j["cholesky"] and j["converged"]
+    X = np.array(j["X"])
+    assert np.array_equal(np.diag(X), np.diag(S))
+    np.linalg.cholesky(X)

@@ -63,6 +63,27 @@ def test_keep_diag_agrees_with_dykstra(weighted, floor):
     assert r.distance == pytest.approx(np.linalg.norm(root[:, None] * (r.X - C) * root[None, :]), rel=1e-12)
 
 
+@pytest.mark.parametrize("weighted", [False, True])
+def test_keep_diag_relative_floor_is_of_the_correlation_matrix(weighted):
+    """keep_diag's relative floor: D^-1/2 X D^-1/2 >= floor, floor = min_eig_rel times the largest
+    eigenvalue of the correlation matrix D^-1/2 C D^-1/2; the same minimizer as Dykstra's on
+    Y = X - floor D (Y >= 0 with diagonal (1 - floor) d, the target C - floor D)."""
+    C = indefinite_covariance(10, 11)
+    d = np.diag(C)
+    w = np.linspace(0.5, 3.0, 10) if weighted else None
+    rel = 0.05
+    r = spdfit.nearest_spd(C, min_eig_rel=rel, keep_diag=True, weights=w, full_output=True)
+    R = C / np.sqrt(np.outer(d, d))
+    floor = rel * np.linalg.eigvalsh(R)[-1]
+    assert r.min_eig == pytest.approx(floor, rel=1e-13)
+    assert r.converged and r.cholesky_ok
+    reference = dykstra(C - floor * np.diag(d), w, d=(1 - floor) * d) + floor * np.diag(d)
+    np.testing.assert_allclose(r.X, reference, atol=1e-8)
+    assert np.array_equal(np.diag(r.X), d)
+    # Active: the correlation matrix's smallest eigenvalue sits at the floor.
+    assert np.linalg.eigvalsh(r.X / np.sqrt(np.outer(d, d)))[0] == pytest.approx(floor, abs=1e-10)
+
+
 @pytest.mark.parametrize("s", [8.0, 3.7, 1e-6])
 def test_keep_diag_and_relative_floor_scale(s):
     C = indefinite_covariance(12, 4)

@@ -132,3 +132,27 @@ def test_argument_checks_and_warnings():
     asymmetric[0, 1] = 0.4
     with pytest.warns(spdfit.SpdfitWarning, match="not symmetric"):
         spdfit.nearest_correlation(asymmetric)
+
+
+def test_r_matrix_symw_converges_and_is_optimal():
+    """R's Matrix package's nearPD test matrix symW (tests/data/r_matrix): entries up to 1.8e8
+    given for a correlation matrix, so that the dual matrix G + diag(y) has norm about 1e8 and the
+    dual gradient cannot be computed below about eps * 1e8 (its eigendecomposition's rounding):
+    the stopping test allows that level, and the answer is a certified minimizer. The certificate,
+    from X alone: with y recovered from (X - C) X = diag(y) X (row by row), S = X - C - diag(y)
+    is positive semidefinite and S X = 0, each to rounding of ||C||_2 (the eigendecomposition's
+    backward error, n eps ||C||_2)."""
+    from spdfit_testing import SOURCE_DIR
+    C = np.loadtxt(SOURCE_DIR / "tests" / "data" / "r_matrix" / "symW.csv", delimiter=",")
+    with pytest.warns(spdfit.SpdfitWarning, match="the diagonal is not 1"):
+        r = spdfit.nearest_correlation(C, min_eig=0, full_output=True)
+    assert r.converged and r.iterations < 200
+    X = r.X
+    n = len(X)
+    assert np.all(np.diag(X) == 1.0)
+    rounding = n * np.finfo(float).eps * np.linalg.norm(C, 2)
+    assert np.linalg.eigvalsh(X)[0] >= -rounding / np.linalg.norm(C, 2)
+    y = np.sum(((X - C) @ X) * X, axis=1) / np.sum(X * X, axis=1)
+    S = X - C - np.diag(y)
+    assert np.linalg.eigvalsh(S)[0] >= -rounding
+    assert np.linalg.norm(S @ X) <= rounding * np.linalg.norm(X)

@@ -72,6 +72,37 @@ def indefinite_covariance(n, seed, scale=1.0):
     return C
 
 
+def sensor_log(seed=2024, rows=120, n=12):
+    """A log of n sensors whose scales run from 1e-3 to 300 (geometric), driven by three common
+    factors plus noise, where each sensor misses one stretch of 20-45% of the rows (NaN), as
+    sensors that drop out do: the data behind a `df.cov()` gone indefinite. Seeded."""
+    rng = np.random.default_rng(seed)
+    scales = np.geomspace(1e-3, 300.0, n)
+    latent = rng.standard_normal((rows, 3))
+    loadings = rng.uniform(-1, 1, (3, n))
+    Z = latent @ loadings + 0.5 * rng.standard_normal((rows, n))
+    data = Z / Z.std(axis=0) * scales
+    for j in range(n):
+        length = int(rng.uniform(0.2, 0.45) * rows)
+        start = rng.integers(0, rows - length)
+        data[start:start + length, j] = np.nan
+    return data
+
+
+def pairwise_covariance(data):
+    """The covariance by pairwise deletion, as pandas' DataFrame.cov() computes it: for each pair
+    of columns the rows where both are present, their own means, and the divisor count - 1."""
+    n = data.shape[1]
+    present = ~np.isnan(data)
+    C = np.empty((n, n))
+    for i in range(n):
+        for j in range(i + 1):
+            both = present[:, i] & present[:, j]
+            x, y = data[both, i], data[both, j]
+            C[i, j] = C[j, i] = np.sum((x - x.mean()) * (y - y.mean())) / (both.sum() - 1)
+    return C
+
+
 def mpirun_environment(extra=None):
     """The environment for spdfit under mpirun in the tests: in the sanitizer build, Open MPI keeps
     its components loaded (no dlclose) and allocations get full stacks, so that LeakSanitizer can

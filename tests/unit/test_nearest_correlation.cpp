@@ -181,8 +181,48 @@ TEST(NearestKeepDiagonal, RepairingSCGivesSX) {
   EXPECT_EQ(nearest_keep_diagonal(C * std::ldexp(1.0, -600), o).X, r.X * std::ldexp(1.0, -600));
   const MatrixXd scaled = nearest_keep_diagonal(C * 3.7, o).X;
   EXPECT_LT((scaled - 3.7 * r.X).cwiseAbs().maxCoeff(), 1e-12 * 3.7 * C.cwiseAbs().maxCoeff());
-  EXPECT_NEAR(r.min_eig, 1e-3 * Eigen::SelfAdjointEigenSolver<MatrixXd>(C).eigenvalues().maxCoeff(), 1e-15);
+  // The relative floor is of the correlation matrix D^-1/2 C D^-1/2, so scale-free.
+  const VectorXd root = C.diagonal().cwiseSqrt().cwiseInverse();
+  const MatrixXd R = root.asDiagonal() * C * root.asDiagonal();
+  EXPECT_NEAR(r.min_eig, 1e-3 * Eigen::SelfAdjointEigenSolver<MatrixXd>(R).eigenvalues().maxCoeff(), 1e-15);
+  EXPECT_NEAR(nearest_keep_diagonal(C * 3.7, o).min_eig, r.min_eig, 1e-14 * r.min_eig);
   EXPECT_TRUE(r.cholesky_ok);
+}
+
+// The diagonal-keeping repair's relative floor bounds the correlation matrix D^-1/2 X D^-1/2
+// from below, so it is feasible whatever the variances' scales: variables in units 1e-4 to 1e4
+// apart (variances 1e-8 to 1e8), where a floor relative to C's largest eigenvalue (1e-8 x about
+// 1e8) would exceed the smallest variance. The floor is met exactly where it is active, and X
+// factors by Cholesky.
+TEST(NearestKeepDiagonal, RelativeFloorIsOfTheCorrelationMatrix) {
+  Generator g(21);
+  const Index n = 12;
+  const MatrixXd M = g.gaussian(n, n);
+  MatrixXd R = (M + M.transpose()) / std::sqrt(static_cast<double>(n));
+  R.diagonal().setOnes();
+  ASSERT_LT(smallest_eigenvalue(R), -0.1);  // a correlation matrix gone wrong
+  VectorXd scales(n);
+  for (Index i = 0; i < n; ++i) scales(i) = std::pow(10.0, -4.0 + 8.0 * static_cast<double>(i) / (n - 1));
+  const MatrixXd C = scales.asDiagonal() * R * scales.asDiagonal();
+  NearestCorrelationOptions o;
+  o.floor = EigenvalueFloor::relative_to_largest(EigenvalueFloor::kRepairDefault);
+  const NearestResult r = nearest_keep_diagonal(C, o);
+  EXPECT_TRUE(r.converged);
+  EXPECT_TRUE(r.cholesky_ok);
+  EXPECT_EQ(r.X.diagonal(), C.diagonal());
+  const double lambda_max = Eigen::SelfAdjointEigenSolver<MatrixXd>(R).eigenvalues().maxCoeff();
+  EXPECT_NEAR(r.min_eig, EigenvalueFloor::kRepairDefault * lambda_max, 1e-14 * r.min_eig);
+  const VectorXd root = C.diagonal().cwiseSqrt().cwiseInverse();
+  const MatrixXd corr = root.asDiagonal() * r.X * root.asDiagonal();
+  // Active (R is indefinite), met to the Newton tolerance relative to the unit diagonal.
+  EXPECT_NEAR(Eigen::SelfAdjointEigenSolver<MatrixXd>(corr).eigenvalues()(0), r.min_eig, 1e-9);
+  // The same problem as the repair of the correlation matrix with weights d (X = D^1/2 R~ D^1/2),
+  // to the Newton tolerance: in C's units (relative to the largest variance; the distance is).
+  NearestCorrelationOptions w = o;
+  w.weights = C.diagonal();
+  const NearestResult via = nearest_correlation(R, w);
+  const MatrixXd back = C.diagonal().cwiseSqrt().asDiagonal() * via.X * C.diagonal().cwiseSqrt().asDiagonal();
+  EXPECT_LT((back - r.X).norm(), 1e-9 * C.norm());
 }
 
 // statsmodels' route is the fixed-diagonal problem in the norm ||D^-1 (X - C) D^-1||_F, i.e. with
