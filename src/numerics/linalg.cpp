@@ -113,14 +113,10 @@ bool has_cholesky(const Eigen::Ref<const MatrixXd>& X) {
 }
 
 bool symmetric_eigen_large(const Eigen::Ref<const MatrixXd>& M, VectorXd& w, MatrixXd* V) {
-  const Index n = M.rows();
 #ifdef SPDFIT_HAVE_LAPACK
-  if (n > 0) {
+  if (M.rows() > 0) {
     MatrixXd work = M;  // dsyevd overwrites its input with the eigenvectors
-    w.resize(n);
-    const lapack_int info = LAPACKE_dsyevd(LAPACK_COL_MAJOR, V ? 'V' : 'N', 'L', static_cast<lapack_int>(n),
-                                           work.data(), static_cast<lapack_int>(n), w.data());
-    if (info != 0) return false;
+    if (!symmetric_eigen_in_place(work, w, V != nullptr)) return false;
     if (V) *V = std::move(work);
     return true;
   }
@@ -129,6 +125,23 @@ bool symmetric_eigen_large(const Eigen::Ref<const MatrixXd>& M, VectorXd& w, Mat
   if (eig.info() != Eigen::Success) return false;
   w = eig.eigenvalues();
   if (V) *V = eig.eigenvectors();
+  return true;
+}
+
+bool symmetric_eigen_in_place(MatrixXd& M, VectorXd& w, bool vectors) {
+  const Index n = M.rows();
+#ifdef SPDFIT_HAVE_LAPACK
+  if (n > 0) {
+    w.resize(n);
+    const lapack_int info = LAPACKE_dsyevd(LAPACK_COL_MAJOR, vectors ? 'V' : 'N', 'L', static_cast<lapack_int>(n),
+                                           M.data(), static_cast<lapack_int>(n), w.data());
+    return info == 0;
+  }
+#endif
+  Eigen::SelfAdjointEigenSolver<MatrixXd> eig(M, vectors ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
+  if (eig.info() != Eigen::Success) return false;
+  w = eig.eigenvalues();
+  if (vectors) M = eig.eigenvectors();
   return true;
 }
 

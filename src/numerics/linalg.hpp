@@ -224,6 +224,12 @@ bool has_cholesky(const Eigen::Ref<const MatrixXd>& X);
 /// w ascending, V's columns the eigenvectors (when V is given). False when it fails.
 bool symmetric_eigen_large(const Eigen::Ref<const MatrixXd>& M, VectorXd& w, MatrixXd* V);
 
+/// symmetric_eigen_large in place, for large n where memory counts: M (its lower triangle) is
+/// overwritten by the eigenvectors (with `vectors`; without, its contents are lost), w gets the
+/// eigenvalues ascending. With LAPACK, dsyevd's workspace (2 n^2 + 6 n + 1 doubles with vectors,
+/// 2 n + 1 without) is the only other allocation. False when it fails.
+bool symmetric_eigen_in_place(MatrixXd& M, VectorXd& w, bool vectors);
+
 /// The eigendecomposition M = V diag(w) V^T of a symmetric M, w ascending (V only when given):
 /// symmetric_eigen_large from 64 rows on for dynamic matrices, Eigen's SelfAdjointEigenSolver
 /// below and for bounded sizes. False when it fails.

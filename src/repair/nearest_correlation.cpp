@@ -7,6 +7,7 @@
 
 #include "estimators/diagnostics.hpp"
 #include "numerics/linalg.hpp"
+#include "repair/correlation_newton.hpp"
 #include "repair/repair.hpp"
 
 namespace spdfit {
@@ -33,133 +34,11 @@ struct FixedDiagonalProblem {
   }
 };
 
-// The dual of min ||X - G||_F^2 / 2 over X >= 0 with diag(X) = b (Qi & Sun 2006):
-// theta(y) = ||(G + diag y)_+||_F^2 / 2 - b^T y, gradient F(y) = diag((G + diag y)_+) - b.
-struct Dual {
-  const MatrixXd& G;
-  const VectorXd& b;
-  MatrixXd P;      // eigenvectors of G + diag(y)
-  VectorXd lambda;  // its eigenvalues, ascending
-  double theta = 0.0;
-  VectorXd F;
-
-  // Evaluates theta at y; with vectors, also the eigenvectors and the gradient. False when the
-  // eigensolver fails.
-  bool evaluate(const VectorXd& y, bool vectors) {
-    MatrixXd M = G;
-    M.diagonal() += y;
-    if (!detail::symmetric_eigen(M, lambda, vectors ? &P : nullptr)) return false;
-    finish(y, vectors);
-    return true;
-  }
-
-  // theta (and with vectors F) at y from lambda (and P), the eigendecomposition of G + diag(y).
-  void finish(const VectorXd& y, bool vectors) {
-    const VectorXd positive = lambda.cwiseMax(0.0);
-    theta = 0.5 * positive.squaredNorm() - b.dot(y);
-    if (vectors) {
-      // diag(P diag(lambda_+) P^T)
-      F = (P.array().square().matrix() * positive) - b;
-    }
-  }
-};
-
-// How many of the ascending eigenvalues are positive (they come last).
-Index positive_count(const VectorXd& lambda) {
-  const Index n = lambda.size();
-  Index r = 0;
-  while (r < n && lambda(n - 1 - r) > 0.0) ++r;
-  return r;
-}
-
 // The eigendecomposition S = P diag(lambda) P^T of the input's symmetric part, when computed.
 struct Spectrum {
   VectorXd lambda;
   MatrixXd P;
 };
-
-// The generalized Jacobian of F at the current eigendecomposition (Qi & Sun 2006, eq. (20)):
-// V h = diag(P (Omega o (P^T diag(h) P)) P^T), with Omega_ij = 1 when lambda_i, lambda_j > 0,
-// lambda_i / (lambda_i - lambda_j) when lambda_i > 0 >= lambda_j, 0 when both <= 0.
-//
-// With the r positive eigenvalues last (P = [P2 P1], P1 their eigenvectors) Omega has the blocks
-// [0, Omega21; Omega12, 1], so with B = Omega12 o (P1^T diag(h) P2):
-//   V h = diag(P1 (P1^T diag(h) P1) P1^T) + 2 diag(P1 B P2^T),
-// O(n^2 r) instead of O(n^3), in four matrix products (BLAS, multithreaded, for large n).
-// (Qi & Sun's complement form, O(n^2 (n - r)) for r > n/2, computes h - (...) and loses the
-// semidefiniteness of V to cancellation; the conjugate gradients then stall, so it is not used.)
-class Jacobian {
- public:
-  // Refers to dual's eigenvectors (no copies of n x n matrices): dual must outlive it.
-  explicit Jacobian(const Dual& dual)
-      : r_(positive_count(dual.lambda)),
-        P1_(dual.P.rightCols(r_)),
-        P2_(dual.P.leftCols(dual.P.cols() - r_)) {
-    const VectorXd& l = dual.lambda;
-    const Index n = l.size(), r = r_;
-    omega12_.resize(r, n - r);
-    for (Index j = 0; j < n - r; ++j) {
-      for (Index i = 0; i < r; ++i) {
-        const double li = l(n - r + i), lj = l(j);
-        omega12_(i, j) = li / (li - lj);
-      }
-    }
-    // The diagonal of V (Borsdorf & Higham's preconditioner): V_kk = sum_ij P_ki^2 Omega_ij P_kj^2,
-    // a sum of non-negative terms (no cancellation).
-    const MatrixXd Q1 = P1_.array().square().matrix(), Q2 = P2_.array().square().matrix();
-    const VectorXd s1 = Q1.rowwise().sum();
-    MatrixXd Q2_omega;
-    detail::multiply(Q2, false, omega12_, true, Q2_omega);
-    diagonal_ = s1.cwiseProduct(s1) + 2.0 * Q1.cwiseProduct(Q2_omega).rowwise().sum();
-  }
-
-  VectorXd apply(const VectorXd& h) const {
-    const MatrixXd hP1 = h.asDiagonal() * P1_;
-    MatrixXd square, B, left, right;
-    detail::multiply(P1_, true, hP1, false, square);  // P1^T diag(h) P1
-    detail::multiply(hP1, true, P2_, false, B);
-    B = omega12_.cwiseProduct(B);
-    detail::multiply(P1_, false, square, false, left);
-    detail::multiply(P2_, false, B, true, right);
-    return P1_.cwiseProduct(left + 2.0 * right).rowwise().sum();
-  }
-
-  const VectorXd& diagonal() const { return diagonal_; }
-
- private:
-  Index r_;
-  Eigen::Ref<const MatrixXd> P1_, P2_;
-  MatrixXd omega12_;
-  VectorXd diagonal_;
-};
-
-// The margin of the stopping test over the rounding level of the dual gradient (see solve).
-constexpr double kGradientRounding = 2.0;
-
-// Preconditioned conjugate gradients for (V + mu I) d = rhs, to a relative residual `tol`.
-VectorXd pcg(const Jacobian& V, double mu, const VectorXd& rhs, double tol, int max_iterations) {
-  const Index n = rhs.size();
-  VectorXd d = VectorXd::Zero(n);
-  VectorXd r = rhs;
-  const VectorXd precondition = (V.diagonal().array() + mu).max(1e-12).inverse().matrix();
-  VectorXd z = precondition.cwiseProduct(r);
-  VectorXd p = z;
-  double rz = r.dot(z);
-  const double stop = tol * rhs.norm();
-  for (int k = 0; k < max_iterations && r.norm() > stop; ++k) {
-    const VectorXd w = V.apply(p) + mu * p;
-    const double pw = p.dot(w);
-    if (!(pw > 0.0)) break;
-    const double step = rz / pw;
-    d += step * p;
-    r -= step * w;
-    z = precondition.cwiseProduct(r);
-    const double rz_next = r.dot(z);
-    p = z + (rz_next / rz) * p;
-    rz = rz_next;
-  }
-  return d;
-}
 
 // The Newton method's answer to a FixedDiagonalProblem.
 struct Solution {
@@ -170,112 +49,56 @@ struct Solution {
   Index clipped = 0;
 };
 
-// Qi & Sun's Newton method on the dual, in X~ = W^1/2 (X - F) W^1/2: min ||X~ - G||_F over X~ >= 0
-// with diag(X~) = b, G = W^1/2 (S - F) W^1/2, b = w o (d - diag(F)), F = p.floors(). The floor is
-// thus an exact constraint (X >= F), not a clip afterwards. Computed in units where max(b) is in
-// [0.5, 1) (an exact power-of-two scaling), so that repairing s C gives s X. With unit weights,
-// diag(S) = d and F = floor I, the first dual matrix G + diag(y0) is (S - floor I) scaled:
-// `spectrum`, S's eigendecomposition when given, then serves for it.
-Solution solve(const FixedDiagonalProblem& p, const NearestCorrelationOptions& options,
-               const Spectrum* spectrum = nullptr) {
+// Qi & Sun's Newton method on the dual (correlation_newton.hpp), in X~ = W^1/2 (X - F) W^1/2:
+// min ||X~ - G||_F over X~ >= 0 with diag(X~) = b, G = W^1/2 (S - F) W^1/2, b = w o (d - diag(F)),
+// F = p.floors(). The floor is thus an exact constraint (X >= F), not a clip afterwards. Computed
+// in units where max(b) is in [0.5, 1) (an exact power-of-two scaling), so that repairing s C
+// gives s X. With unit weights, diag(S) = d and F = floor I, the first dual matrix G + diag(y0)
+// is (S - floor I) scaled: `spectrum`, S's eigendecomposition when given, then serves for it (and
+// is consumed). p.S is consumed too (it becomes G in place): memory for large n.
+Solution solve(FixedDiagonalProblem& p, const NearestCorrelationOptions& options, Spectrum* spectrum = nullptr) {
   const Index n = p.S.rows();
   const VectorXd root = p.w.cwiseSqrt();
   const VectorXd f = p.floors();
   const VectorXd target = p.d - f;
   const int e = detail::scale_exponent(p.w.cwiseProduct(target).maxCoeff()).value_or(0);
-  MatrixXd G = p.S;
+  MatrixXd G = std::move(p.S);
   G.diagonal() -= f;
-  G = root.asDiagonal() * G * root.asDiagonal();
+  for (Index j = 0; j < n; ++j) G.col(j).array() *= root.array() * root(j);
   detail::multiply_by_power_of_two(G, -e);
   const VectorXd b = detail::times_power_of_two(p.w.cwiseProduct(target), -e);
+  const bool reuse = spectrum && spectrum->P.rows() == n && !p.floor_of_correlation && (b - G.diagonal()).isZero(0.0);
+  VectorXd lambda;
+  if (reuse) lambda = detail::times_power_of_two((spectrum->lambda.array() - p.floor).matrix(), -e);
+  const double tolerance = options.tolerance * std::sqrt(static_cast<double>(n)) * b.maxCoeff();
+  detail::CorrelationNewtonResult newton = detail::correlation_newton(
+      std::move(G), b, options.max_iterations, tolerance, reuse ? &spectrum->P : nullptr, reuse ? &lambda : nullptr);
 
   Solution out;
-  Dual dual{G, b, {}, {}, 0.0, {}};
-  VectorXd y = b - G.diagonal();
-  if (spectrum && spectrum->P.size() && !p.floor_of_correlation && y.isZero(0.0)) {
-    dual.lambda = detail::times_power_of_two((spectrum->lambda.array() - p.floor).matrix(), -e);
-    dual.P = spectrum->P;
-    dual.finish(y, true);
-  } else if (!dual.evaluate(y, true)) {
-    throw std::runtime_error("the eigensolver did not converge");
-  }
-  const double requested = options.tolerance * std::sqrt(static_cast<double>(n)) * b.maxCoeff();
-  // F is computed from an eigendecomposition of M = G + diag(y), exact for M + E with ||E||_2 about
-  // eps ||M||_2; the projection is non-expansive, so F carries an error up to about
-  // sqrt(n) eps ||M||_2, which no iteration removes. Where that exceeds the requested tolerance
-  // (a C whose entries are far larger than the diagonal it is given), the stop is at that
-  // rounding level, with kGradientRounding's margin over it.
-  const double root_n = std::sqrt(static_cast<double>(n));
-  auto stop = [&]() {
-    const double norm_m = std::max(std::abs(dual.lambda(0)), std::abs(dual.lambda(n - 1)));
-    return std::max(requested, kGradientRounding * root_n * std::numeric_limits<double>::epsilon() * norm_m);
-  };
-  constexpr double kArmijo = 1e-4;
-  const double initial = std::max(dual.F.norm(), std::numeric_limits<double>::min());
-  for (; out.iterations < options.max_iterations; ++out.iterations) {
-    const double gradient = dual.F.norm();
-    if (gradient <= stop()) break;
-    const Jacobian V(dual);
-    const double mu = std::min(1e-2, gradient) * 1e-6;
-    // The conjugate gradients' relative tolerance (the inexact Newton method's forcing term)
-    // follows the gradient relative to its start, which keeps the local rate quadratic whatever
-    // the units of C (in absolute units it stays at its cap while the gradient is large, as for a
-    // C whose entries dwarf the diagonal asked for, and the steps are then poor).
-    const VectorXd step = pcg(V, mu, -dual.F, std::min(1e-2, gradient / initial), 200);
-    // Armijo backtracking on theta (convex, so the Newton step is a descent direction).
-    const double slope = dual.F.dot(step);
-    const double theta0 = dual.theta;
-    double t = 1.0;
-    VectorXd trial = y + step;
-    Dual probe{G, b, {}, {}, 0.0, {}};
-    // Near the solution the decrease (about ||F||^2) falls below theta's own rounding: there the
-    // comparison allows that rounding, or the full Newton step would be refused forever.
-    const double rounding = 16.0 * std::numeric_limits<double>::epsilon() * (std::abs(theta0) + 1.0);
-    // The full step, usually taken, is evaluated with eigenvectors so that the next iteration
-    // reuses its eigendecomposition; shorter ones with eigenvalues only.
-    for (int k = 0; k < 40; ++k) {
-      if (!probe.evaluate(trial, k == 0)) throw std::runtime_error("the eigensolver did not converge");
-      if (probe.theta <= theta0 + kArmijo * t * slope + rounding) break;
-      t *= 0.5;
-      trial = y + t * step;
-    }
-    y = trial;
-    if (t == 1.0) {
-      dual.P = std::move(probe.P);
-      dual.lambda = std::move(probe.lambda);
-      dual.theta = probe.theta;
-      dual.F = std::move(probe.F);
-    } else if (!dual.evaluate(y, true)) {
-      throw std::runtime_error("the eigensolver did not converge");
-    }
-  }
-  const double gradient = dual.F.norm();
-  out.converged = gradient <= stop();
-  out.gradient_norm = std::ldexp(gradient, e);
-
-  // X~ = (G + diag y)_+ = Q Q^T with Q = P1 diag(lambda_+)^1/2 (BLAS for large n), back to X.
-  const Index r = positive_count(dual.lambda);
-  out.clipped = n - r;
-  const MatrixXd Q = dual.P.rightCols(r) * dual.lambda.tail(r).cwiseSqrt().asDiagonal();
-  MatrixXd X;
-  detail::multiply(Q, false, Q, true, X);
-  detail::make_symmetric_from_lower(X);
+  out.iterations = newton.iterations;
+  out.converged = newton.converged;
+  out.gradient_norm = std::ldexp(newton.gradient_norm, e);
+  out.clipped = newton.clipped;
+  // Back to X: the scaling undone, the weights removed, the diagonal scaled to d - floor exactly
+  // (a congruence: X stays semidefinite), then the floor; in place.
+  MatrixXd X = std::move(newton.X);
   detail::multiply_by_power_of_two(X, e);
-  const VectorXd unweight = root.cwiseInverse();
-  X = unweight.asDiagonal() * X * unweight.asDiagonal();
-  // The diagonal scaled to d - floor exactly (a congruence: X stays semidefinite), then the floor.
-  const VectorXd diagonal = X.diagonal().cwiseMax(std::numeric_limits<double>::min());
-  const VectorXd scale = target.cwiseQuotient(diagonal).cwiseSqrt();
-  X = scale.asDiagonal() * X * scale.asDiagonal();
+  const VectorXd diagonal = X.diagonal().cwiseQuotient(p.w).cwiseMax(std::numeric_limits<double>::min());
+  const VectorXd scale = target.cwiseQuotient(diagonal).cwiseSqrt().cwiseQuotient(root);
+  for (Index j = 0; j < n; ++j) X.col(j).array() *= scale.array() * scale(j);
   X.diagonal() = p.d;  // X's diagonal plus the floor's, exactly
   detail::make_symmetric_from_lower(X);
   out.X = std::move(X);
   return out;
 }
 
-double weighted_distance(const MatrixXd& X, const Eigen::Ref<const MatrixXd>& C, const VectorXd& w) {
+// ||W^1/2 (X - C) W^1/2||_F at any scale (Eigen's stableNorm), a column at a time: no n x n
+// temporary.
+double weighted_distance(const Eigen::Ref<const MatrixXd>& X, const Eigen::Ref<const MatrixXd>& C, const VectorXd& w) {
   const VectorXd root = w.cwiseSqrt();
-  return (root.asDiagonal() * (X - C) * root.asDiagonal()).stableNorm();  // any scale
+  VectorXd columns(X.cols());
+  for (Index j = 0; j < X.cols(); ++j) columns(j) = ((X.col(j) - C.col(j)).cwiseProduct(root) * root(j)).stableNorm();
+  return columns.stableNorm();
 }
 
 // Throws std::invalid_argument when a variance (diagonal entry) is negative, or zero where
@@ -349,15 +172,18 @@ Prepared prepare(const Eigen::Ref<const MatrixXd>& C, const NearestCorrelationOp
 // with delta = a (sum w_i d_i + ||w o d||) >= a ||X0 - diag(d)||_W, and the floor dominates only if
 // r < delta / (sqrt 2 - 1). r is at least C's distance to the semidefinite matrices and to those
 // with diagonal d: when that bound passes either test the floor cannot dominate.
-bool floor_may_dominate(const FixedDiagonalProblem& p, const Prepared& prepared, double distance) {
+// `S_diagonal` is the diagonal of C's symmetric part (p.S is consumed by the solve).
+bool floor_may_dominate(const Eigen::Ref<const MatrixXd>& C, const FixedDiagonalProblem& p,
+                        const VectorXd& S_diagonal, const Prepared& prepared, double distance) {
   VectorXd lambda = prepared.spectrum.lambda;
   if (p.w != VectorXd::Ones(p.w.size())) {
     const VectorXd root = p.w.cwiseSqrt();
-    const MatrixXd weighted = root.asDiagonal() * p.S * root.asDiagonal();
-    if (!detail::symmetric_eigen(weighted, lambda)) return true;
+    MatrixXd weighted = detail::symmetric_part(C);
+    for (Index j = 0; j < weighted.cols(); ++j) weighted.col(j).array() *= root.array() * root(j);
+    if (!detail::symmetric_eigen_in_place(weighted, lambda, false)) return true;
   }
   const double to_cone = lambda.cwiseMin(0.0).norm();
-  const double to_diagonal = p.w.cwiseProduct(p.S.diagonal() - p.d).norm();
+  const double to_diagonal = p.w.cwiseProduct(S_diagonal - p.d).norm();
   const double repair_bound = std::max(to_cone, to_diagonal);
   const double a = p.floors().cwiseQuotient(p.d).maxCoeff();
   const double delta = a * (p.w.dot(p.d) + p.w.cwiseProduct(p.d).norm());
@@ -368,7 +194,8 @@ bool floor_may_dominate(const FixedDiagonalProblem& p, const Prepared& prepared,
 // the shortcut when S is already admissible, the warnings (not converged; a floor that moved X
 // more than the repair itself, measured by solving once more without it when floor_may_dominate
 // cannot rule it out).
-NearestResult repair(const Eigen::Ref<const MatrixXd>& C, const FixedDiagonalProblem& p, const Prepared& prepared,
+// p.S and prepared.spectrum's eigenvectors are consumed (memory for large n).
+NearestResult repair(const Eigen::Ref<const MatrixXd>& C, FixedDiagonalProblem& p, Prepared& prepared,
                      const NearestCorrelationOptions& options) {
   NearestResult out;
   out.min_eigenvalue_before = prepared.lambda_min;
@@ -392,8 +219,9 @@ NearestResult repair(const Eigen::Ref<const MatrixXd>& C, const FixedDiagonalPro
     }
   }
   const bool admissible = p.floor_of_correlation ? prepared.correlation_min >= p.floor : prepared.lambda_min >= p.floor;
-  if (admissible && p.S.diagonal() == p.d) {
-    out.X = p.S;  // already admissible
+  const VectorXd S_diagonal = p.S.diagonal();
+  if (admissible && S_diagonal == p.d) {
+    out.X = std::move(p.S);  // already admissible
   } else {
     Solution s;
     try {
@@ -414,11 +242,10 @@ NearestResult repair(const Eigen::Ref<const MatrixXd>& C, const FixedDiagonalPro
   }
   out.distance = weighted_distance(out.X, C, p.w);
   out.cholesky_ok = detail::has_cholesky(out.X);
-  if (p.floor > 0.0 && out.clipped > 0 && floor_may_dominate(p, prepared, out.distance)) {
+  if (p.floor > 0.0 && out.clipped > 0 && floor_may_dominate(C, p, S_diagonal, prepared, out.distance)) {
     // What the floor alone moved, measured: the problem solved once more without it.
-    FixedDiagonalProblem plain = p;
-    plain.floor = 0.0;
-    const MatrixXd X0 = solve(plain, options, &prepared.spectrum).X;
+    FixedDiagonalProblem plain{detail::symmetric_part(C), p.d, p.w, 0.0, false, p.option};
+    const MatrixXd X0 = solve(plain, options).X;
     if (auto w = detail::floor_warning(p.floor, weighted_distance(out.X, X0, p.w), weighted_distance(X0, C, p.w),
                                        weighted_distance(MatrixXd::Zero(C.rows(), C.cols()), C, p.w),
                                        p.floor_of_correlation ? prepared.correlation_max : prepared.lambda_max,
@@ -502,20 +329,29 @@ NearestResult nearest_keep_diagonal(const Eigen::Ref<const MatrixXd>& C, const N
 
 NearestResult nearest_via_correlation(const Eigen::Ref<const MatrixXd>& C, const NearestCorrelationOptions& options) {
   detail::check_repair_input(C, options.floor);
-  const MatrixXd S = detail::symmetric_part(C);
-  check_variances(S.diagonal(), false, "`via_corr` divides by the standard deviations");
-  const VectorXd D = S.diagonal().cwiseSqrt();
+  const VectorXd variances = C.diagonal();  // those of C's symmetric part
+  check_variances(variances, false, "`via_corr` divides by the standard deviations");
+  double min_before = 0.0;
+  {
+    MatrixXd S = detail::symmetric_part(C);
+    VectorXd lambda;
+    if (!detail::symmetric_eigen_in_place(S, lambda, false)) {
+      throw std::runtime_error("repairing the matrix: the eigensolver did not converge");
+    }
+    min_before = lambda(0);
+  }
+  const VectorXd D = variances.cwiseSqrt();
   const VectorXd inverse = D.cwiseInverse();
-  MatrixXd R = inverse.asDiagonal() * S * inverse.asDiagonal();
+  MatrixXd R = detail::symmetric_part(C);
+  for (Index j = 0; j < R.cols(); ++j) R.col(j).array() *= inverse.array() * inverse(j);
   detail::make_symmetric_from_lower(R);
   R.diagonal().setOnes();
   NearestResult out = nearest_correlation(R, options);
-  out.X = D.asDiagonal() * out.X * D.asDiagonal();
-  out.X.diagonal() = S.diagonal();
+  R = MatrixXd();
+  for (Index j = 0; j < out.X.cols(); ++j) out.X.col(j).array() *= D.array() * D(j);
+  out.X.diagonal() = variances;
   detail::make_symmetric_from_lower(out.X);
-  VectorXd lambda;
-  if (!detail::symmetric_eigen(S, lambda)) throw std::runtime_error("repairing the matrix: the eigensolver did not converge");
-  out.min_eigenvalue_before = lambda(0);
+  out.min_eigenvalue_before = min_before;
   out.distance = weighted_distance(out.X, C, weights_or_ones(options, C.rows()));
   out.cholesky_ok = detail::has_cholesky(out.X);
   if (auto w = detail::asymmetry_warning(C)) out.warnings.insert(out.warnings.begin(), *w);
