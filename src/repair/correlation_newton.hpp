@@ -19,18 +19,19 @@ struct CorrelationNewtonResult {
 /// min ||X - G||_F over symmetric X >= 0 with diag(X) = b (b > 0), by Newton's method on the dual
 /// theta(y) = ||(G + diag y)_+||_F^2 / 2 - b^T y (Qi & Sun 2006), with Borsdorf & Higham's (2010)
 /// improvements: the Newton equation solved by conjugate gradients preconditioned by the
-/// Jacobian's diagonal, and an Armijo line search on theta. Starts at y = 0 (the caller arranges
-/// diag(G) = b for the usual start y0 = b - diag(G)); `eigenvectors` and `eigenvalues`
-/// (ascending), when given, are G's eigendecomposition and are consumed.
+/// Jacobian's diagonal, and an Armijo line search on theta. Starts at y0 = b - diag(G) (the dual
+/// matrix G + diag(y0) has diagonal b); `eigenvectors` and `eigenvalues` (ascending), when given,
+/// are that matrix's eigendecomposition, and are consumed.
 ///
 /// Stops when ||diag((G + diag y)_+) - b||_2 <= `tolerance`, or at that gradient's own rounding
-/// level when it is larger (see correlation_newton.cpp), or after `max_iterations` steps (the
-/// last iterate, converged = false). Memory: G and one n x n eigenvector matrix, which the
-/// eigendecompositions overwrite in place (LAPACK's dsyevd adds 2 n^2 doubles while it runs), and
-/// during a step the Jacobian's products, at most n^2 r... 3 n r / 2 + r (n - r) doubles for r
-/// positive eigenvalues: about 4 n^2 doubles at the peak. Throws std::runtime_error when an
-/// eigendecomposition fails. Cost per step: one symmetric eigendecomposition (O(n^3)) and a
-/// few products of n x n by n x r matrices per conjugate-gradient iteration.
+/// level when it is larger (2 sqrt(n) eps ||G + diag y||_2: the eigendecomposition it comes from
+/// is exact only for a matrix that near), or after `max_iterations` steps (the last iterate,
+/// converged = false). Memory, in doubles: G and one n x n eigenvector matrix, which every
+/// eigendecomposition overwrites in place (LAPACK's dsyevd adds 2 n^2 while it runs), and during a
+/// step the Jacobian's buffers, 3 n r + r (n - r) for r positive eigenvalues: about 4 n^2 at the
+/// peak. Throws std::runtime_error when an eigendecomposition fails. Cost per step: one symmetric
+/// eigendecomposition (O(n^3)) and, per conjugate-gradient iteration, two products of an n x n by
+/// an n x r matrix (4 n^2 r flops).
 CorrelationNewtonResult correlation_newton(Eigen::MatrixXd G, const Eigen::VectorXd& b, int max_iterations,
                                            double tolerance, Eigen::MatrixXd* eigenvectors = nullptr,
                                            Eigen::VectorXd* eigenvalues = nullptr);
