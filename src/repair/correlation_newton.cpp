@@ -175,7 +175,10 @@ CorrelationNewtonResult correlation_newton(MatrixXd G, const VectorXd& b, int ma
       // its cap while the gradient is large, as for a G whose entries dwarf the diagonal asked
       // for, and the steps are then poor; relative to the whole initial gradient it asks for
       // more conjugate-gradient iterations than the rate needs on well-scaled problems.)
-      step = pcg(V, mu, -F, std::min(1e-2, gradient / initial_rms), 200);
+      // No more than the stop needs, either: a residual of half the stopping level ends the
+      // iteration after this step (Eisenstat and Walker's safeguard, in spirit).
+      const double forcing = std::min(1e-2, std::max(gradient / initial_rms, 0.5 * stop() / gradient));
+      step = pcg(V, mu, -F, forcing, 200);
     }
     // Armijo backtracking on theta (convex, so the Newton step is a descent direction). The
     // current eigenvectors are not needed past the direction: each trial is decomposed in P's
