@@ -18,10 +18,10 @@ inline constexpr int kPsdLsMaxNewton = 40;
 
 /// What psd_ls_newton reports besides its iterate.
 struct PsdLsNewtonInfo {
-  int iterations = 0;                             ///< Newton steps taken
-  int cg_iterations = 0;                          ///< conjugate-gradient iterations, all steps together
+  int iterations = 0;                                  ///< Newton steps taken
+  int cg_iterations = 0;                               ///< conjugate-gradient iterations, all steps together
   std::array<double, kPsdLsMaxNewton + 1> residual{};  ///< ||F(Z_k)||_F / scale, k = 0..iterations
-  bool stalled = false;                           ///< the line search failed (the caller falls back)
+  bool stalled = false;                                ///< the line search failed (the caller falls back)
 };
 
 /// The semismooth Newton method on the normal map of
@@ -41,7 +41,9 @@ struct PsdLsNewtonInfo {
 /// E~ = Omega o D~ (the change of W, zero on g x g), the a-rows of J D = R are the symmetric
 /// positive definite system
 ///
-///     [Q^T (c o (Q E~ Q^T)) Q]_(a rows) + Theta o E~ = R~_(a rows),   Theta_ij = -lambda_j / lambda_i on a x g,
+///     [Q^T (c o (Q E~ Q^T)) Q]_(a rows) + Theta o E~ = R~_(a rows),
+///
+/// with Theta_ij = -lambda_j / lambda_i on a x g,
 ///
 /// solved by preconditioned conjugate gradients (Jacobi, from (Q o Q)^T c (Q o Q)) at O(n^2 k)
 /// per product, and the g x g block of D~ follows from its rows directly. The step is damped
@@ -137,10 +139,10 @@ class PsdLsNewton {
     Matrix rows, T, E;
     product_into(half, false, p.Q, true, rows);  // k x n
     const Matrix Qa = p.Q.rightCols(k);
-    product_into(Qa, false, rows, false, T);     // n x n
+    product_into(Qa, false, rows, false, T);  // n x n
     E = c_.cwiseProduct(T + T.transpose());
     Matrix left, back;
-    product_into(Qa, true, E, false, left);      // k x n
+    product_into(Qa, true, E, false, left);       // k x n
     product_into(left, false, p.Q, false, back);  // k x n: the a-rows
     out.setZero(n_, n_);
     out.bottomRows(k) = back;

@@ -129,13 +129,14 @@ VectorXd pcg(Jacobian& V, double mu, const VectorXd& rhs, double tol, int max_it
 void decompose(const MatrixXd& G, const VectorXd& y, MatrixXd& P, VectorXd& lambda, bool vectors) {
   P = G;  // into P's own storage (the same size): no allocation
   P.diagonal() += y;
-  if (!symmetric_eigen_in_place(P, lambda, vectors)) throw std::runtime_error("the eigensolver did not converge");
+  if (!symmetric_eigen_in_place(P, lambda, vectors))
+    throw std::runtime_error("the eigensolver did not converge");
 }
 
 }  // namespace
 
-CorrelationNewtonResult correlation_newton(MatrixXd G, const VectorXd& b, int max_iterations, double tolerance,
-                                           MatrixXd* eigenvectors, VectorXd* eigenvalues) {
+CorrelationNewtonResult correlation_newton(MatrixXd G, const VectorXd& b, int max_iterations,
+                                           double tolerance, MatrixXd* eigenvectors, VectorXd* eigenvalues) {
   const Index n = G.rows();
   CorrelationNewtonResult out;
   VectorXd y = b - G.diagonal();
