@@ -69,7 +69,9 @@ TEST(NearestCorrelation, OptimalityAndUnitDiagonal) {
     EXPECT_LT((r.X.diagonal().array() - 1.0).abs().maxCoeff(), 1e-14);
     EXPECT_EQ(r.X, r.X.transpose());
     EXPECT_GT(Eigen::SelfAdjointEigenSolver<MatrixXd>(r.X).eigenvalues()(0), -1e-12);
-    if (Eigen::SelfAdjointEigenSolver<MatrixXd>(C).eigenvalues()(0) < 0.0) EXPECT_GT(r.clipped, 0) << n;
+    if (Eigen::SelfAdjointEigenSolver<MatrixXd>(C).eigenvalues()(0) < 0.0) {
+      EXPECT_GT(r.clipped, 0) << n;
+    }
     const MatrixXd D = r.X - C;
     for (int k = 0; k < 20; ++k) {
       const MatrixXd F = g.gaussian(n, 3);

@@ -31,8 +31,12 @@ TEST(OptionTable, EveryEntryIsComplete) {
   std::set<std::string_view> names, cli, python;
   for (const auto& spec : fit_option_table()) {
     EXPECT_TRUE(names.insert(spec.name).second) << spec.name;
-    if (!spec.cli.empty()) EXPECT_TRUE(cli.insert(spec.cli).second) << spec.cli;
-    if (!spec.python.empty()) EXPECT_TRUE(python.insert(spec.python).second) << spec.python;
+    if (!spec.cli.empty()) {
+      EXPECT_TRUE(cli.insert(spec.cli).second) << spec.cli;
+    }
+    if (!spec.python.empty()) {
+      EXPECT_TRUE(python.insert(spec.python).second) << spec.python;
+    }
     EXPECT_NE(spec.set, nullptr) << spec.name;
     EXPECT_NE(spec.get, nullptr) << spec.name;
     EXPECT_FALSE(spec.help.empty()) << spec.name;
