@@ -69,11 +69,20 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
     } catch (const OptionError& e) {
       throw_usage(e);
     }
-    const Eigen::MatrixXd X = load_matrix(options->path, global);
+    io::Table table = io::read_table(options->path, global.read);
+    for (const std::string& w : table.warnings) warn(global, w);
+    const Eigen::MatrixXd X = std::move(table.values);
     if (X.rows() != X.cols()) {
-      throw io::DataError(options->path, 0, 0,
-                          "X is " + std::to_string(X.rows()) + "x" + std::to_string(X.cols()) +
-                              ": a square matrix is needed");
+      std::string problem =
+          "X is " + std::to_string(X.rows()) + "x" + std::to_string(X.cols()) + ": a square matrix is needed";
+      // One row too many in text is most often a header of numbers read as data.
+      if (X.rows() == X.cols() + 1 && table.first_data_line > 0) {
+        problem += "; line " + std::to_string(table.first_data_line) +
+                   ", its first row, looks like a header of column names" +
+                   (global.read.header_row == io::HeaderRow::Absent ? " (read as data because of --no-header)"
+                                                                    : ": delete it or give names that are not numbers");
+      }
+      throw io::DataError(options->path, 0, 0, problem);
     }
     NearestRequest request;
     table.apply(request, [&](const std::string& path) { return read_weights(path, X.rows(), global); });

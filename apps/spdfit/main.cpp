@@ -72,6 +72,11 @@ int main(int argc, char** argv) {
       "--no-index-col", [&global] { global.read.index_column = spdfit::io::IndexColumn::Keep; },
       "The first column of each data file is data, whatever its header or values");
   index_col->excludes(no_index_col);
+  app.add_flag_callback(
+      "--no-header", [&global] { global.read.header_row = spdfit::io::HeaderRow::Absent; },
+      "The first line of each text data file is data. Without this, a first line with no number in it is a "
+      "header row of column names, and so is 0,1,...,k-1 (pandas' header of a frame without column names), "
+      "with a warning");
 
   const std::vector<Command> commands = {
       add_fit_command(app, global),

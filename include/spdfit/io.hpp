@@ -48,18 +48,33 @@ enum class IndexColumn {
   kKeep [[deprecated("use IndexColumn::Keep")]] = Keep,
 };
 
+/// Whether the first line of delimited text is a header row of column names.
+enum class HeaderRow {
+  /// Decided from the file: a first line in which no field is a number is a header; so is a first
+  /// line of k >= 2 fields that is exactly 0, 1, ..., k - 1 (pandas' header of a frame without
+  /// column names, as to_csv(index=False) writes it), taken with a warning. A single field is data.
+  Auto,
+  Present,  ///< the first line is a header row, whatever it holds
+  Absent,   ///< the first line is data (a line of names is then "not a number")
+};
+
 /// Options for reading.
 struct ReadOptions {
   bool allow_nonfinite = false;  ///< NaN and Inf are rejected unless this is set
   IndexColumn index_column = IndexColumn::Auto;  ///< delimited text only (.npy has no labels)
+  HeaderRow header_row = HeaderRow::Auto;        ///< delimited text only
 };
 
 /// A matrix with the column names of its header row (empty when the file had none).
 struct Table {
   Eigen::MatrixXd values;
   std::vector<std::string> column_names;
-  /// What the reader decided for the user to know: a first column of row labels dropped.
+  /// What the reader decided for the user to know: a first column of row labels dropped, pandas'
+  /// header 0, 1, ... taken as column names.
   std::vector<std::string> warnings;
+  /// Delimited text: the 1-based line of the first data row (0 for other formats), so that a
+  /// caller whose shape check fails can point at a first line that may be a header.
+  std::size_t first_data_line = 0;
 };
 
 /// A data file and, for a .mat or .npz file, the array in it ("" when not named).
@@ -81,8 +96,9 @@ FileSpec split_spec(const std::string& path);
 /// "-" for standard input, or delimited text. Text: fields separated by commas, semicolons,
 /// tabs or runs of spaces; CRLF or LF line ends; an optional UTF-8 byte-order mark; lines whose
 /// first non-blank character is '#' or '%' are comments; blank lines are skipped; an optional
-/// header row (a first data line in which no field is a number) gives the column names; a first
-/// column of row labels is dropped or refused as ReadOptions::index_column says.
+/// header row (a first data line in which no field is a number, or pandas' 0, 1, ..., k - 1, as
+/// ReadOptions::header_row says) gives the column names; a first column of row labels is dropped
+/// or refused as ReadOptions::index_column says.
 /// Throws DataError (naming the file, and for text the line and column) on: a missing,
 /// unreadable or empty file, a directory, binary garbage, ragged rows, empty fields, a token
 /// that is not a number, NaN or Inf (unless allowed), no data rows, a malformed .npy.

@@ -87,18 +87,34 @@ void DelimitedParser::parse_line(const Line& line) {
     seen_content_ = true;
     separator_ = detect_separator(line.content);
     separator_line_ = line.number;
-    // pandas' to_csv and R's write.csv leave the index column's header cell empty; their
-    // column names may be numbers (pandas' default names 0, 1, ...), and the line is still a header.
-    const bool index_mark = options_.index_column == IndexColumn::Auto && header_first_cell_empty(line);
-    if (index_mark || is_header(line, separator_)) {
-      keep_header(line);
-      if (index_mark) {
-        drop_first_ = true;
-        warnings_.push_back(source_ + ": the first column holds row labels (its header cell is empty, as pandas and "
-                            "R write an index): dropped; --no-index-col reads it as data (Python: "
-                            "index_col=False)");
+    const HeaderRow header = options_.header_row;
+    if (header == HeaderRow::Absent) {
+      // the first line is data
+    } else {
+      // pandas' to_csv and R's write.csv leave the index column's header cell empty; their
+      // column names may be numbers (pandas' default names 0, 1, ...), and the line is still a header.
+      const bool index_mark = options_.index_column == IndexColumn::Auto && header_first_cell_empty(line);
+      // Without that mark, pandas' default names alone (to_csv(index=False) of a frame made from an
+      // array) would be a row of data that no one measured.
+      const bool pandas_names = header == HeaderRow::Auto && !index_mark && !is_header(line, separator_) &&
+                                counts_columns(line);
+      if (header == HeaderRow::Present || index_mark || pandas_names || is_header(line, separator_)) {
+        keep_header(line);
+        if (index_mark) {
+          drop_first_ = true;
+          warnings_.push_back(source_ + ": the first column holds row labels (its header cell is empty, as pandas "
+                              "and R write an index): dropped; --no-index-col reads it as data (Python: "
+                              "index_col=False)");
+        }
+        if (pandas_names) {
+          warnings_.push_back(source_ + ":" + std::to_string(line.number) + ": the first line, " +
+                              abbreviated_count(line) +
+                              ", is read as a header row (pandas' column names of a frame without names, as "
+                              "to_csv(index=False) writes them), not as data; --no-header reads it as data "
+                              "(Python: header=False)");
+        }
+        return;
       }
-      return;
     }
   }
   const bool first_row = rows_ == 0 && !resumed_;
@@ -215,6 +231,30 @@ bool DelimitedParser::is_header(const Line& line, Separator separator) const {
     }
   }
   return any_name;
+}
+
+// "0,1,2,3": two or more fields, exactly the integers 0, 1, ..., k - 1 in order.
+bool DelimitedParser::counts_columns(const Line& line) const {
+  if (separator_ == Separator::None) return false;
+  FieldSplitter splitter(line.content, separator_);
+  Field field;
+  std::size_t count = 0;
+  while (next_field(line, &splitter, &field)) {
+    const std::string text = field.quoted ? unquote(field) : std::string(field.text);
+    if (trimmed(text) != std::to_string(count)) return false;
+    ++count;
+  }
+  return count >= 2;
+}
+
+// "0, 1, ..., 7" for a line counts_columns accepted (a wide frame's header in full would be long).
+std::string DelimitedParser::abbreviated_count(const Line& line) const {
+  FieldSplitter splitter(line.content, separator_);
+  Field field;
+  std::size_t fields = 0;
+  while (next_field(line, &splitter, &field)) ++fields;
+  if (fields <= 4) return "'" + std::string(line.content) + "'";
+  return "0, 1, ..., " + std::to_string(fields - 1);
 }
 
 // ",Fx,Fy" or R's "","x1": two or more cells, the first empty (quoted or not), the others not.
@@ -390,6 +430,7 @@ Table parse_delimited(std::string_view text, const std::string& source, const Re
   Table table;
   table.column_names = parser.column_names();
   table.warnings = parser.warnings();
+  table.first_data_line = parser.first_data_line();
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   table.values = Eigen::Map<const RowMajor>(parser.values().data(), static_cast<Eigen::Index>(parser.rows()),
                                             static_cast<Eigen::Index>(parser.columns()));

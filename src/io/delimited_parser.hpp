@@ -61,6 +61,8 @@ class DelimitedParser {
   std::vector<double>& values() { return values_; }
   const std::vector<double>& values() const { return values_; }
   std::size_t lines() const { return line_number_; }  ///< lines parsed so far
+  /// The 1-based line of the first data row (0 before it, and in a parser built from a Layout).
+  std::size_t first_data_line() const { return first_data_line_; }
 
  private:
   // One line of the text, without its line end.
@@ -78,6 +80,8 @@ class DelimitedParser {
   bool next_field(const Line& line, FieldSplitter* splitter, Field* field) const;
   bool is_header(const Line& line, Separator separator) const;
   bool header_first_cell_empty(const Line& line) const;
+  bool counts_columns(const Line& line) const;
+  std::string abbreviated_count(const Line& line) const;
   void choose_separator_after_header(const Line& data);
   std::vector<std::string> header_names(std::size_t data_fields) const;
   std::size_t parse_row(const Line& line);

@@ -68,3 +68,31 @@ def test_fit_files_names_x_by_the_files_columns(tmp_path):
         back = pickle.loads(pickle.dumps(r))
         assert (back.row_names, back.column_names) == (r.row_names, r.column_names)
     assert spdfit.fit(A, A, "ls").row_names == []
+
+
+def test_read_table_takes_pandas_unnamed_header_as_names(tmp_path):
+    # pd.DataFrame(M).to_csv(path, index=False) writes 0,1,2 over the rows: names, with a warning.
+    M = np.array([[1.5, 2.0, -3.0], [0.25, 4.0, 5.0]])
+    path = tmp_path / "M.csv"
+    path.write_text("0,1,2\n" + "".join(",".join(repr(v) for v in row) + "\n" for row in M))
+    with pytest.warns(spdfit.SpdfitWarning, match=r"M.csv:1: the first line, '0,1,2', is read as a header row"):
+        values, names = spdfit.read_table(path)
+    assert names == ["0", "1", "2"]
+    np.testing.assert_array_equal(values, M)
+    # header=False: the first line is data; header=True: it is names whatever it holds.
+    np.testing.assert_array_equal(spdfit.read_matrix(path, header=False), np.vstack([[0.0, 1.0, 2.0], M]))
+    values, names = spdfit.read_table(path, header=True)
+    assert names == ["0", "1", "2"] and values.shape == (2, 3)
+    (tmp_path / "N.csv").write_text("7,8\n1,2\n")
+    assert spdfit.read_table(tmp_path / "N.csv", header=True)[1] == ["7", "8"]
+    with pytest.raises(TypeError, match="header must be True, False or None, not str"):
+        spdfit.read_matrix(path, header="yes")
+
+
+def test_a_one_column_file_starting_with_0_is_data(tmp_path):
+    path = tmp_path / "v.csv"
+    path.write_text("0\n1\n2\n")
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        np.testing.assert_array_equal(spdfit.read_matrix(path), [[0.0], [1.0], [2.0]])
