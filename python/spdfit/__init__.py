@@ -190,7 +190,7 @@ def _takes_options(*entries, given=()):
     return decorate
 
 
-def read_matrix(path, *, allow_nonfinite=False, index_col=None):
+def read_matrix(path, *, allow_nonfinite=False, index_col=None, header=None):
     r"""Read a matrix from a data file.
 
     Delimited text (commas, semicolons, tabs or spaces; '#' comments; an optional header row), a
@@ -208,6 +208,12 @@ def read_matrix(path, *, allow_nonfinite=False, index_col=None):
         write one): it is dropped. False: the first column is data. None: a header whose first cell
         is empty marks an index, which is dropped with a SpdfitWarning, and a first column 0, 1, 2,
         ... under any other header raises DataError.
+    header : bool or None, default None
+        Whether the first line of a text file is a header row of column names. None: decided from
+        the file: a line with no number in it is a header, and so is a first line of two or more
+        fields that is exactly 0, 1, ..., k - 1 (what pandas' to_csv(index=False) writes for a
+        frame without column names), with a SpdfitWarning; a single field is data. True: the first
+        line is a header whatever it holds. False: it is data.
 
     Returns
     -------
@@ -224,7 +230,8 @@ def read_matrix(path, *, allow_nonfinite=False, index_col=None):
     Warns
     -----
     SpdfitWarning
-        An index column was found and dropped (index_col=None).
+        An index column was found and dropped (index_col=None), or pandas' header 0, 1, ..., k - 1
+        was read as column names (header=None).
 
     See Also
     --------
@@ -242,10 +249,10 @@ def read_matrix(path, *, allow_nonfinite=False, index_col=None):
     array([[ 1.5 ,  2.  ],
            [-3.  ,  0.25]])
     """
-    return read_table(path, allow_nonfinite=allow_nonfinite, index_col=index_col)[0]
+    return read_table(path, allow_nonfinite=allow_nonfinite, index_col=index_col, header=header)[0]
 
 
-def read_table(path, *, allow_nonfinite=False, index_col=None):
+def read_table(path, *, allow_nonfinite=False, index_col=None, header=None):
     r"""Read a data file as read_matrix does, with the header row's column names.
 
     Parameters
@@ -256,6 +263,8 @@ def read_table(path, *, allow_nonfinite=False, index_col=None):
         Accept NaN and Inf, which are rejected otherwise.
     index_col : bool or None, default None
         Whether the first column holds row labels, as in read_matrix.
+    header : bool or None, default None
+        Whether the first line is a header row, as in read_matrix.
 
     Returns
     -------
@@ -274,7 +283,8 @@ def read_table(path, *, allow_nonfinite=False, index_col=None):
     Warns
     -----
     SpdfitWarning
-        An index column was found and dropped (index_col=None).
+        An index column was found and dropped (index_col=None), or pandas' header 0, 1, ..., k - 1
+        was read as column names (header=None).
 
     See Also
     --------
@@ -293,8 +303,10 @@ def read_table(path, *, allow_nonfinite=False, index_col=None):
     >>> values.shape
     (2, 2)
     """
+    if header is not None and not isinstance(header, bool):
+        raise TypeError(f"header must be True, False or None, not {type(header).__name__}")
     values, names, messages = _spdfit.read_table(_os.fspath(path), allow_nonfinite=allow_nonfinite,
-                                                 index_col=index_col)
+                                                 index_col=index_col, header=header)
     for message in messages:
         _warnings.warn(message, SpdfitWarning, stacklevel=3)
     return values, names
@@ -433,8 +445,10 @@ def fit_files(A_path, B_path, method="auto", **options):
     bootstrap=N runs the streaming bootstrap in the same one pass: the rows are cut into groups of
     4096, each group gets a Poisson(1) count per replicate (keyed by seed, replicate and group), and
     the groups' factors are merged, so weighted, into the replicates' factors. It needs about 100
-    groups (409,600 rows) or more, and warns below that; its numbers agree with fit's in-memory
-    bootstrap within Monte Carlo error, not exactly. The other options are fit's.
+    groups (409,600 rows) or more; its numbers agree with fit's in-memory bootstrap within Monte
+    Carlo error, not exactly. With fewer rows, the files are read again and their rows resampled
+    in memory as fit does (a SpdfitWarning says so) when A and B take at most 256 MiB as doubles;
+    beyond that, or from standard input, DataError. The other options are fit's.
 
     Parameters
     ----------
