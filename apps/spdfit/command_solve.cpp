@@ -30,7 +30,9 @@ Command add_solve_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_flag("--json", options->json, "Print the classification and solution as JSON");
   sub->add_option("-o,--output", options->output, "Write to FILE instead of stdout");
   sub->add_option("--threshold,--rank-tol", options->threshold,
-                  "Relative singular-value cut-off: sigma_i <= T * sigma_max counts as zero (default max(m,n)*eps)")
+                  "Relative singular-value cut-off, applied to A with its columns scaled to unit norm (not to A's "
+                  "raw singular values): sigma_i <= T * sigma_max of the scaled A counts as zero (default "
+                  "max(m,n)*eps)")
       ->check(rank_tolerance());
   sub->add_option("A", options->a_path, "File of A (m x n): delimited text or .npy")->required();
   sub->add_option("b", options->b_path,

@@ -100,6 +100,21 @@ def test_threshold_option_edits_singular_values(spdfit_json, write_csv):
     assert edited["threshold"] == 1e-6
 
 
+def test_threshold_applies_to_the_column_scaled_a_as_the_help_says(spdfit, spdfit_json, write_csv):
+    # Columns of very different units: A's raw singular values are 1 and 1e-6, so a NumPy user's
+    # cut-off 1e-3 * sigma_max would drop one; with its columns scaled to unit norm A is orthogonal
+    # (both singular values 1), and that is the matrix the threshold applies to.
+    U, _ = np.linalg.qr(np.random.default_rng(4).standard_normal((5, 2)))
+    A = U @ np.diag([1.0, 1e-6])
+    raw = np.linalg.svd(A, compute_uv=False)
+    scaled = np.linalg.svd(A / np.linalg.norm(A, axis=0), compute_uv=False)
+    assert raw[1] <= 1e-3 * raw[0] and np.allclose(scaled, 1.0)
+    out = spdfit_json("solve", "--threshold", "1e-3", write_csv("A.csv", A), write_csv("b.csv", np.ones((5, 1))))
+    assert out["rank"] == 2
+    helped = spdfit("solve", "--help")
+    assert "columns scaled to unit norm" in " ".join(helped.stdout.split())
+
+
 def test_b_as_a_row_is_read_as_a_column(spdfit_json, tmp_path):
     (tmp_path / "b.csv").write_text("7,0,-7\n")
     out = spdfit_json("solve", EXAMPLES / "notes_ex1_A.csv", tmp_path / "b.csv")
