@@ -39,6 +39,11 @@ DataPair read_pair(const std::string& a_path, const std::string& b_path, const i
 /// stream->read); the readers' warnings come first in the result's warnings, and the files'
 /// column names are the result's row_names (A's) and column_names (B's). Cost O(m n^2) plus the
 /// method's O(n^3).
+/// With options.bootstrap and `stream`: the streaming (Poisson) bootstrap on groups of 4096 rows,
+/// which needs about 100 groups (409,600 rows). With fewer, the files are read again whole and
+/// their rows resampled one at a time in memory (with a warning saying so) when A and B take at
+/// most stream->bootstrap_memory_bytes (256 MiB) as doubles; beyond that, or when a file is standard input ("-"), io::DataError
+/// saying how many rows the streaming bootstrap needs.
 FitResult fit_files(const std::string& a_path, const std::string& b_path, Method method,
                     const FitOptions& options = {}, const std::optional<StreamOptions>& stream = std::nullopt,
                     const io::ReadOptions& read = {});

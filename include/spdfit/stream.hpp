@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,9 @@ struct StreamOptions {
   io::ReadOptions read;
   /// Told the fraction of A's file read, after each block (text: bytes; .npy: rows).
   ProgressCallback progress;
+  /// fit_files' bootstrap with too few rows for the streaming (Poisson) scheme resamples the rows
+  /// in memory when A and B take at most this many bytes as doubles, and refuses beyond it.
+  std::uint64_t bootstrap_memory_bytes = std::uint64_t{256} << 20;
 };
 
 /// The triangular factor of [A B] for A and B in the files `a_path` and `b_path` (the formats

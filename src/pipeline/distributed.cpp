@@ -240,6 +240,13 @@ DistributedFit fit_files_distributed(const std::string& a_path, const std::strin
   if (options.noise) static_cast<void>(options.noise->resolved(a->columns(), d));
 
   const bool bootstrap = options.bootstrap > 0;
+  // Too few groups for the Poisson scheme, and rows spread over processes cannot be resampled one
+  // at a time in one memory: refused before the pass, alike on every process.
+  if (bootstrap && m < static_cast<std::uint64_t>(detail::kBootstrapMinGroups * detail::kBootstrapGroupRows)) {
+    throw io::DataError(a_path, 0, 0,
+                        detail::too_few_groups(m, "under MPI the rows cannot be resampled one at a time in memory; "
+                                                  "run on one process (without mpirun) for that"));
+  }
   const std::vector<std::uint64_t> first =
       boundaries(m, size, bootstrap ? static_cast<std::uint64_t>(detail::kBootstrapGroupRows) : 1);
   for (int k = 0; k < size; ++k) out.rows_per_process.push_back(first[k + 1] - first[k]);

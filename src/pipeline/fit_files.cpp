@@ -1,8 +1,11 @@
 #include "spdfit/fit_files.hpp"
 
+#include <cstdint>
 #include <stdexcept>
+#include <string>
 
 #include "factor/reduce.hpp"
+#include "io/containers.hpp"
 #include "pipeline/pair_checks.hpp"
 #include "spdfit/options.hpp"
 #include "pipeline/stream_resampling.hpp"
@@ -17,6 +20,17 @@ void attach_read_info(FitResult& result, const detail::PairInfo& info) {
   result.warnings.insert(result.warnings.begin(), info.warnings.begin(), info.warnings.end());
   result.row_names = info.a_names;
   result.column_names = info.b_names;
+}
+
+// "313 KiB", "38 MiB", "6 GiB": rounded up, for messages.
+std::string bytes_text(std::uint64_t bytes) {
+  const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB"};
+  int unit = 0;
+  while (unit < 4 && bytes >= (std::uint64_t{1} << 10)) {
+    bytes = (bytes + 1023) >> 10;
+    ++unit;
+  }
+  return std::to_string(bytes) + " " + units[unit];
 }
 
 std::string shape(const Eigen::MatrixXd& M) { return std::to_string(M.rows()) + "x" + std::to_string(M.cols()); }
@@ -46,14 +60,6 @@ FitResult fit_streamed_bootstrap(Method method, const FitOptions& options, const
   result.bootstrap->scheme = "poisson_groups";
   result.bootstrap->group_rows = detail::kBootstrapGroupRows;
   result.bootstrap->groups = static_cast<Eigen::Index>(factors.groups);
-  if (factors.groups < static_cast<std::uint64_t>(detail::kBootstrapMinGroups)) {
-    result.warnings.push_back("the streaming bootstrap cut the " + std::to_string(data.m()) + " rows into only " +
-                              std::to_string(factors.groups) + " groups of " +
-                              std::to_string(detail::kBootstrapGroupRows) + " (about " +
-                              std::to_string(detail::kBootstrapMinGroups) +
-                              " or more are needed for its standard errors to be reliable): the in-memory bootstrap "
-                              "(without `stream`) resamples single rows");
-  }
   return result;
 }
 
@@ -97,12 +103,47 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
     }
     return pair;
   };
+  auto in_memory = [&] {
+    DataPair data = read_pair(a_path, b_path, read);
+    detail::check_method_fits(method, b_path, data.A.cols(), data.B.cols());
+    if (options.noise) static_cast<void>(options.noise->resolved(data.A.cols(), data.B.cols()));
+    detail::check_enough_rows_for(method, a_path, data.A.rows(), data.A.cols(), data.B.cols());
+    FitResult result = fit(data.A, data.B, method, options);
+    attach_read_info(result, {std::move(data.warnings), std::move(data.a_names), std::move(data.b_names)});
+    return result;
+  };
   if (streamed && options.bootstrap > 0) {
     if (streamed->block_rows < 1) throw std::invalid_argument("block_rows must be at least 1");
     // The streaming bootstrap: Poisson counts on fixed row groups, all in the one pass.
-    return detail::fit_streamed_bootstrap(
-        method, options,
-        detail::stream_resampled_factors(method, readers(), *streamed, options.bootstrap, options.seed), a_path);
+    detail::ResampledFactors factors =
+        detail::stream_resampled_factors(method, readers(), *streamed, options.bootstrap, options.seed);
+    if (factors.groups >= static_cast<std::uint64_t>(detail::kBootstrapMinGroups)) {
+      return detail::fit_streamed_bootstrap(method, options, factors, a_path);
+    }
+    // Too few groups for the Poisson scheme: the rows resampled one at a time in memory, when
+    // they are small enough to hold and can be read again.
+    const auto rows = static_cast<std::uint64_t>(factors.total.rows());
+    const auto values = static_cast<std::uint64_t>(factors.total.n() + factors.total.d());
+    const std::uint64_t bytes = rows * values * sizeof(double);
+    const std::string megabytes = bytes_text(bytes);
+    const std::string budget = bytes_text(streamed->bootstrap_memory_bytes);
+    if (a_path == "-" || b_path == "-") {
+      throw io::DataError(io::detail::kStdinName, 0, 0,
+                          detail::too_few_groups(rows, "standard input is read once, so its rows cannot be "
+                                                       "resampled in memory after the streaming pass; save it to a "
+                                                       "file, or fit without `stream`"));
+    }
+    if (bytes > streamed->bootstrap_memory_bytes) {
+      throw io::DataError(a_path, 0, 0,
+                          detail::too_few_groups(rows, "resampling its rows in memory instead would take " + megabytes +
+                                                           ", more than the " + budget +
+                                                           " allowed for it; give more rows"));
+    }
+    FitResult result = in_memory();
+    result.warnings.push_back(detail::too_few_groups(rows, "its rows (" + megabytes + ", within the " + budget +
+                                                            " allowed) were resampled one at a time in memory instead, "
+                                                            "as without `stream`"));
+    return result;
   }
   if (streamed) {
     if (streamed->block_rows < 1) throw std::invalid_argument("block_rows must be at least 1");
@@ -110,13 +151,7 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
     const TriangularFactor factor = detail::stream_factor_for(method, readers(), *streamed, &info);
     return detail::fit_streamed(method, options, factor, info, a_path);
   }
-  DataPair data = read_pair(a_path, b_path, read);
-  detail::check_method_fits(method, b_path, data.A.cols(), data.B.cols());
-  if (options.noise) static_cast<void>(options.noise->resolved(data.A.cols(), data.B.cols()));
-  detail::check_enough_rows_for(method, a_path, data.A.rows(), data.A.cols(), data.B.cols());
-  FitResult result = fit(data.A, data.B, method, options);
-  attach_read_info(result, {std::move(data.warnings), std::move(data.a_names), std::move(data.b_names)});
-  return result;
+  return in_memory();
 }
 
 }  // namespace spdfit

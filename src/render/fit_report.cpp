@@ -78,8 +78,13 @@ std::string report(const FitResult& result, const ReportHints& hints) {
     out << "failed: " << result.message << "\n";
     return out.str();
   }
-  const auto& b = result.bootstrap;
-  if (b) {
+  // A bootstrap whose replicates had no spread, or fewer than two estimates, has no standard
+  // errors (NaN, with a warning): the estimate is shown alone rather than "+- nan" or "+- 0".
+  const Bootstrap* b = result.bootstrap && result.bootstrap->standard_errors.allFinite() ? &*result.bootstrap : nullptr;
+  if (result.bootstrap && !b) {
+    out << "X (no standard errors: the bootstrap's " << result.bootstrap->replicates
+        << " replicates gave fewer than two different estimates)\n";
+  } else if (b) {
     out << "X +- standard error, bootstrap of " << b->replicates << " replicates (" << b->failed
         << " failed), seed " << b->seed << (b->scheme == "poisson_groups" ? ", Poisson counts on groups of rows" : "")
         << "\n";

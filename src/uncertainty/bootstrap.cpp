@@ -217,7 +217,24 @@ void attach_bootstrap(FitResult& result, const std::vector<Replicate>& replicate
     boot.eigenvalues = summarize_spectrum(estimate, spectra, options.confidence);
   }
 
-  if (present.size() < 2) {
+  // Replicates that agree to rounding (a Poisson bootstrap of one group: each replicate is the
+  // estimate or nothing; data without noise) carry no spread: a standard error of 0, or of
+  // rounding noise, would claim a certainty the data do not show.
+  const bool one_value =
+      present.size() >= 2 && std::all_of(present.begin() + 1, present.end(), [&](const MatrixXd* X) {
+        return (*X - *present.front()).norm() <= kSameReplicateRelative * present.front()->norm();
+      });
+  if (one_value) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    boot.standard_errors.setConstant(nan);
+    boot.bias.setConstant(nan);
+    boot.interval.lower.setConstant(nan);
+    boot.interval.upper.setConstant(nan);
+    boot.eigenvalues.reset();
+    result.warnings.push_back("the bootstrap has no standard errors: its " + std::to_string(present.size()) +
+                              " replicates with an estimate all agree to rounding (at least two different ones are "
+                              "needed)");
+  } else if (present.size() < 2) {
     result.warnings.push_back("the bootstrap has no standard errors: " + std::to_string(boot.failed) + " of " +
                               std::to_string(boot.replicates) + " replicates had no estimate" +
                               (first_failure ? " (" + *first_failure + ")" : std::string()));
@@ -248,6 +265,16 @@ void attach_bootstrap(FitResult& result, const std::vector<Replicate>& replicate
     }
   }
   result.bootstrap = std::move(boot);
+}
+
+std::string too_few_groups(std::uint64_t rows, const std::string& instead) {
+  const auto groups = (rows + static_cast<std::uint64_t>(kBootstrapGroupRows) - 1) /
+                      static_cast<std::uint64_t>(kBootstrapGroupRows);
+  return "the streaming bootstrap resamples groups of " + std::to_string(kBootstrapGroupRows) +
+         " rows and needs about " + std::to_string(kBootstrapMinGroups) + " groups (" +
+         std::to_string(kBootstrapMinGroups * kBootstrapGroupRows) + " rows) for its standard errors, but the data "
+         "have " + std::to_string(rows) + (rows == 1 ? " row (" : " rows (") + std::to_string(groups) +
+         (groups == 1 ? " group)" : " groups)") + ": " + instead;
 }
 
 std::vector<Replicate> run_replicates(std::size_t count, const FitOptions& options,

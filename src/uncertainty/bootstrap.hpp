@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "spdfit/fit_options.hpp"
@@ -19,8 +20,18 @@ namespace spdfit::detail {
 /// Rows per group of the streaming (Poisson) bootstrap, fixed so that the replicates do not
 /// depend on the block size, the threads or the processes.
 constexpr Eigen::Index kBootstrapGroupRows = 4096;
-/// Below this many groups the Poisson bootstrap is too coarse: a warning.
+/// Below this many groups the Poisson bootstrap is too coarse (with one group every replicate is
+/// the estimate or nothing): fit_files resamples rows in memory instead, or refuses.
 constexpr Eigen::Index kBootstrapMinGroups = 100;
+/// Replicates closer than this (relative, Frobenius) to the first agree to rounding: solves of
+/// rescaled copies of the same rows differ by a few hundred eps at moderate condition numbers,
+/// while any sampling spread of real data is orders of magnitude larger.
+constexpr double kSameReplicateRelative = 1e-12;
+
+/// Why the streaming bootstrap cannot give standard errors for `rows` rows of `columns` values
+/// (A's and B's): it needs kBootstrapMinGroups groups of kBootstrapGroupRows rows; `instead` says
+/// what the caller cannot do and what the user can.
+std::string too_few_groups(std::uint64_t rows, const std::string& instead);
 
 /// The factor of replicate r's multinomial resample of the rows of A, B: m rows drawn with
 /// replacement by a generator keyed by (seed, r), each row counted as often as it was drawn

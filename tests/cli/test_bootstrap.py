@@ -99,3 +99,29 @@ def test_usage_errors(spdfit, files, args, message):
 def test_threads_with_bootstrap_alone_is_accepted(spdfit, files):
     out = spdfit("fit", "-m", "spde", "--bootstrap", "10", "--threads", "2", *files)
     assert out.returncode == 0, out.stderr
+
+
+def test_stream_bootstrap_on_one_group_resamples_rows_in_memory(spdfit, files):
+    # 200 rows are one group of 4096: the Poisson scheme would give every replicate the estimate
+    # itself (standard errors of 0). The rows are resampled in memory instead, as without --stream.
+    streamed = spdfit("fit", "-m", "spde", "--stream", "--bootstrap", "200", "--report", *files)
+    assert streamed.returncode == 0, streamed.stderr
+    assert "+- 0.000000" not in streamed.stdout
+    assert ("needs about 100 groups (409600 rows) for its standard errors, but the data have 200 rows "
+            "(1 group): its rows (10 KiB, within the 256 MiB allowed) were resampled one at a time in memory "
+            "instead, as without --stream") in streamed.stderr
+    j = json.loads(spdfit("fit", "-m", "spde", "--stream", "--bootstrap", "200", "--json", *files).stdout)
+    whole = json.loads(spdfit("fit", "-m", "spde", "--bootstrap", "200", "--json", *files).stdout)
+    assert j["bootstrap"]["scheme"] == "multinomial"
+    assert j["standard_errors"] == whole["standard_errors"]
+    assert np.all(np.array(j["standard_errors"]) > 0)
+
+
+def test_stream_bootstrap_on_few_rows_from_standard_input_is_refused(spdfit, files):
+    text = open(files[0]).read()
+    result = spdfit("fit", "-m", "spde", "--stream", "--bootstrap", "50", "-", files[1], input=text)
+    assert result.returncode == 1
+    assert ("<stdin>: the streaming bootstrap resamples groups of 4096 rows and needs about 100 groups (409600 "
+            "rows) for its standard errors, but the data have 200 rows (1 group): standard input is read once"
+            in result.stderr)
+    assert "without --stream" in result.stderr

@@ -106,9 +106,9 @@ def test_streamed_7_3_says_which_variable(spdfit, logs):
 
 
 def test_streamed_7_3_bootstrap_matches_npy(spdfit, tmp_path):
-    # The streaming bootstrap resamples groups of 4096 rows: 50,000 rows make 13 of them.
+    # The streaming bootstrap resamples groups of 4096 rows and needs about 100 of them.
     rng = np.random.default_rng(11)
-    A = rng.standard_normal((50_000, 3))
+    A = rng.standard_normal((100 * 4096 + 3, 3))
     B = A @ X_TRUE + 0.1 * rng.standard_normal(A.shape)
     write_mat73(tmp_path / "log.mat", {"accel": A, "force": B})
     np.save(tmp_path / "A.npy", A)
@@ -119,7 +119,7 @@ def test_streamed_7_3_bootstrap_matches_npy(spdfit, tmp_path):
     run_npy = spdfit("fit", "--method", "ls", "--json", *args, tmp_path / "A.npy", tmp_path / "B.npy")
     assert run_mat.returncode == 0, run_mat.stderr
     mat, npy = json.loads(run_mat.stdout), json.loads(run_npy.stdout)
-    assert mat["bootstrap"]["groups"] == 13
+    assert mat["bootstrap"]["groups"] == 101
     for key in ["X", "standard_errors", "interval", "bias"]:
         np.testing.assert_array_equal(mat[key], npy[key], err_msg=key)
 

@@ -104,13 +104,28 @@ def test_the_output_is_the_same_run_to_run_and_written_once(files, tmp_path):
     assert relative(np.load(out), single(files, "npy", "spde")["X"]) < 1e-12
 
 
-def test_the_streaming_bootstrap_is_the_single_process_one(files):
-    reference = single(files, "npy", "spde", "--bootstrap", "30", "--seed", "4")
+def test_the_streaming_bootstrap_is_the_single_process_one(tmp_path):
+    # The Poisson bootstrap needs about 100 groups of 4096 rows: 409,600 rows and a few more.
+    rng = np.random.default_rng(12)
+    m = 100 * 4096 + 7
+    A = rng.uniform(-5, 5, (m, 2))
+    np.save(tmp_path / "A.npy", A)
+    np.save(tmp_path / "B.npy", A @ np.array([[2.0, 0.5], [0.5, 1.0]]) + 0.05 * rng.standard_normal((m, 2)))
+    reference = single(tmp_path, "npy", "spde", "--bootstrap", "30", "--seed", "4")
+    assert reference["bootstrap"]["scheme"] == "poisson_groups"
     out = fit_json(mpirun(2, "fit", "--method", "spde", "--stream", "--json", "--bootstrap", "30", "--seed", "4",
-                          files / "A.npy", files / "B.npy"))
+                          tmp_path / "A.npy", tmp_path / "B.npy"))
     assert out["rows_per_process"][0] % 4096 == 0  # parts start at whole groups of rows
     se, se_ref = (np.array(o["standard_errors"]) for o in (out, reference))
     assert np.abs(se - se_ref).max() <= 1e-10 * np.abs(se_ref).max()
+
+
+def test_the_streaming_bootstrap_on_too_few_rows_is_refused(files):
+    # One process resamples such data in memory; spread over processes it cannot.
+    result = mpirun(2, "fit", "--method", "spde", "--stream", "--bootstrap", "30", files / "A.npy", files / "B.npy")
+    assert result.returncode == 1
+    assert "needs about 100 groups (409600 rows)" in result.stderr and "have 10007 rows (3 groups)" in result.stderr
+    assert "under MPI" in result.stderr
 
 
 def errors(result):

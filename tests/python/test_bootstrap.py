@@ -145,12 +145,32 @@ def test_stream_bootstrap_agrees_with_in_memory_within_monte_carlo_error(tmp_pat
     np.testing.assert_allclose(one.standard_errors, two.standard_errors, rtol=1e-9)
 
 
-def test_stream_bootstrap_warns_with_few_groups(tmp_path):
+def test_stream_bootstrap_with_few_groups_resamples_rows_in_memory(tmp_path):
+    # 10,000 rows are 3 groups of 4096: the Poisson scheme would be too coarse, so the rows are
+    # resampled one at a time in memory, exactly as fit's bootstrap does, and a warning says so.
     A, B = noisy_pair(np.random.default_rng(8), 10_000, X2, 0.1, 0.1)
     np.save(tmp_path / "A.npy", A)
     np.save(tmp_path / "B.npy", B)
-    with pytest.warns(spdfit.SpdfitWarning, match="only 3 groups"):
-        spdfit.fit_files(tmp_path / "A.npy", tmp_path / "B.npy", "spde", bootstrap=20)
+    with pytest.warns(spdfit.SpdfitWarning, match=r"needs about 100 groups \(409600 rows\).*have 10000 rows "
+                      r"\(3 groups\): its rows \(1 MiB, within the 256 MiB allowed\) were resampled one at a time"):
+        streamed = spdfit.fit_files(tmp_path / "A.npy", tmp_path / "B.npy", "spde", bootstrap=20)
+    memory = quiet_fit(A, B, "spde", bootstrap=20)
+    assert streamed.bootstrap.scheme == "multinomial"
+    np.testing.assert_array_equal(streamed.standard_errors, memory.standard_errors)
+    assert np.all(streamed.standard_errors > 0)
+
+
+def test_no_standard_errors_from_identical_replicates(tmp_path):
+    # Data without noise: every resample has the same least-squares X up to rounding, so the
+    # replicates show no spread, and a standard error of 0 (or of rounding noise) is never shown.
+    A = np.tile(np.eye(2), (10, 1))
+    B = A @ X2
+    with pytest.warns(spdfit.SpdfitWarning, match="the bootstrap has no standard errors: its 50 replicates with "
+                      "an estimate all agree to rounding"):
+        r = spdfit.fit(A, B, "ls", bootstrap=50)
+    assert np.all(np.isnan(r.standard_errors))
+    text = repr(r)
+    assert "+- nan" not in text and "+- 0.0" not in text and "no standard errors" in text
 
 
 def test_failed_replicates_are_counted_and_warned_about():

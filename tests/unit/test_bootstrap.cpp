@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include "spdfit/fit.hpp"
+#include "spdfit/fit_files.hpp"
+#include "spdfit/io.hpp"
+#include "file_test_support.hpp"
 #include "test_support.hpp"
 
 namespace spdfit {
@@ -79,6 +82,50 @@ TEST(Bootstrap, OptionsAreChecked) {
     options.confidence = level;
     EXPECT_FALSE(options.is_valid(&why)) << level;
     EXPECT_NE(why.find("confidence"), std::string::npos);
+  }
+}
+
+TEST(Bootstrap, NoStandardErrorsFromReplicatesThatAgreeToRounding) {
+  // Data without noise: every resample gives X to rounding; never a standard error of 0.
+  Generator g(4);
+  const MatrixXd A = g.gaussian(40, 2);
+  const MatrixXd X = (MatrixXd(2, 2) << 2.0, 0.5, 0.5, 1.0).finished();
+  FitOptions options;
+  options.bootstrap = 30;
+  const FitResult r = fit(A, A * X, Method::LeastSquares, options);
+  ASSERT_TRUE(r.ok() && r.bootstrap);
+  EXPECT_TRUE(r.bootstrap->standard_errors.array().isNaN().all());
+  EXPECT_FALSE(r.bootstrap->eigenvalues.has_value());
+  bool warned = false;
+  for (const std::string& w : r.warnings) warned |= w.find("all agree to rounding") != std::string::npos;
+  EXPECT_TRUE(warned);
+}
+
+class StreamingBootstrapFiles : public test::ScratchDirectory {};
+
+TEST_F(StreamingBootstrapFiles, TooFewGroupsResampleInMemoryWithinTheBudgetAndAreRefusedBeyondIt) {
+  const Data d = noisy(5, 3000, 3);  // 1 group of 4096 rows; A and B take 141 KiB as doubles
+  const std::string a = Path("A.npy"), b = Path("B.npy");
+  io::write_npy(a, d.A);
+  io::write_npy(b, d.B);
+  FitOptions options;
+  options.bootstrap = 20;
+  StreamOptions stream;
+  const FitResult resampled = fit_files(a, b, Method::Spde, options, stream);
+  ASSERT_TRUE(resampled.ok() && resampled.bootstrap);
+  EXPECT_EQ(resampled.bootstrap->scheme, "multinomial");
+  EXPECT_EQ(resampled.bootstrap->standard_errors, fit(d.A, d.B, Method::Spde, options).bootstrap->standard_errors);
+  stream.bootstrap_memory_bytes = 100 << 10;
+  try {
+    (void)fit_files(a, b, Method::Spde, options, stream);
+    FAIL() << "expected a DataError";
+  } catch (const io::DataError& e) {
+    EXPECT_EQ(e.source(), a);
+    EXPECT_NE(std::string(e.what()).find("needs about 100 groups (409600 rows) for its standard errors, but the data "
+                                         "have 3000 rows (1 group): resampling its rows in memory instead would take "
+                                         "141 KiB, more than the 100 KiB allowed"),
+              std::string::npos)
+        << e.what();
   }
 }
 

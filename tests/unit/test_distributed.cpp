@@ -280,10 +280,22 @@ TEST_F(DistributedTest, NpyFilesSplitByTheirHeaders) {
   EXPECT_LT(test::relative_error(mixed[0].fit->result->X, single.X), kTolerance);
 }
 
-TEST_F(DistributedTest, TheStreamingBootstrapIsTheSingleProcessOne) {
+TEST_F(DistributedTest, TheStreamingBootstrapOnTooFewRowsIsRefusedOnEveryProcess) {
   MakeData(30000, 2, 6);
   FitOptions options;
-  options.bootstrap = 40;
+  options.bootstrap = 10;
+  const std::vector<Outcome> outcomes = run_processes(2, a_path_, b_path_, Method::Spde, options);
+  for (const Outcome& outcome : outcomes) {
+    EXPECT_NE(outcome.error.find("needs about 100 groups (409600 rows)"), std::string::npos) << outcome.error;
+    EXPECT_NE(outcome.error.find("30000 rows (8 groups)"), std::string::npos) << outcome.error;
+  }
+}
+
+TEST_F(DistributedTest, TheStreamingBootstrapIsTheSingleProcessOne) {
+  // The Poisson bootstrap needs about 100 groups of 4096 rows.
+  MakeData(100 * 4096 + 5, 2, 6);
+  FitOptions options;
+  options.bootstrap = 20;
   options.seed = 9;
   const FitResult single = SingleProcess(Method::Spde, options);
   ASSERT_TRUE(single.bootstrap);
