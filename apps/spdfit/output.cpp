@@ -58,10 +58,7 @@ void emit(const std::string& text, const std::string& path) {
     std::cout.flush();
     return;
   }
-  std::ofstream file(path, std::ios::binary);
-  file << text;
-  file.close();
-  if (!file) throw io::DataError(path, 0, 0, "cannot write the output file");
+  io::write_text(path, text);
 }
 
 namespace {

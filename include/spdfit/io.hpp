@@ -117,6 +117,9 @@ void write_csv(std::ostream& out, const Eigen::Ref<const Eigen::MatrixXd>& X);
 /// std::invalid_argument unless there is one name per row and per column.
 void write_csv(std::ostream& out, const Eigen::Ref<const Eigen::MatrixXd>& X,
                const std::vector<std::string>& row_names, const std::vector<std::string>& column_names);
+/// Writes `text` to `path` as it is. Throws DataError saying why when the file cannot be written
+/// ("cannot be written (no such directory)", "(permission denied)", "writing failed (...)").
+void write_text(const std::string& path, std::string_view text);
 /// Writes X to `path` as CSV. Throws DataError when the file cannot be written.
 void write_csv(const std::string& path, const Eigen::Ref<const Eigen::MatrixXd>& X);
 /// Writes X to `path` as a .npy file (float64, C order). Throws DataError on failure.

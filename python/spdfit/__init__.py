@@ -22,6 +22,7 @@ input raises ValueError (DataError for files); warnings are SpdfitWarning.
 """
 import numbers as _numbers
 import os as _os
+import sys as _sys
 import warnings as _warnings
 
 import numpy as _np
@@ -308,7 +309,7 @@ def read_table(path, *, allow_nonfinite=False, index_col=None, header=None):
     values, names, messages = _spdfit.read_table(_os.fspath(path), allow_nonfinite=allow_nonfinite,
                                                  index_col=index_col, header=header)
     for message in messages:
-        _warnings.warn(message, SpdfitWarning, stacklevel=3)
+        _warn(message)
     return values, names
 
 
@@ -349,9 +350,23 @@ def write_csv(path, X):
     _spdfit.write_csv(_os.fspath(path), _as_matrix("X", X))
 
 
-def _checked(result, stacklevel=3):
+_PACKAGE_DIR = _os.path.dirname(_os.path.abspath(__file__))
+
+
+def _warn(message):
+    """Warn as SpdfitWarning at the first caller outside this package: the user's line, not a
+    wrapper's inside spdfit (nor sys:1 when a fixed stacklevel overshoots a short stack)."""
+    frame = _sys._getframe(1)
+    level = 2
+    while frame is not None and _os.path.dirname(_os.path.abspath(frame.f_code.co_filename)) == _PACKAGE_DIR:
+        frame = frame.f_back
+        level += 1
+    _warnings.warn(message, SpdfitWarning, stacklevel=level)
+
+
+def _checked(result, stacklevel=None):
     for message in result.warnings:
-        _warnings.warn(f"{result.method}: {_spdfit.spell_options(message)}", SpdfitWarning, stacklevel=stacklevel)
+        _warn(f"{result.method}: {_spdfit.spell_options(message)}")
     if not result.ok:
         raise NumericalError(_spdfit.spell_options(result.message), result)
     return result
@@ -534,7 +549,7 @@ def fit_all(A, B, **options):
     results = {}
     for result in _spdfit.fit_all(A, B, options):
         for message in result.warnings:
-            _warnings.warn(f"{result.method}: {_spdfit.spell_options(message)}", SpdfitWarning, stacklevel=2)
+            _warn(f"{result.method}: {_spdfit.spell_options(message)}")
         results[result.method] = result
     return results
 
@@ -911,7 +926,7 @@ def _repair(entry, C, options):
     bound by name, its warnings as SpdfitWarning."""
     result = _spdfit.nearest(_as_matrix("X" if entry == "nearest_spd" else "C", C), entry, options)
     for message in result.warnings:
-        _warnings.warn(f"{entry}: {_spdfit.spell_options(message)}", SpdfitWarning, stacklevel=3)
+        _warn(f"{entry}: {_spdfit.spell_options(message)}")
     return result
 
 
@@ -1126,7 +1141,7 @@ def solve(A, b, *, threshold=None):
     """
     result = _spdfit.solve(_as_matrix("A", A), _as_matrix("b", b), threshold, _np.ndim(b) == 1)
     for message in result.warnings:
-        _warnings.warn(message, SpdfitWarning, stacklevel=2)
+        _warn(message)
     if not result.ok:
         raise NumericalError(result.message, result)
     return result

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "file_error.hpp"
 #include "format_libraries.hpp"
 #include "npy_layout.hpp"
 #include "parse.hpp"
@@ -601,6 +602,7 @@ FileSpec split_spec(const std::string& path) {
 
 void write_mat(const std::string& path, const Eigen::Ref<const Eigen::MatrixXd>& X, const std::string& name) {
   const detail::Matio& lib = detail::matio(path);
+  detail::check_writable(path);  // libmatio says only that it failed, not why
   lib.Mat_LogInitFunc("spdfit", detail::quiet_log);
   detail::MatFile mat(lib.Mat_CreateVer(path.c_str(), nullptr, MAT_FT_MAT5));
   if (!mat) throw DataError(path, 0, 0, "cannot be written as a .mat file");

@@ -1,5 +1,6 @@
 // The delimited-text reader: CSV, semicolon-separated (European spreadsheets), tab-separated,
 // and space-aligned columns (MATLAB's save -ascii).
+#include <cctype>
 #include <cstddef>
 #include <string>
 #include <string_view>
@@ -371,12 +372,32 @@ double DelimitedParser::parse_value(const Line& line, const Field& field) const 
 void DelimitedParser::fail_empty_field(const Line& line, const Field& field, std::size_t index) const {
   const bool tab = separator_ == Separator::Tab;
   const std::string one = tab ? "a tab" : separator_name(separator_);
+  // pandas' to_csv writes a missing value (NaN) as nothing at all, the usual source of these.
+  const std::string hint = "; a missing value? pandas' to_csv writes NaN as an empty field (drop such rows first)";
   if (field.offset >= line.content.size()) {
-    fail(line, line.content.size() - 1, "empty field: the line ends with " + one);
+    fail(line, line.content.size() - 1, "empty field: the line ends with " + one + hint);
   }
-  if (index == 0) fail(line, field.offset, "empty field: the line starts with " + one);
-  fail(line, field.offset, "empty field: nothing between two " + separator_name(separator_));
+  if (index == 0) fail(line, field.offset, "empty field: the line starts with " + one + hint);
+  fail(line, field.offset, "empty field: nothing between two " + separator_name(separator_) + hint);
 }
+
+namespace {
+// "2024-01-31", "10:15:02.5", "2024-01-31T10:15:02Z", "31/01/2024": a date or time of day, as a
+// log's first column holds one.
+bool looks_like_timestamp(std::string_view t) {
+  if (t.empty() || !std::isdigit(static_cast<unsigned char>(t[0]))) return false;
+  bool mark = false;
+  for (char c : t) {
+    if (c == '-' || c == ':' || c == '/') {
+      mark = true;
+    } else if (!std::isdigit(static_cast<unsigned char>(c)) && c != '.' && c != 'T' && c != 'Z' && c != '+' &&
+               c != ' ') {
+      return false;
+    }
+  }
+  return mark;
+}
+}  // namespace
 
 // Says why a field is not a number, pointing at a separator the file does not use when there
 // is one, because a mixed-up separator is the usual cause.
@@ -394,7 +415,9 @@ void DelimitedParser::fail_not_a_number(const Line& line, const Field& field) co
     }
   }
   std::string problem = quote_token(t) + " is not a number";
-  if (separator_ == Separator::Semicolon && t.find(',') != std::string_view::npos) {
+  if (field.offset <= 1 && looks_like_timestamp(t)) {
+    problem += "; a timestamp in the first column? --index-col drops it (Python: index_col=True)";
+  } else if (separator_ == Separator::Semicolon && t.find(',') != std::string_view::npos) {
     problem += " (decimal comma? use '.' for decimals)";
   } else if (t.find(' ') != std::string_view::npos) {
     problem += "; " + separator_origin();

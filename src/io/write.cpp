@@ -8,6 +8,7 @@
 #include <ostream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "file_error.hpp"
@@ -52,7 +53,10 @@ void append_double(std::string* text, double value) {
   } else if (std::isinf(value)) {
     text->append(value < 0 ? "-inf" : "inf");
   } else {
-    // Without a precision, to_chars writes the shortest text that reads back exactly.
+    // Without a precision, to_chars writes the shortest text that reads back exactly. A negative
+    // zero (an estimate's off-diagonal entry of a decoupled problem) is written as 0, to which it
+    // compares equal: "-0" in a result reads as a sign the number does not have.
+    if (value == 0.0) value = 0.0;
     const std::to_chars_result result = std::to_chars(buffer, buffer + sizeof(buffer), value);
     text->append(buffer, result.ptr);
   }

@@ -7,17 +7,28 @@
 
 namespace spdfit {
 
+namespace {
+// "-0", "-0.000": a value that rounds to zero is shown without a sign it does not show.
+std::string without_negative_zero(const char* text) {
+  if (text[0] != '-') return text;
+  for (const char* c = text + 1; *c != '\0' && *c != 'e'; ++c) {
+    if (*c != '0' && *c != '.') return text;
+  }
+  return text + 1;
+}
+}  // namespace
+
 std::string format_number(double value, Precision precision) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.*g", static_cast<int>(precision), value);
-  return buffer;
+  return without_negative_zero(buffer);
 }
 
 std::string format_fixed(double value, int decimals) {
   if (std::isnan(value)) return "-";
   char buffer[48];
   std::snprintf(buffer, sizeof buffer, std::abs(value) < 1e5 ? "%.*f" : "%.*e", decimals, value);
-  return buffer;
+  return without_negative_zero(buffer);
 }
 
 std::string format_percent(double fraction, Precision precision) {

@@ -96,3 +96,20 @@ def test_a_one_column_file_starting_with_0_is_data(tmp_path):
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         np.testing.assert_array_equal(spdfit.read_matrix(path), [[0.0], [1.0], [2.0]])
+
+
+def test_warnings_point_at_the_callers_line(tmp_path):
+    import inspect
+    import warnings
+    path = tmp_path / "M.csv"
+    path.write_text("0,1\n1.5,2\n3,4\n5,7\n")
+    A = np.array([[1.0, 0.0], [0.0, 0.0], [2.0, 0.0]])  # rank-deficient: ls warns
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        line = inspect.currentframe().f_lineno + 1
+        spdfit.read_matrix(path)
+        spdfit.least_squares(A, A)
+    assert len(caught) >= 2
+    for w in caught:
+        assert w.filename == __file__, (w.filename, str(w.message))
+    assert caught[0].lineno == line and caught[-1].lineno == line + 1

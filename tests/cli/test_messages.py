@@ -1,0 +1,56 @@
+"""Messages where new users meet them: a timestamp column names --index-col, an empty cell says it
+may be pandas' NaN, an output file that cannot be written says why (CSV, .mat and .npy alike), and a
+negative zero is printed as 0."""
+import numpy as np
+import pytest
+
+X_TRUE = np.array([[2.0, 0.5], [0.5, 1.0]])
+
+
+@pytest.fixture
+def pair(tmp_path):
+    rng = np.random.default_rng(35)
+    A = rng.uniform(-5, 5, (12, 2))
+    B = A @ X_TRUE + 1e-3 * rng.standard_normal(A.shape)
+    np.savetxt(tmp_path / "A.csv", A, delimiter=",", fmt="%.17g")
+    np.savetxt(tmp_path / "B.csv", B, delimiter=",", fmt="%.17g")
+    return tmp_path
+
+
+def test_a_timestamp_column_names_index_col(spdfit, pair):
+    log = pair / "log.csv"
+    log.write_text("time,a1,a2\n2024-01-31 10:15:02,1.5,2\n2024-01-31 10:15:03,3,4\n")
+    result = spdfit("fit", "--method", "ls", str(log), str(pair / "B.csv"))
+    assert result.returncode == 1
+    assert ("log.csv:2:1: '2024-01-31 10:15:02' is not a number; a timestamp in the first column? --index-col "
+            "drops it") in result.stderr
+
+
+def test_an_empty_cell_may_be_pandas_nan(spdfit, pair):
+    holes = pair / "holes.csv"
+    holes.write_text("a1,a2\n1.5,\n3,4\n")
+    result = spdfit("fit", "--method", "ls", str(holes), str(pair / "B.csv"))
+    assert result.returncode == 1
+    assert "holes.csv:2:4: empty field: the line ends with ','; a missing value? pandas' to_csv writes NaN" \
+        in result.stderr
+
+
+@pytest.mark.parametrize("name", ["X.csv", "X.mat", "X.npy"])
+def test_an_output_file_that_cannot_be_written_says_why(spdfit, pair, name):
+    target = pair / "missing" / name
+    result = spdfit("fit", "--method", "spde", "-o", str(target), str(pair / "A.csv"), str(pair / "B.csv"))
+    assert result.returncode == 1
+    assert f"{target}: cannot be written (no such directory)" in result.stderr
+
+
+def test_a_negative_zero_is_printed_as_0(spdfit, tmp_path):
+    # A decoupled problem: spde's off-diagonal entries are zeros, whatever their sign in arithmetic.
+    A = np.diag([1.0, 2.0, 4.0]).repeat(2, axis=0)
+    (tmp_path / "A.csv").write_text("".join(",".join(repr(v) for v in r) + "\n" for r in A))
+    (tmp_path / "B.csv").write_text("".join(",".join(repr(v) for v in r) + "\n" for r in -A @ -np.eye(3)))
+    result = spdfit("fit", "--method", "procrustes", str(tmp_path / "A.csv"), str(tmp_path / "B.csv"))
+    assert result.returncode == 0, result.stderr
+    assert "-0," not in result.stdout and not any(cell == "-0" for line in result.stdout.split()
+                                                    for cell in line.split(","))
+    assert "-0.0000" not in spdfit("fit", "--method", "procrustes", "--report", str(tmp_path / "A.csv"),
+                                   str(tmp_path / "B.csv")).stdout
