@@ -118,7 +118,7 @@ Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
            "III.3);\n"
         << "beyond the seeds: spd-tls (total least squares over the SPD matrices), psd-ls (least squares over "
            "X >= 0)\n"
-        << "and auto (spde or spd-tls, chosen from the data).\n\n"
+        << "and auto (spde, spd-tls or psd-ls, chosen from the data).\n\n"
         << demo::tables(results) << demo::findings(results);
     char line[200];
     std::snprintf(

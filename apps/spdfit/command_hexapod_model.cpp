@@ -1,6 +1,7 @@
 // spdfit hexapod model [--geometry G.json] [--json] [--write-geometry FILE] [-o FILE]: the Jacobian,
 // the joint-space mass-inertia matrix M_p and the modes of a hexapod.
 #include <memory>
+#include <iostream>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
@@ -49,7 +50,12 @@ Command add_hexapod_model(CLI::App& parent, const GlobalOptions&) {
 
   auto run = [cli]() {
     const hexapod::Geometry geometry = load_geometry(cli->geometry);
-    if (!cli->write_geometry.empty()) emit(hexapod::geometry_json(geometry), cli->write_geometry);
+    if (!cli->write_geometry.empty()) {
+      emit(hexapod::geometry_json(geometry), cli->write_geometry);
+      // On stderr: stdout carries the model, which may be piped on.
+      std::cerr << "spdfit: wrote the geometry to " << cli->write_geometry << " (edit it, then --geometry "
+                << cli->write_geometry << ")\n";
+    }
     const hexapod::ModelDescription model = hexapod::describe(geometry);
     const std::string source = cli->geometry.empty() ? kBuiltInName : cli->geometry;
     if (cli->json) {

@@ -69,7 +69,8 @@ from . import _blas_core  # noqa: E402,F401  (warns once if OpenBLAS runs generi
 def _as_matrix(name, value):
     """A float64 2-D array from any real numeric array-like; a 1-D array is one column."""
     array = _np.asarray(value)
-    if array.dtype.kind not in "fiu":
+    # Booleans read as 0 and 1, as the command line reads a boolean .npy file.
+    if array.dtype.kind not in "fiub":
         raise ValueError(f"{name} must be a real numeric array, got dtype {array.dtype}")
     if array.ndim == 1:
         array = array[:, None]

@@ -32,9 +32,28 @@ void check_shapes(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Ma
   }
 }
 
+namespace {
+// "A contains NaN or Inf: NaN in row 3, column 2 (counting from 1; A[2, 1] in NumPy)": the first
+// such entry, row by row, as a user looks for it.
+void check_finite_named(const Eigen::Ref<const MatrixXd>& M, const char* name) {
+  if (M.allFinite()) return;
+  for (Index i = 0; i < M.rows(); ++i) {
+    for (Index j = 0; j < M.cols(); ++j) {
+      const double v = M(i, j);
+      if (std::isfinite(v)) continue;
+      const std::string what = std::isnan(v) ? "NaN" : v > 0 ? "Inf" : "-Inf";
+      throw std::invalid_argument(std::string(name) + " contains NaN or Inf: " + what + " in row " +
+                                  std::to_string(i + 1) + ", column " + std::to_string(j + 1) +
+                                  " (counting from 1; " + name + "[" + std::to_string(i) + ", " + std::to_string(j) +
+                                  "] in NumPy)");
+    }
+  }
+}
+}  // namespace
+
 void check_finite(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B) {
-  if (!A.allFinite()) throw std::invalid_argument("A contains NaN or Inf");
-  if (!B.allFinite()) throw std::invalid_argument("B contains NaN or Inf");
+  check_finite_named(A, "A");
+  check_finite_named(B, "B");
 }
 
 std::string too_few_rows(Index m, Index n) {

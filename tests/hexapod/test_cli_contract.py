@@ -75,7 +75,9 @@ def test_simulate_truth_from_a_file_and_from_a_geometry(cli, tmp_path):
     np.savetxt(tmp_path / "X.csv", X, delimiter=",")
     cli("hexapod", "simulate", "--noise-var", 0.1, "--truth", "X.csv", "--out", "three")
     assert read_csv(tmp_path / "three" / "A.csv").shape == (12, 3)
-    cli("hexapod", "model", "--write-geometry", "cube.json")
+    wrote = cli("hexapod", "model", "--write-geometry", "cube.json")
+    assert "spdfit: wrote the geometry to cube.json" in wrote.stderr  # not silently, beside the model
+    assert "Joint-space mass-inertia matrix" in wrote.stdout
     cli("hexapod", "simulate", "--noise-var", 0.1, "--geometry", "cube.json", "--out", "cube")
     model = json.loads(cli("hexapod", "model", "--geometry", "cube.json", "--json").stdout)
     assert np.allclose(read_csv(tmp_path / "cube" / "truth.csv"), model["mass_matrix"], rtol=1e-15, atol=0)

@@ -113,3 +113,18 @@ def test_warnings_point_at_the_callers_line(tmp_path):
     for w in caught:
         assert w.filename == __file__, (w.filename, str(w.message))
     assert caught[0].lineno == line and caught[-1].lineno == line + 1
+
+
+def test_a_nan_is_named_by_its_row_and_column():
+    A = np.arange(12.0).reshape(6, 2)
+    A[2, 1] = np.nan
+    with pytest.raises(ValueError, match=r"A contains NaN or Inf: NaN in row 3, column 2 \(counting from 1; "
+                       r"A\[2, 1\] in NumPy\)"):
+        spdfit.fit(A, np.ones((6, 2)), "spde")
+
+
+def test_boolean_arrays_are_read_as_0_and_1():
+    A = np.array([[True, False], [False, True], [True, True]])
+    B = A.astype(float) @ np.array([[2.0, 0.5], [0.5, 1.0]])
+    np.testing.assert_allclose(spdfit.fit(A, B, "ls").X, np.linalg.lstsq(A.astype(float), B, rcond=None)[0],
+                               rtol=1e-12)
