@@ -298,6 +298,15 @@ void bootstrap_in_memory(FitResult& result, const Eigen::Ref<const MatrixXd>& A,
       run_replicates(static_cast<std::size_t>(options.bootstrap), options,
                      [&](std::size_t r) { return refit(resample_rows(A, B, options.seed, r), options, result); });
   attach_bootstrap(result, replicates, options, full_data);
+  // Each replicate refactors all m rows (O(m n^2) each); from the rows the streaming bootstrap
+  // needs on, its one pass over groups of rows is the cheaper way.
+  const auto enough_for_groups = static_cast<Index>(kBootstrapMinGroups * kBootstrapGroupRows);
+  if (A.rows() >= enough_for_groups) {
+    result.warnings.push_back("the bootstrap refactored all " + std::to_string(A.rows()) + " rows for each of its " +
+                              std::to_string(options.bootstrap) +
+                              " replicates; with `stream` it resamples groups of rows in the one pass over the "
+                              "files, which is much faster at this size");
+  }
 }
 
 }  // namespace spdfit::detail

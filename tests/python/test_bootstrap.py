@@ -227,3 +227,15 @@ def test_spd_tls_coverage_on_the_thesis_model_at_m_1000():
 
     rate = coverage(300, trial)
     assert np.all((0.90 <= rate) & (rate <= 0.98)), rate
+
+
+def test_an_in_memory_bootstrap_on_many_rows_suggests_streaming():
+    # From 409,600 rows (100 groups of 4096) on, the streaming bootstrap's one pass is the cheaper way.
+    A, B = noisy_pair(np.random.default_rng(10), 100 * 4096, X2, 0.1, 0.1)
+    with pytest.warns(spdfit.SpdfitWarning, match=r"refactored all 409600 rows for each of its 2 replicates"):
+        spdfit.fit(A, B, "ls", bootstrap=2)
+    import warnings
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        spdfit.fit(A[:-1], B[:-1], "ls", bootstrap=2)
+    assert not any("refactored" in str(w.message) for w in caught)
