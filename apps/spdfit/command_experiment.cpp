@@ -120,7 +120,7 @@ void add_simulation(CLI::App* sub, SimulationCli& simulation, bool noise_require
              "Variance of the noise in B when it differs from A's (default: --noise-var, as the thesis)")
           ->check(non_negative());
   sub->add_option("--samples", simulation.options.samples, "Samples m (rows of A and B)")
-      ->check(CLI::Range(Eigen::Index{6}, Eigen::Index{100000000}))
+      ->check(integer_in(6, 100000000))
       ->capture_default_str();
   sub->add_option("--signal-var", simulation.options.signal_var,
                   "Variance of the true accelerations, uniform on [-sqrt(3 S), sqrt(3 S)] (thesis: 25/3)")

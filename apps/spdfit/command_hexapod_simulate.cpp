@@ -35,7 +35,7 @@ Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global) {
       "simulate",
       "Simulated accelerations A and base forces B = A M_p with noise (the thesis' appendix-B generator)");
   sub->add_option("--samples", cli->options.samples, "Samples m (rows of A and B)")
-      ->check(CLI::Range(Eigen::Index{1}, Eigen::Index{100000000}))
+      ->check(integer_in(1, 100000000))
       ->capture_default_str();
   auto* noise_var =
       sub->add_option("--noise-var", cli->options.noise_var,

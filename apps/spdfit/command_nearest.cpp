@@ -69,15 +69,15 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
     } catch (const OptionError& e) {
       throw_usage(e);
     }
-    io::Table table = io::read_table(options->path, global.read);
-    for (const std::string& w : table.warnings) warn(global, w);
-    const Eigen::MatrixXd X = std::move(table.values);
+    io::Table file = io::read_table(options->path, global.read);
+    for (const std::string& w : file.warnings) warn(global, w);
+    const Eigen::MatrixXd X = std::move(file.values);
     if (X.rows() != X.cols()) {
       std::string problem =
           "X is " + std::to_string(X.rows()) + "x" + std::to_string(X.cols()) + ": a square matrix is needed";
       // One row too many in text is most often a header of numbers read as data.
-      if (X.rows() == X.cols() + 1 && table.first_data_line > 0) {
-        problem += "; line " + std::to_string(table.first_data_line) +
+      if (X.rows() == X.cols() + 1 && file.first_data_line > 0) {
+        problem += "; line " + std::to_string(file.first_data_line) +
                    ", its first row, looks like a header of column names" +
                    (global.read.header_row == io::HeaderRow::Absent ? " (read as data because of --no-header)"
                                                                     : ": delete it or give names that are not numbers");

@@ -101,16 +101,30 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     std::string message = e.what();
     // CLI11 reports an unknown first word only as a missing subcommand: name it.
+    // The command's words (`nearest`, `hexapod simulate`), after any global options, name its help.
+    int first = 1;
+    while (first < argc && argv[first][0] == '-') ++first;
     std::string known;
-    bool is_command = false;
+    const CLI::App* command_app = nullptr;
     for (const Command& command : commands) {
       known += (known.empty() ? "" : ", ") + command.app->get_name();
-      if (argc > 1 && command.app->get_name() == argv[1]) is_command = true;
+      if (first < argc && command.app->get_name() == argv[first]) command_app = command.app;
     }
-    if (argc > 1 && argv[1][0] != '-' && !is_command) {
-      message = std::string("unknown command '") + argv[1] + "' (commands: " + known + ")";
+    if (first < argc && command_app == nullptr && first == 1) {
+      message = std::string("unknown command '") + argv[first] + "' (commands: " + known + ")";
     }
-    const std::string help = is_command ? std::string("spdfit ") + argv[1] + " --help" : "spdfit --help";
+    std::string help = "spdfit --help";
+    if (command_app != nullptr) {
+      help = std::string("spdfit ") + argv[first];
+      for (int k = first + 1; k < argc && argv[k][0] != '-'; ++k) {
+        const std::string word = argv[k];
+        const auto named = command_app->get_subcommands([&](const CLI::App* s) { return s->get_name() == word; });
+        if (named.empty()) break;
+        command_app = named.front();
+        help += " " + word;
+      }
+      help += " --help";
+    }
     std::cerr << "spdfit: error: " << message << "\nRun '" << help << "' for usage.\n";
     return kExitUsageError;
   }

@@ -28,6 +28,23 @@ CLI::Validator number_validator(Accepts accepts, const std::string& what, const 
       shown);
 }
 
+/// An integer in [lo, hi]: "'2.5' is not an integer in [1, 100000000]" (CLI11's range says only
+/// that 2.5 is out of range, or that the arguments were not expected).
+inline CLI::Validator integer_in(long long lo, long long hi) {
+  const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  return CLI::Validator(
+      [lo, hi, range](std::string& text) -> std::string {
+        try {
+          std::size_t used = 0;
+          const long long value = std::stoll(text, &used);
+          if (used == text.size() && value >= lo && value <= hi) return "";
+        } catch (const std::exception&) {
+        }
+        return "'" + text + "' is not an integer in " + range;
+      },
+      "INTEGER in " + range);
+}
+
 /// A finite number >= 0.
 inline CLI::Validator non_negative() {
   return number_validator([](double v) { return std::isfinite(v) && v >= 0.0; }, "finite number >= 0",

@@ -64,6 +64,16 @@ void append_double(std::string* text, double value) {
 
 }  // namespace
 
+namespace detail {
+void check_writable(const std::string& path) { open_for_writing(path).close(); }
+}  // namespace detail
+
+void write_text(const std::string& path, std::string_view text) {
+  std::ofstream out = open_for_writing(path);
+  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  finish_writing(out, path);
+}
+
 std::string format_double(double value) {
   std::string text;
   append_double(&text, value);

@@ -131,7 +131,7 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
       throw io::DataError(io::detail::kStdinName, 0, 0,
                           detail::too_few_groups(rows, "standard input is read once, so its rows cannot be "
                                                        "resampled in memory after the streaming pass; save it to a "
-                                                       "file, or fit without `stream`"));
+                                                       "file, or fit it in memory without streaming"));
     }
     if (bytes > streamed->bootstrap_memory_bytes) {
       throw io::DataError(a_path, 0, 0,
@@ -141,8 +141,8 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
     }
     FitResult result = in_memory();
     result.warnings.push_back(detail::too_few_groups(rows, "its rows (" + megabytes + ", within the " + budget +
-                                                            " allowed) were resampled one at a time in memory instead, "
-                                                            "as without `stream`"));
+                                                            " allowed) were resampled one at a time in memory instead "
+                                                            "(the in-memory bootstrap)"));
     return result;
   }
   if (streamed) {

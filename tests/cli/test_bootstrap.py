@@ -109,7 +109,7 @@ def test_stream_bootstrap_on_one_group_resamples_rows_in_memory(spdfit, files):
     assert "+- 0.000000" not in streamed.stdout
     assert ("needs about 100 groups (409600 rows) for its standard errors, but the data have 200 rows "
             "(1 group): its rows (10 KiB, within the 256 MiB allowed) were resampled one at a time in memory "
-            "instead, as without --stream") in streamed.stderr
+            "instead (the in-memory bootstrap)") in streamed.stderr
     j = json.loads(spdfit("fit", "-m", "spde", "--stream", "--bootstrap", "200", "--json", *files).stdout)
     whole = json.loads(spdfit("fit", "-m", "spde", "--bootstrap", "200", "--json", *files).stdout)
     assert j["bootstrap"]["scheme"] == "multinomial"
@@ -124,4 +124,4 @@ def test_stream_bootstrap_on_few_rows_from_standard_input_is_refused(spdfit, fil
     assert ("<stdin>: the streaming bootstrap resamples groups of 4096 rows and needs about 100 groups (409600 "
             "rows) for its standard errors, but the data have 200 rows (1 group): standard input is read once"
             in result.stderr)
-    assert "without --stream" in result.stderr
+    assert "save it to a file, or fit it in memory without streaming" in result.stderr

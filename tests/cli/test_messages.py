@@ -54,3 +54,21 @@ def test_a_negative_zero_is_printed_as_0(spdfit, tmp_path):
                                                     for cell in line.split(","))
     assert "-0.0000" not in spdfit("fit", "--method", "procrustes", "--report", str(tmp_path / "A.csv"),
                                    str(tmp_path / "B.csv")).stdout
+
+
+def test_an_unknown_option_names_the_commands_help(spdfit, pair):
+    for args, help in ((["nearest", "--bogus", "x.csv"], "spdfit nearest --help"),
+                       (["-q", "nearest", "--bogus", "x.csv"], "spdfit nearest --help"),
+                       (["hexapod", "simulate", "--bogus"], "spdfit hexapod simulate --help")):
+        result = spdfit(*args)
+        assert result.returncode == 2
+        assert f"Run '{help}' for usage." in result.stderr, (args, result.stderr)
+
+
+def test_a_sample_count_must_be_an_integer(spdfit, tmp_path):
+    result = spdfit("hexapod", "simulate", "--noise-var", "1", "--samples", "2.5", "--out", str(tmp_path / "s"))
+    assert result.returncode == 2
+    assert "--samples: '2.5' is not an integer in [1, 100000000]" in result.stderr
+    result = spdfit("experiment", "thesis", "--samples", "2.5")
+    assert result.returncode == 2
+    assert "'2.5' is not an integer in [6, 100000000]" in result.stderr

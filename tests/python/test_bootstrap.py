@@ -152,7 +152,7 @@ def test_stream_bootstrap_with_few_groups_resamples_rows_in_memory(tmp_path):
     np.save(tmp_path / "A.npy", A)
     np.save(tmp_path / "B.npy", B)
     with pytest.warns(spdfit.SpdfitWarning, match=r"needs about 100 groups \(409600 rows\).*have 10000 rows "
-                      r"\(3 groups\): its rows \(1 MiB, within the 256 MiB allowed\) were resampled one at a time"):
+                      r"\(3 groups\): its rows \(313 KiB, within the 256 MiB allowed\) were resampled one at a time"):
         streamed = spdfit.fit_files(tmp_path / "A.npy", tmp_path / "B.npy", "spde", bootstrap=20)
     memory = quiet_fit(A, B, "spde", bootstrap=20)
     assert streamed.bootstrap.scheme == "multinomial"

@@ -124,7 +124,25 @@ def test_a_nan_is_named_by_its_row_and_column():
 
 
 def test_boolean_arrays_are_read_as_0_and_1():
-    A = np.array([[True, False], [False, True], [True, True]])
+    A = np.array([[True, False], [False, True], [True, True], [True, False], [False, True], [True, True]])
     B = A.astype(float) @ np.array([[2.0, 0.5], [0.5, 1.0]])
     np.testing.assert_allclose(spdfit.fit(A, B, "ls").X, np.linalg.lstsq(A.astype(float), B, rcond=None)[0],
                                rtol=1e-12)
+
+
+def test_python_refuses_what_the_command_line_refuses():
+    A = np.random.default_rng(1).standard_normal((20, 2))
+    with pytest.raises(TypeError, match="method must be a str"):
+        spdfit.fit(A, A, method=None)
+    for name in ("bootstrap", "threads"):
+        with pytest.raises(TypeError, match=f"{name} must be an int, got NoneType"):
+            spdfit.fit(A, A, "ls", **{name: None})
+    with pytest.raises(TypeError, match="not NoneType"):
+        spdfit.read_matrix(None)
+    for name, value in (("confidence", 0.9), ("seed", 3)):
+        with pytest.raises(ValueError, match=f"{name} applies to the bootstrap"):
+            spdfit.fit(A, A, "ls", **{name: value})
+    with pytest.raises(TypeError, match="keep_diag must be a bool, got str"):
+        spdfit.nearest_spd(np.eye(2), keep_diag="yes")
+    with pytest.raises(ValueError, match=r"max_iter must be an integer in \[1, 1000000\], got 0"):
+        spdfit.fit(A, A, "spd-tls", max_iter=0)
