@@ -365,9 +365,12 @@ def _warn(message):
     _warnings.warn(message, SpdfitWarning, stacklevel=level)
 
 
-def _checked(result, stacklevel=None):
+def _checked(result, files=()):
+    """Warns of the result's warnings (the method's with its name first; a reader's, which name
+    one of `files`, as they are) and raises NumericalError when it failed."""
     for message in result.warnings:
-        _warn(f"{result.method}: {_spdfit.spell_options(message)}")
+        from_reader = any(message.startswith(name + ":") for name in files)
+        _warn(_spdfit.spell_options(message) if from_reader else f"{result.method}: {_spdfit.spell_options(message)}")
     if not result.ok:
         raise NumericalError(_spdfit.spell_options(result.message), result)
     return result
@@ -502,7 +505,8 @@ def fit_files(A_path, B_path, method="auto", **options):
     >>> bool(np.allclose(r.X, spdfit.fit(A, A @ X, "spde").X))
     True
     """
-    return _checked(_spdfit.fit_files(_os.fspath(A_path), _os.fspath(B_path), method, options))
+    a_path, b_path = _os.fspath(A_path), _os.fspath(B_path)
+    return _checked(_spdfit.fit_files(a_path, b_path, method, options), files=(a_path, b_path))
 
 
 @_shared_doc

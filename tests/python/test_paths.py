@@ -146,3 +146,18 @@ def test_python_refuses_what_the_command_line_refuses():
         spdfit.nearest_spd(np.eye(2), keep_diag="yes")
     with pytest.raises(ValueError, match=r"max_iter must be an integer in \[1, 1000000\], got 0"):
         spdfit.fit(A, A, "spd-tls", max_iter=0)
+
+
+def test_fit_files_reader_warnings_are_not_prefixed_with_the_method(tmp_path):
+    import warnings
+    rng = np.random.default_rng(2)
+    A = rng.uniform(-5, 5, (30, 2))
+    B = A @ np.array([[2.0, 0.5], [0.5, 1.0]]) + 1e-3 * rng.standard_normal((30, 2))
+    a = tmp_path / "A.csv"
+    a.write_text("0,1\n" + "".join(f"{x!r},{y!r}\n" for x, y in A))
+    np.save(tmp_path / "B.npy", B)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        spdfit.fit_files(a, tmp_path / "B.npy", "spde")
+    messages = [str(w.message) for w in caught]
+    assert any(m.startswith(f"{a}:1: the first line, '0,1', is read as a header row") for m in messages), messages
