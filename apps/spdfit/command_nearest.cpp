@@ -1,5 +1,6 @@
 // spdfit nearest [--min-eig E | --min-eig-rel R] [--corr | --keep-diag | --via-corr] [--weights W]
 //                [--alpha A] [--max-iter N] [--tol T] [--json] [--output FILE] X
+#include <cmath>
 #include <memory>
 #include <optional>
 
@@ -75,8 +76,15 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
     if (X.rows() != X.cols()) {
       std::string problem =
           "X is " + std::to_string(X.rows()) + "x" + std::to_string(X.cols()) + ": a square matrix is needed";
-      // One row too many in text is most often a header of numbers read as data.
-      if (X.rows() == X.cols() + 1 && file.first_data_line > 0) {
+      // One row too many in text, the first of consecutive integers (0, 1, ..., 7 or 1, 2, ..., 8), is
+      // a header of numbers read as data.
+      const auto counts_up = [&X] {
+        for (Eigen::Index j = 0; j < X.cols(); ++j) {
+          if (X(0, j) != X(0, 0) + static_cast<double>(j) || X(0, j) != std::floor(X(0, j))) return false;
+        }
+        return true;
+      };
+      if (X.rows() == X.cols() + 1 && X.cols() >= 3 && file.first_data_line > 0 && counts_up()) {
         problem += "; line " + std::to_string(file.first_data_line) +
                    ", its first row, looks like a header of column names" +
                    (global.read.header_row == io::HeaderRow::Absent ? " (read as data because of --no-header)"

@@ -1,6 +1,7 @@
 #include "spdfit/linkage/pairs_file.hpp"
 
 #include <string>
+#include <vector>
 
 #include "io/parse.hpp"
 
@@ -9,6 +10,19 @@ namespace spdfit::linkage {
 namespace {
 
 constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180.0;
+
+// A first line "0,1" is pandas' header of an unnamed two-column frame to the general reader, but
+// in a pairs file it is as likely the first pair (psi = 0, phi = 1), and the pairs are read without
+// the reader's warnings: it stays a pair, as it always was.
+bool took_pandas_header(const io::Table& table) {
+  return table.column_names == std::vector<std::string>{"0", "1"};
+}
+
+io::ReadOptions first_line_is_data() {
+  io::ReadOptions options;
+  options.header_row = io::HeaderRow::Absent;
+  return options;
+}
 
 }  // namespace
 
@@ -33,11 +47,15 @@ PrescribedPairs pairs_from_table(const io::Table& table, const std::string& sour
 }
 
 PrescribedPairs parse_pairs(std::string_view bytes, const std::string& source, const PairsFileOptions& options) {
-  return pairs_from_table(io::parse_table(bytes, source), source, options);
+  io::Table table = io::parse_table(bytes, source);
+  if (took_pandas_header(table)) table = io::parse_table(bytes, source, first_line_is_data());
+  return pairs_from_table(table, source, options);
 }
 
 PrescribedPairs read_pairs(const std::string& path, const PairsFileOptions& options) {
-  return pairs_from_table(io::read_table(path), path, options);
+  io::Table table = io::read_table(path);
+  if (took_pandas_header(table)) table = io::read_table(path, first_line_is_data());
+  return pairs_from_table(table, path, options);
 }
 
 Eigen::VectorXd weights_from_matrix(const Eigen::MatrixXd& W, Eigen::Index pairs, const std::string& source) {

@@ -168,8 +168,12 @@ TEST(IoDelimited, IndexColumnsOfPandasAndR) {
   drop.index_column = spdfit::io::IndexColumn::Drop;
   keep.index_column = spdfit::io::IndexColumn::Keep;
   EXPECT_EQ(parse_delimited("a,1,2\nb,3,4\n", "A.csv", drop).values, (MatrixXd(2, 2) << 1, 2, 3, 4).finished());
-  EXPECT_EQ(parse_delimited("0,1\n1,2\n2,3\n", "A.csv", keep).values.cols(), 2);
-  EXPECT_TRUE(parse_delimited("0,1\n1,2\n2,3\n", "A.csv", keep).warnings.empty());
+  // (Its first line 0,1 taken as data too: pandas' header of an unnamed frame otherwise.)
+  ReadOptions keep_all = keep;
+  keep_all.header_row = spdfit::io::HeaderRow::Absent;
+  EXPECT_EQ(parse_delimited("0,1\n1,2\n2,3\n", "A.csv", keep_all).values.rows(), 3);
+  EXPECT_TRUE(parse_delimited("0,1\n1,2\n2,3\n", "A.csv", keep_all).warnings.empty());
+  EXPECT_EQ(parse_delimited("0,1\n1,2\n2,3\n", "A.csv", keep).values.rows(), 2);
 }
 
 TEST(IoDelimited, RowNumbersInTheFirstColumnAreRefused) {
@@ -223,13 +227,14 @@ TEST(IoDelimited, SingleRow) { EXPECT_EQ(Parse("1 2 3"), (MatrixXd(1, 3) << 1, 2
 TEST(IoDelimited, LongLine) {
   constexpr int kColumns = 200000;
   std::string text;
-  for (int j = 0; j < kColumns; ++j) text += std::to_string(j) + (j + 1 < kColumns ? "," : "\n");
+  // 1, 2, ...: 0, 1, ... would be pandas' header of an unnamed frame.
+  for (int j = 0; j < kColumns; ++j) text += std::to_string(j + 1) + (j + 1 < kColumns ? "," : "\n");
   text += text;
   const MatrixXd X = Parse(text);
   ASSERT_EQ(X.rows(), 2);
   ASSERT_EQ(X.cols(), kColumns);
-  EXPECT_EQ(X(1, kColumns - 1), kColumns - 1);
-  EXPECT_EQ(X(0, 12345), 12345);
+  EXPECT_EQ(X(1, kColumns - 1), kColumns);
+  EXPECT_EQ(X(0, 12345), 12346);
 }
 
 TEST(IoDelimited, ManyRows) {
