@@ -16,6 +16,11 @@
 #include "mex_arrays.hpp"
 #include "mex_options.hpp"
 #include "spdfit/fit.hpp"
+#include "spdfit/hexapod/geometry.hpp"
+#include "spdfit/hexapod/identify.hpp"
+#include "spdfit/hexapod/physical.hpp"
+#include "spdfit/hexapod/render.hpp"
+#include "spdfit/io.hpp"
 #include "spdfit/render.hpp"
 
 namespace spdfit::matlab {
@@ -119,6 +124,44 @@ void solve_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* prh
   plhs[2] = warnings_cell(result.warnings);
 }
 
+void identify_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
+  need_arguments("hexapod.identify", nrhs, 3,
+                 "A and B: [result, text] = spdfit.hexapod.identify(A, B, name, value, ...)");
+  const Eigen::MatrixXd A = read_matrix(prhs[1], "A");
+  const Eigen::MatrixXd B = read_matrix(prhs[2], "B");
+  const std::vector<NameValue> pairs = pairs_from("identify", nrhs, prhs, 3);
+  IdentifyRequest request = identify_request(pairs);
+  hexapod::IdentifyOptions options;
+  options.fit = fit_options(request.fit, request.fit_pairs, A.cols(), B.cols());
+  if (request.truth.size() > 0) options.truth = request.truth;
+  if (request.stiffness.size() > 0) options.stiffness = request.stiffness;
+  hexapod::Geometry geometry;
+  if (!request.geometry.empty()) {
+    geometry = hexapod::read_geometry(request.geometry);
+    if (A.cols() != 6) throw DataError("a hexapod geometry needs data with 6 columns (struts); A has " + std::to_string(A.cols()));
+    options.stiffness = Eigen::MatrixXd(geometry.strut_stiffness.asDiagonal());
+  }
+  const std::vector<hexapod::MethodIdentification> methods = hexapod::identify(A, B, options);
+  std::vector<std::string> warnings;
+  for (const hexapod::MethodIdentification& m : methods) {
+    for (const std::string& w : m.result.warnings) warnings.push_back(std::string(to_string(m.result.method)) + ": " + w);
+  }
+  if (!request.physical) {
+    plhs[0] = write_json(hexapod::to_json(methods, options));
+    plhs[1] = want_info ? mxCreateString(hexapod::report(methods, options).c_str()) : mxCreateDoubleMatrix(0, 0, mxREAL);
+    plhs[2] = warnings_cell(warnings);
+    return;
+  }
+  hexapod::apply_fit_options(options.fit, request.fit_given, request.physical_options);
+  const hexapod::PhysicalEstimate physical = hexapod::identify_physical(A, B, geometry, request.physical_options);
+  if (!physical.ok()) throw std::invalid_argument("the physical fit failed: " + physical.message);
+  for (const std::string& w : physical.warnings) warnings.push_back("physical: " + w);
+  plhs[0] = write_json(hexapod::to_json(methods, options, physical));
+  plhs[1] = want_info ? mxCreateString(hexapod::report(methods, options, physical, geometry).c_str())
+                      : mxCreateDoubleMatrix(0, 0, mxREAL);
+  plhs[2] = warnings_cell(warnings);
+}
+
 // spdfit_mex(COMMAND, WANT_INFO, arguments...) -> [estimate, info, warnings]: the arguments after
 // the first two are the package function's, which the commands index from 1 (prhs + 1).
 void run(int nlhs, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
@@ -130,6 +173,7 @@ void run(int nlhs, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
   if (command == "fit") return fit_command(want_info, plhs, nrhs - 1, prhs + 1);
   if (command == "nearest") return nearest_command(want_info, plhs, nrhs - 1, prhs + 1);
   if (command == "solve") return solve_command(want_info, plhs, nrhs - 1, prhs + 1);
+  if (command == "identify") return identify_command(want_info, plhs, nrhs - 1, prhs + 1);
   throw UsageError("spdfit_mex has no command '" + command + "'");
 }
 
@@ -154,6 +198,9 @@ extern "C" __attribute__((visibility("default"))) void mexFunction(int nlhs, mxA
     id = "spdfit:NumericalError";
     message = spdfit::spell_options(e.what(), spdfit::Frontend::Matlab);
   } catch (const spdfit::matlab::DataError& e) {
+    id = "spdfit:DataError";
+    message = e.what();
+  } catch (const spdfit::io::DataError& e) {
     id = "spdfit:DataError";
     message = e.what();
   } catch (const std::invalid_argument& e) {

@@ -41,6 +41,35 @@ constexpr SolveOption kSolveOptions[] = {
      "1e-12"},
 };
 
+// spdfit.hexapod.identify's own options besides the fit's and the physical fit's tables.
+struct IdentifyOption {
+  std::string_view name;
+  ValueShape shape;
+  std::string_view help;
+};
+constexpr IdentifyOption kIdentifyOptions[] = {
+    {"physical", ValueShape::Boolean,
+     "Also identify the payload's mass, centre of mass and inertia, physically consistent, from the geometry "
+     "(needs 'Geometry')."},
+    {"geometry", ValueShape::Text, "The hexapod's geometry file (spdfit hexapod model --write-geometry G.json)."},
+    {"truth", ValueShape::Matrix, "The true M_p (n x n), to report each estimate's error."},
+    {"stiffness", ValueShape::Matrix, "The strut stiffness matrix K (n x n), to report the modes in Hz."},
+};
+
+const IdentifyOption* identify_option(std::string_view typed) {
+  for (const IdentifyOption& o : kIdentifyOptions) {
+    if (same_name(camel_case(o.name), typed)) return &o;
+  }
+  return nullptr;
+}
+
+const OptionSpec<hexapod::PhysicalOptions>* physical_option(std::string_view typed) {
+  for (const auto& spec : hexapod::physical_option_table()) {
+    if (same_name(camel_case(spec.name), typed)) return &spec;
+  }
+  return nullptr;
+}
+
 std::string type_name(ValueShape shape) {
   switch (shape) {
     case ValueShape::Boolean: return "logical";
@@ -136,6 +165,18 @@ ValueShape matlab_shape(std::string_view name, OptionType type) {
 
 std::vector<MatlabOption> option_help(std::string_view function) {
   if (function == "fit") return help_of(fit_option_table(), &fit_takes);
+  if (function == "identify") {
+    std::vector<MatlabOption> out;
+    for (const IdentifyOption& o : kIdentifyOptions) {
+      out.push_back({camel_case(o.name), type_name(o.shape), std::string(o.help), ""});
+    }
+    for (MatlabOption& o : help_of(hexapod::physical_option_table(), nullptr)) {
+      o.help += " (with 'Physical')";
+      out.push_back(std::move(o));
+    }
+    for (MatlabOption& o : help_of(fit_option_table(), &fit_takes)) out.push_back(std::move(o));
+    return out;
+  }
   if (function == "nearest") return help_of(nearest_option_table(), nullptr);
   std::vector<MatlabOption> out;
   for (const SolveOption& o : kSolveOptions) {
@@ -145,6 +186,12 @@ std::vector<MatlabOption> option_help(std::string_view function) {
 }
 
 ValueShape option_shape(std::string_view function, std::string_view typed_name) {
+  if (function == "identify") {
+    if (const IdentifyOption* o = identify_option(typed_name)) return o->shape;
+    if (const auto* spec = physical_option(typed_name)) return value_shape(spec->type);
+    const OptionSpec<FitRequest>& spec = spec_named(fit_option_table(), typed_name, &fit_takes, "hexapod.identify");
+    return matlab_shape(spec.name, spec.type);
+  }
   if (function == "fit") {
     const OptionSpec<FitRequest>& spec = spec_named(fit_option_table(), typed_name, &fit_takes, function);
     return matlab_shape(spec.name, spec.type);
@@ -192,6 +239,42 @@ FitOptions fit_options(const FitRequest& request, const std::vector<NameValue>& 
     return options;
   }
   return request.resolved_options(n, d);
+}
+
+IdentifyRequest identify_request(const std::vector<NameValue>& pairs) {
+  IdentifyRequest out;
+  std::vector<NameValue>& fit_pairs = out.fit_pairs;
+  std::vector<std::string_view> physical_given;
+  for (const NameValue& pair : pairs) {
+    if (const IdentifyOption* o = identify_option(pair.name)) {
+      if (pair.empty) continue;
+      if (o->name == "physical") out.physical = std::get<bool>(pair.value);
+      if (o->name == "geometry") out.geometry = std::get<std::string>(pair.value);
+      if (o->name == "truth") out.truth = pair.matrix;
+      if (o->name == "stiffness") out.stiffness = pair.matrix;
+    } else if (const auto* spec = physical_option(pair.name)) {
+      if (pair.empty) continue;
+      set_option(out.physical_options, *spec, pair.value);
+      physical_given.push_back(spec->name);
+    } else {
+      fit_pairs.push_back(pair);
+    }
+  }
+  out.fit.method = Method::Auto;
+  out.fit_given = set_pairs(out.fit, fit_option_table(), fit_pairs, &fit_takes, "hexapod.identify");
+  // Every estimator runs: an option applies if it applies to one of them.
+  check_option_combination(fit_option_table(), out.fit_given);
+  check_option_combination(hexapod::physical_option_table(), physical_given);
+  if (!physical_given.empty() && !out.physical) {
+    throw OptionError("`" + std::string(physical_given.front()) + "` is an option of the physical fit: give `physical`, true");
+  }
+  if (!out.geometry.empty() && out.stiffness.size() > 0) {
+    throw OptionError("give `geometry` or `stiffness`, not both (the geometry's strut stiffnesses give the modes)");
+  }
+  if (out.physical && out.geometry.empty()) {
+    throw OptionError("`physical` needs `geometry`: the geometry file (spdfit hexapod model --write-geometry G.json)");
+  }
+  return out;
 }
 
 NearestRequest nearest_request(const std::vector<NameValue>& pairs) {

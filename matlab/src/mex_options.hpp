@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "spdfit/fit_request.hpp"
+#include "spdfit/hexapod/physical_request.hpp"
 #include "spdfit/linear_system.hpp"
 #include "spdfit/nearest_request.hpp"
 
@@ -60,6 +61,20 @@ FitRequest fit_request(std::string_view method, const std::vector<NameValue>& pa
 FitOptions fit_options(const FitRequest& request, const std::vector<NameValue>& pairs, Eigen::Index n,
                        Eigen::Index d);
 NearestRequest nearest_request(const std::vector<NameValue>& pairs);
+
+/// What spdfit.hexapod.identify was asked for: the fit's options for every estimator, and with
+/// 'Physical' the physical fit's (its table's, plus those it shares with the fit's table), the
+/// geometry file, the truth and the stiffness.
+struct IdentifyRequest {
+  FitRequest fit;
+  std::vector<NameValue> fit_pairs;         ///< the pairs of the fit's table (for fit_options)
+  std::vector<std::string_view> fit_given;  ///< the fit table's options given (library names)
+  bool physical = false;
+  hexapod::PhysicalOptions physical_options;
+  std::string geometry;                     ///< the geometry file (hexapod model --write-geometry)
+  Eigen::MatrixXd truth, stiffness;         ///< empty: not given
+};
+IdentifyRequest identify_request(const std::vector<NameValue>& pairs);
 LinearSystemOptions solve_options(const std::vector<NameValue>& pairs);
 
 }  // namespace spdfit::matlab

@@ -79,6 +79,31 @@ assert_close(x, ref.solution, 1e-13, 'solve');
 assert(info.rank == ref.rank, 'solve rank');
 assert_close(spdfit.solve(As, bs'), x, 0, 'solve with b as a row');
 
+% spdfit.hexapod.identify against `spdfit hexapod identify --json`, with a truth, a bootstrap and the
+% physical fit from the built-in geometry.
+examples = fullfile(getenv('SPDFIT_SOURCE_DIR'), 'examples', 'hexapod');
+Ah = dlmread(fullfile(examples, 'A.csv'), ',', 2, 0);
+Bh = dlmread(fullfile(examples, 'B.csv'), ',', 2, 0);
+Mh = dlmread(fullfile(examples, 'truth.csv'), ',', 1, 0);
+geometry = fullfile(work, 'G.json');
+[status, ~] = system(sprintf('"%s" hexapod model --write-geometry "%s" > /dev/null 2>&1', cli, geometry));
+assert(status == 0, 'hexapod model --write-geometry');
+[result, text] = spdfit.hexapod.identify(Ah, Bh, 'Truth', Mh, 'Physical', true, 'Geometry', geometry, ...
+                                         'Bootstrap', 20, 'Seed', 2);
+ref = cli_json(cli, sprintf(['hexapod identify --truth "%s" --physical --geometry "%s" --bootstrap 20 ' ...
+                             '--seed 2 --json "%s" "%s"'], fullfile(examples, 'truth.csv'), geometry, ...
+                            fullfile(examples, 'A.csv'), fullfile(examples, 'B.csv')));
+names = fieldnames(ref.methods);
+for k = 1:numel(names)
+  assert_close(result.methods.(names{k}).X, ref.methods.(names{k}).X, 1e-12, ['identify ' names{k}]);
+end
+assert_close(result.physical.M_p, ref.physical.M_p, 1e-10, 'identify: the physical M_p');
+assert(abs(result.physical.mass - ref.physical.mass) <= 1e-10 * ref.physical.mass, 'identify: the mass');
+assert(~isempty(strfind(text, 'physical')) || ~isempty(strfind(text, 'Physical')), 'identify: the text report');
+expect_error(@() spdfit.hexapod.identify(Ah, Bh, 'Physical', true), 'spdfit:UsageError', 'Geometry');
+expect_error(@() spdfit.hexapod.identify(Ah, Bh, 'StrutMasses', 'common'), 'spdfit:UsageError', 'Physical');
+assert(~isempty(strfind(help('spdfit.hexapod.identify'), '''Geometry''')), 'help spdfit.hexapod.identify');
+
 % Input types: single, integers and logical convert; a row vector A with a row vector B is one
 % variable.
 X = spdfit.fit(A, B, 'ls');
