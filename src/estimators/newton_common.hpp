@@ -4,11 +4,15 @@
 // of a symmetric step.
 #pragma once
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/Jacobi>
+#include <algorithm>
 #include <cmath>
 #include <utility>
 #include <limits>
+
+#include "numerics/linalg.hpp"
 
 namespace spdfit::detail {
 
@@ -79,5 +83,77 @@ bool jacobi_eigen(Matrix& T, Matrix& Q) {
   }
   return false;
 }
+
+
+namespace trust_region {
+
+// The step s minimizing Newton's model f + <grad, s> + s^T H s / 2 within the trust region: the
+// Newton step of H + mu I, with the Levenberg-Marquardt shift mu the smallest of 0, 1e-8 |H|,
+// 1e-7 |H|, ... making it positive definite, cut back to the radius. False for a non-finite H.
+// Sets `step` = |s| and `predicted`, the model's decrease. Hmu and llt are the caller's buffers.
+template <typename PMatrix, typename PVector>
+bool trust_region_step(const PMatrix& H, const PVector& grad, double gnorm, double radius, PMatrix& Hmu,
+                       Eigen::LLT<PMatrix>& llt, PVector& s, double& step, double& predicted) {
+  const double h_scale = std::max(H.diagonal().cwiseAbs().maxCoeff(), gnorm);
+  double mu = 0.0;
+  for (;;) {
+    Hmu = H;
+    Hmu.diagonal().array() += mu;
+    llt.compute(Hmu);
+    if (llt.info() == Eigen::Success && (llt.matrixLLT().diagonal().array() > 0.0).all()) break;
+    mu = mu == 0.0 ? 1e-8 * h_scale : 10.0 * mu;
+    if (!(mu < 1e30 * h_scale)) return false;
+  }
+  s = -llt.solve(grad);
+  step = s.norm();
+  if (step > radius) {
+    s *= radius / step;
+    step = radius;
+  }
+  predicted = -(grad.dot(s) + 0.5 * s.dot(H * s));
+  return true;
+}
+
+// The step on the cone in the current eigenbasis: T = Lambda^1/2 Z Lambda^1/2 with Z = exp(S) =
+// V exp(sigma) V^T for the symmetric S of the packed coordinates s (off-diagonal s_ij / sqrt 2),
+// or for small steps its second-order Taylor polynomial I + S + S^2 / 2, positive definite for
+// every S (1 + x + x^2/2 > 0) and agreeing with exp to third order, which keeps Newton's quadratic
+// convergence. The trial X is Q T Q^T. False when the eigensolver fails.
+template <typename Matrix, typename Vector, typename PVector>
+bool cone_step(const Vector& sqrt_lambda, const PVector& s, double step, Matrix& T) {
+  const Eigen::Index n = sqrt_lambda.size();
+  const double root2 = std::sqrt(2.0);
+  Matrix S(n, n), Z;
+  for (Eigen::Index j = 0; j < n; ++j)
+    for (Eigen::Index i = 0; i <= j; ++i) {
+      const double v = i == j ? s(packed(i, j)) : s(packed(i, j)) / root2;
+      S(i, j) = v;
+      S(j, i) = v;
+    }
+  if (step <= kTaylorRadius) {
+    Z.noalias() = 0.5 * S * S;
+    Z += S;
+    Z.diagonal().array() += 1.0;
+  } else {
+    T = S;
+    Z = Matrix::Identity(n, n);  // V
+    if (!jacobi_eigen(T, Z)) return false;
+    Z = Z * T.diagonal().array().exp().matrix().asDiagonal() * Z.transpose();
+  }
+  T = sqrt_lambda.asDiagonal() * Z * sqrt_lambda.asDiagonal();
+  T = symmetric_part(T);
+  return true;
+}
+
+// The trust region's radius after a step of length `step` whose actual decrease was `ratio` times
+// the predicted one: a quarter of the step when the model was poor, doubled (up to kMaxRadius)
+// when it was good and the step reached the boundary.
+inline double updated_radius(double radius, double ratio, double step) {
+  if (ratio < 0.25) return 0.25 * step;
+  if (ratio > 0.75 && step >= 0.99 * radius) return std::min(2.0 * radius, kMaxRadius);
+  return radius;
+}
+
+}  // namespace trust_region
 
 }  // namespace spdfit::detail

@@ -137,7 +137,7 @@ NewtonEnd newton_on_face(const Problem& pr, double infinity, const MatrixXd& Y0,
   Point trial;
   if (!evaluate(pr, Y0, MatrixXd::Identity(k, k), cur)) return NewtonEnd::Failed;
 
-  MatrixXd M, N, F, MK, NF, NK, gradX, g, gS, C1, C2, J, H, Hmu, S, Z, T;
+  MatrixXd M, N, F, MK, NF, NK, gradX, g, gS, C1, C2, J, H, Hmu, T;
   MatrixXd scaled[8];
   VectorXd grad(np), s(np), sqrt_lambda;
   Eigen::LLT<MatrixXd> llt(np);
@@ -225,44 +225,10 @@ NewtonEnd newton_on_face(const Problem& pr, double infinity, const MatrixXd& Y0,
     for (Index j = 0; j < k; ++j)
       for (Index i = 0; i <= j; ++i) grad(packed(i, j)) = i == j ? gS(i, i) : root2 * gS(i, j);
 
-    // Levenberg-Marquardt shift, step, trust region: as spd_tls_kernel.
-    const double h_scale = std::max(H.diagonal().cwiseAbs().maxCoeff(), gnorm);
-    double mu = 0.0;
-    for (;;) {
-      Hmu = H;
-      Hmu.diagonal().array() += mu;
-      llt.compute(Hmu);
-      if (llt.info() == Eigen::Success && (llt.matrixLLT().diagonal().array() > 0.0).all()) break;
-      mu = mu == 0.0 ? 1e-8 * h_scale : 10.0 * mu;
-      if (!(mu < 1e30 * h_scale)) return NewtonEnd::Failed;  // non-finite H
-    }
-    s = -llt.solve(grad);
-    double step = s.norm();
-    if (step > radius) {
-      s *= radius / step;
-      step = radius;
-    }
-    const double predicted = -(grad.dot(s) + 0.5 * s.dot(H * s));
-
-    S.resize(k, k);
-    for (Index j = 0; j < k; ++j)
-      for (Index i = 0; i <= j; ++i) {
-        const double v = i == j ? s(packed(i, j)) : s(packed(i, j)) / root2;
-        S(i, j) = v;
-        S(j, i) = v;
-      }
-    if (step <= kTaylorRadius) {
-      Z.noalias() = 0.5 * S * S;
-      Z += S;
-      Z.diagonal().array() += 1.0;
-    } else {
-      T = S;
-      Z = MatrixXd::Identity(k, k);
-      if (!jacobi_eigen(T, Z)) return NewtonEnd::Failed;
-      Z = Z * T.diagonal().array().exp().matrix().asDiagonal() * Z.transpose();
-    }
-    T = sqrt_lambda.asDiagonal() * Z * sqrt_lambda.asDiagonal();
-    T = symmetric_part(T);
+    // Levenberg-Marquardt shift, step, trust region and the step on the cone: as spd_tls_kernel.
+    double step = 0.0, predicted = 0.0;
+    if (!trust_region_step(H, grad, gnorm, radius, Hmu, llt, s, step, predicted)) return NewtonEnd::Failed;
+    if (!cone_step(sqrt_lambda, s, step, T)) return NewtonEnd::Failed;
     ++iterations;
 
     const bool valid = evaluate(pr, T, cur.Q, trial);
@@ -275,11 +241,7 @@ NewtonEnd newton_on_face(const Problem& pr, double infinity, const MatrixXd& Y0,
       }
       continue;
     }
-    if (ratio < 0.25) {
-      radius = 0.25 * step;
-    } else if (ratio > 0.75 && step >= 0.99 * radius) {
-      radius = std::min(2.0 * radius, kMaxRadius);
-    }
+    radius = updated_radius(radius, ratio, step);
     if (ratio > kAcceptRatio) std::swap(cur, trial);
   }
 }

@@ -172,68 +172,6 @@ void newton_model(const Point<MaxN>& cur, const Derivatives<MaxN>& d, PMatrix& H
     for (Index i = 0; i <= j; ++i) grad(packed(i, j)) = i == j ? d.gS(i, i) : root2 * d.gS(i, j);
 }
 
-// The step s minimizing the model within the trust region: the Newton step of H + mu I, with the
-// Levenberg-Marquardt shift mu the smallest of 0, 1e-8 |H|, 1e-7 |H|, ... making it positive
-// definite, cut back to the radius. False for a non-finite H. Sets `step` = |s| and `predicted`,
-// the model's decrease.
-template <typename PMatrix, typename PVector>
-bool trust_region_step(const PMatrix& H, const PVector& grad, double gnorm, double radius, PMatrix& Hmu,
-                       Eigen::LLT<PMatrix>& llt, PVector& s, double& step, double& predicted) {
-  const double h_scale = std::max(H.diagonal().cwiseAbs().maxCoeff(), gnorm);
-  double mu = 0.0;
-  for (;;) {
-    Hmu = H;
-    Hmu.diagonal().array() += mu;
-    llt.compute(Hmu);
-    if (llt.info() == Eigen::Success && (llt.matrixLLT().diagonal().array() > 0.0).all()) break;
-    mu = mu == 0.0 ? 1e-8 * h_scale : 10.0 * mu;
-    if (!(mu < 1e30 * h_scale)) return false;
-  }
-  s = -llt.solve(grad);
-  step = s.norm();
-  if (step > radius) {
-    s *= radius / step;
-    step = radius;
-  }
-  predicted = -(grad.dot(s) + 0.5 * s.dot(H * s));
-  return true;
-}
-
-// The trial point X^1/2 Z X^1/2 with Z = exp(S) = V exp(sigma) V^T, or for small steps its
-// second-order Taylor polynomial I + S + S^2 / 2, positive definite for every S (1 + x + x^2/2
-// > 0) and agreeing with exp to third order: Newton's quadratic convergence is kept. In the
-// eigenbasis of X, T = Lambda^1/2 Z Lambda^1/2; X_trial = Q T Q^T. False when the eigensolver
-// fails.
-template <int MaxN, typename PVector>
-bool trial_point(const Point<MaxN>& cur, const Derivatives<MaxN>& d, const PVector& s, double step,
-                 SquareMatrix<MaxN>& T, Point<MaxN>& trial) {
-  using Matrix = SquareMatrix<MaxN>;
-  const Index n = cur.lambda.size();
-  const double root2 = std::sqrt(2.0);
-  Matrix S(n, n), Z;
-  for (Index j = 0; j < n; ++j)
-    for (Index i = 0; i <= j; ++i) {
-      const double v = i == j ? s(packed(i, j)) : s(packed(i, j)) / root2;
-      S(i, j) = v;
-      S(j, i) = v;
-    }
-  if (step <= kTaylorRadius) {
-    Z.noalias() = 0.5 * S * S;
-    Z += S;
-    Z.diagonal().array() += 1.0;
-  } else {
-    T = S;
-    Z = Matrix::Identity(n, n);  // V
-    if (!jacobi_eigen(T, Z)) return false;
-    Z = Z * T.diagonal().array().exp().matrix().asDiagonal() * Z.transpose();
-  }
-  T = d.sqrt_lambda.asDiagonal() * Z * d.sqrt_lambda.asDiagonal();
-  T = symmetric_part(T);
-  trial.X.noalias() = cur.Q * T * cur.Q.transpose();
-  trial.X = symmetric_part(trial.X);
-  return true;
-}
-
 }  // namespace
 
 // Newton's method on the positive definite k x k matrices, k = data.n (the whole problem, or a
@@ -280,7 +218,9 @@ NewtonEnd newton(const BasicReduction<MaxN>& data, double r2, double infinity, c
     newton_model(cur, d, H, grad);
     double step = 0.0, predicted = 0.0;
     if (!trust_region_step(H, grad, gnorm, radius, Hmu, llt, s, step, predicted)) return NewtonEnd::Failed;
-    if (!trial_point(cur, d, s, step, T, trial)) return NewtonEnd::Failed;
+    if (!cone_step(d.sqrt_lambda, s, step, T)) return NewtonEnd::Failed;
+    trial.X.noalias() = cur.Q * T * cur.Q.transpose();
+    trial.X = symmetric_part(trial.X);
     ++iterations;
 
     const bool valid = evaluate<MaxN>(data, r2, T, cur.Q, trial);
@@ -296,11 +236,7 @@ NewtonEnd newton(const BasicReduction<MaxN>& data, double r2, double infinity, c
       }
       continue;
     }
-    if (ratio < 0.25) {
-      radius = 0.25 * step;
-    } else if (ratio > 0.75 && step >= 0.99 * radius) {
-      radius = std::min(2.0 * radius, kMaxRadius);
-    }
+    radius = updated_radius(radius, ratio, step);
     if (ratio > kAcceptRatio) std::swap(cur, trial);
   }
 }
