@@ -3,7 +3,6 @@
 #include "containers.hpp"
 
 #include <sys/stat.h>
-#include <zlib.h>
 
 #include <algorithm>
 #include <cctype>
@@ -20,6 +19,7 @@
 
 #include "file_error.hpp"
 #include "format_libraries.hpp"
+#include "mat_structure.hpp"
 #include "npy_layout.hpp"
 #include "parse.hpp"
 #include "text_scan.hpp"
@@ -53,9 +53,6 @@ using MatVar = std::unique_ptr<matvar_t, VarFreer>;
 void quiet_log(int, char*) {}
 
 bool numeric_class(matio_classes c) { return c >= MAT_C_DOUBLE && c <= MAT_C_UINT64; }
-
-// Deflate (level-5 compression, HDF5's filters) expands at most about 1032:1.
-constexpr std::uint64_t kMaxExpansion = 1100;
 
 std::uint64_t file_size(const std::string& path) {
   struct stat info {};
@@ -199,165 +196,6 @@ bool holds_npy(const std::string& path) {
 
 namespace {
 
-// ---- Checking a level-5 .mat file before libmatio reads it ------------------------------------
-// libmatio allocates what a file declares (a 1 x 959328513 cell array: 7.8 GB for a 1 kB file,
-// found by fuzz/fuzz_mat.cpp), so the structure is walked here first: every element must fit in
-// its parent, and every array must declare no more entries than its bytes can hold (at least one
-// byte per value, eight per cell or field). Compressed elements are inflated (at most
-// kMaxExpansion times their size) and walked the same way.
-
-class Level5Checker {
- public:
-  Level5Checker(std::string name, bool swap) : name_(std::move(name)), swap_(swap) {}
-
-  // The top-level elements of the file's body (after the 128-byte header).
-  void check_body(std::string_view body, int depth = 0) {
-    std::size_t at = 0;
-    while (at + 8 <= body.size()) {
-      std::uint32_t type = 0, bytes = 0;
-      std::string_view data;
-      at = next(body, at, &type, &bytes, &data, /*padded=*/true);
-      // MATLAB writes only arrays (miMATRIX), compressed or not, at the top level; libmatio
-      // misreads anything else (it asked for 4 GB for a stray miINT32 element).
-      if (type == kMiCompressed) {
-        if (depth > 0) bad("a compressed element inside a compressed element");
-        check_body(inflate(data), depth + 1);
-      } else if (type == kMiMatrix) {
-        if (data.empty()) bad("an empty top-level array element");
-        check_matrix(data, 0);
-      } else {
-        bad("a top-level element of type " + std::to_string(type) + ", not an array");
-      }
-    }
-  }
-
- private:
-  static constexpr std::uint32_t kMiInt8 = 1, kMiInt32 = 5, kMiUint32 = 6, kMiMatrix = 14, kMiCompressed = 15;
-  static constexpr int kMaxDepth = 32;
-
-  [[noreturn]] void bad(const std::string& why) const {
-    throw DataError(name_, 0, 0, "is a damaged .mat file (" + why + ")");
-  }
-
-  std::uint32_t u32(std::string_view s, std::size_t at) const {
-    std::uint32_t v = 0;
-    std::memcpy(&v, s.data() + at, 4);
-    return swap_ ? __builtin_bswap32(v) : v;
-  }
-
-  // Reads the element at `at`: its type, byte count and data; returns where the next one starts.
-  std::size_t next(std::string_view s, std::size_t at, std::uint32_t* type, std::uint32_t* bytes,
-                   std::string_view* data, bool padded) const {
-    if (at + 8 > s.size()) bad("an element's tag is cut off");
-    const std::uint32_t word = u32(s, at);
-    if ((word >> 16) != 0) {  // a small element: type, size and up to 4 bytes of data in 8 bytes
-      *type = word & 0xffff;
-      *bytes = word >> 16;
-      if (*bytes > 4) bad("a small element of more than 4 bytes");
-      *data = s.substr(at + 4, *bytes);
-      return at + 8;
-    }
-    *type = word;
-    *bytes = u32(s, at + 4);
-    if (*bytes > s.size() - at - 8) bad("an element declares " + std::to_string(*bytes) + " bytes, more than it holds");
-    *data = s.substr(at + 8, *bytes);
-    const std::size_t end = at + 8 + *bytes;
-    return padded && *type != kMiCompressed ? std::min(s.size(), (end + 7) / 8 * 8) : end;
-  }
-
-  std::string inflate(std::string_view data) const {
-    const std::uint64_t most = kMaxExpansion * (data.size() + 1024);
-    z_stream z{};
-    if (inflateInit(&z) != Z_OK) bad("cannot inflate a compressed element");
-    z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
-    z.avail_in = static_cast<uInt>(data.size());
-    std::string out;
-    char buffer[1 << 15];
-    int status = Z_OK;
-    while (status == Z_OK) {
-      z.next_out = reinterpret_cast<Bytef*>(buffer);
-      z.avail_out = sizeof buffer;
-      status = ::inflate(&z, Z_NO_FLUSH);
-      out.append(buffer, sizeof buffer - z.avail_out);
-      if (out.size() > most) {
-        inflateEnd(&z);
-        bad("a compressed element expands beyond " + std::to_string(kMaxExpansion) + " times its size");
-      }
-      if (status == Z_BUF_ERROR && z.avail_in == 0) break;  // truncated: libmatio reports what it can
-    }
-    inflateEnd(&z);
-    if (status != Z_STREAM_END && status != Z_BUF_ERROR) bad("a compressed element does not inflate");
-    return out;
-  }
-
-  // The contents of a miMATRIX element: flags, dimensions, name, then what the class holds.
-  void check_matrix(std::string_view s, int depth) {
-    if (depth > kMaxDepth) bad("arrays nested over " + std::to_string(kMaxDepth) + " deep");
-    if (s.empty()) return;  // an empty cell or field
-    std::uint32_t type = 0, bytes = 0;
-    std::string_view flags, dims, name;
-    std::size_t at = next(s, 0, &type, &bytes, &flags, true);
-    if (type != kMiUint32 || bytes < 8) bad("an array without its flags");
-    const std::uint32_t array_class = u32(flags, 0) & 0xff;
-    if (array_class < 1 || array_class > 17) bad("an array of class " + std::to_string(array_class));
-    const std::uint32_t nzmax = u32(flags, 4);
-    at = next(s, at, &type, &bytes, &dims, true);
-    if (type != kMiInt32 || bytes < 8 || bytes % 4 != 0) bad("an array without its dimensions");
-    std::uint64_t count = 1;
-    std::uint64_t columns = 0;
-    for (std::size_t k = 0; k < bytes / 4; ++k) {
-      const std::int32_t d = static_cast<std::int32_t>(u32(dims, 4 * k));
-      if (d < 0) bad("a negative dimension");
-      if (k == 1) columns = static_cast<std::uint64_t>(d);
-      count = count > UINT64_MAX / (static_cast<std::uint64_t>(d) + 1) ? UINT64_MAX : count * static_cast<std::uint64_t>(d);
-    }
-    at = next(s, at, &type, &bytes, &name, true);
-    const std::uint64_t rest = s.size() - std::min(s.size(), at);
-    switch (array_class) {
-      case 1:  // cell: one miMATRIX element (an 8-byte tag at least) per cell
-        if (count > rest / 8) bad("a cell array declares " + std::to_string(count) + " cells in " + std::to_string(rest) + " bytes");
-        for (std::uint64_t k = 0; k < count && at < s.size(); ++k) {
-          std::string_view cell;
-          at = next(s, at, &type, &bytes, &cell, true);
-          if (type != kMiMatrix) bad("a cell that is not an array");
-          check_matrix(cell, depth + 1);
-        }
-        break;
-      case 2:    // struct
-      case 3: {  // object (a class name element first)
-        if (array_class == 3) at = next(s, at, &type, &bytes, &name, true);
-        // As MATLAB writes them: the field name length (at most 64, with the NUL) as one int32,
-        // then the names, name_length bytes each.
-        std::string_view length, names;
-        at = next(s, at, &type, &bytes, &length, true);
-        if (type != kMiInt32 || bytes != 4) bad("a struct without its field name length");
-        const std::uint32_t name_length = u32(length, 0);
-        if (name_length < 1 || name_length > 64) bad("a struct's field names of length " + std::to_string(name_length));
-        at = next(s, at, &type, &bytes, &names, true);
-        if (type != kMiInt8 || bytes % name_length != 0) bad("a struct's field names that do not fit their length");
-        const std::uint64_t fields = bytes / name_length;
-        const std::uint64_t left = s.size() - std::min(s.size(), at);
-        if (fields != 0 && count > left / 8 / fields) bad("a struct array declares more fields than it holds");
-        for (std::uint64_t k = 0; k < count * fields && at < s.size(); ++k) {
-          std::string_view field;
-          at = next(s, at, &type, &bytes, &field, true);
-          if (type != kMiMatrix) bad("a field that is not an array");
-          check_matrix(field, depth + 1);
-        }
-        break;
-      }
-      case 5:  // sparse: row indices (nzmax) and column starts (columns + 1), 4 bytes each
-        if (nzmax > rest / 4 || columns + 1 > rest / 4) bad("a sparse array declares more entries than it holds");
-        break;
-      default:  // numeric, logical and char arrays: at least one byte per value
-        if (count > rest) bad("an array declares " + std::to_string(count) + " values in " + std::to_string(rest) + " bytes");
-    }
-  }
-
-  std::string name_;
-  bool swap_;
-};
-
 // Checks a level-5 .mat file (not 7.3: libhdf5 reads those) before libmatio sees it.
 void check_level5(const std::string& file) {
   if (!is_level5(first_bytes(file, 128))) return;  // 7.3: libhdf5 reads those
@@ -367,8 +205,7 @@ void check_level5(const std::string& file) {
   char buffer[1 << 16];
   for (std::size_t got; (got = std::fread(buffer, 1, sizeof buffer, in.get())) > 0;) bytes.append(buffer, got);
   if (!is_level5(bytes)) return;  // the file changed since its first bytes were read
-  const bool swap = bytes.substr(126, 2) == "MI";
-  Level5Checker(file, swap).check_body(std::string_view(bytes).substr(128));
+  check_level5_structure(file, bytes);
 }
 
 MatVariables list_variables(mat_t* mat) {
