@@ -19,6 +19,7 @@
 
 #include "file_error.hpp"
 #include "format_libraries.hpp"
+#include "mat73_structure.hpp"
 #include "mat_structure.hpp"
 #include "npy_layout.hpp"
 #include "parse.hpp"
@@ -196,9 +197,12 @@ bool holds_npy(const std::string& path) {
 
 namespace {
 
-// Checks a level-5 .mat file (not 7.3: libhdf5 reads those) before libmatio sees it.
-void check_level5(const std::string& file) {
-  if (!is_level5(first_bytes(file, 128))) return;  // 7.3: libhdf5 reads those
+// Checks a .mat file's structure before libmatio sees it: a level-5 file's elements, a 7.3 file's
+// objects (through libhdf5).
+void check_structure(const std::string& file) {
+  const std::string head = first_bytes(file, 128);
+  if (!is_mat(head)) return;  // Mat_Open reports it
+  if (!is_level5(head)) return check_mat73_structure(file, file_size(file));
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(std::fopen(file.c_str(), "rb"), std::fclose);
   if (!in) return;  // Mat_Open reports it
   std::string bytes;
@@ -233,7 +237,7 @@ MatMatrix open_matrix(const std::string& file, const std::string& variable) {
   const Matio& lib = matio(file);
   lib.Mat_LogInitFunc("spdfit", quiet_log);
   MatMatrix out{nullptr, nullptr, variable, variable.empty() ? file : file + ":" + variable};
-  check_level5(file);
+  check_structure(file);
   out.file.reset(lib.Mat_Open(file.c_str(), MAT_ACC_RDONLY));
   if (!out.file) throw DataError(file, 0, 0, "is not a MATLAB .mat file libmatio can read (levels 5 and 7.3 are)");
   const auto its_variables = [](const MatVariables& found) {

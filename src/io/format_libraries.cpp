@@ -1,4 +1,5 @@
 #include "format_libraries.hpp"
+#include "hdf5_library.hpp"
 
 #include <dlfcn.h>
 
@@ -61,6 +62,15 @@ Loaded<Matio> load_matio() {
   });
 }
 
+// dlsym on libmatio's handle finds the functions of the libraries it depends on: its libhdf5.
+Loaded<Hdf5> load_hdf5() {
+  static constexpr const char* kNames[] = {SPDFIT_HDF5_FUNCTIONS(SPDFIT_NAME_OF)};
+  return load<Hdf5>(SPDFIT_MATIO_SONAME, kNames, [](Hdf5& api, void* const* addresses) {
+    std::size_t k = 0;
+    SPDFIT_HDF5_FUNCTIONS(SPDFIT_STORE)
+  });
+}
+
 Loaded<Libzip> load_libzip() {
   static constexpr const char* kNames[] = {SPDFIT_LIBZIP_FUNCTIONS(SPDFIT_NAME_OF)};
   return load<Libzip>(SPDFIT_LIBZIP_SONAME, kNames, [](Libzip& api, void* const* addresses) {
@@ -74,6 +84,11 @@ Loaded<Libzip> load_libzip() {
 
 const Loaded<Matio>& matio_once() {
   static const Loaded<Matio> loaded = load_matio();
+  return loaded;
+}
+
+const Loaded<Hdf5>& hdf5_once() {
+  static const Loaded<Hdf5> loaded = load_hdf5();
   return loaded;
 }
 
@@ -94,6 +109,15 @@ const Matio& matio(const std::string& file) {
 }
 
 const Matio& loaded_matio() { return matio_once().api; }
+
+const Hdf5& hdf5(const std::string& file) {
+  const Loaded<Hdf5>& loaded = hdf5_once();
+  if (!loaded.error.empty()) {
+    throw DataError(file, 0, 0, "cannot be read: MATLAB 7.3 files need libhdf5 (through libmatio), which did not load: " +
+                                    loaded.error);
+  }
+  return loaded.api;
+}
 
 const Libzip& libzip(const std::string& file) {
   const Loaded<Libzip>& loaded = libzip_once();
