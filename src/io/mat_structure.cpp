@@ -269,12 +269,14 @@ class Checker {
 
   // An opaque object (MATLAB's classdef objects: string, table, ...): flags, then its name and
   // class, no dimensions. libmatio reads nothing more of it in a compressed variable; in an
-  // uncompressed one it reads the element after the flags as dimensions when it is miINT32,
-  // then a name tag, allocating what each declares.
+  // uncompressed one it reads the 8 bytes after the flags as the dimensions' tag, and the
+  // dimensions after them when that tag is miINT32, then a name tag, allocating what each
+  // declares.
   void check_opaque(std::string_view s, bool compressed) const {
     if (compressed) return;
-    std::size_t at = 16;
-    if (u32(s, at) == kMiInt32) {
+    std::size_t at = 24;
+    if (u32(s, 16) == kMiInt32) {
+      at = 16;
       const Element dims = next(s, &at);
       if (dims.bytes % 4 != 0) bad("an array without its dimensions");
     }

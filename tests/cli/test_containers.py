@@ -217,6 +217,8 @@ def test_matlab_7_3_file(spdfit, tmp_path):
     ("stray_top_level_element.mat", "an empty top-level array element"),
     # A struct whose field name length is not one int32: libmatio asked for 4 GB.
     ("struct_field_name_length.mat", "a struct without its field name length"),
+    # An opaque object whose name libmatio read as a name tag of 1.6 GB (found by a 10-minute run).
+    ("opaque_name_of_1_6_gb.mat", "an element declares 1627389755 bytes, more than it holds"),
 ])
 def test_a_mat_file_that_declares_more_than_it_holds_is_refused_at_once(spdfit, name, fragment):
     # Found by the fuzzer (fuzz/regressions/mat): spdfit walks a level-5 file's structure before

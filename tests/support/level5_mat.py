@@ -144,6 +144,12 @@ CRAFTED = {
     "opaque_dimensions.mat": (
         mat_file(matrix(flags(OPAQUE) + tag(MI_INT32, HUGE) + b"\0" * 16)),
         "an element declares 4294967280 bytes, more than it holds"),
+    # An opaque object as MATLAB writes it, flags then its name, here an 8-byte one: libmatio
+    # takes the name's tag for the dimensions' and reads the name's bytes as the name's tag, here
+    # declaring HUGE bytes (found by fuzz_mat).
+    "opaque_name_read_as_a_tag.mat": (
+        mat_file(matrix(flags(OPAQUE) + element(MI_INT8, tag(MI_INT8, HUGE)) + b"\0" * 8)),
+        "an element declares 4294967280 bytes, more than it holds"),
     # A cell array declaring 2 cells whose first fills it: libmatio reads the second from the
     # bytes after it.
     "cell_missing_a_cell.mat": (
