@@ -10,7 +10,8 @@ The files are committed; this script documents exactly how they were made:
   covariance/ C.csv: a correlation matrix estimated from incomplete data (pairwise deletion),
               which is indefinite: repair it with `spdfit nearest --corr`; S.csv: the same
               sensors' covariance in their own units (standard deviations 1e-4 to 2e-3):
-              `spdfit nearest` or `spdfit nearest --keep-diag`
+              `spdfit nearest` or `spdfit nearest --keep-diag`; S_named.csv: S.csv as pandas'
+              df.cov().to_csv() writes it, with the sensors' names (`spdfit nearest --header`)
   load_cell/  a non-square X: m = 20 loads (Fx, Fy, Fz in N) applied to a load cell, measured by
               a reference cell with noise of std 0.5 N, and the cell's 4 strain-gauge readings
               (mV, noise of std 0.05 mV); readings = loads X with X 3 x 4, which `spdfit fit
@@ -78,8 +79,23 @@ def covariance(rng):
     assert np.linalg.eigvalsh(C)[0] < 0, "the example must be indefinite"
     save(HERE / "covariance/C.csv", C, "correlation matrix from pairwise deletion (indefinite)")
     sd = np.array([1e-3, 2e-3, 1e-4, 3e-4, 5e-4])
-    save(HERE / "covariance/S.csv", sd[:, None] * C * sd[None, :],
+    S = sd[:, None] * C * sd[None, :]
+    save(HERE / "covariance/S.csv", S,
          "covariance of 5 sensors in their units (standard deviations 1e-4 to 2e-3), pairwise deletion (indefinite)")
+    save_labelled(HERE / "covariance/S_named.csv", S, SENSORS)
+
+
+# The sensors of covariance/S_named.csv.
+SENSORS = ["accel_x", "accel_y", "gyro_z", "temp", "pressure"]
+
+
+def save_labelled(path, matrix, names):
+    """CSV as pandas' DataFrame(matrix, index=names, columns=names).to_csv() writes it: an empty
+    first header cell, the names as the header and as each row's first cell, shortest round-trip
+    numbers."""
+    lines = ["," + ",".join(names)]
+    lines += [name + "," + ",".join(repr(float(v)) for v in row) for name, row in zip(names, matrix)]
+    path.write_text("\n".join(lines) + "\n")
 
 
 def load_cell(rng):

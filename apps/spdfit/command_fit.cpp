@@ -17,6 +17,8 @@
 #include "table_options.hpp"
 #include "spdfit/distributed.hpp"
 #include "spdfit/fit_request.hpp"
+#include "spdfit/labels.hpp"
+#include "spdfit/named_arrays.hpp"
 #include "spdfit/render.hpp"
 
 namespace spdfit::cli {
@@ -42,12 +44,23 @@ std::uint64_t file_bytes(const std::string& path) {
 }
 
 // "A.mat:accel" for --var-a accel: the library's one way of naming an array in a file. A file
-// named with its array already, or standard input, takes no --var-a (a usage error).
+// named with its array already, standard input, or a file without named arrays (text, .npy) takes
+// no --var-a (a usage error quoting the option as typed); a file that does not exist is left to
+// the reader, which says so.
 std::string with_variable(const std::string& path, const std::string& variable, const char* option) {
   if (variable.empty()) return path;
-  if (path == "-") throw UsageError(std::string(option) + " names an array in a file, but the file is standard input (-)");
+  const std::string typed = std::string(option) + " " + variable;
+  if (path == "-") throw UsageError(typed + " names an array in a file, but the file is standard input (-)");
+  if (file_bytes(path) > 0 && !io::holds_named_arrays(path)) {
+    struct stat info {};
+    const bool names_a_file = ::stat(variable.c_str(), &info) == 0;
+    throw UsageError(typed + ": " + option + " names a variable inside a .mat or .npz file, but " + path +
+                     " is neither (it holds one matrix, no named arrays): drop " + typed +
+                     (names_a_file ? "; to read " + variable + " as the data file, give it in " + path + "'s place"
+                                   : ""));
+  }
   if (!io::split_spec(path).variable.empty()) {
-    throw UsageError(std::string(option) + " " + variable + " names the array, but " + path +
+    throw UsageError(typed + " names the array, but " + path +
                      " names one already: give one of them");
   }
   return path + ":" + variable;
@@ -169,7 +182,7 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
     } else if (options->report) {
       emit(report(result, report_hints()), options->output);
     } else if (options->header) {
-      emit(labelled_matrix_csv(result), options->output);
+      emit(labelled_csv(result), options->output);
     } else {
       emit_matrix(result.X, options->output);
     }

@@ -1,5 +1,5 @@
 // spdfit nearest [--min-eig E | --min-eig-rel R] [--corr | --keep-diag | --via-corr] [--weights W]
-//                [--alpha A] [--max-iter N] [--tol T] [--json] [--output FILE] X
+//                [--alpha A] [--max-iter N] [--tol T] [--json | --header] [--output FILE] X
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -10,6 +10,7 @@
 #include "input.hpp"
 #include "output.hpp"
 #include "spdfit/io.hpp"
+#include "spdfit/labels.hpp"
 #include "spdfit/nearest_request.hpp"
 #include "spdfit/render.hpp"
 #include "table_options.hpp"
@@ -22,6 +23,7 @@ namespace {
 struct NearestOptionsCli {
   std::string path, output;
   bool json = false;
+  bool header = false;
   std::unique_ptr<TableOptions<NearestRequest>> table;
 };
 
@@ -41,9 +43,10 @@ std::vector<double> read_weights(const std::string& path, Eigen::Index n, const 
   return std::vector<double>(W.data(), W.data() + n);
 }
 
-// The result's JSON (the library's) with the options the repair ran with.
-std::string result_json(const NearestRequest& options, const NearestResult& result, EigenvalueFloor floor) {
-  return with_fields(to_json(result), {{"corr", options.corr},
+// The result's JSON (the library's, with the variables' names) with the options the repair ran with.
+std::string result_json(const NearestRequest& options, const NearestResult& result, EigenvalueFloor floor,
+                        const std::vector<std::string>& names) {
+  return with_fields(to_json(result, names), {{"corr", options.corr},
                                        {"keep_diag", options.keep_diag},
                                        {"via_corr", options.via_corr},
                                        {"min_eig_rel", floor.relative ? nlohmann::json(floor.value) : nlohmann::json(nullptr)},
@@ -58,19 +61,30 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
       "Repair a covariance or correlation matrix: the nearest symmetric positive definite matrix to X (Higham), "
       "or with a fixed diagonal (--corr, --keep-diag, --via-corr)");
   options->table = std::make_unique<TableOptions<NearestRequest>>(*sub, nearest_option_table());
-  sub->add_flag("--json", options->json, "Print the result and its diagnostics as JSON");
+  CLI::Option* json = sub->add_flag(
+      "--json", options->json,
+      "Print the result and its diagnostics as JSON (with the variables' names, when X's file has them)");
+  sub->add_flag("--header", options->header,
+                "Print X as CSV with a header row and row labels: the names of X's file (its header row, else its "
+                "index column; numbers where it has none), as pandas' read_csv(..., index_col=0) reads them")
+      ->excludes(json);
   sub->add_option("-o,--output", options->output, "Write to FILE instead of stdout (X.npy: X as a NumPy file)");
   sub->add_option("X", options->path, "File of X (n x n): delimited text or .npy")->required();
 
   auto run = [options, &global]() {
     if (options->json) check_text_output(options->output, "--json");
+    if (options->header) check_text_output(options->output, "--header");
     const TableOptions<NearestRequest>& table = *options->table;
     try {
       check_nearest_request(table.given());
     } catch (const OptionError& e) {
       throw_usage(e);
     }
-    io::Table file = io::read_table(options->path, global.read);
+    // With the labels of an index column: the names of X's variables (df.cov().to_csv()).
+    io::LabelledTable labelled = io::read_labelled_table(options->path, global.read);
+    std::vector<std::string> name_warnings;
+    const std::vector<std::string> names = variable_names(labelled, options->path, &name_warnings);
+    io::Table& file = labelled.table;
     for (const std::string& w : file.warnings) warn(global, w);
     const Eigen::MatrixXd X = std::move(file.values);
     if (X.rows() != X.cols()) {
@@ -101,12 +115,17 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
     } catch (const std::invalid_argument& e) {
       throw io::DataError(options->path, 0, 0, e.what());
     }
+    for (const std::string& w : name_warnings) warn(global, w);
     for (const std::string& w : result.warnings) warn(global, w);
+    if (options->header) {
+      emit(labelled_csv(result.X, names, names), options->output);
+      return;
+    }
     if (!options->json) {
       emit_matrix(result.X, options->output);
       return;
     }
-    emit(result_json(request, result, floor), options->output);
+    emit(result_json(request, result, floor, names), options->output);
   };
   return {sub, run};
 }

@@ -82,19 +82,6 @@ void emit_matrix(const Eigen::MatrixXd& X, const std::string& path) {
   }
 }
 
-std::string labelled_matrix_csv(const FitResult& result) {
-  const auto or_numbers = [](const std::vector<std::string>& names, Eigen::Index count) {
-    if (static_cast<Eigen::Index>(names.size()) == count) return names;
-    std::vector<std::string> numbers;
-    for (Eigen::Index k = 1; k <= count; ++k) numbers.push_back(std::to_string(k));
-    return numbers;
-  };
-  std::ostringstream out;
-  io::write_csv(out, result.X, or_numbers(result.row_names, result.X.rows()),
-                or_numbers(result.column_names, result.X.cols()));
-  return out.str();
-}
-
 void check_text_output(const std::string& path, const std::string& what) {
   const std::string binary = binary_extension(path);
   if (!binary.empty()) {

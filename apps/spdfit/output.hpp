@@ -39,10 +39,6 @@ void emit(const std::string& text, const std::string& path);
 /// else: CSV), or as CSV to stdout when `path` is empty.
 void emit_matrix(const Eigen::MatrixXd& X, const std::string& path);
 
-/// X as CSV with a header row and row labels (fit --header): its rows named by A's columns and
-/// its columns by B's (result.row_names, column_names), numbered from 1 where a file had none.
-std::string labelled_matrix_csv(const FitResult& result);
-
 /// A usage error when `path` names a binary matrix format (.npy) that cannot hold the text output
 /// `what` (e.g. "--json").
 void check_text_output(const std::string& path, const std::string& what);

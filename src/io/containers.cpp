@@ -23,6 +23,7 @@
 #include "mat_structure.hpp"
 #include "npy_layout.hpp"
 #include "parse.hpp"
+#include "spdfit/named_arrays.hpp"
 #include "text_scan.hpp"
 
 namespace spdfit::io::detail {
@@ -439,6 +440,15 @@ FileSpec split_spec(const std::string& path) {
   const std::string file = path.substr(0, colon);
   if (!detail::exists(file)) return {path, ""};
   return {file, path.substr(colon + 1)};
+}
+
+bool holds_named_arrays(const std::string& file) {
+  if (file == "-" || !detail::exists(file)) return false;
+  try {
+    return detail::named_arrays_kind({file, ""}) != detail::NamedArrays::None;
+  } catch (const DataError&) {
+    return false;  // unreadable: the reader says why
+  }
 }
 
 void write_mat(const std::string& path, const Eigen::Ref<const Eigen::MatrixXd>& X, const std::string& name) {

@@ -319,6 +319,7 @@ std::size_t DelimitedParser::parse_row(const Line& line) {
   while (next_field(line, &splitter, &field)) {
     if (label) {
       label = false;
+      if (keep_row_labels_) row_names_.push_back(field.quoted ? unquote(field) : std::string(field.text));
       continue;
     }
     // A quoted number in a data row ("1.5", as some spreadsheets and exporters write every cell)
@@ -446,8 +447,10 @@ void DelimitedParser::fail(const Line& line, std::size_t offset, const std::stri
 
 }  // namespace detail
 
-Table parse_delimited(std::string_view text, const std::string& source, const ReadOptions& options) {
+Table detail::parse_delimited_labelled(std::string_view text, const std::string& source, const ReadOptions& options,
+                                       std::vector<std::string>* row_names) {
   detail::DelimitedParser parser(source, options);
+  if (row_names != nullptr) parser.keep_row_labels();
   parser.feed(text);
   parser.finish();
   Table table;
@@ -457,7 +460,12 @@ Table parse_delimited(std::string_view text, const std::string& source, const Re
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   table.values = Eigen::Map<const RowMajor>(parser.values().data(), static_cast<Eigen::Index>(parser.rows()),
                                             static_cast<Eigen::Index>(parser.columns()));
+  if (row_names != nullptr) *row_names = parser.row_names();
   return table;
+}
+
+Table parse_delimited(std::string_view text, const std::string& source, const ReadOptions& options) {
+  return detail::parse_delimited_labelled(text, source, options, nullptr);
 }
 
 }  // namespace spdfit::io

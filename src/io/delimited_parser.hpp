@@ -55,6 +55,10 @@ class DelimitedParser {
   std::size_t rows() const { return rows_; }        ///< data rows parsed so far
   std::size_t columns() const { return columns_; }  ///< 0 until the first data row
   const std::vector<std::string>& column_names() const { return column_names_; }
+  /// Keeps the labels of a first column dropped as row labels (an index), one per data row, in
+  /// row_names(): for the callers that show them (read_labelled_table).
+  void keep_row_labels() { keep_row_labels_ = true; }
+  const std::vector<std::string>& row_names() const { return row_names_; }
   /// What the parser decided for the user to know (a first column of row labels dropped).
   const std::vector<std::string>& warnings() const { return warnings_; }
   /// The values of the rows parsed since the caller last cleared them, row-major.
@@ -111,6 +115,8 @@ class DelimitedParser {
   std::size_t columns_ = 0;
   std::size_t columns_line_ = 0;
   std::vector<std::string> column_names_;
+  bool keep_row_labels_ = false;
+  std::vector<std::string> row_names_;
   std::vector<double> values_;  // row-major
 
   // The first column as row labels (ReadOptions::index_column): dropped when drop_first_; in
@@ -122,5 +128,10 @@ class DelimitedParser {
   std::vector<std::string> warnings_;
   bool resumed_ = false;  // built from a Layout: the first lines were parsed elsewhere
 };
+
+/// parse_delimited, and the labels of a first column dropped as row labels in `row_names` (one
+/// per data row; not kept when null).
+Table parse_delimited_labelled(std::string_view text, const std::string& source, const ReadOptions& options,
+                               std::vector<std::string>* row_names);
 
 }  // namespace spdfit::io::detail

@@ -10,13 +10,16 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <vector>
 
 #include "file_error.hpp"
 #include "parse.hpp"
 #include "npy_header.hpp"
 #include "containers.hpp"
+#include "delimited_parser.hpp"
 #include "read_file.hpp"
 #include "spdfit/io.hpp"
+#include "spdfit/labels.hpp"
 #include "text_scan.hpp"
 
 namespace spdfit::io {
@@ -118,7 +121,11 @@ void refuse_binary_early(std::string_view first, const std::string& path) {
 
 }  // namespace
 
-Table parse_table(std::string_view bytes, const std::string& source, const ReadOptions& options) {
+namespace {
+
+// parse_table, with the labels of a dropped first column of text in `row_names` when given.
+Table parse_bytes(std::string_view bytes, const std::string& source, const ReadOptions& options,
+                  std::vector<std::string>* row_names) {
   if (bytes.empty()) throw DataError(source, 0, 0, "file is empty");
   // The magic bytes decide, not the name: a .npy file keeps its format when renamed.
   if (bytes.substr(0, detail::kNpyMagic.size()) == detail::kNpyMagic) {
@@ -126,11 +133,12 @@ Table parse_table(std::string_view bytes, const std::string& source, const ReadO
     table.values = parse_npy(bytes, source, options);
     return table;
   }
-  return parse_delimited(bytes, source, options);
+  return detail::parse_delimited_labelled(bytes, source, options, row_names);
 }
 
-Table read_table(const std::string& path, const ReadOptions& options) {
-  if (path == "-") return parse_table(detail::read_standard_input(), detail::kStdinName, options);
+// read_table, with the labels of a dropped first column of text in `row_names` when given.
+Table read_bytes(const std::string& path, const ReadOptions& options, std::vector<std::string>* row_names) {
+  if (path == "-") return parse_bytes(detail::read_standard_input(), detail::kStdinName, options, row_names);
   const detail::FileSpec spec = detail::split_spec(path);
   // The content decides, not the name: .mat and .npz files hold named arrays, and their
   // libraries read them from the file.
@@ -143,7 +151,21 @@ Table read_table(const std::string& path, const ReadOptions& options) {
                     "holds one array, not named ones (only .mat and .npz files do): '" + path +
                         "' names the array '" + spec.variable + "' in it");
   }
-  return parse_table(bytes, path, options);
+  return parse_bytes(bytes, path, options, row_names);
+}
+
+}  // namespace
+
+Table parse_table(std::string_view bytes, const std::string& source, const ReadOptions& options) {
+  return parse_bytes(bytes, source, options, nullptr);
+}
+
+Table read_table(const std::string& path, const ReadOptions& options) { return read_bytes(path, options, nullptr); }
+
+LabelledTable read_labelled_table(const std::string& path, const ReadOptions& options) {
+  LabelledTable out;
+  out.table = read_bytes(path, options, &out.row_names);
+  return out;
 }
 
 Eigen::MatrixXd read_matrix(const std::string& path, const ReadOptions& options) {

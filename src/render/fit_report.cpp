@@ -3,7 +3,10 @@
 #include <cmath>
 #include <iomanip>
 #include <sstream>
+#include <string>
+#include <vector>
 
+#include "render/labels.hpp"
 #include "spdfit/format.hpp"
 #include "spdfit/render.hpp"
 
@@ -17,17 +20,29 @@ int decimals_for(double standard_error) {
   return std::clamp(1 - static_cast<int>(std::floor(std::log10(standard_error))), 0, 12);
 }
 
-// The standard deviations of a covariance's diagonal, "0.2, 0.4, 0.8" (one value when all are equal).
-std::string deviations(const Eigen::MatrixXd& cov) {
+// The standard deviations of a covariance's diagonal, "0.2, 0.4, 0.8" (one value when all are
+// equal), each after its column's name when there is one per column ("ax 0.2, ay 0.4, az 0.8").
+std::string deviations(const Eigen::MatrixXd& cov, const std::vector<std::string>& names) {
   const Eigen::VectorXd s = cov.diagonal().cwiseMax(0.0).cwiseSqrt();
   if (s.size() > 0 && (s.array() == s(0)).all()) return format_number(s(0), Precision::Medium);
+  const bool named = static_cast<Eigen::Index>(names.size()) == s.size();
   std::string text;
-  for (Eigen::Index i = 0; i < s.size(); ++i) text += (i == 0 ? "" : ", ") + format_number(s(i), Precision::Medium);
+  for (Eigen::Index i = 0; i < s.size(); ++i) {
+    text += (i == 0 ? "" : ", ") + (named ? names[static_cast<std::size_t>(i)] + " " : std::string()) +
+            format_number(s(i), Precision::Medium);
+  }
   return text;
 }
 
+std::size_t longest(const std::vector<std::string>& texts, std::size_t at_least) {
+  for (const std::string& t : texts) at_least = std::max(at_least, t.size());
+  return at_least;
+}
+
 // The noise model in one line: where it came from and the noise standard deviations per column.
-std::string noise_model_line(const Diagnostics& d) {
+std::string noise_model_line(const Diagnostics& d, const FitResult& result) {
+  const std::vector<std::string>& a = result.row_names;
+  const std::vector<std::string>& b = result.column_names;
   if (!d.noise_model) {
     return "noise model: assumed-equal (the same noise in every column of A and B, in the units given)\n";
   }
@@ -38,10 +53,10 @@ std::string noise_model_line(const Diagnostics& d) {
             (m.rest_a_path().empty() ? std::string() : " of " + m.rest_a_path() + ", " + m.rest_b_path()) + ")";
   }
   if (m.is_resolved()) {
-    text += "; noise std in A " + deviations(m.cov_a()) + "; in B " + deviations(m.cov_b());
+    text += "; noise std in A " + deviations(m.cov_a(), a) + "; in B " + deviations(m.cov_b(), b);
   } else {
-    text += "; noise std in A " + deviations(Eigen::MatrixXd(m.std_a().cwiseAbs2().asDiagonal())) + "; in B " +
-            deviations(Eigen::MatrixXd(m.std_b().cwiseAbs2().asDiagonal()));
+    text += "; noise std in A " + deviations(Eigen::MatrixXd(m.std_a().cwiseAbs2().asDiagonal()), a) + "; in B " +
+            deviations(Eigen::MatrixXd(m.std_b().cwiseAbs2().asDiagonal()), b);
   }
   return text + "\n";
 }
@@ -106,13 +121,20 @@ std::string report(const FitResult& result, const ReportHints& hints) {
       cells.push_back(std::move(cell));
     }
   }
-  out << "    ";
-  for (Eigen::Index j = 0; j < result.X.cols(); ++j) out << std::setw(static_cast<int>(width) + 2) << j + 1;
+  // X maps A's columns to B's: its rows are named by A's columns, its columns by B's (numbers
+  // where a file has no names).
+  const std::vector<std::string> rows = detail::labels_or_numbers(result.row_names, result.X.rows());
+  const std::vector<std::string> columns = detail::labels_or_numbers(result.column_names, result.X.cols());
+  if (!result.row_names.empty() || !result.column_names.empty()) out << "rows: A's columns; columns: B's columns\n";
+  const int row_width = static_cast<int>(longest(rows, 4));
+  const int column_width = static_cast<int>(longest(columns, width)) + 2;
+  out << std::string(static_cast<std::size_t>(row_width), ' ');
+  for (const std::string& name : columns) out << std::setw(column_width) << name;
   out << '\n';
   for (Eigen::Index i = 0; i < result.X.rows(); ++i) {
-    out << std::setw(4) << i + 1;
+    out << std::setw(row_width) << rows[static_cast<std::size_t>(i)];
     for (Eigen::Index j = 0; j < result.X.cols(); ++j) {
-      out << std::setw(static_cast<int>(width) + 2) << cells[static_cast<std::size_t>(i * result.X.cols() + j)];
+      out << std::setw(column_width) << cells[static_cast<std::size_t>(i * result.X.cols() + j)];
     }
     out << '\n';
   }
@@ -132,7 +154,7 @@ std::string report(const FitResult& result, const ReportHints& hints) {
     out << "noise estimate: sigma = " << format_number(*d.noise_sigma, Precision::Full)
         << " in every entry of A (times the noise ratio in B)\n";
   }
-  out << noise_model_line(d);
+  out << noise_model_line(d, result);
   return out.str();
 }
 

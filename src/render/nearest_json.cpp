@@ -1,11 +1,13 @@
 // A repair's result as JSON (the result part of `spdfit nearest --json`).
 #include "render/json_values.hpp"
+#include "spdfit/labels.hpp"
 
 namespace spdfit {
 
 using detail::Json;
 
-std::string to_json(const NearestResult& r, JsonStyle style) {
+namespace {
+Json nearest_json(const NearestResult& r, JsonStyle style) {
   Json out;
   out["n"] = r.X.rows();
   out["min_eig"] = detail::number_json(r.min_eig, style);
@@ -18,6 +20,15 @@ std::string to_json(const NearestResult& r, JsonStyle style) {
   out["converged"] = r.converged;
   out["cholesky"] = r.cholesky_ok;
   out["warnings"] = r.warnings;
+  return out;
+}
+}  // namespace
+
+std::string to_json(const NearestResult& r, JsonStyle style) { return detail::dump(nearest_json(r, style), style); }
+
+std::string to_json(const NearestResult& r, const std::vector<std::string>& names, JsonStyle style) {
+  Json out = nearest_json(r, style);
+  if (!names.empty()) out["names"] = names;
   return detail::dump(out, style);
 }
 

@@ -56,6 +56,8 @@ CASES = {
     "nearest_json_via_corr_alpha": ["nearest", "--via-corr", "--alpha", "0.01", "--json",
                                     "examples/covariance/S.csv"],
     "nearest_csv": ["nearest", "examples/covariance/S.csv"],
+    "nearest_header_named": ["nearest", "--header", "examples/covariance/S_named.csv"],
+    "nearest_json_named": ["nearest", "--json", "examples/covariance/S_named.csv"],
     **{f"solve_text_ex{k}": ["solve", f"examples/linkage/notes_ex{k}_A.csv", f"examples/linkage/notes_ex{k}_b.csv"]
        for k in range(1, 7)},
     **{f"solve_json_ex{k}": ["solve", "--json", f"examples/linkage/notes_ex{k}_A.csv",
