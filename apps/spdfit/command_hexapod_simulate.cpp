@@ -15,6 +15,7 @@
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/hexapod/model.hpp"
 #include "spdfit/hexapod/simulate.hpp"
+#include "spdfit/hexapod/simulation_warnings.hpp"
 #include "spdfit/io.hpp"
 #include "spdfit/rigid_body.hpp"
 #include "validators.hpp"
@@ -110,10 +111,7 @@ Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global) {
     options.distribution = *hexapod::parse_noise_distribution(cli->distribution);
     if (force_noise->count() > 0) options.force_noise_var = cli->force_noise_var;
     apply_simulation_noise_options(cli->noise, options);
-    if (options.samples < M.rows()) {
-      warn(global, "fewer samples (" + std::to_string(options.samples) + ") than M_p has columns (" +
-                       std::to_string(M.rows()) + "): the estimators need m >= n");
-    }
+    for (const std::string& w : hexapod::simulation_warnings(M, options)) warn(global, w);
     // The payload's simulate draws what simulate(M, options, seed) draws for its M.
     const hexapod::Measurements data = payload
                                            ? hexapod::simulate(*geometry_read, *payload, options, cli->seed)

@@ -8,12 +8,13 @@ simulated measurements (appendix B) and the identification of M_p from them.
     >>> estimates = hx.identify(A, B, truth=truth)
 """
 import json as _json
+import numbers as _numbers
 import os as _os
 from collections import namedtuple as _namedtuple
 
 import numpy as _np
 
-from . import _as_matrix, _takes_options
+from . import _as_matrix, _takes_options, _warn
 from ._spdfit import hexapod as _core
 
 Geometry = _core.Geometry
@@ -203,11 +204,19 @@ def simulate(samples=_SIMULATION.samples, noise_var=0.86, *, seed=1, truth="thes
 
     Raises
     ------
+    TypeError
+        samples or seed not an int (12.9), as `spdfit hexapod simulate --samples 12.9` refuses it.
     ValueError
         Bad options (a negative variance, samples < 1, an unknown distribution, a truth that is not
         square).
     DataError
         A bad geometry file or dict given as the truth (a ValueError).
+
+    Warns
+    -----
+    SpdfitWarning
+        Fewer samples than the truth has columns (the estimators need m >= n), as `spdfit hexapod
+        simulate` warns.
 
     Examples
     --------
@@ -218,15 +227,21 @@ def simulate(samples=_SIMULATION.samples, noise_var=0.86, *, seed=1, truth="thes
     >>> bool(np.allclose(data.B_true, data.A_true @ data.truth))
     True
     """
+    # Whole numbers only, as the command line's --samples and --seed: int(12.9) would quietly be 12.
+    for name, value in (("samples", samples), ("seed", seed)):
+        if isinstance(value, bool) or not isinstance(value, _numbers.Integral):
+            raise TypeError(f"{name} must be an int, got {type(value).__name__}")
     if isinstance(truth, str) and truth == "thesis":
         M = _core.thesis_mass_matrix()
     elif isinstance(truth, (dict, Geometry)) or (isinstance(truth, (str, _os.PathLike)) and truth != "thesis"):
         M = _core.joint_space_mass_matrix(geometry(truth))
     else:
         M = _as_matrix("truth", truth)
-    A, B, A_true, B_true = _core.simulate(M, int(samples), float(noise_var),
-                                          None if force_noise_var is None else float(force_noise_var),
-                                          float(signal_var), distribution, int(seed))
+    A, B, A_true, B_true, warnings = _core.simulate(M, int(samples), float(noise_var),
+                                                    None if force_noise_var is None else float(force_noise_var),
+                                                    float(signal_var), distribution, int(seed))
+    for message in warnings:  # as `spdfit hexapod simulate` warns (too few samples to fit)
+        _warn(message)
     return Simulation(A, B, M, A_true, B_true)
 
 

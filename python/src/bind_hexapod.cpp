@@ -13,6 +13,7 @@
 #include "spdfit/hexapod/physical.hpp"
 #include "spdfit/hexapod/render.hpp"
 #include "spdfit/hexapod/simulate.hpp"
+#include "spdfit/hexapod/simulation_warnings.hpp"
 #include "spdfit/random.hpp"
 
 namespace py = pybind11;
@@ -116,7 +117,7 @@ void bind_hexapod(py::module_& parent) {
         std::string error;
         if (!options.is_valid(&error)) throw std::invalid_argument(error);
         const Measurements data = simulate(truth, options, seed);  // as `spdfit hexapod simulate --seed`
-        return py::make_tuple(data.A, data.B, data.A_true, data.B_true);
+        return py::make_tuple(data.A, data.B, data.A_true, data.B_true, simulation_warnings(truth, options));
       },
       py::arg("truth"), py::arg("samples"), py::arg("noise_var"), py::arg("force_noise_var"),
       py::arg("signal_var"), py::arg("distribution"), py::arg("seed"));

@@ -1,8 +1,10 @@
 #include "spdfit/hexapod/simulate.hpp"
+#include "spdfit/hexapod/simulation_warnings.hpp"
 
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace spdfit::hexapod {
 
@@ -167,6 +169,15 @@ void simulate_into(const Eigen::MatrixXd& truth, const SimulationOptions& option
     out.B_true *= options.scale_b;
     out.rest_B *= options.scale_b;
   }
+}
+
+std::vector<std::string> simulation_warnings(const Eigen::MatrixXd& truth, const SimulationOptions& options) {
+  std::vector<std::string> warnings;
+  if (options.samples < truth.cols()) {
+    warnings.push_back("fewer samples (" + std::to_string(options.samples) + ") than M_p has columns (" +
+                       std::to_string(truth.cols()) + "): the estimators need m >= n");
+  }
+  return warnings;
 }
 
 Measurements simulate(const Eigen::MatrixXd& truth, const SimulationOptions& options, Random& random) {

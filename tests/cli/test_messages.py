@@ -72,3 +72,13 @@ def test_a_sample_count_must_be_an_integer(spdfit, tmp_path):
     result = spdfit("experiment", "thesis", "--samples", "2.5")
     assert result.returncode == 2
     assert "'2.5' is not an integer in [6, 100000000]" in result.stderr
+
+
+def test_too_few_samples_to_fit_warn_with_the_text_python_warns(spdfit, tmp_path):
+    # spdfit.hexapod.simulate(2, ...) warns the same text (tests/python/test_hexapod_experiment.py).
+    result = spdfit("hexapod", "simulate", "--noise-var", "0.86", "--samples", "2", "--out", str(tmp_path / "s"))
+    assert result.returncode == 0, result.stderr
+    assert "spdfit: warning: fewer samples (2) than M_p has columns (6): the estimators need m >= n" in result.stderr
+    assert (tmp_path / "s" / "A.csv").exists()
+    quiet = spdfit("hexapod", "simulate", "--noise-var", "0.86", "--samples", "6", "--out", str(tmp_path / "t"))
+    assert quiet.returncode == 0 and "fewer samples" not in quiet.stderr

@@ -109,3 +109,30 @@ def test_experiments_take_methods_like_the_cli():
         experiment.paper_2x2(0.5, trials=10, methods=["spde", "bogus"])
     with pytest.raises(ValueError, match="listed twice"):
         experiment.paper_hexapod(trials=10, methods=["spde", "spde"])
+
+
+def test_simulate_takes_whole_sample_counts_and_warns_of_too_few_as_the_cli():
+    # The CLI's side (the same warning text, --samples 12.9 refused): tests/cli/test_messages.py.
+    # int(12.9) would quietly simulate 12 rows; the CLI refuses --samples 12.9, Python raises.
+    for bad in (12.9, 12.0, "12", True):
+        with pytest.raises(TypeError, match="samples must be an int"):
+            hx.simulate(bad, 0.86)
+    with pytest.raises(TypeError, match="seed must be an int"):
+        hx.simulate(12, 0.86, seed=1.5)
+    assert hx.simulate(np.int64(12), 0.86).A.shape == (12, 6)
+    # Too few samples for the estimators: the CLI's warning, pointing at this line.
+    import inspect
+    import warnings
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        line = inspect.currentframe().f_lineno + 1
+        data = hx.simulate(2, 0.86)
+    assert data.A.shape == (2, 6)
+    assert [str(w.message) for w in caught] == [
+        "fewer samples (2) than M_p has columns (6): the estimators need m >= n"]
+    assert caught[0].category is spdfit.SpdfitWarning
+    assert caught[0].filename == __file__ and caught[0].lineno == line
+    with warnings.catch_warnings(record=True) as enough:
+        warnings.simplefilter("always")
+        hx.simulate(6, 0.86)
+    assert enough == []
