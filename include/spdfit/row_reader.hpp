@@ -12,8 +12,12 @@
 
 namespace spdfit::io {
 
+class RowReader;
+
 namespace detail {
 class SplitFile;  // a file split among processes (src/io/split_file.hpp) opens readers of its parts
+struct KeptText;  // standard input's text kept for a second reading (src/io/kept_text.hpp)
+RowReader standard_input_reader(const ReadOptions& options, std::shared_ptr<KeptText> keep);
 }
 
 /// Reads the matrix in a data file (the formats of read_table: .npy by its magic bytes,
@@ -60,6 +64,7 @@ class RowReader {
 
  private:
   friend class detail::SplitFile;
+  friend RowReader detail::standard_input_reader(const ReadOptions& options, std::shared_ptr<detail::KeptText> keep);
   RowReader() = default;
   struct Source;  // the format-specific part, one kind per file format (row_reader.cpp)
   class NpySource;

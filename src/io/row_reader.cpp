@@ -19,6 +19,7 @@
 #include "containers.hpp"
 #include "delimited_parser.hpp"
 #include "file_error.hpp"
+#include "kept_text.hpp"
 #include "npy_layout.hpp"
 #include "parse.hpp"
 #include "read_file.hpp"
@@ -185,10 +186,13 @@ class RowReader::TextSource final : public RowReader::Source {
   }
   // Standard input (not closed here), whose first bytes `first` were read already to tell text
   // from .npy.
-  TextSource(std::FILE* input, std::string first, const ReadOptions& options)
+  // `keep`, when given, keeps a copy of the text read (KeptText).
+  TextSource(std::FILE* input, std::string first, const ReadOptions& options,
+             std::shared_ptr<detail::KeptText> keep = nullptr)
       : Source(detail::kStdinName), file_(input), owned_(false), parser_(detail::kStdinName, options),
-        buffer_(std::move(first)) {
+        buffer_(std::move(first)), keep_(std::move(keep)) {
     bytes_ = buffer_.size();
+    if (keep_) keep_->keep(buffer_.data(), buffer_.size());
   }
   ~TextSource() override {
     if (owned_) std::fclose(file_);
@@ -254,6 +258,7 @@ class RowReader::TextSource final : public RowReader::Source {
     const std::size_t got = std::fread(buffer_.data() + kept, 1, want, file_);
     buffer_.resize(kept + got);
     bytes_ += got;
+    if (keep_) keep_->keep(buffer_.data() + kept, got);
     if (std::ferror(file_)) fail_errno(path, "read error");
     if (got < RowReader::kTextPieceBytes) {  // the end (of the file or the part): the rest is the last line(s)
       parser_.feed(buffer_);
@@ -283,6 +288,7 @@ class RowReader::TextSource final : public RowReader::Source {
   bool owned_ = true;
   detail::DelimitedParser parser_;
   std::string buffer_;     // bytes read but not yet parsed (an incomplete last line)
+  std::shared_ptr<detail::KeptText> keep_;  // standard input's text kept for a second reading
   std::size_t taken_ = 0;  // rows at the front of parser_.values() already handed out
   bool at_end_ = false;
   std::uint64_t bytes_ = 0;  // read from the file so far
@@ -413,6 +419,19 @@ RowReader::RowReader(const std::string& path, const ReadOptions& options) {
 }
 
 namespace detail {
+
+RowReader standard_input_reader(const ReadOptions& options, std::shared_ptr<KeptText> keep) {
+  RowReader reader;
+  std::string first = read_standard_input({}, kNpyMagic.size());
+  if (first != kNpyMagic) {
+    reader.source_ = std::make_unique<RowReader::TextSource>(stdin, std::move(first), options, std::move(keep));
+    return reader;
+  }
+  std::string bytes = read_standard_input(std::move(first));
+  keep->keep(bytes.data(), bytes.size());
+  reader.source_ = std::make_unique<RowReader::TableSource>("-", parse_table(bytes, kStdinName, options));
+  return reader;
+}
 
 SplitFile::SplitFile(const std::string& path, const ReadOptions& options, int part, int parts)
     : path_(path), options_(options), part_(part), parts_(parts) {

@@ -1,11 +1,14 @@
 #include "spdfit/fit_files.hpp"
 
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
 #include "factor/reduce.hpp"
 #include "io/containers.hpp"
+#include "io/kept_text.hpp"
+#include "io/parse.hpp"
 #include "pipeline/pair_checks.hpp"
 #include "spdfit/options.hpp"
 #include "pipeline/stream_resampling.hpp"
@@ -65,9 +68,17 @@ FitResult fit_streamed_bootstrap(Method method, const FitOptions& options, const
 
 }  // namespace detail
 
-DataPair read_pair(const std::string& a_path, const std::string& b_path, const io::ReadOptions& options) {
+namespace {
+// read_pair, with standard input's text taken from `standard_input` when it is given (kept from
+// the streaming pass, which read it already).
+DataPair read_pair_from(const std::string& a_path, const std::string& b_path, const io::ReadOptions& options,
+                        const std::string* standard_input) {
+  const auto read = [&](const std::string& path) {
+    if (path == "-" && standard_input != nullptr) return io::parse_table(*standard_input, io::detail::kStdinName, options);
+    return io::read_table(path, options);
+  };
   DataPair data;
-  io::Table a = io::read_table(a_path, options);
+  io::Table a = read(a_path);
   data.A = std::move(a.values);
   data.warnings = std::move(a.warnings);
   data.a_names = std::move(a.column_names);
@@ -75,7 +86,7 @@ DataPair read_pair(const std::string& a_path, const std::string& b_path, const i
     throw detail::fewer_samples_than_columns(a_path, static_cast<std::uint64_t>(data.A.rows()),
                                              static_cast<std::uint64_t>(data.A.cols()));
   }
-  io::Table b = io::read_table(b_path, options);
+  io::Table b = read(b_path);
   data.B = std::move(b.values);
   data.warnings.insert(data.warnings.end(), b.warnings.begin(), b.warnings.end());
   data.b_names = std::move(b.column_names);
@@ -83,6 +94,11 @@ DataPair read_pair(const std::string& a_path, const std::string& b_path, const i
     throw detail::unequal_rows(b_path, "B is " + shape(data.B) + " but A (" + a_path + ") is " + shape(data.A));
   }
   return data;
+}
+}  // namespace
+
+DataPair read_pair(const std::string& a_path, const std::string& b_path, const io::ReadOptions& options) {
+  return read_pair_from(a_path, b_path, options, nullptr);
 }
 
 FitResult fit_files(const std::string& a_path, const std::string& b_path, Method method, const FitOptions& options,
@@ -93,8 +109,21 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
   if (auto refusal = detail::noise_refusal(options.noise, method)) throw OptionError(*refusal);
   std::optional<StreamOptions> streamed = stream;
   if (streamed) streamed->read = read;  // one way of reading, whichever path
+  // Standard input is read once: with a streaming bootstrap its text is kept while it is streamed
+  // (up to the in-memory budget), so that too few groups for the Poisson scheme can still be
+  // resampled in memory from it, as a file's rows are.
+  std::shared_ptr<io::detail::KeptText> kept_input;
+  if (streamed && options.bootstrap > 0 && (a_path == "-") != (b_path == "-")) {
+    kept_input = std::make_shared<io::detail::KeptText>();
+    kept_input->at_most = static_cast<std::size_t>(streamed->bootstrap_memory_bytes);
+  }
   auto readers = [&] {
-    detail::PairReaders pair(a_path, b_path, read);
+    const auto reader = [&](const std::string& path) {
+      return path == "-" && kept_input ? io::detail::standard_input_reader(read, kept_input) : io::RowReader(path, read);
+    };
+    detail::PairReaders pair = kept_input ? detail::PairReaders(reader(a_path), reader(b_path), 0)
+                                          : detail::PairReaders(a_path, b_path, read);
+    pair.whole = true;
     // The noise model's sizes against the data's columns, at the first block, not after the pass.
     if (options.noise) {
       pair.check_columns = [noise = &*options.noise](Eigen::Index n, Eigen::Index d) {
@@ -104,7 +133,7 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
     return pair;
   };
   auto in_memory = [&] {
-    DataPair data = read_pair(a_path, b_path, read);
+    DataPair data = read_pair_from(a_path, b_path, read, kept_input ? &kept_input->text : nullptr);
     detail::check_method_fits(method, b_path, data.A.cols(), data.B.cols());
     if (options.noise) static_cast<void>(options.noise->resolved(data.A.cols(), data.B.cols()));
     detail::check_enough_rows_for(method, a_path, data.A.rows(), data.A.cols(), data.B.cols());
@@ -128,10 +157,15 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
     const std::string megabytes = bytes_text(bytes);
     const std::string budget = bytes_text(streamed->bootstrap_memory_bytes);
     if (a_path == "-" || b_path == "-") {
-      throw io::DataError(io::detail::kStdinName, 0, 0,
-                          detail::too_few_groups(rows, "standard input is read once, so its rows cannot be "
-                                                       "resampled in memory after the streaming pass; save it to a "
-                                                       "file, or fit it in memory without streaming"));
+      // Kept only while it fit the budget (and never when both are standard input).
+      if (!kept_input || kept_input->overflowed) {
+        throw io::DataError(io::detail::kStdinName, 0, 0,
+                            detail::too_few_groups(rows, "standard input is read once, and its text was more than "
+                                                         "the " + budget +
+                                                         " kept to resample its rows in memory after the streaming "
+                                                         "pass; save it to a file, or fit it in memory without "
+                                                         "streaming"));
+      }
     }
     if (bytes > streamed->bootstrap_memory_bytes) {
       throw io::DataError(a_path, 0, 0,
@@ -140,9 +174,11 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
                                                            " allowed for it; give more rows"));
     }
     FitResult result = in_memory();
-    result.warnings.push_back(detail::too_few_groups(rows, "its rows (" + megabytes + ", within the " + budget +
-                                                            " allowed) were resampled one at a time in memory instead "
-                                                            "(the in-memory bootstrap)"));
+    const std::string which = kept_input ? "its rows (" + megabytes + ", within the " + budget +
+                                               " allowed; standard input's text kept from the streaming pass)"
+                                         : "its rows (" + megabytes + ", within the " + budget + " allowed)";
+    result.warnings.push_back(detail::too_few_groups(
+        rows, which + " were resampled one at a time in memory instead (the in-memory bootstrap)"));
     return result;
   }
   if (streamed) {

@@ -1,6 +1,7 @@
 // FitOptions::bootstrap: the fields are filled for every method, the numbers depend on the seed
 // and not on the threads, failed replicates are counted, and the options are checked. (The
 // numbers themselves are checked against independent references in tests/python/test_bootstrap.py.)
+#include <cstdio>
 #include <gtest/gtest.h>
 
 #include "spdfit/fit.hpp"
@@ -127,6 +128,41 @@ TEST_F(StreamingBootstrapFiles, TooFewGroupsResampleInMemoryWithinTheBudgetAndAr
               std::string::npos)
         << e.what();
   }
+}
+
+// Standard input is read once: its text is kept while it is streamed, up to the budget, so that
+// too few groups are resampled from it in memory; a text beyond the budget is refused.
+TEST_F(StreamingBootstrapFiles, TooFewGroupsFromStandardInputResampleItsKeptTextWithinTheBudget) {
+  const Data d = noisy(5, 3000, 3);
+  const std::string a = Path("A.csv"), b = Path("B.npy");
+  io::write_csv(a, d.A);  // shortest round-trip text: the same doubles read back
+  io::write_npy(b, d.B);
+  FitOptions options;
+  options.bootstrap = 20;
+  StreamOptions stream;
+  ASSERT_NE(std::freopen(a.c_str(), "rb", stdin), nullptr);
+  const FitResult resampled = fit_files("-", b, Method::Spde, options, stream);
+  ASSERT_TRUE(resampled.ok() && resampled.bootstrap);
+  EXPECT_EQ(resampled.bootstrap->scheme, "multinomial");
+  EXPECT_EQ(resampled.bootstrap->standard_errors, fit(d.A, d.B, Method::Spde, options).bootstrap->standard_errors);
+  bool said = false;
+  for (const std::string& w : resampled.warnings) said |= w.find("standard input's text kept") != std::string::npos;
+  EXPECT_TRUE(said);
+
+  // The text (more than 100 KiB: 9000 numbers of about 19 digits) is beyond a budget of 100 KiB: refused, naming standard input.
+  stream.bootstrap_memory_bytes = 100 << 10;
+  ASSERT_NE(std::freopen(a.c_str(), "rb", stdin), nullptr);
+  try {
+    (void)fit_files("-", b, Method::Spde, options, stream);
+    FAIL() << "expected a DataError";
+  } catch (const io::DataError& e) {
+    EXPECT_EQ(e.source(), "<stdin>");
+    EXPECT_NE(std::string(e.what()).find("have 3000 rows (1 group): standard input is read once, and its text was "
+                                         "more than the 100 KiB kept to resample its rows in memory"),
+              std::string::npos)
+        << e.what();
+  }
+  ASSERT_NE(std::freopen("/dev/null", "rb", stdin), nullptr);
 }
 
 }  // namespace
