@@ -42,8 +42,10 @@ DataPair read_pair(const std::string& a_path, const std::string& b_path, const i
 /// With options.bootstrap and `stream`: the streaming (Poisson) bootstrap on groups of 4096 rows,
 /// which needs about 100 groups (409,600 rows). With fewer, the files are read again whole and
 /// their rows resampled one at a time in memory (with a warning saying so) when A and B take at
-/// most stream->bootstrap_memory_bytes (256 MiB) as doubles; beyond that, or when a file is standard input ("-"), io::DataError
-/// saying how many rows the streaming bootstrap needs.
+/// most stream->bootstrap_memory_bytes (256 MiB) as doubles. Standard input ("-", one of the two)
+/// cannot be read again: its text is kept while it is streamed, up to the same budget, and read
+/// from there. Beyond the budget (the doubles, or standard input's text) io::DataError saying how
+/// many rows the streaming bootstrap needs.
 FitResult fit_files(const std::string& a_path, const std::string& b_path, Method method,
                     const FitOptions& options = {}, const std::optional<StreamOptions>& stream = std::nullopt,
                     const io::ReadOptions& read = {});
