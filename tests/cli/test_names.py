@@ -164,3 +164,15 @@ def test_var_a_with_a_mat_file_still_reads_the_variable(spdfit):
     log = SOURCE_DIR / "examples" / "hexapod" / "log.mat"
     out = spdfit("fit", "--method", "spde", "--var-a", "accel", "--var-b", "force", log, log)
     assert out.returncode == 0, out.stderr
+
+
+def test_nearest_names_from_r_write_csv_quoted_labels(spdfit, tmp_path):
+    # R's write.csv(S) quotes every name, the index's empty header cell too.
+    text = '"","x 1","y,2"\n"x 1",2,3\n"y,2",3,2\n'
+    out = spdfit("nearest", "--header", write_text(tmp_path / "S.csv", text))
+    assert out.returncode == 0, out.stderr
+    index, columns, X = read_labelled(out.stdout)
+    assert index == columns == ["x 1", "y,2"]
+    assert np.all(np.linalg.eigvalsh(X) > 0)
+    js = json.loads(spdfit("nearest", "--json", tmp_path / "S.csv").stdout)
+    assert js["names"] == ["x 1", "y,2"] and js["X"] == X.tolist()
