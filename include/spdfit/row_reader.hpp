@@ -18,7 +18,14 @@ namespace detail {
 class SplitFile;  // a file split among processes (src/io/split_file.hpp) opens readers of its parts
 struct KeptText;  // standard input's text kept for a second reading (src/io/kept_text.hpp)
 RowReader standard_input_reader(const ReadOptions& options, std::shared_ptr<KeptText> keep);
-}
+class NpyRows;    // a C-order .npy file's rows, read by any thread (src/io/npy_rows.hpp)
+/// Internal, for the streaming pipeline: the rows of a C-order .npy file named by path, for any
+/// thread to read straight into the QR's input; nullptr for other files.
+const NpyRows* direct_rows(const RowReader& reader);
+/// Internal: counts the next rows (at most max_rows) of a reader with direct_rows() as read
+/// without reading them (they are read through direct_rows()) and returns how many.
+Eigen::Index skip_rows(RowReader& reader, Eigen::Index max_rows);
+}  // namespace detail
 
 /// Reads the matrix in a data file (the formats of read_table: .npy by its magic bytes,
 /// delimited text otherwise) a block of rows at a time, in O(block) memory: a .npy file's blocks
@@ -65,6 +72,8 @@ class RowReader {
  private:
   friend class detail::SplitFile;
   friend RowReader detail::standard_input_reader(const ReadOptions& options, std::shared_ptr<detail::KeptText> keep);
+  friend const detail::NpyRows* detail::direct_rows(const RowReader& reader);
+  friend Eigen::Index detail::skip_rows(RowReader& reader, Eigen::Index max_rows);
   RowReader() = default;
   struct Source;  // the format-specific part, one kind per file format (row_reader.cpp)
   class NpySource;

@@ -11,6 +11,10 @@
 
 namespace spdfit {
 
+namespace detail {
+class ChunkAppender;  // appends rows written straight into the QR's chunks (src/factor/chunk_appender.hpp)
+}
+
 /// R, the (n + d) x (n + d) upper triangular factor of the Householder QR of [A B] (A m x n,
 /// B m x d; d = n for the square X of every method, d != n for the n x d X of ls and tls),
 ///
@@ -97,6 +101,8 @@ class TriangularFactor {
   auto R22() const { return R_.bottomRightCorner(d_, d_); }
 
  private:
+  friend class detail::ChunkAppender;
+
   // Raises the stored exponents to at least (ea, eb), rescaling R exactly.
   void raise_exponents(std::optional<int> ea, std::optional<int> eb);
   // Re-triangularizes [R; rows] (the rows, already scaled, are overwritten).

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "factor/chunk_appender.hpp"
 #include "factor/data_checks.hpp"
 #include "numerics/linalg.hpp"
 
@@ -108,34 +109,50 @@ void TriangularFactor::absorb(Eigen::Ref<MatrixXd> scaled_rows) {
 void TriangularFactor::append(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B) {
   detail::check_shapes(A, B, n_, d_);
   if (A.rows() == 0) return;
-  // The rows are taken in the QR's own chunks, so that checking, scaling, copying and folding a
-  // chunk into R touch it while it is in the cache (one pass over A and B from memory, not five).
-  // A chunk that raises the exponents rescales R exactly, by powers of two, so the result has the
-  // bits of all the rows at once. On a chunk with NaN or Inf, the factor is put back as it was.
-  const Index chunk = std::min(A.rows(), detail::absorb_chunk_rows(n_ + d_));
-  const MatrixXd saved_r = R_;
-  const std::optional<int> saved_a = exponent_a_, saved_b = exponent_b_;
-  const Index saved_rows = rows_;
-  MatrixXd rows(chunk, n_ + d_);
+  // Checking, finding the scale of, copying and folding a chunk into R touch it while it is in
+  // the cache (one pass over A and B from memory, not five).
+  MatrixXd scratch;
+  detail::ChunkAppender::append(
+      *this, A.rows(),
+      [&](Index first, Index len, Eigen::Ref<MatrixXd> rows) {
+        const auto part_a = A.middleRows(first, len);
+        const auto part_b = B.middleRows(first, len);
+        detail::check_finite(part_a, part_b);
+        rows.leftCols(n_) = part_a;
+        rows.rightCols(d_) = part_b;
+        return detail::ChunkAppender::Extent{part_a.cwiseAbs().maxCoeff(), part_b.cwiseAbs().maxCoeff()};
+      },
+      &scratch);
+}
+
+namespace detail {
+
+void ChunkAppender::append(TriangularFactor& factor, Index count, const Fill& fill, MatrixXd* scratch) {
+  if (count <= 0) return;
+  const Index cols = factor.n_ + factor.d_;
+  const Index chunk = std::min(count, absorb_chunk_rows(cols));
+  if (scratch->rows() < chunk || scratch->cols() != cols) scratch->resize(chunk, cols);
+  const MatrixXd saved_r = factor.R_;
+  const std::optional<int> saved_a = factor.exponent_a_, saved_b = factor.exponent_b_;
+  const Index saved_rows = factor.rows_;
   try {
-    for (Index first = 0; first < A.rows(); first += chunk) {
-      const Index len = std::min(chunk, A.rows() - first);
-      const auto part_a = A.middleRows(first, len);
-      const auto part_b = B.middleRows(first, len);
-      detail::check_finite(part_a, part_b);
-      raise_exponents(detail::scale_exponent(part_a), detail::scale_exponent(part_b));
-      auto scaled = rows.topRows(len);
-      scaled << part_a, part_b;
-      absorb_rows(scaled, len);
+    for (Index first = 0; first < count; first += chunk) {
+      const Index len = std::min(chunk, count - first);
+      auto rows = scratch->topRows(len);
+      const Extent extent = fill(first, len, rows);
+      factor.raise_exponents(scale_exponent(extent.max_a), scale_exponent(extent.max_b));
+      factor.absorb_rows(rows, len);
     }
   } catch (...) {
-    R_ = saved_r;
-    exponent_a_ = saved_a;
-    exponent_b_ = saved_b;
-    rows_ = saved_rows;
+    factor.R_ = saved_r;
+    factor.exponent_a_ = saved_a;
+    factor.exponent_b_ = saved_b;
+    factor.rows_ = saved_rows;
     throw;
   }
 }
+
+}  // namespace detail
 
 void TriangularFactor::absorb_rows(Eigen::Ref<MatrixXd> rows, Index count) {
   auto rows_a = rows.leftCols(n_);

@@ -39,6 +39,20 @@ bool is_native_double(const NpyLayout& layout);
 bool decode_npy_rows(const NpyLayout& layout, const char* data, std::uint64_t first, Eigen::Index count,
                      Eigen::MatrixXd* out);
 
+/// What decoding a run of values saw: the largest magnitude among them (0 when all are zero), and
+/// whether every one is finite (when one is not, max_abs may be anything).
+struct DecodedExtent {
+  double max_abs = 0.0;
+  bool finite = true;
+};
+
+/// Decodes `count` rows of a C-order array of `layout`'s dtype and byte order (layout.cols values
+/// a row, row after row at `from`, which needs no alignment) into `out` (count x layout.cols, any
+/// outer stride: a column block of a larger matrix), in one pass that also finds the largest
+/// magnitude and whether every value is finite.
+DecodedExtent decode_c_order_rows(const NpyLayout& layout, const char* from, Eigen::Index count,
+                                  Eigen::Ref<Eigen::MatrixXd> out);
+
 /// Native doubles in C order (`count` rows of `cols`, row after row, at `from`, which needs no
 /// alignment) into `out` (resized to count x cols, column-major), in one pass that also tells
 /// whether every value is finite (false: a NaN or Inf, which check_npy_finite then names).
@@ -46,6 +60,6 @@ bool rows_to_columns(const char* from, Eigen::Index count, Eigen::Index cols, Ei
 
 /// Throws DataError naming the first NaN or Inf of `block` in reading order (row by row), with
 /// row numbers counted from 1 at the array's first row, `first_row` being block's first.
-void check_npy_finite(const Eigen::MatrixXd& block, std::uint64_t first_row, const std::string& source);
+void check_npy_finite(const Eigen::Ref<const Eigen::MatrixXd>& block, std::uint64_t first_row, const std::string& source);
 
 }  // namespace spdfit::io::detail

@@ -13,6 +13,7 @@
 #include <cstring>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <string_view>
 #include <utility>
 
@@ -21,6 +22,7 @@
 #include "file_error.hpp"
 #include "kept_text.hpp"
 #include "npy_layout.hpp"
+#include "npy_rows.hpp"
 #include "parse.hpp"
 #include "read_file.hpp"
 #include "split_file.hpp"
@@ -84,6 +86,7 @@ class RowReader::NpySource final : public RowReader::Source {
         ::posix_fadvise(fd_, 0, 0, POSIX_FADV_SEQUENTIAL);
         ::munmap(map, size_);
         map_ = nullptr;
+        rows_.emplace(fd_, layout_, begin_, path, options_.allow_nonfinite);
       }
     } catch (...) {
       if (map_) ::munmap(map, size_);  // a constructor that throws runs no destructor
@@ -97,16 +100,23 @@ class RowReader::NpySource final : public RowReader::Source {
 
   Index read(Index max_rows, Eigen::MatrixXd* rows) override {
     const std::uint64_t at = begin_ + rows_read;
-    const std::uint64_t left = end_ - at;
-    const auto count =
-        static_cast<Index>(std::min<std::uint64_t>(left, static_cast<std::uint64_t>(max_rows)));
+    const Index count = rows_ahead(max_rows);
     const bool finite = map_ ? detail::decode_npy_rows(layout_, map_ + layout_.data_offset, at, count, rows)
-                             : read_rows(at, count, rows);
+                             : read_rows(count, rows);
     if (!options_.allow_nonfinite && !finite) detail::check_npy_finite(*rows, at, path);
     rows_read += static_cast<std::uint64_t>(count);
     if (map_) drop_decoded_pages();
     return count;
   }
+  /// Counts the next rows, at most max_rows, as read without reading them (their reader reads
+  /// them later, through direct()) and returns how many.
+  Index skip(Index max_rows) {
+    const Index count = rows_ahead(max_rows);
+    rows_read += static_cast<std::uint64_t>(count);
+    return count;
+  }
+  /// The rows for any thread to read (C order only; nullptr in Fortran order).
+  const detail::NpyRows* direct() const { return rows_ ? &*rows_ : nullptr; }
   Index columns() const override { return static_cast<Index>(layout_.cols); }
   std::uint64_t rows() const { return layout_.rows; }  ///< the file's, not only those read
   std::optional<std::uint64_t> rows_declared() const override { return end_ - begin_; }
@@ -115,21 +125,16 @@ class RowReader::NpySource final : public RowReader::Source {
   }
 
  private:
-  // Rows [at, at + count) of a C-order file, read into buffer_ and decoded from there; what
+  // The rows the next read takes: at most max_rows, fewer at the end.
+  Index rows_ahead(Index max_rows) const {
+    const std::uint64_t left = end_ - (begin_ + rows_read);
+    return static_cast<Index>(std::min<std::uint64_t>(left, static_cast<std::uint64_t>(max_rows)));
+  }
+
+  // The next `count` rows of a C-order file, read into buffer_ and decoded from there; what
   // decode_npy_rows returns (true: every value seen finite).
-  bool read_rows(std::uint64_t at, Index count, Eigen::MatrixXd* rows) {
-    const std::size_t row_bytes = layout_.item_size * layout_.cols;
-    const std::size_t bytes = row_bytes * static_cast<std::size_t>(count);
-    buffer_.resize((bytes + sizeof(double) - 1) / sizeof(double));  // doubles: aligned for any item
-    char* into = reinterpret_cast<char*>(buffer_.data());
-    std::uint64_t offset = layout_.data_offset + at * row_bytes;
-    for (std::size_t done = 0; done < bytes;) {
-      const ssize_t got = ::pread(fd_, into + done, bytes - done, static_cast<off_t>(offset + done));
-      if (got < 0 && errno == EINTR) continue;
-      if (got < 0) fail_errno(path, "read error");
-      if (got == 0) throw DataError(path, 0, 0, "ends before the rows its header declares (was it truncated?)");
-      done += static_cast<std::size_t>(got);
-    }
+  bool read_rows(Index count, Eigen::MatrixXd* rows) {
+    const char* into = rows_->read_bytes(rows_read, count, &buffer_);
     detail::NpyLayout part = layout_;  // the block alone: its rows from the buffer's start
     part.rows = static_cast<std::uint64_t>(count);
     return detail::decode_npy_rows(part, into, 0, count, rows);
@@ -162,6 +167,7 @@ class RowReader::NpySource final : public RowReader::Source {
   std::size_t size_;
   ReadOptions options_;
   detail::NpyLayout layout_;
+  std::optional<detail::NpyRows> rows_;  // C order only
 };
 
 // Delimited text, read in pieces that end at a line end and parsed as they arrive.
@@ -492,6 +498,21 @@ RowReader::RowReader(RowReader&&) noexcept = default;
 RowReader& RowReader::operator=(RowReader&&) noexcept = default;
 
 Index RowReader::read(Index max_rows, Eigen::MatrixXd* rows) { return source_->read(max_rows, rows); }
+
+namespace detail {
+
+const NpyRows* direct_rows(const RowReader& reader) {
+  const auto* npy = dynamic_cast<const RowReader::NpySource*>(reader.source_.get());
+  return npy ? npy->direct() : nullptr;
+}
+
+Index skip_rows(RowReader& reader, Index max_rows) {
+  auto* npy = dynamic_cast<RowReader::NpySource*>(reader.source_.get());
+  if (!npy || !npy->direct()) throw std::logic_error("skip_rows: not a C-order .npy file");
+  return npy->skip(max_rows);
+}
+
+}  // namespace detail
 const std::string& RowReader::path() const { return source_->path; }
 Index RowReader::columns() const { return source_->columns(); }
 const std::vector<std::string>& RowReader::column_names() const { return source_->column_names(); }

@@ -10,6 +10,9 @@
 #include <utility>
 #include <vector>
 
+#include "factor/chunk_appender.hpp"
+#include "factor/data_checks.hpp"
+#include "io/npy_rows.hpp"
 #include "numerics/parallel.hpp"
 #include "pipeline/pair_checks.hpp"
 #include "pipeline/stream_resampling.hpp"
@@ -36,10 +39,40 @@ unsigned pipeline_threads(const StreamOptions& options) {
   return options.block_rows < kMinThreadedBlockRows ? 1u : resolve_threads(options.threads);
 }
 
-// One block of A and the same rows of B.
+// One block of A and the same rows of B; or, when both files are C-order .npy, the buffers its
+// rows are read through by the thread that factors them: each chunk's bytes of A and of B, and
+// the chunk of [A B] they are decoded into, which the QR factors.
 struct Block {
   MatrixXd A, B;
+  std::vector<double> bytes_a, bytes_b;
+  MatrixXd chunk;
 };
+
+// Rows [first, first + count) of both files (C-order .npy), read and decoded a chunk at a time
+// into the QR's input and factored: the factor of the block, with the bits of from_data on the
+// same rows decoded whole. A NaN or Inf is reported as the reader reports it for a whole block
+// (the first in A's rows, then in B's), or, when non-finite values are allowed, as
+// TriangularFactor refuses them.
+TriangularFactor factor_rows(const io::detail::NpyRows& a, const io::detail::NpyRows& b, std::uint64_t first,
+                             Index count, Block* buffers) {
+  const Index n = a.columns(), d = b.columns();
+  TriangularFactor factor(n, d);
+  detail::ChunkAppender::append(
+      factor, count,
+      [&](Index at, Index len, Eigen::Ref<MatrixXd> rows) {
+        const std::uint64_t from = first + static_cast<std::uint64_t>(at);
+        const io::detail::DecodedExtent ea = a.read(from, len, rows.leftCols(n), &buffers->bytes_a);
+        const io::detail::DecodedExtent eb = b.read(from, len, rows.rightCols(d), &buffers->bytes_b);
+        if (!ea.finite || !eb.finite) {
+          a.check_finite(first, count, &buffers->bytes_a);
+          b.check_finite(first, count, &buffers->bytes_b);
+          detail::check_finite(rows.leftCols(n), rows.rightCols(d));
+        }
+        return detail::ChunkAppender::Extent{ea.max_abs, eb.max_abs};
+      },
+      &buffers->chunk);
+  return factor;
+}
 
 class PairReader {
  public:
@@ -50,7 +83,34 @@ class PairReader {
         block_rows_(options.block_rows),
         side_by_side_(side_by_side),
         method_(method),
-        check_columns_(std::move(readers.check_columns)) {}
+        check_columns_(std::move(readers.check_columns)),
+        direct_a_(io::detail::direct_rows(a_)),
+        direct_b_(io::detail::direct_rows(b_)) {}
+
+  /// Whether both files are C-order .npy files, whose rows next_rows() hands out to be read by
+  /// the threads that factor them.
+  bool direct() const { return direct_a_ && direct_b_; }
+  const io::detail::NpyRows& direct_a() const { return *direct_a_; }
+  const io::detail::NpyRows& direct_b() const { return *direct_b_; }
+
+  /// With direct(): the next block's rows, [*first, *first + *count) of both files, counted as
+  /// read but not read; false at the end of both. The same checks as next().
+  bool next_rows(std::uint64_t* first, Index* count) {
+    *first = a_.rows_read();
+    const Index got_a = io::detail::skip_rows(a_, block_rows_);
+    if (got_a < block_rows_ && whole_ && a_.rows_read() < static_cast<std::uint64_t>(a_.columns())) {
+      // A NaN in these rows is what next() would report first: A's rows are decoded before their
+      // number is checked.
+      std::vector<double> bytes;
+      direct_a_->check_finite(*first, got_a, &bytes);
+      check_enough_rows();
+    }
+    const Index got_b = io::detail::skip_rows(b_, block_rows_);
+    started_ = true;
+    check(got_a, got_b);
+    *count = got_a;
+    return got_a > 0;
+  }
 
   /// How much of A has been read, in [0, 1].
   double fraction_read() const { return a_.fraction_read(); }
@@ -136,6 +196,8 @@ class PairReader {
   std::function<void(Index, Index)> check_columns_;
   bool started_ = false;
   std::unique_ptr<detail::TaskPool> b_thread_;  // reads B beside A, from the second block on
+  const io::detail::NpyRows* direct_a_;         // owned by a_ and b_: C-order .npy files only
+  const io::detail::NpyRows* direct_b_;
 };
 
 }  // namespace
@@ -198,11 +260,7 @@ TriangularFactor stream_factor_for(const std::optional<Method>& method, PairRead
     }
   };
   Block block;
-  while (reader.next(&block)) {
-    auto factor_block = [b = std::move(block)]() mutable {
-      TriangularFactor factor = TriangularFactor::from_data(b.A, b.B);
-      return Factored{std::move(factor), std::move(b)};
-    };
+  auto submit = [&](auto factor_block) {
     in_flight.push_back(pool ? pool->submit(std::move(factor_block))
                              : std::async(std::launch::deferred, std::move(factor_block)));
     block = Block{};
@@ -212,6 +270,26 @@ TriangularFactor stream_factor_for(const std::optional<Method>& method, PairRead
     }
     if (in_flight.size() >= threads) merge_oldest();
     if (options.progress) options.progress(reader.fraction_read());
+  };
+  if (reader.direct()) {
+    // Both files C-order .npy: each block's rows are read by the thread that factors them,
+    // straight into the QR's chunks (the pool's threads outlive no reader: the pool is destroyed
+    // first).
+    std::uint64_t first = 0;
+    Index count = 0;
+    while (reader.next_rows(&first, &count)) {
+      submit([&a = reader.direct_a(), &b = reader.direct_b(), first, count, buffers = std::move(block)]() mutable {
+        TriangularFactor factor = factor_rows(a, b, first, count, &buffers);
+        return Factored{std::move(factor), std::move(buffers)};
+      });
+    }
+  } else {
+    while (reader.next(&block)) {
+      submit([b = std::move(block)]() mutable {
+        TriangularFactor factor = TriangularFactor::from_data(b.A, b.B);
+        return Factored{std::move(factor), std::move(b)};
+      });
+    }
   }
   while (!in_flight.empty()) merge_oldest();
   if (options.progress) options.progress(1.0);
@@ -278,7 +356,7 @@ ResampledFactors stream_resampled_factors(Method method, PairReaders readers, co
     while (offset < block.A.rows()) {
       if (batch.empty() || filled == g_rows) {
         if (batch.size() == kBatchGroups) flush();
-        batch.push_back(Block{MatrixXd(g_rows, n), MatrixXd(g_rows, d)});
+        batch.push_back(Block{MatrixXd(g_rows, n), MatrixXd(g_rows, d), {}, {}, {}});
         filled = 0;
       }
       const Index take = std::min(block.A.rows() - offset, g_rows - filled);

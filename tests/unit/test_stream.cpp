@@ -3,7 +3,16 @@
 // mismatched files with messages that name them.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "file_test_support.hpp"
 #include "spdfit/fit.hpp"
@@ -139,6 +148,146 @@ TEST_F(StreamTest, MismatchedFilesAreRefusedByName) {
 TEST_F(StreamTest, BlockRowsMustBePositive) {
   MakeData(10, 2, 4);
   EXPECT_THROW(Stream(0, 1), std::invalid_argument);
+}
+
+// The factor stream_factor computes, from the data in memory: each block's from_data, merged into
+// the total in block order.
+TriangularFactor BlockByBlock(const MatrixXd& A, const MatrixXd& B, Index block) {
+  std::optional<TriangularFactor> total;
+  for (Index first = 0; first < A.rows(); first += block) {
+    const Index len = std::min(block, A.rows() - first);
+    TriangularFactor part = TriangularFactor::from_data(A.middleRows(first, len), B.middleRows(first, len));
+    if (total) {
+      total->merge(part);
+    } else {
+      total = std::move(part);
+    }
+  }
+  return *total;
+}
+
+void ExpectSameFactor(const TriangularFactor& actual, const TriangularFactor& expected, const std::string& what) {
+  EXPECT_EQ(actual.R(), expected.R()) << what;  // bitwise
+  EXPECT_EQ(actual.rows(), expected.rows()) << what;
+  EXPECT_EQ(actual.exponent_a(), expected.exponent_a()) << what;
+  EXPECT_EQ(actual.exponent_b(), expected.exponent_b()) << what;
+}
+
+// A .npy file of M's values with the given dtype ('<f8', '>f8', '<f4', '<i2') and order, as NumPy
+// lays it out (the header padded so that the data start at a multiple of 64).
+std::string WriteNpy(const std::string& path, const MatrixXd& M, const std::string& descr, bool fortran) {
+  std::string data;
+  auto put = [&](double x) {
+    std::string bytes;
+    if (descr[1] == 'f' && descr[2] == '8') {
+      bytes.assign(reinterpret_cast<const char*>(&x), 8);
+    } else if (descr[1] == 'f') {
+      const auto f = static_cast<float>(x);
+      bytes.assign(reinterpret_cast<const char*>(&f), 4);
+    } else {
+      const auto i = static_cast<std::int16_t>(std::lround(x * 1000.0));
+      bytes.assign(reinterpret_cast<const char*>(&i), 2);
+    }
+    if (descr[0] == '>') std::reverse(bytes.begin(), bytes.end());
+    data += bytes;
+  };
+  for (Index outer = 0; outer < (fortran ? M.cols() : M.rows()); ++outer) {
+    for (Index inner = 0; inner < (fortran ? M.rows() : M.cols()); ++inner) put(fortran ? M(inner, outer) : M(outer, inner));
+  }
+  std::string header = "{'descr': '" + descr + "', 'fortran_order': " + (fortran ? "True" : "False") + ", 'shape': (" +
+                       std::to_string(M.rows()) + ", " + std::to_string(M.cols()) + "), }";
+  while ((10 + header.size() + 1) % 64 != 0) header += ' ';
+  header += '\n';
+  std::string bytes = "\x93NUMPY\x01";
+  bytes += '\0';
+  bytes += static_cast<char>(header.size() & 0xFF);
+  bytes += static_cast<char>(header.size() >> 8);
+  std::ofstream(path, std::ios::binary) << bytes << header << data;
+  return path;
+}
+
+TEST_F(StreamTest, NpyFilesStreamToTheBitsOfTheirBlocksFactoredInMemory) {
+  // Two C-order .npy files are read by the threads that factor them, a chunk at a time, straight
+  // into the QR's input; Fortran order and other files are read a block at a time and factored
+  // with from_data. Either way the factor is that of each block's from_data merged in order, to
+  // the bit, for every dtype, byte order and block size (chunk boundaries of the block QR: 2730
+  // rows at n + d = 12; 2731 rows is a chunk and one row).
+  MakeData(70001, 6, 4);
+  A_.col(2) *= 1e-3;  // a later chunk raises the exponent of A: R is rescaled on the way
+  A_.bottomRows(10000) *= 64.0;
+  const std::string a = Path("A64.npy");
+  io::write_npy(a, A_);
+  const std::vector<std::pair<std::string, bool>> layouts = {{"<f8", false}, {">f8", false}, {"<f4", false},
+                                                             {"<i2", false}, {"<f8", true}};
+  for (const auto& [descr, fortran] : layouts) {
+    const std::string b = WriteNpy(Path("B" + descr.substr(1) + (fortran ? "F" : "C") + ".npy"), B_, descr, fortran);
+    const MatrixXd B = io::read_matrix(b);
+    for (Index block : {Index{1000}, Index{2731}, Index{4096}, Index{1} << 15}) {
+      const TriangularFactor expected = BlockByBlock(A_, B, block);
+      for (unsigned threads : {1u, 2u}) {
+        StreamOptions options;
+        options.block_rows = block;
+        options.threads = threads;
+        ExpectSameFactor(stream_factor(a, b, options), expected,
+                         b + ", block " + std::to_string(block) + ", " + std::to_string(threads) + " threads");
+      }
+    }
+  }
+}
+
+TEST_F(StreamTest, NonFiniteNpyValuesAreReportedAsTheReaderReportsThem) {
+  // Decoded in chunks on the factoring threads, a NaN is still reported as the reader reports it
+  // for a whole block: the first in A's block, then in B's, with its row in the file.
+  test::Generator g(9);
+  MatrixXd A = g.gaussian(70000, 3), B = g.gaussian(70000, 3);
+  A(40000, 2) = std::numeric_limits<double>::quiet_NaN();
+  B(33000, 0) = -std::numeric_limits<double>::infinity();  // earlier, in the same block of 32768 rows
+  const std::string a = Path("Anan.npy"), b = Path("Binf.npy"), a_ok = Path("A.npy");
+  io::write_npy(a, A);
+  io::write_npy(b, B);
+  A(40000, 2) = 1.0;
+  io::write_npy(a_ok, A);
+  for (unsigned threads : {1u, 2u}) {
+    StreamOptions options;
+    options.threads = threads;
+    try {
+      stream_factor(a, b, options);
+      ADD_FAILURE() << "no error";
+    } catch (const DataError& e) {
+      EXPECT_EQ(e.source(), a);
+      EXPECT_EQ(e.problem(), "entry (40001, 3) is NaN (rows and columns counted from 1)");
+    }
+    try {
+      stream_factor(a_ok, b, options);
+      ADD_FAILURE() << "no error";
+    } catch (const DataError& e) {
+      EXPECT_EQ(e.source(), b);
+      EXPECT_EQ(e.problem(), "entry (33001, 1) is -Inf (rows and columns counted from 1)");
+    }
+    // Allowed by the reader, they are refused by the factor, as from_data refuses the block.
+    options.read.allow_nonfinite = true;
+    std::string expected;
+    try {
+      TriangularFactor::from_data(A.middleRows(32768, 32768), B.middleRows(32768, 32768));
+    } catch (const std::invalid_argument& e) {
+      expected = e.what();
+    }
+    ASSERT_FALSE(expected.empty());
+    try {
+      stream_factor(a_ok, b, options);
+      ADD_FAILURE() << "no error";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_EQ(std::string(e.what()), expected);
+    }
+  }
+  // Fewer rows than columns and a NaN: the NaN is found first, as when A's block is decoded whole.
+  MatrixXd few = g.gaussian(2, 3);
+  few(1, 1) = std::numeric_limits<double>::quiet_NaN();
+  const std::string short_a = Path("short.npy"), short_b = Path("shortB.npy");
+  io::write_npy(short_a, few);
+  io::write_npy(short_b, g.gaussian(2, 3));
+  const DataError e = StreamError(short_a, short_b);
+  EXPECT_EQ(e.problem(), "entry (2, 2) is NaN (rows and columns counted from 1)");
 }
 
 }  // namespace
