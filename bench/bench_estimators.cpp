@@ -8,7 +8,8 @@
 // against the machine's peak. The other rows have no flop count: their iterative SVDs and
 // eigensolvers take a data-dependent number of sweeps. The same estimators in NumPy/SciPy are
 // timed by bench/compare.py. The n = 1000 rows take seconds each; --benchmark_filter=-/4000/
-// skips them.
+// skips them. BM_Fit leaves the noise estimate unread (a fit computes it when it is read);
+// BM_FitNoise reads it.
 #include <benchmark/benchmark.h>
 
 #include <Eigen/QR>
@@ -65,6 +66,19 @@ void BM_Fit(benchmark::State& state, spdfit::Method method) {
   const Data data = make_data(state.range(0), state.range(1));
   for (auto _ : state) {
     spdfit::FitResult result = spdfit::fit(data.A, data.B, method);
+    benchmark::DoNotOptimize(result.X.data());
+  }
+}
+
+// fit() with the noise estimate read as well (Diagnostics::noise_sigma), as --json, --report and
+// Python's attribute read it: a fit computes the noise estimate only when it is read, so BM_Fit
+// times X with the other diagnostics and BM_FitNoise adds the noise estimate's SVD.
+void BM_FitNoise(benchmark::State& state, spdfit::Method method) {
+  const Data data = make_data(state.range(0), state.range(1));
+  for (auto _ : state) {
+    spdfit::FitResult result = spdfit::fit(data.A, data.B, method);
+    const double sigma = result.diagnostics.noise_sigma.value_or(0.0);
+    benchmark::DoNotOptimize(sigma);
     benchmark::DoNotOptimize(result.X.data());
   }
 }
@@ -127,6 +141,19 @@ BENCHMARK_CAPTURE(BM_Fit, tls, spdfit::Method::TotalLeastSquares)->Apply(sizes);
 BENCHMARK_CAPTURE(BM_Fit, tls_sym, spdfit::Method::TotalLeastSquaresSymmetric)->Apply(sizes);
 BENCHMARK_CAPTURE(BM_Fit, tls_psd, spdfit::Method::TotalLeastSquaresPsd)->Apply(sizes);
 BENCHMARK_CAPTURE(BM_Fit, spde, spdfit::Method::Spde)->Apply(sizes);
+
+// Large n against the LAPACK floor (lapack_floor.cpp's BM_FloorFit and BM_FloorFitNoise, same
+// m and n): m = 4000, n = 1000 and 2000. Each n = 2000 row takes tens of seconds.
+void large_sizes(benchmark::internal::Benchmark* b) {
+  b->Args({4000, 1000})->Args({4000, 2000})->Unit(benchmark::kMillisecond);
+}
+BENCHMARK_CAPTURE(BM_Fit, spde, spdfit::Method::Spde)->Args({4000, 2000})->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Fit, procrustes, spdfit::Method::SymmetricProcrustes)
+    ->Args({4000, 2000})->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Fit, tls, spdfit::Method::TotalLeastSquares)->Args({4000, 2000})->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_FitNoise, spde, spdfit::Method::Spde)->Apply(large_sizes);
+BENCHMARK_CAPTURE(BM_FitNoise, procrustes, spdfit::Method::SymmetricProcrustes)->Apply(large_sizes);
+BENCHMARK_CAPTURE(BM_FitNoise, tls, spdfit::Method::TotalLeastSquares)->Apply(large_sizes);
 
 // X alone: up to n = 8 the small-problem path, above it fit() without the diagnostics.
 void estimate_sizes(benchmark::internal::Benchmark* b) {

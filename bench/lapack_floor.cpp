@@ -8,6 +8,10 @@
 //                  eigendecomposition"), the stable path's own LAPACK work;
 //   BM_FloorTls:   the QR of [A B] plus the SVD of its 2n x 2n triangular factor (dgesdd,
 //                  right singular vectors): the floor of tls;
+//   BM_FloorFit:   BM_FloorSpdeSvd for any m (arguments m, n): the floor of fit() with its
+//                  diagnostics but the noise estimate, for spde and procrustes;
+//   BM_FloorFitNoise: the same plus the values-only SVD (dgesdd, no vectors) of the 2n x 2n
+//                  triangular factor: the floor of fit() with the noise estimate read;
 // and the pieces alone (BM_Dgeqrf, BM_Dsyevd, BM_Dgesdd), so that each of spdfit's steps can
 // be held against LAPACK's; BM_Dgemm (C = A B, n x n) shows which kernels OpenBLAS runs: its
 // GFLOP/s against the same run with OPENBLAS_CORETYPE set is the number behind spdfit's choice of
@@ -71,6 +75,14 @@ void right_singular_vectors(MatrixXd R) {
   benchmark::DoNotOptimize(VT.data());
 }
 
+void singular_values(MatrixXd R) {
+  const lapack_int n = static_cast<lapack_int>(R.rows());
+  Eigen::VectorXd s(n);
+  double unused = 0.0;
+  check(LAPACKE_dgesdd(LAPACK_COL_MAJOR, 'N', n, n, R.data(), n, s.data(), &unused, 1, &unused, 1), "dgesdd");
+  benchmark::DoNotOptimize(s.data());
+}
+
 MatrixXd data(Index n) { return random_matrix(4 * n, 2 * n, 42); }
 
 void BM_Dgeqrf(benchmark::State& state) {
@@ -122,6 +134,24 @@ void floor_spde(benchmark::State& state, bool with_svd) {
   }
 }
 
+// BM_FloorFit (noise = false) and BM_FloorFitNoise: QR of the m x 2n [A B], the n x n SVD of R11
+// with vectors, an n x n dsyevd, and with `noise` the values-only SVD of the 2n x 2n factor.
+void floor_fit(benchmark::State& state, bool noise) {
+  const Index m = state.range(0), n = state.range(1);
+  const MatrixXd AB = random_matrix(m, 2 * n, 42);
+  const MatrixXd W = random_matrix(n, n, 7);
+  const MatrixXd S = W.transpose() * W;
+  for (auto _ : state) {
+    const MatrixXd R = qr_factor(AB);
+    right_singular_vectors(R.topLeftCorner(n, n));
+    symmetric_eigen(S);
+    if (noise) singular_values(R);
+  }
+}
+
+void BM_FloorFit(benchmark::State& state) { floor_fit(state, false); }
+void BM_FloorFitNoise(benchmark::State& state) { floor_fit(state, true); }
+
 void BM_FloorSpde(benchmark::State& state) { floor_spde(state, false); }
 void BM_FloorSpdeSvd(benchmark::State& state) { floor_spde(state, true); }
 
@@ -140,6 +170,8 @@ BENCHMARK(BM_Dgesdd)->Arg(2000)->Arg(4000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FloorSpde)->Apply(sizes);
 BENCHMARK(BM_FloorSpdeSvd)->Apply(sizes);
 BENCHMARK(BM_FloorTls)->Apply(sizes);
+BENCHMARK(BM_FloorFit)->Args({4000, 1000})->Args({4000, 2000})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FloorFitNoise)->Args({4000, 1000})->Args({4000, 2000})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

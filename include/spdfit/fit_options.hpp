@@ -28,8 +28,9 @@ struct FitOptions {
   /// warning needs: the noise estimate (Diagnostics::noise_sigma, the singular values of the
   /// (n + d) x (n + d) triangular factor of [A B]), the column-scaled condition numbers
   /// (cond_a_scaled, cond_b_scaled: singular values of A and B with scaled columns), the residual
-  /// norm and the area criterion (products of n x n matrices): at large n most of the
-  /// diagnostics' time (at n = 2000 the noise estimate alone is longer than spde's estimate).
+  /// norm and the area criterion (products of n x n matrices). On, the noise estimate and the
+  /// scaled condition numbers (where the ranks did not need them) are computed when first read
+  /// (LazyOptional, LazyDouble): a fit nobody reads them from does not pay for their SVDs.
   /// Off, noise_sigma and area_criterion are unset, residual_norm and cond_b_scaled are 0, and so
   /// is cond_a_scaled unless it may exceed 1e12 (then it is computed for the warning about an
   /// ill-conditioned A); procrustes computes cross_term_positive_definite only for its warning.

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "spdfit/lazy_optional.hpp"
 #include "spdfit/method.hpp"
 #include "spdfit/noise_model.hpp"
 
@@ -66,8 +67,11 @@ struct Diagnostics {
   Eigen::Index rank_a = 0, rank_b = 0;
   double cond_a = 0.0, cond_b = 0.0;                     ///< sigma_max / sigma_min; +inf when singular
   /// The condition numbers of A and B with unit-norm columns: those the ranks are decided on,
-  /// and the ones that bound the estimate's loss of accuracy. 0 when not computed.
-  double cond_a_scaled = 0.0, cond_b_scaled = 0.0;
+  /// and the ones that bound the estimate's loss of accuracy. 0 when not computed
+  /// (FitOptions::reported_diagnostics off). Each costs an SVD of an n x n matrix when the rank
+  /// did not need one: it is then computed when first read (it reads like a double; the number
+  /// does not depend on when it is read, see LazyOptional), and kept for every copy.
+  LazyDouble cond_a_scaled = 0.0, cond_b_scaled = 0.0;
   Eigen::VectorXd singular_values_a, singular_values_b;  ///< descending
 
   double residual_norm = 0.0;            ///< ||A X - B||_F
@@ -98,7 +102,15 @@ struct Diagnostics {
   /// from sigma^2 = sum_{i>n} s_i^2 / (d (m - n)), s_i the singular values of [A, B / noise_ratio]
   /// (unbiased for sigma^2). Present whenever m > n, for every method; its relative standard
   /// error is about sqrt(2 / (d (m - n))), and a warning says so when m - n < n.
-  std::optional<double> noise_sigma;
+  /// It costs a values-only SVD of that (n + d) x (n + d) factor, longer than spde's or
+  /// procrustes' whole estimate at large n, so a fit computes it when it is first read (it reads
+  /// like std::optional<double>; the number does not depend on when it is read): once for every
+  /// copy of the result and for every method fitted from the same Reduction, and never for a fit
+  /// whose reader does not look at it (JSON and text reports read it). tls, tls-sym and tls-psd
+  /// without a noise model take it from the SVD of the same factor they compute for X (with
+  /// right singular vectors; above 64 columns its last bits may differ from the values-only SVD's).
+  /// Until it is read, the result keeps the fit's reduced data alive (about 6 n^2 numbers).
+  LazyOptional noise_sigma;
 
   /// The iterative methods (spd-tls, psd-ls): iterations taken, the final stopping quantity
   /// (spd-tls: ||X^1/2 grad f(X) X^1/2||_F in the units of the criterion; psd-ls: the relative

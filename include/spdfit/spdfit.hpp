@@ -30,6 +30,7 @@
 #include "spdfit/inertia_repair.hpp"
 #include "spdfit/io.hpp"
 #include "spdfit/labels.hpp"
+#include "spdfit/lazy_optional.hpp"
 #include "spdfit/least_squares.hpp"
 #include "spdfit/linear_system.hpp"
 #include "spdfit/linkage/analysis.hpp"

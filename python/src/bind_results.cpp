@@ -72,9 +72,19 @@ void bind_results(py::module_& m) {
       .def_property_readonly("rank_b", copied(&Diagnostics::rank_b))
       .def_property_readonly("cond_a", copied(&Diagnostics::cond_a), "sigma_max / sigma_min of A (inf when singular)")
       .def_property_readonly("cond_b", copied(&Diagnostics::cond_b))
-      .def_property_readonly("cond_a_scaled", copied(&Diagnostics::cond_a_scaled),
-                             "cond(A) with A's columns scaled to unit norm: the rank is decided on it")
-      .def_property_readonly("cond_b_scaled", copied(&Diagnostics::cond_b_scaled))
+      .def_property_readonly(
+          "cond_a_scaled",
+          [](const Diagnostics& d) {
+            py::gil_scoped_release release;  // an SVD at the first read, unless the fit needed it
+            return d.cond_a_scaled.get();
+          },
+          "cond(A) with A's columns scaled to unit norm: the rank is decided on it. Computed when first "
+          "read where the rank did not need it")
+      .def_property_readonly("cond_b_scaled",
+                             [](const Diagnostics& d) {
+                               py::gil_scoped_release release;
+                               return d.cond_b_scaled.get();
+                             })
       .def_property_readonly("singular_values_a", copied(&Diagnostics::singular_values_a))
       .def_property_readonly("singular_values_b", copied(&Diagnostics::singular_values_b))
       .def_property_readonly("residual_norm", copied(&Diagnostics::residual_norm), "||A X - B||_F")
@@ -93,9 +103,17 @@ void bind_results(py::module_& m) {
       .def_property_readonly("tls_sigma_n1", copied(&Diagnostics::tls_sigma_n1))
       .def_property_readonly("tls_correction_norm", copied(&Diagnostics::tls_correction_norm), "thesis eq. 4.33")
       .def_property_readonly("tls_v22_min_singular_value", copied(&Diagnostics::tls_v22_min_singular_value))
-      .def_property_readonly("noise_sigma", copied(&Diagnostics::noise_sigma),
-                    "noise standard deviation in A under the TLS model (noise_ratio times it in B); "
-                    "None when m == n")
+      .def_property_readonly(
+          "noise_sigma",
+          [](const Diagnostics& d) {
+            // Computed at the first read (an SVD of the whole factor), not by the fit; the SVD
+            // runs without the GIL.
+            py::gil_scoped_release release;
+            return d.noise_sigma.get();
+          },
+          "noise standard deviation in A under the TLS model (noise_ratio times it in B); "
+          "None when m == n. Computed when first read (an SVD of the (n + d) x (n + d) factor of "
+          "[A B]), not by the fit")
       .def_property_readonly("iterations", copied(&Diagnostics::iterations), "spd-tls, psd-ls: iterations taken")
       .def_property_readonly("gradient_norm", copied(&Diagnostics::gradient_norm),
                     "spd-tls: ||X^1/2 grad f X^1/2||_F; psd-ls: the relative KKT residual")

@@ -261,7 +261,7 @@ FitResult auto_fit(const Reduction& reduction) {
     choice = detail::auto_noise_choice(data, *noise);
     reason = AutoReason{choice.code, noise_reason_text(choice, data, *data.options.noise)};
   } else {
-    const std::optional<double> noise_var = data.noise_var ? data.noise_var : detail::noise_variance(data);
+    const std::optional<double> noise_var = detail::data_noise_variance(data);
     choice = detail::auto_choice(data, noise_var);
     reason = AutoReason{choice.code, reason_text(choice, m, n) + assumed_equal_text(data.options)};
   }

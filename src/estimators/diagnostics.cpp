@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "factor/basic_reduction.hpp"
+#include "factor/reduce.hpp"
 #include "numerics/linalg.hpp"
 
 namespace spdfit::detail {
@@ -43,17 +44,24 @@ void fill_data_diagnostics(const DynamicReduction& data, Diagnostics& d, std::ve
   d.singular_values_b = times_power_of_two(data.s_b, data.exponent_b);
   d.cond_a = condition_number(data.s_a);
   d.cond_b = condition_number(data.s_b);
-  d.cond_a_scaled = data.cond_a_scaled;
-  d.cond_b_scaled = data.cond_b_scaled;
+  // The column-scaled condition numbers: an SVD each where the rank did not need one, so deferred
+  // to their first read when every diagnostic is reported; else cond(A D) only where the warning
+  // may need it, as reduce_into left it.
+  const bool reported = data.options.diagnostics && data.options.reported_diagnostics;
+  d.cond_a_scaled = reported ? scaled_condition_of(data, false) : LazyDouble(data.cond_a_scaled);
+  d.cond_b_scaled = reported ? scaled_condition_of(data, true) : LazyDouble(0.0);
   // Judged on the column-scaled A, as the rank is: columns in different units are not
-  // ill-conditioning.
-  if (data.rank_a == data.n && d.cond_a_scaled * kIllConditionedRcond > 1.0) {
-    warnings.push_back("A is ill-conditioned (cond(A) = " + format_number(d.cond_a_scaled) +
+  // ill-conditioning. reduce_into computed cond(A D) wherever it may exceed the threshold.
+  const double cond_a_scaled = data.cond_a_scaled;
+  if (data.rank_a == data.n && cond_a_scaled * kIllConditionedRcond > 1.0) {
+    warnings.push_back("A is ill-conditioned (cond(A) = " + format_number(cond_a_scaled) +
                        " with its columns scaled to unit norm): the estimate may have lost about " +
-                       format_number(std::floor(std::log10(d.cond_a_scaled))) + " significant digits");
+                       format_number(std::floor(std::log10(cond_a_scaled))) + " significant digits");
   }
-  if (data.noise_var) {
-    d.noise_sigma = std::sqrt(*data.noise_var);
+  // The noise estimate is deferred to its first read (it costs an SVD of the whole factor); the
+  // TLS family's own, from their SVD, is kept. Its warning depends on the sizes alone.
+  if (data.options.diagnostics && data.options.reported_diagnostics && data.m > data.n) {
+    if (!d.noise_sigma.pending() && !d.noise_sigma.has_value()) d.noise_sigma = noise_sigma_of(data);
     if (warn_thin_noise_estimate && data.m - data.n < data.n) {
       const double dof = static_cast<double>(data.d) * static_cast<double>(data.m - data.n);
       warnings.push_back("the noise estimate (noise_sigma) rests on " +

@@ -61,6 +61,8 @@ struct TlsKernel {
   double v22_min = 0.0;     ///< smallest singular value of V22 (d x d)
   bool exists = false;      ///< V22 nonsingular
   bool unique = false;      ///< sigma_n > sigma_{n+1} beyond rounding
+  /// The noise estimate (noise_variance_from) from the same singular values; nothing when m <= n.
+  std::optional<double> noise_var;
 };
 template <int MaxN>
 void tls_kernel(const BasicReduction<MaxN>& data, TlsKernel<MaxN>& out);

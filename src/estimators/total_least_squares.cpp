@@ -40,6 +40,9 @@ void tls_kernel(const BasicReduction<MaxN>& data, TlsKernel<MaxN>& out) {
   out.sigma_n = std::ldexp(sigma(n - 1), e);
   out.sigma_n1 = std::ldexp(sigma(n), e);
   out.correction = std::ldexp(sigma.tail(d).norm(), e);  // thesis eq. 4.33
+  // The noise estimate is made of the same singular values: one SVD serves both.
+  out.noise_var.reset();
+  if (data.m > n) out.noise_var = noise_variance_from(sigma, data.m, n, e);
 
   const Matrix V12 = dec.V.topRightCorner(n, d);
   const Matrix V22 = dec.V.bottomRightCorner(d, d);
@@ -119,6 +122,10 @@ TlsCore tls_core(const detail::DynamicReduction& data) {
   detail::TlsKernel<Eigen::Dynamic> k;
   detail::tls_kernel(data, k);
   Diagnostics& d = out.diagnostics;
+  // The noise estimate from this SVD rather than a second one of the same factor (finish keeps it).
+  if (k.noise_var && data.options.diagnostics && data.options.reported_diagnostics) {
+    d.noise_sigma = std::sqrt(*k.noise_var);
+  }
   d.tls_sigma_n = k.sigma_n;
   d.tls_sigma_n1 = k.sigma_n1;
   d.tls_correction_norm = k.correction;

@@ -3,10 +3,13 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
 
+#include "factor/data_cache.hpp"
 #include "spdfit/fit_options.hpp"
 #include "spdfit/method.hpp"
 #include "spdfit/options.hpp"
@@ -36,8 +39,10 @@ constexpr int kSmallProblemMaxN = 8;
 #define SPDFIT_FOR_EACH_MAX_N(INSTANTIATE) \
   INSTANTIATE(Eigen::Dynamic) INSTANTIATE(2) INSTANTIATE(::spdfit::detail::kSmallProblemMaxN)
 
+/// A reduction made by reduce (spdfit::Reduction) is owned by a shared_ptr: a result whose noise
+/// estimate is read later (LazyOptional) keeps it alive through shared_from_this.
 template <int MaxN = Eigen::Dynamic>
-struct BasicReduction {
+struct BasicReduction : std::enable_shared_from_this<BasicReduction<MaxN>> {
   using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, MaxN, MaxN>;
   using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, MaxN, 1>;
   /// The (n + d) x (n + d) triangular factor R of [A B].
@@ -55,15 +60,17 @@ struct BasicReduction {
   Vector s_b;                           ///< singular values of B, descending
   /// Numerical ranks under the options' cut-off, decided on A and B with unit-norm columns.
   Eigen::Index rank_a = 0, rank_b = 0;
-  /// cond(A D), cond(B D) with unit-norm columns: set when options.diagnostics and
-  /// options.reported_diagnostics, else 0; without reported_diagnostics cond(A D) is still set where it
-  /// may exceed 1 / kIllConditionedRcond, for the warning.
+  /// cond(A D), cond(B D) with unit-norm columns where reduce_into computed them, else 0: where the
+  /// rank needed the scaled singular values (cond(B D) only with options.reported_diagnostics),
+  /// and cond(A D) with options.diagnostics where it may exceed 1 / kIllConditionedRcond, for the
+  /// warning. The others are computed when a result's diagnostic is read (scaled_condition_of,
+  /// reduce.hpp) and kept in the caches.
   double cond_a_scaled = 0.0, cond_b_scaled = 0.0;
+  DataCache cond_a_cache, cond_b_cache;
   FitOptions options;
-  /// The noise estimate sigma^2 (noise_variance, reduce.hpp), in A's units: set by reduce when
-  /// options.diagnostics, options.reported_diagnostics and m > n, for every method's diagnostics to
-  /// report.
-  std::optional<double> noise_var;
+  /// The noise estimate sigma^2 (noise_variance, reduce.hpp), in A's units, once computed: ask
+  /// data_noise_variance for it.
+  DataCache noise_var;
 };
 
 /// A square matrix of at most MaxN rows (MaxN = Eigen::Dynamic: any).

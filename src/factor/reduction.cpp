@@ -1,7 +1,9 @@
 #include "spdfit/reduction.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -47,14 +49,16 @@ void reduce_into(const typename BasicReduction<MaxN>::Factor& R, Eigen::Index m,
 
   // The ranks are decided on A and B with their columns scaled to unit norm (the columns of R11
   // and R_b have the norms of A's and B's), so that they do not depend on the units of each
-  // column (numerics/least_squares.hpp). The scaled condition numbers are diagnostics.
-  // Without reported_diagnostics, cond(A D) only where the ill-conditioning warning may need it.
+  // column (numerics/least_squares.hpp). The scaled condition numbers are diagnostics: kept
+  // where the rank needed the scaled SVD anyway, and cond(A D) computed where the warning about
+  // an ill-conditioned A may need it; the others when first read (scaled_condition_of).
   const bool report = out.options.diagnostics;
   const bool all = report && out.options.reported_diagnostics;
+  out.cond_a_scaled = out.cond_b_scaled = 0.0;
   out.rank_a = equilibrated_rank(out.R11, out.s_a, out.options.rank_cutoff(m, n),
-                                 report ? &out.cond_a_scaled : nullptr, all ? 0.0 : 1.0 / kIllConditionedRcond);
+                                 report ? &out.cond_a_scaled : nullptr, 1.0 / kIllConditionedRcond);
   out.rank_b = equilibrated_rank(out.R_b, out.s_b, out.options.rank_cutoff(m, d),
-                                 all ? &out.cond_b_scaled : nullptr);
+                                 all ? &out.cond_b_scaled : nullptr, std::numeric_limits<double>::infinity());
 }
 
 template <int MaxN>
@@ -71,21 +75,49 @@ void tls_factor(const BasicReduction<MaxN>& data, typename BasicReduction<MaxN>:
   if (r != 1.0) R.rightCols(d) /= r;
 }
 
+namespace {
+std::atomic<std::uint64_t> noise_variance_count{0};
+}  // namespace
+
+std::uint64_t noise_variance_runs() { return noise_variance_count.load(std::memory_order_relaxed); }
+
+LazyOptional noise_sigma_of(const DynamicReduction& data) {
+  if (data.m <= data.n) return std::nullopt;
+  const auto root = [](std::optional<double> variance) -> std::optional<double> {
+    if (!variance) return std::nullopt;
+    return std::sqrt(*variance);
+  };
+  std::shared_ptr<const DynamicReduction> owner = data.weak_from_this().lock();
+  if (!owner) return root(data_noise_variance(data));
+  return LazyOptional::deferred([owner = std::move(owner), root] { return root(data_noise_variance(*owner)); });
+}
+
+LazyDouble scaled_condition_of(const DynamicReduction& data, bool of_b) {
+  const double known = of_b ? data.cond_b_scaled : data.cond_a_scaled;
+  if (known > 0.0) return known;  // the rank or the warning needed it
+  const auto compute = [of_b](const DynamicReduction& d) {
+    const DataCache& cache = of_b ? d.cond_b_cache : d.cond_a_cache;
+    return *cache.get([&d, of_b] {
+      return std::optional<double>(equilibrated_condition_number(of_b ? d.R_b : d.R11));
+    });
+  };
+  std::shared_ptr<const DynamicReduction> owner = data.weak_from_this().lock();
+  if (!owner) return compute(data);
+  return LazyDouble::deferred([owner = std::move(owner), compute] { return compute(*owner); });
+}
+
 template <int MaxN>
 std::optional<double> noise_variance(const BasicReduction<MaxN>& data) {
   using Factor = typename BasicReduction<MaxN>::Factor;
-  const Index n = data.n, d = data.d, m = data.m;
+  const Index n = data.n, m = data.m;
   if (m <= n) return std::nullopt;
   int e = 0;
   Factor R;
   tls_factor(data, R, e);
   BasicSvd<Factor> dec;
   svd_into(R, dec, false, false);
-  // Under the TLS model the d smallest singular values of [A, B / r] carry only noise: their
-  // squares sum to sigma^2 times d (m - n) in expectation (the unbiased estimate). At
-  // m < n + d the factor's bottom rows are zero, and so are the trailing singular values.
-  const double tail = dec.s.tail(d).norm();
-  return std::ldexp(tail * tail / (static_cast<double>(d) * static_cast<double>(m - n)), 2 * e);
+  noise_variance_count.fetch_add(1, std::memory_order_relaxed);
+  return noise_variance_from(dec.s, m, n, e);
 }
 
 #define SPDFIT_INSTANTIATE(MaxN)                                                                  \
@@ -116,8 +148,6 @@ Reduction reduce_with(const TriangularFactor& factor, const FitOptions& options,
   // The noise model completed to the data's sizes, or refused (naming the option or rest file).
   if (options.noise) r->options.noise = options.noise->resolved(n, factor.d());
   detail::reduce_into(factor.R(), factor.rows(), n, factor.exponent_a(), factor.exponent_b(), *r, vectors_a);
-  // A property of the data, computed once for every method that reports it.
-  if (options.diagnostics && options.reported_diagnostics) r->noise_var = detail::noise_variance(*r);
   return Reduction(std::move(r));
 }
 

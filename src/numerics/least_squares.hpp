@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <utility>
 
 #include "numerics/linalg.hpp"
 
@@ -39,6 +40,16 @@ int column_exponent(const Eigen::MatrixBase<Derived>& v) {
   return e;
 }
 
+/// The singular values of A D, D = diag(2^-e) (e from column_exponent), descending: one SVD.
+template <typename Matrix, typename Exponents>
+typename BasicSvd<Matrix>::Vector equilibrated_singular_values(const Matrix& A, const Exponents& e) {
+  Matrix As = A;
+  scale_columns(As, e, -1);
+  BasicSvd<Matrix> dec;
+  svd_into(As, dec, false, false);
+  return std::move(dec.s);
+}
+
 /// The numerical rank of a square or tall A decided on A D, its columns scaled to about unit norm
 /// (van der Sluis: this D brings the condition number within a factor sqrt(n) of its minimum over
 /// all column scalings), so that a change of units of one unknown does not change the rank. s
@@ -59,12 +70,19 @@ Eigen::Index equilibrated_rank(const Matrix& A, const Vector& s, double cutoff, 
     const double bound = condition_number(s) * std::ldexp(1.0, e.maxCoeff() - e.minCoeff() + 1);
     if (bound * cutoff < 1.0 && (!scaled_condition || bound <= report_above)) return n;
   }
-  Matrix As = A;
-  scale_columns(As, e, -1);
-  BasicSvd<Matrix> dec;
-  svd_into(As, dec, false, false);
-  if (scaled_condition) *scaled_condition = condition_number(dec.s);
-  return numerical_rank(dec.s, cutoff);
+  const auto scaled = equilibrated_singular_values(A, e);
+  if (scaled_condition) *scaled_condition = condition_number(scaled);
+  return numerical_rank(scaled, cutoff);
+}
+
+/// cond(A D) with A's columns scaled to about unit norm: the number equilibrated_rank writes to
+/// its scaled_condition, bit for bit. Cost one SVD (values only).
+template <typename Matrix>
+double equilibrated_condition_number(const Matrix& A) {
+  const Index n = A.cols();
+  Eigen::Matrix<int, Eigen::Dynamic, 1, Eigen::ColMajor, Matrix::MaxColsAtCompileTime, 1> e(n);
+  for (Index j = 0; j < n; ++j) e(j) = column_exponent(A.col(j));
+  return condition_number(equilibrated_singular_values(A, e));
 }
 
 /// R = B - A X with every entry computed as if in twice double precision and rounded once

@@ -252,7 +252,7 @@ void attach_bootstrap(FitResult& result, const std::vector<Replicate>& replicate
                            m == Method::PsdLeastSquares;
   if (biased_kind) {
     const DynamicReduction& data = data_of(full_data);
-    const std::optional<double> noise_var = data.noise_var ? data.noise_var : noise_variance(data);
+    const std::optional<double> noise_var = data_noise_variance(data);
     const AutoChoice choice = auto_choice(data, noise_var);
     if (std::string(choice.code) == "many_samples") {
       result.warnings.push_back(
