@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "factor/reduce.hpp"
+#include "numerics/least_squares.hpp"
 #include "spdfit/fit.hpp"
 #include "spdfit/render.hpp"
 #include "test_support.hpp"
@@ -134,6 +135,25 @@ TEST_P(LazyNoiseEstimate, ReadFromTwoThreadsAtOnce) {
   two.join();
   EXPECT_EQ(first, second);
   EXPECT_EQ(detail::noise_variance_runs(), before + 1);
+}
+
+TEST_P(LazyNoiseEstimate, ScaledConditionNumbersReadLateAsTheRankWouldComputeThem) {
+  const Index n = GetParam();
+  const Data data = noisy(4 * n, n, 11);
+  const FitResult result = fit(data.A, data.B, Method::Spde);
+  // Well-conditioned data: the ranks did not need the scaled SVDs, so the fit left them unread.
+  EXPECT_TRUE(result.diagnostics.cond_a_scaled.pending());
+  EXPECT_TRUE(result.diagnostics.cond_b_scaled.pending());
+  // What reduce_into computes when asked for cond(A D) at once (report_above = 0).
+  const Reduction reduction = reduce(TriangularFactor::from_data(data.A, data.B));
+  const detail::DynamicReduction& reduced = detail::data_of(reduction);
+  double eager_a = 0.0, eager_b = 0.0;
+  detail::equilibrated_rank(reduced.R11, reduced.s_a, 1e-15, &eager_a, 0.0);
+  detail::equilibrated_rank(reduced.R_b, reduced.s_b, 1e-15, &eager_b, 0.0);
+  EXPECT_EQ(result.diagnostics.cond_a_scaled.get(), eager_a);
+  EXPECT_EQ(result.diagnostics.cond_b_scaled.get(), eager_b);
+  EXPECT_FALSE(result.diagnostics.cond_a_scaled.pending());
+  EXPECT_GE(eager_a, 1.0);
 }
 
 INSTANTIATE_TEST_SUITE_P(SmallAndLapackSvd, LazyNoiseEstimate, ::testing::Values(Index{5}, Index{70}));
