@@ -2,7 +2,7 @@
 
 The files are committed; this script documents exactly how they were made:
   hexapod/    (A.csv, B.csv, truth.csv; log.mat holds A and B as the MATLAB variables accel and
-              force) the thesis' appendix-B generator (000, chapter 6, experiment 2 set-up: m = 12
+              force, log.csv as one logger's file with a timestamp column) the thesis' appendix-B generator (000, chapter 6, experiment 2 set-up: m = 12
               samples of n = 6 strut accelerations uniform on [-5, 5], uniform noise with
               nm = 3.2, i.e. variance 0.86, in accelerations A and forces B = A M_p)
   paper_2x2/  the paper's second example (001, section IV): X = [3 1; 1 1], A0 4x2,
@@ -48,6 +48,14 @@ def hexapod(rng):
     save(HERE / "hexapod/A.csv", A, "payload accelerations along the struts (m/s^2)", names)
     save(HERE / "hexapod/B.csv", B, "base forces along the struts (N)", names)
     save(HERE / "hexapod/truth.csv", M_P, "true joint-space mass-inertia matrix M_p, thesis eq. 6.1 (kg)")
+    # The same log as a data logger writes it: one file with a timestamp, then A's and B's columns
+    # (`spdfit fit --a-cols acc1:acc6 --b-cols F1:F6`).
+    with open(HERE / "hexapod/log.csv", "w") as out:
+        out.write("# hexapod log: time, payload accelerations (m/s^2), base forces (N)\n")
+        out.write(",".join(["time"] + [f"acc{i + 1}" for i in range(n)] + [f"F{i + 1}" for i in range(n)]) + "\n")
+        for k in range(m):
+            stamp = f"2026-11-27T10:00:{k / 100:05.2f}"
+            out.write(",".join([stamp] + ["%.17g" % v for v in np.concatenate([A[k], B[k]])]) + "\n")
     # The same log as MATLAB keeps it: one .mat file with named variables (scipy writes level 5).
     import scipy.io
     scipy.io.savemat(HERE / "hexapod/log.mat", {"accel": A, "force": B, "note": "hexapod log, thesis set-up"})

@@ -31,14 +31,22 @@ Command add_compare_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--truth", options->truth_path, "File of the true X, to report each method's error");
   sub->add_flag("--json", options->json, "Print every result as JSON");
   sub->add_option("-o,--output", options->output, "Write to FILE instead of stdout");
-  // The fit options that every method shares: the noise (its ratio, or a noise model).
-  options->table = std::make_unique<TableOptions<FitRequest>>(
-      *sub, fit_option_table(), all_but(fit_option_table(), noise_option_names()));
+  // The fit options that every method shares: the noise (its ratio, or a noise model), and A's and
+  // B's columns in one file.
+  std::vector<std::string_view> here = noise_option_names();
+  here.insert(here.end(), {"a_cols", "b_cols"});
+  options->table = std::make_unique<TableOptions<FitRequest>>(*sub, fit_option_table(),
+                                                              all_but(fit_option_table(), here));
   sub->add_option("A", options->a_path, "File of A (m x n): delimited text or .npy")->required();
-  sub->add_option("B", options->b_path, "File of B (m x n; m x d for ls and tls, X n x d): delimited text or .npy")->required();
+  sub->add_option("B", options->b_path,
+                  "File of B (m x n; m x d for ls and tls, X n x d): delimited text or .npy. Without it, "
+                  "--a-cols and --b-cols choose A's and B's columns in A's file");
 
   auto run = [options, &global]() {
-    const DataPair data = load_pair(options->a_path, options->b_path, global);
+    FitRequest columns;
+    columns.read = global.read;
+    options->table->apply(columns);
+    const DataPair data = load_pair(options->a_path, options->b_path, columns, global);
     std::optional<Eigen::MatrixXd> truth;
     if (!options->truth_path.empty()) {
       truth = load_matrix(options->truth_path, global);

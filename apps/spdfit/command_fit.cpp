@@ -116,8 +116,8 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
                   "standard input")
       ->required();
   sub->add_option("B", options->b_path,
-                  "File of B (m x n; m x d for ls and tls, X n x d): as A")
-      ->required();
+                  "File of B (m x n; m x d for ls and tls, X n x d): as A. Without it, --a-cols and --b-cols "
+                  "choose A's and B's columns in A's file");
 
   auto run = [options, &global]() {
     const Method method = *parse_method(options->method);
@@ -147,8 +147,16 @@ Command add_fit_command(CLI::App& app, const GlobalOptions& global) {
     if (options->a_path == "-" && options->b_path == "-") {
       throw UsageError("A and B cannot both be standard input (-)");
     }
-    const std::string a_path = with_variable(options->a_path, options->var_a, "--var-a");
-    const std::string b_path = with_variable(options->b_path, options->var_b, "--var-b");
+    data_read(request, options->b_path);  // the usage errors of --a-cols and --b-cols, before any file is read
+    const bool one_file = options->b_path.empty();
+    if (one_file && !options->var_a.empty() && !options->var_b.empty() && options->var_a != options->var_b) {
+      throw UsageError("--var-a " + options->var_a + " and --var-b " + options->var_b +
+                       " name two arrays, but --a-cols and --b-cols take A and B from one: give one of them");
+    }
+    const std::string a_path = with_variable(options->a_path, one_file && options->var_a.empty() ? options->var_b
+                                                                                                 : options->var_a,
+                                             one_file && options->var_a.empty() ? "--var-b" : "--var-a");
+    const std::string b_path = one_file ? std::string() : with_variable(options->b_path, options->var_b, "--var-b");
     std::vector<std::uint64_t> rows_per_process;
     const std::optional<FitResult> outcome = [&]() -> std::optional<FitResult> {
       // Long runs show a progress line on a terminal (the streaming pass, then the replicates),

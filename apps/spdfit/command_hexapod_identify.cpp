@@ -60,7 +60,9 @@ Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
   CLI::App* sub = parent.add_subcommand(
       "identify", "Identify M_p from accelerations A and base forces B (B ~= A M_p) with every estimator");
   sub->add_option("A", cli->a_path, "File of payload accelerations along the struts (m x 6)")->required();
-  sub->add_option("B", cli->b_path, "File of base forces (m x 6)")->required();
+  sub->add_option("B", cli->b_path,
+                  "File of base forces (m x 6). Without it, --a-cols and --b-cols choose the columns of the "
+                  "accelerations and the forces in A's file");
   sub->add_option("--truth", cli->truth, "File of the true M_p, to report each method's error");
   auto* geometry =
       sub->add_option("--geometry", cli->geometry, "Geometry file whose strut stiffness gives the modes");
@@ -76,7 +78,7 @@ Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
   // The fit's iteration limit and rank cut-off, for every estimator and the physical fit alike, and
   // the noise (its ratio or a noise model), for every estimator.
   std::vector<std::string_view> here = noise_option_names();
-  here.insert(here.end(), {"max_iterations", "rank_tolerance"});
+  here.insert(here.end(), {"max_iterations", "rank_tolerance", "a_cols", "b_cols"});
   cli->fit_options = std::make_unique<TableOptions<FitRequest>>(*sub, fit_option_table(),
                                                                 all_but(fit_option_table(), here));
   sub->add_flag("--json", cli->json, "Print every result as JSON");
@@ -86,10 +88,13 @@ Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
                         "Threads for --bootstrap (default: one per core)");
 
   auto run = [cli, &global]() {
-    const DataPair data = load_pair(cli->a_path, cli->b_path, global);
+    FitRequest columns;
+    columns.read = global.read;
+    cli->fit_options->apply(columns);
+    const DataPair data = load_pair(cli->a_path, cli->b_path, columns, global);
     const Eigen::Index n = data.A.cols();
     if (data.B.cols() != n) {
-      throw io::DataError(cli->b_path, 0, 0,
+      throw io::DataError(cli->b_path.empty() ? cli->a_path : cli->b_path, 0, 0,
                           "B has " + std::to_string(data.B.cols()) + " columns but A (" + cli->a_path + ") has " +
                               std::to_string(n) + ": the mass-inertia matrix is square, so forces and "
                                                    "accelerations need the same struts");

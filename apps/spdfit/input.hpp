@@ -8,6 +8,7 @@
 
 #include "cli.hpp"
 #include "spdfit/fit_files.hpp"
+#include "spdfit/fit_request.hpp"
 
 namespace spdfit::cli {
 
@@ -18,5 +19,15 @@ Eigen::MatrixXd load_matrix(const std::string& path, const GlobalOptions& global
 /// A and B (see read_pair in spdfit/fit_files.hpp), read as the global options say; the readers'
 /// warnings are printed.
 DataPair load_pair(const std::string& a_path, const std::string& b_path, const GlobalOptions& global);
+
+/// The same for a command that takes the fit table's a_cols and b_cols (request.a_cols,
+/// request.b_cols): with them, A and B are those columns of the one file `a_path`, and `b_path`
+/// is empty. Usage errors (UsageError, quoting what was typed): B's file missing without them,
+/// one of them alone, a second file with them, a selection the file does not have.
+DataPair load_pair(const std::string& a_path, const std::string& b_path, const FitRequest& request,
+                   const GlobalOptions& global);
+
+/// The read options of the data of `request` (data_read_options), its usage errors UsageErrors.
+io::ReadOptions data_read(const FitRequest& request, const std::string& b_path);
 
 }  // namespace spdfit::cli

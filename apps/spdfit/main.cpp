@@ -148,6 +148,10 @@ int main(int argc, char** argv) {
     }
     std::cerr << "spdfit: error: " << e.what() << "\nRun 'spdfit " << command << "--help' for usage.\n";
     return kExitUsageError;
+  } catch (const spdfit::io::ColumnSelectionError& e) {
+    // A column selection the file does not have (found when the file is read): a usage error.
+    std::cerr << "spdfit: error: " << spdfit::spell_options(e.what(), spdfit::Frontend::Cli) << '\n';
+    return kExitUsageError;
   } catch (const spdfit::io::DataError& e) {
     // A file's problem may name the option that gave the file (`rest_a`): spelled as here.
     std::cerr << "spdfit: error: " << spdfit::spell_options(e.what(), spdfit::Frontend::Cli) << '\n';

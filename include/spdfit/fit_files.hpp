@@ -20,6 +20,8 @@ struct DataPair {
   Eigen::MatrixXd A, B;
   std::vector<std::string> warnings;  ///< the readers' (io::Table::warnings), A's then B's
   std::vector<std::string> a_names, b_names;  ///< the files' column names (empty without a header row)
+  /// A and B from one file: the columns each came from (FitResult::a_columns); empty otherwise.
+  std::string a_columns, b_columns;
 };
 
 /// Reads A and B from `a_path` and `b_path` (the formats of io::read_table) and checks that they
@@ -27,6 +29,10 @@ struct DataPair {
 /// and tls). Throws io::DataError naming the file on bad data, when A has fewer rows than columns
 /// (checked before B is read, so that a hostile A with millions of columns costs one file, not
 /// two) or when the row counts differ. Memory O(m (n + d)).
+/// With an empty `b_path`, A and B are the two column selections of options.columns (A's, then
+/// B's: `a_cols` and `b_cols`) in `a_path`'s one file, read once; then io::ColumnSelectionError
+/// for a selection the file does not have. std::invalid_argument unless two selections come with
+/// one file and none with two.
 DataPair read_pair(const std::string& a_path, const std::string& b_path, const io::ReadOptions& options = {});
 
 /// Runs `method` on A X ~= B with A and B in files: read whole with read_pair when `stream` is
@@ -37,8 +43,10 @@ DataPair read_pair(const std::string& a_path, const std::string& b_path, const i
 /// (non_square_refusal), and std::invalid_argument on invalid options; a numerical failure is the
 /// result's status. `read` says how the files are read, on either path (it takes the place of
 /// stream->read); the readers' warnings come first in the result's warnings, and the files'
-/// column names are the result's row_names (A's) and column_names (B's). Cost O(m n^2) plus the
-/// method's O(n^3).
+/// column names are the result's row_names (A's) and column_names (B's). With an empty `b_path`,
+/// A and B are the two column selections of read.columns in `a_path`'s one file (see read_pair),
+/// read once on either path; the result's a_columns and b_columns say which. Cost O(m n^2) plus
+/// the method's O(n^3).
 /// With options.bootstrap and `stream`: the streaming (Poisson) bootstrap on groups of 4096 rows,
 /// which needs about 100 groups (409,600 rows). With fewer, the files are read again whole and
 /// their rows resampled one at a time in memory (with a warning saying so) when A and B take at

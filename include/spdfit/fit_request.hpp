@@ -43,6 +43,9 @@ struct FitRequest {
   Eigen::Index block_rows = StreamOptions{}.block_rows;
   /// How the data files are read (both paths).
   io::ReadOptions read;
+  /// A and B from one file: the columns of each ("acc1:acc6", "2:7", "1,3,5", "1,3:5,F1": header
+  /// names and 1-based positions, inclusive ranges, lists; io::ColumnSelection). Both or neither.
+  std::string a_cols, b_cols;
   /// Told the fraction of A's file read while streaming (StreamOptions::progress); the bootstrap's
   /// progress is options.progress.
   ProgressCallback read_progress;
@@ -91,7 +94,14 @@ void check_fit_request(const FitRequest& request, const std::vector<std::string_
 
 /// The fit of A and B in files (fit_files) as the request says: streamed when request.stream,
 /// with the noise model of resolved_options(). A size of a noise model's covariance file that does
-/// not fit the data is an io::DataError naming that file.
+/// not fit the data is an io::DataError naming that file. With request.a_cols and b_cols, A and B
+/// are those columns of the one file `a_path`, and `b_path` must be empty (OptionError otherwise).
 FitResult fit_files(const std::string& a_path, const std::string& b_path, const FitRequest& request);
+
+/// request.read for the data: with request.a_cols and b_cols, their column selections added
+/// (options a_cols and b_cols), after checking their syntax (io::ColumnSelectionError) and that
+/// they come together and with one file, `b_path` empty (OptionError). Front ends that read the
+/// data themselves (compare, hexapod identify) read it so, with read_pair.
+io::ReadOptions data_read_options(const FitRequest& request, const std::string& b_path);
 
 }  // namespace spdfit

@@ -183,6 +183,9 @@ struct FitResult {
   /// The names of X's rows (A's columns) and columns (B's columns), from the header rows of the
   /// files fit_files read (a dropped index column's name left out); empty when a file had none.
   std::vector<std::string> row_names, column_names;
+  /// A and B from one file (FitRequest::a_cols, b_cols): the file and the columns each came from,
+  /// "log.csv columns acc1..acc6 (2-7)"; empty when each came from a file of its own.
+  std::string a_columns, b_columns;
 
   bool ok() const { return status == Status::Success; }
 };

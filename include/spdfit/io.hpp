@@ -58,11 +58,41 @@ enum class HeaderRow {
   Absent,   ///< the first line is data (a line of names is then "not a number")
 };
 
+/// Columns chosen from a file, as a user writes them: header names ("F1"), 1-based positions ("3";
+/// digits are always positions, even where a header's names are digits), inclusive ranges of
+/// either by position in the file ("acc1:acc6", "3:8") and comma-separated lists mixing them
+/// ("1,3:5,F1"). Positions count every column of the file, a first column of row labels included
+/// unless IndexColumn::Drop drops it first.
+struct ColumnSelection {
+  std::string spec;
+  /// The library name of the option that gave it ("a_cols"), for messages: `a_cols`.
+  std::string option;
+};
+
+/// A column selection that cannot be applied: bad syntax, a name the header does not have, a
+/// position beyond the columns, a range backwards, a column in two selections. The message
+/// quotes the selection and names its option in backticks (a front end spells it: --a-cols);
+/// front ends treat it as a usage error.
+class ColumnSelectionError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+/// Checks the syntax of a selection (names, positions, ranges, lists) without a file: throws
+/// ColumnSelectionError on an empty item, a range without an end, a backwards range of
+/// positions. Names are checked against a file's header when it is read.
+void check_column_selection(const ColumnSelection& selection);
+
 /// Options for reading.
 struct ReadOptions {
   bool allow_nonfinite = false;  ///< NaN and Inf are rejected unless this is set
   IndexColumn index_column = IndexColumn::Auto;  ///< delimited text only (.npy has no labels)
   HeaderRow header_row = HeaderRow::Auto;        ///< delimited text only
+  /// When given, only these columns are read, in this order: the first selection's columns,
+  /// then the second's (no column in two). The other columns are not parsed, so a column of
+  /// timestamps or text that is not selected is ignored, and the row-label rules of
+  /// `index_column` (Auto) do not apply. .npy, .mat and .npz files have no names: positions only.
+  std::vector<ColumnSelection> columns;
 };
 
 /// A matrix with the column names of its header row (empty when the file had none).
@@ -75,7 +105,14 @@ struct Table {
   /// Delimited text: the 1-based line of the first data row (0 for other formats), so that a
   /// caller whose shape check fails can point at a first line that may be a header.
   std::size_t first_data_line = 0;
+  /// With ReadOptions::columns: each selection's columns as 1-based positions in the file (values
+  /// holds them in this order, and column_names their names).
+  std::vector<std::vector<std::size_t>> selected_columns;
 };
+
+/// "columns acc1..acc6 (2-7)", "columns 2, 4, 9", "column F1 (8)": the columns a selection chose,
+/// for reports. `positions` are 1-based, `names` their header names (empty without a header).
+std::string describe_columns(const std::vector<std::size_t>& positions, const std::vector<std::string>& names);
 
 /// A data file and, for a .mat or .npz file, the array in it ("" when not named).
 struct FileSpec {

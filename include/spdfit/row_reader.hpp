@@ -60,6 +60,10 @@ class RowReader {
   /// What the reader decided for the user to know (see Table::warnings), known after the first
   /// read that returned rows.
   const std::vector<std::string>& warnings() const;
+  /// With ReadOptions::columns: each selection's columns as 1-based positions in the file (see
+  /// Table::selected_columns), known after the first read that returned rows; the rows read hold
+  /// them in this order.
+  const std::vector<std::vector<std::size_t>>& selected_columns() const;
   /// Rows returned so far.
   std::uint64_t rows_read() const;
   /// The rows the file holds, known before it is read: a .npy file's header, a MATLAB 7.3

@@ -16,9 +16,12 @@ bool same_name(std::string_view a, std::string_view b) {
          });
 }
 
-// The fit options spdfit.fit takes: those of the in-memory fit. The stream's read files, and
-// `noise` is Python's NoiseModel object: MATLAB gives the model's numbers and matrices instead.
-bool fit_takes(std::string_view name) { return name != "stream" && name != "block_rows" && name != "noise"; }
+// The fit options spdfit.fit takes: those of the in-memory fit. The stream's read files, as do
+// a_cols and b_cols (columns of one file), and `noise` is Python's NoiseModel object: MATLAB gives
+// the model's numbers and matrices instead.
+bool fit_takes(std::string_view name) {
+  return name != "stream" && name != "block_rows" && name != "noise" && name != "a_cols" && name != "b_cols";
+}
 
 // The noise options whose command-line value is a file, which MATLAB takes as a matrix.
 bool matrix_option(std::string_view name) {

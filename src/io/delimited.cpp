@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 
+#include "columns.hpp"
 #include "delimited_parser.hpp"
 #include "fields.hpp"
 #include "parse.hpp"
@@ -46,6 +47,9 @@ DelimitedParser::DelimitedParser(std::string source, ReadOptions options, const 
   columns_line_ = layout.columns_line;
   index_decided_ = true;
   resumed_ = true;
+  slots_ = layout.slots;
+  out_columns_ = layout.selected;
+  selected_ = layout.selected_columns;
 }
 
 void DelimitedParser::feed(std::string_view text) {
@@ -94,7 +98,8 @@ void DelimitedParser::parse_line(const Line& line) {
     } else {
       // pandas' to_csv and R's write.csv leave the index column's header cell empty; their
       // column names may be numbers (pandas' default names 0, 1, ...), and the line is still a header.
-      const bool index_mark = options_.index_column == IndexColumn::Auto && header_first_cell_empty(line);
+      const bool index_mark =
+          options_.index_column == IndexColumn::Auto && !selecting() && header_first_cell_empty(line);
       // Without that mark, pandas' default names alone (to_csv(index=False) of a frame made from an
       // array) would be a row of data that no one measured.
       const bool pandas_names = header == HeaderRow::Auto && !index_mark && !is_header(line, separator_) &&
@@ -120,6 +125,7 @@ void DelimitedParser::parse_line(const Line& line) {
   }
   const bool first_row = rows_ == 0 && !resumed_;
   if (have_header_ && first_row) choose_separator_after_header(line);
+  if (first_row && selecting()) select_columns(line);
 
   const std::size_t fields = parse_row(line);
   if (first_row) first_data_line_ = line.number;
@@ -134,6 +140,13 @@ void DelimitedParser::parse_line(const Line& line) {
       column_names_ = header_names(fields);
       columns_ = column_names_.size();
       columns_line_ = header_.number;
+      if (selecting()) {
+        std::vector<std::string> chosen;
+        for (const auto& selection : selected_) {
+          for (std::size_t c : selection) chosen.push_back(column_names_[c - 1]);
+        }
+        column_names_ = std::move(chosen);
+      }
     }
   }
   if (fields != columns_) {
@@ -311,16 +324,46 @@ std::vector<std::string> DelimitedParser::header_names(std::size_t data_fields) 
   return names;
 }
 
+// The selections resolved on the header and the first data row's fields: which fields a row's
+// values come from, in order.
+void DelimitedParser::select_columns(const Line& first_row) {
+  FieldSplitter splitter(first_row.content, separator_);
+  Field field;
+  std::size_t fields = 0;
+  while (next_field(first_row, &splitter, &field)) ++fields;
+  if (drop_first_ && fields > 0) --fields;
+  const std::vector<std::string> names = have_header_ ? header_names(fields) : std::vector<std::string>{};
+  const std::size_t columns = have_header_ ? names.size() : fields;
+  const auto chosen = resolve_columns(options_.columns, names, columns, true, source_);
+  slots_.assign(std::max(columns, fields), -1);
+  long slot = 0;
+  for (std::size_t c : concatenated(chosen)) slots_[c] = slot++;
+  out_columns_ = static_cast<std::size_t>(slot);
+  selected_ = one_based(chosen);
+}
+
 std::size_t DelimitedParser::parse_row(const Line& line) {
   FieldSplitter splitter(line.content, separator_);
   Field field;
   std::size_t count = 0;
   bool label = drop_first_;  // the row's label: skipped, whatever it says
+  const bool selecting = this->selecting();
+  const std::size_t base = values_.size();
+  if (selecting) values_.resize(base + out_columns_);
   while (next_field(line, &splitter, &field)) {
     if (label) {
       label = false;
       if (keep_row_labels_) row_names_.push_back(field.quoted ? unquote(field) : std::string(field.text));
       continue;
+    }
+    long slot = -1;
+    if (selecting) {
+      slot = count < slots_.size() ? slots_[count] : -1;
+      current_column_ = count;
+      if (slot < 0) {  // not selected: not parsed, whatever it holds
+        ++count;
+        continue;
+      }
     }
     // A quoted number in a data row ("1.5", as some spreadsheets and exporters write every cell)
     // reads as the number, spaces around it allowed as around unquoted fields; quoted text is still
@@ -337,7 +380,11 @@ std::size_t DelimitedParser::parse_row(const Line& line) {
       }
     }
     if (value.text.empty()) fail_empty_field(line, field, count);
-    values_.push_back(parse_value(line, value));
+    if (selecting) {
+      values_[base + static_cast<std::size_t>(slot)] = parse_value(line, value);
+    } else {
+      values_.push_back(parse_value(line, value));
+    }
     ++count;
   }
   return count;
@@ -416,8 +463,18 @@ void DelimitedParser::fail_not_a_number(const Line& line, const Field& field) co
     }
   }
   std::string problem = quote_token(t) + " is not a number";
-  if (field.offset <= 1 && looks_like_timestamp(t)) {
-    problem += "; a timestamp in the first column? --index-col drops it (Python: index_col=True)";
+  if (selecting()) {
+    for (std::size_t k = 0; k < selected_.size(); ++k) {
+      for (std::size_t c : selected_[k]) {
+        if (c == current_column_ + 1) {
+          problem += "; column " + std::to_string(c) + " is selected by `" + options_.columns[k].option + "` '" +
+                     options_.columns[k].spec + "'";
+        }
+      }
+    }
+  } else if (field.offset <= 1 && looks_like_timestamp(t)) {
+    problem += "; a timestamp in the first column? --index-col drops it (Python: index_col=True), or --a-cols "
+               "and --b-cols choose the columns of A and B (Python: a_cols, b_cols)";
   } else if (separator_ == Separator::Semicolon && t.find(',') != std::string_view::npos) {
     problem += " (decimal comma? use '.' for decimals)";
   } else if (t.find(' ') != std::string_view::npos) {
@@ -457,6 +514,7 @@ Table detail::parse_delimited_labelled(std::string_view text, const std::string&
   table.column_names = parser.column_names();
   table.warnings = parser.warnings();
   table.first_data_line = parser.first_data_line();
+  table.selected_columns = parser.selected_columns();
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   table.values = Eigen::Map<const RowMajor>(parser.values().data(), static_cast<Eigen::Index>(parser.rows()),
                                             static_cast<Eigen::Index>(parser.columns()));

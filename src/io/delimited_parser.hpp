@@ -20,7 +20,10 @@ class DelimitedParser {
   static constexpr std::size_t kIndexDecisionRows = 3;
 
   DelimitedParser(std::string source, ReadOptions options)
-      : source_(std::move(source)), options_(options), drop_first_(options.index_column == IndexColumn::Drop) {}
+      : source_(std::move(source)), options_(options), drop_first_(options.index_column == IndexColumn::Drop) {
+    // Selected columns: the others are ignored, so a first column of labels needs no decision.
+    if (selecting()) index_decided_ = true;
+  }
 
   /// What a parser decided on a file's first lines, which every later line is parsed by: the
   /// separator, the header, the number of columns and whether the first is dropped as labels.
@@ -31,11 +34,15 @@ class DelimitedParser {
     std::size_t columns = 0;
     std::size_t columns_line = 0;
     bool drop_first = false;
+    std::vector<long> slots;  ///< with selected columns: each file column's place in a row, or -1
+    std::size_t selected = 0;
+    std::vector<std::vector<std::size_t>> selected_columns;
   };
   /// The layout decided so far: final once a data row has been parsed and the index column decided
   /// (ReadOptions::index_column), which is after the first piece with three data rows.
   Layout layout() const {
-    return {separator_, separator_line_, have_header_, columns_, columns_line_, drop_first_};
+    return {separator_, separator_line_, have_header_, columns_, columns_line_, drop_first_, slots_, out_columns_,
+            selected_};
   }
   /// A parser for a later part of a file whose first lines decided `layout`: the part starts at a
   /// line start after the file's first data row, with `lines_before` lines and `bytes_before` bytes
@@ -53,7 +60,11 @@ class DelimitedParser {
   void finish() const;
 
   std::size_t rows() const { return rows_; }        ///< data rows parsed so far
-  std::size_t columns() const { return columns_; }  ///< 0 until the first data row
+  /// The columns of a row as parsed: the selected ones (ReadOptions::columns), else all; 0 until
+  /// the first data row.
+  std::size_t columns() const { return selecting() ? out_columns_ : columns_; }
+  /// With ReadOptions::columns: each selection's columns, 1-based (Table::selected_columns).
+  const std::vector<std::vector<std::size_t>>& selected_columns() const { return selected_; }
   const std::vector<std::string>& column_names() const { return column_names_; }
   /// Keeps the labels of a first column dropped as row labels (an index), one per data row, in
   /// row_names(): for the callers that show them (read_labelled_table).
@@ -89,6 +100,8 @@ class DelimitedParser {
   void choose_separator_after_header(const Line& data);
   std::vector<std::string> header_names(std::size_t data_fields) const;
   std::size_t parse_row(const Line& line);
+  bool selecting() const { return !options_.columns.empty(); }
+  void select_columns(const Line& first_row);
   double parse_value(const Line& line, const Field& field) const;
   [[noreturn]] void fail_empty_field(const Line& line, const Field& field, std::size_t index) const;
   [[noreturn]] void fail_not_a_number(const Line& line, const Field& field) const;
@@ -127,6 +140,14 @@ class DelimitedParser {
   std::size_t first_data_line_ = 0;
   std::vector<std::string> warnings_;
   bool resumed_ = false;  // built from a Layout: the first lines were parsed elsewhere
+
+  // ReadOptions::columns, decided at the first data row: each file column's place in a row of
+  // values (-1: not selected, not parsed), the selected count, the selections' 1-based columns;
+  // the column being parsed (0-based, for messages).
+  std::vector<long> slots_;
+  std::size_t out_columns_ = 0;
+  std::vector<std::vector<std::size_t>> selected_;
+  std::size_t current_column_ = 0;
 };
 
 /// parse_delimited, and the labels of a first column dropped as row labels in `row_names` (one

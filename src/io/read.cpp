@@ -15,6 +15,7 @@
 #include "file_error.hpp"
 #include "parse.hpp"
 #include "npy_header.hpp"
+#include "columns.hpp"
 #include "containers.hpp"
 #include "delimited_parser.hpp"
 #include "read_file.hpp"
@@ -131,6 +132,7 @@ Table parse_bytes(std::string_view bytes, const std::string& source, const ReadO
   if (bytes.substr(0, detail::kNpyMagic.size()) == detail::kNpyMagic) {
     Table table;
     table.values = parse_npy(bytes, source, options);
+    detail::select_table_columns(&table, options, source);
     return table;
   }
   return detail::parse_delimited_labelled(bytes, source, options, row_names);
@@ -142,7 +144,10 @@ Table read_bytes(const std::string& path, const ReadOptions& options, std::vecto
   const detail::FileSpec spec = detail::split_spec(path);
   // The content decides, not the name: .mat and .npz files hold named arrays, and their
   // libraries read them from the file.
-  if (std::optional<Table> named = detail::read_named_arrays(spec, options)) return std::move(*named);
+  if (std::optional<Table> named = detail::read_named_arrays(spec, options)) {
+    detail::select_table_columns(&*named, options, path);
+    return std::move(*named);
+  }
   const std::string bytes =
       detail::read_file(spec.file, std::numeric_limits<std::size_t>::max(), "a data file",
                         [&spec](std::string_view first) { refuse_binary_early(first, spec.file); });

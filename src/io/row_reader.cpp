@@ -17,6 +17,7 @@
 #include <string_view>
 #include <utility>
 
+#include "columns.hpp"
 #include "containers.hpp"
 #include "delimited_parser.hpp"
 #include "file_error.hpp"
@@ -42,10 +43,24 @@ struct RowReader::Source {
   virtual const std::vector<std::string>& warnings() const { return no_names; }
   virtual double fraction_read() const = 0;
   virtual std::optional<std::uint64_t> rows_declared() const { return std::nullopt; }
+  virtual const std::vector<std::vector<std::size_t>>& selected_columns() const { return selected; }
+
+  // ReadOptions::columns for a format without names read a block at a time (.npy, MATLAB 7.3):
+  // the whole rows are read into `full`, and the selected columns copied out in order.
+  void select(const ReadOptions& options) {
+    if (options.columns.empty()) return;
+    const auto chosen =
+        detail::resolve_columns(options.columns, {}, static_cast<std::size_t>(columns()), false, path);
+    for (std::size_t c : detail::concatenated(chosen)) projection.push_back(static_cast<Index>(c));
+    selected = detail::one_based(chosen);
+  }
 
   std::string path;
   std::uint64_t rows_read = 0;
   std::vector<std::string> no_names;
+  std::vector<std::vector<std::size_t>> selected;
+  std::vector<Index> projection;
+  Eigen::MatrixXd full;
 };
 
 namespace {
@@ -77,6 +92,7 @@ class RowReader::NpySource final : public RowReader::Source {
     try {
       const std::string_view bytes(map_, size_);
       layout_ = detail::npy_layout(detail::parse_npy_header(bytes, path), size_, path);
+      select(options);
       end_ = std::min(end, layout_.rows);
       begin_ = std::min(begin_, end_);
       dropped_rows_ = begin_;
@@ -233,6 +249,9 @@ class RowReader::TextSource final : public RowReader::Source {
   Index columns() const override { return static_cast<Index>(parser_.columns()); }
   const std::vector<std::string>& column_names() const override { return parser_.column_names(); }
   const std::vector<std::string>& warnings() const override { return parser_.warnings(); }
+  const std::vector<std::vector<std::size_t>>& selected_columns() const override {
+    return parser_.selected_columns();
+  }
   double fraction_read() const override {
     if (at_end_) return 1.0;
     return size_ > 0 ? std::min(1.0, static_cast<double>(bytes_) / static_cast<double>(size_)) : 0.0;
@@ -308,7 +327,9 @@ class RowReader::TextSource final : public RowReader::Source {
 class RowReader::MatSource final : public RowReader::Source {
  public:
   MatSource(const std::string& path, const detail::FileSpec& spec, const ReadOptions& options)
-      : Source(path), blocks_(spec), options_(options) {}
+      : Source(path), blocks_(spec), options_(options) {
+    select(options);
+  }
   Index read(Index max_rows, Eigen::MatrixXd* rows) override {
     const auto count = static_cast<Index>(
         std::min<std::uint64_t>(blocks_.rows() - rows_read, static_cast<std::uint64_t>(max_rows)));
@@ -365,6 +386,9 @@ class RowReader::TableSource final : public RowReader::Source {
   }
   const std::vector<std::string>& column_names() const override { return table_.column_names; }
   const std::vector<std::string>& warnings() const override { return table_.warnings; }
+  const std::vector<std::vector<std::size_t>>& selected_columns() const override {
+    return table_.selected_columns;
+  }
 
  private:
   Table table_;
@@ -388,6 +412,7 @@ RowReader::RowReader(const std::string& path, const ReadOptions& options) {
     return;
   }
   std::optional<Table> named = detail::read_named_arrays(spec, options);
+  if (named) detail::select_table_columns(&*named, options, path);
   // FILE:NAME of a file without named arrays (whose error read_table gives).
   if (!named && !spec.variable.empty()) named = read_table(path, options);
   if (named) {
@@ -455,6 +480,7 @@ SplitFile::SplitFile(const std::string& path, const ReadOptions& options, int pa
   Eigen::MatrixXd first;
   probe.read(DelimitedParser::kIndexDecisionRows, &first);
   columns_ = probe.columns();
+  selected_ = probe.selected_columns();
   if (auto* text = dynamic_cast<RowReader::TextSource*>(probe.source_.get())) {
     layout_ = text->layout();
   } else if (auto* npy = dynamic_cast<RowReader::NpySource*>(probe.source_.get())) {
@@ -497,13 +523,23 @@ RowReader::~RowReader() = default;
 RowReader::RowReader(RowReader&&) noexcept = default;
 RowReader& RowReader::operator=(RowReader&&) noexcept = default;
 
-Index RowReader::read(Index max_rows, Eigen::MatrixXd* rows) { return source_->read(max_rows, rows); }
+Index RowReader::read(Index max_rows, Eigen::MatrixXd* rows) {
+  Source& source = *source_;
+  if (source.projection.empty()) return source.read(max_rows, rows);
+  const Index got = source.read(max_rows, &source.full);
+  rows->resize(got, static_cast<Index>(source.projection.size()));
+  for (std::size_t j = 0; j < source.projection.size(); ++j) {
+    rows->col(static_cast<Index>(j)) = source.full.col(source.projection[j]);
+  }
+  return got;
+}
 
 namespace detail {
 
 const NpyRows* direct_rows(const RowReader& reader) {
+  // Selected columns (ReadOptions::columns) are copied out of whole rows by RowReader::read.
   const auto* npy = dynamic_cast<const RowReader::NpySource*>(reader.source_.get());
-  return npy ? npy->direct() : nullptr;
+  return npy && npy->projection.empty() ? npy->direct() : nullptr;
 }
 
 Index skip_rows(RowReader& reader, Index max_rows) {
@@ -514,7 +550,12 @@ Index skip_rows(RowReader& reader, Index max_rows) {
 
 }  // namespace detail
 const std::string& RowReader::path() const { return source_->path; }
-Index RowReader::columns() const { return source_->columns(); }
+Index RowReader::columns() const {
+  return source_->projection.empty() ? source_->columns() : static_cast<Index>(source_->projection.size());
+}
+const std::vector<std::vector<std::size_t>>& RowReader::selected_columns() const {
+  return source_->selected_columns();
+}
 const std::vector<std::string>& RowReader::column_names() const { return source_->column_names(); }
 const std::vector<std::string>& RowReader::warnings() const { return source_->warnings(); }
 std::uint64_t RowReader::rows_read() const { return source_->rows_read; }

@@ -46,6 +46,8 @@ class SplitFile {
   std::uint64_t rows() const { return rows_; }
   /// Its columns (after dropping a label column).
   Eigen::Index columns() const { return columns_; }
+  /// With ReadOptions::columns: each selection's columns, 1-based (RowReader::selected_columns).
+  const std::vector<std::vector<std::size_t>>& selected_columns() const { return selected_; }
   const std::string& path() const { return path_; }
 
   /// Where data row `row` (0 <= row <= rows(); rows() is the end of the file) starts. Cost: a
@@ -65,6 +67,7 @@ class SplitFile {
   std::uint64_t size_ = 0;  // bytes
   DelimitedParser::Layout layout_;
   Eigen::Index columns_ = 0;
+  std::vector<std::vector<std::size_t>> selected_;
   std::uint64_t rows_ = 0;
   std::vector<std::vector<std::uint64_t>> counts_;
 };

@@ -208,36 +208,40 @@ DistributedFit fit_files_distributed(const std::string& a_path, const std::strin
 
   // The counting pass: each process opens both files (learning a text file's layout from its
   // first lines) and counts the lines of its part of their bytes.
+  // With an empty b_path, A's and B's columns are in the one file (read.columns): it alone is split.
+  const bool one_file = detail::checked_pair_read(b_path, read).columns.size() == 2;
   std::optional<SplitFile> a, b;
   const std::vector<std::string> counts = step(channel, [&] {
     a.emplace(a_path, read, rank, size);
-    b.emplace(b_path, read, rank, size);
+    if (!one_file) b.emplace(b_path, read, rank, size);
     std::string payload;
     put(payload, encode(a->count()));
-    put(payload, encode(b->count()));
+    if (!one_file) put(payload, encode(b->count()));
     return payload;
   });
   std::vector<std::vector<std::uint64_t>> a_counts, b_counts;
   for (const std::string& payload : counts) {
     Fields fields(payload);
     a_counts.push_back(decode(fields.next()));
-    b_counts.push_back(decode(fields.next()));
+    if (!one_file) b_counts.push_back(decode(fields.next()));
   }
   a->set_counts(a_counts);
-  b->set_counts(b_counts);
+  if (!one_file) b->set_counts(b_counts);
 
   // What every process now knows alike, so that all refuse alike: m >= n, the same rows in A and
   // B, B's columns fit for the method.
   const std::uint64_t m = a->rows();
-  const auto n = static_cast<std::uint64_t>(a->columns());
-  const Eigen::Index d = b->columns();
+  const Eigen::Index n_columns =
+      one_file ? static_cast<Eigen::Index>(a->selected_columns().at(0).size()) : a->columns();
+  const auto n = static_cast<std::uint64_t>(n_columns);
+  const Eigen::Index d = one_file ? a->columns() - n_columns : b->columns();
   if (m < n) throw detail::fewer_samples_than_columns(a_path, m, n);
-  detail::check_same_rows(a_path, m, b_path, b->rows());
-  detail::check_method_fits(method, b_path, a->columns(), d);
+  if (!one_file) detail::check_same_rows(a_path, m, b_path, b->rows());
+  detail::check_method_fits(method, one_file ? a_path : b_path, n_columns, d);
   // The noise model (every process has the options) against the data's sizes, and what the
   // method needs of it, alike on every process.
   if (auto refusal = detail::noise_refusal(options.noise, method)) throw OptionError(*refusal);
-  if (options.noise) static_cast<void>(options.noise->resolved(a->columns(), d));
+  if (options.noise) static_cast<void>(options.noise->resolved(n_columns, d));
 
   const bool bootstrap = options.bootstrap > 0;
   // Too few groups for the Poisson scheme, and rows spread over processes cannot be resampled one
@@ -256,7 +260,7 @@ DistributedFit fit_files_distributed(const std::string& a_path, const std::strin
   // Where each process's rows start in each file (and so where the previous process's end).
   const std::vector<std::string> starts = step(channel, [&] {
     const LinePosition at_a = a->locate(my_first);
-    const LinePosition at_b = b->locate(my_first);
+    const LinePosition at_b = one_file ? LinePosition{} : b->locate(my_first);
     return encode({at_a.byte, at_a.lines_before, at_b.byte, at_b.lines_before});
   });
   auto position = [&](int k, int file) -> LinePosition {
@@ -277,12 +281,16 @@ DistributedFit fit_files_distributed(const std::string& a_path, const std::strin
           if (user) user(fraction);
         };
         if (my_rows == 0) {
-          part.factors.total = TriangularFactor(a->columns(), d);
+          part.factors.total = TriangularFactor(n_columns, d);
           part.factors.replicates.assign(static_cast<std::size_t>(options.bootstrap), part.factors.total);
           return std::string();
         }
-        detail::PairReaders readers(a->open(my_first, my_rows, position(rank, 0), position(rank + 1, 0)),
-                                    b->open(my_first, my_rows, position(rank, 1), position(rank + 1, 1)), my_first);
+        detail::PairReaders readers =
+            one_file ? detail::PairReaders(a->open(my_first, my_rows, position(rank, 0), position(rank + 1, 0)),
+                                           my_first)
+                     : detail::PairReaders(a->open(my_first, my_rows, position(rank, 0), position(rank + 1, 0)),
+                                           b->open(my_first, my_rows, position(rank, 1), position(rank + 1, 1)),
+                                           my_first);
         if (bootstrap) {
           part.factors = detail::stream_resampled_factors(method, std::move(readers), mine, options.bootstrap,
                                                           options.seed);
@@ -310,8 +318,8 @@ DistributedFit fit_files_distributed(const std::string& a_path, const std::strin
                                      const FitRequest& request, Channel& channel) {
   const FitOptions options = request.resolved_options();
   return detail::naming_noise_files(request.noise_inputs, [&] {
-    return fit_files_distributed(a_path, b_path, request.method, options, request.stream_options(), request.read,
-                                 channel);
+    return fit_files_distributed(a_path, b_path, request.method, options, request.stream_options(),
+                                 data_read_options(request, b_path), channel);
   });
 }
 

@@ -23,6 +23,8 @@ void attach_read_info(FitResult& result, const detail::PairInfo& info) {
   result.warnings.insert(result.warnings.begin(), info.warnings.begin(), info.warnings.end());
   result.row_names = info.a_names;
   result.column_names = info.b_names;
+  result.a_columns = info.a_columns;
+  result.b_columns = info.b_columns;
 }
 
 // "313 KiB", "38 MiB", "6 GiB": rounded up, for messages.
@@ -78,6 +80,24 @@ DataPair read_pair_from(const std::string& a_path, const std::string& b_path, co
     return io::read_table(path, options);
   };
   DataPair data;
+  if (detail::checked_pair_read(b_path, options).columns.size() == 2) {
+    // One file: read once, its selected columns A's then B's.
+    io::Table table = read(a_path);
+    const auto n = static_cast<Eigen::Index>(table.selected_columns.at(0).size());
+    data.A = table.values.leftCols(n);
+    data.B = table.values.rightCols(table.values.cols() - n);
+    data.warnings = std::move(table.warnings);
+    detail::SelectionSplit split = detail::split_selection(a_path, table.column_names, table.selected_columns);
+    data.a_names = std::move(split.a_names);
+    data.b_names = std::move(split.b_names);
+    data.a_columns = std::move(split.a_columns);
+    data.b_columns = std::move(split.b_columns);
+    if (data.A.rows() < data.A.cols()) {
+      throw detail::fewer_samples_than_columns(a_path, static_cast<std::uint64_t>(data.A.rows()),
+                                               static_cast<std::uint64_t>(data.A.cols()));
+    }
+    return data;
+  }
   io::Table a = read(a_path);
   data.A = std::move(a.values);
   data.warnings = std::move(a.warnings);
@@ -121,8 +141,9 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
     const auto reader = [&](const std::string& path) {
       return path == "-" && kept_input ? io::detail::standard_input_reader(read, kept_input) : io::RowReader(path, read);
     };
-    detail::PairReaders pair = kept_input ? detail::PairReaders(reader(a_path), reader(b_path), 0)
-                                          : detail::PairReaders(a_path, b_path, read);
+    detail::PairReaders pair = !kept_input     ? detail::PairReaders(a_path, b_path, read)
+                               : b_path.empty() ? detail::PairReaders(reader(a_path), 0)  // A and B in one file
+                                                : detail::PairReaders(reader(a_path), reader(b_path), 0);
     pair.whole = true;
     // The noise model's sizes against the data's columns, at the first block, not after the pass.
     if (options.noise) {
@@ -134,11 +155,12 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
   };
   auto in_memory = [&] {
     DataPair data = read_pair_from(a_path, b_path, read, kept_input ? &kept_input->text : nullptr);
-    detail::check_method_fits(method, b_path, data.A.cols(), data.B.cols());
+    detail::check_method_fits(method, b_path.empty() ? a_path : b_path, data.A.cols(), data.B.cols());
     if (options.noise) static_cast<void>(options.noise->resolved(data.A.cols(), data.B.cols()));
     detail::check_enough_rows_for(method, a_path, data.A.rows(), data.A.cols(), data.B.cols());
     FitResult result = fit(data.A, data.B, method, options);
-    attach_read_info(result, {std::move(data.warnings), std::move(data.a_names), std::move(data.b_names)});
+    attach_read_info(result, {std::move(data.warnings), std::move(data.a_names), std::move(data.b_names),
+                              std::move(data.a_columns), std::move(data.b_columns)});
     return result;
   };
   if (streamed && options.bootstrap > 0) {

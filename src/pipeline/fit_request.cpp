@@ -294,6 +294,34 @@ std::vector<Spec> make_table() {
   stream.nullable = false;
   table.push_back(stream);
 
+  const std::string_view cols_pair =
+      "`a_cols` and `b_cols` come together: the columns of A and of B in the one file";
+  Spec a_cols;
+  a_cols.name = "a_cols";
+  a_cols.cli = "--a-cols";
+  a_cols.python = "a_cols";
+  a_cols.type = OptionType::Text;
+  a_cols.value_name = "COLUMNS";
+  a_cols.help = "A and B from one file: A's columns by header name or 1-based position (digits are positions), "
+                "inclusive ranges and lists: acc1:acc6, 2:7, 1,3,5, 2:4,F1; the other columns are ignored";
+  a_cols.needs = {"b_cols"};
+  a_cols.needs_message = cols_pair;
+  a_cols.set = [](FitRequest& r, const OptionValue& v) { r.a_cols = text(v); };
+  a_cols.get = [](const FitRequest& r) { return text_value(r.a_cols); };
+  table.push_back(a_cols);
+  Spec b_cols;
+  b_cols.name = "b_cols";
+  b_cols.cli = "--b-cols";
+  b_cols.python = "b_cols";
+  b_cols.type = OptionType::Text;
+  b_cols.value_name = "COLUMNS";
+  b_cols.help = "B's columns in the same file, as `a_cols` (no column in both)";
+  b_cols.needs = {"a_cols"};
+  b_cols.needs_message = cols_pair;
+  b_cols.set = [](FitRequest& r, const OptionValue& v) { r.b_cols = text(v); };
+  b_cols.get = [](const FitRequest& r) { return text_value(r.b_cols); };
+  table.push_back(b_cols);
+
   Spec block;
   block.name = "block_rows";
   block.cli = "--block-rows";
@@ -399,12 +427,30 @@ void check_fit_request(const FitRequest& request, const std::vector<std::string_
   check_option_combination(fit_option_table(), given);
 }
 
+io::ReadOptions data_read_options(const FitRequest& request, const std::string& b_path) {
+  io::ReadOptions read = request.read;
+  if (request.a_cols.empty() && request.b_cols.empty()) return read;
+  if (request.a_cols.empty() || request.b_cols.empty()) {
+    throw OptionError(std::string(find_option(fit_option_table(), "a_cols")->needs_message));
+  }
+  const io::ColumnSelection a{request.a_cols, "a_cols"}, b{request.b_cols, "b_cols"};
+  io::check_column_selection(a);
+  io::check_column_selection(b);
+  if (!b_path.empty()) {
+    throw OptionError("`a_cols` and `b_cols` choose A and B from one file, but two files were given (" + b_path +
+                      " as B's)");
+  }
+  read.columns = {a, b};
+  return read;
+}
+
 FitResult fit_files(const std::string& a_path, const std::string& b_path, const FitRequest& request) {
+  const io::ReadOptions read = data_read_options(request, b_path);
   std::optional<StreamOptions> stream;
   if (request.stream) stream = request.stream_options();
   const FitOptions options = request.resolved_options();
   return detail::naming_noise_files(request.noise_inputs, [&] {
-    return fit_files(a_path, b_path, request.method, options, stream, request.read);
+    return fit_files(a_path, b_path, request.method, options, stream, read);
   });
 }
 

@@ -5,11 +5,26 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "spdfit/io.hpp"
 #include "spdfit/method.hpp"
 
 namespace spdfit::detail {
+
+/// `read` for the data files of a pair: two files (b_path given) take no column selections; one
+/// file (b_path empty) takes two, A's and B's. Throws std::invalid_argument otherwise.
+const io::ReadOptions& checked_pair_read(const std::string& b_path, const io::ReadOptions& read);
+
+/// A's and B's part of one file's selected columns (io::Table::selected_columns, two selections):
+/// their names (when the file had a header) and what they are for reports ("log.csv columns
+/// acc1..acc6 (2-7)").
+struct SelectionSplit {
+  std::vector<std::string> a_names, b_names;
+  std::string a_columns, b_columns;
+};
+SelectionSplit split_selection(const std::string& path, const std::vector<std::string>& names,
+                               const std::vector<std::vector<std::size_t>>& selected);
 
 /// The error for data A, read from `a_path`, with fewer rows (samples) than columns: an n x n
 /// X needs at least n samples.

@@ -79,13 +79,14 @@ class PairReader {
   PairReader(detail::PairReaders readers, const StreamOptions& options, bool side_by_side, std::optional<Method> method)
       : a_(std::move(readers.a)),
         b_(std::move(readers.b)),
+        one_file_(!b_),
         whole_(readers.whole),
         block_rows_(options.block_rows),
         side_by_side_(side_by_side),
         method_(method),
         check_columns_(std::move(readers.check_columns)),
         direct_a_(io::detail::direct_rows(a_)),
-        direct_b_(io::detail::direct_rows(b_)) {}
+        direct_b_(b_ ? io::detail::direct_rows(*b_) : nullptr) {}
 
   /// Whether both files are C-order .npy files, whose rows next_rows() hands out to be read by
   /// the threads that factor them.
@@ -105,7 +106,7 @@ class PairReader {
       direct_a_->check_finite(*first, got_a, &bytes);
       check_enough_rows();
     }
-    const Index got_b = io::detail::skip_rows(b_, block_rows_);
+    const Index got_b = io::detail::skip_rows(*b_, block_rows_);
     started_ = true;
     check(got_a, got_b);
     *count = got_a;
@@ -120,9 +121,17 @@ class PairReader {
   detail::PairInfo info() const {
     detail::PairInfo out;
     out.warnings = a_.warnings();
-    out.warnings.insert(out.warnings.end(), b_.warnings().begin(), b_.warnings().end());
+    if (one_file_) {
+      detail::SelectionSplit split = detail::split_selection(a_.path(), a_.column_names(), a_.selected_columns());
+      out.a_names = std::move(split.a_names);
+      out.b_names = std::move(split.b_names);
+      out.a_columns = std::move(split.a_columns);
+      out.b_columns = std::move(split.b_columns);
+      return out;
+    }
+    out.warnings.insert(out.warnings.end(), b_->warnings().begin(), b_->warnings().end());
     out.a_names = a_.column_names();
-    out.b_names = b_.column_names();
+    out.b_names = b_->column_names();
     return out;
   }
 
@@ -133,19 +142,25 @@ class PairReader {
   bool next(Block* block) {
     Index got_a = 0;
     Index got_b = 0;
-    if (side_by_side_ && started_) {
+    if (one_file_) {
+      // A's and B's columns side by side in one file: each block read once and cut in two.
+      got_a = got_b = read_a(&both_);
+      const Index n = a_columns();
+      block->A = both_.leftCols(n);
+      block->B = both_.rightCols(both_.cols() - n);
+    } else if (side_by_side_ && started_) {
       if (!b_thread_) b_thread_ = std::make_unique<detail::TaskPool>(1);
-      std::future<Index> b = b_thread_->submit([this, block] { return b_.read(block_rows_, &block->B); });
+      std::future<Index> b = b_thread_->submit([this, block] { return b_->read(block_rows_, &block->B); });
       try {
-        got_a = read_a(block);
+        got_a = read_a(&block->A);
       } catch (...) {
         b.wait();  // B's read writes into *block: it must end before the block can go
         throw;
       }
       got_b = b.get();
     } else {
-      got_a = read_a(block);
-      got_b = b_.read(block_rows_, &block->B);
+      got_a = read_a(&block->A);
+      got_b = b_->read(block_rows_, &block->B);
     }
     started_ = true;
     check(got_a, got_b);
@@ -156,16 +171,23 @@ class PairReader {
   // Throws when A, all read, has fewer rows (samples) than columns (checked on the whole file
   // before a part is read, when a file is split among processes).
   void check_enough_rows() const {
-    if (whole_ && a_.rows_read() < static_cast<std::uint64_t>(a_.columns())) {
+    if (whole_ && a_.rows_read() < static_cast<std::uint64_t>(a_columns())) {
       throw detail::fewer_samples_than_columns(a_.path(), a_.rows_read(),
-                                           static_cast<std::uint64_t>(a_.columns()));
+                                           static_cast<std::uint64_t>(a_columns()));
     }
   }
 
+  // A's columns (in one file: the first selection's) and B's.
+  Index a_columns() const {
+    return one_file_ ? static_cast<Index>(a_.selected_columns().front().size()) : a_.columns();
+  }
+  Index b_columns() const { return one_file_ ? a_.columns() - a_columns() : b_->columns(); }
+  const std::string& b_path() const { return one_file_ ? a_.path() : b_->path(); }
+
   // A short block is A's last: m < n is refused there, before the O(n^2) factor of a very wide
   // file is allocated.
-  Index read_a(Block* block) {
-    const Index got = a_.read(block_rows_, &block->A);
+  Index read_a(MatrixXd* rows) {
+    const Index got = a_.read(block_rows_, rows);
     if (got < block_rows_) check_enough_rows();
     return got;
   }
@@ -174,9 +196,9 @@ class PairReader {
   // sizes; the columns are checked against the method at the first block.
   void check(Index got_a, Index got_b) {
     if (got_a > 0 && got_b > 0) {
-      detail::check_method_fits(method_, b_.path(), a_.columns(), b_.columns());
+      detail::check_method_fits(method_, b_path(), a_columns(), b_columns());
       if (check_columns_) {
-        check_columns_(a_.columns(), b_.columns());
+        check_columns_(a_columns(), b_columns());
         check_columns_ = nullptr;  // once
       }
     }
@@ -184,11 +206,14 @@ class PairReader {
     const std::string problem =
         got_a < got_b ? "B has more than " + detail::rows_text(a_.rows_read()) + " but A (" + a_.path() + ") has " +
                             std::to_string(a_.rows_read())
-                      : "B has " + detail::rows_text(b_.rows_read()) + " but A (" + a_.path() + ") has more";
-    throw detail::unequal_rows(b_.path(), problem);
+                      : "B has " + detail::rows_text(b_->rows_read()) + " but A (" + a_.path() + ") has more";
+    throw detail::unequal_rows(b_->path(), problem);
   }
 
-  io::RowReader a_, b_;
+  io::RowReader a_;
+  std::optional<io::RowReader> b_;
+  bool one_file_;
+  MatrixXd both_;  // one file: a block of A's and B's columns
   bool whole_;
   Index block_rows_;
   bool side_by_side_;
@@ -213,15 +238,20 @@ TriangularFactor stream_factor(const std::string& a_path, const std::string& b_p
 namespace detail {
 
 PairReaders::PairReaders(const std::string& a_path, const std::string& b_path, const io::ReadOptions& read)
-    : a(a_path, read), b(b_path, read) {
+    : a(a_path, checked_pair_read(b_path, read)) {
+  if (b_path.empty()) return;
+  b.emplace(b_path, read);
   // Files that declare their rows (.npy headers, MATLAB 7.3 sizes) are paired before any is read,
   // not when the shorter one ends (after minutes, for a large file).
-  const std::optional<std::uint64_t> rows_a = a.rows_declared(), rows_b = b.rows_declared();
-  if (rows_a && rows_b) check_same_rows(a.path(), *rows_a, b.path(), *rows_b);
+  const std::optional<std::uint64_t> rows_a = a.rows_declared(), rows_b = b->rows_declared();
+  if (rows_a && rows_b) check_same_rows(a.path(), *rows_a, b->path(), *rows_b);
 }
 
 PairReaders::PairReaders(io::RowReader a_part, io::RowReader b_part, std::uint64_t first)
     : a(std::move(a_part)), b(std::move(b_part)), whole(false), first_row(first) {}
+
+PairReaders::PairReaders(io::RowReader part, std::uint64_t first)
+    : a(std::move(part)), whole(false), first_row(first) {}
 
 TriangularFactor stream_factor_for(const std::optional<Method>& method, const std::string& a_path,
                                    const std::string& b_path, const StreamOptions& options, PairInfo* info) {

@@ -22,14 +22,21 @@ namespace spdfit::detail {
 struct PairInfo {
   std::vector<std::string> warnings;
   std::vector<std::string> a_names, b_names;
+  /// A and B from one file: the columns of each (FitResult::a_columns).
+  std::string a_columns, b_columns;
 };
 
 /// The readers of A and B: of the whole files, or of the same rows [first_row, ...) of each, one
 /// process's part of files split among processes (then m >= n is not checked on the part).
+/// With an empty b_path, A and B are the two column selections of read.columns in a_path's file,
+/// read once by `a` (whose rows hold A's columns, then B's; `b` is empty).
 struct PairReaders {
   PairReaders(const std::string& a_path, const std::string& b_path, const io::ReadOptions& read);
   PairReaders(io::RowReader a_part, io::RowReader b_part, std::uint64_t first_row);
-  io::RowReader a, b;
+  /// One process's part of a single file holding A's and B's columns.
+  PairReaders(io::RowReader part, std::uint64_t first_row);
+  io::RowReader a;
+  std::optional<io::RowReader> b;
   bool whole = true;
   std::uint64_t first_row = 0;
   /// Called with A's and B's column counts at the first block (both files opened and read), to

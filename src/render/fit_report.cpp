@@ -89,6 +89,7 @@ std::string report(const FitResult& result, const ReportHints& hints) {
   out << to_string(result.method) << " estimate of X (" << d.n << " x " << d.d << ") from m = " << d.m << " rows";
   if (d.chosen_method && d.reason) out << " (chosen by auto: " << d.reason->code << ")";
   out << "\n";
+  if (!result.a_columns.empty()) out << "A: " << result.a_columns << "\nB: " << result.b_columns << "\n";
   if (!result.ok()) {
     out << "failed: " << result.message << "\n";
     return out.str();

@@ -218,6 +218,10 @@ Json fit_result_json(const FitResult& result, JsonStyle style) {
   out["X"] = matrix_json(result.X, style);
   if (!result.row_names.empty()) out["row_names"] = result.row_names;
   if (!result.column_names.empty()) out["column_names"] = result.column_names;
+  if (!result.a_columns.empty()) {
+    out["a_columns"] = result.a_columns;
+    out["b_columns"] = result.b_columns;
+  }
   out["diagnostics"] = diagnostics_json(result.diagnostics, style);
   out["warnings"] = result.warnings;
   // Exact keeps a message that a successful result should not have, too.
@@ -240,6 +244,10 @@ FitResult fit_result_from(const Json& object, const std::string& type) {
   if (optional_field(object, "row_names")) r.row_names = value_from<std::vector<std::string>>(object, "row_names", type);
   if (optional_field(object, "column_names")) {
     r.column_names = value_from<std::vector<std::string>>(object, "column_names", type);
+  }
+  if (optional_field(object, "a_columns")) {
+    r.a_columns = value_from<std::string>(object, "a_columns", type);
+    r.b_columns = value_from<std::string>(object, "b_columns", type);
   }
   r.warnings = value_from<std::vector<std::string>>(object, "warnings", type);
   if (optional_field(object, "error")) r.message = value_from<std::string>(object, "error", type);

@@ -1,0 +1,218 @@
+// Column selections: "acc1:acc6", "3:8", "1,3:5,F1" parsed, and resolved against a file's header.
+#include "columns.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <map>
+#include <string_view>
+
+namespace spdfit::io {
+
+namespace {
+
+// One end of an item: a 1-based position (digits) or a header name.
+struct End {
+  bool is_position = false;
+  std::size_t position = 0;
+  std::string name;
+  std::string text;  // as written
+};
+
+struct Item {
+  End first, last;  // equal unless a range
+  bool range = false;
+};
+
+std::string trimmed(std::string_view text) {
+  std::size_t a = 0;
+  std::size_t b = text.size();
+  while (a < b && std::isspace(static_cast<unsigned char>(text[a]))) ++a;
+  while (b > a && std::isspace(static_cast<unsigned char>(text[b - 1]))) --b;
+  return std::string(text.substr(a, b - a));
+}
+
+// "`a_cols` 'acc1:acc9': "
+std::string prefix(const ColumnSelection& s) { return "`" + s.option + "` '" + s.spec + "': "; }
+
+[[noreturn]] void fail(const ColumnSelection& s, const std::string& problem) {
+  throw ColumnSelectionError(prefix(s) + problem);
+}
+
+End parse_end(const ColumnSelection& s, const std::string& text, const std::string& item) {
+  End end;
+  end.text = text;
+  if (text.empty()) fail(s, "'" + item + "' is a range without " + (item.front() == ':' ? "a start" : "an end"));
+  const bool digits = std::all_of(text.begin(), text.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+  if (!digits) {
+    end.name = text;
+    return end;
+  }
+  end.is_position = true;
+  if (text.size() > 9) fail(s, "column " + text + " does not exist");
+  end.position = std::stoul(text);
+  if (end.position == 0) {
+    fail(s, "column positions count from 1 (digits are positions, even where the header's names are digits); "
+            "there is no column 0");
+  }
+  return end;
+}
+
+std::vector<Item> parse(const ColumnSelection& s) {
+  if (trimmed(s.spec).empty()) fail(s, "no columns given");
+  std::vector<Item> items;
+  std::size_t start = 0;
+  while (start <= s.spec.size()) {
+    std::size_t comma = s.spec.find(',', start);
+    if (comma == std::string::npos) comma = s.spec.size();
+    const std::string item = trimmed(std::string_view(s.spec).substr(start, comma - start));
+    start = comma + 1;
+    if (item.empty()) fail(s, "an empty item in the list (two commas in a row, or one at an end)");
+    Item out;
+    const std::size_t colon = item.find(':');
+    if (colon == std::string::npos) {
+      out.first = out.last = parse_end(s, item, item);
+    } else {
+      if (item.find(':', colon + 1) != std::string::npos) fail(s, "'" + item + "' has more than one ':'");
+      out.range = true;
+      out.first = parse_end(s, trimmed(item.substr(0, colon)), item);
+      out.last = parse_end(s, trimmed(item.substr(colon + 1)), item);
+      if (out.first.is_position && out.last.is_position && out.first.position > out.last.position) {
+        fail(s, "the range " + item + " runs backwards (write " + out.last.text + ":" + out.first.text + ")");
+      }
+    }
+    items.push_back(out);
+  }
+  return items;
+}
+
+std::string name_list(const std::vector<std::string>& names) {
+  constexpr std::size_t kShown = 30;  // a wide file's header in full would bury the message
+  std::string out;
+  for (std::size_t i = 0; i < names.size() && i < kShown; ++i) {
+    out += (i == 0 ? "" : ", ") + (names[i].empty() ? std::string("''") : names[i]);
+  }
+  if (names.size() > kShown) out += ", ... (" + std::to_string(names.size()) + " columns)";
+  return out;
+}
+
+}  // namespace
+
+void check_column_selection(const ColumnSelection& selection) { static_cast<void>(parse(selection)); }
+
+std::string describe_columns(const std::vector<std::size_t>& positions, const std::vector<std::string>& names) {
+  if (positions.empty()) return "no columns";
+  const bool named = names.size() == positions.size();
+  bool contiguous = positions.size() > 1;
+  for (std::size_t i = 1; i < positions.size(); ++i) contiguous = contiguous && positions[i] == positions[i - 1] + 1;
+  const std::string first = std::to_string(positions.front());
+  const std::string last = std::to_string(positions.back());
+  if (positions.size() == 1) return named ? "column " + names[0] + " (" + first + ")" : "column " + first;
+  if (contiguous) {
+    return named ? "columns " + names.front() + ".." + names.back() + " (" + first + "-" + last + ")"
+                 : "columns " + first + "-" + last;
+  }
+  std::string numbers, labels;
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    numbers += (i == 0 ? "" : ", ") + std::to_string(positions[i]);
+    if (named) labels += (i == 0 ? "" : ", ") + names[i];
+  }
+  return named ? "columns " + labels + " (" + numbers + ")" : "columns " + numbers;
+}
+
+namespace detail {
+
+std::vector<std::vector<std::size_t>> resolve_columns(const std::vector<ColumnSelection>& selections,
+                                                      const std::vector<std::string>& names, std::size_t columns,
+                                                      bool named, const std::string& source) {
+  const std::string file = source == "-" ? std::string("standard input") : source;
+  std::vector<std::vector<std::size_t>> out;
+  std::map<std::size_t, std::size_t> owner;  // 0-based column -> the selection that took it
+  const auto label = [&](std::size_t column) {
+    std::string text = "column " + std::to_string(column + 1);
+    if (column < names.size()) text += " (" + (names[column].empty() ? std::string("''") : names[column]) + ")";
+    return text;
+  };
+  for (std::size_t k = 0; k < selections.size(); ++k) {
+    const ColumnSelection& s = selections[k];
+    const auto locate = [&](const End& end) -> std::size_t {
+      if (end.is_position) {
+        if (end.position > columns) {
+          fail(s, "column " + std::to_string(end.position) + " is beyond the " + std::to_string(columns) +
+                      " columns of " + file);
+        }
+        return end.position - 1;
+      }
+      if (names.empty()) {
+        const std::string why = named ? file + " has no header row of column names"
+                                      : file + " has no column names (.npy, .mat and .npz files have none)";
+        fail(s, why + ": select its columns by 1-based position (1 to " + std::to_string(columns) + "), such as 2:7");
+      }
+      std::size_t found = names.size();
+      for (std::size_t j = 0; j < names.size(); ++j) {
+        if (names[j] != end.name) continue;
+        if (found != names.size()) {
+          fail(s, "the name " + end.name + " is in the header of " + file + " twice (columns " +
+                      std::to_string(found + 1) + " and " + std::to_string(j + 1) + "): select by position");
+        }
+        found = j;
+      }
+      if (found == names.size()) {
+        fail(s, "no column named " + end.name + " in " + file + "; its columns: " + name_list(names));
+      }
+      return found;
+    };
+    std::vector<std::size_t> chosen;
+    for (const Item& item : parse(s)) {
+      const std::size_t a = locate(item.first);
+      const std::size_t b = item.range ? locate(item.last) : a;
+      if (a > b) {
+        fail(s, "the range " + item.first.text + ":" + item.last.text + " runs backwards: " + item.first.text +
+                    " is column " + std::to_string(a + 1) + ", " + item.last.text + " column " + std::to_string(b + 1) +
+                    " (write " + item.last.text + ":" + item.first.text + ")");
+      }
+      for (std::size_t c = a; c <= b; ++c) {
+        const auto [it, fresh] = owner.emplace(c, k);
+        if (!fresh) {
+          if (it->second == k) fail(s, "selects " + label(c) + " twice");
+          const ColumnSelection& other = selections[it->second];
+          throw ColumnSelectionError("`" + other.option + "` '" + other.spec + "' and `" + s.option + "` '" + s.spec +
+                                     "' both select " + label(c) + ": a column can be in one of them only");
+        }
+        chosen.push_back(c);
+      }
+    }
+    out.push_back(std::move(chosen));
+  }
+  return out;
+}
+
+std::vector<std::size_t> concatenated(const std::vector<std::vector<std::size_t>>& chosen) {
+  std::vector<std::size_t> out;
+  for (const auto& c : chosen) out.insert(out.end(), c.begin(), c.end());
+  return out;
+}
+
+std::vector<std::vector<std::size_t>> one_based(const std::vector<std::vector<std::size_t>>& chosen) {
+  std::vector<std::vector<std::size_t>> out = chosen;
+  for (auto& c : out) {
+    for (std::size_t& p : c) ++p;
+  }
+  return out;
+}
+
+void select_table_columns(Table* table, const ReadOptions& options, const std::string& source) {
+  if (options.columns.empty()) return;
+  const auto chosen = resolve_columns(options.columns, {}, static_cast<std::size_t>(table->values.cols()), false, source);
+  const std::vector<std::size_t> all = concatenated(chosen);
+  Eigen::MatrixXd values(table->values.rows(), static_cast<Eigen::Index>(all.size()));
+  for (std::size_t j = 0; j < all.size(); ++j) {
+    values.col(static_cast<Eigen::Index>(j)) = table->values.col(static_cast<Eigen::Index>(all[j]));
+  }
+  table->values = std::move(values);
+  table->column_names.clear();
+  table->selected_columns = one_based(chosen);
+}
+
+}  // namespace detail
+
+}  // namespace spdfit::io
