@@ -210,3 +210,25 @@ def test_mpi_is_loaded_only_under_a_launcher(files, tmp_path):
     r = mpirun(2, "fit", "-m", "spde", "--stream", files / "A.npy", files / "B.npy", program=copy)
     assert r.returncode == 2
     assert "is not the MPI plugin of this spdfit" in r.stderr, r.stderr
+
+
+@pytest.mark.parametrize("kind", ["npy", "csv"])
+def test_one_file_with_columns_gives_the_two_files_estimate(files, kind, tmp_path):
+    """--a-cols/--b-cols under mpirun: the one file (a timestamp column, B's columns first) is split
+    among the processes and gives the two files' estimate."""
+    A, B = np.load(files / "A.npy"), np.load(files / "B.npy")
+    if kind == "npy":
+        np.save(tmp_path / "log.npy", np.hstack([B, A]))
+        selection = ["--a-cols", f"{N + 1}:{2 * N}", "--b-cols", f"1:{N}"]
+    else:
+        header = ",".join(["time"] + [f"f{j}" for j in range(N)] + [f"a{j}" for j in range(N)])
+        rows = [f"2026-11-27T10:{i // 6000:02d}:{i % 6000 / 100:05.2f}," + ",".join("%.17g" % v for v in row)
+                for i, row in enumerate(np.hstack([B, A]))]
+        (tmp_path / "log.csv").write_text(header + "\n" + "\n".join(rows) + "\n")
+        selection = ["--a-cols", f"a0:a{N - 1}", "--b-cols", f"f0:f{N - 1}"]
+    reference = single(files, "npy", "spde")
+    for k in (1, 3):
+        out = fit_json(mpirun(k, "fit", "--method", "spde", "--stream", "--json", "--block-rows", "1000",
+                              tmp_path / f"log.{kind}", *selection))
+        assert relative(out["X"], reference["X"]) < 1e-12
+        assert out["m"] == M and sum(out["rows_per_process"]) == M
