@@ -376,9 +376,86 @@ def _checked(result, files=()):
     return result
 
 
+def _column_spec(name, columns):
+    """fit_files' a_cols or b_cols as the library's text: a str as it is ("acc1:acc6", "2:7", 1-based
+    as on the command line), a list of header labels and 0-based int positions (as pandas' iloc)."""
+    import numbers
+    if columns is None or isinstance(columns, str):
+        return columns
+    if isinstance(columns, (numbers.Integral, bytes)) or not hasattr(columns, "__iter__"):
+        raise TypeError(f"{name} must be a str (as --{name.replace('_', '-')} takes it) or a list of labels "
+                        f"and 0-based positions, not {type(columns).__name__}")
+    items = []
+    for c in columns:
+        if isinstance(c, numbers.Integral) and not isinstance(c, bool):
+            if c < 0:
+                raise ValueError(f"{name}: column positions count from 0 here, as in pandas' iloc; got {c}")
+            items.append(str(int(c) + 1))
+        elif isinstance(c, str):
+            if not c or c.isdigit() or any(ch in c for ch in ",:"):
+                raise ValueError(f"{name}: the label {c!r} cannot be selected by name (empty, digits, or with ',' "
+                                 f"or ':'): give its 0-based position")
+            items.append(c)
+        else:
+            raise TypeError(f"{name}: a column is a label (str) or a 0-based position (int), not {c!r}")
+    if not items:
+        raise ValueError(f"{name}: no columns given")
+    return ",".join(items)
+
+
+def _frame_columns(frame, name, columns):
+    """0-based positions of `columns` in a pandas DataFrame, as df.loc (labels, a label slice,
+    inclusive) or df.iloc (ints, an int slice) would take them."""
+    import numbers
+    import numpy as np
+    labels = frame.columns
+    if isinstance(columns, slice):
+        if all(x is None or (isinstance(x, numbers.Integral) and not isinstance(x, bool))
+               for x in (columns.start, columns.stop)):
+            return list(range(len(labels)))[columns]
+        start, stop = labels.slice_locs(columns.start, columns.stop)
+        return list(range(start, stop))[::columns.step or 1]
+    if isinstance(columns, str) or not hasattr(columns, "__iter__"):
+        columns = [columns]
+    columns = list(columns)
+    if all(isinstance(c, numbers.Integral) and not isinstance(c, bool) for c in columns) and not all(
+            c in labels for c in columns):
+        n = len(labels)
+        bad = [c for c in columns if not -n <= c < n]
+        if bad:
+            raise ValueError(f"{name}: position {bad[0]} is beyond the DataFrame's {n} columns")
+        return [int(c) % n for c in columns]
+    positions = labels.get_indexer(columns) if labels.is_unique else np.full(len(columns), -2)
+    for c, p in zip(columns, positions):
+        if p == -1:
+            raise ValueError(f"{name}: no column {c!r} in the DataFrame; its columns: {list(labels)}")
+        if p == -2:
+            raise ValueError(f"{name}: the DataFrame's column labels are not unique: give 0-based positions")
+    return [int(p) for p in positions]
+
+
+def _split_frame(A, B, a_cols, b_cols):
+    """A and B from the columns of one pandas DataFrame, for fit(df, a_cols=..., b_cols=...)."""
+    if (a_cols is None) != (b_cols is None):
+        raise ValueError("a_cols and b_cols come together: the columns of A and of B in the one table")
+    if B is not None:
+        raise ValueError("a_cols and b_cols choose A and B from one table, but B was given too")
+    if hasattr(A, "iloc") and hasattr(A, "columns"):
+        a = _frame_columns(A, "a_cols", a_cols)
+        b = _frame_columns(A, "b_cols", b_cols)
+        labels = list(A.columns)
+        both = sorted(set(a) & set(b))
+        if both:
+            raise ValueError(f"a_cols and b_cols both select column {labels[both[0]]!r} (position {both[0]}): a "
+                             f"column can be in one of them only")
+        return _as_matrix("A", A.iloc[:, a]), _as_matrix("B", A.iloc[:, b])
+    raise TypeError("a_cols and b_cols choose columns of a pandas DataFrame; slice an array instead, "
+                    f"fit(T[:, a], T[:, b]) (got {type(A).__name__})")
+
+
 @_shared_doc
 @_takes_options("fit")
-def fit(A, B, method="auto", **options):
+def fit(A, B=None, method="auto", *, a_cols=None, b_cols=None, **options):
     """Estimate X in A X ~= B with `method` (one of METHODS).
 
     The default, "auto", chooses spde, spd-tls or psd-ls from the data (and the noise model,
@@ -401,9 +478,14 @@ def fit(A, B, method="auto", **options):
     ----------
     A, B : array_like
         The measurements, m x n and m x d, one sample per row (d = n but for "ls" and "tls"); any
-        real dtype, converted to float64; a 1-D array is one column.
+        real dtype, converted to float64; a 1-D array is one column. With a_cols and b_cols, A is
+        a pandas DataFrame holding both, and B is left out.
     method : str, default "auto"
         One of METHODS.
+    a_cols, b_cols : label, list, slice or None, default None
+        A's and B's columns of the DataFrame A: labels, a list of labels, a label slice (inclusive,
+        as df.loc) or 0-based positions (a list or slice of ints, as df.iloc); both or neither, no
+        column in both. The other columns (a timestamp, text) are ignored.
     {options}
 
     {returns}
@@ -440,7 +522,21 @@ def fit(A, B, method="auto", **options):
     True
     >>> spdfit.fit(A, A @ X, method="procrustes").diagnostics.cross_term_positive_definite
     True
+
+    A and B from the columns of one pandas DataFrame (labels, a label slice, or 0-based positions, as
+    df.loc and df.iloc take them; the other columns, such as a timestamp, are ignored):
+
+    >>> import pandas as pd
+    >>> log = pd.DataFrame({"time": pd.date_range("2024-01-01", periods=4, freq="s"),
+    ...                     "a1": A[:, 0], "a2": A[:, 1], "f1": (A @ X)[:, 0], "f2": (A @ X)[:, 1]})
+    >>> r = spdfit.fit(log, a_cols=["a1", "a2"], b_cols=[3, 4])
+    >>> bool(np.allclose(r.X, X))
+    True
     """
+    if a_cols is not None or b_cols is not None:
+        A, B = _split_frame(A, B, a_cols, b_cols)
+    elif B is None:
+        raise TypeError("fit() needs B, or a_cols and b_cols choosing A's and B's columns of a DataFrame A")
     A, B = _as_matrix("A", A), _as_matrix("B", B)
     return _checked(_spdfit.fit(A, B, method, options))
 
@@ -451,8 +547,8 @@ _STREAM_DEFAULTS = _spdfit.StreamOptions()
 
 @_shared_doc
 @_takes_options("fit_files")
-def fit_files(A_path, B_path, method="auto", **options):
-    """Estimate X from A and B in two data files read a block of rows at a time.
+def fit_files(A_path, B_path=None, method="auto", **options):
+    """Estimate X from A and B in two data files (or the columns of one) read a block of rows at a time.
 
     As `spdfit fit --stream`: any number of rows in O(threads * block_rows * n + n^2) memory. The
     files are read as read_matrix reads them (.npy files and MATLAB 7.3 variables a block of rows
@@ -472,7 +568,10 @@ def fit_files(A_path, B_path, method="auto", **options):
     Parameters
     ----------
     A_path, B_path : str or os.PathLike
-        The data files of A and B (the same number of rows).
+        The data files of A and B (the same number of rows). Without B_path, a_cols and b_cols choose
+        A's and B's columns in A_path's one file ("log.mat:log" names a .mat or .npz array): as the
+        command line's --a-cols and --b-cols ("acc1:acc6", "2:7", "1,3:5,F1": header names and
+        1-based positions), or lists of header labels and 0-based positions (as pandas' iloc).
     method : str, default "auto"
         One of METHODS, as in fit.
     {options}
@@ -505,8 +604,15 @@ def fit_files(A_path, B_path, method="auto", **options):
     >>> bool(np.allclose(r.X, spdfit.fit(A, A @ X, "spde").X))
     True
     """
-    a_path, b_path = _os.fspath(A_path), _os.fspath(B_path)
-    return _checked(_spdfit.fit_files(a_path, b_path, method, options), files=(a_path, b_path))
+    a_path = _os.fspath(A_path)
+    b_path = "" if B_path is None else _os.fspath(B_path)
+    for name in ("a_cols", "b_cols"):
+        if name in options:
+            options[name] = _column_spec(name, options[name])
+    if not b_path and options.get("a_cols") is None and options.get("b_cols") is None:
+        raise TypeError("fit_files() needs B_path, or a_cols and b_cols choosing A's and B's columns in A_path")
+    files = (a_path, b_path) if b_path else (a_path, a_path.rsplit(":", 1)[0])
+    return _checked(_spdfit.fit_files(a_path, b_path, method, options), files=files)
 
 
 @_shared_doc

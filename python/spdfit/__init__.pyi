@@ -35,8 +35,8 @@ class NumericalError(RuntimeError):
 
 class SpdfitWarning(UserWarning): ...
 
-def fit(A: npt.ArrayLike, B: npt.ArrayLike, method: _Method = ..., **options: Any) -> FitResult: ...  # options: fit
-def fit_files(A_path: _PathLike, B_path: _PathLike, method: _Method = ..., **options: Any) -> FitResult: ...  # options: fit_files
+def fit(A: Any, B: Optional[npt.ArrayLike] = ..., method: _Method = ..., *, a_cols: Any = ..., b_cols: Any = ..., **options: Any) -> FitResult: ...  # options: fit
+def fit_files(A_path: _PathLike, B_path: Optional[_PathLike] = ..., method: _Method = ..., **options: Any) -> FitResult: ...  # options: fit_files
 def fit_all(A: npt.ArrayLike, B: npt.ArrayLike, **options: Any) -> Dict[str, FitResult]: ...  # options: fit_all
 def spd_total_least_squares(A: npt.ArrayLike, B: npt.ArrayLike, **options: Any) -> FitResult: ...  # options: fit:spd-tls
 def psd_least_squares(A: npt.ArrayLike, B: npt.ArrayLike, **options: Any) -> FitResult: ...  # options: fit:psd-ls

@@ -184,6 +184,10 @@ void bind_results(py::module_& m) {
                              "names of X's rows: A's column names from its file's header (fit_files), else []")
       .def_property_readonly("column_names", copied(&FitResult::column_names),
                              "names of X's columns: B's column names from its file's header, else []")
+      .def_property_readonly("a_columns", copied(&FitResult::a_columns),
+                             "A and B from one file (a_cols, b_cols): the file and A's columns, "
+                             "'log.csv columns acc1..acc6 (2-7)'; else ''")
+      .def_property_readonly("b_columns", copied(&FitResult::b_columns), "the same for B's columns")
       .def(pickle_json<FitResult>("FitResult", &exact_json<FitResult>))
       .def("__repr__", [](const FitResult& r) {
         return "FitResult(method='" + std::string(to_string(r.method)) + "', status='" + to_string(r.status) +

@@ -39,11 +39,12 @@ std::vector<Keyword> keywords_of(const std::vector<OptionSpec<Request>>& table, 
 
 const std::vector<Entry>& entries() {
   static const std::vector<Entry> list = {
-      {"fit", "fit", {}, {"stream"}},
+      // fit's a_cols and b_cols (columns of a DataFrame) are spelled out in Python, not the table's text.
+      {"fit", "fit", {}, {"stream", "a_cols", "b_cols"}},
       {"fit_files", "fit", {"stream"}, {}},
-      {"fit_all", "fit", {}, {"stream", "bootstrap"}},
-      {"Factor.fit", "fit", {}, {"stream", "bootstrap"}},
-      {"hexapod.identify", "fit", {}, {"stream"}},
+      {"fit_all", "fit", {}, {"stream", "bootstrap", "a_cols", "b_cols"}},
+      {"Factor.fit", "fit", {}, {"stream", "bootstrap", "a_cols", "b_cols"}},
+      {"hexapod.identify", "fit", {}, {"stream", "a_cols", "b_cols"}},
       {"hexapod.identify.physical", "physical", {}, {}},
       {"nearest_spd", "nearest", {}, {"corr"}},
       {"nearest_correlation", "nearest", {"corr"}, {"keep_diag", "via_corr"}},
