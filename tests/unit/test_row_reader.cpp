@@ -215,3 +215,47 @@ TEST_F(RowReaderTest, BadNpyFailsAsReadTableDoes) {
 
 }  // namespace
 }  // namespace spdfit
+
+namespace spdfit {
+namespace {
+
+// Column selections (ReadOptions::columns): the streaming reader in any block size gives what
+// read_table gives, the selected columns in the selections' order, text columns not selected
+// skipped unparsed, and the selections' 1-based columns.
+TEST_F(RowReaderTest, ColumnSelectionsStreamAsReadTableReadsThem) {
+  std::string text = "time,a,b,c,note\n";
+  for (int i = 0; i < 50; ++i) {
+    text += "10:00:" + std::to_string(i) + "," + std::to_string(i) + "," + std::to_string(2 * i) + "," +
+            std::to_string(3 * i) + ",text\n";
+  }
+  const std::string path = Write("log.csv", text);
+  io::ReadOptions options;
+  options.columns = {{"c,a", "a_cols"}, {"3", "b_cols"}};
+  const io::Table table = io::read_table(path, options);
+  ASSERT_EQ(table.values.cols(), 3);
+  EXPECT_EQ(table.values(7, 0), 21.0);
+  EXPECT_EQ(table.values(7, 1), 7.0);
+  EXPECT_EQ(table.values(7, 2), 14.0);
+  EXPECT_EQ(table.column_names, (std::vector<std::string>{"c", "a", "b"}));
+  EXPECT_EQ(table.selected_columns, (std::vector<std::vector<std::size_t>>{{4, 2}, {3}}));
+  for (Index block : {1, 7, 64}) {
+    RowReader reader(path, options);
+    MatrixXd all, rows;
+    Index total = 0;
+    while (const Index k = reader.read(block, &rows)) {
+      all.conservativeResize(total + k, rows.cols());
+      all.middleRows(total, k) = rows;
+      total += k;
+    }
+    EXPECT_EQ(all, table.values) << block;
+    EXPECT_EQ(reader.selected_columns(), table.selected_columns);
+  }
+  EXPECT_EQ(io::describe_columns({2, 3, 4}, {"a", "b", "c"}), "columns a..c (2-4)");
+  EXPECT_EQ(io::describe_columns({4, 2}, {}), "columns 4, 2");
+  EXPECT_THROW(io::check_column_selection({"3:1", "a_cols"}), io::ColumnSelectionError);
+  options.columns = {{"a:c", "a_cols"}, {"c", "b_cols"}};
+  EXPECT_THROW(io::read_table(path, options), io::ColumnSelectionError);
+}
+
+}  // namespace
+}  // namespace spdfit
