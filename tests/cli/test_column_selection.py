@@ -186,3 +186,15 @@ def test_unselected_timestamp_needs_no_index_col(files, spdfit):
     r = spdfit("fit", "--method", "spd-tls", str(files / "log.csv"), str(files / "B.csv"))
     assert r.returncode == 1
     assert "--a-cols" in r.stderr
+
+
+def test_streaming_bootstrap_from_standard_input(files, spdfit):
+    """Too few rows for the streaming bootstrap: one file on standard input is resampled in memory
+    from its kept text, as the file itself is."""
+    args = ["fit", "--method", "spd-tls", "--json", "--stream", "--bootstrap", "20", "--a-cols", "acc1:acc3",
+            "--b-cols", "F1:F3"]
+    from_file = spdfit(*args, str(files / "log.csv"))
+    from_stdin = spdfit(*args, "-", input=(files / "log.csv").read_text())
+    assert from_file.returncode == 0 and from_stdin.returncode == 0, from_stdin.stderr
+    a, b = json.loads(from_file.stdout), json.loads(from_stdin.stdout)
+    assert a["X"] == b["X"] and a["standard_errors"] == b["standard_errors"]
