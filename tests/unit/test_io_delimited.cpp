@@ -272,10 +272,11 @@ TEST(IoDelimited, NotANumber) {
   const DataError e = ParseError("1,2,3\n4,5,6\n7,abc,9\n");
   EXPECT_STREQ(e.what(), "A.csv:3:3: 'abc' is not a number");
   ExpectError("1,2\n3,1.5abc\n", 2, 3, "'1.5abc' is not a number");
-  // A log's timestamp in the first column: the message names --index-col.
+  // A log's timestamp in the first column: the message names --index-col and --a-cols.
   ExpectError("t,a\n2024-01-31T10:15:02,1.5\n", 2, 1,
               "'2024-01-31T10:15:02' is not a number; a timestamp in the first column? --index-col drops it "
-              "(Python: index_col=True)");
+              "(Python: index_col=True), or --a-cols and --b-cols choose the columns of A and B (Python: a_cols, "
+              "b_cols)");
   ExpectError("1 2\n3 1e\n", 2, 3, "'1e' is not a number");
   ExpectError("1 2\n3 0x10\n", 2, 3, "'0x10' is not a number");
   ExpectError("1 2\n3 1.5.2\n", 2, 3, "'1.5.2' is not a number");
