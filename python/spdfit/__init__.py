@@ -438,6 +438,9 @@ def _split_frame(A, B, a_cols, b_cols):
     """A and B from the columns of one pandas DataFrame, for fit(df, a_cols=..., b_cols=...)."""
     if (a_cols is None) != (b_cols is None):
         raise ValueError("a_cols and b_cols come together: the columns of A and of B in the one table")
+    if isinstance(B, str):
+        raise ValueError(f"a_cols and b_cols choose A and B from one table, but B was given too: {B!r}; "
+                         f"give the method by name, method={B!r}")
     if B is not None:
         raise ValueError("a_cols and b_cols choose A and B from one table, but B was given too")
     if hasattr(A, "iloc") and hasattr(A, "columns"):

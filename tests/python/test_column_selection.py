@@ -78,6 +78,8 @@ def test_fit_dataframe(log):
         spdfit.fit(frame, a_cols=["a1", "a9"], b_cols=["f1", "f2"])
     with pytest.raises(ValueError, match="come together"):
         spdfit.fit(frame, a_cols=["a1", "a2"])
+    with pytest.raises(ValueError, match=r"give the method by name, method='spde'"):
+        spdfit.fit(frame, "spde", a_cols=["a1", "a2"], b_cols=["f1", "f2"])
     with pytest.raises(TypeError, match="DataFrame"):
         spdfit.fit(frame.to_numpy()[:, 1:], a_cols=[0, 1], b_cols=[2, 3])
     with pytest.raises(ValueError):  # the timestamps are not numbers
