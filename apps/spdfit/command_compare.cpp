@@ -43,10 +43,10 @@ Command add_compare_command(CLI::App& app, const GlobalOptions& global) {
                   "--a-cols and --b-cols choose A's and B's columns in A's file");
 
   auto run = [options, &global]() {
-    FitRequest columns;
-    columns.read = global.read;
-    options->table->apply(columns);
-    const DataPair data = load_pair(options->a_path, options->b_path, columns, global);
+    FitRequest request;
+    request.read = global.read;
+    options->table->apply(request);
+    const DataPair data = load_pair(options->a_path, options->b_path, request, global);
     std::optional<Eigen::MatrixXd> truth;
     if (!options->truth_path.empty()) {
       truth = load_matrix(options->truth_path, global);
@@ -55,9 +55,6 @@ Command add_compare_command(CLI::App& app, const GlobalOptions& global) {
                                                            "x" + std::to_string(data.B.cols()));
       }
     }
-    FitRequest request;
-    request.read = global.read;
-    options->table->apply(request);
     check_fit_options(request, options->table->given());
     const FitOptions fit_options = resolved_fit_options(request, data.A.cols(), data.B.cols());
     const Comparison comparison = compare(data.A, data.B, fit_options, truth);

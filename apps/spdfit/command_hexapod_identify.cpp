@@ -88,10 +88,11 @@ Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
                         "Threads for --bootstrap (default: one per core)");
 
   auto run = [cli, &global]() {
-    FitRequest columns;
-    columns.read = global.read;
-    cli->fit_options->apply(columns);
-    const DataPair data = load_pair(cli->a_path, cli->b_path, columns, global);
+    FitRequest request;
+    apply_bootstrap_options(cli->bootstrap, request.options);
+    request.read = global.read;
+    cli->fit_options->apply(request);
+    const DataPair data = load_pair(cli->a_path, cli->b_path, request, global);
     const Eigen::Index n = data.A.cols();
     if (data.B.cols() != n) {
       throw io::DataError(cli->b_path.empty() ? cli->a_path : cli->b_path, 0, 0,
@@ -100,7 +101,6 @@ Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
                                                    "accelerations need the same struts");
     }
     hexapod::IdentifyOptions options;
-    apply_bootstrap_options(cli->bootstrap, options.fit);
     if (!cli->truth.empty()) {
       options.truth = load_matrix(cli->truth, global);
       if (options.truth->rows() != n || options.truth->cols() != n) {
@@ -125,10 +125,6 @@ Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
     } else if (!cli->stiffness.empty()) {
       options.stiffness = parse_stiffness(cli->stiffness, n);
     }
-    FitRequest request;
-    request.options = options.fit;
-    request.read = global.read;
-    cli->fit_options->apply(request);
     check_fit_options(request, cli->fit_options->given());
     options.fit = resolved_fit_options(request, n, n);
     hexapod::PhysicalOptions physical_options;

@@ -11,12 +11,6 @@ Eigen::MatrixXd load_matrix(const std::string& path, const GlobalOptions& global
   return std::move(table.values);
 }
 
-DataPair load_pair(const std::string& a_path, const std::string& b_path, const GlobalOptions& global) {
-  DataPair data = read_pair(a_path, b_path, global.read);
-  for (const std::string& w : data.warnings) warn(global, w);
-  return data;
-}
-
 io::ReadOptions data_read(const FitRequest& request, const std::string& b_path) {
   if (b_path.empty() && request.a_cols.empty() && request.b_cols.empty()) {
     throw UsageError("B's file is missing: give the files of A and B, or one file with --a-cols and --b-cols "
