@@ -17,12 +17,16 @@ _PACKAGE_DIR = _os.path.dirname(_os.path.abspath(__file__))
 class DataError(ValueError):
     """Bad input data; the message names the file (and, for text, the line and column) or the argument."""
 
+    __module__ = "spdfit"
+
 
 class NumericalError(RuntimeError):
     """Valid input without an answer (e.g. A rank-deficient for spde, V22 singular for tls).
 
     The failed result, with the diagnostics of the data, is in the `result` attribute (None where
     the failure was raised before a result existed)."""
+
+    __module__ = "spdfit"
 
     def __init__(self, message, result=None):
         super().__init__(message)
@@ -32,6 +36,8 @@ class NumericalError(RuntimeError):
 class SpdfitWarning(UserWarning):
     """A condition the user should know about (rank deficiency, ill-conditioning, ...); each kind has
     a subclass of its own, named after its code (RankDeficientWarning, ...)."""
+
+    __module__ = "spdfit"
 
 
 def _warning_classes():

@@ -20,6 +20,7 @@ class _Pybind11Type(type):
 METHODS: Tuple[str, ...]
 
 class Warning(metaclass=_Pybind11Type):
+    def __init__(self, code: str, text: str, subject: str = ...) -> None: ...
     @property
     def code(self) -> str: ...
     @property

@@ -43,7 +43,25 @@ py::object exception_class(Code code) {
 }  // namespace
 
 void bind_warning_class(py::module_& m) {
+  // A code's name back to the code; ValueError for a name the table does not have.
+  const auto named = [](const std::string& name) {
+    const std::optional<Code> code = code_named(name);
+    if (!code) throw py::value_error("'" + name + "' is not an outcome code (spdfit.outcome_codes() lists them)");
+    return *code;
+  };
   py::class_<Warning>(m, "Warning", "A library warning: its code's name, its text and the option or file it concerns.")
+      .def(py::init([named](const std::string& code, const std::string& text, const std::string& subject) {
+             return Warning(named(code), text, subject);
+           }),
+           py::arg("code"), py::arg("text"), py::arg("subject") = "")
+      .def(py::pickle(
+          [](const Warning& w) { return py::make_tuple(std::string(code_info(w.code).name), w.text, w.subject); },
+          [named](const py::tuple& state) {
+            if (state.size() != 3) throw std::runtime_error("Warning: bad pickled state");
+            return Warning(named(state[0].cast<std::string>()), state[1].cast<std::string>(),
+                           state[2].cast<std::string>());
+          }))
+      .def("__eq__", [](const Warning& a, const Warning& b) { return a == b; })
       .def_property_readonly("code", [](const Warning& w) { return std::string(code_info(w.code).name); })
       .def_readonly("text", &Warning::text)
       .def_readonly("subject", &Warning::subject)

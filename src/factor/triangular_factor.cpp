@@ -1,5 +1,7 @@
 #include "spdfit/triangular_factor.hpp"
 
+#include "spdfit/outcome.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -23,13 +25,15 @@ void check_data(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Matr
 
 void check_shapes(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Index n, Index d) {
   if (A.rows() != B.rows()) {
-    throw std::invalid_argument("A is " + std::to_string(A.rows()) + "x" + std::to_string(A.cols()) +
-                                " but B is " + std::to_string(B.rows()) + "x" + std::to_string(B.cols()) +
-                                ": they must have the same numbers of rows (samples)");
+    throw InputError("A is " + std::to_string(A.rows()) + "x" + std::to_string(A.cols()) + " but B is " +
+                         std::to_string(B.rows()) + "x" + std::to_string(B.cols()) +
+                         ": they must have the same numbers of rows (samples)",
+                     Code::DataShape, "B");
   }
   if (A.cols() != n || B.cols() != d) {
-    throw std::invalid_argument("A and B have " + std::to_string(A.cols()) + " and " + std::to_string(B.cols()) +
-                                " columns, expected " + std::to_string(n) + " and " + std::to_string(d));
+    throw InputError("A and B have " + std::to_string(A.cols()) + " and " + std::to_string(B.cols()) +
+                         " columns, expected " + std::to_string(n) + " and " + std::to_string(d),
+                     Code::DataShape);
   }
 }
 

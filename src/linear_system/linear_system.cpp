@@ -11,6 +11,7 @@
 #include "numerics/least_squares.hpp"
 #include "numerics/linalg.hpp"
 #include "spdfit/format.hpp"
+#include "spdfit/outcome.hpp"
 #include "spdfit/rank.hpp"
 #include "linear_system/linear_system_explanation.hpp"
 
@@ -72,8 +73,9 @@ LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A_in, const Eigen::Re
   if (A_in.rows() == 0 || A_in.cols() == 0) throw std::invalid_argument("solve: A is empty");
   if (B_in.cols() == 0) throw std::invalid_argument("solve: b has no columns");
   if (B_in.rows() != A_in.rows()) {
-    throw std::invalid_argument("solve: b has " + std::to_string(B_in.rows()) + " rows but A has " +
-                                std::to_string(A_in.rows()) + ": one entry of b per equation is needed");
+    throw InputError("solve: b has " + std::to_string(B_in.rows()) + " rows but A has " +
+                         std::to_string(A_in.rows()) + ": one entry of b per equation is needed",
+                     Code::DataShape, "b");
   }
   if (A_in.cols() > options.max_unknowns) {
     throw std::invalid_argument("solve: A has " + std::to_string(A_in.cols()) + " columns (unknowns); at most " +

@@ -13,7 +13,8 @@ io::DataError fewer_samples_than_columns(const std::string& a_path, std::uint64_
 std::string rows_text(std::uint64_t rows) { return std::to_string(rows) + (rows == 1 ? " row" : " rows"); }
 
 io::DataError unequal_rows(const std::string& b_path, const std::string& problem) {
-  return io::DataError(b_path, 0, 0, problem + ": A and B must have the same numbers of rows (samples)");
+  return io::DataError(b_path, 0, 0, problem + ": A and B must have the same numbers of rows (samples)",
+                       Code::DataShape);
 }
 
 void check_same_rows(const std::string& a_path, std::uint64_t rows_a, const std::string& b_path,

@@ -54,13 +54,21 @@ class Case:
     json_path: tuple = ()  # where the compared value is in the CLI's JSON
     code: Optional[str] = None  # the Python exception's code, for errors
     rtol: float = 0.0  # 0: bit for bit
+    # Octave against the CLI: 0 is bit for bit. Inside Octave the MEX's LAPACK calls resolve to the
+    # LAPACK Octave loaded, whose eigensolver can differ from the CLI's in the last bits.
+    octave_rtol: float = 0.0
     extra: dict = field(default_factory=dict)
 
 
 def get(doc, path):
     for key in path:
-        doc = doc[key]
+        doc = key(doc) if callable(key) else doc[key]
     return np.asarray(doc, dtype=float)
+
+
+def method(name):
+    """A selector for get(): the entry of a list of results whose "method" is name."""
+    return lambda results: next(r for r in results if r["method"] == name)
 
 
 CASES = [
@@ -70,7 +78,8 @@ CASES = [
     Case("fit spd-tls with noise standard deviations", "ok",
          ["fit", "--method", "spd-tls", "--noise-std-a", "0.01,0.02,0.03", "--noise-std-b", "0.1", "--json", "{A}",
           "{B}"],
-         lambda d: spdfit.fit(d["A"], d["B"], "spd-tls", noise_std_a=[0.01, 0.02, 0.03], noise_std_b=0.1).X,
+         lambda d: spdfit.fit(d["A"], d["B"], "spd-tls",
+                                     noise=spdfit.NoiseModel.from_std([0.01, 0.02, 0.03], 0.1)).X,
          "v = spdfit.fit(A, B, 'spd-tls', 'NoiseStdA', [0.01 0.02 0.03], 'NoiseStdB', 0.1);", ("X",)),
     Case("fit auto with a bootstrap", "ok",
          ["fit", "--method", "auto", "--bootstrap", "20", "--seed", "3", "--json", "{A}", "{B}"],
@@ -85,19 +94,19 @@ CASES = [
          "v = spdfit.fit(A, B, 'spde', 'Bootstrap', 10, 'Confidence', 1.5);", code="option_value"),
     Case("fit: a noise model for a method without one", "usage",
          ["fit", "--method", "spde", "--noise-std-a", "0.1", "--noise-std-b", "0.1", "{A}", "{B}"],
-         lambda d: spdfit.fit(d["A"], d["B"], "spde", noise_std_a=0.1, noise_std_b=0.1),
+         lambda d: spdfit.fit(d["A"], d["B"], "spde", noise=spdfit.NoiseModel.from_std(0.1, 0.1)),
          "v = spdfit.fit(A, B, 'spde', 'NoiseStdA', 0.1, 'NoiseStdB', 0.1);"),
     Case("fit: A's and B's rows differ", "data", ["fit", "--method", "ls", "{A}", "{B_short}"],
          lambda d: spdfit.fit(d["A"], d["B_short"], "ls"), "v = spdfit.fit(A, B_short, 'ls');", code="data_shape"),
     Case("fit: a noise covariance that is not one", "data",
          ["fit", "--method", "spd-tls", "--noise-cov-a", "{Cbad}", "--noise-cov-b", "{I3}", "{A}", "{B}"],
-         lambda d: spdfit.fit(d["A"], d["B"], "spd-tls", noise_cov_a=d["Cbad"], noise_cov_b=d["I3"]),
+         lambda d: spdfit.fit(d["A"], d["B"], "spd-tls", noise=spdfit.NoiseModel(cov_a=d["Cbad"], cov_b=d["I3"])),
          "v = spdfit.fit(A, B, 'spd-tls', 'NoiseCovA', Cbad, 'NoiseCovB', I3);", code="noise_model_refused"),
     # nearest
     Case("nearest", "ok", ["nearest", "--json", "{C}"], lambda d: spdfit.nearest_spd(d["C"]),
          "v = spdfit.nearest(C);", ("X",)),
     Case("nearest --corr", "ok", ["nearest", "--corr", "--json", "{C}"], lambda d: spdfit.nearest_correlation(d["C"]),
-         "v = spdfit.nearest(C, 'Corr', true);", ("X",)),
+         "v = spdfit.nearest(C, 'Corr', true);", ("X",), octave_rtol=1e-13),
     Case("nearest: a negative relative floor", "usage", ["nearest", "--min-eig-rel", "-1", "{C}"],
          lambda d: spdfit.nearest_spd(d["C"], min_eig_rel=-1.0), "v = spdfit.nearest(C, 'MinEigRel', -1);",
          code="option_value"),
@@ -126,7 +135,7 @@ CASES = [
          "r = spdfit.hexapod.identify(Ah, Bh, 'Physical', true);"),
     Case("hexapod identify: a physical option without physical", "usage",
          ["hexapod", "identify", "--strut-masses", "common", "{Ah}", "{Bh}"],
-         lambda d: hexapod.identify(d["Ah"], d["Bh"], strut_masses="common"),
+         lambda d: hexapod.identify(d["Ah"], d["Bh"], fit_strut_mass="common"),
          "r = spdfit.hexapod.identify(Ah, Bh, 'StrutMasses', 'common');"),
     Case("hexapod identify: a truth of the wrong size", "data",
          ["hexapod", "identify", "--truth", "{I3}", "{Ah}", "{Bh}"],
@@ -135,7 +144,7 @@ CASES = [
     # compare (no MATLAB function: the command line against Python's fit_all)
     Case("compare", "ok", ["compare", "--json", "{A}", "{B}"],
          lambda d: {r.method: r for r in spdfit.fit_all(d["A"], d["B"])}["spd-tls"].X, None,
-         ("methods", "spd-tls", "X")),
+         ("results", method("spd-tls"), "X")),
 ]
 
 
@@ -277,7 +286,7 @@ def test_octave_agrees(case, data, octave_results):
     assert outcome == MATLAB_ID[case.outcome], f"{case.name}: Octave gave {outcome}"
     if case.outcome == "ok" and case.cli and case.json_path:
         _, cli_value, _ = cli_outcome(case, data)
-        assert same(value, cli_value, case.rtol), f"{case.name}: Octave {value} CLI {cli_value}"
+        assert same(value, cli_value, case.octave_rtol), f"{case.name}: Octave {value} CLI {cli_value}"
 
 
 def test_every_command_has_a_row():

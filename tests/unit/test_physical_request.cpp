@@ -38,7 +38,8 @@ TEST(PhysicalOptionTable, SetsTheFieldsAndRefusesUnknownValues) {
     FAIL() << "an unknown strut-mass source was accepted";
   } catch (const OptionError& e) {
     EXPECT_EQ(spell_options(e.what(), Frontend::Cli),
-              "--fit-strut-mass must be common, each or geometry, got 'some'");
+              "--fit-strut-mass must be one of 'geometry', 'common' or 'each', got 'some'");
+    EXPECT_EQ(e.code(), Code::OptionValue);
   }
   EXPECT_THROW(set_option(options, spec("criterion"), OptionValue{std::string("tls")}), OptionError);
   EXPECT_THROW(set_option(options, spec("consistent"), OptionValue{std::string("yes")}), OptionError);
