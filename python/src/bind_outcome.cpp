@@ -8,6 +8,7 @@
 #include <string>
 
 #include "bindings.hpp"
+#include "pickle.hpp"
 #include "spdfit/io.hpp"
 #include "spdfit/outcome.hpp"
 #include "spdfit/spelling.hpp"
@@ -54,13 +55,15 @@ void bind_warning_class(py::module_& m) {
              return Warning(named(code), text, subject);
            }),
            py::arg("code"), py::arg("text"), py::arg("subject") = "")
-      .def(py::pickle(
-          [](const Warning& w) { return py::make_tuple(std::string(code_info(w.code).name), w.text, w.subject); },
-          [named](const py::tuple& state) {
-            if (state.size() != 3) throw std::runtime_error("Warning: bad pickled state");
-            return Warning(named(state[0].cast<std::string>()), state[1].cast<std::string>(),
-                           state[2].cast<std::string>());
-          }))
+      .def(pickle_fields<Warning>(
+          "Warning",
+          state_field([](const Warning& w) { return std::string(code_info(w.code).name); },
+                      [](Warning& w, const py::object& value) {
+                        const std::optional<Code> code = code_named(value.cast<std::string>());
+                        if (!code) refuse_state("cannot unpickle Warning: unknown code '" + value.cast<std::string>() + "'");
+                        w.code = *code;
+                      }),
+          state_field(&Warning::text), state_field(&Warning::subject)))
       .def("__eq__", [](const Warning& a, const Warning& b) { return a == b; })
       .def_property_readonly("code", [](const Warning& w) { return std::string(code_info(w.code).name); })
       .def_readonly("text", &Warning::text)

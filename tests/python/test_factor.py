@@ -399,7 +399,9 @@ def test_numerical_failures_and_warnings_are_fits():
         warnings.simplefilter("always")
         r = f.fit("ls")
     assert [str(w.message) for w in caught] == [f"ls: {m}" for m in r.warnings] and r.warnings
-    assert all(w.category is spdfit.SpdfitWarning and w.filename == __file__ for w in caught)
+    # Each with its code's class, a subclass of SpdfitWarning (r.warning_codes names them).
+    assert [w.category for w in caught] == [spdfit._errors.warning_class(c) for c in r.warning_codes]
+    assert all(issubclass(w.category, spdfit.SpdfitWarning) and w.filename == __file__ for w in caught)
 
 
 # ---- files ---------------------------------------------------------------------------------------

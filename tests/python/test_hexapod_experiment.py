@@ -130,7 +130,7 @@ def test_simulate_takes_whole_sample_counts_and_warns_of_too_few_as_the_cli():
     assert data.A.shape == (2, 6)
     assert [str(w.message) for w in caught] == [
         "fewer samples (2) than M_p has columns (6): the estimators need m >= n"]
-    assert caught[0].category is spdfit.SpdfitWarning
+    assert caught[0].category is spdfit.FewSamplesWarning and issubclass(caught[0].category, spdfit.SpdfitWarning)
     assert caught[0].filename == __file__ and caught[0].lineno == line
     with warnings.catch_warnings(record=True) as enough:
         warnings.simplefilter("always")

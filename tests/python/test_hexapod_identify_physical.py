@@ -63,10 +63,12 @@ def test_confounded_strut_mass_names_the_combination():
 
 def test_bad_physical_options():
     g, sim = simulated(samples=40)
-    with pytest.raises(TypeError, match="pass physical=True"):
+    # A physical fit's option without physical: a usage error naming both (ValueError, as the
+    # command line's exit 2), the same rule in every front end.
+    with pytest.raises(ValueError, match="fit_strut_mass needs physical"):
         hx.identify(sim.A, sim.B, fit_strut_mass="each")
-    with pytest.raises(ValueError, match="fit_strut_mass must be common, each or geometry, got 'some'"):
-        hx.identify(sim.A, sim.B, physical=True, fit_strut_mass="some")
+    with pytest.raises(ValueError, match="fit_strut_mass must be one of 'geometry', 'common' or 'each', got 'some'"):
+        hx.identify(sim.A, sim.B, physical=True, geometry=g, fit_strut_mass="some")
     with pytest.raises(TypeError, match="consistent must be a bool"):
         hx.identify(sim.A, sim.B, physical=True, consistent=1)
     with pytest.raises(TypeError, match="unexpected keyword argument 'nonsense'"):

@@ -212,7 +212,7 @@ def test_a_common_strut_mass_is_confounded_on_the_cubic_hexapod():
     assert (d["parameters"], d["rank"]) == (11, 10)
     A = np.random.default_rng(5).uniform(-5, 5, (40, 6))
     with pytest.raises(ValueError, match=r"fit_strut_mass = common cannot be estimated on this geometry: adding 1 kg"):
-        ph.identify(A, A @ hx.thesis_mass_matrix(), strut_masses="common")
+        ph.identify(A, A @ hx.thesis_mass_matrix(), hx.cubic_geometry(), strut_masses="common")
 
 
 def test_error_falls_like_one_over_root_m():
@@ -270,7 +270,7 @@ def test_bad_geometry_and_too_few_rows_are_clear_errors():
         ph.identify(A[:1], A[:1] @ hx.thesis_mass_matrix(), g)
     with pytest.raises(ValueError, match="m x 6"):
         ph.identify(A[:, :5], A[:, :5], g)
-    with pytest.raises(ValueError, match="strut_masses must be"):
+    with pytest.raises(ValueError, match="must be one of 'geometry', 'common' or 'each', got 'some'"):
         ph.identify(A, A, g, strut_masses="some")
 
 

@@ -244,6 +244,7 @@ EXAMPLES = {
     "FourBar": lambda: lk.FourBar(1.0, 0.5, 1.2, 0.8),
     "GaussNewtonOptions": gauss_newton_options,
     "Geometry": lambda: hx.geometry(),
+    "Warning": lambda: _spdfit.Warning("rank_deficient", "A is rank-deficient (rank 2 < n = 3)", "A"),
     "ModelDescription": lambda: _spdfit.hexapod.describe(hx.geometry()),
     "SimulationOptions, default": lambda: _spdfit.hexapod.SimulationOptions(),
     "SimulationOptions": simulation_options,

@@ -48,8 +48,8 @@ def in_python_words(report):
     (LOAD, "ls", {"bootstrap": 100, "confidence": 0.9}),
 ])
 def test_a_fit_results_repr_is_the_clis_report(files, method, options):
-    A, B = (spdfit.read_matrix(f) for f in files)
-    result = quiet(spdfit.fit, A, B, method, **options)
+    # From the files, as the command line reads them: the report names their columns.
+    result = quiet(spdfit.fit_files, *files, method, **options)
     flags = [f"--{key}={value}" for key, value in options.items()]
     report = cli("fit", "--method", method, "--report", *flags, *files).stdout
     assert repr(result) == f"FitResult(method='{result.method}', status='success')\n" + in_python_words(report)
