@@ -27,7 +27,9 @@ int main() {
   std::printf("spdfit %s: spde area criterion %.6f (closed-form minimum %.6f), positive definite: %s\n",
               spdfit::kVersion, *r.diagnostics.area_criterion, *r.diagnostics.area_criterion_minimum,
               r.diagnostics.positive_definite ? "yes" : "no");
-  for (const std::string& warning : r.warnings) std::printf("warning: %s\n", warning.c_str());
+  for (const spdfit::Warning& warning : r.warnings) {
+    std::printf("warning (%s): %s\n", std::string(spdfit::code_info(warning.code).name).c_str(), warning.text.c_str());
+  }
 
   // The result as JSON and back (spdfit/render.hpp): exact, every double bit for bit.
   const spdfit::FitResult back = spdfit::from_json<spdfit::FitResult>(spdfit::to_json(r, spdfit::JsonStyle::Exact));
