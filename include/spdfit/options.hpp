@@ -4,6 +4,7 @@
 // gave. fit_request.hpp and nearest_request.hpp hold the two tables.
 #pragma once
 
+#include <Eigen/Core>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -33,6 +34,9 @@ enum class OptionType {
   Text,     ///< a string (a file name)
   RealList, ///< real numbers: one, or one per column (the command line: comma-separated)
   Vector,   ///< n real numbers (the command line reads them from a file: one column or one row)
+  /// A matrix of real numbers (the command line reads it from a file; Python and MATLAB take an
+  /// array). Its shape and entries are checked where the data's size is known.
+  Matrix,
   /// A noise model (noise_model.hpp): Python's spdfit.NoiseModel. The command line has none:
   /// it gives a model's sources as options of their own (files and numbers).
   Noise,
@@ -40,7 +44,7 @@ enum class OptionType {
 
 /// The values an option can take, as a front end hands them over.
 using OptionValue = std::variant<bool, std::int64_t, double, std::string, std::vector<double>,
-                                 std::shared_ptr<const NoiseModel>>;
+                                 std::shared_ptr<const NoiseModel>, Eigen::MatrixXd>;
 
 /// The interval an integer or real option's value must lie in.
 struct NumberRange {
@@ -167,6 +171,9 @@ OptionValue checked_value(const OptionSpec<Request>& spec, OptionValue value) {
       break;
     case OptionType::Vector:
       if (!std::holds_alternative<std::vector<double>>(value)) wrong("a list of real numbers");
+      break;
+    case OptionType::Matrix:
+      if (!std::holds_alternative<Eigen::MatrixXd>(value)) wrong("a matrix of real numbers");
       break;
     case OptionType::Noise: {
       const auto* model = std::get_if<std::shared_ptr<const NoiseModel>>(&value);

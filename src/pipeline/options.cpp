@@ -101,6 +101,9 @@ std::string value_text(const OptionValue& value) {
   if (const double* d = std::get_if<double>(&value)) return number_text(*d);
   if (const std::string* s = std::get_if<std::string>(&value)) return "'" + *s + "'";
   if (std::holds_alternative<std::shared_ptr<const NoiseModel>>(value)) return "a noise model";
+  if (const auto* m = std::get_if<Eigen::MatrixXd>(&value)) {
+    return "a " + std::to_string(m->rows()) + "x" + std::to_string(m->cols()) + " matrix";
+  }
   const auto& list = std::get<std::vector<double>>(value);
   std::string text;
   for (double v : list) text += (text.empty() ? "" : ",") + number_text(v);
