@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "spdfit/nearest_correlation.hpp"
+#include "spdfit/nearest_low_rank.hpp"
 #include "spdfit/nearest_spd.hpp"
+#include "spdfit/nearest_structured.hpp"
 #include "spdfit/options.hpp"
 
 namespace spdfit {
@@ -26,19 +28,43 @@ struct NearestRequest {
   std::optional<double> min_eig, min_eig_rel, alpha;
   /// The Newton methods' weights, iteration limit and tolerance (NearestCorrelationOptions).
   Eigen::VectorXd weights;
-  int max_iterations = NearestCorrelationOptions{}.max_iterations;
-  double tolerance = NearestCorrelationOptions{}.tolerance;
+  /// Nothing given: each method's default (NearestCorrelationOptions' for the Newton and
+  /// augmented Lagrangian methods, NearestLowRankOptions' for `rank` and `factors`).
+  std::optional<int> max_iterations;
+  std::optional<double> tolerance;
+  /// Entries kept exactly (NearestStructure::fixed): an n x n mask, or k (i, j) pairs as a k x 2
+  /// matrix counted from `fixed_index_base`. Empty: none.
+  Eigen::MatrixXd fixed;
+  /// 1 for the command line's and MATLAB's pairs, 0 for Python's (set by the front end, not an option).
+  int fixed_index_base = 1;
+  /// Elementwise weights H (NearestStructure::h_weights). Empty: none.
+  Eigen::MatrixXd h_weights;
+  /// The rank at most K of the nearest correlation matrix (nearest_correlation_rank); 0: no limit.
+  int rank = 0;
+  /// The number of factors K of a factor-structured correlation matrix (nearest_correlation_factors); 0: none.
+  int factors = 0;
+  /// With `factors`: F only, X not formed (no n x n matrix besides C).
+  bool factors_only = false;
+  /// Variances (diagonal entries) below it are raised to it before the repair, with a warning.
+  std::optional<double> min_diag;
 
   /// Whether the repair fixes a diagonal (corr, keep_diag or via_corr): Qi and Sun's Newton method.
   bool newton() const { return corr || keep_diag || via_corr; }
+  /// Whether it keeps entries or weights them elementwise (fixed, h_weights).
+  bool structured() const { return fixed.size() > 0 || h_weights.size() > 0; }
   /// The floor the options give (EigenvalueFloor::chosen).
   EigenvalueFloor floor() const;
   /// The Newton methods' options.
   NearestCorrelationOptions correlation_options() const;
+  /// The rank and factor repairs' options.
+  NearestLowRankOptions low_rank_options() const;
+  /// What the repair does with the diagonal: Unit with `corr`, Kept with `keep_diag`, else Free.
+  DiagonalRule diagonal_rule() const;
 };
 
 /// The options of a NearestRequest, in the order help lists them: corr, keep_diag, via_corr,
-/// min_eig, min_eig_rel, alpha, weights, max_iterations, tolerance.
+/// min_eig, min_eig_rel, alpha, weights, fixed, h_weights, rank, factors, factors_only, min_diag,
+/// max_iterations, tolerance.
 const std::vector<OptionSpec<NearestRequest>>& nearest_option_table();
 
 /// Checks the options a user gave (library names) against the table's rules (weights, max_iterations
@@ -49,7 +75,11 @@ void check_nearest_request(const std::vector<std::string_view>& given,
                            const std::vector<std::string_view>& unavailable = {});
 
 /// The repair the request names: nearest_correlation, nearest_keep_diagonal,
-/// nearest_via_correlation or nearest_spd. Throws std::invalid_argument on bad input, as they do.
+/// nearest_via_correlation or nearest_spd, with fixed entries or elementwise weights
+/// (nearest_structured), a rank (nearest_correlation_rank) or factors (nearest_correlation_factors);
+/// `min_diag` raises low variances first (raise_variances). Throws std::invalid_argument on bad
+/// input (the data's: a mask or weights of the wrong size, a rank above n, infeasible fixed
+/// entries), as they do.
 NearestResult nearest(const Eigen::Ref<const Eigen::MatrixXd>& C, const NearestRequest& request);
 
 }  // namespace spdfit
