@@ -1,4 +1,5 @@
 // spdfit nearest [--min-eig E | --min-eig-rel R] [--corr | --keep-diag | --via-corr] [--weights W]
+//                [--fixed MASK] [--h-weights H] [--rank K | --factors K [--factors-only]] [--min-diag D]
 //                [--alpha A] [--max-iter N] [--tol T] [--json | --header] [--output FILE] X
 #include <cmath>
 #include <memory>
@@ -43,6 +44,18 @@ std::vector<double> read_weights(const std::string& path, Eigen::Index n, const 
   return std::vector<double>(W.data(), W.data() + n);
 }
 
+// A matrix option's file (`fixed`'s mask or pairs, `h_weights`' H), checked by the library's rule
+// for an n x n matrix (NearestStructure::is_valid) with the file named.
+Eigen::MatrixXd read_structure(const std::string& path, std::string_view name, Eigen::Index n, DiagonalRule rule,
+                               const GlobalOptions& global) {
+  Eigen::MatrixXd M = load_matrix(path, global);
+  NearestStructure structure;
+  (name == "fixed" ? structure.fixed : structure.h_weights) = M;
+  std::string error;
+  if (!structure.is_valid(n, rule, &error)) throw io::DataError(path, 0, 0, error);
+  return M;
+}
+
 // The result's JSON (the library's, with the variables' names) with the options the repair ran with.
 std::string result_json(const NearestRequest& options, const NearestResult& result, EigenvalueFloor floor,
                         const std::vector<std::string>& names) {
@@ -59,7 +72,8 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
   CLI::App* sub = app.add_subcommand(
       "nearest",
       "Repair a covariance or correlation matrix: the nearest symmetric positive definite matrix to X (Higham), "
-      "or with a fixed diagonal (--corr, --keep-diag, --via-corr)");
+      "or with a fixed diagonal (--corr, --keep-diag, --via-corr), entries kept (--fixed), elementwise weights "
+      "(--h-weights), a rank (--rank) or factor structure (--factors)");
   options->table = std::make_unique<TableOptions<NearestRequest>>(*sub, nearest_option_table());
   CLI::Option* json = sub->add_flag(
       "--json", options->json,
@@ -107,7 +121,14 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
       throw io::DataError(options->path, 0, 0, problem);
     }
     NearestRequest request;
-    table.apply(request, [&](const std::string& path) { return read_weights(path, X.rows(), global); });
+    const DiagonalRule rule = table.was_given("corr")        ? DiagonalRule::Unit
+                              : table.was_given("keep_diag") ? DiagonalRule::Kept
+                                                             : DiagonalRule::Free;
+    table.apply(
+        request, [&](const std::string& path) { return read_weights(path, X.rows(), global); },
+        [&](const std::string& path, std::string_view name) {
+          return read_structure(path, name, X.rows(), rule, global);
+        });
     const EigenvalueFloor floor = request.floor();
     NearestResult result;
     try {
@@ -117,12 +138,20 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
     }
     for (const std::string& w : name_warnings) warn(global, w);
     for (const std::string& w : result.warnings) warn(global, w);
+    // With `factors_only` the answer is F (n x K): its rows are the variables, its columns the factors.
+    const bool loadings = request.factors_only;
     if (options->header) {
-      emit(labelled_csv(result.X, names, names), options->output);
+      if (loadings) {
+        std::vector<std::string> factor_names;
+        for (Eigen::Index k = 0; k < result.F.cols(); ++k) factor_names.push_back("factor " + std::to_string(k + 1));
+        emit(labelled_csv(result.F, names, factor_names), options->output);
+      } else {
+        emit(labelled_csv(result.X, names, names), options->output);
+      }
       return;
     }
     if (!options->json) {
-      emit_matrix(result.X, options->output);
+      emit_matrix(loadings ? result.F : result.X, options->output);
       return;
     }
     emit(result_json(request, result, floor, names), options->output);

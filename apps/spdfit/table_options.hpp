@@ -52,6 +52,8 @@ FitOptions resolved_fit_options(const FitRequest& request, Eigen::Index n, Eigen
 
 /// Reads the numbers of a kVector option's file (the command line's reader of data files).
 using VectorReader = std::function<std::vector<double>(const std::string& path)>;
+/// Reads the matrix of an OptionType::Matrix option's file; `name` is the option's library name.
+using MatrixReader = std::function<Eigen::MatrixXd(const std::string& path, std::string_view name)>;
 
 /// The options of `table` that the command line offers, added to a subcommand; after parsing,
 /// which were given and their values.
@@ -107,12 +109,13 @@ class TableOptions {
   bool was_given(std::string_view name) const { return contains(given(), name); }
 
   /// Stores each given option's value in `request` (set_option); a kVector option's file is read
-  /// with `read_vector`. A UsageError for a value the library refuses.
-  void apply(Request& request, const VectorReader& read_vector = {}) const {
+  /// with `read_vector`, a Matrix option's with `read_matrix`. A UsageError for a value the
+  /// library refuses.
+  void apply(Request& request, const VectorReader& read_vector = {}, const MatrixReader& read_matrix = {}) const {
     for (const auto& entry : entries_) {
       if (entry->option->count() == 0) continue;
       try {
-        set_option(request, *entry->spec, value_of(*entry, read_vector));
+        set_option(request, *entry->spec, value_of(*entry, read_vector, read_matrix));
       } catch (const OptionError& e) {
         throw_usage(e);
       }
@@ -134,7 +137,7 @@ class TableOptions {
     return false;
   }
 
-  static OptionValue value_of(const Entry& entry, const VectorReader& read_vector);
+  static OptionValue value_of(const Entry& entry, const VectorReader& read_vector, const MatrixReader& read_matrix);
 
   std::vector<std::unique_ptr<Entry>> entries_;
 };
@@ -144,10 +147,12 @@ class TableOptions {
 OptionValue parse_option_text(OptionType type, std::string_view spelling, const std::string& text);
 
 template <typename Request>
-OptionValue TableOptions<Request>::value_of(const Entry& entry, const VectorReader& read_vector) {
+OptionValue TableOptions<Request>::value_of(const Entry& entry, const VectorReader& read_vector,
+                                           const MatrixReader& read_matrix) {
   const OptionSpec<Request>& spec = *entry.spec;
   if (spec.type == OptionType::Flag || spec.type == OptionType::Boolean) return entry.flag;
   if (spec.type == OptionType::Vector) return read_vector(entry.text);
+  if (spec.type == OptionType::Matrix) return read_matrix(entry.text, spec.name);
   return parse_option_text(spec.type, spec.cli, entry.text);
 }
 

@@ -106,7 +106,7 @@ void nearest_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* p
   const Eigen::MatrixXd C = read_matrix(prhs[1], "C");
   const NearestRequest request = nearest_request(pairs_from("nearest", nrhs, prhs, 2));
   const NearestResult result = nearest(C, request);
-  plhs[0] = write_matrix(result.X);
+  plhs[0] = write_matrix(request.factors_only ? result.F : result.X);
   plhs[1] = want_info ? write_json(to_json(result)) : mxCreateDoubleMatrix(0, 0, mxREAL);
   plhs[2] = warnings_cell(result.warnings);
 }

@@ -140,7 +140,11 @@ std::vector<std::string_view> set_pairs(Request& request, const std::vector<Opti
       if (!spec.nullable) throw OptionError("`" + std::string(spec.name) + "` cannot be [] (it has no default to stand for)");
       continue;
     }
-    if (pair.matrix.size() == 0) set_option(request, spec, pair.value);  // matrices: fit_options
+    if (spec.type == OptionType::Matrix) {
+      set_option(request, spec, OptionValue(pair.matrix));  // a matrix option of the table ('Fixed')
+    } else if (pair.matrix.size() == 0) {
+      set_option(request, spec, pair.value);  // the noise model's matrices: fit_options
+    }
     given.push_back(spec.name);
   }
   return given;
@@ -157,6 +161,7 @@ ValueShape value_shape(OptionType type) {
     case OptionType::Text: return ValueShape::Text;
     case OptionType::RealList:
     case OptionType::Vector: return ValueShape::List;
+    case OptionType::Matrix: return ValueShape::Matrix;
     case OptionType::Noise: return ValueShape::List;  // not offered (fit_takes)
   }
   return ValueShape::Real;

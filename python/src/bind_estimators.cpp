@@ -97,12 +97,14 @@ void bind_estimators(py::module_& m) {
       py::arg("A"), py::arg("B"), py::arg("options"));
 
   m.attr("REPAIR_FLOOR_DEFAULT") = EigenvalueFloor::kRepairDefault;
-  // nearest_spd and nearest_correlation (`entry`): the repair their keyword arguments name.
+  // nearest_spd, nearest_correlation and nearest_covariance (`entry`): the repair their keyword
+  // arguments name. Python counts the pairs of `fixed` from 0.
   m.def(
       "nearest",
       [](const Eigen::MatrixXd& C, const std::string& entry, const py::dict& options) {
         std::vector<std::string_view> given;
-        const NearestRequest request = nearest_request(entry, options, given);
+        NearestRequest request = nearest_request(entry, options, given);
+        request.fixed_index_base = 0;
         check_nearest_request(given, python::entry(entry).unavailable);
         py::gil_scoped_release release;
         return nearest(C, request);

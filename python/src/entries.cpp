@@ -46,8 +46,10 @@ const std::vector<Entry>& entries() {
       {"Factor.fit", "fit", {}, {"stream", "bootstrap", "a_cols", "b_cols"}},
       {"hexapod.identify", "fit", {}, {"stream", "a_cols", "b_cols"}},
       {"hexapod.identify.physical", "physical", {}, {}},
-      {"nearest_spd", "nearest", {}, {"corr"}},
+      {"nearest_spd", "nearest", {}, {"corr", "factors", "factors_only"}},
       {"nearest_correlation", "nearest", {"corr"}, {"keep_diag", "via_corr"}},
+      // The covariance repair keeps the variances; the correlation route (via_corr) is nearest_spd's.
+      {"nearest_covariance", "nearest", {"keep_diag"}, {"corr", "via_corr", "factors", "factors_only"}},
   };
   return list;
 }
@@ -100,6 +102,7 @@ std::string annotation(const Keyword& keyword) {
       type = "Union[float, Sequence[float]]";
       break;
     case OptionType::Vector:
+    case OptionType::Matrix:
       type = "npt.ArrayLike";
       break;
     case OptionType::Noise:

@@ -1,5 +1,6 @@
 #include "keywords.hpp"
 
+#include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
@@ -42,6 +43,8 @@ const char* type_text(OptionType type) {
       return "float or sequence of float";
     case OptionType::Vector:
       return "array_like";
+    case OptionType::Matrix:
+      return "array_like (2-D)";
     case OptionType::Noise:
       return "NoiseModel";
   }
@@ -60,6 +63,23 @@ std::vector<double> real_vector(const Keyword& keyword, const py::handle& value)
   }
   const auto values = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(array);
   return std::vector<double>(values.data(), values.data() + values.size());
+}
+
+// A 2-D array of real numbers (booleans read as 0 and 1, as the command line reads a boolean .npy
+// file); its shape is checked by the library where the data's size is known.
+Eigen::MatrixXd real_matrix(const Keyword& keyword, const py::handle& value) {
+  py::array array = py::module_::import("numpy").attr("asarray")(value);
+  const char kind = array.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u' && kind != 'b') {
+    throw py::value_error(std::string(keyword.python) + " must be real numbers, got dtype " +
+                          std::string(py::str(array.dtype())));
+  }
+  if (array.ndim() != 2) {
+    throw py::value_error(std::string(keyword.python) + " must be a matrix (2-D array), got " +
+                          std::to_string(array.ndim()) + " dimensions");
+  }
+  const auto values = py::array_t<double, py::array::f_style | py::array::forcecast>::ensure(array);
+  return Eigen::Map<const Eigen::MatrixXd>(values.data(), values.shape(0), values.shape(1));
 }
 
 template <typename Request>
@@ -122,6 +142,8 @@ OptionValue keyword_value(const Keyword& keyword, const py::handle& value) {
       return real_vector(keyword, value);
     case OptionType::Vector:
       return real_vector(keyword, value);
+    case OptionType::Matrix:
+      return real_matrix(keyword, value);
     case OptionType::Noise:
       if (!py::isinstance<NoiseModel>(value)) wrong_type(keyword, "a spdfit.NoiseModel", value);
       return std::make_shared<const NoiseModel>(value.cast<const NoiseModel&>());
@@ -165,8 +187,9 @@ py::dict keyword_table() {
       if (k.default_value) {
         value = std::visit(
             [](const auto& v) -> py::object {
-              if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::shared_ptr<const NoiseModel>>) {
-                return py::none();  // a noise model has no default but None
+              using T = std::decay_t<decltype(v)>;
+              if constexpr (std::is_same_v<T, std::shared_ptr<const NoiseModel>> || std::is_same_v<T, Eigen::MatrixXd>) {
+                return py::none();  // a noise model or a matrix has no default but None
               } else {
                 return py::cast(v);
               }
