@@ -25,7 +25,9 @@ using Mask = Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic>;
 // docs/performance.md.
 constexpr double kPenaltyStart = 10.0;
 constexpr double kPenaltyGrowth = 10.0;
-constexpr double kPenaltyMax = 1e5;
+constexpr double kPenaltyMax = 1e4;
+// The margin of the subproblems' stopping test over their gradient's rounding level.
+constexpr double kGradientRounding = 2.0;
 constexpr double kArmijo = 1e-4;
 constexpr int kCgMaxIterations = 300;
 
@@ -36,10 +38,10 @@ Index positive_count(const VectorXd& lambda) {
   return r;
 }
 
-// M := Z - s X and its eigendecomposition (ascending).
-void decompose(const MatrixXd& Z, double s, const MatrixXd& X, MatrixXd& P, VectorXd& lambda) {
+// M := Z - s X and its eigendecomposition (ascending; eigenvalues only without `vectors`).
+void decompose(const MatrixXd& Z, double s, const MatrixXd& X, MatrixXd& P, VectorXd& lambda, bool vectors = true) {
   P = Z - s * X;
-  if (!symmetric_eigen_in_place(P, lambda, true)) throw std::runtime_error("the eigensolver did not converge");
+  if (!symmetric_eigen_in_place(P, lambda, vectors)) throw std::runtime_error("the eigensolver did not converge");
 }
 
 // (M)_+ = P1 diag(lambda_+) P1^T.
@@ -53,39 +55,51 @@ MatrixXd positive_part(const MatrixXd& P, const VectorXd& lambda) {
   return out;
 }
 
-// Linear maps D -> P (C o (P^T D P)) P^T whose coefficient matrix C is c11 on the block of
-// M's positive eigenvectors, C12 between positive and non-positive ones and 0 among the
-// non-positive ones: the projection's derivative J (c11 = 1, C12 = Omega12, Qi & Sun 2006) and the
-// preconditioner's correction. With P1 the r positive eigenvectors, K1 = P1^T D, it is T + T^T
-// for T = P1 (c11 K11 P1^T / 2 + (C12 o K1 P2) P2^T): two products of n x n by n x r matrices.
+// Linear maps D -> P (C o (P^T D P)) P^T whose coefficient matrix C is constant on the block of
+// M's positive eigenvectors (c_pp), a matrix C_pn between positive and non-positive ones, and
+// constant among the non-positive ones (c_nn): the projection's derivative J (1, Omega12, 0; Qi &
+// Sun 2006) and the preconditioner's correction. Subtracting the constant of one block, c D, leaves
+// a map supported on the blocks that touch the other side; it is computed from the smaller side's
+// k eigenvectors Pq (the rest Pr): T + T^T with T = Pq (a Kqq Pq^T / 2 + (B o Kqr) Pr^T), Kq = Pq^T D,
+// two products of n x n by n x k matrices, k = min(r, n - r).
 class Structured {
  public:
   Structured(const MatrixXd& P, Index r) : P_(P), r_(r) {}
   Index positive() const { return r_; }
 
-  void apply(const MatrixXd& D, double c11, const MatrixXd& C12, MatrixXd& out) {
+  void apply(const MatrixXd& D, double c_pp, const MatrixXd& C_pn, double c_nn, MatrixXd& out) {
     const Index n = P_.rows(), r = r_, a = n - r;
-    if (r == 0) {
-      out.setZero(n, n);
-      return;
+    if (r <= a) {
+      block(D, P_.rightCols(r), P_.leftCols(a), c_pp - c_nn, (C_pn.array() - c_nn).matrix(), out);
+      if (c_nn != 0.0) out += c_nn * D;
+    } else {
+      block(D, P_.leftCols(a), P_.rightCols(r), c_nn - c_pp, (C_pn.array() - c_pp).matrix().transpose(), out);
+      if (c_pp != 0.0) out += c_pp * D;
     }
-    const auto P1 = P_.rightCols(r);
-    multiply(P1, true, D, false, K1_);  // r x n
-    multiply(K1_, false, P1, false, K11_);
-    multiply(K11_, false, P1, true, S_);  // K11 P1^T
-    S_ *= 0.5 * c11;
-    if (a > 0) {
-      const auto P2 = P_.leftCols(a);
-      multiply(K1_, false, P2, false, K12_);
-      K12_ = C12.cwiseProduct(K12_);
-      multiply(K12_, false, P2, true, R_);
-      S_ += R_;
-    }
-    multiply(P1, false, S_, false, T_);
-    out = T_ + T_.transpose();
   }
 
  private:
+  void block(const MatrixXd& D, const Eigen::Ref<const MatrixXd>& Pq, const Eigen::Ref<const MatrixXd>& Pr,
+             double a, const MatrixXd& B, MatrixXd& out) {
+    const Index n = P_.rows(), k = Pq.cols();
+    if (k == 0) {
+      out.setZero(n, n);
+      return;
+    }
+    multiply(Pq, true, D, false, K1_);  // k x n
+    multiply(K1_, false, Pq, false, K11_);
+    multiply(K11_, false, Pq, true, S_);  // Kqq Pq^T
+    S_ *= 0.5 * a;
+    if (Pr.cols() > 0) {
+      multiply(K1_, false, Pr, false, K12_);
+      K12_ = B.cwiseProduct(K12_);
+      multiply(K12_, false, Pr, true, R_);
+      S_ += R_;
+    }
+    multiply(Pq, false, S_, false, T_);
+    out = T_ + T_.transpose();
+  }
+
   const MatrixXd& P_;
   Index r_;
   MatrixXd K1_, K11_, S_, K12_, R_, T_;
@@ -119,7 +133,8 @@ HWeightedResult h_weighted_alm(const MatrixXd& G, const MatrixXd& H, const Fixed
   VectorXd lambda;
   decompose(Z, s, X, P, lambda);
   MatrixXd Zp, grad, D, r, z, p, w, correction;
-  double gn = 0.0;
+  double gn = 0.0, rounding = 0.0, previous_primal = std::numeric_limits<double>::infinity();
+  const double root_n = std::sqrt(static_cast<double>(n));
   for (out.outer = 0;; ++out.outer) {
     // The subproblem's tolerance: loose at first, down to a tenth of the final dual tolerance.
     const double inner_tolerance =
@@ -128,7 +143,11 @@ HWeightedResult h_weighted_alm(const MatrixXd& G, const MatrixXd& H, const Fixed
       Zp = positive_part(P, lambda);
       grad = (H2.cwiseProduct(X - G) - Zp).cwiseProduct(free);
       gn = grad.norm();
-      if (gn <= inner_tolerance || out.iterations >= max_iterations) break;
+      // The gradient's own rounding: Zp comes from an eigendecomposition of M = Z - s X, exact for a
+      // matrix within about eps ||M||_2 of it (as in correlation_newton).
+      rounding = kGradientRounding * root_n * std::numeric_limits<double>::epsilon() *
+                 std::max(std::abs(lambda(0)), std::abs(lambda(n - 1)));
+      if (gn <= std::max(inner_tolerance, rounding) || out.iterations >= max_iterations) break;
       const double phi = objective(X) + 0.5 * lambda.cwiseMax(0.0).squaredNorm() / s;
       Structured J(P, positive_count(lambda));
       const Index rr = J.positive(), a = n - rr;
@@ -143,12 +162,12 @@ HWeightedResult h_weighted_alm(const MatrixXd& G, const MatrixXd& H, const Fixed
       const double c11 = 1.0 / (h_mean + s) - 1.0 / h_mean;
       const double mu = 1e-10 * s;
       auto hessian = [&](const MatrixXd& V, MatrixXd& result) {
-        J.apply(V, 1.0, omega12, result);
+        J.apply(V, 1.0, omega12, 0.0, result);
         result = (H2.cwiseProduct(V) + s * result + mu * V).cwiseProduct(free);
       };
       // (h_mean + s J)^-1, exact in the eigenvectors: V / h + P ((1 / (h + s Omega) - 1 / h) o (P^T V P)) P^T.
       auto precondition = [&](const MatrixXd& V, MatrixXd& result) {
-        J.apply(V, c11, c12, correction);
+        J.apply(V, c11, c12, 0.0, correction);
         result = (V / h_mean + correction).cwiseProduct(free);
       };
       D.setZero(n, n);
@@ -171,15 +190,19 @@ HWeightedResult h_weighted_alm(const MatrixXd& G, const MatrixXd& H, const Fixed
       }
       const double slope = grad.cwiseProduct(D).sum();
       const double rounding = 16.0 * std::numeric_limits<double>::epsilon() * (std::abs(phi) + 1.0);
+      // Armijo backtracking; the full step (usually taken) is decomposed with eigenvectors for the
+      // next step, shorter ones with eigenvalues only (the value needs no more), and the one taken
+      // again with eigenvectors.
       double t = 1.0;
       MatrixXd trial;
       for (int k = 0; k < 40; ++k) {
         trial = X + t * D;
-        decompose(Z, s, trial, P, lambda);
+        decompose(Z, s, trial, P, lambda, k == 0);
         const double phi_t = objective(trial) + 0.5 * lambda.cwiseMax(0.0).squaredNorm() / s;
         if (phi_t <= phi + kArmijo * t * slope + rounding) break;
         t *= 0.5;
       }
+      if (t != 1.0) decompose(Z, s, trial, P, lambda);
       X = std::move(trial);
       ++out.iterations;
     }
@@ -189,12 +212,16 @@ HWeightedResult h_weighted_alm(const MatrixXd& G, const MatrixXd& H, const Fixed
     const double dual = gn / dual_scale;
     out.kkt_residual = std::max(primal, dual);
     Z = Zp;
-    if (out.kkt_residual <= tolerance) {
+    if (primal <= tolerance && dual <= std::max(tolerance, rounding / dual_scale)) {
       out.converged = true;
       break;
     }
     if (out.iterations >= max_iterations) break;
-    s = std::min(s * kPenaltyGrowth, kPenaltyMax);
+    // The multipliers converge linearly at a rate that improves with the penalty; a larger penalty
+    // also makes the next subproblem's Newton steps shorter-sighted (more backtracking). So the
+    // penalty grows only when the infeasibility did not fall fourfold.
+    if (primal > tolerance && primal > 0.25 * previous_primal) s = std::min(s * kPenaltyGrowth, kPenaltyMax);
+    previous_primal = primal;
     decompose(Z, s, X, P, lambda);
   }
 

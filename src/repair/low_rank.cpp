@@ -83,7 +83,7 @@ double LowRankProblem::evaluate(const MatrixXd& Y, MatrixXd* gradient) const {
     for (Index i = 0; i < Y.rows(); ++i) gradient->row(i) -= diagonal(i) * Y.row(i);
     *gradient = 4.0 * (w_.asDiagonal() * *gradient);
   }
-  return std::max(f, 0.0);
+  return f;  // may be a little below 0 from rounding near an exact fit
 }
 
 void LowRankProblem::project(MatrixXd& Y) const {
@@ -101,6 +101,8 @@ void LowRankProblem::project(MatrixXd& Y) const {
     }
   }
 }
+
+double LowRankProblem::rounding() const { return 64.0 * std::numeric_limits<double>::epsilon() * c2_; }
 
 double LowRankProblem::residual(const MatrixXd& Y, const MatrixXd& gradient) const {
   MatrixXd r;
@@ -166,9 +168,15 @@ LowRankResult spectral_projected_gradient(const LowRankProblem& problem, MatrixX
   MatrixXd trial, g_trial;
   for (; out.iterations < max_iterations && out.residual > tolerance; ++out.iterations) {
     const MatrixXd d = direction(Y, g, lambda);
-    const double slope = g.cwiseProduct(d).sum();
+    // On the sphere d is tangent, and g . d = (tangent part of g) . d = -lambda ||grad_R||^2: computed
+    // from the tangent part, as g's radial part (large, and irrelevant) would bury it in rounding.
+    double slope = g.cwiseProduct(d).sum();
+    if (problem.sphere()) slope = -d.squaredNorm() / lambda;
     if (!(slope < 0.0)) break;  // no descent left at this precision
-    const double reference = *std::max_element(history.begin(), history.end());
+    // Near a minimizer the decrease (about the squared gradient) falls below the rounding of f,
+    // which is computed as a difference of terms of order ||W^1/2 C W^1/2||^2: the comparison
+    // allows that rounding, or the search would stop short of the stopping test.
+    const double reference = *std::max_element(history.begin(), history.end()) + problem.rounding();
     double alpha = 1.0, f_trial = 0.0;
     bool accepted = false;
     for (int k = 0; k < 50; ++k) {

@@ -27,6 +27,9 @@ class LowRankProblem {
   /// (no n x n matrix): O(n^2 K).
   double distance(const Eigen::MatrixXd& Y) const;
   bool sphere() const { return sphere_; }
+  bool symmetric() const { return symmetric_; }
+  /// The rounding level of evaluate's value: a few eps ||W^1/2 C W^1/2||_F^2.
+  double rounding() const;
 
  private:
   // C's symmetric part times V.

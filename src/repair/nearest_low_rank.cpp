@@ -166,6 +166,9 @@ NearestResult nearest_correlation_factors(const Eigen::Ref<const MatrixXd>& C, I
   if (options.keep_diagonal) throw std::invalid_argument("`factors` is a correlation matrix's structure: not with `keep_diag`");
   NearestResult out;
   const detail::LowRankProblem problem(C, VectorXd(), false);
+  if (!problem.symmetric()) {
+    if (auto w = detail::asymmetry_warning(C)) out.warnings.push_back(*w);
+  }
   if (auto w = detail::unit_diagonal_warning(C)) out.warnings.push_back(*w);
   MatrixXd V;
   VectorXd values;

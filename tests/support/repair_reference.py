@@ -23,6 +23,7 @@ def random_problem(rng, n, noise=0.5):
     C = S / np.outer(d, d)
     E = rng.uniform(-noise, noise, (n, n))
     C = C + (E + E.T) / 2
+    C = (C + C.T) / 2  # exactly symmetric (F F^T from the BLAS need not be)
     np.fill_diagonal(C, 1.0)
     return C
 
