@@ -44,11 +44,23 @@ std::vector<double> read_weights(const std::string& path, Eigen::Index n, const 
   return std::vector<double>(W.data(), W.data() + n);
 }
 
-// A matrix option's file (`fixed`'s mask or pairs, `h_weights`' H), checked by the library's rule
-// for an n x n matrix (NearestStructure::is_valid) with the file named.
+// A matrix option's file (`fixed`'s mask or pairs, `h_weights`' H), named by the same variables as
+// X when it has names (a labelled matrix as pandas writes one: reordered to X's order), checked by
+// the library's rule for an n x n matrix (NearestStructure::is_valid) with the file named.
 Eigen::MatrixXd read_structure(const std::string& path, std::string_view name, Eigen::Index n, DiagonalRule rule,
-                               const GlobalOptions& global) {
-  Eigen::MatrixXd M = load_matrix(path, global);
+                               const std::vector<std::string>& x_names, const GlobalOptions& global) {
+  io::LabelledTable labelled = io::read_labelled_table(path, global.read);
+  for (const std::string& w : labelled.table.warnings) warn(global, w);
+  std::vector<std::string> name_warnings;
+  const std::vector<std::string> names = variable_names(labelled, path, &name_warnings);
+  for (const std::string& w : name_warnings) warn(global, w);
+  Eigen::MatrixXd M = std::move(labelled.table.values);
+  if (M.rows() == n && M.cols() == n) {  // a mask or weights (not a list of pairs)
+    std::string error;
+    std::optional<Eigen::MatrixXd> aligned = aligned_by_name(M, names, x_names, &error);
+    if (!aligned) throw io::DataError(path, 0, 0, error);
+    M = std::move(*aligned);
+  }
   NearestStructure structure;
   (name == "fixed" ? structure.fixed : structure.h_weights) = M;
   std::string error;
@@ -127,7 +139,7 @@ Command add_nearest_command(CLI::App& app, const GlobalOptions& global) {
     table.apply(
         request, [&](const std::string& path) { return read_weights(path, X.rows(), global); },
         [&](const std::string& path, std::string_view name) {
-          return read_structure(path, name, X.rows(), rule, global);
+          return read_structure(path, name, X.rows(), rule, names, global);
         });
     const EigenvalueFloor floor = request.floor();
     NearestResult result;
