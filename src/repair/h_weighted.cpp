@@ -108,7 +108,7 @@ class Structured {
 }  // namespace
 
 HWeightedResult h_weighted_alm(const MatrixXd& G, const MatrixXd& H, const FixedPattern& pattern, const MatrixXd& B,
-                               int max_iterations, double tolerance) {
+                               int max_iterations, double tolerance, const MatrixXd* X0, const MatrixXd* Z0) {
   const Index n = G.rows();
   HWeightedResult out;
   Mask fixed = Mask::Zero(n, n);
@@ -119,12 +119,12 @@ HWeightedResult h_weighted_alm(const MatrixXd& G, const MatrixXd& H, const Fixed
   // The preconditioner's scalar stand-in for H o H: its mean over the free entries.
   const double free_count = free.sum();
   const double h_mean = std::max(free_count > 0.0 ? H2free.sum() / free_count : 1.0, 1e-8);
-  MatrixXd X = G;
+  MatrixXd X = X0 ? *X0 : G;
   for (Index p = 0; p < pattern.size(); ++p) {
     const Index i = pattern.row[p], j = pattern.col[p];
     X(i, j) = X(j, i) = B(i, j);
   }
-  MatrixXd Z = MatrixXd::Zero(n, n);
+  MatrixXd Z = Z0 ? *Z0 : MatrixXd::Zero(n, n);
   double s = kPenaltyStart;
   const double dual_scale = 1.0 + H2free.cwiseProduct(G).norm();
   auto objective = [&](const MatrixXd& Y) { return 0.5 * H2.cwiseProduct((Y - G).cwiseAbs2()).sum(); };
@@ -219,8 +219,8 @@ HWeightedResult h_weighted_alm(const MatrixXd& G, const MatrixXd& H, const Fixed
     if (out.iterations >= max_iterations) break;
     // The multipliers converge linearly at a rate that improves with the penalty; a larger penalty
     // also makes the next subproblem's Newton steps shorter-sighted (more backtracking). So the
-    // penalty grows only when the infeasibility did not fall fourfold.
-    if (primal > tolerance && primal > 0.25 * previous_primal) s = std::min(s * kPenaltyGrowth, kPenaltyMax);
+    // penalty grows only when the infeasibility did not fall tenfold.
+    if (primal > tolerance && primal > 0.1 * previous_primal) s = std::min(s * kPenaltyGrowth, kPenaltyMax);
     previous_primal = primal;
     decompose(Z, s, X, P, lambda);
   }

@@ -38,7 +38,14 @@ struct HWeightedResult {
 /// std::runtime_error when an eigendecomposition fails. Cost per Newton step: one
 /// eigendecomposition and, per conjugate-gradient iteration, products of n x n by n x r matrices
 /// (r = the rank of Z - s X's positive part, the number of eigenvalues the repair clips).
+///
+/// `X0` and `Z0` (both or neither), when given, start the iteration: a semidefinite X with the
+/// fixed entries and a semidefinite multiplier, such as the solution of the problem with H
+/// replaced by a rank-one h h^T (the diagonal weights' problem, which pattern_newton solves fast):
+/// exact when H is of rank one on the free entries, and close when it nearly is, as overlap counts
+/// of data missing at random are.
 HWeightedResult h_weighted_alm(const Eigen::MatrixXd& G, const Eigen::MatrixXd& H, const FixedPattern& pattern,
-                               const Eigen::MatrixXd& B, int max_iterations, double tolerance);
+                               const Eigen::MatrixXd& B, int max_iterations, double tolerance,
+                               const Eigen::MatrixXd* X0 = nullptr, const Eigen::MatrixXd* Z0 = nullptr);
 
 }  // namespace spdfit::detail

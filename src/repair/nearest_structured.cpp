@@ -49,6 +49,27 @@ std::pair<double, double> extreme_eigenvalues(MatrixXd M) {
   return {lambda(0), lambda(lambda.size() - 1)};
 }
 
+// h > 0 with h h^T close to H (>= 0, symmetric): the Perron vector v and eigenvalue l of H by power
+// iteration, h = sqrt(l) v, floored at 1e-3 of its largest entry so that every weight is positive.
+VectorXd rank_one_fit(const MatrixXd& H) {
+  const Index n = H.rows();
+  VectorXd v = VectorXd::Ones(n) / std::sqrt(static_cast<double>(n));
+  double l = 0.0;
+  for (int k = 0; k < 100; ++k) {
+    VectorXd next = H * v;
+    const double norm = next.norm();
+    if (!(norm > 0.0)) break;
+    next /= norm;
+    const bool done = (next - v).norm() < 1e-10;
+    v = std::move(next);
+    l = norm;
+    if (done) break;
+  }
+  VectorXd h = v.cwiseAbs() * std::sqrt(std::max(l, 0.0));
+  const double top = h.maxCoeff();
+  return h.cwiseMax(top > 0.0 ? 1e-3 * top : 1.0);
+}
+
 const char* method_name(bool alm) {
   return alm ? "augmented Lagrangian (H weights)" : "Qi-Sun Newton with fixed entries";
 }
@@ -208,10 +229,22 @@ NearestResult nearest_structured(const Eigen::Ref<const MatrixXd>& C, DiagonalRu
   try {
     if (alm) {
       const MatrixXd H = structure.h_weights / h_max;
+      // The start: the problem with H replaced by its rank-one fit h h^T (h_i = sqrt(H_ii) would
+      // miss weights whose diagonal does not matter, so the Perron vector), solved by the dual
+      // Newton method in X~ = D_h X D_h, and its multiplier, mapped back.
+      const VectorXd h = rank_one_fit(H);
+      MatrixXd Gh = h.asDiagonal() * G * h.asDiagonal(), Bh = h.asDiagonal() * Bt * h.asDiagonal(), Zh;
+      detail::PatternNewtonResult start = detail::pattern_newton(
+          std::move(Gh), pattern, Bh, options.max_iterations, options.tolerance * std::sqrt(static_cast<double>(n)),
+          std::numeric_limits<double>::infinity(), &Zh);
+      const VectorXd inverse = h.cwiseInverse();
+      const MatrixXd X0 = inverse.asDiagonal() * start.X * inverse.asDiagonal();
+      const MatrixXd Z0 = h.asDiagonal() * Zh * h.asDiagonal();
       detail::HWeightedResult s =
-          detail::h_weighted_alm(G, H, pattern, Bt, options.max_iterations, options.tolerance);
+          detail::h_weighted_alm(G, H, pattern, Bt, options.max_iterations, options.tolerance, &X0, &Z0);
+      out.iterations = start.iterations;
       X = std::move(s.X);
-      out.iterations = s.iterations;
+      out.iterations += s.iterations;
       out.converged = s.converged;
       out.clipped = s.clipped;
       out.optimality_residual = s.kkt_residual;

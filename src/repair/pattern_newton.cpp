@@ -211,7 +211,7 @@ double entry_norm(const VectorXd& F, const FixedPattern& pattern) {
 }  // namespace
 
 PatternNewtonResult pattern_newton(MatrixXd G, const FixedPattern& pattern, const MatrixXd& B, int max_iterations,
-                                   double tolerance, double infeasible_above) {
+                                   double tolerance, double infeasible_above, MatrixXd* multiplier) {
   const Index n = G.rows(), m = pattern.size();
   PatternNewtonResult out;
   VectorXd b(m), y(m);
@@ -275,6 +275,13 @@ PatternNewtonResult pattern_newton(MatrixXd G, const FixedPattern& pattern, cons
   G = MatrixXd();
   const Index r = positive_count(lambda);
   out.clipped = n - r;
+  if (multiplier) {
+    // Z = -(G + A^* y)_- = P2 diag(-lambda_-) P2^T, before P's positive columns are scaled.
+    MatrixXd Q = P.leftCols(n - r);
+    for (Index k = 0; k < n - r; ++k) Q.col(k) *= std::sqrt(-lambda(k));
+    lower_gram(Q, *multiplier);
+    make_symmetric_from_lower(*multiplier);
+  }
   for (Index j = n - r; j < n; ++j) P.col(j) *= std::sqrt(lambda(j));
   lower_gram(P.rightCols(r), out.X);
   make_symmetric_from_lower(out.X);

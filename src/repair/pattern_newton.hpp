@@ -29,12 +29,14 @@ struct PatternNewtonResult {
 ///
 /// Stops when ||A(X) - b|| (entry units) is at most `tolerance` or its own rounding level, after
 /// `max_iterations` steps, or when the dual value exceeds `infeasible_above` (the problem then
-/// has no solution: the dual is unbounded). G and B symmetric. Throws std::runtime_error when an
+/// has no solution: the dual is unbounded). With `multiplier`, it gets the multiplier of X >= 0,
+/// Z = -(G + A^* y)_- (semidefinite, Z X = 0 at the solution). G and B symmetric. Throws std::runtime_error when an
 /// eigendecomposition fails. Cost per step: one eigendecomposition and, per conjugate-gradient
 /// iteration, products of n x n by n x r matrices (r positive eigenvalues) and O(m r) for the m
 /// fixed entries.
 PatternNewtonResult pattern_newton(Eigen::MatrixXd G, const FixedPattern& pattern, const Eigen::MatrixXd& B,
                                    int max_iterations, double tolerance,
-                                   double infeasible_above = std::numeric_limits<double>::infinity());
+                                   double infeasible_above = std::numeric_limits<double>::infinity(),
+                                   Eigen::MatrixXd* multiplier = nullptr);
 
 }  // namespace spdfit::detail
