@@ -37,7 +37,7 @@ LabelledTable read_labelled_table(const std::string& path, const ReadOptions& op
 /// is not the matrix's order. When both name the variables and differ, the header's are taken
 /// and a warning naming `source` is appended to `warnings`.
 std::vector<std::string> variable_names(const io::LabelledTable& file, const std::string& source,
-                                        std::vector<std::string>* warnings);
+                                        std::vector<Warning>* warnings);
 
 /// M (n x n, its rows and columns named by `names`) with its rows and columns reordered to the
 /// order of `to`, as pandas aligns two frames by label: a mask or weights file named by the same

@@ -9,6 +9,7 @@
 
 #include "spdfit/nearest_correlation.hpp"
 #include "spdfit/nearest_spd.hpp"
+#include "spdfit/outcome.hpp"
 
 namespace spdfit {
 
@@ -65,9 +66,10 @@ NearestResult nearest_structured(const Eigen::Ref<const Eigen::MatrixXd>& C, Dia
                                  const NearestStructure& structure, const NearestCorrelationOptions& options = {});
 
 /// C with every diagonal entry below `min_diag` raised to it: pairwise-deletion covariances with a
-/// zero or negative variance. The raised entries (1-based) are listed in `raised`, and a warning
-/// naming them (and the option `min_diag`) is added to `warnings`. min_diag finite and >= 0.
+/// zero or negative variance. A warning (Code::VariancesRaised) naming the raised entries
+/// (1-based, with their values) and the option `min_diag` is added to `warnings` when there are
+/// any. Throws std::invalid_argument unless min_diag is finite and >= 0. Cost: O(n^2) (the copy).
 Eigen::MatrixXd raise_variances(const Eigen::Ref<const Eigen::MatrixXd>& C, double min_diag,
-                                std::vector<std::string>& warnings);
+                                std::vector<Warning>& warnings);
 
 }  // namespace spdfit

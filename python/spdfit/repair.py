@@ -10,6 +10,7 @@ import numpy as _np
 
 from . import _spdfit
 from . import _as_matrix, _takes_options, _warn
+from ._errors import DataError
 
 __all__ = ["nearest_covariance"]
 
@@ -29,7 +30,7 @@ def _aligned(name, value, frame):
         rows, columns = list(frame.index), list(frame.columns)
         if sorted(map(str, value.index)) != sorted(map(str, rows)) or \
                 sorted(map(str, value.columns)) != sorted(map(str, columns)):
-            raise ValueError(f"{name}: its labels differ from the matrix's (rows {list(value.index)[:4]}..., "
+            raise DataError(f"{name}: its labels differ from the matrix's (rows {list(value.index)[:4]}..., "
                              f"columns {list(value.columns)[:4]}...; the matrix's: {columns[:4]}...)")
         return value.loc[rows, columns].to_numpy()
     if name == "fixed" and frame is not None and isinstance(value, (list, tuple)) and len(value) > 0 \
@@ -53,8 +54,8 @@ def _repair(entry, C, options):
             options[name] = _aligned(name, options[name], frame)
     values = frame.to_numpy(dtype=_np.float64) if frame is not None else C
     result = _spdfit.nearest(_as_matrix("X" if entry == "nearest_spd" else "C", values), entry, options)
-    for message in result.warnings:
-        _warn(f"{entry}: {_spdfit.spell_options(message)}")
+    for message, code in zip(result.warnings, result.warning_codes):
+        _warn(f"{entry}: {_spdfit.spell_options(message)}", code)
     return result, frame
 
 
@@ -101,17 +102,21 @@ def nearest_covariance(S, *, full_output=False, **options):
 
     Raises
     ------
-    ValueError
+    DataError
         S is not a non-empty square matrix or has NaN/Inf; a variance <= 0 without ``min_diag``; a
-        mask or weights that are not valid for S; kept entries that no positive semidefinite matrix
-        has (the message names them); ``rank`` above n.
+        mask or weights that are not valid for S (or labelled by other variables); kept entries that
+        no positive semidefinite matrix has (the message names them); ``rank`` above n.
+    ValueError
+        An option out of range, or options that exclude each other.
     TypeError
         An option of the wrong type.
 
     Warns
     -----
-    SpdfitWarning
-        Variances raised by ``min_diag`` (which), a non-symmetric S, no convergence.
+    VariancesRaisedWarning
+        Variances raised by ``min_diag`` (which).
+    NotSymmetricWarning, NotConvergedWarning
+        A non-symmetric S; no convergence.
 
     Examples
     --------

@@ -98,16 +98,22 @@ void bind_estimators(py::module_& m) {
 
   m.attr("REPAIR_FLOOR_DEFAULT") = EigenvalueFloor::kRepairDefault;
   // nearest_spd, nearest_correlation and nearest_covariance (`entry`): the repair their keyword
-  // arguments name. Python counts the pairs of `fixed` from 0.
+  // arguments name, by the command's workflow (run_nearest), which reads the matrix options given
+  // as files. Python counts the pairs of `fixed` from 0. The result carries every warning (the
+  // files' readers' too).
   m.def(
       "nearest",
       [](const Eigen::MatrixXd& C, const std::string& entry, const py::dict& options) {
         std::vector<std::string_view> given;
-        NearestRequest request = nearest_request(entry, options, given);
-        request.fixed_index_base = 0;
+        NearestCommand command;
+        command.matrix.values = C;
+        command.repair = nearest_request(entry, options, given);
+        command.repair.fixed_index_base = 0;
         check_nearest_request(given, python::entry(entry).unavailable);
         py::gil_scoped_release release;
-        return nearest(C, request);
+        NearestRun run = run_nearest(command);
+        run.result.warnings = std::move(run.warnings);
+        return run.result;
       },
       py::arg("C"), py::arg("entry"), py::arg("options"));
 

@@ -177,7 +177,7 @@ LabelledTable read_labelled_table(const std::string& path, const ReadOptions& op
     auto& warnings = out.table.warnings;
     const std::string notice = detail::DelimitedParser::kIndexColumnNotice;
     warnings.erase(std::remove_if(warnings.begin(), warnings.end(),
-                                  [&](const std::string& w) { return w.find(notice) != std::string::npos; }),
+                                  [&](const Warning& w) { return w.text.find(notice) != std::string::npos; }),
                    warnings.end());
   }
   return out;

@@ -1,6 +1,7 @@
 // A repair's result as JSON (the result part of `spdfit nearest --json`).
 #include "render/json_values.hpp"
 #include "spdfit/labels.hpp"
+#include "spdfit/nearest_request.hpp"
 
 namespace spdfit {
 
@@ -19,7 +20,7 @@ Json nearest_json(const NearestResult& r, JsonStyle style) {
   out["gradient_norm"] = detail::number_json(r.gradient_norm, style);
   out["converged"] = r.converged;
   out["cholesky"] = r.cholesky_ok;
-  out["warnings"] = r.warnings;
+  detail::put_warnings(out, r.warnings);
   out["method"] = r.method;
   out["fixed_entries"] = r.fixed_entries;
   out["lower_bound"] = detail::number_json(r.lower_bound, style);
@@ -42,6 +43,19 @@ std::string to_json(const NearestResult& r, const std::vector<std::string>& name
   return detail::dump(out, style);
 }
 
+std::string to_json(const NearestRun& run, JsonStyle style) {
+  Json out = nearest_json(run.result, style);
+  if (!run.names.empty()) out["names"] = run.names;
+  const EigenvalueFloor floor = run.repair.floor();
+  // The options the repair ran with.
+  out["corr"] = run.repair.corr;
+  out["keep_diag"] = run.repair.keep_diag;
+  out["via_corr"] = run.repair.via_corr;
+  out["min_eig_rel"] = floor.relative ? detail::number_json(floor.value, style) : Json(nullptr);
+  out["alpha"] = detail::number_json(run.repair.alpha.value_or(0.0), style);
+  return detail::dump(out, style);
+}
+
 template <>
 NearestResult from_json<NearestResult>(const std::string& text) {
   const std::string type = "NearestResult";
@@ -59,7 +73,7 @@ NearestResult from_json<NearestResult>(const std::string& text) {
   r.gradient_norm = number("gradient_norm");
   r.converged = detail::value_from<bool>(object, "converged", type);
   r.cholesky_ok = detail::value_from<bool>(object, "cholesky", type);
-  r.warnings = detail::value_from<std::vector<std::string>>(object, "warnings", type);
+  r.warnings = detail::warnings_from(object, type);
   // The structured repairs' fields (absent from results written before them).
   if (detail::optional_field(object, "method")) r.method = detail::value_from<std::string>(object, "method", type);
   if (detail::optional_field(object, "fixed_entries")) {

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "spdfit/format.hpp"
+#include "spdfit/outcome.hpp"
 
 namespace spdfit::detail {
 
@@ -40,13 +41,13 @@ Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> mask_of(const MatrixXd& fixe
       for (Index i = 0; i < n; ++i) {
         const double v = fixed(i, j);
         if (v != 0.0 && v != 1.0) {
-          throw std::invalid_argument("the mask of kept entries (`fixed`) has " + format_number(v) + " at " +
-                                      entry_text(i, j) + ": a mask holds 1 (kept) and 0 (free)");
+          throw InputError("the mask of kept entries (`fixed`) has " + format_number(v) + " at " +
+                                      entry_text(i, j) + ": a mask holds 1 (kept) and 0 (free)", Code::DataValue, "fixed");
         }
         if (v != fixed(j, i)) {
-          throw std::invalid_argument("the mask of kept entries (`fixed`) is not symmetric: " + entry_text(i, j) +
+          throw InputError("the mask of kept entries (`fixed`) is not symmetric: " + entry_text(i, j) +
                                       " is " + format_number(v) + " but " + entry_text(j, i) + " is " +
-                                      format_number(fixed(j, i)));
+                                      format_number(fixed(j, i)), Code::DataValue, "fixed");
         }
         if (v == 1.0 && i >= j) mask(i, j) = true;
       }
@@ -54,9 +55,9 @@ Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> mask_of(const MatrixXd& fixe
     return mask;
   }
   if (fixed.cols() != 2) {
-    throw std::invalid_argument("the kept entries (`fixed`) are " + std::to_string(fixed.rows()) + "x" +
+    throw InputError("the kept entries (`fixed`) are " + std::to_string(fixed.rows()) + "x" +
                                 std::to_string(fixed.cols()) + ": give an " + std::to_string(n) + "x" +
-                                std::to_string(n) + " mask (1: kept, 0: free), or index pairs i, j as two columns");
+                                std::to_string(n) + " mask (1: kept, 0: free), or index pairs i, j as two columns", Code::DataShape, "fixed");
   }
   for (Index k = 0; k < fixed.rows(); ++k) {
     Index ij[2];
@@ -64,10 +65,10 @@ Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> mask_of(const MatrixXd& fixe
       const double v = fixed(k, c);
       const double index = v - base;
       if (!(v == std::floor(v)) || !(index >= 0.0) || !(index < static_cast<double>(n))) {
-        throw std::invalid_argument("kept entry pair " + std::to_string(k + 1) + " of `fixed` has index " +
+        throw InputError("kept entry pair " + std::to_string(k + 1) + " of `fixed` has index " +
                                     format_number(v) + ": indices are integers from " + std::to_string(base) +
                                     " to " + std::to_string(n - 1 + base) + " (the matrix is " + std::to_string(n) +
-                                    "x" + std::to_string(n) + ")");
+                                    "x" + std::to_string(n) + ")", Code::DataValue, "fixed");
       }
       ij[c] = static_cast<Index>(index);
     }
@@ -83,8 +84,8 @@ FixedPattern fixed_pattern(const MatrixXd& fixed, int index_base, Index n, Diago
   if (fixed.size() > 0) {
     mask = mask_of(fixed, index_base, n);
     if (!mask.any()) {
-      throw std::invalid_argument("the mask of kept entries (`fixed`) is all zero: it keeps no entry (1 marks an "
-                                  "entry kept exactly)");
+      throw InputError("the mask of kept entries (`fixed`) is all zero: it keeps no entry (1 marks an "
+                                  "entry kept exactly)", Code::DataValue, "fixed");
     }
   } else {
     mask = Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic>::Zero(n, n);
@@ -106,17 +107,17 @@ FixedPattern fixed_pattern(const MatrixXd& fixed, int index_base, Index n, Diago
 void check_h_weights(const MatrixXd& H, const FixedPattern& pattern) {
   const Index n = pattern.n;
   if (H.rows() != n || H.cols() != n) {
-    throw std::invalid_argument("the elementwise weights (`h_weights`) are " + std::to_string(H.rows()) + "x" +
+    throw InputError("the elementwise weights (`h_weights`) are " + std::to_string(H.rows()) + "x" +
                                 std::to_string(H.cols()) + ", not " + std::to_string(n) + "x" + std::to_string(n) +
-                                " as the matrix");
+                                " as the matrix", Code::DataShape, "h_weights");
   }
   double largest = 0.0;
   for (Index j = 0; j < n; ++j) {
     for (Index i = 0; i < n; ++i) {
       const double h = H(i, j);
       if (!std::isfinite(h) || h < 0.0) {
-        throw std::invalid_argument("the elementwise weight (`h_weights`) at " + entry_text(i, j) + " is " +
-                                    format_number(h) + ": weights must be finite and >= 0 (0: the entry is free)");
+        throw InputError("the elementwise weight (`h_weights`) at " + entry_text(i, j) + " is " +
+                                    format_number(h) + ": weights must be finite and >= 0 (0: the entry is free)", Code::DataValue, "h_weights");
       }
       largest = std::max(largest, h);
     }
@@ -124,9 +125,9 @@ void check_h_weights(const MatrixXd& H, const FixedPattern& pattern) {
   for (Index j = 0; j < n; ++j) {
     for (Index i = j + 1; i < n; ++i) {
       if (std::abs(H(i, j) - H(j, i)) > 1e-10 * largest) {
-        throw std::invalid_argument("the elementwise weights (`h_weights`) are not symmetric: " + entry_text(i, j) +
+        throw InputError("the elementwise weights (`h_weights`) are not symmetric: " + entry_text(i, j) +
                                     " is " + format_number(H(i, j)) + " but " + entry_text(j, i) + " is " +
-                                    format_number(H(j, i)));
+                                    format_number(H(j, i)), Code::DataValue, "h_weights");
       }
     }
   }
@@ -137,9 +138,9 @@ void check_h_weights(const MatrixXd& H, const FixedPattern& pattern) {
       if (!kept(i, j) && H(i, j) > 0.0) return;
     }
   }
-  throw std::invalid_argument(largest == 0.0 ? "the elementwise weights (`h_weights`) are all zero: nothing to fit"
+  throw InputError(largest == 0.0 ? "the elementwise weights (`h_weights`) are all zero: nothing to fit"
                                              : "the elementwise weights (`h_weights`) are zero on every entry the "
-                                               "repair may change: nothing to fit");
+                                               "repair may change: nothing to fit", Code::DataValue, "h_weights");
 }
 
 void check_fixed_feasible(const MatrixXd& B, const FixedPattern& pattern, const VectorXd& f, const char* option) {
@@ -158,11 +159,11 @@ void check_fixed_feasible(const MatrixXd& B, const FixedPattern& pattern, const 
     const double a = B(i, i) - f(i), b = B(j, j) - f(j), c = B(i, j);
     const double rounding = 4.0 * kEps * (std::abs(B(i, i)) * std::abs(B(j, j)) + c * c);
     if (a < 0.0 || b < 0.0 || c * c - a * b > rounding) {
-      throw std::invalid_argument("the kept entry " + entry_text(i, j) + " = " + format_number(c) +
+      throw InputError("the kept entry " + entry_text(i, j) + " = " + format_number(c) +
                                   " is larger in magnitude than the root of its kept diagonal entries' product (" +
                                   format_number(B(i, i)) + " at " + entry_text(i, i) + ", " + format_number(B(j, j)) +
                                   " at " + entry_text(j, j) + floor_hint +
-                                  "): no positive semidefinite matrix has these entries");
+                                  "): no positive semidefinite matrix has these entries", Code::DataValue, "fixed");
     }
   }
   // Fully kept blocks: the connected components of the graph of kept off-diagonal entries among
@@ -200,11 +201,11 @@ void check_fixed_feasible(const MatrixXd& B, const FixedPattern& pattern, const 
     const double smallest = eig.eigenvalues()(0);
     const double rounding = 8.0 * static_cast<double>(s) * kEps * M.cwiseAbs().maxCoeff();
     if (smallest < -rounding) {
-      throw std::invalid_argument("the block of kept entries in rows and columns " + index_list(block) +
+      throw InputError("the block of kept entries in rows and columns " + index_list(block) +
                                   " is not positive semidefinite" + floor_hint + ": its smallest eigenvalue is " +
                                   format_number(smallest) +
                                   "; no positive semidefinite matrix contains it (repair the block itself first, "
-                                  "or keep fewer entries)");
+                                  "or keep fewer entries)", Code::DataValue, "fixed");
     }
   }
 }

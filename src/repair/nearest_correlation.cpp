@@ -115,7 +115,7 @@ struct Prepared {
   // With a floor of the correlation matrix: the extreme eigenvalues of D^-1/2 S D^-1/2.
   double correlation_min = 0.0, correlation_max = 0.0;
   Spectrum spectrum;  // with eigenvectors when the Newton method's first step can use them
-  std::vector<std::string> warnings;
+  std::vector<Warning> warnings;
 };
 
 // `d` the diagonal the repair keeps (empty: C's own); `of_correlation`: the floor applies to the
@@ -220,9 +220,9 @@ NearestResult repair(const Eigen::Ref<const MatrixXd>& C, FixedDiagonalProblem& 
     out.converged = s.converged;
     out.clipped = s.clipped;
     if (!out.converged) {
-      out.warnings.push_back("not converged within " + std::to_string(options.max_iterations) +
+      out.warnings.push_back(Warning(Code::NotConverged, "not converged within " + std::to_string(options.max_iterations) +
                              " iterations (||diag(X) - d|| = " + detail::format_number(out.gradient_norm) +
-                             "): the best iterate, rescaled to the diagonal");
+                             "): the best iterate, rescaled to the diagonal"));
     }
   }
   out.distance = weighted_distance(out.X, C, p.w);

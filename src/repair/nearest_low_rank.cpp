@@ -27,9 +27,9 @@ constexpr std::uint64_t kRandomSeed = 20240611;
 
 void check_options(const NearestLowRankOptions& options, Index n, Index k, const char* option) {
   if (k < 1 || k > n) {
-    throw std::invalid_argument("`" + std::string(option) + "` is " + std::to_string(k) + ", but the matrix is " +
-                                std::to_string(n) + "x" + std::to_string(n) + ": it must be from 1 to " +
-                                std::to_string(n));
+    throw InputError("`" + std::string(option) + "` is " + std::to_string(k) + ", but the matrix is " +
+                         std::to_string(n) + "x" + std::to_string(n) + ": it must be from 1 to " + std::to_string(n),
+                     Code::DataShape, option);
   }
   if (options.weights.size() != 0) {
     if (options.weights.size() != n) {
@@ -150,9 +150,9 @@ NearestResult nearest_correlation_rank(const Eigen::Ref<const MatrixXd>& C, Inde
   out.cholesky_ok = detail::has_cholesky(out.X);
   out.method = "spectral projected gradient (rank)";
   if (!out.converged) {
-    out.warnings.push_back("the best start did not converge within " + std::to_string(options.max_iterations) +
+    out.warnings.push_back(Warning(Code::NotConverged, "the best start did not converge within " + std::to_string(options.max_iterations) +
                            " iterations (stationarity residual " + format_number(best.residual) +
-                           "): the last iterate");
+                           "): the last iterate"));
   }
   return out;
 }
@@ -192,9 +192,9 @@ NearestResult nearest_correlation_factors(const Eigen::Ref<const MatrixXd>& C, I
   out.min_eigenvalue_before = std::numeric_limits<double>::quiet_NaN();  // no O(n^3) eigendecomposition here
   out.method = "spectral projected gradient (factors)";
   if (!out.converged) {
-    out.warnings.push_back("not converged within " + std::to_string(options.max_iterations) +
+    out.warnings.push_back(Warning(Code::NotConverged, "not converged within " + std::to_string(options.max_iterations) +
                            " iterations (stationarity residual " + format_number(local.residual) +
-                           "): the last iterate");
+                           "): the last iterate"));
   }
   return out;
 }

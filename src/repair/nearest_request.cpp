@@ -1,8 +1,13 @@
 // The repairs' option table: each option declared once, with everything the front ends need.
 #include "spdfit/nearest_request.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
+#include <utility>
+
+#include "spdfit/labels.hpp"
 
 namespace spdfit {
 
@@ -139,16 +144,13 @@ std::vector<Spec> make_table() {
   weights.name = "weights";
   weights.cli = "--weights";
   weights.python = "weights";
-  weights.type = OptionType::Vector;
+  weights.type = OptionType::Matrix;
   weights.value_name = "FILE";
   weights.help = "With `corr`, `keep_diag` or `via_corr`: n positive diagonal weights w; minimizes "
                  "||W^1/2 (X - C) W^1/2||_F, W = diag(w)";
   weights.needs = {"corr", "keep_diag", "via_corr", "fixed"};
   weights.excludes = {"h_weights", "factors"};
-  weights.set = [](NearestRequest& r, const OptionValue& v) {
-    const auto& w = std::get<std::vector<double>>(v);
-    r.weights = Eigen::Map<const Eigen::VectorXd>(w.data(), Eigen::Index(w.size()));
-  };
+  weights.set = [](NearestRequest& r, const OptionValue& v) { r.weights = std::get<MatrixInput>(v); };
   table.push_back(weights);
 
   Spec fixed = matrix(
@@ -157,7 +159,7 @@ std::vector<Spec> make_table() {
       "as two columns (counted from 1), each keeping (i, j) and (j, i); the diagonal as `corr` or `keep_diag` say "
       "(without them, the mask's diagonal entries are kept too). A kept block that is not positive semidefinite, or "
       "kept entries no such matrix has, are data errors that say which",
-      [](NearestRequest& r, const OptionValue& v) { r.fixed = std::get<Eigen::MatrixXd>(v); });
+      [](NearestRequest& r, const OptionValue& v) { r.fixed = std::get<MatrixInput>(v); });
   fixed.excludes = {"via_corr", "rank", "factors"};
   table.push_back(fixed);
 
@@ -166,7 +168,7 @@ std::vector<Spec> make_table() {
       "Elementwise weights H (n x n, symmetric, >= 0; 0: the entry is free, as for a pair never observed "
       "together): minimizes ||H o (X - C)||_F (NAG g02aj), by an augmented Lagrangian method with Newton steps; "
       "reports the dual's lower bound and the KKT residual",
-      [](NearestRequest& r, const OptionValue& v) { r.h_weights = std::get<Eigen::MatrixXd>(v); });
+      [](NearestRequest& r, const OptionValue& v) { r.h_weights = std::get<MatrixInput>(v); });
   h_weights.excludes = {"via_corr", "rank", "factors"};
   table.push_back(h_weights);
 
@@ -270,10 +272,33 @@ std::vector<Spec> make_table() {
 
 EigenvalueFloor NearestRequest::floor() const { return EigenvalueFloor::chosen(min_eig, min_eig_rel, alpha.has_value()); }
 
+namespace {
+
+// A matrix option's values: std::invalid_argument while it is still a file (run_nearest reads it).
+const Eigen::MatrixXd& values_of(const MatrixInput& input, const char* option) {
+  if (input.from_file()) {
+    throw std::invalid_argument(std::string("the file of `") + option + "` is read by run_nearest: give its values");
+  }
+  return input.values;
+}
+
+// The diagonal weights as a vector: InputError unless one row or one column.
+Eigen::VectorXd weight_vector(const MatrixInput& weights) {
+  const Eigen::MatrixXd& w = values_of(weights, "weights");
+  if (w.size() > 0 && w.rows() != 1 && w.cols() != 1) {
+    throw InputError("the weights are " + std::to_string(w.rows()) + "x" + std::to_string(w.cols()) +
+                         ": give one per row of X, as one column or one row",
+                     Code::DataShape, "weights");
+  }
+  return Eigen::Map<const Eigen::VectorXd>(w.data(), w.size());
+}
+
+}  // namespace
+
 NearestCorrelationOptions NearestRequest::correlation_options() const {
   NearestCorrelationOptions options;
   options.floor = floor();
-  options.weights = weights;
+  options.weights = weight_vector(weights);
   options.alpha = alpha.value_or(options.alpha);
   options.max_iterations = max_iterations.value_or(options.max_iterations);
   options.tolerance = tolerance.value_or(options.tolerance);
@@ -282,7 +307,7 @@ NearestCorrelationOptions NearestRequest::correlation_options() const {
 
 NearestLowRankOptions NearestRequest::low_rank_options() const {
   NearestLowRankOptions options;
-  options.weights = weights;
+  options.weights = weight_vector(weights);
   options.keep_diagonal = keep_diag && !corr;
   options.max_iterations = max_iterations.value_or(options.max_iterations);
   options.tolerance = tolerance.value_or(options.tolerance);
@@ -311,9 +336,9 @@ NearestResult repair(const Eigen::Ref<const Eigen::MatrixXd>& C, const NearestRe
   if (request.rank > 0) return nearest_correlation_rank(C, request.rank, request.low_rank_options());
   if (request.structured()) {
     NearestStructure structure;
-    structure.fixed = request.fixed;
+    structure.fixed = values_of(request.fixed, "fixed");
     structure.index_base = request.fixed_index_base;
-    structure.h_weights = request.h_weights;
+    structure.h_weights = values_of(request.h_weights, "h_weights");
     return nearest_structured(C, request.diagonal_rule(), structure, request.correlation_options());
   }
   if (!request.newton()) {
@@ -333,11 +358,145 @@ NearestResult repair(const Eigen::Ref<const Eigen::MatrixXd>& C, const NearestRe
 
 NearestResult nearest(const Eigen::Ref<const Eigen::MatrixXd>& C, const NearestRequest& request) {
   if (!request.min_diag) return repair(C, request);
-  std::vector<std::string> raised;
+  std::vector<Warning> raised;
   const Eigen::MatrixXd floored = raise_variances(C, *request.min_diag, raised);
   NearestResult result = repair(floored, request);
   result.warnings.insert(result.warnings.begin(), raised.begin(), raised.end());
   return result;
+}
+
+namespace {
+
+using CommandSpec = OptionSpec<NearestCommand>;
+
+std::vector<CommandSpec> make_command_table() {
+  std::vector<CommandSpec> table;
+  CommandSpec x;
+  x.name = "x";
+  x.cli = "X";
+  x.type = OptionType::Matrix;
+  x.help = "File of X (n x n): delimited text or .npy";
+  x.positional = true;
+  x.required = true;
+  x.set = [](NearestCommand& c, const OptionValue& v) { c.matrix = std::get<MatrixInput>(v); };
+  table.push_back(x);
+  for (CommandSpec& spec : lifted_options(nearest_option_table(), &NearestCommand::repair)) table.push_back(std::move(spec));
+  for (CommandSpec& spec : output_options(
+           &NearestCommand::output, {"json", "header", "output"},
+           {"Print the result and its diagnostics as JSON (with the variables' names, when X's file has them)",
+            "Print X as CSV with a header row and row labels: the names of X's file (its header row, else its "
+            "index column; numbers where it has none), as pandas' read_csv(..., index_col=0) reads them",
+            "Write to FILE instead of stdout (X.npy: X as a NumPy file)"})) {
+    table.push_back(std::move(spec));
+  }
+  return table;
+}
+
+// One row too many in text, the first of consecutive integers (0, 1, ..., 7 or 1, 2, ..., 8): a
+// header of numbers read as data.
+bool counts_up(const Eigen::MatrixXd& X) {
+  for (Eigen::Index j = 0; j < X.cols(); ++j) {
+    if (X(0, j) != X(0, 0) + static_cast<double>(j) || X(0, j) != std::floor(X(0, j))) return false;
+  }
+  return true;
+}
+
+// A matrix option's file (`fixed`'s mask or pairs, `h_weights`' H), named by the same variables as
+// X when it has names (a labelled matrix as pandas writes one: reordered to X's order), checked by
+// the library's rule for an n x n matrix (NearestStructure::is_valid) with the file named.
+Eigen::MatrixXd read_structure(const std::string& path, std::string_view option, Eigen::Index n, DiagonalRule rule,
+                               const std::vector<std::string>& x_names, const io::ReadOptions& read,
+                               std::vector<Warning>& warnings) {
+  io::LabelledTable labelled = io::read_labelled_table(path, read);
+  warnings.insert(warnings.end(), labelled.table.warnings.begin(), labelled.table.warnings.end());
+  const std::vector<std::string> names = variable_names(labelled, path, &warnings);
+  Eigen::MatrixXd M = std::move(labelled.table.values);
+  if (M.rows() == n && M.cols() == n) {  // a mask or weights (not a list of pairs)
+    std::string error;
+    std::optional<Eigen::MatrixXd> aligned = aligned_by_name(M, names, x_names, &error);
+    if (!aligned) throw io::DataError(path, 0, 0, error, Code::DataShape);
+    M = std::move(*aligned);
+  }
+  NearestStructure structure;
+  (option == "fixed" ? structure.fixed : structure.h_weights) = M;
+  std::string error;
+  if (!structure.is_valid(n, rule, &error)) {
+    // A matrix of another size is DataShape (`fixed` also takes k index pairs: k x 2), its values DataValue.
+    const bool square = M.rows() == n && M.cols() == n;
+    const bool shape = option == "fixed" ? !square && M.cols() != 2 : !square;
+    throw io::DataError(path, 0, 0, error, shape ? Code::DataShape : Code::DataValue);
+  }
+  return M;
+}
+
+}  // namespace
+
+const std::vector<OptionSpec<NearestCommand>>& nearest_command_table() {
+  static const std::vector<OptionSpec<NearestCommand>> table = make_command_table();
+  return table;
+}
+
+NearestRun run_nearest(const NearestCommand& command) {
+  NearestRun run;
+  run.repair = command.repair;
+  Eigen::MatrixXd X;
+  const std::string& path = command.matrix.path;
+  if (command.matrix.from_file()) {
+    // With the labels of an index column: the names of X's variables (df.cov().to_csv()).
+    io::LabelledTable labelled = io::read_labelled_table(path, command.read);
+    std::vector<Warning> name_warnings;
+    run.names = variable_names(labelled, path, &name_warnings);
+    io::Table& file = labelled.table;
+    run.warnings = std::move(file.warnings);
+    X = std::move(file.values);
+    if (X.rows() != X.cols()) {
+      std::string problem =
+          "X is " + std::to_string(X.rows()) + "x" + std::to_string(X.cols()) + ": a square matrix is needed";
+      if (X.rows() == X.cols() + 1 && X.cols() >= 3 && file.first_data_line > 0 && counts_up(X)) {
+        problem += "; line " + std::to_string(file.first_data_line) +
+                   ", its first row, looks like a header of column names" +
+                   (command.read.header_row == io::HeaderRow::Absent
+                        ? " (read as data because of --no-header)"
+                        : ": delete it or give names that are not numbers");
+      }
+      throw io::DataError(path, 0, 0, problem, Code::DataShape);
+    }
+    run.warnings.insert(run.warnings.end(), name_warnings.begin(), name_warnings.end());
+  } else {
+    X = command.matrix.values;
+  }
+  if (command.repair.weights.from_file()) {
+    const Eigen::MatrixXd W = io::read_matrix(command.repair.weights.path, command.read);
+    const Eigen::Index n = X.rows();
+    if (W.size() != n || (W.rows() != 1 && W.cols() != 1)) {
+      throw io::DataError(command.repair.weights.path, 0, 0,
+                          "the weights are " + std::to_string(W.rows()) + "x" + std::to_string(W.cols()) +
+                              ": give " + std::to_string(n) + " numbers (one per row of X) as one column or one row",
+                          Code::DataShape);
+    }
+    NearestCorrelationOptions weighted;
+    weighted.weights = Eigen::Map<const Eigen::VectorXd>(W.data(), n);
+    std::string error;
+    if (!weighted.is_valid(n, &error)) throw io::DataError(command.repair.weights.path, 0, 0, error, Code::DataValue);
+    run.repair.weights = MatrixInput{{}, W};
+  }
+  for (MatrixInput* input : {&run.repair.fixed, &run.repair.h_weights}) {
+    if (!input->from_file()) continue;
+    const std::string_view option = input == &run.repair.fixed ? "fixed" : "h_weights";
+    *input = MatrixInput{{}, read_structure(input->path, option, X.rows(), run.repair.diagonal_rule(), run.names,
+                                            command.read, run.warnings)};
+    // A file's pairs count from 1 whoever names the file (Python counts its arrays' from 0).
+    if (option == "fixed") run.repair.fixed_index_base = 1;
+  }
+  try {
+    run.result = nearest(X, run.repair);
+  } catch (const std::invalid_argument& e) {
+    const Code code = tier(code_of(e)) == Tier::Data ? code_of(e) : Code::DataValue;
+    if (command.matrix.from_file()) throw io::DataError(path, 0, 0, e.what(), code);
+    throw;
+  }
+  run.warnings.insert(run.warnings.end(), run.result.warnings.begin(), run.result.warnings.end());
+  return run;
 }
 
 }  // namespace spdfit

@@ -88,7 +88,7 @@ bool NearestStructure::is_valid(Index n, DiagonalRule rule, std::string* error) 
 }
 
 Eigen::MatrixXd raise_variances(const Eigen::Ref<const MatrixXd>& C, double min_diag,
-                                std::vector<std::string>& warnings) {
+                                std::vector<Warning>& warnings) {
   if (!(min_diag >= 0.0) || !std::isfinite(min_diag)) {
     throw std::invalid_argument("`min_diag` must be a finite number >= 0");
   }
@@ -104,9 +104,11 @@ Eigen::MatrixXd raise_variances(const Eigen::Ref<const MatrixXd>& C, double min_
   }
   if (count > 10) listed += ", ... (" + std::to_string(count) + " in all)";
   if (count > 0) {
-    warnings.push_back(std::string(count == 1 ? "diagonal entry " : "diagonal entries ") + listed + " " +
-                       (count == 1 ? "was" : "were") + " below `min_diag` and raised to " + format_number(min_diag) +
-                       " before the repair");
+    warnings.push_back(Warning(Code::VariancesRaised,
+                               std::string(count == 1 ? "diagonal entry " : "diagonal entries ") + listed + " " +
+                                   (count == 1 ? "was" : "were") + " below `min_diag` and raised to " +
+                                   format_number(min_diag) + " before the repair",
+                               "min_diag"));
   }
   return out;
 }
@@ -274,10 +276,10 @@ NearestResult nearest_structured(const Eigen::Ref<const MatrixXd>& C, DiagonalRu
   }
   out.gradient_norm = std::ldexp(residual, e);
   if (!out.converged) {
-    out.warnings.push_back("not converged within " + std::to_string(options.max_iterations) +
+    out.warnings.push_back(Warning(Code::NotConverged, "not converged within " + std::to_string(options.max_iterations) +
                            " iterations (" + (alm ? "KKT residual " + format_number(out.optimality_residual)
                                                   : "||A(X) - b|| = " + format_number(out.gradient_norm)) +
-                           "): the last iterate, with the kept entries set");
+                           "): the last iterate, with the kept entries set"));
   }
 
   // Back to the input's units: the scaling undone, the weights removed, the floor added, and the

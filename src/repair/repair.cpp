@@ -45,12 +45,13 @@ void check_repair_input(const Eigen::Ref<const Eigen::MatrixXd>& C, EigenvalueFl
 
 const char* floor_option(EigenvalueFloor floor) { return floor.relative ? "`min_eig_rel`" : "`min_eig`"; }
 
-std::optional<std::string> asymmetry_warning(const Eigen::Ref<const Eigen::MatrixXd>& C) {
+std::optional<Warning> asymmetry_warning(const Eigen::Ref<const Eigen::MatrixXd>& C) {
   const double norm = C.norm();
   const double asymmetry = (C - C.transpose()).norm();
   if (!(asymmetry > 1e-10 * norm)) return std::nullopt;
-  return "the matrix is not symmetric (||X - X^T||_F / ||X||_F = " + format_number(asymmetry / norm) +
-         ", more than rounding): its symmetric part (X + X^T) / 2 was used; is it the right file?";
+  return Warning(Code::NotSymmetric,
+                 "the matrix is not symmetric (||X - X^T||_F / ||X||_F = " + format_number(asymmetry / norm) +
+                     ", more than rounding): its symmetric part (X + X^T) / 2 was used; is it the right file?");
 }
 
 double resolve_floor(EigenvalueFloor floor, double lambda_max) {
@@ -78,30 +79,35 @@ void check_variances(const Eigen::VectorXd& d, bool zero_allowed, const char* wh
   if (count == 0) return;
   if (count > 10) listed += ", ... (" + std::to_string(count) + " in all)";
   const std::string what = negative && !zero ? "negative" : zero_allowed ? "negative" : "not positive";
-  throw std::invalid_argument(std::string(count == 1 ? "diagonal entry " : "diagonal entries ") + listed + " " +
-                              (count == 1 ? "is " : "are ") + what + ": a covariance's variances must be " +
-                              (zero_allowed ? ">= 0" : std::string("> 0 here (") + why + ")") +
-                              "; raise them with `min_diag` (for example 1e-8 times the largest variance), or drop "
-                              "those variables");
+  throw InputError(std::string(count == 1 ? "diagonal entry " : "diagonal entries ") + listed + " " +
+                       (count == 1 ? "is " : "are ") + what + ": a covariance's variances must be " +
+                       (zero_allowed ? ">= 0" : std::string("> 0 here (") + why + ")") +
+                       "; raise them with `min_diag` (for example 1e-8 times the largest variance), or drop "
+                       "those variables",
+                   Code::DataValue);
 }
 
-std::optional<std::string> unit_diagonal_warning(const Eigen::Ref<const Eigen::MatrixXd>& S) {
+std::optional<Warning> unit_diagonal_warning(const Eigen::Ref<const Eigen::MatrixXd>& S) {
   const double off = (S.diagonal().array() - 1.0).abs().maxCoeff();
   if (!(off > 1e-6)) return std::nullopt;
-  return "the diagonal is not 1 (it ranges from " + format_number(S.diagonal().minCoeff()) + " to " +
-         format_number(S.diagonal().maxCoeff()) +
-         "): it was repaired to a correlation matrix (unit diagonal); to keep a covariance's variances instead, "
-         "repair it with its diagonal kept (`keep_diag` or `via_corr`)";
+  return Warning(Code::Warning,
+                 "the diagonal is not 1 (it ranges from " + format_number(S.diagonal().minCoeff()) + " to " +
+                     format_number(S.diagonal().maxCoeff()) +
+                     "): it was repaired to a correlation matrix (unit diagonal); to keep a covariance's variances "
+                     "instead, repair it with its diagonal kept (`keep_diag` or `via_corr`)");
 }
 
-std::optional<std::string> floor_warning(double floor, double floor_change, double repair, double scale,
+std::optional<Warning> floor_warning(double floor, double floor_change, double repair, double scale,
                                          double lambda_max, bool of_correlation) {
   if (!(floor_change > repair) || !(floor_change > 1e-6 * scale)) return std::nullopt;
-  return std::string("the eigenvalue floor ") + format_number(floor) +
-         (of_correlation ? " of the correlation matrix D^-1/2 X D^-1/2" : "") + " moved the matrix by " +
-         format_number(floor_change) + ", more than the repair itself (" + format_number(repair) + "); the " +
-         (of_correlation ? "correlation matrix" : "matrix") + " repaired has largest eigenvalue " +
-         format_number(lambda_max) + ": a floor meant for another scale does this (a relative floor follows the scale)";
+  return Warning(Code::EigenvaluesRaised,
+                 std::string("the eigenvalue floor ") + format_number(floor) +
+                     (of_correlation ? " of the correlation matrix D^-1/2 X D^-1/2" : "") + " moved the matrix by " +
+                     format_number(floor_change) + ", more than the repair itself (" + format_number(repair) +
+                     "); the " + (of_correlation ? "correlation matrix" : "matrix") +
+                     " repaired has largest eigenvalue " + format_number(lambda_max) +
+                     ": a floor meant for another scale does this (a relative floor follows the scale)",
+                 "min_eig");
 }
 
 }  // namespace detail

@@ -111,6 +111,11 @@ def test_min_diag_names_the_entries(spdfit, tmp_path):
         assert "diagonal entries 2 (0), 3 (-0.01) were below --min-diag and raised to 0.001" in raised.stderr
     X = np.loadtxt(io.StringIO(spdfit("nearest", "--keep-diag", "--min-diag", "1e-3", path).stdout), delimiter=",")
     np.testing.assert_array_equal(np.diag(X), [4.0, 1e-3, 1e-3])
+    # --json says which kind of warning it was, by its code.
+    out = json_of(spdfit("nearest", "--keep-diag", "--min-diag", "1e-3", "--json", path))
+    assert len(out["warning_codes"]) == len(out["warnings"])
+    assert out["warning_codes"][out["warnings"].index(next(w for w in out["warnings"] if "min_diag" in w
+                                                          or "--min-diag" in w))] == "variances_raised"
 
 
 @pytest.mark.parametrize("args, both", [

@@ -71,7 +71,7 @@ def test_masks_and_weights_align_by_label_and_pairs_are_labels():
     pd.testing.assert_frame_equal(X, Y)
     with pytest.raises(ValueError, match="no variable 'nope'"):
         spdfit.nearest_correlation(C, fixed=[(LABELS[0], "nope")])
-    with pytest.raises(ValueError, match="labels differ"):
+    with pytest.raises(spdfit.DataError, match="labels differ"):
         spdfit.nearest_correlation(C, h_weights=counts.rename(columns={LABELS[0]: "other"}))
 
 

@@ -234,11 +234,11 @@ def test_factors_only_returns_f_without_x():
 
 def test_min_diag_raises_bad_variances_and_names_them():
     S = np.array([[4.0, 1.0, 0.5], [1.0, 0.0, 0.2], [0.5, 0.2, -1e-3]])
-    with pytest.raises(ValueError, match=r"diagonal entries 2 \(0\), 3 \(-0\.001\).*min_diag"):
+    with pytest.raises(spdfit.DataError, match=r"diagonal entries 2 \(0\), 3 \(-0\.001\).*min_diag"):
         spdfit.nearest_covariance(S)
-    with pytest.raises(ValueError, match="min_diag"):
+    with pytest.raises(spdfit.DataError, match="min_diag"):
         spdfit.nearest_spd(S, via_corr=True)
-    with pytest.warns(spdfit.SpdfitWarning, match=r"diagonal entries 2 \(0\), 3 \(-0\.001\) were below min_diag"):
+    with pytest.warns(spdfit.VariancesRaisedWarning, match=r"diagonal entries 2 \(0\), 3 \(-0\.001\) were below min_diag"):
         X = spdfit.nearest_covariance(S, min_diag=1e-4)
     np.testing.assert_array_equal(np.diag(X), [4.0, 1e-4, 1e-4])
     assert np.linalg.eigvalsh(X)[0] > 0
@@ -259,12 +259,16 @@ def test_min_diag_raises_bad_variances_and_names_them():
 ])
 def test_bad_masks_weights_and_ranks_are_clear_errors(kwargs, message):
     C = np.array([[1.0, 0.9, 0.2, 0.1], [0.9, 1.0, 0.9, 0.1], [0.2, 0.9, 1.0, 0.5], [0.1, 0.1, 0.5, 1.0]])
-    with pytest.raises(ValueError, match=message):
+    # Data errors (their code's class), not usage errors: the data's size decides.
+    with pytest.raises(spdfit.DataError, match=message):
         spdfit.nearest_correlation(C, **kwargs)
 
 
 def test_rank_zero_and_bad_combinations_are_usage_errors():
     C = np.eye(3)
+    with pytest.raises(ValueError) as info:
+        spdfit.nearest_correlation(C, rank=1, fixed=np.eye(3))
+    assert not isinstance(info.value, spdfit.DataError)
     with pytest.raises(ValueError, match=r"rank must be an integer in \[1"):
         spdfit.nearest_correlation(C, rank=0)
     with pytest.raises(ValueError, match="give fixed or rank, not both"):
@@ -283,12 +287,12 @@ def test_infeasible_kept_entries_say_which():
     C = np.array([[1.0, 0.9, 0.9, 0.0], [0.9, 1.0, -0.9, 0.0], [0.9, -0.9, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]])
     block = np.zeros((4, 4))
     block[:3, :3] = 1
-    with pytest.raises(ValueError, match=r"block of kept entries in rows and columns 1, 2, 3 is not positive "
+    with pytest.raises(spdfit.DataError, match=r"block of kept entries in rows and columns 1, 2, 3 is not positive "
                                          r"semidefinite"):
         spdfit.nearest_correlation(C, fixed=block)
     C2 = C.copy()
     C2[0, 3] = C2[3, 0] = 1.5
-    with pytest.raises(ValueError, match=r"kept entry \(4, 1\) = 1.5 is larger in magnitude"):
+    with pytest.raises(spdfit.DataError, match=r"kept entry \(4, 1\) = 1.5 is larger in magnitude"):
         spdfit.nearest_correlation(C2, fixed=[[0, 3]])
     # Each kept pair is fine and no block is fully kept, but the 4-cycle 1-2-3-4 with correlations
     # 0.9, 0.9, 0.9, -0.9 has no completion (its angles break the cycle condition of Barrett,
@@ -296,5 +300,26 @@ def test_infeasible_kept_entries_say_which():
     C3 = np.eye(4)
     for (i, j), c in zip([(0, 1), (1, 2), (2, 3), (3, 0)], [0.9, 0.9, 0.9, -0.9]):
         C3[i, j] = C3[j, i] = c
-    with pytest.raises(ValueError, match="no positive semidefinite matrix with the kept diagonal"):
+    with pytest.raises(spdfit.DataError, match="no positive semidefinite matrix with the kept diagonal"):
         spdfit.nearest_correlation(C3, fixed=[[0, 1], [1, 2], [2, 3], [3, 0]])
+
+
+def test_matrix_options_take_a_files_path(tmp_path):
+    # fixed and h_weights as files, read by the command's workflow as the command line reads them:
+    # the same answer as the arrays (pairs in a file count from 1, as on the command line).
+    C = np.array([[1.0, 0.9, 0.2, 0.1], [0.9, 1.0, 0.9, 0.1], [0.2, 0.9, 1.0, 0.5], [0.1, 0.1, 0.5, 1.0]])
+    mask = np.zeros((4, 4))
+    mask[0, 1] = mask[1, 0] = 1
+    H = np.full((4, 4), 0.5)
+    H[2, 3] = H[3, 2] = 3.0
+    np.savetxt(tmp_path / "mask.csv", mask, delimiter=",")
+    np.savetxt(tmp_path / "H.csv", H, delimiter=",")
+    by_file = quiet(spdfit.nearest_correlation, C, fixed=str(tmp_path / "mask.csv"), h_weights=tmp_path / "H.csv")
+    by_array = quiet(spdfit.nearest_correlation, C, fixed=mask, h_weights=H)
+    np.testing.assert_array_equal(by_file, by_array)
+    np.savetxt(tmp_path / "pairs.csv", [[1, 2]], delimiter=",", fmt="%d")
+    by_pairs = quiet(spdfit.nearest_correlation, C, fixed=str(tmp_path / "pairs.csv"), h_weights=H)
+    np.testing.assert_array_equal(by_pairs, quiet(spdfit.nearest_correlation, C, fixed=[[0, 1]], h_weights=H))
+    np.savetxt(tmp_path / "bad.csv", -np.ones((4, 4)), delimiter=",")
+    with pytest.raises(spdfit.DataError, match="bad.csv"):
+        spdfit.nearest_correlation(C, h_weights=str(tmp_path / "bad.csv"))

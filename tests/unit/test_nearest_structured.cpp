@@ -154,6 +154,8 @@ TEST(NearestStructured, InfeasibleKeptEntriesAreNamed) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("rows and columns 1, 2, 3 is not positive semidefinite"), std::string::npos)
         << e.what();
+    EXPECT_EQ(code_of(e), Code::DataValue);
+    EXPECT_EQ(subject_of(e), "fixed");
   }
 }
 
@@ -201,6 +203,13 @@ TEST(NearestLowRank, KOutOfRangeIsRefused) {
   EXPECT_THROW(nearest_correlation_rank(C, 4), std::invalid_argument);
   EXPECT_THROW(nearest_correlation_rank(C, 0), std::invalid_argument);
   EXPECT_THROW(nearest_correlation_factors(C, 4), std::invalid_argument);
+  // A K the data's size refuses is a data error (the front ends: exit 1, DataError) naming the option.
+  try {
+    nearest_correlation_rank(C, 4);
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.code(), Code::DataShape);
+    EXPECT_EQ(e.subject(), "rank");
+  }
 }
 
 TEST(NearestRequest, NewOptionsCombineOnlyAsTheIssueSays) {
@@ -235,11 +244,14 @@ TEST(RaiseVariances, RaisesAndNamesThem) {
   MatrixXd C = MatrixXd::Identity(3, 3);
   C(1, 1) = 0.0;
   C(2, 2) = -1.0;
-  std::vector<std::string> warnings;
+  std::vector<Warning> warnings;
   const MatrixXd raised = raise_variances(C, 0.5, warnings);
   EXPECT_EQ(raised.diagonal(), (VectorXd(3) << 1.0, 0.5, 0.5).finished());
   ASSERT_EQ(warnings.size(), 1u);
-  EXPECT_NE(warnings[0].find("diagonal entries 2 (0), 3 (-1) were below `min_diag`"), std::string::npos) << warnings[0];
+  EXPECT_EQ(warnings[0].code, Code::VariancesRaised);
+  EXPECT_EQ(warnings[0].subject, "min_diag");
+  EXPECT_NE(warnings[0].text.find("diagonal entries 2 (0), 3 (-1) were below `min_diag`"), std::string::npos)
+      << warnings[0].text;
 }
 
 }  // namespace
