@@ -66,7 +66,7 @@ NearestResult nearest_structured(const Eigen::Ref<const Eigen::MatrixXd>& C, Dia
                                  const NearestStructure& structure, const NearestCorrelationOptions& options = {});
 
 /// C with every diagonal entry below `min_diag` raised to it: pairwise-deletion covariances with a
-/// zero or negative variance. A warning (Code::VariancesRaised) naming the raised entries
+/// zero or negative variance. A warning (Code::Warning: no code of its own, none fitting better) naming the raised entries
 /// (1-based, with their values) and the option `min_diag` is added to `warnings` when there are
 /// any. Throws std::invalid_argument unless min_diag is finite and >= 0. Cost: O(n^2) (the copy).
 Eigen::MatrixXd raise_variances(const Eigen::Ref<const Eigen::MatrixXd>& C, double min_diag,

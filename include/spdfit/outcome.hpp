@@ -57,7 +57,6 @@ enum class Code : std::uint16_t {
   NotSymmetric,
   NotConverged,
   EigenvaluesRaised,    ///< a repair's floor moved eigenvalues
-  VariancesRaised,      ///< a repair raised variances below `min_diag` before it ran
   NoiseEstimate,        ///< what the data say about their noise (too little, too much, unequal)
   NoiseModelNotice,     ///< what a noise model says (from rest rows, its sizes, ...)
   Bias,                 ///< an estimator biased on these data, a better one named

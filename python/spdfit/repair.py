@@ -113,7 +113,7 @@ def nearest_covariance(S, *, full_output=False, **options):
 
     Warns
     -----
-    VariancesRaisedWarning
+    SpdfitWarning
         Variances raised by ``min_diag`` (which).
     NotSymmetricWarning, NotConvergedWarning
         A non-symmetric S; no convergence.

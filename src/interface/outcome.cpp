@@ -43,8 +43,6 @@ std::vector<CodeInfo> make_codes() {
       {Code::NotSymmetric, "not_symmetric", Tier::Warning, "an input or estimate that is not symmetric"},
       {Code::NotConverged, "not_converged", Tier::Warning, "an iterative method stopped before it converged"},
       {Code::EigenvaluesRaised, "eigenvalues_raised", Tier::Warning, "a repair's floor moved eigenvalues"},
-      {Code::VariancesRaised, "variances_raised", Tier::Warning,
-       "a repair raised variances (zero, negative) to its `min_diag` before it ran"},
       {Code::NoiseEstimate, "noise_estimate", Tier::Warning,
        "what the data say about their noise (too little, too much, unequal in A and B)"},
       {Code::NoiseModelNotice, "noise_model", Tier::Warning, "what a noise model says about the data"},
