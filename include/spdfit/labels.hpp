@@ -3,6 +3,7 @@
 // `spdfit nearest --header`) and a repair's JSON with its variables' names.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,13 @@ LabelledTable read_labelled_table(const std::string& path, const ReadOptions& op
 /// and a warning naming `source` is appended to `warnings`.
 std::vector<std::string> variable_names(const io::LabelledTable& file, const std::string& source,
                                         std::vector<Warning>* warnings);
+
+/// M (n x n, its rows and columns named by `names`) with its rows and columns reordered to the
+/// order of `to`, as pandas aligns two frames by label: a mask or weights file named by the same
+/// variables as the matrix they go with. Returns M as it is when either list is empty or they are
+/// equal; nothing (and `error` says why) when they are not the same names.
+std::optional<Eigen::MatrixXd> aligned_by_name(const Eigen::MatrixXd& M, const std::vector<std::string>& names,
+                                               const std::vector<std::string>& to, std::string* error = nullptr);
 
 /// X as a labelled CSV table, as pandas' to_csv and R's write.csv write one (io::write_csv with
 /// names; pandas' read_csv(..., index_col=0) reads the labels back): rows named by `row_names`,

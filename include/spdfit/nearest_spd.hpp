@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -34,6 +35,13 @@ struct EigenvalueFloor {
   bool is_valid(std::string* error = nullptr) const;
 };
 
+/// One start of a non-convex repair (nearest_correlation_rank): where it began and where it ended.
+struct NearestStart {
+  std::string name;       ///< "modified PCA of C", "modified PCA of the convex solution", "random 1", ...
+  double distance = 0.0;  ///< the distance of the local solution reached from it
+  int iterations = 0;     ///< the local method's steps from it
+};
+
 /// What a repair returns: the nearest matrix and how it was reached.
 struct NearestResult {
   Eigen::MatrixXd X;                   ///< the nearest matrix; exactly symmetric
@@ -46,6 +54,21 @@ struct NearestResult {
   bool converged = true;               ///< the Newton methods: gradient_norm met the stopping test (NearestCorrelationOptions::tolerance)
   bool cholesky_ok = false;            ///< whether X has a Cholesky factorization (positive definite)
   std::vector<Warning> warnings;   ///< asymmetric input, a floor that moved X more than the repair, ...
+  /// Which method ran: "eigenvalue clip", "Qi-Sun Newton", "Qi-Sun Newton with fixed entries",
+  /// "augmented Lagrangian (H weights)", "spectral projected gradient (rank)" or "spectral
+  /// projected gradient (factors)".
+  std::string method;
+  Eigen::Index fixed_entries = 0;  ///< with fixed entries: how many (pairs i < j, diagonal entries), all kept exactly
+  /// A proven lower bound on `distance` over every admissible matrix (NaN where none is
+  /// computed): the dual function's value (fixed entries, H weights), or the distance of the
+  /// convex relaxation without the rank (rank; a non-convex problem's gap is distance - lower_bound).
+  double lower_bound = std::numeric_limits<double>::quiet_NaN();
+  /// The optimality residual, relative (NaN where none is computed): the largest KKT residual of
+  /// the H-weighted problem; the norm of the projected (rank: Riemannian) gradient relative to
+  /// the gradient's scale for the rank and factor repairs, whose solutions are local.
+  double optimality_residual = std::numeric_limits<double>::quiet_NaN();
+  Eigen::MatrixXd F;                   ///< factors: the n x K loadings, X = diag(1 - ||f_i||^2) + F F^T
+  std::vector<NearestStart> starts;    ///< rank: every start tried, the best one's solution returned
 };
 using NearestSpdResult = NearestResult;
 

@@ -44,7 +44,7 @@ METHODS = _spdfit.METHODS
 __all__ = [
     "METHODS", "DataError", "Diagnostics", "Factor", "FitResult", "NearestSpdResult", "NoiseModel", "NumericalError",
     "LinearSystemResult", "SpdfitWarning", "area_criterion", "solve", "fit", "fit_all", "fit_files",
-    "least_squares", "nearest_spd", "nearest_correlation", "read_matrix",
+    "least_squares", "nearest_spd", "nearest_correlation", "nearest_covariance", "read_matrix",
     "read_table", "spde", "symmetric_procrustes", "total_least_squares", "total_least_squares_psd",
     "spd_total_least_squares", "psd_least_squares", "auto_fit", "PsdCertificate", "AutoReason", "Bootstrap", "Interval", "SpectrumUncertainty",
     "NearestCorrelationResult", "NearestResult", "REPAIR_FLOOR_DEFAULT",
@@ -1042,13 +1042,12 @@ def auto_fit(A, B, **options):
 REPAIR_FLOOR_DEFAULT = _spdfit.REPAIR_FLOOR_DEFAULT
 
 
-def _repair(entry, C, options):
-    """The one path of nearest_spd and nearest_correlation: the library's repair with the options
-    bound by name, its warnings as SpdfitWarning."""
-    result = _spdfit.nearest(_as_matrix("X" if entry == "nearest_spd" else "C", C), entry, options)
-    for message, code in zip(result.warnings, result.warning_codes):
-        _warn(f"{entry}: {_spdfit.spell_options(message)}", code)
-    return result
+def _repair(entry, C, options, full_output):
+    """The one path of nearest_spd, nearest_correlation and nearest_covariance (repair.py): the
+    library's repair with the options bound by name, its warnings as SpdfitWarning, pandas in and out."""
+    from . import repair
+    result, frame = repair._repair(entry, C, options)
+    return repair._answer(result, frame, full_output, options)
 
 
 @_takes_options("nearest_spd", given=("min_eig",))
@@ -1063,8 +1062,8 @@ def nearest_spd(X, min_eig=None, *, full_output=False, **options):
 
     Parameters
     ----------
-    X : array_like
-        The square matrix to repair.
+    X : array_like or pandas.DataFrame
+        The square matrix to repair (a DataFrame comes back as one, with its labels).
     min_eig : float, optional
         An absolute floor; min_eig=0 is the plain positive semidefinite projection.
     full_output : bool, default False
@@ -1073,7 +1072,7 @@ def nearest_spd(X, min_eig=None, *, full_output=False, **options):
 
     Returns
     -------
-    numpy.ndarray or NearestResult
+    numpy.ndarray, pandas.DataFrame or NearestResult
         The matrix, or with full_output=True a NearestResult (X, distance, clipped,
         min_eigenvalue_before, min_eig, iterations, gradient_norm, converged, cholesky_ok, warnings).
 
@@ -1109,8 +1108,7 @@ def nearest_spd(X, min_eig=None, *, full_output=False, **options):
     """
     if min_eig is not None:
         options["min_eig"] = min_eig
-    result = _repair("nearest_spd", X, options)
-    return result if full_output else result.X
+    return _repair("nearest_spd", X, options, full_output)
 
 
 @_takes_options("nearest_correlation")
@@ -1120,11 +1118,15 @@ def nearest_correlation(C, *, full_output=False, **options):
     Minimizes ||W^1/2 (X - C) W^1/2||_F over symmetric X with unit diagonal and every eigenvalue >=
     a floor (Higham 2002), W = diag(weights), by Qi and Sun's quadratically convergent Newton method
     on the dual (with Borsdorf and Higham's preconditioned conjugate gradients), not alternating
-    projections. The floor is an exact constraint. The diagonal of X is exactly 1.
+    projections. The floor is an exact constraint. The diagonal of X is exactly 1. ``fixed`` keeps
+    entries exactly (a mask, 0-based index pairs, or label pairs of a DataFrame), ``h_weights``
+    weights each entry (||H o (X - C)||_F), ``rank`` limits the rank, ``factors`` fits
+    X = diag(1 - ||f_i||^2) + F F^T (``factors_only``: F alone). A pandas DataFrame (``df.corr()``)
+    comes back as a DataFrame with its labels.
 
     Parameters
     ----------
-    C : array_like
+    C : array_like or pandas.DataFrame
         The square matrix to repair.
     full_output : bool, default False
         Return a NearestResult instead of the matrix.
@@ -1132,9 +1134,10 @@ def nearest_correlation(C, *, full_output=False, **options):
 
     Returns
     -------
-    numpy.ndarray or NearestResult
-        The matrix, or with full_output=True a NearestResult (X, distance, iterations,
-        gradient_norm, converged, clipped, min_eig, cholesky_ok, warnings).
+    numpy.ndarray, pandas.DataFrame or NearestResult
+        The matrix (F with factors_only; a DataFrame when C is one), or with full_output=True a
+        NearestResult (X, distance, iterations, gradient_norm, converged, clipped, min_eig,
+        cholesky_ok, warnings, method, lower_bound, optimality_residual, F, starts, fixed_entries).
 
     Raises
     ------
@@ -1162,8 +1165,7 @@ def nearest_correlation(C, *, full_output=False, **options):
     >>> r.converged, r.cholesky_ok
     (True, True)
     """
-    result = _repair("nearest_correlation", C, options)
-    return result if full_output else result.X
+    return _repair("nearest_correlation", C, options, full_output)
 
 
 def area_criterion(A, B, X):
@@ -1270,4 +1272,5 @@ def solve(A, b, *, threshold=None):
 
 # Submodules (imported last: they use the helpers above).
 from . import experiment, hexapod, linkage, physical  # noqa: E402
+from .repair import nearest_covariance  # noqa: E402
 from .factor import Factor  # noqa: E402

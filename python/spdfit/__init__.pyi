@@ -10,6 +10,8 @@ from . import hexapod as hexapod
 from . import linkage as linkage
 from . import physical as physical
 from . import factor as factor
+from . import repair as repair
+from .repair import nearest_covariance as nearest_covariance
 from .factor import Factor as Factor
 from ._errors import DataError as DataError, NumericalError as NumericalError, SpdfitWarning as SpdfitWarning
 from ._spdfit import (AutoReason as AutoReason, PsdCertificate as PsdCertificate, Diagnostics as Diagnostics, FitResult as FitResult,
@@ -46,13 +48,14 @@ def total_least_squares(A: npt.ArrayLike, B: npt.ArrayLike, **options: Any) -> F
 def total_least_squares_symmetric(A: npt.ArrayLike, B: npt.ArrayLike, **options: Any) -> FitResult: ...  # options: fit:tls-sym
 def total_least_squares_psd(A: npt.ArrayLike, B: npt.ArrayLike, **options: Any) -> FitResult: ...  # options: fit:tls-psd
 def spde(A: npt.ArrayLike, B: npt.ArrayLike, **options: Any) -> FitResult: ...  # options: fit:spde
+# The repairs return NumPy for an array, a pandas DataFrame for a DataFrame (pandas is optional: Any).
 @overload
-def nearest_spd(X: npt.ArrayLike, min_eig: Optional[float] = ..., *, full_output: Literal[False] = ..., **options: Any) -> npt.NDArray[np.float64]: ...  # options: nearest_spd
+def nearest_spd(X: Any, min_eig: Optional[float] = ..., *, full_output: Literal[False] = ..., **options: Any) -> Any: ...  # options: nearest_spd
 @overload
-def nearest_spd(X: npt.ArrayLike, min_eig: Optional[float] = ..., *, full_output: Literal[True], **options: Any) -> NearestResult: ...  # options: nearest_spd
+def nearest_spd(X: Any, min_eig: Optional[float] = ..., *, full_output: Literal[True], **options: Any) -> NearestResult: ...  # options: nearest_spd
 @overload
-def nearest_correlation(C: npt.ArrayLike, *, full_output: Literal[False] = ..., **options: Any) -> npt.NDArray[np.float64]: ...  # options: nearest_correlation
+def nearest_correlation(C: Any, *, full_output: Literal[False] = ..., **options: Any) -> Any: ...  # options: nearest_correlation
 @overload
-def nearest_correlation(C: npt.ArrayLike, *, full_output: Literal[True], **options: Any) -> NearestResult: ...  # options: nearest_correlation
+def nearest_correlation(C: Any, *, full_output: Literal[True], **options: Any) -> NearestResult: ...  # options: nearest_correlation
 def area_criterion(A: npt.ArrayLike, B: npt.ArrayLike, X: npt.ArrayLike) -> Optional[float]: ...
 def solve(A: npt.ArrayLike, b: npt.ArrayLike, *, threshold: Optional[float] = ...) -> LinearSystemResult: ...

@@ -97,15 +97,23 @@ void bind_estimators(py::module_& m) {
       py::arg("A"), py::arg("B"), py::arg("options"));
 
   m.attr("REPAIR_FLOOR_DEFAULT") = EigenvalueFloor::kRepairDefault;
-  // nearest_spd and nearest_correlation (`entry`): the repair their keyword arguments name.
+  // nearest_spd, nearest_correlation and nearest_covariance (`entry`): the repair their keyword
+  // arguments name, by the command's workflow (run_nearest), which reads the matrix options given
+  // as files. Python counts the pairs of `fixed` from 0. The result carries every warning (the
+  // files' readers' too).
   m.def(
       "nearest",
       [](const Eigen::MatrixXd& C, const std::string& entry, const py::dict& options) {
         std::vector<std::string_view> given;
-        const NearestRequest request = nearest_request(entry, options, given);
+        NearestCommand command;
+        command.matrix.values = C;
+        command.repair = nearest_request(entry, options, given);
+        command.repair.fixed_index_base = 0;
         check_nearest_request(given, python::entry(entry).unavailable);
         py::gil_scoped_release release;
-        return nearest(C, request);
+        NearestRun run = run_nearest(command);
+        run.result.warnings = std::move(run.warnings);
+        return run.result;
       },
       py::arg("C"), py::arg("entry"), py::arg("options"));
 

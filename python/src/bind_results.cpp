@@ -197,7 +197,7 @@ void bind_results(py::module_& m) {
 
 
   py::class_<NearestResult>(m, "NearestResult",
-                            "A repaired matrix and how it was reached (nearest_spd, nearest_correlation).")
+                            "A repaired matrix and how it was reached (nearest_spd, nearest_correlation, nearest_covariance).")
       .def_property_readonly("X", copied(&NearestResult::X), "the nearest matrix, exactly symmetric")
       .def_property_readonly("distance", copied(&NearestResult::distance),
                              "||X_in - X||_F (||W^1/2 (X_in - X) W^1/2||_F with weights)")
@@ -214,6 +214,25 @@ void bind_results(py::module_& m) {
                              "whether X has a Cholesky factorization (positive definite)")
       .def_property_readonly("warnings", warning_texts(&NearestResult::warnings))
       .def_property_readonly("warning_codes", warning_codes(&NearestResult::warnings), "each warning's code (spdfit.outcome_codes())")
+      .def_property_readonly("method", copied(&NearestResult::method), "which method ran")
+      .def_property_readonly("fixed_entries", copied(&NearestResult::fixed_entries),
+                             "entries kept exactly (pairs i < j; with a free diagonal, its kept entries too)")
+      .def_property_readonly("lower_bound", copied(&NearestResult::lower_bound),
+                             "a proven lower bound on distance (the dual's value; rank: the convex solution's "
+                             "distance); NaN where none is computed")
+      .def_property_readonly("optimality_residual", copied(&NearestResult::optimality_residual),
+                             "the relative KKT residual (h_weights) or stationarity residual (rank, factors); NaN "
+                             "where none is computed")
+      .def_property_readonly("F", copied(&NearestResult::F),
+                             "rank: X = F F^T; factors: X = diag(1 - ||f_i||^2) + F F^T (n x K); empty otherwise")
+      .def_property_readonly(
+          "starts",
+          [](const NearestResult& r) {
+            py::list out;
+            for (const NearestStart& s : r.starts) out.append(py::make_tuple(s.name, s.distance, s.iterations));
+            return out;
+          },
+          "rank: (start, distance, iterations) for every start tried")
       .def("__repr__", [](const NearestResult& r) { return "NearestResult\n" + report(r); })
       .def(pickle_json<NearestResult>("NearestResult", &exact_json<NearestResult>));
 }

@@ -48,8 +48,10 @@ const std::vector<Entry>& entries() {
       // A and B are positional; their columns of one file (a_cols, b_cols) are files' only.
       {"hexapod.identify", "identify", {}, {"a", "b", "a_cols", "b_cols"}},
       {"physical.identify", "physical_fit", {}, {}},
-      {"nearest_spd", "nearest", {}, {"corr"}},
+      {"nearest_spd", "nearest", {}, {"corr", "factors", "factors_only"}},
       {"nearest_correlation", "nearest", {"corr"}, {"keep_diag", "via_corr"}},
+      // The covariance repair keeps the variances; the correlation route (via_corr) is nearest_spd's.
+      {"nearest_covariance", "nearest", {"keep_diag"}, {"corr", "via_corr", "factors", "factors_only"}},
   };
   return list;
 }

@@ -108,9 +108,9 @@ void DelimitedParser::parse_line(const Line& line) {
         keep_header(line);
         if (index_mark) {
           drop_first_ = true;
-          warnings_.push_back(Warning(Code::FileNotice, source_ + ": the first column holds row labels (its header cell is empty, as pandas "
-                              "and R write an index): dropped; --no-index-col reads it as data (Python: "
-                              "index_col=False)"));
+          warnings_.push_back(Warning(Code::FileNotice, source_ + kIndexColumnNotice +
+                                      " (its header cell is empty, as pandas and R write an index): dropped; "
+                                      "--no-index-col reads it as data (Python: index_col=False)"));
         }
         if (pandas_names) {
           warnings_.push_back(Warning(Code::FileNotice, source_ + ":" + std::to_string(line.number) + ": the first line, " +

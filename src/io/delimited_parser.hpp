@@ -70,6 +70,9 @@ class DelimitedParser {
   /// row_names(): for the callers that show them (read_labelled_table).
   void keep_row_labels() { keep_row_labels_ = true; }
   const std::vector<std::string>& row_names() const { return row_names_; }
+  /// The text after the source's name of the notice that a first column was dropped as row
+  /// labels (read_labelled_table leaves it out when the labels are the column names).
+  static constexpr const char* kIndexColumnNotice = ": the first column holds row labels";
   /// What the parser decided for the user to know (a first column of row labels dropped).
   const std::vector<Warning>& warnings() const { return warnings_; }
   /// The values of the rows parsed since the caller last cleared them, row-major.

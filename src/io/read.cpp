@@ -1,6 +1,7 @@
 // Reading a matrix from a file: checks that the path is a readable regular file, reads it
 // (refusing binary files from their first bytes), then hands the bytes to the .npy or the
 // delimited-text parser.
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <filesystem>
@@ -170,6 +171,15 @@ Table read_table(const std::string& path, const ReadOptions& options) { return r
 LabelledTable read_labelled_table(const std::string& path, const ReadOptions& options) {
   LabelledTable out;
   out.table = read_bytes(path, options, &out.row_names);
+  // Row labels that are the column names are a labelled matrix's layout (df.cov().to_csv()), which
+  // the caller asked for: dropping them as labels is no news.
+  if (!out.row_names.empty() && out.row_names == out.table.column_names) {
+    auto& warnings = out.table.warnings;
+    const std::string notice = detail::DelimitedParser::kIndexColumnNotice;
+    warnings.erase(std::remove_if(warnings.begin(), warnings.end(),
+                                  [&](const Warning& w) { return w.text.find(notice) != std::string::npos; }),
+                   warnings.end());
+  }
   return out;
 }
 

@@ -21,6 +21,16 @@ Json nearest_json(const NearestResult& r, JsonStyle style) {
   out["converged"] = r.converged;
   out["cholesky"] = r.cholesky_ok;
   detail::put_warnings(out, r.warnings);
+  out["method"] = r.method;
+  out["fixed_entries"] = r.fixed_entries;
+  out["lower_bound"] = detail::number_json(r.lower_bound, style);
+  out["optimality_residual"] = detail::number_json(r.optimality_residual, style);
+  out["F"] = r.F.size() > 0 ? detail::matrix_json(r.F, style) : Json(nullptr);
+  Json starts = Json::array();
+  for (const NearestStart& s : r.starts) {
+    starts.push_back({{"start", s.name}, {"distance", detail::number_json(s.distance, style)}, {"iterations", s.iterations}});
+  }
+  out["starts"] = starts;
   return out;
 }
 }  // namespace
@@ -64,6 +74,27 @@ NearestResult from_json<NearestResult>(const std::string& text) {
   r.converged = detail::value_from<bool>(object, "converged", type);
   r.cholesky_ok = detail::value_from<bool>(object, "cholesky", type);
   r.warnings = detail::warnings_from(object, type);
+  // The structured repairs' fields (absent from results written before them).
+  if (detail::optional_field(object, "method")) r.method = detail::value_from<std::string>(object, "method", type);
+  if (detail::optional_field(object, "fixed_entries")) {
+    r.fixed_entries = detail::value_from<Eigen::Index>(object, "fixed_entries", type);
+  }
+  if (const Json* v = detail::optional_field(object, "lower_bound")) r.lower_bound = detail::number_from(*v, type + " 'lower_bound'");
+  if (const Json* v = detail::optional_field(object, "optimality_residual")) {
+    r.optimality_residual = detail::number_from(*v, type + " 'optimality_residual'");
+  }
+  if (const Json* v = detail::optional_field(object, "F"); v && !v->is_null()) {
+    r.F = detail::matrix_from(*v, type + " 'F'", r.X.rows());
+  }
+  if (const Json* v = detail::optional_field(object, "starts")) {
+    for (const Json& s : *v) {
+      NearestStart start;
+      start.name = detail::value_from<std::string>(s, "start", type);
+      start.distance = detail::number_from(detail::field(s, "distance", type), type + " 'starts'");
+      start.iterations = detail::value_from<int>(s, "iterations", type);
+      r.starts.push_back(start);
+    }
+  }
   return r;
 }
 

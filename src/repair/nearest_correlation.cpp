@@ -101,21 +101,6 @@ double weighted_distance(const Eigen::Ref<const MatrixXd>& X, const Eigen::Ref<c
   return columns.stableNorm();
 }
 
-// Throws std::invalid_argument when a variance (diagonal entry) is negative, or zero where
-// `zero_allowed` is false (`why` then says what needs it positive).
-void check_variances(const VectorXd& d, bool zero_allowed, const char* why = "") {
-  for (Index i = 0; i < d.size(); ++i) {
-    if (d(i) < 0.0) {
-      throw std::invalid_argument("diagonal entry " + std::to_string(i + 1) + " is " + detail::format_number(d(i)) +
-                                  ": a covariance's variances must be >= 0");
-    }
-    if (!zero_allowed && d(i) == 0.0) {
-      throw std::invalid_argument("diagonal entry " + std::to_string(i + 1) + " is 0, and " + why +
-                                  ": drop that variable, or give it a variance");
-    }
-  }
-}
-
 // The weights of the options, or all ones.
 VectorXd weights_or_ones(const NearestCorrelationOptions& options, Index n) {
   return options.weights.size() ? options.weights : VectorXd::Ones(n);
@@ -213,7 +198,7 @@ NearestResult repair(const Eigen::Ref<const MatrixXd>& C, FixedDiagonalProblem& 
       throw std::invalid_argument("the eigenvalue floor " + detail::format_number(f(i)) + " (" + p.option +
                                   ") is not below diagonal entry " + std::to_string(i + 1) + ", which is " +
                                   detail::format_number(p.d(i)) +
-                                  (p.d(i) == 0.0 ? " (a zero variance: drop that variable, or give it a variance)"
+                                  (p.d(i) == 0.0 ? " (a zero variance: drop that variable, give it a variance, or raise it with `min_diag`)"
                                                  : std::string(": lower ") + p.option +
                                                        ", or the diagonal cannot be kept"));
     }
@@ -299,14 +284,7 @@ NearestResult nearest_correlation(const Eigen::Ref<const MatrixXd>& C, const Nea
   const double floor = floor_of(options, prepared.lambda_max);
   // A covariance given for a correlation: its variances would be thrown away (and a small-scale
   // one becomes about I), more often a wrong option than intended.
-  const double off = (prepared.S.diagonal().array() - 1.0).abs().maxCoeff();
-  if (off > 1e-6) {
-    prepared.warnings.push_back(Warning(Code::Warning, "the diagonal is not 1 (it ranges from " +
-                                detail::format_number(prepared.S.diagonal().minCoeff()) + " to " +
-                                detail::format_number(prepared.S.diagonal().maxCoeff()) +
-                                "): it was repaired to a correlation matrix (unit diagonal); to keep a covariance's variances "
-                                "instead, repair it with its diagonal kept (`keep_diag` or `via_corr`)"));
-  }
+  if (auto w = detail::unit_diagonal_warning(prepared.S)) prepared.warnings.push_back(*w);
   FixedDiagonalProblem p{std::move(prepared.S), VectorXd::Ones(n), prepared.w, floor, false, option_of(options)};
   return repair(C, p, prepared, options);
 }
@@ -319,7 +297,7 @@ NearestResult nearest_keep_diagonal(const Eigen::Ref<const MatrixXd>& C, const N
   // variance whatever their scales, where one relative to C's largest eigenvalue can exceed the
   // smallest variance of a covariance whose variables have different units.
   const bool of_correlation = options.floor.relative && options.floor.value > 0.0;
-  check_variances(C.diagonal(), !of_correlation, "a relative floor (`min_eig_rel`) applies to the correlation matrix");
+  detail::check_variances(C.diagonal(), !of_correlation, "a relative floor (`min_eig_rel`) applies to the correlation matrix");
   Prepared prepared = prepare(C, options, VectorXd(), of_correlation);
   const double floor = floor_of(options, of_correlation ? prepared.correlation_max : prepared.lambda_max);
   VectorXd d = C.diagonal();  // the variances exactly as given (S's diagonal can differ for subnormals)
@@ -330,7 +308,7 @@ NearestResult nearest_keep_diagonal(const Eigen::Ref<const MatrixXd>& C, const N
 NearestResult nearest_via_correlation(const Eigen::Ref<const MatrixXd>& C, const NearestCorrelationOptions& options) {
   detail::check_repair_input(C, options.floor);
   const VectorXd variances = C.diagonal();  // those of C's symmetric part
-  check_variances(variances, false, "`via_corr` divides by the standard deviations");
+  detail::check_variances(variances, false, "`via_corr` divides by the standard deviations");
   double min_before = 0.0;
   {
     MatrixXd S = detail::symmetric_part(C);

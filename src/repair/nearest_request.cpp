@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <utility>
 
 #include "spdfit/labels.hpp"
@@ -18,6 +19,38 @@ double real(const OptionValue& v) { return std::get<double>(v); }
 
 // The options that need a Newton repair, and their message's list.
 const std::vector<std::string_view> kNewtonFlags = {"corr", "keep_diag", "via_corr"};
+// The options of an iterative repair: a fixed diagonal, kept entries or elementwise weights.
+const std::vector<std::string_view> kIterative = {"corr", "keep_diag", "via_corr", "fixed", "h_weights"};
+
+// A matrix option: the command line's FILE, an array in Python and MATLAB.
+Spec matrix(std::string_view name, std::string_view cli, std::string_view help,
+            void (*set)(NearestRequest&, const OptionValue&)) {
+  Spec spec;
+  spec.name = name;
+  spec.cli = cli;
+  spec.python = name;
+  spec.type = OptionType::Matrix;
+  spec.value_name = "FILE";
+  spec.help = help;
+  spec.set = set;
+  return spec;
+}
+
+// A count K of the rank and factor repairs.
+Spec count(std::string_view name, std::string_view cli, std::string_view help,
+           void (*set)(NearestRequest&, const OptionValue&), std::optional<OptionValue> (*get)(const NearestRequest&)) {
+  Spec spec;
+  spec.name = name;
+  spec.cli = cli;
+  spec.python = name;
+  spec.type = OptionType::Integer;
+  spec.value_name = "K";
+  spec.help = help;
+  spec.range = {1.0, 1e9};
+  spec.set = set;
+  spec.get = get;
+  return spec;
+}
 
 Spec flag(std::string_view name, std::string_view cli, std::string_view python, std::string_view help,
           void (*set)(NearestRequest&, const OptionValue&), std::optional<OptionValue> (*get)(const NearestRequest&)) {
@@ -115,9 +148,86 @@ std::vector<Spec> make_table() {
   weights.value_name = "FILE";
   weights.help = "With `corr`, `keep_diag` or `via_corr`: n positive diagonal weights w; minimizes "
                  "||W^1/2 (X - C) W^1/2||_F, W = diag(w)";
-  weights.needs = kNewtonFlags;
+  weights.needs = {"corr", "keep_diag", "via_corr", "fixed"};
+  weights.excludes = {"h_weights", "factors"};
   weights.set = [](NearestRequest& r, const OptionValue& v) { r.weights = std::get<MatrixInput>(v); };
   table.push_back(weights);
+
+  Spec fixed = matrix(
+      "fixed", "--fixed",
+      "Entries of X kept exactly (a trusted block): an n x n mask (1: kept, 0: free; symmetric) or index pairs i, j "
+      "as two columns (counted from 1), each keeping (i, j) and (j, i); the diagonal as `corr` or `keep_diag` say "
+      "(without them, the mask's diagonal entries are kept too). A kept block that is not positive semidefinite, or "
+      "kept entries no such matrix has, are data errors that say which",
+      [](NearestRequest& r, const OptionValue& v) { r.fixed = std::get<MatrixInput>(v); });
+  fixed.excludes = {"via_corr", "rank", "factors"};
+  table.push_back(fixed);
+
+  Spec h_weights = matrix(
+      "h_weights", "--h-weights",
+      "Elementwise weights H (n x n, symmetric, >= 0; 0: the entry is free, as for a pair never observed "
+      "together): minimizes ||H o (X - C)||_F (NAG g02aj), by an augmented Lagrangian method with Newton steps; "
+      "reports the dual's lower bound and the KKT residual",
+      [](NearestRequest& r, const OptionValue& v) { r.h_weights = std::get<MatrixInput>(v); });
+  h_weights.excludes = {"via_corr", "rank", "factors"};
+  table.push_back(h_weights);
+
+  Spec rank = count(
+      "rank", "--rank",
+      "The nearest correlation matrix of rank at most K (NAG g02ak; with `keep_diag`, the covariance with its "
+      "variances kept): a non-convex problem, solved by spectral projected gradients from several documented starts "
+      "(modified PCA of X and of the convex solution, random points); reports every start, the local optimality "
+      "residual and the convex solution's distance, a lower bound. Takes `weights`",
+      [](NearestRequest& r, const OptionValue& v) { r.rank = int(std::get<std::int64_t>(v)); },
+      [](const NearestRequest& r) -> std::optional<OptionValue> {
+        if (r.rank == 0) return std::nullopt;
+        return std::int64_t{r.rank};
+      });
+  rank.needs = {"corr", "keep_diag"};
+  rank.needs_message = "`rank` needs `corr` (the nearest correlation matrix of rank <= K) or `keep_diag` (the "
+                       "covariance of rank <= K with its variances kept)";
+  rank.excludes = {"min_eig", "min_eig_rel", "alpha", "factors"};
+  table.push_back(rank);
+
+  Spec factors = count(
+      "factors", "--factors",
+      "The nearest correlation matrix with K-factor structure X = diag(1 - ||f_i||^2) + F F^T, F n x K "
+      "(statsmodels' corr_nearest_factor, NAG g02ae), by spectral projected gradients from products of X with n x K "
+      "matrices only: for large n. Returns F as well (`factors_only`: F alone)",
+      [](NearestRequest& r, const OptionValue& v) { r.factors = int(std::get<std::int64_t>(v)); },
+      [](const NearestRequest& r) -> std::optional<OptionValue> {
+        if (r.factors == 0) return std::nullopt;
+        return std::int64_t{r.factors};
+      });
+  factors.needs = {"corr"};
+  factors.needs_message = "`factors` is a correlation matrix's structure (unit diagonal): it needs `corr`";
+  factors.excludes = {"keep_diag", "min_eig", "min_eig_rel", "alpha"};
+  table.push_back(factors);
+
+  Spec only = flag(
+      "factors_only", "--factors-only", "factors_only",
+      "With `factors`: F only (n x K), X not formed: no n x n matrix besides the input",
+      [](NearestRequest& r, const OptionValue& v) { r.factors_only = std::get<bool>(v); },
+      [](const NearestRequest& r) -> std::optional<OptionValue> { return r.factors_only; });
+  only.needs = {"factors"};
+  table.push_back(only);
+
+  Spec min_diag;
+  min_diag.name = "min_diag";
+  min_diag.cli = "--min-diag";
+  min_diag.python = "min_diag";
+  min_diag.type = OptionType::Real;
+  min_diag.value_name = "D";
+  min_diag.help = "Variances (diagonal entries) below D, zero or negative as pairwise deletion leaves them, are "
+                  "raised to D before the repair, with a warning naming them; without it, `keep_diag` and `via_corr` "
+                  "refuse such a diagonal";
+  min_diag.range = {0.0, std::numeric_limits<double>::infinity()};
+  min_diag.set = [](NearestRequest& r, const OptionValue& v) { r.min_diag = real(v); };
+  min_diag.get = [](const NearestRequest& r) -> std::optional<OptionValue> {
+    if (!r.min_diag) return std::nullopt;
+    return *r.min_diag;
+  };
+  table.push_back(min_diag);
 
   Spec iterations;
   iterations.name = "max_iterations";
@@ -125,13 +235,15 @@ std::vector<Spec> make_table() {
   iterations.python = "max_iter";
   iterations.type = OptionType::Integer;
   iterations.value_name = "N";
-  iterations.help = "With `corr`, `keep_diag` or `via_corr`: Newton iterations at most";
-  iterations.default_text = "200";
-  iterations.range = {1.0, 1e5};
-  iterations.needs = kNewtonFlags;
+  iterations.help = "With `corr`, `keep_diag`, `via_corr`, `fixed` or `h_weights`: Newton iterations at most (`rank`: "
+                    "gradient steps from each start; `factors`: gradient steps)";
+  iterations.default_text = "200; `rank`, `factors`: 2000";
+  iterations.range = {1.0, 1e6};
+  iterations.needs = kIterative;
   iterations.set = [](NearestRequest& r, const OptionValue& v) { r.max_iterations = int(std::get<std::int64_t>(v)); };
   iterations.get = [](const NearestRequest& r) -> std::optional<OptionValue> {
-    return std::int64_t{r.max_iterations};
+    if (!r.max_iterations) return std::nullopt;
+    return std::int64_t{*r.max_iterations};
   };
   table.push_back(iterations);
 
@@ -141,12 +253,17 @@ std::vector<Spec> make_table() {
   tolerance.python = "tol";
   tolerance.type = OptionType::Real;
   tolerance.value_name = "NUMBER";
-  tolerance.help = "With `corr`, `keep_diag` or `via_corr`: stop when ||diag(X) - d||_2 <= tol sqrt(n) max(d)";
-  tolerance.default_text = "1e-10";
+  tolerance.help = "With `corr`, `keep_diag` or `via_corr`: stop when ||diag(X) - d||_2 <= tol sqrt(n) max(d) (`fixed`: "
+                   "the kept entries' residual; `h_weights`: the relative KKT residuals; `rank`, `factors`: the "
+                   "relative stationarity residual)";
+  tolerance.default_text = "1e-10; `rank`, `factors`: 1e-9";
   tolerance.range = {0.0, std::numeric_limits<double>::infinity(), true, false};
-  tolerance.needs = kNewtonFlags;
+  tolerance.needs = kIterative;
   tolerance.set = [](NearestRequest& r, const OptionValue& v) { r.tolerance = real(v); };
-  tolerance.get = [](const NearestRequest& r) -> std::optional<OptionValue> { return r.tolerance; };
+  tolerance.get = [](const NearestRequest& r) -> std::optional<OptionValue> {
+    if (!r.tolerance) return std::nullopt;
+    return *r.tolerance;
+  };
   table.push_back(tolerance);
   return table;
 }
@@ -155,21 +272,51 @@ std::vector<Spec> make_table() {
 
 EigenvalueFloor NearestRequest::floor() const { return EigenvalueFloor::chosen(min_eig, min_eig_rel, alpha.has_value()); }
 
-NearestCorrelationOptions NearestRequest::correlation_options() const {
-  NearestCorrelationOptions options;
-  options.floor = floor();
-  if (weights.from_file()) throw std::invalid_argument("the weights' file is read by run_nearest: give their values");
-  const Eigen::MatrixXd& w = weights.values;
+namespace {
+
+// A matrix option's values: std::invalid_argument while it is still a file (run_nearest reads it).
+const Eigen::MatrixXd& values_of(const MatrixInput& input, const char* option) {
+  if (input.from_file()) {
+    throw std::invalid_argument(std::string("the file of `") + option + "` is read by run_nearest: give its values");
+  }
+  return input.values;
+}
+
+// The diagonal weights as a vector: InputError unless one row or one column.
+Eigen::VectorXd weight_vector(const MatrixInput& weights) {
+  const Eigen::MatrixXd& w = values_of(weights, "weights");
   if (w.size() > 0 && w.rows() != 1 && w.cols() != 1) {
     throw InputError("the weights are " + std::to_string(w.rows()) + "x" + std::to_string(w.cols()) +
                          ": give one per row of X, as one column or one row",
                      Code::DataShape, "weights");
   }
-  if (w.size() > 0) options.weights = Eigen::Map<const Eigen::VectorXd>(w.data(), w.size());
+  return Eigen::Map<const Eigen::VectorXd>(w.data(), w.size());
+}
+
+}  // namespace
+
+NearestCorrelationOptions NearestRequest::correlation_options() const {
+  NearestCorrelationOptions options;
+  options.floor = floor();
+  options.weights = weight_vector(weights);
   options.alpha = alpha.value_or(options.alpha);
-  options.max_iterations = max_iterations;
-  options.tolerance = tolerance;
+  options.max_iterations = max_iterations.value_or(options.max_iterations);
+  options.tolerance = tolerance.value_or(options.tolerance);
   return options;
+}
+
+NearestLowRankOptions NearestRequest::low_rank_options() const {
+  NearestLowRankOptions options;
+  options.weights = weight_vector(weights);
+  options.keep_diagonal = keep_diag && !corr;
+  options.max_iterations = max_iterations.value_or(options.max_iterations);
+  options.tolerance = tolerance.value_or(options.tolerance);
+  options.form_x = !factors_only;
+  return options;
+}
+
+DiagonalRule NearestRequest::diagonal_rule() const {
+  return corr ? DiagonalRule::Unit : keep_diag ? DiagonalRule::Kept : DiagonalRule::Free;
 }
 
 const std::vector<OptionSpec<NearestRequest>>& nearest_option_table() {
@@ -182,12 +329,40 @@ void check_nearest_request(const std::vector<std::string_view>& given,
   check_option_combination(nearest_option_table(), given, unavailable);
 }
 
-NearestResult nearest(const Eigen::Ref<const Eigen::MatrixXd>& C, const NearestRequest& request) {
-  if (!request.newton()) return nearest_spd(C, request.floor());
+namespace {
+
+NearestResult repair(const Eigen::Ref<const Eigen::MatrixXd>& C, const NearestRequest& request) {
+  if (request.factors > 0) return nearest_correlation_factors(C, request.factors, request.low_rank_options());
+  if (request.rank > 0) return nearest_correlation_rank(C, request.rank, request.low_rank_options());
+  if (request.structured()) {
+    NearestStructure structure;
+    structure.fixed = values_of(request.fixed, "fixed");
+    structure.index_base = request.fixed_index_base;
+    structure.h_weights = values_of(request.h_weights, "h_weights");
+    return nearest_structured(C, request.diagonal_rule(), structure, request.correlation_options());
+  }
+  if (!request.newton()) {
+    NearestResult result = nearest_spd(C, request.floor());
+    result.method = "eigenvalue clip";
+    return result;
+  }
   const NearestCorrelationOptions options = request.correlation_options();
-  return request.corr        ? nearest_correlation(C, options)
-         : request.keep_diag ? nearest_keep_diagonal(C, options)
-                             : nearest_via_correlation(C, options);
+  NearestResult result = request.corr        ? nearest_correlation(C, options)
+                         : request.keep_diag ? nearest_keep_diagonal(C, options)
+                                             : nearest_via_correlation(C, options);
+  result.method = "Qi-Sun Newton";
+  return result;
+}
+
+}  // namespace
+
+NearestResult nearest(const Eigen::Ref<const Eigen::MatrixXd>& C, const NearestRequest& request) {
+  if (!request.min_diag) return repair(C, request);
+  std::vector<Warning> raised;
+  const Eigen::MatrixXd floored = raise_variances(C, *request.min_diag, raised);
+  NearestResult result = repair(floored, request);
+  result.warnings.insert(result.warnings.begin(), raised.begin(), raised.end());
+  return result;
 }
 
 namespace {
@@ -224,6 +399,34 @@ bool counts_up(const Eigen::MatrixXd& X) {
     if (X(0, j) != X(0, 0) + static_cast<double>(j) || X(0, j) != std::floor(X(0, j))) return false;
   }
   return true;
+}
+
+// A matrix option's file (`fixed`'s mask or pairs, `h_weights`' H), named by the same variables as
+// X when it has names (a labelled matrix as pandas writes one: reordered to X's order), checked by
+// the library's rule for an n x n matrix (NearestStructure::is_valid) with the file named.
+Eigen::MatrixXd read_structure(const std::string& path, std::string_view option, Eigen::Index n, DiagonalRule rule,
+                               const std::vector<std::string>& x_names, const io::ReadOptions& read,
+                               std::vector<Warning>& warnings) {
+  io::LabelledTable labelled = io::read_labelled_table(path, read);
+  warnings.insert(warnings.end(), labelled.table.warnings.begin(), labelled.table.warnings.end());
+  const std::vector<std::string> names = variable_names(labelled, path, &warnings);
+  Eigen::MatrixXd M = std::move(labelled.table.values);
+  if (M.rows() == n && M.cols() == n) {  // a mask or weights (not a list of pairs)
+    std::string error;
+    std::optional<Eigen::MatrixXd> aligned = aligned_by_name(M, names, x_names, &error);
+    if (!aligned) throw io::DataError(path, 0, 0, error, Code::DataShape);
+    M = std::move(*aligned);
+  }
+  NearestStructure structure;
+  (option == "fixed" ? structure.fixed : structure.h_weights) = M;
+  std::string error;
+  if (!structure.is_valid(n, rule, &error)) {
+    // A matrix of another size is DataShape (`fixed` also takes k index pairs: k x 2), its values DataValue.
+    const bool square = M.rows() == n && M.cols() == n;
+    const bool shape = option == "fixed" ? !square && M.cols() != 2 : !square;
+    throw io::DataError(path, 0, 0, error, shape ? Code::DataShape : Code::DataValue);
+  }
+  return M;
 }
 
 }  // namespace
@@ -276,6 +479,14 @@ NearestRun run_nearest(const NearestCommand& command) {
     std::string error;
     if (!weighted.is_valid(n, &error)) throw io::DataError(command.repair.weights.path, 0, 0, error, Code::DataValue);
     run.repair.weights = MatrixInput{{}, W};
+  }
+  for (MatrixInput* input : {&run.repair.fixed, &run.repair.h_weights}) {
+    if (!input->from_file()) continue;
+    const std::string_view option = input == &run.repair.fixed ? "fixed" : "h_weights";
+    *input = MatrixInput{{}, read_structure(input->path, option, X.rows(), run.repair.diagonal_rule(), run.names,
+                                            command.read, run.warnings)};
+    // A file's pairs count from 1 whoever names the file (Python counts its arrays' from 0).
+    if (option == "fixed") run.repair.fixed_index_base = 1;
   }
   try {
     run.result = nearest(X, run.repair);

@@ -64,6 +64,39 @@ double resolve_floor(EigenvalueFloor floor, double lambda_max) {
   return floor.value * lambda_max;
 }
 
+void check_variances(const Eigen::VectorXd& d, bool zero_allowed, const char* why) {
+  std::string listed;
+  int count = 0;
+  bool zero = false, negative = false;
+  for (Eigen::Index i = 0; i < d.size(); ++i) {
+    if (d(i) < 0.0 || (!zero_allowed && d(i) == 0.0)) {
+      if (count < 10) listed += (count == 0 ? "" : ", ") + std::to_string(i + 1) + " (" + format_number(d(i)) + ")";
+      ++count;
+      zero = zero || d(i) == 0.0;
+      negative = negative || d(i) < 0.0;
+    }
+  }
+  if (count == 0) return;
+  if (count > 10) listed += ", ... (" + std::to_string(count) + " in all)";
+  const std::string what = negative && !zero ? "negative" : zero_allowed ? "negative" : "not positive";
+  throw InputError(std::string(count == 1 ? "diagonal entry " : "diagonal entries ") + listed + " " +
+                       (count == 1 ? "is " : "are ") + what + ": a covariance's variances must be " +
+                       (zero_allowed ? ">= 0" : std::string("> 0 here (") + why + ")") +
+                       "; raise them with `min_diag` (for example 1e-8 times the largest variance), or drop "
+                       "those variables",
+                   Code::DataValue);
+}
+
+std::optional<Warning> unit_diagonal_warning(const Eigen::Ref<const Eigen::MatrixXd>& S) {
+  const double off = (S.diagonal().array() - 1.0).abs().maxCoeff();
+  if (!(off > 1e-6)) return std::nullopt;
+  return Warning(Code::Warning,
+                 "the diagonal is not 1 (it ranges from " + format_number(S.diagonal().minCoeff()) + " to " +
+                     format_number(S.diagonal().maxCoeff()) +
+                     "): it was repaired to a correlation matrix (unit diagonal); to keep a covariance's variances "
+                     "instead, repair it with its diagonal kept (`keep_diag` or `via_corr`)");
+}
+
 std::optional<Warning> floor_warning(double floor, double floor_change, double repair, double scale,
                                          double lambda_max, bool of_correlation) {
   if (!(floor_change > repair) || !(floor_change > 1e-6 * scale)) return std::nullopt;

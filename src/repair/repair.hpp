@@ -28,6 +28,15 @@ double resolve_floor(EigenvalueFloor floor, double lambda_max);
 /// The option a floor came from, in backticks: `min_eig_rel` for a relative one, else `min_eig`.
 const char* floor_option(EigenvalueFloor floor);
 
+/// Throws std::invalid_argument when a variance (diagonal entry) is negative, or zero where
+/// `zero_allowed` is false, listing every such entry (1-based, with its value) and naming
+/// `min_diag`, the option that raises them; `why` says what needs them positive.
+void check_variances(const Eigen::VectorXd& d, bool zero_allowed, const char* why);
+
+/// A warning when the diagonal of the symmetric S is not 1 to 1e-6 (a covariance given for a
+/// correlation: it is repaired to one all the same).
+std::optional<Warning> unit_diagonal_warning(const Eigen::Ref<const Eigen::MatrixXd>& S);
+
 /// Whether the floor's own change of the matrix (`floor_change`, in the distance's norm) calls for a
 /// warning: more than the repair itself (`repair`) and more than rounding of `scale` (the input's
 /// norm). The warning then names the floor and the largest eigenvalue of the matrix it applies to

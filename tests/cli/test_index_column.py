@@ -70,11 +70,18 @@ def test_no_index_col_keeps_the_first_column_as_data(spdfit, pandas_files):
 
 
 def test_covariance_from_pandas_cov(spdfit, tmp_path):
+    # df.cov().to_csv(): row labels that are the column names are a labelled matrix, which nearest
+    # reads as such without a word; other row labels are still dropped with the notice.
     path = tmp_path / "C.csv"
     path.write_text(",x1,x2\nx1,2.0,0.5\nx2,0.5,-1.0\n")
     result = spdfit("nearest", "--min-eig", "0", str(path))
     assert result.returncode == 0, result.stderr
     assert np.loadtxt(result.stdout.splitlines(), delimiter=",").shape == (2, 2)
+    assert "the first column holds row labels" not in result.stderr
+    other = tmp_path / "D.csv"
+    other.write_text(",x1,x2\na,2.0,0.5\nb,0.5,-1.0\n")
+    result = spdfit("nearest", "--min-eig", "0", str(other))
+    assert result.returncode == 0, result.stderr
     assert "the first column holds row labels" in result.stderr
 
 
