@@ -110,8 +110,8 @@ TEST(OptionTable, CombinationRules) {
   EXPECT_EQ(message_of([&] { check_fit_request(request, {"threads", "stream"}); }), "");
   EXPECT_EQ(message_of([&] { check_nearest_request({"min_eig", "min_eig_rel"}); }),
             "give `min_eig` or `min_eig_rel`, not both");
-  EXPECT_EQ(message_of([&] { check_nearest_request({"weights"}); }), "`weights` needs `corr`, `keep_diag` or `via_corr`");
-  EXPECT_EQ(message_of([&] { check_nearest_request({"weights"}, {"corr"}); }), "`weights` needs `keep_diag` or `via_corr`");
+  EXPECT_EQ(message_of([&] { check_nearest_request({"weights"}); }), "`weights` needs `corr`, `keep_diag`, `via_corr` or `fixed`");
+  EXPECT_EQ(message_of([&] { check_nearest_request({"weights"}, {"corr"}); }), "`weights` needs `keep_diag`, `via_corr` or `fixed`");
   EXPECT_EQ(message_of([&] { check_nearest_request({"weights", "keep_diag"}); }), "");
 }
 
