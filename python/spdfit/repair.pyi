@@ -1,6 +1,7 @@
 """Type stubs for spdfit.repair (see repair.py for the documentation)."""
-from typing import Any, Literal, overload
+from typing import Any, Literal, Optional, overload
 
+import numpy.typing as npt
 
 from ._spdfit import NearestResult
 

@@ -69,28 +69,32 @@ for k = 1:size(cases, 1)
 end
 
 % nearest's structured repairs: a mask (1-based pairs as in MATLAB), H weights, rank, factors,
-% each against the command line on the same files.
+% each against the command line on the same files, on C's correlation matrix R (C's kept entry
+% -1.9 with a unit diagonal has no semidefinite completion).
+R = C / 2;
+write_csv(fullfile(work, 'R.csv'), R);
 mask = zeros(4); mask(1, 2) = 1; mask(2, 1) = 1;
 H = [1 2 1 1; 2 1 0.5 0; 1 0.5 1 1; 1 0 1 1];
 write_csv(fullfile(work, 'mask.csv'), mask);
 write_csv(fullfile(work, 'H.csv'), H);
-Xp = spdfit.nearest(C, 'Corr', true, 'Fixed', [1 2]);
-Xm = spdfit.nearest(C, 'Corr', true, 'Fixed', mask);
-assert(isequal(Xp, Xm) && Xp(1, 2) == C(1, 2), 'nearest Fixed: pairs and mask, the entry kept');
-ref = cli_json(cli, sprintf('nearest --corr --fixed "%s" --json "%s"', fullfile(work, 'mask.csv'), fullfile(work, 'C.csv')));
+Xp = spdfit.nearest(R, 'Corr', true, 'Fixed', [1 2]);
+Xm = spdfit.nearest(R, 'Corr', true, 'Fixed', mask);
+assert(isequal(Xp, Xm) && Xp(1, 2) == R(1, 2), 'nearest Fixed: pairs and mask, the entry kept');
+ref = cli_json(cli, sprintf('nearest --corr --fixed "%s" --json "%s"', fullfile(work, 'mask.csv'), fullfile(work, 'R.csv')));
 assert_close(Xm, ref.X, 1e-13, 'nearest Fixed');
-[Xh, info] = spdfit.nearest(C, 'Corr', true, 'HWeights', H);
-ref = cli_json(cli, sprintf('nearest --corr --h-weights "%s" --json "%s"', fullfile(work, 'H.csv'), fullfile(work, 'C.csv')));
+[Xh, info] = spdfit.nearest(R, 'Corr', true, 'HWeights', H);
+ref = cli_json(cli, sprintf('nearest --corr --h-weights "%s" --json "%s"', fullfile(work, 'H.csv'), fullfile(work, 'R.csv')));
 assert_close(Xh, ref.X, 1e-13, 'nearest HWeights');
-assert(info.lower_bound <= info.distance, 'nearest HWeights lower bound');
-[Xr, info] = spdfit.nearest(C, 'Corr', true, 'Rank', 2);
+% A bound to the augmented Lagrangian's tolerance (tests/unit/test_nearest_structured.cpp).
+assert(info.lower_bound <= info.distance * (1 + 1e-9), 'nearest HWeights lower bound');
+[Xr, info] = spdfit.nearest(R, 'Corr', true, 'Rank', 2);
 assert(rank(Xr, 1e-10) == 2 && numel(info.starts) == 5, 'nearest Rank');
-F = spdfit.nearest(C, 'Corr', true, 'Factors', 2, 'FactorsOnly', true);
-[~, info] = spdfit.nearest(C, 'Corr', true, 'Factors', 2);
+F = spdfit.nearest(R, 'Corr', true, 'Factors', 2, 'FactorsOnly', true);
+[~, info] = spdfit.nearest(R, 'Corr', true, 'Factors', 2);
 assert_close(F, info.F, 0, 'nearest FactorsOnly returns F');
-expect_error(@() spdfit.nearest(C, 'Corr', true, 'Rank', 2, 'Fixed', [1 2]), 'spdfit:UsageError', 'Rank');
-expect_error(@() spdfit.nearest(C, 'Corr', true, 'Fixed', 0.5 * ones(4)), 'spdfit:DataError', 'Fixed');
-expect_error(@() spdfit.nearest(C, 'Corr', true, 'Rank', 5), 'spdfit:DataError', 'Rank');
+expect_error(@() spdfit.nearest(R, 'Corr', true, 'Rank', 2, 'Fixed', [1 2]), 'spdfit:UsageError', 'Rank');
+expect_error(@() spdfit.nearest(R, 'Corr', true, 'Fixed', 0.5 * ones(4)), 'spdfit:DataError', 'Fixed');
+expect_error(@() spdfit.nearest(R, 'Corr', true, 'Rank', 5), 'spdfit:DataError', 'Rank');
 
 % solve, with a rank-deficient A.
 As = [1 2 3; 2 4 6; 1 0 1; 0 1 1];

@@ -57,6 +57,7 @@ PYTHON_BY_HAND = {
     ("physical.py", "mass_matrix"): {"mass", "center_of_mass", "inertia"},
     ("physical.py", "inertia_repair"): {"min_eig_rel"},
     ("physical.py", "inertia_repair_urdf"): {"min_eig_rel", "source"},
+    ("repair.py", "nearest_covariance"): {"full_output"},
 }
 
 
