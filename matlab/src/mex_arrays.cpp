@@ -1,6 +1,6 @@
 #include "mex_arrays.hpp"
 
-#include "mex_options.hpp"
+#include "mex_pairs.hpp"
 
 #include <cmath>
 #include <cstdint>

@@ -14,7 +14,7 @@
 
 #include "mex.h"
 #include "mex_arrays.hpp"
-#include "mex_options.hpp"
+#include "mex_pairs.hpp"
 #include "spdfit/fit.hpp"
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/hexapod/identify.hpp"

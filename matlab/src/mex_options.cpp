@@ -5,7 +5,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "mex_arrays.hpp"
 #include "spdfit/fit_request.hpp"
 #include "spdfit/hexapod/identify_request.hpp"
 #include "spdfit/nearest_request.hpp"

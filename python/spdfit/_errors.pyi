@@ -1,10 +1,12 @@
 """Type stubs for spdfit._errors (see _errors.py for the documentation)."""
 from typing import Dict, Optional, Type
 
-class DataError(ValueError): ...
+class DataError(ValueError):
+    code: str
 
 class NumericalError(RuntimeError):
     result: Optional[object]
+    code: str
     def __init__(self, message: str, result: Optional[object] = ...) -> None: ...
 
 class SpdfitWarning(UserWarning): ...

@@ -79,7 +79,10 @@ void bind_outcome(py::module_& m) {
       const Code code = code_of(e);
       const std::string message = spell_options(e.what(), Frontend::Python);
       const py::object cls = exception_class(code);
-      PyErr_SetString(cls.ptr(), message.c_str());
+      // The instance carries its code's name ("option_value", "data_shape", ...), as warnings do.
+      py::object error = cls(message);
+      error.attr("code") = std::string(code_info(code).name);
+      PyErr_SetObject(cls.ptr(), error.ptr());
     }
   });
 }

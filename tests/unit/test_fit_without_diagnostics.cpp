@@ -87,10 +87,11 @@ TEST(FitWithoutReportedDiagnostics, OnlyWhatIsReportedAloneIsLeftOut) {
       EXPECT_EQ(without.diagnostics.min_eigenvalue, full.diagnostics.min_eigenvalue) << name;
       EXPECT_EQ(without.diagnostics.chosen_method, full.diagnostics.chosen_method) << name;
       // The warnings are the full run's without the one about the noise estimate.
-      std::vector<std::string> expected;
+      std::vector<Warning> expected;
       bool warned = false;
-      for (const std::string& w : full.warnings) {
-        if (w.rfind("the noise estimate (noise_sigma) rests on", 0) == 0) {
+      for (const Warning& w : full.warnings) {
+        if (w.text.rfind("the noise estimate (noise_sigma) rests on", 0) == 0) {
+          EXPECT_EQ(w.code, Code::NoiseEstimate) << name;
           warned = true;
         } else {
           expected.push_back(w);

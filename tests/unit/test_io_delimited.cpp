@@ -149,7 +149,7 @@ TEST(IoDelimited, HeaderWithEmptyIndexName) {
   EXPECT_EQ(table.column_names, (std::vector<std::string>{"a", "b"}));
   EXPECT_EQ(table.values, (MatrixXd(2, 2) << 1.5, 2.5, 3.5, 4.5).finished());
   ASSERT_EQ(table.warnings.size(), 1u);
-  EXPECT_NE(table.warnings[0].find("A.csv: the first column holds row labels"), std::string::npos);
+  EXPECT_NE(table.warnings[0].text.find("A.csv: the first column holds row labels"), std::string::npos);
 }
 
 TEST(IoDelimited, IndexColumnsOfPandasAndR) {

@@ -46,7 +46,8 @@ TEST(LeastSquares, RankDeficientAGivesTheMinimumNormSolution) {
   EXPECT_EQ(r.diagnostics.rank_a, 3);
   EXPECT_LT(relative_error(r.X, pseudo_inverse_solution(A, B, 20 * kEps)), 1e-12);
   ASSERT_EQ(r.warnings.size(), 1u);
-  EXPECT_NE(r.warnings[0].find("rank-deficient"), std::string::npos);
+  EXPECT_NE(r.warnings[0].text.find("rank-deficient"), std::string::npos);
+  EXPECT_EQ(r.warnings[0].code, Code::RankDeficient);
   // Minimum norm: X has no component in the null space of A.
   Eigen::JacobiSVD<MatrixXd> svd(A, Eigen::ComputeFullV);
   EXPECT_LT((svd.matrixV().rightCols(2).transpose() * r.X).norm(), 1e-12 * r.X.norm());

@@ -90,7 +90,7 @@ TEST(NearestCorrelation, WarnsWhenCIsNotSymmetric) {
   C(0, 1) = 0.5;
   const NearestCorrelationResult r = nearest_correlation(C);
   ASSERT_EQ(r.warnings.size(), 1u);
-  EXPECT_NE(r.warnings[0].find("not symmetric"), std::string::npos);
+  EXPECT_NE(r.warnings[0].text.find("not symmetric"), std::string::npos);
   EXPECT_NEAR(r.X(0, 1), 0.25, 1e-12);
 }
 
@@ -256,7 +256,7 @@ TEST(NearestCorrelation, WarnsWhenTheFloorDominates) {
   o.floor = EigenvalueFloor::absolute(0.5);
   const NearestResult r = nearest_correlation(R, o);
   ASSERT_EQ(r.warnings.size(), 1u);
-  EXPECT_NE(r.warnings[0].find("more than the repair itself"), std::string::npos);
+  EXPECT_NE(r.warnings[0].text.find("more than the repair itself"), std::string::npos);
   o.floor = EigenvalueFloor::relative_to_largest(EigenvalueFloor::kRepairDefault);
   EXPECT_TRUE(nearest_correlation(R, o).warnings.empty());
   EXPECT_TRUE(nearest_correlation(R, o).cholesky_ok);

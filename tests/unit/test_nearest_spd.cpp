@@ -133,7 +133,7 @@ TEST(NearestSpd, RelativeFloorFollowsTheScale) {
   EXPECT_TRUE(r.cholesky_ok);
   // Only the note of the clip: how many eigenvalues were raised, to which floor.
   ASSERT_EQ(r.warnings.size(), 1u);
-  EXPECT_EQ(r.warnings[0], std::to_string(r.clipped) + " eigenvalue(s) of the symmetric part were below " +
+  EXPECT_EQ(r.warnings[0].text, std::to_string(r.clipped) + " eigenvalue(s) of the symmetric part were below " +
                                format_number(r.min_eig) + " (1e-08 x the largest eigenvalue) and were raised to it");
   EXPECT_EQ(r.clipped, (eig.eigenvalues().array() < floor).count());
   const NearestSpdResult tiny = nearest_spd(X * std::ldexp(1.0, -40), EigenvalueFloor::relative_to_largest(1e-8));
@@ -152,15 +152,16 @@ TEST(NearestSpd, WarnsWhenTheFloorMovesMoreThanTheRepair) {
   const MatrixXd X = Generator::symmetrize(g.gaussian(6, 6)) * 1e-8;
   const NearestSpdResult r = nearest_spd(X, 1e-6);
   ASSERT_EQ(r.warnings.size(), 2u);  // and the clip's note, which every clip gives
-  EXPECT_NE(r.warnings[0].find("more than the repair itself"), std::string::npos);
-  EXPECT_EQ(r.warnings[1], "6 eigenvalue(s) of the symmetric part were below 1e-06 and were raised to it");
+  EXPECT_NE(r.warnings[0].text.find("more than the repair itself"), std::string::npos);
+  EXPECT_EQ(r.warnings[1].text, "6 eigenvalue(s) of the symmetric part were below 1e-06 and were raised to it");
+  EXPECT_EQ(r.warnings[1].code, Code::EigenvaluesRaised);
   // floor 0: no floor, no floor warning; the clip's note only
   ASSERT_EQ(nearest_spd(X).warnings.size(), 1u);
-  EXPECT_NE(nearest_spd(X).warnings[0].find("were below 0 and were raised to it"), std::string::npos);
+  EXPECT_NE(nearest_spd(X).warnings[0].text.find("were below 0 and were raised to it"), std::string::npos);
   MatrixXd asymmetric = MatrixXd::Identity(3, 3);
   asymmetric(0, 1) = 0.1;
   ASSERT_EQ(nearest_spd(asymmetric).warnings.size(), 1u);
-  EXPECT_NE(nearest_spd(asymmetric).warnings[0].find("not symmetric"), std::string::npos);
+  EXPECT_NE(nearest_spd(asymmetric).warnings[0].text.find("not symmetric"), std::string::npos);
 }
 
 // The one rule for which floor a repair uses (the CLI's nearest and Python share it).

@@ -242,7 +242,7 @@ TEST(MaximumLikelihood, ExactAIsWeightedLeastSquaresOverTheSemidefiniteCone) {
     if (indefinite) {
       EXPECT_LT(*ml.diagnostics.min_eigenvalue, 1e-9 * *ml.diagnostics.max_eigenvalue);
       ASSERT_FALSE(ml.warnings.empty());
-      EXPECT_TRUE(contains(ml.warnings.back(), "boundary"));
+      EXPECT_TRUE(contains(ml.warnings.back().text, "boundary"));
       // The certificate reports the weighted problem's conditions.
       ASSERT_TRUE(psd.diagnostics.certificate);
       EXPECT_GE(psd.diagnostics.certificate->dual_min_eig, -1e-9 * p.A.norm() / p.B.norm());
@@ -362,12 +362,12 @@ TEST(WeightedLeastSquares, ProcrustesAndPsdLsAreWeightedByTheNoiseInB) {
   const FitResult noisy_a = psd_least_squares(p.A, p.B, with_noise(NoiseModel::from_std(kStdA3, kStdB3)));
   ASSERT_TRUE(noisy_a.ok());
   ASSERT_FALSE(noisy_a.warnings.empty());
-  EXPECT_TRUE(contains(noisy_a.warnings.back(), "`noise_std_a`")) << noisy_a.warnings.back();
+  EXPECT_TRUE(contains(noisy_a.warnings.back().text, "`noise_std_a`")) << noisy_a.warnings.back().text;
   // ls is A^+ B whatever the weight (bit for bit), with the same warning when A has noise.
   const FitResult ls = fit(p.A, p.B, Method::LeastSquares, with_noise(NoiseModel::from_std(kStdA3, kStdB3)));
   EXPECT_EQ(ls.X, fit(p.A, p.B, Method::LeastSquares).X);
   ASSERT_FALSE(ls.warnings.empty());
-  EXPECT_TRUE(contains(ls.warnings.back(), "ls models noise in B only"));
+  EXPECT_TRUE(contains(ls.warnings.back().text, "ls models noise in B only"));
 }
 
 // ---- what each method needs ------------------------------------------------------------------
@@ -415,7 +415,7 @@ TEST(NoiseModelFits, FitAllRunsWhatCannotUseTheModelWithoutItAndSaysSo) {
     if (r.method == Method::Spde) {
       EXPECT_FALSE(r.diagnostics.noise_model);
       ASSERT_FALSE(r.warnings.empty());
-      EXPECT_TRUE(contains(r.warnings.back(), "spde ran without the noise model")) << r.warnings.back();
+      EXPECT_TRUE(contains(r.warnings.back().text, "spde ran without the noise model")) << r.warnings.back().text;
       EXPECT_EQ(r.X, fit(p.A, p.B, Method::Spde).X);
     } else {
       EXPECT_TRUE(r.diagnostics.noise_model) << to_string(r.method);

@@ -102,7 +102,7 @@ TEST(AutoWithANoiseModel, ChoosesTheLikelihoodFitWeightedPsdLsOrSpdeAndNamesTheS
   EXPECT_EQ(small.diagnostics.reason->code, "few_samples");
   EXPECT_TRUE(contains(small.diagnostics.reason->text, "spde has no noise model"));
   ASSERT_FALSE(small.warnings.empty());
-  EXPECT_TRUE(contains(small.warnings.back(), "spde ran without the noise model"));
+  EXPECT_TRUE(contains(small.warnings.back().text, "spde ran without the noise model"));
   EXPECT_TRUE(small.diagnostics.noise_model);  // the model auto chose by
 }
 
@@ -139,8 +139,8 @@ TEST(AutoSettle, KeepsItsPromiseOrWarns) {
   EXPECT_TRUE(kept.ok());
   EXPECT_EQ(kept.X, indefinite.X);
   ASSERT_FALSE(kept.warnings.empty());
-  EXPECT_TRUE(contains(kept.warnings.back(), "auto: the estimate is not positive definite")) << kept.warnings.back();
-  EXPECT_TRUE(contains(kept.warnings.back(), "an eigendecomposition did not converge"));
+  EXPECT_TRUE(contains(kept.warnings.back().text, "auto: the estimate is not positive definite")) << kept.warnings.back().text;
+  EXPECT_TRUE(contains(kept.warnings.back().text, "an eigendecomposition did not converge"));
   // A failed first method and a failed fallback: the first failure, saying the fallback failed.
   FitResult failed_first;
   failed_first.method = Method::SpdTotalLeastSquares;
@@ -249,7 +249,7 @@ TEST(IdentifyWithANoiseModel, EveryMethodGetsItAndSpdeSaysItRanWithout) {
     ASSERT_TRUE(m.result.ok()) << to_string(m.result.method) << ": " << m.result.message;
     if (m.result.method == Method::Spde) {
       EXPECT_FALSE(m.result.diagnostics.noise_model);
-      EXPECT_TRUE(contains(m.result.warnings.back(), "ran without the noise model"));
+      EXPECT_TRUE(contains(m.result.warnings.back().text, "ran without the noise model"));
     } else {
       EXPECT_TRUE(m.result.diagnostics.noise_model) << to_string(m.result.method);
     }

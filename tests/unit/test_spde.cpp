@@ -129,7 +129,7 @@ TEST(Spde, RankDeficientBGivesASemidefiniteMinimizerOfThatRank) {
   EXPECT_NEAR(*r.diagnostics.area_criterion, direct, 1e-10 * scale);
   EXPECT_NEAR(*r.diagnostics.area_criterion_minimum, direct, 1e-10 * scale);
   ASSERT_FALSE(r.warnings.empty());
-  EXPECT_NE(r.warnings.front().find("Corollary III.7"), std::string::npos);
+  EXPECT_NE(r.warnings.front().text.find("Corollary III.7"), std::string::npos);
 }
 
 // Regression (found by UndefinedBehaviorSanitizer): B = 0 made the triangular solve for L run on

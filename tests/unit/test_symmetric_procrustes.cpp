@@ -95,7 +95,7 @@ TEST(SymmetricProcrustes, WarnsWhenTheEstimateIsIndefinite) {
   EXPECT_FALSE(r.diagnostics.positive_definite);
   EXPECT_FALSE(*r.diagnostics.cross_term_positive_definite);
   ASSERT_FALSE(r.warnings.empty());
-  EXPECT_NE(r.warnings.back().find("not positive definite"), std::string::npos);
+  EXPECT_NE(r.warnings.back().text.find("not positive definite"), std::string::npos);
 }
 
 TEST(SymmetricProcrustes, RankDeficientAGivesTheMinimumNormMinimizer) {
@@ -108,7 +108,7 @@ TEST(SymmetricProcrustes, RankDeficientAGivesTheMinimumNormMinimizer) {
   EXPECT_EQ(r.diagnostics.rank_a, 3);
   EXPECT_LT(relative_error(r.X, kronecker_reference(A, B)), 1e-10);
   ASSERT_FALSE(r.warnings.empty());
-  EXPECT_NE(r.warnings.front().find("minimum norm"), std::string::npos);
+  EXPECT_NE(r.warnings.front().text.find("minimum norm"), std::string::npos);
 }
 
 TEST(SymmetricProcrustes, OneByOneIsLeastSquares) {

@@ -94,7 +94,7 @@ TEST(TotalLeastSquares, EqualSingularValuesWarnOrFail) {
   const FitResult r = total_least_squares(C.leftCols(3), C.rightCols(3));
   if (r.ok()) {
     ASSERT_FALSE(r.warnings.empty());
-    EXPECT_NE(r.warnings.front().find("not unique"), std::string::npos);
+    EXPECT_NE(r.warnings.front().text.find("not unique"), std::string::npos);
   } else {
     EXPECT_NE(r.message.find("V22"), std::string::npos);
   }

@@ -1,0 +1,290 @@
+"""The front ends agree: one table of cases, each run through the command line (`--json`), Python
+and GNU Octave (the MATLAB package), comparing the numbers bit for bit and the outcome's tier
+(success, usage error, data error, numerical failure). A new command or option gets one row here.
+
+The CLI reads the data from CSV files written with 17 significant digits (exact round trips);
+Python gets the same arrays; Octave reads them from raw float64 files. All Octave cases run in one
+Octave process (its start-up costs seconds). Octave's part is skipped, saying so, when the MEX was
+not built (SPDFIT_MATLAB_DIR unset)."""
+
+import json
+import os
+import subprocess
+import warnings
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable, Optional
+
+import numpy as np
+import pytest
+
+import spdfit
+import spdfit.hexapod as hexapod
+
+SOURCE = Path(os.environ.get("SPDFIT_SOURCE_DIR", Path(__file__).resolve().parents[2]))
+CLI = os.environ.get("SPDFIT_CLI")
+MATLAB_DIR = os.environ.get("SPDFIT_MATLAB_DIR")
+OCTAVE = os.environ.get("SPDFIT_OCTAVE", "octave-cli")
+
+# The tier of each outcome in each front end (docs/errors.md, "Outcome codes").
+CLI_EXIT = {"ok": 0, "usage": 2, "data": 1, "numerical": 1}
+MATLAB_ID = {"ok": "ok", "usage": "spdfit:UsageError", "data": "spdfit:DataError",
+             "numerical": "spdfit:NumericalError"}
+
+
+def python_tier(error):
+    if error is None:
+        return "ok"
+    if isinstance(error, spdfit.DataError):
+        return "data"
+    if isinstance(error, spdfit.NumericalError):
+        return "numerical"
+    if isinstance(error, (TypeError, ValueError)):
+        return "usage"
+    return "other: " + type(error).__name__
+
+
+@dataclass
+class Case:
+    name: str
+    outcome: str  # "ok", "usage", "data" or "numerical"
+    cli: Optional[list]  # arguments; {A}, {B}, ... are the data files
+    python: Optional[Callable]  # f(data) -> the compared value
+    octave: Optional[str]  # statements setting v, the compared value
+    json_path: tuple = ()  # where the compared value is in the CLI's JSON
+    code: Optional[str] = None  # the Python exception's code, for errors
+    rtol: float = 0.0  # 0: bit for bit
+    extra: dict = field(default_factory=dict)
+
+
+def get(doc, path):
+    for key in path:
+        doc = doc[key]
+    return np.asarray(doc, dtype=float)
+
+
+CASES = [
+    # fit
+    Case("fit spde", "ok", ["fit", "--method", "spde", "--json", "{A}", "{B}"],
+         lambda d: spdfit.fit(d["A"], d["B"], "spde").X, "v = spdfit.fit(A, B, 'spde');", ("X",)),
+    Case("fit spd-tls with noise standard deviations", "ok",
+         ["fit", "--method", "spd-tls", "--noise-std-a", "0.01,0.02,0.03", "--noise-std-b", "0.1", "--json", "{A}",
+          "{B}"],
+         lambda d: spdfit.fit(d["A"], d["B"], "spd-tls", noise_std_a=[0.01, 0.02, 0.03], noise_std_b=0.1).X,
+         "v = spdfit.fit(A, B, 'spd-tls', 'NoiseStdA', [0.01 0.02 0.03], 'NoiseStdB', 0.1);", ("X",)),
+    Case("fit auto with a bootstrap", "ok",
+         ["fit", "--method", "auto", "--bootstrap", "20", "--seed", "3", "--json", "{A}", "{B}"],
+         lambda d: spdfit.fit(d["A"], d["B"], "auto", bootstrap=20, seed=3).standard_errors,
+         "[~, info] = spdfit.fit(A, B, 'auto', 'Bootstrap', 20, 'Seed', 3); v = info.standard_errors;",
+         ("standard_errors",)),
+    Case("fit: an unknown method", "usage", ["fit", "--method", "nonsense", "{A}", "{B}"],
+         lambda d: spdfit.fit(d["A"], d["B"], "nonsense"), "v = spdfit.fit(A, B, 'nonsense');", code="option_value"),
+    Case("fit: a confidence outside (0, 1)", "usage",
+         ["fit", "--method", "spde", "--bootstrap", "10", "--confidence", "1.5", "{A}", "{B}"],
+         lambda d: spdfit.fit(d["A"], d["B"], "spde", bootstrap=10, confidence=1.5),
+         "v = spdfit.fit(A, B, 'spde', 'Bootstrap', 10, 'Confidence', 1.5);", code="option_value"),
+    Case("fit: a noise model for a method without one", "usage",
+         ["fit", "--method", "spde", "--noise-std-a", "0.1", "--noise-std-b", "0.1", "{A}", "{B}"],
+         lambda d: spdfit.fit(d["A"], d["B"], "spde", noise_std_a=0.1, noise_std_b=0.1),
+         "v = spdfit.fit(A, B, 'spde', 'NoiseStdA', 0.1, 'NoiseStdB', 0.1);"),
+    Case("fit: A's and B's rows differ", "data", ["fit", "--method", "ls", "{A}", "{B_short}"],
+         lambda d: spdfit.fit(d["A"], d["B_short"], "ls"), "v = spdfit.fit(A, B_short, 'ls');", code="data_shape"),
+    Case("fit: a noise covariance that is not one", "data",
+         ["fit", "--method", "spd-tls", "--noise-cov-a", "{Cbad}", "--noise-cov-b", "{I3}", "{A}", "{B}"],
+         lambda d: spdfit.fit(d["A"], d["B"], "spd-tls", noise_cov_a=d["Cbad"], noise_cov_b=d["I3"]),
+         "v = spdfit.fit(A, B, 'spd-tls', 'NoiseCovA', Cbad, 'NoiseCovB', I3);", code="noise_model_refused"),
+    # nearest
+    Case("nearest", "ok", ["nearest", "--json", "{C}"], lambda d: spdfit.nearest_spd(d["C"]),
+         "v = spdfit.nearest(C);", ("X",)),
+    Case("nearest --corr", "ok", ["nearest", "--corr", "--json", "{C}"], lambda d: spdfit.nearest_correlation(d["C"]),
+         "v = spdfit.nearest(C, 'Corr', true);", ("X",)),
+    Case("nearest: a negative relative floor", "usage", ["nearest", "--min-eig-rel", "-1", "{C}"],
+         lambda d: spdfit.nearest_spd(d["C"], min_eig_rel=-1.0), "v = spdfit.nearest(C, 'MinEigRel', -1);",
+         code="option_value"),
+    # solve
+    Case("solve, rank-deficient", "ok", ["solve", "--json", "{As}", "{bs}"],
+         lambda d: spdfit.solve(d["As"], d["bs"]).solution, "v = spdfit.solve(As, bs);", ("solution",)),
+    Case("solve: b's rows are not A's", "data", ["solve", "{As}", "{B_short}"],
+         lambda d: spdfit.solve(d["As"], d["B_short"]), "v = spdfit.solve(As, B_short);", code="data_shape"),
+    # hexapod identify
+    Case("hexapod identify", "ok", ["hexapod", "identify", "--json", "{Ah}", "{Bh}"],
+         lambda d: hexapod.identify(d["Ah"], d["Bh"])["spd-tls"].result.X,
+         "r = spdfit.hexapod.identify(Ah, Bh); v = r.methods.spd_tls.X;", ("methods", "spd-tls", "X")),
+    Case("hexapod identify --physical", "ok",
+         ["hexapod", "identify", "--physical", "--geometry", "{G}", "--json", "{Ah}", "{Bh}"],
+         lambda d: hexapod.identify(d["Ah"], d["Bh"], physical=True, geometry=d["G"])["physical"]["M_p"],
+         "r = spdfit.hexapod.identify(Ah, Bh, 'Physical', true, 'Geometry', G); v = r.physical.M_p;",
+         ("physical", "M_p")),
+    Case("hexapod identify --physical --unconstrained", "ok",
+         ["hexapod", "identify", "--physical", "--unconstrained", "--geometry", "{G}", "--json", "{Ah}", "{Bh}"],
+         lambda d: hexapod.identify(d["Ah"], d["Bh"], physical=True, consistent=False,
+                                    geometry=d["G"])["physical"]["M_p"],
+         "r = spdfit.hexapod.identify(Ah, Bh, 'Physical', true, 'Consistent', false, 'Geometry', G); "
+         "v = r.physical.M_p;", ("physical", "M_p")),
+    Case("hexapod identify: physical without a geometry", "usage", ["hexapod", "identify", "--physical", "{Ah}", "{Bh}"],
+         lambda d: hexapod.identify(d["Ah"], d["Bh"], physical=True),
+         "r = spdfit.hexapod.identify(Ah, Bh, 'Physical', true);"),
+    Case("hexapod identify: a physical option without physical", "usage",
+         ["hexapod", "identify", "--strut-masses", "common", "{Ah}", "{Bh}"],
+         lambda d: hexapod.identify(d["Ah"], d["Bh"], strut_masses="common"),
+         "r = spdfit.hexapod.identify(Ah, Bh, 'StrutMasses', 'common');"),
+    Case("hexapod identify: a truth of the wrong size", "data",
+         ["hexapod", "identify", "--truth", "{I3}", "{Ah}", "{Bh}"],
+         lambda d: hexapod.identify(d["Ah"], d["Bh"], truth=d["I3"]),
+         "r = spdfit.hexapod.identify(Ah, Bh, 'Truth', I3);"),
+    # compare (no MATLAB function: the command line against Python's fit_all)
+    Case("compare", "ok", ["compare", "--json", "{A}", "{B}"],
+         lambda d: {r.method: r for r in spdfit.fit_all(d["A"], d["B"])}["spd-tls"].X, None,
+         ("methods", "spd-tls", "X")),
+]
+
+
+@pytest.fixture(scope="module")
+def data(tmp_path_factory):
+    work = tmp_path_factory.mktemp("parity")
+    rng = np.random.default_rng(41)
+    X = np.array([[4.0, 1.0, 0.5], [1.0, 3.0, 0.2], [0.5, 0.2, 2.0]])
+    A0 = rng.standard_normal((40, 3))
+    d = {
+        "A": A0 + 0.01 * rng.standard_normal((40, 3)),
+        "B": A0 @ X + 0.1 * rng.standard_normal((40, 3)),
+        "B_short": rng.standard_normal((7, 3)),
+        "C": np.array([[2.0, -1.0, 0.0, 0.95], [-1.0, 2.0, -1.0, 0.0], [0.0, -1.0, 2.0, -1.0], [0.95, 0.0, -1.0, 2.0]]),
+        "As": np.array([[1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]]),
+        "bs": np.array([[6.0], [12.0], [2.0], [2.0]]),
+        "Cbad": np.array([[1.0, 2.0, 0.0], [2.0, 1.0, 0.0], [0.0, 0.0, 1.0]]),
+        "I3": np.eye(3),
+    }
+    d["Ah"] = spdfit.read_matrix(SOURCE / "examples" / "hexapod" / "A.csv")
+    d["Bh"] = spdfit.read_matrix(SOURCE / "examples" / "hexapod" / "B.csv")
+    files = {}
+    for name, value in d.items():
+        files[name] = work / f"{name}.csv"
+        np.savetxt(files[name], np.atleast_2d(value), delimiter=",", fmt="%.17g")
+        np.asarray(value, dtype="<f8").T.tofile(work / f"{name}.bin")  # column-major, as Octave reads
+        (work / f"{name}.shape").write_text(" ".join(str(s) for s in np.atleast_2d(value).shape))
+    geometry = work / "G.json"
+    subprocess.run([CLI, "hexapod", "model", "--write-geometry", str(geometry)], check=True, capture_output=True)
+    d["G"] = str(geometry)
+    files["G"] = geometry
+    return {"values": d, "files": files, "work": work}
+
+
+def cli_outcome(case, data):
+    args = [a.format(**{k: str(v) for k, v in data["files"].items()}) for a in case.cli]
+    run = subprocess.run([CLI, *args], capture_output=True, text=True)
+    value = None
+    if run.returncode == 0 and case.json_path:
+        value = get(json.loads(run.stdout), case.json_path)
+    return run.returncode, value, run.stderr
+
+
+def python_outcome(case, data):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        try:
+            value = case.python(data["values"])
+        except Exception as error:  # the tier is checked below
+            return error, None
+    return None, np.asarray(value, dtype=float)
+
+
+def same(a, b, rtol):
+    a, b = np.squeeze(np.asarray(a, dtype=float)), np.squeeze(np.asarray(b, dtype=float))
+    if a.shape != b.shape:
+        return False
+    if rtol == 0.0:
+        return np.array_equal(a, b, equal_nan=True)
+    return np.allclose(a, b, rtol=rtol, atol=0.0, equal_nan=True)
+
+
+@pytest.mark.skipif(not CLI, reason="SPDFIT_CLI is not set")
+@pytest.mark.parametrize("case", [c for c in CASES if c.cli and c.python], ids=lambda c: c.name)
+def test_cli_and_python_agree(case, data):
+    status, cli_value, stderr = cli_outcome(case, data)
+    error, py_value = python_outcome(case, data)
+    assert status == CLI_EXIT[case.outcome], f"{case.name}: exit {status} ({stderr.strip()})"
+    assert python_tier(error) == case.outcome, f"{case.name}: Python raised {error!r}"
+    if error is not None and case.code is not None:
+        assert getattr(error, "code", None) == case.code, f"{case.name}: {error!r} has code {getattr(error, 'code', None)}"
+    if case.outcome == "ok" and case.json_path:
+        assert same(cli_value, py_value, case.rtol), f"{case.name}: CLI {cli_value} Python {py_value}"
+    if case.outcome != "ok":
+        assert stderr.strip(), f"{case.name}: the CLI's error says nothing"
+
+
+OCTAVE_SCRIPT = r"""
+function parity_run(work, names, cases)
+  for k = 1:numel(names)
+    shape = str2num(fileread(fullfile(work, [names{k} '.shape'])));
+    fid = fopen(fullfile(work, [names{k} '.bin']), 'r');
+    value = reshape(fread(fid, Inf, 'double'), shape);
+    fclose(fid);
+    assignin('base', names{k}, value);
+  end
+  for k = 1:numel(cases)
+    outcome = 'ok';
+    v = [];
+    try
+      evalin('base', cases{k});
+      v = evalin('base', 'v');
+    catch err
+      outcome = err.identifier;
+      if isempty(outcome), outcome = ['(no identifier) ' err.message]; end
+    end
+    fid = fopen(fullfile(work, sprintf('octave_%d.txt', k)), 'w');
+    fprintf(fid, '%s\n', outcome);
+    fprintf(fid, '%d ', size(v));
+    fclose(fid);
+    fid = fopen(fullfile(work, sprintf('octave_%d.bin', k)), 'w');
+    fwrite(fid, double(v), 'double');
+    fclose(fid);
+    evalin('base', 'clear v r');
+  end
+end
+"""
+
+
+@pytest.fixture(scope="module")
+def octave_results(data):
+    if not MATLAB_DIR:
+        pytest.skip("SPDFIT_MATLAB_DIR is not set: the Octave MEX was not built")
+    work = data["work"]
+    cases = [c for c in CASES if c.octave]
+    (work / "parity_run.m").write_text(OCTAVE_SCRIPT)
+    names = [n for n in data["values"] if n != "G"]
+    quote = lambda s: "'" + s.replace("'", "''") + "'"
+    statements = [f"G = {quote(str(data['files']['G']))}; " + c.octave for c in cases]
+    script = (f"addpath({quote(MATLAB_DIR)}); addpath({quote(str(work))}); "
+              f"parity_run({quote(str(work))}, {{{', '.join(quote(n) for n in names)}}}, "
+              f"{{{', '.join(quote(s) for s in statements)}}});")
+    run = subprocess.run([OCTAVE, "--no-gui", "--norc", "--quiet", "--no-history", "--eval", script],
+                         capture_output=True, text=True, env=dict(os.environ, OMP_NUM_THREADS="1"), timeout=600)
+    assert run.returncode == 0, run.stderr
+    out = {}
+    for k, case in enumerate(cases, start=1):
+        outcome, shape = (work / f"octave_{k}.txt").read_text().split("\n")[:2]
+        raw = np.fromfile(work / f"octave_{k}.bin", dtype="<f8")
+        dims = [int(s) for s in shape.split()]
+        out[case.name] = (outcome, raw.reshape(dims[::-1]).T if raw.size else raw)
+    return out
+
+
+@pytest.mark.skipif(not CLI, reason="SPDFIT_CLI is not set")
+@pytest.mark.parametrize("case", [c for c in CASES if c.octave], ids=lambda c: c.name)
+def test_octave_agrees(case, data, octave_results):
+    outcome, value = octave_results[case.name]
+    assert outcome == MATLAB_ID[case.outcome], f"{case.name}: Octave gave {outcome}"
+    if case.outcome == "ok" and case.cli and case.json_path:
+        _, cli_value, _ = cli_outcome(case, data)
+        assert same(value, cli_value, case.rtol), f"{case.name}: Octave {value} CLI {cli_value}"
+
+
+def test_every_command_has_a_row():
+    # The commands with a library workflow (issue 41); each has at least one case and, for those
+    # with options, an error case.
+    commands = {" ".join(a for a in c.cli[:2] if not a.startswith("-") and "{" not in a) for c in CASES if c.cli}
+    for command in ("fit", "nearest", "solve", "hexapod identify", "compare"):
+        assert command in commands, command
+        assert any(c.outcome != "ok" for c in CASES if c.cli and " ".join(c.cli[:2]).startswith(command)) or \
+            command == "compare", f"{command}: no error case"
