@@ -5,9 +5,11 @@
 #include <utility>
 
 #include "spdfit/fit_files.hpp"
+#include "spdfit/hexapod/model.hpp"
 #include "spdfit/hexapod/physical_request.hpp"
 #include "spdfit/hexapod/render.hpp"
 #include "spdfit/io.hpp"
+#include "pipeline/sentinels.hpp"
 
 namespace spdfit::hexapod {
 
@@ -227,6 +229,7 @@ Identification run_identify(const IdentifyRequest& request) {
       throw InputError(problem + "; A has " + std::to_string(n), Code::DataShape, "a");
     }
     out.options.stiffness = Eigen::MatrixXd(out.geometry->strut_stiffness.asDiagonal());
+    out.options.nominal = Eigen::MatrixXd(joint_space_mass_matrix(*out.geometry));
   } else if (request.stiffness) {
     const Eigen::MatrixXd K = values_of(*request.stiffness, read, out.warnings);
     try {
@@ -237,6 +240,7 @@ Identification run_identify(const IdentifyRequest& request) {
       size_problem(*request.stiffness, "stiffness", e.what());
     }
   }
+  if (std::optional<Warning> w = spdfit::detail::sentinel_warning(A, B)) out.warnings.push_back(std::move(*w));
   out.options.fit = request.fit.resolved_options(n, n);
   out.methods = identify(A, B, out.options);
   for (const MethodIdentification& m : out.methods) {

@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -12,6 +13,7 @@
 #include "hexapod/kinematics.hpp"
 #include "hexapod/physical_fit.hpp"
 #include "hexapod/physical_solver.hpp"
+#include "spdfit/format.hpp"
 #include "spdfit/hexapod/model.hpp"
 #include "spdfit/rank.hpp"
 
@@ -31,6 +33,94 @@ constexpr double kStartInside = 1e-2;
 constexpr double kConsistencyRounding = 64.0 * std::numeric_limits<double>::epsilon();
 // Symmetry of the noise covariances, relative to their largest entry.
 constexpr double kSymmetryTolerance = 1e-12;
+// A payload mass beyond this factor of the geometry's (either way) is not this hexapod's payload in
+// the geometry's SI units: data in kN or mm/s^2 are off by 1000, while a payload a hundred times
+// heavier or lighter than the one the geometry was designed for is not one it would carry.
+constexpr double kPlausibleMassFactor = 100.0;
+// The untared data's test: a rest mean this many standard errors from 0, and the data's column
+// mean within as many standard errors of it (a static load that the motion does not change).
+constexpr double kOffsetStandardErrors = 5.0;
+
+// A factor as a user types it: a power of ten as its digits (1000, 0.001), else 3 digits.
+std::string factor_text(double factor) {
+  const double decade = std::pow(10.0, std::round(std::log10(factor)));
+  if (std::abs(factor / decade - 1.0) < 1e-12 && factor >= 1.0 && factor < 1e15) {
+    return std::to_string(static_cast<long long>(std::llround(factor)));
+  }
+  return format_number(factor, factor < 1.0 ? Precision::Full : Precision::Brief);
+}
+
+// The message for a payload mass `mass` (kg), from `fitted`, that is not positive or more than
+// kPlausibleMassFactor from the geometry's `nominal`. `scale` is the data's own scale against the
+// geometry's (the trace of the generic least-squares M_p over that of the geometry's M_p; NaN when
+// unknown): off by a power of ten, it names the unit. A negative mass is what forces in kN give
+// when the struts' known masses are part of the model, so the scale, not the mass, says by how much.
+std::string implausible_mass(const std::string& fitted, double mass, double nominal, double scale) {
+  const auto kg = [](double x) { return format_number(x) + " kg"; };
+  std::string text = fitted + ", " +
+                     (mass > 0.0 ? format_number(mass > nominal ? mass / nominal : nominal / mass) + " times " +
+                                       (mass > nominal ? "above" : "below") + " the geometry's " + kg(nominal)
+                                 : "not a positive one, where the geometry's is " + kg(nominal));
+  const bool scale_off = std::isfinite(scale) && scale > 0.0 &&
+                         (scale < 1.0 / kPlausibleMassFactor || scale > kPlausibleMassFactor);
+  const double factor = scale_off ? 1.0 / scale : mass > 0.0 ? nominal / mass : 0.0;  // to multiply the forces by
+  if (!(factor > 0.0)) {
+    return text + ": are the forces and accelerations in the geometry's units (SI: N and m/s^2), with the geometry's "
+                  "signs and strut order, and tared (`offsets` rest with rest rows)?";
+  }
+  const double decade = std::pow(10.0, std::round(std::log10(factor)));
+  const bool round_decade = std::abs(factor / decade - 1.0) < 0.2;
+  std::string units;
+  if (round_decade && std::abs(decade - 1000.0) < 1e-9) units = " (kN instead of N?)";
+  if (round_decade && std::abs(decade - 1e-3) < 1e-12) units = " (mN instead of N, or accelerations in mm/s^2?)";
+  if (scale_off) {
+    text += "; the data's scale (the least-squares M_p's trace) is " + format_number(scale) +
+            " times the geometry's M_p's";
+  }
+  return text + ": the geometry is in SI units (N, m/s^2, m, kg), and the data are probably in others" + units +
+         ": multiply the forces by " + factor_text(round_decade ? decade : factor) +
+         " (or the accelerations by its inverse) before fitting";
+}
+
+// Throws the implausible payload's error (Code::PhysicalData) unless `mass` is within
+// kPlausibleMassFactor of the geometry's; `scale` as implausible_mass takes it.
+void check_plausible_mass(double mass, const Geometry& geometry, const std::string& fitted,
+                          double scale = std::numeric_limits<double>::quiet_NaN()) {
+  const double nominal = geometry.payload_mass;
+  if (mass > 0.0 && mass >= nominal / kPlausibleMassFactor && mass <= nominal * kPlausibleMassFactor) return;
+  throw InputError(implausible_mass(fitted, mass, nominal, scale) + "; `no_plausibility_check` fits them as they are",
+                   Code::PhysicalData, "no_plausibility_check");
+}
+
+// The warning for forces that look untared: the rest rows' mean of B (a static load) more than
+// kOffsetStandardErrors standard errors from 0 in some column, and the data's column mean of B
+// within as many standard errors of it there (the load is in every row, moving or not).
+std::optional<Warning> untared_warning(const Eigen::MatrixXd& B, const PhysicalOptions& options) {
+  const Eigen::VectorXd& rest = options.rest_mean_b;
+  if (rest.size() != B.cols() || options.rest_rows < 2 || B.rows() < 2 || options.noise_cov_b.rows() != B.cols()) {
+    return std::nullopt;
+  }
+  const double m = static_cast<double>(B.rows());
+  const Eigen::RowVectorXd mean = B.colwise().mean();
+  const Eigen::RowVectorXd spread = ((B.rowwise() - mean).colwise().squaredNorm() / (m - 1.0)).cwiseSqrt();
+  std::string columns;
+  for (Eigen::Index j = 0; j < B.cols(); ++j) {
+    const double rest_se = std::sqrt(std::max(options.noise_cov_b(j, j), 0.0) / static_cast<double>(options.rest_rows));
+    const double data_se = spread(j) / std::sqrt(m);
+    const bool loaded = std::abs(rest(j)) > kOffsetStandardErrors * rest_se;
+    const bool same = std::abs(mean(j) - rest(j)) <= kOffsetStandardErrors * std::hypot(rest_se, data_se);
+    if (loaded && same) {
+      columns += (columns.empty() ? "" : ", ") + std::string("B's column ") + std::to_string(j + 1) + ": " +
+                 format_number(rest(j)) + " at rest, " + format_number(mean(j)) + " in the data";
+    }
+  }
+  if (columns.empty()) return std::nullopt;
+  return Warning(Code::Bias,
+                 "the forces look untared: the rest rows' means are far from 0 and the data's column means are the "
+                 "same (" + columns + "): a static load is still in B, and the fit of B ~= A M_p takes it for "
+                 "payload; `offsets` rest subtracts the rest rows' means",
+                 "offsets");
+}
 
 bool valid_covariance(const Eigen::MatrixXd& S, const char* name, bool& definite, std::string* error) {
   definite = true;
@@ -163,6 +253,20 @@ PhysicalEstimate fit_physical(const TriangularFactor& factor, const PhysicalMode
         "), so the forces determine only " + std::to_string(rank) + " of the " +
         std::to_string(model.parameters) +
         " parameters; log more samples that excite the payload in every direction");
+  }
+  if (options.plausibility_check) {
+    const double mass = payload_of(model, theta_ls / ls.theta_scale).mass;
+    // The data's scale: the generic least-squares M_p (R11^-1 R12, in the data's units) against the
+    // geometry's, by their traces.
+    double scale = std::numeric_limits<double>::quiet_NaN();
+    if (out.rank_a == 6) {
+      const Matrix6d X_ls = ls.R11.triangularView<Eigen::Upper>().solve(ls.R12) / ls.theta_scale;
+      scale = X_ls.trace() / joint_space_mass_matrix(geometry).trace();
+    }
+    check_plausible_mass(mass, geometry,
+                         "the data imply a payload mass of " + format_number(mass) +
+                             " kg (the unconstrained least-squares fit of the physical model)",
+                         scale);
   }
   ls.f0 = ls.R12.squaredNorm() + ls.R22.squaredNorm();
   if (!(ls.f0 > 0.0)) ls.f0 = 1.0;
@@ -363,9 +467,38 @@ PhysicalEstimate identify_physical(const Eigen::MatrixXd& A, const Eigen::Matrix
                                 std::to_string(B.rows()) + " x " + std::to_string(B.cols()));
   }
   if (A.rows() == 0) throw std::invalid_argument("physical identification needs at least one row of data");
+  // Tared: the rest rows' means subtracted (the static load and the accelerometers' bias).
+  Eigen::MatrixXd At, Bt;
+  if (options.tare) {
+    if (options.rest_mean_a.size() != 6 || options.rest_mean_b.size() != 6) {
+      throw OptionError("`offsets` rest subtracts the means of rows recorded at rest: give them (`rest_a` and "
+                        "`rest_b`, or a `noise` model made from them)",
+                        Code::OptionConflict, "offsets");
+    }
+    At = A.rowwise() - options.rest_mean_a.transpose();
+    Bt = B.rowwise() - options.rest_mean_b.transpose();
+  }
+  const Eigen::MatrixXd& Ad = options.tare ? At : A;
+  const Eigen::MatrixXd& Bd = options.tare ? Bt : B;
   detail::PhysicalModel model;
-  PhysicalEstimate out = identify_from_factor(TriangularFactor::from_data(A, B), geometry, options, model);
-  if (options.bootstrap > 0 && out.ok()) detail::bootstrap_physical(out, A, B, model, geometry, options);
+  PhysicalEstimate out = identify_from_factor(TriangularFactor::from_data(Ad, Bd), geometry, options, model);
+  if (options.tare) {
+    out.tare_a = options.rest_mean_a;
+    out.tare_b = options.rest_mean_b;
+  } else if (std::optional<Warning> w = untared_warning(B, options)) {
+    out.warnings.push_back(std::move(*w));
+  }
+  // The estimate itself may still end far from any payload of this geometry (a fit that did not
+  // converge on data the check let through): never reported as one.
+  if (options.plausibility_check && out.ok()) {
+    check_plausible_mass(out.payload.mass, geometry,
+                         "the physical fit's payload mass is " + format_number(out.payload.mass) + " kg");
+  }
+  if (options.bootstrap > 0 && out.ok()) {
+    PhysicalOptions replicates = options;
+    replicates.plausibility_check = false;  // a resample is judged by the intervals, not refused
+    detail::bootstrap_physical(out, Ad, Bd, model, geometry, replicates);
+  }
   return out;
 }
 

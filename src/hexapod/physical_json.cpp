@@ -92,6 +92,8 @@ std::string physical_json(const PhysicalEstimate& e) {
                    {"confounded", e.design.confounded}};
   out["m"] = e.m;
   out["rank_a"] = e.rank_a;
+  out["offsets"] = e.tare_b.size() ? json{{"mode", "rest"}, {"a", vector(e.tare_a)}, {"b", vector(e.tare_b)}}
+                                   : json{{"mode", "none"}};
   spdfit::detail::put_warnings(out, e.warnings);
   if (const auto& b = e.bootstrap) {
     out["standard_errors"] = entries(*b, &EntryUncertainty::standard_errors, e.strut_masses);

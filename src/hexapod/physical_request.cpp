@@ -88,6 +88,36 @@ std::vector<Spec> make_table() {
   };
   table.push_back(unconstrained);
 
+  Spec offsets;
+  offsets.name = "offsets";
+  offsets.cli = "--offsets";
+  offsets.python = "offsets";
+  offsets.type = OptionType::Choice;
+  offsets.value_name = "none|rest";
+  offsets.choices = {"none", "rest"};
+  offsets.help = "Constant offsets in the data (a static load in untared forces, an accelerometer's bias): rest "
+                 "subtracts the means of the rest rows (`rest_a` and `rest_b`) from A and B before the physical fit "
+                 "(taring); none fits the data as given, with a warning when the forces look untared";
+  offsets.default_text = "none";
+  offsets.set = [](PhysicalOptions& o, const OptionValue& v) { o.tare = std::get<std::string>(v) == "rest"; };
+  offsets.get = [](const PhysicalOptions& o) -> std::optional<OptionValue> {
+    return std::string(o.tare ? "rest" : "none");
+  };
+  table.push_back(offsets);
+
+  Spec no_plausible;
+  no_plausible.name = "no_plausibility_check";
+  no_plausible.cli = "--no-plausibility-check";
+  no_plausible.python = "no_plausibility_check";
+  no_plausible.type = OptionType::Flag;
+  no_plausible.help =
+      "Fit data whose implied payload mass is not positive or more than a factor 100 from the geometry's, "
+      "instead of refusing them (the geometry is in SI units: forces logged in kN are 1000 times too small)";
+  no_plausible.nullable = false;
+  no_plausible.set = [](PhysicalOptions& o, const OptionValue& v) { o.plausibility_check = !std::get<bool>(v); };
+  no_plausible.get = [](const PhysicalOptions& o) -> std::optional<OptionValue> { return !o.plausibility_check; };
+  table.push_back(no_plausible);
+
   return table;
 }
 
@@ -113,6 +143,11 @@ void apply_fit_options(const FitOptions& fit, const std::vector<std::string_view
     const NoiseModel model = fit.noise->resolved(6, 6);
     options.noise_cov_a = model.cov_a();
     options.noise_cov_b = model.cov_b();
+    if (model.rest_rows()) {
+      options.rest_mean_a = model.rest_mean_a();
+      options.rest_mean_b = model.rest_mean_b();
+      options.rest_rows = *model.rest_rows();
+    }
   }
 }
 

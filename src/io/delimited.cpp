@@ -121,6 +121,18 @@ void DelimitedParser::parse_line(const Line& line) {
         }
         return;
       }
+      // Quoted numbers 1, 2, ..., k are data by the rule (every field reads as a number), but R's
+      // write.csv writes the names of a matrix's numbered columns so: a decision worth saying.
+      bool all_quoted = false;
+      if (header == HeaderRow::Auto && counts_columns(line, 1, &all_quoted) && all_quoted) {
+        warnings_.push_back(Warning(Code::FileNotice,
+                                    source_ + ":" + std::to_string(line.number) + ": the first line, " +
+                                        abbreviated_count(line, 1) +
+                                        ", is read as data (every field is a number, quoted or not); if it names "
+                                        "the columns (as R's write.csv quotes numbered names), --header reads it as "
+                                        "a header row (Python: header=True)",
+                                    source_));
+      }
     }
   }
   const bool first_row = rows_ == 0 && !resumed_;
@@ -229,16 +241,21 @@ bool DelimitedParser::next_field(const Line& line, FieldSplitter* splitter, Fiel
   return false;
 }
 
-// A header row is a first line in which no field is a number (and some field is not empty:
-// a line of bare separators is an error, not a header). NaN and Inf spellings count as numbers
-// here, so that a first row of missing values is reported rather than taken as names.
+// A header row is a first line with a name in it, a field that is not a number (and some field
+// is not empty: a line of bare separators is an error, not a header), and no unquoted number. A
+// quoted number reads as a number, as in data rows: a first row whose every field is a number,
+// quoted or not (an export that quotes every cell), is data; beside names it may be one (R's
+// write.csv quotes names such as "1"). NaN and Inf spellings count as numbers here, so that a
+// first row of missing values is reported rather than taken as names.
 bool DelimitedParser::is_header(const Line& line, Separator separator) const {
   FieldSplitter splitter(line.content, separator);
   Field field;
   bool any_name = false;
   while (next_field(line, &splitter, &field)) {
     if (field.quoted) {
-      any_name = true;
+      const std::string text = unquote(field);
+      const std::string_view inside = trimmed(text);
+      if (!inside.empty() && parse_number(inside).kind == NumberKind::NotANumber) any_name = true;
     } else if (!field.text.empty()) {
       if (parse_number(field.text).kind != NumberKind::NotANumber) return false;
       any_name = true;
@@ -247,28 +264,33 @@ bool DelimitedParser::is_header(const Line& line, Separator separator) const {
   return any_name;
 }
 
-// "0,1,2,3": two or more fields, exactly the integers 0, 1, ..., k - 1 in order.
-bool DelimitedParser::counts_columns(const Line& line) const {
+// "0,1,2,3" (start 0): two or more fields, exactly the integers start, start + 1, ... in order.
+// `all_quoted`, when given, says whether every field was quoted.
+bool DelimitedParser::counts_columns(const Line& line, std::size_t start, bool* all_quoted) const {
   if (separator_ == Separator::None) return false;
   FieldSplitter splitter(line.content, separator_);
   Field field;
   std::size_t count = 0;
+  bool quoted = true;
   while (next_field(line, &splitter, &field)) {
     const std::string text = field.quoted ? unquote(field) : std::string(field.text);
-    if (trimmed(text) != std::to_string(count)) return false;
+    if (trimmed(text) != std::to_string(start + count)) return false;
+    quoted = quoted && field.quoted;
     ++count;
   }
+  if (all_quoted != nullptr) *all_quoted = quoted;
   return count >= 2;
 }
 
-// "0, 1, ..., 7" for a line counts_columns accepted (a wide frame's header in full would be long).
-std::string DelimitedParser::abbreviated_count(const Line& line) const {
+// "0, 1, ..., 7" for a line counts_columns accepted from `start` (a wide frame's header in full
+// would be long).
+std::string DelimitedParser::abbreviated_count(const Line& line, std::size_t start) const {
   FieldSplitter splitter(line.content, separator_);
   Field field;
   std::size_t fields = 0;
   while (next_field(line, &splitter, &field)) ++fields;
   if (fields <= 4) return "'" + std::string(line.content) + "'";
-  return "0, 1, ..., " + std::to_string(fields - 1);
+  return std::to_string(start) + ", " + std::to_string(start + 1) + ", ..., " + std::to_string(start + fields - 1);
 }
 
 // ",Fx,Fy" or R's "","x1": two or more cells, the first empty (quoted or not), the others not.

@@ -98,8 +98,8 @@ class DelimitedParser {
   bool next_field(const Line& line, FieldSplitter* splitter, Field* field) const;
   bool is_header(const Line& line, Separator separator) const;
   bool header_first_cell_empty(const Line& line) const;
-  bool counts_columns(const Line& line) const;
-  std::string abbreviated_count(const Line& line) const;
+  bool counts_columns(const Line& line, std::size_t start = 0, bool* all_quoted = nullptr) const;
+  std::string abbreviated_count(const Line& line, std::size_t start = 0) const;
   void choose_separator_after_header(const Line& data);
   std::vector<std::string> header_names(std::size_t data_fields) const;
   std::size_t parse_row(const Line& line);

@@ -5,6 +5,7 @@
 #include "spdfit/compare.hpp"
 #include "spdfit/fit_files.hpp"
 #include "spdfit/io.hpp"
+#include "pipeline/sentinels.hpp"
 
 namespace spdfit {
 
@@ -98,6 +99,7 @@ CompareRun run_compare(const CompareRequest& request) {
       throw InputError(problem, Code::DataShape, "truth");
     }
   }
+  if (std::optional<Warning> w = detail::sentinel_warning(A, B)) out.warnings.push_back(std::move(*w));
   out.comparison = compare(A, B, request.fit.resolved_options(A.cols(), B.cols()), truth);
   for (const FitResult& r : out.comparison.results) {
     for (const Warning& w : r.warnings) {

@@ -6,6 +6,7 @@
 #include "factor/reduce.hpp"
 #include "estimators/kernels.hpp"
 #include "estimators/noise_weights.hpp"
+#include "pipeline/sentinels.hpp"
 #include "spdfit/auto.hpp"
 #include "spdfit/least_squares.hpp"
 #include "spdfit/psd_least_squares.hpp"
@@ -48,6 +49,10 @@ FitResult fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Matrix
   const Reduction data = detail::reduce_for(TriangularFactor::from_data(A, B), options, method);
   FitResult result = fit(data, method);
   if (options.bootstrap > 0 && result.ok()) detail::bootstrap_in_memory(result, A, B, data);
+  if (std::optional<Warning> w = detail::sentinel_warning(A, B)) {
+    result.warnings.insert(result.warnings.begin(), std::move(*w));
+    if (!result.ok()) result.message += detail::sentinel_failure_note();
+  }
   return result;
 }
 

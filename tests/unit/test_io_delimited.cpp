@@ -381,8 +381,8 @@ TEST(IoDelimited, Quotes) {
   EXPECT_EQ(empty.line(), 2u);
   EXPECT_NE(empty.problem().find("empty field"), std::string::npos) << empty.what();
   ExpectError("1,2\n\"NaN\",4\n", 2, 1, "NaN is not allowed");
-  // In the first line quoted tokens are names: R's write.csv header "","1","2" is a header, and
-  // its first empty cell marks a column of row labels.
+  // A first line whose quoted fields are numbers, beside an empty first cell, is R's write.csv
+  // header "","1","2": its empty cell marks a column of row labels.
   const Table r = parse_delimited("\"\",\"1\",\"2\"\n\"a\",\"3\",4\n\"b\",5,6\n", "A.csv", {});
   ASSERT_EQ(r.values.rows(), 2);
   ASSERT_EQ(r.values.cols(), 2);
@@ -391,6 +391,30 @@ TEST(IoDelimited, Quotes) {
   ExpectError("\"a,b\n1,2\n", 1, 1, "missing closing quote");
   ExpectError("\"a\"x,b\n1,2\n", 1, 4, "unexpected text after closing quote");
   ExpectError("\"a\"x b\n1 2\n", 1, 4, "unexpected text after closing quote");
+}
+
+// Issue 42: a first row whose every field reads as a number, quoted or not, is data (an export
+// that quotes every cell); quoted names beside quoted numbers make a header; quoted 1, 2, ..., k
+// is data, with a warning (R's write.csv quotes numbered names so).
+TEST(IoDelimited, QuotedNumbersInTheFirstRowAreData) {
+  const Table all = parse_delimited("\"2.04\",\"-1\"\n\"3\",\"4\"\n\"5\",\"6e-1\"\n", "A.csv", {});
+  ASSERT_EQ(all.values.rows(), 3);
+  EXPECT_EQ(all.values(0, 0), 2.04);
+  EXPECT_TRUE(all.column_names.empty());
+  EXPECT_TRUE(all.warnings.empty());
+  const Table mixed = parse_delimited("\"t\",\"1\"\n3,4\n", "A.csv", {});
+  ASSERT_EQ(mixed.values.rows(), 1);
+  EXPECT_EQ(mixed.column_names, (std::vector<std::string>{"t", "1"}));
+  const Table numbered = parse_delimited("\"1\",\"2\",\"3\"\n4,5,6\n", "A.csv", {});
+  ASSERT_EQ(numbered.values.rows(), 2);
+  ASSERT_EQ(numbered.warnings.size(), 1u);
+  EXPECT_NE(numbered.warnings[0].text.find("is read as data"), std::string::npos) << numbered.warnings[0].text;
+  EXPECT_NE(numbered.warnings[0].text.find("--header"), std::string::npos);
+  // Unquoted 1, 2, 3 is as obvious as any row of numbers: no warning.
+  EXPECT_TRUE(parse_delimited("1,2,3\n4,5,6\n", "A.csv", {}).warnings.empty());
+  // pandas' quoted header "0","1" stays a header (the one exception).
+  const Table pandas = parse_delimited("\"0\",\"1\"\n4,5\n6,7\n", "A.csv", {});
+  EXPECT_EQ(pandas.values.rows(), 2);
 }
 
 TEST(IoDelimited, NoData) {

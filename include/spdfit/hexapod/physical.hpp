@@ -71,6 +71,20 @@ struct PhysicalOptions {
   std::uint64_t seed = 1;    ///< replicate r draws from a generator keyed by (seed, r)
   unsigned threads = 0;      ///< for the bootstrap's replicates; 0: one per core
 
+  /// Refuse data whose implied payload mass (the unconstrained least-squares fit's, and the
+  /// estimate's) is not positive or more than kPlausibleMassFactor from the geometry's: the
+  /// geometry is in SI units, and such data are in others (forces in kN) or far from this payload.
+  /// An InputError (Code::PhysicalData) naming the factor. False fits them as they are (option
+  /// `no_plausibility_check`).
+  bool plausibility_check = true;
+  /// Subtract the rest rows' means (rest_mean_a, rest_mean_b) from A and B before fitting: data
+  /// logged untared, a static load in the forces (option `offsets` rest).
+  bool tare = false;
+  /// The rest rows' means and their count, from a noise model made of rest rows (apply_fit_options
+  /// copies them): for `tare`, and for the warning about data that look untared. Empty: none.
+  Eigen::VectorXd rest_mean_a, rest_mean_b;
+  std::uint64_t rest_rows = 0;
+
   /// True when usable; otherwise `error` says why, naming the field.
   bool is_valid(std::string* error = nullptr) const;
 };
@@ -162,6 +176,8 @@ struct PhysicalEstimate {
   Eigen::Index rank_a = 0;  ///< numerical rank of A
   std::vector<Warning> warnings;
   std::optional<PhysicalBootstrap> bootstrap;
+  /// With PhysicalOptions::tare: the rest rows' means subtracted from A and from B (empty without).
+  Eigen::VectorXd tare_a, tare_b;
 
   bool ok() const { return status == Status::Success; }
 };

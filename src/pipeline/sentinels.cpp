@@ -1,0 +1,89 @@
+// The warning about loggers' codes for invalid readings in A and B.
+#include "pipeline/sentinels.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+namespace spdfit::detail {
+
+namespace {
+
+// Rows named in the warning; the count says how many more.
+constexpr std::size_t kNamedRows = 5;
+
+struct Sentinel {
+  Eigen::Index row;
+  bool in_a;
+  Eigen::Index column;
+  double value;
+};
+
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+// The rows to keep, as ranges of 1-based row numbers ("1-16 and 18-50"), when short.
+std::string kept_rows(Eigen::Index m, const std::vector<Eigen::Index>& left_out) {
+  std::string out;
+  std::size_t ranges = 0;
+  Eigen::Index start = 0;  // 0-based start of the current run of kept rows
+  const auto close = [&](Eigen::Index end) {  // [start, end) kept
+    if (end <= start) return;
+    out += (ranges == 0 ? "" : ", ") + std::to_string(start + 1) +
+           (end - start > 1 ? "-" + std::to_string(end) : std::string());
+    ++ranges;
+  };
+  for (Eigen::Index row : left_out) {
+    close(row);
+    start = row + 1;
+  }
+  close(m);
+  if (ranges == 0 || ranges > 6) return std::string();
+  return out;
+}
+
+}  // namespace
+
+std::optional<Warning> sentinel_warning(const Eigen::Ref<const Eigen::MatrixXd>& A,
+                                        const Eigen::Ref<const Eigen::MatrixXd>& B) {
+  std::vector<Sentinel> found;
+  std::vector<Eigen::Index> rows;
+  const Eigen::Index m = A.rows();
+  for (Eigen::Index i = 0; i < m; ++i) {
+    bool any = false;
+    const auto scan = [&](const Eigen::Ref<const Eigen::MatrixXd>& M, bool in_a) {
+      for (Eigen::Index j = 0; j < M.cols(); ++j) {
+        const double v = M(i, j);
+        if (!(std::abs(v) >= kSentinelMagnitude)) continue;
+        if (!any && found.size() < kNamedRows) found.push_back({i, in_a, j, v});
+        any = true;
+      }
+    };
+    scan(A, true);
+    if (B.rows() == m) scan(B, false);
+    if (any) rows.push_back(i);
+  }
+  if (rows.empty()) return std::nullopt;
+  std::string named;
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    const Sentinel& s = found[k];
+    named += (k == 0 ? "" : ", ") + std::to_string(s.row + 1) + " (" + number(s.value) + " in " +
+             (s.in_a ? "A" : "B") + "'s column " + std::to_string(s.column + 1) + ")";
+  }
+  const bool one = rows.size() == 1;
+  std::string text = (one ? "row " : "rows ") + named;
+  if (rows.size() > found.size()) text += " and " + std::to_string(rows.size() - found.size()) + " more";
+  text += (one ? " holds" : " hold");
+  text += " a value of magnitude 1e30 or more: a logger's code for an invalid reading, not a measurement, and " +
+          std::string(one ? "it dominates" : "they dominate") +
+          " the fit (and A's and B's singular values, ranks and condition numbers); leave " +
+          (one ? "it" : "them") + " out of A and B";
+  const std::string kept = kept_rows(m, rows);
+  if (!kept.empty()) text += " (fit rows " + kept + ")";
+  return Warning(Code::Warning, text);
+}
+
+}  // namespace spdfit::detail

@@ -1,0 +1,31 @@
+// Internal: values no sensor measures, which loggers write for an invalid reading (9.9e37, 1e38):
+// one of them decides a fit, its singular values and its ranks, so the rows holding them are named.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "spdfit/outcome.hpp"
+
+namespace spdfit::detail {
+
+/// The magnitude from which a value is a logger's code, not a measurement: no quantity a fit's
+/// user logs reaches it in any unit, and loggers' "invalid" codes (9.9e37, FLT_MAX) are above it.
+constexpr double kSentinelMagnitude = 1e30;
+
+/// The warning about the rows of A and B (m rows each, numbered 1..m as in their files) holding a
+/// value of magnitude kSentinelMagnitude or more, naming up to five with their values and column,
+/// and the rows to keep; nothing when there is none. Cost O(m (n + d)).
+std::optional<Warning> sentinel_warning(const Eigen::Ref<const Eigen::MatrixXd>& A,
+                                        const Eigen::Ref<const Eigen::MatrixXd>& B);
+
+/// What a failed fit's message gains when the data hold such values: they, not the data, decided it.
+inline const std::string& sentinel_failure_note() {
+  static const std::string note =
+      " (the data hold values of magnitude 1e30 or more, which decide this: see the warnings)";
+  return note;
+}
+
+}  // namespace spdfit::detail

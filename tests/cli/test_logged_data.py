@@ -1,0 +1,99 @@
+"""Data as it is logged (issue 42): the command line's answers to a logger's code for an invalid
+reading (9.9e37) and to one entry of 1e160, and to a CSV export that quotes every cell. Each gives
+the truth, a warning naming the rows and the fix, or a clear error; references are NumPy's least
+squares and the fit of the rows the warning says to keep."""
+import json
+
+import numpy as np
+
+X_TRUE = np.array([[4.0, 1.0, 0.5], [1.0, 3.0, 0.2], [0.5, 0.2, 2.0]])
+# Agreement of two ways to the same arithmetic (different QR orders): rounding.
+ROUNDING = 1e-10
+
+
+def write_csv(path, M, quoted=False):
+    rows = []
+    for row in np.atleast_2d(M):
+        cells = [repr(float(v)) for v in row]
+        rows.append(",".join(f'"{c}"' for c in cells) if quoted else ",".join(cells))
+    path.write_text("\n".join(rows) + "\n")
+    return str(path)
+
+
+def problem(m=50, seed=1, noise=0.01):
+    rng = np.random.default_rng(seed)
+    A = rng.uniform(-1, 1, (m, 3))
+    B = A @ X_TRUE + noise * rng.standard_normal((m, 3))
+    return A, B
+
+
+def fit_json(spdfit, *args):
+    result = spdfit("fit", "--json", *args)
+    assert result.returncode == 0, result.stderr
+    return json.loads(result.stdout), result.stderr
+
+
+def test_a_sentinel_is_named_with_the_rows_to_keep(spdfit, tmp_path):
+    A, B = problem()
+    A[16, 1] = 9.9e37
+    a, b = write_csv(tmp_path / "A.csv", A), write_csv(tmp_path / "B.csv", B)
+    result = spdfit("fit", "--method", "spde", "--json", a, b)
+    assert "row 17 (9.9e+37 in A's column 2) holds a value of magnitude 1e30 or more" in result.stderr
+    assert "(fit rows 1-16, 18-50)" in result.stderr
+    if result.returncode == 0:
+        doc = json.loads(result.stdout)
+        assert "logger" in " ".join(doc["warnings"]) and "warning" in doc["warning_codes"]
+    # The fix it names gives the truth (to the noise), and no warning.
+    keep = np.r_[0:16, 17:50]
+    out, err = fit_json(spdfit, "--method", "spde", write_csv(tmp_path / "A2.csv", A[keep]),
+                        write_csv(tmp_path / "B2.csv", B[keep]))
+    assert out["m"] == 49 and "1e30" not in err
+    np.testing.assert_allclose(np.array(out["X"]), X_TRUE, atol=0.05)
+
+
+def test_one_huge_entry_is_named_and_a_failure_points_at_it(spdfit, tmp_path):
+    A, B = problem()
+    A[4, 0] = 1e160
+    a, b = write_csv(tmp_path / "A.csv", A), write_csv(tmp_path / "B.csv", B)
+    result = spdfit("fit", "--method", "spde", "--json", a, b)
+    assert "row 5 (1e+160 in A's column 1)" in result.stderr
+    assert "(fit rows 1-4, 6-50)" in result.stderr
+    if result.returncode != 0:
+        assert "values of magnitude 1e30 or more, which decide this" in result.stderr
+    # compare says it once, not once per method.
+    compared = spdfit("compare", a, b)
+    assert compared.stderr.count("row 5 (1e+160") == 1, compared.stderr
+
+
+def test_a_sentinel_in_b_is_named_too(spdfit, tmp_path):
+    A, B = problem(seed=2)
+    B[[3, 9], 2] = -9.9e37
+    out, err = fit_json(spdfit, "--method", "ls", write_csv(tmp_path / "A.csv", A), write_csv(tmp_path / "B.csv", B))
+    assert "rows 4 (-9.9e+37 in B's column 3), 10 (-9.9e+37 in B's column 3) hold" in err
+
+
+def test_clean_data_have_no_sentinel_warning(spdfit, tmp_path):
+    A, B = problem(seed=3)
+    A[7] *= 1e6  # a large row (leverage), not a code
+    _, err = fit_json(spdfit, "--method", "ls", write_csv(tmp_path / "A.csv", A), write_csv(tmp_path / "B.csv", B))
+    assert "1e30" not in err
+
+
+def test_a_quoted_export_keeps_its_first_row(spdfit, tmp_path):
+    A, B = problem()
+    a = write_csv(tmp_path / "A.csv", A, quoted=True)
+    b = write_csv(tmp_path / "B.csv", B, quoted=True)
+    out, err = fit_json(spdfit, "--method", "ls", a, b)
+    assert out["m"] == 50
+    assert "header" not in err
+    np.testing.assert_allclose(np.array(out["X"]), np.linalg.lstsq(A, B, rcond=None)[0], rtol=ROUNDING)
+
+
+def test_quoted_numbered_names_are_data_with_a_warning(spdfit, tmp_path):
+    A, B = problem(m=20)
+    a = tmp_path / "A.csv"
+    a.write_text('"1","2","3"\n' + "\n".join(",".join(repr(float(v)) for v in row) for row in A) + "\n")
+    b = write_csv(tmp_path / "B.csv", np.vstack([np.ones((1, 3)), B]))
+    out, err = fit_json(spdfit, "--method", "ls", str(a), b)
+    assert out["m"] == 21
+    assert "is read as data" in err and "--header" in err

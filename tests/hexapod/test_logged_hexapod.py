@@ -1,0 +1,90 @@
+"""The hexapod rows of issue 42's table, through the command line: forces logged untared (a static
+load, rest rows given) and forces logged in kN against a geometry in SI. Each gives the truth with
+the option the warning or error names, or a clear error; never a "physically consistent" payload
+of the wrong mass. References: the same data tared or converted to SI by hand in NumPy, fitted
+plainly, and the simulated payload."""
+import json
+
+import numpy as np
+
+from conftest import read_csv
+
+# The same arithmetic on rows that differ by a subtraction or a power of ten: rounding.
+SAME = 1e-9
+PRELOAD = np.array([21.0, 20.0, 22.0, 21.5, 20.5, 21.0])  # N: a payload's weight along the struts
+
+
+def geometry(cli, tmp_path):
+    cli("hexapod", "model", "--write-geometry", "g.json")
+    return tmp_path / "g.json"
+
+
+def write(path, M):
+    np.savetxt(path, M, delimiter=",", fmt="%.17g")
+    return str(path)
+
+
+def physical(cli, *args, expect=0):
+    proc = cli("hexapod", "identify", "--json", "--physical", *args, expect=expect)
+    return (json.loads(proc.stdout) if expect == 0 else None), proc.stderr
+
+
+def untared_log(cli, tmp_path, g):
+    """A simulated log as an untared logger writes it: the static load in every row of B, moving or
+    at rest (the simulator's rest rows carry M_p 1; they are given the preload instead)."""
+    cli("hexapod", "simulate", "--geometry", g, "--samples", 400, "--noise-var", 0.5, "--rest-samples", 200,
+        "--seed", 3, "--out", "run")
+    run = tmp_path / "run"
+    A, B, truth = read_csv(run / "A.csv"), read_csv(run / "B.csv"), read_csv(run / "truth.csv")
+    rest_A, rest_B = read_csv(run / "rest_A.csv"), read_csv(run / "rest_B.csv")
+    rest_B = rest_B - truth @ np.ones(6) + PRELOAD
+    return A, B + PRELOAD, rest_A, rest_B
+
+
+def test_untared_forces_warn_and_offsets_rest_gives_the_tared_answer(cli, tmp_path):
+    g = geometry(cli, tmp_path)
+    A, B, rest_A, rest_B = untared_log(cli, tmp_path, g)
+    rest = ["--rest-a", write(tmp_path / "rA.csv", rest_A), "--rest-b", write(tmp_path / "rB.csv", rest_B)]
+    files = [write(tmp_path / "A.csv", A), write(tmp_path / "B.csv", B), "--geometry", g, *rest]
+    # As logged: a warning that names the fix.
+    _, err = physical(cli, *files)
+    assert "the forces look untared" in err and "--offsets rest" in err, err
+    # With the fix: the fit of the data tared by hand (NumPy subtracts the rest rows' means).
+    tared, err = physical(cli, *files, "--offsets", "rest")
+    assert "untared" not in err
+    by_hand, _ = physical(cli, write(tmp_path / "At.csv", A - rest_A.mean(0)),
+                          write(tmp_path / "Bt.csv", B - rest_B.mean(0)), "--geometry", g, *rest)
+    p, q = tared["physical"], by_hand["physical"]
+    assert abs(p["mass"] - q["mass"]) <= SAME * q["mass"]
+    np.testing.assert_allclose(p["M_p"], q["M_p"], rtol=SAME, atol=SAME * np.abs(q["M_p"]).max())
+    assert p["offsets"]["mode"] == "rest" and q["offsets"] == {"mode": "none"}
+    np.testing.assert_allclose(p["offsets"]["b"], rest_B.mean(0), rtol=1e-12)
+    # And that is the simulated payload's mass, to the noise; untared it was not.
+    truth = json.loads(g.read_text())["payload_mass"]
+    assert abs(p["mass"] - truth) < 0.05 * truth
+    untared, _ = physical(cli, *files)
+    assert abs(untared["physical"]["mass"] - truth) > 5 * abs(p["mass"] - truth)
+    # --offsets rest without rest rows: a usage error naming them.
+    _, err = physical(cli, "A.csv", "B.csv", "--geometry", g, "--offsets", "rest", expect=2)
+    assert "--rest-a" in err
+
+
+def test_forces_in_kn_are_refused_with_the_factor_and_converted_give_the_si_answer(cli, tmp_path):
+    g = geometry(cli, tmp_path)
+    cli("hexapod", "simulate", "--geometry", g, "--samples", 300, "--noise-var", 0.5, "--seed", 5, "--out", "si")
+    A, B = read_csv(tmp_path / "si" / "A.csv"), read_csv(tmp_path / "si" / "B.csv")
+    kn = [write(tmp_path / "A.csv", A), write(tmp_path / "Bkn.csv", B / 1000), "--geometry", g]
+    _, err = physical(cli, *kn, expect=1)
+    assert "(kN instead of N?)" in err and "multiply the forces by 1000" in err, err
+    assert "physically consistent" not in err
+    # The fix it names (B times 1000) gives the SI data's payload.
+    fixed, _ = physical(cli, "A.csv", write(tmp_path / "Bn.csv", read_csv(tmp_path / "Bkn.csv") * 1000),
+                        "--geometry", g)
+    si, _ = physical(cli, "si/A.csv", "si/B.csv", "--geometry", g)
+    assert abs(fixed["physical"]["mass"] - si["physical"]["mass"]) <= SAME * si["physical"]["mass"]
+    # The generic estimators, given the geometry, warn about the units instead of reporting kg
+    # and modes a thousand times off.
+    proc = cli("hexapod", "identify", "--json", *kn)
+    assert "the geometry is in SI units" in proc.stderr and "multiply the forces by 1000" in proc.stderr
+    # --no-plausibility-check fits them as they are (the user's decision).
+    physical(cli, *kn, "--no-plausibility-check")
