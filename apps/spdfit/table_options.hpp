@@ -61,7 +61,8 @@ class TableOptions {
   /// Adds every option of `table` with a command-line spelling to `sub`, but those named in
   /// `leave_out` (library names), in the table's order. The table must outlive this object.
   TableOptions(CLI::App& sub, const std::vector<OptionSpec<Request>>& table,
-               const std::vector<std::string_view>& leave_out = {}) {
+               const std::vector<std::string_view>& leave_out = {})
+      : table_(&table) {
     for (const OptionSpec<Request>& spec : table) {
       if (spec.cli.empty() || contains(leave_out, spec.name)) continue;
       auto entry = std::make_unique<Entry>();
@@ -114,7 +115,8 @@ class TableOptions {
       try {
         set_option(request, *entry->spec, value_of(*entry, read_vector));
       } catch (const OptionError& e) {
-        throw_usage(e);
+        // Spelled with this table first: its names may be another table's too (`criterion`).
+        throw UsageError(spell_options_with(e.what(), Frontend::Cli, *table_));
       }
     }
   }
@@ -136,6 +138,7 @@ class TableOptions {
 
   static OptionValue value_of(const Entry& entry, const VectorReader& read_vector);
 
+  const std::vector<OptionSpec<Request>>* table_ = nullptr;
   std::vector<std::unique_ptr<Entry>> entries_;
 };
 

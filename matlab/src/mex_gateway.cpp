@@ -21,6 +21,8 @@
 #include "spdfit/hexapod/physical.hpp"
 #include "spdfit/hexapod/render.hpp"
 #include "spdfit/io.hpp"
+#include "spdfit/payload/identify.hpp"
+#include "spdfit/physical/regress.hpp"
 #include "spdfit/render.hpp"
 
 namespace spdfit::matlab {
@@ -162,6 +164,36 @@ void identify_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* 
   plhs[2] = warnings_cell(warnings);
 }
 
+void payload_identify_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
+  need_arguments("payload.identify", nrhs, 2,
+                 "the wrench: [result, text] = spdfit.payload.identify(W, 'Quaternion', Q, name, value, ...)");
+  PayloadRequest request = payload_request(pairs_from("payload.identify", nrhs, prhs, 2));
+  request.signals.wrench = read_matrix(prhs[1], "W");
+  payload::PayloadEstimate estimate;
+  try {
+    estimate = payload::identify(request.signals, request.request);
+  } catch (const OptionError& e) {
+    throw OptionError(spell_options_with(e.what(), Frontend::Matlab, payload::identify_option_table()));
+  }
+  if (!estimate.ok()) throw NumericalError(estimate.message);
+  plhs[0] = write_json(payload::to_json(estimate));
+  plhs[1] = want_info ? mxCreateString(payload::report(estimate).c_str()) : mxCreateDoubleMatrix(0, 0, mxREAL);
+  plhs[2] = warnings_cell(estimate.warnings);
+}
+
+void regress_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
+  need_arguments("physical.regress", nrhs, 3, "Y and tau: [result, text] = spdfit.physical.regress(Y, tau, 'Bodies', K, ...)");
+  const Eigen::MatrixXd Y = read_matrix(prhs[1], "Y");
+  Eigen::MatrixXd tau = read_matrix(prhs[2], "tau");
+  if (tau.rows() == 1 && tau.cols() == Y.rows()) tau.transposeInPlace();
+  const physical::RegressRequest request = regress_request(pairs_from("physical.regress", nrhs, prhs, 3));
+  const physical::RegressResult result = physical::regress(Y, tau, request);
+  if (!result.ok()) throw NumericalError(result.message);
+  plhs[0] = write_json(physical::to_json(result));
+  plhs[1] = want_info ? mxCreateString(physical::report(result).c_str()) : mxCreateDoubleMatrix(0, 0, mxREAL);
+  plhs[2] = warnings_cell(result.warnings);
+}
+
 // spdfit_mex(COMMAND, WANT_INFO, arguments...) -> [estimate, info, warnings]: the arguments after
 // the first two are the package function's, which the commands index from 1 (prhs + 1).
 void run(int nlhs, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
@@ -174,6 +206,8 @@ void run(int nlhs, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
   if (command == "nearest") return nearest_command(want_info, plhs, nrhs - 1, prhs + 1);
   if (command == "solve") return solve_command(want_info, plhs, nrhs - 1, prhs + 1);
   if (command == "identify") return identify_command(want_info, plhs, nrhs - 1, prhs + 1);
+  if (command == "payload.identify") return payload_identify_command(want_info, plhs, nrhs - 1, prhs + 1);
+  if (command == "physical.regress") return regress_command(want_info, plhs, nrhs - 1, prhs + 1);
   throw UsageError("spdfit_mex has no command '" + command + "'");
 }
 

@@ -6,6 +6,8 @@
 #include <limits>
 #include <optional>
 
+#include "spdfit/inertia_repair.hpp"
+
 namespace spdfit::matlab {
 
 namespace {
@@ -65,6 +67,38 @@ const IdentifyOption* identify_option(std::string_view typed) {
   }
   return nullptr;
 }
+
+// spdfit.payload.identify's signals, given as matrices, and the table's options it takes: not the
+// log file's column selections nor the URDF file's (MATLAB passes arrays and gets a struct).
+constexpr const char* kPayloadSignals[] = {"quaternion", "rotation", "gravity_in_sensor", "accel",
+                                           "specific_force", "omega", "alpha", "time"};
+constexpr const char* kPayloadSignalHelp[] = {
+    "m x 4 quaternions (x y z w unless 'QuatOrder' is wxyz): the rotation from the sensor frame to the world.",
+    "m x 9 rotation matrices, row-major.",
+    "m x 3 gravity in the sensor frame (m/s^2).",
+    "m x 3 kinematic acceleration of the sensor's origin in the sensor frame (m/s^2).",
+    "m x 3 IMU specific force (gravity included: no orientation needed).",
+    "m x 3 angular velocity (rad/s): the inertia enters the model.",
+    "m x 3 angular acceleration (rad/s^2); without it, omega's central differences in 'Time'.",
+    "m x 1 times (s)."};
+
+bool payload_takes(std::string_view name) {
+  const std::string_view left_out[] = {"wrench_cols", "quat_cols", "rotation_cols", "gravity_cols", "accel_cols",
+                                       "specific_force_cols", "omega_cols", "alpha_cols", "time_col", "urdf",
+                                       "link_name", "precision", "unconstrained"};
+  for (std::string_view n : left_out)
+    if (n == name) return false;
+  return true;
+}
+
+int payload_signal(std::string_view typed) {
+  for (int k = 0; k < 8; ++k) {
+    if (same_name(camel_case(kPayloadSignals[k]), typed)) return k;
+  }
+  return -1;
+}
+
+bool regress_takes(std::string_view name) { return name != "unconstrained"; }
 
 const OptionSpec<hexapod::PhysicalOptions>* physical_option(std::string_view typed) {
   for (const auto& spec : hexapod::physical_option_table()) {
@@ -181,6 +215,22 @@ std::vector<MatlabOption> option_help(std::string_view function) {
     return out;
   }
   if (function == "nearest") return help_of(nearest_option_table(), nullptr);
+  if (function == "payload.identify") {
+    std::vector<MatlabOption> out;
+    for (int k = 0; k < 8; ++k) out.push_back({camel_case(kPayloadSignals[k]), "matrix", kPayloadSignalHelp[k], ""});
+    for (MatlabOption& o : help_of(payload::identify_option_table(), &payload_takes)) out.push_back(std::move(o));
+    return out;
+  }
+  if (function == "physical.regress") {
+    std::vector<MatlabOption> out = help_of(physical::regress_option_table(), &regress_takes);
+    for (MatlabOption& o : out) {
+      if (o.name == "NoiseCov") {
+        o.type = "matrix";
+        o.help = "The covariance of the noise in one sample's d outputs (d x d): the rows come in samples of d.";
+      }
+    }
+    return out;
+  }
   std::vector<MatlabOption> out;
   for (const SolveOption& o : kSolveOptions) {
     out.push_back({camel_case(o.name), "real", std::string(o.help), std::string(o.default_text)});
@@ -200,6 +250,14 @@ ValueShape option_shape(std::string_view function, std::string_view typed_name) 
     return matlab_shape(spec.name, spec.type);
   }
   if (function == "nearest") return value_shape(spec_named(nearest_option_table(), typed_name, nullptr, function).type);
+  if (function == "payload.identify") {
+    if (payload_signal(typed_name) >= 0) return ValueShape::Matrix;
+    return value_shape(spec_named(payload::identify_option_table(), typed_name, &payload_takes, function).type);
+  }
+  if (function == "physical.regress") {
+    const auto& spec = spec_named(physical::regress_option_table(), typed_name, &regress_takes, function);
+    return spec.name == "noise_cov" ? ValueShape::Matrix : value_shape(spec.type);
+  }
   std::string names;
   for (const SolveOption& o : kSolveOptions) {
     if (same_name(camel_case(o.name), typed_name)) return ValueShape::Real;
@@ -278,6 +336,48 @@ IdentifyRequest identify_request(const std::vector<NameValue>& pairs) {
     throw OptionError("`physical` needs `geometry`: the geometry file (spdfit hexapod model --write-geometry G.json)");
   }
   return out;
+}
+
+PayloadRequest payload_request(const std::vector<NameValue>& pairs) {
+  PayloadRequest out;
+  std::vector<NameValue> options;
+  for (const NameValue& pair : pairs) {
+    const int k = payload_signal(pair.name);
+    if (k < 0) {
+      options.push_back(pair);
+      continue;
+    }
+    if (pair.empty) continue;
+    payload::PayloadSignals& s = out.signals;
+    Eigen::MatrixXd* targets[] = {&s.quaternion, &s.rotation, &s.gravity, &s.accel, &s.specific_force, &s.omega,
+                                  &s.alpha, nullptr};
+    if (targets[k]) {
+      *targets[k] = pair.matrix;
+    } else {
+      s.time = Eigen::Map<const Eigen::VectorXd>(pair.matrix.data(), pair.matrix.size());
+    }
+  }
+  const std::vector<std::string_view> given =
+      set_pairs(out.request, payload::identify_option_table(), options, &payload_takes, "payload.identify");
+  check_option_combination(payload::identify_option_table(), given);
+  return out;
+}
+
+physical::RegressRequest regress_request(const std::vector<NameValue>& pairs) {
+  physical::RegressRequest request;
+  std::vector<NameValue> options;
+  for (const NameValue& pair : pairs) {
+    if (same_name(pair.name, "NoiseCov")) {
+      if (!pair.empty) request.noise_cov = pair.matrix;
+      continue;
+    }
+    options.push_back(pair);
+  }
+  const std::vector<std::string_view> given =
+      set_pairs(request, physical::regress_option_table(), options, &regress_takes, "physical.regress");
+  check_option_combination(physical::regress_option_table(), given);
+  if (!request.prior_path.empty()) request.prior = read_rigid_bodies(request.prior_path);
+  return request;
 }
 
 NearestRequest nearest_request(const std::vector<NameValue>& pairs) {

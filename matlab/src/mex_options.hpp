@@ -13,6 +13,8 @@
 #include "spdfit/hexapod/physical_request.hpp"
 #include "spdfit/linear_system.hpp"
 #include "spdfit/nearest_request.hpp"
+#include "spdfit/payload/identify.hpp"
+#include "spdfit/physical/regress.hpp"
 
 namespace spdfit::matlab {
 
@@ -43,7 +45,8 @@ struct MatlabOption {
 };
 
 /// The options of `function` ("fit": the fit table without the stream's, which reads files;
-/// "nearest": the nearest table; "solve"), for its generated help text.
+/// "nearest": the nearest table; "solve"; "identify"; "payload.identify"; "physical.regress"), for
+/// its generated help text.
 std::vector<MatlabOption> option_help(std::string_view function);
 
 /// The shape each name-value pair of `function` ("fit", "nearest", "solve") needs, by the name a
@@ -75,6 +78,19 @@ struct IdentifyRequest {
   Eigen::MatrixXd truth, stiffness;         ///< empty: not given
 };
 IdentifyRequest identify_request(const std::vector<NameValue>& pairs);
+
+/// What spdfit.payload.identify was asked for: the signals besides the wrench ('Quaternion',
+/// 'Rotation', 'GravityInSensor', 'Accel', 'SpecificForce', 'Omega', 'Alpha', 'Time', as matrices)
+/// and the options of payload identify's table (but the log file's column options and the URDF
+/// file's, which read and write files).
+struct PayloadRequest {
+  payload::PayloadSignals signals;
+  payload::IdentifyRequest request;
+};
+PayloadRequest payload_request(const std::vector<NameValue>& pairs);
+
+/// spdfit.physical.regress's options: the regress table's ('NoiseCov' a matrix, 'Prior' a JSON file of bodies).
+physical::RegressRequest regress_request(const std::vector<NameValue>& pairs);
 LinearSystemOptions solve_options(const std::vector<NameValue>& pairs);
 
 }  // namespace spdfit::matlab

@@ -5,6 +5,9 @@
 #include "spdfit/fit_request.hpp"
 #include "spdfit/hexapod/physical_request.hpp"
 #include "spdfit/nearest_request.hpp"
+#include "spdfit/payload/design.hpp"
+#include "spdfit/payload/identify.hpp"
+#include "spdfit/physical/regress.hpp"
 
 namespace spdfit::python {
 
@@ -48,6 +51,9 @@ const std::vector<Entry>& entries() {
       {"hexapod.identify.physical", "physical", {}, {}},
       {"nearest_spd", "nearest", {}, {"corr"}},
       {"nearest_correlation", "nearest", {"corr"}, {"keep_diag", "via_corr"}},
+      {"payload.identify", "payload", {}, {}},
+      {"payload.design", "payload_design", {}, {}},
+      {"physical.regress", "regress", {}, {}},
   };
   return list;
 }
@@ -61,6 +67,15 @@ const Entry& entry(std::string_view name) {
 
 std::vector<Keyword> keywords(const Entry& entry, std::optional<Method> method) {
   if (entry.table == "nearest") return keywords_of(nearest_option_table(), entry, static_cast<NearestRequest*>(nullptr));
+  if (entry.table == "payload") {
+    return keywords_of(payload::identify_option_table(), entry, static_cast<payload::IdentifyRequest*>(nullptr));
+  }
+  if (entry.table == "payload_design") {
+    return keywords_of(payload::design_option_table(), entry, static_cast<payload::DesignRequest*>(nullptr));
+  }
+  if (entry.table == "regress") {
+    return keywords_of(physical::regress_option_table(), entry, static_cast<physical::RegressRequest*>(nullptr));
+  }
   if (entry.table == "physical") {
     return keywords_of(hexapod::physical_option_table(), entry,
                        static_cast<hexapod::PhysicalOptions*>(nullptr));
