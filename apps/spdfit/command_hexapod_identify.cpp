@@ -14,6 +14,7 @@
 #include "spdfit/hexapod/identify.hpp"
 #include "spdfit/hexapod/physical_request.hpp"
 #include "spdfit/hexapod/render.hpp"
+#include "spdfit/inertia_repair.hpp"
 #include "spdfit/io.hpp"
 #include "table_options.hpp"
 
@@ -50,7 +51,8 @@ Eigen::MatrixXd parse_stiffness(const std::string& text, Eigen::Index n) {
 
 Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
   struct Cli {
-    std::string a_path, b_path, truth, geometry, stiffness, output;
+    std::string a_path, b_path, truth, geometry, stiffness, output, urdf;
+    int precision = 9;
     bool json = false, physical = false;
     BootstrapCli bootstrap;
     std::unique_ptr<TableOptions<hexapod::PhysicalOptions>> physical_options;
@@ -81,6 +83,11 @@ Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
   here.insert(here.end(), {"max_iterations", "rank_tolerance", "a_cols", "b_cols"});
   cli->fit_options = std::make_unique<TableOptions<FitRequest>>(*sub, fit_option_table(),
                                                                 all_but(fit_option_table(), here));
+  auto* urdf = sub->add_option("--urdf", cli->urdf,
+                               "With --physical: also write the payload as a URDF <link> with its <inertial> to FILE");
+  sub->add_option("--precision", cli->precision, "Significant digits of --urdf's numbers (default 9)")
+      ->check(CLI::Range(1, 17))
+      ->needs(urdf);
   sub->add_flag("--json", cli->json, "Print every result as JSON");
   sub->add_option("-o,--output", cli->output, "Write to FILE instead of stdout");
   add_bootstrap_options(*sub, cli->bootstrap,
@@ -112,6 +119,7 @@ Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
     if (!cli->physical && !physical_given.empty()) {
       throw UsageError(spell_option(physical_given.front(), Frontend::Cli) + " needs --physical");
     }
+    if (!cli->urdf.empty() && !cli->physical) throw UsageError("--urdf needs --physical: it writes the payload's fit");
     if (cli->physical && cli->geometry.empty()) {
       throw UsageError(
           "--physical needs --geometry: the Jacobian and the nominal payload come from the geometry file");
@@ -149,6 +157,7 @@ Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
          cli->output);
     // The report says why too; the exit status tells a script that the fit asked for failed.
     if (!physical.ok()) throw DataFailure("the physical fit failed: " + physical.message);
+    if (!cli->urdf.empty()) io::write_text(cli->urdf, urdf_link(physical.payload, "payload", cli->precision));
   };
   return {sub, run};
 }

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli.hpp"
+#include "spdfit/option_spelling.hpp"
 #include "output.hpp"
 #include "spdfit/io.hpp"
 #include "spdfit/payload/design.hpp"

@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli.hpp"
+#include "spdfit/option_spelling.hpp"
 #include "output.hpp"
 #include "spdfit/io.hpp"
 #include "spdfit/physical/regress.hpp"

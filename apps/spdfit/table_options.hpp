@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "spdfit/option_spelling.hpp"
 #include "spdfit/fit_request.hpp"
 #include "spdfit/options.hpp"
 #include "validators.hpp"

@@ -21,6 +21,7 @@
 #include "spdfit/hexapod/physical.hpp"
 #include "spdfit/hexapod/render.hpp"
 #include "spdfit/io.hpp"
+#include "spdfit/option_spelling.hpp"
 #include "spdfit/payload/identify.hpp"
 #include "spdfit/physical/regress.hpp"
 #include "spdfit/render.hpp"

@@ -16,6 +16,10 @@ draws, into DIR (default ./figures):
                        at two noise levels: which method to choose for how much data
   physical_vs_generic  mean error of M_p against m (log-log): physical identification of the
                        payload against the generic estimators and the best of them at each m
+  payload_frames       the frames of payload identification: the world, the sensor frame S, the
+                       payload's centre of mass, gravity and the wrench (docs/payload.md)
+  payload_residuals    the residuals per axis of the calibration of examples/payload/log.csv
+                       (docs/payload.md; the log is found under $SPDFIT_SOURCE_DIR or ./)
 
 Each plot_* function takes the data its *_data function returns (the experiment functions'
 results, unchanged), so what is drawn is what the library computed.
@@ -303,6 +307,103 @@ def plot_physical(data):
     return fig
 
 
+# ---- 8. A payload on a wrist force/torque sensor ----------------------------------------------
+
+def payload_frames_data():
+    """The diagram's geometry: the sensor frame's rotation and origin, the centre of mass."""
+    angle = np.radians(35.0)
+    R = np.array([[np.cos(angle), -np.sin(angle)], [np.sin(angle), np.cos(angle)]])
+    return {"origin": np.array([2.2, 2.0]), "R": R, "com": np.array([0.55, -1.1])}
+
+
+def plot_payload_frames(data):
+    from matplotlib.patches import FancyArrowPatch, Polygon
+
+    fig, ax = plt.subplots(figsize=(7.5, 5.2))
+    ax.set_aspect("equal")
+    ax.axis("off")
+
+    def arrow(start, end, color, text=None, offset=(0.08, 0.08), style="-|>", width=1.8, **kw):
+        ax.add_patch(FancyArrowPatch(start, end, arrowstyle=style, mutation_scale=14, color=color, lw=width, **kw))
+        if text:
+            ax.text(end[0] + offset[0], end[1] + offset[1], text, color=color, fontsize=11)
+
+    # The world frame W and gravity.
+    arrow((0.2, 0.2), (1.1, 0.2), "black", "$x_W$", (0.05, -0.2))
+    arrow((0.2, 0.2), (0.2, 1.1), "black", "$z_W$", (-0.25, 0.05))
+    ax.text(0.05, -0.15, "world W", fontsize=10)
+    arrow((0.8, 3.6), (0.8, 2.8), "#1f77b4", "$g$  (0, 0, $-9.81$)", (0.1, 0.2))
+    # The robot's last link and flange, the sensor S (its origin, axes rotated by R).
+    o, R = data["origin"], data["R"]
+    ax.add_patch(Polygon([o + R @ p for p in ([-0.25, 0.9], [0.25, 0.9], [0.25, 0.0], [-0.25, 0.0])],
+                         closed=True, color="#bbbbbb"))
+    ax.text(*(o + R @ np.array([0.35, 0.7])), "robot wrist", fontsize=9, color="#555555")
+    ax.add_patch(Polygon([o + R @ p for p in ([-0.35, 0.0], [0.35, 0.0], [0.35, -0.2], [-0.35, -0.2])],
+                         closed=True, color="#ff7f0e", alpha=0.8))
+    ax.text(*(o + R @ np.array([-1.3, -0.05])), "F/T sensor", fontsize=9, color="#ff7f0e")
+    arrow(o, o + R @ np.array([0.9, 0.0]), "#d62728", "$x_S$")
+    arrow(o, o + R @ np.array([0.0, -0.9]), "#d62728", "$z_S$", (0.05, -0.3))
+    ax.plot(*o, "o", color="#d62728")
+    ax.text(o[0] - 0.45, o[1] + 0.05, "$O_S$", color="#d62728", fontsize=11)
+    # The payload (a gripper) and its centre of mass c (in S).
+    body = [[-0.45, -0.2], [0.45, -0.2], [0.45, -0.9], [0.9, -1.7], [0.6, -1.7], [0.15, -1.0], [-0.15, -1.0],
+            [-0.6, -1.7], [-0.9, -1.7], [-0.45, -0.9]]
+    ax.add_patch(Polygon([o + R @ np.array(p) for p in body], closed=True, color="#2ca02c", alpha=0.35))
+    c = o + R @ data["com"]
+    ax.plot(*c, "o", color="black")
+    arrow(o, c, "black", "$c$ (centre of mass, in S)", (0.1, -0.05), style="-|>", width=1.2, linestyle="--")
+    # Gravity on the payload, m g, and the wrench the sensor applies (f, tau about O_S) and reads (-f, -tau).
+    arrow(c, c + np.array([0.0, -0.9]), "#1f77b4", r"$m\,g$", (0.08, -0.1))
+    arrow(o + np.array([0.0, 0.05]), o + np.array([0.0, 1.0]), "#9467bd", "$f$ on the payload", (0.08, 0.0))
+    ax.text(3.5, 4.2, r"$f = m\,(a - R^T g) + \alpha \times m c + \omega \times (\omega \times m c)$" + "\n" +
+            r"$\tau = I_S\,\alpha + \omega \times (I_S\,\omega) + m c \times (a - R^T g)$" + "\n" +
+            r"reading $w = -(f, \tau) + b$  (the load; --wrench-sign applied: $+$)",
+            fontsize=9.5, va="top")
+    arrow(o + R @ np.array([0.9, -0.4]), o + R @ np.array([1.3, 0.2]), "#8c564b", r"$\omega$, $\alpha$ (in S)",
+          (0.05, 0.05), connectionstyle="arc3,rad=0.4")
+    ax.set_xlim(-0.2, 7.5)
+    ax.set_ylim(-0.5, 4.5)
+    ax.set_title("Payload identification: frames and conventions", fontsize=11)
+    fig.tight_layout()
+    return fig
+
+
+def payload_residuals_data(log=None):
+    """The calibration of docs/payload.md on examples/payload/log.csv: the rows' times and the
+    errors-in-variables fit's residuals per axis."""
+    from . import payload
+    if log is None:
+        root = pathlib.Path(os.environ.get("SPDFIT_SOURCE_DIR", "."))
+        log = root / "examples" / "payload" / "log.csv"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SpdfitWarning)
+        estimate = payload.identify(str(log), wrench_cols="fx:tz", quat_cols="qx:qw", accel_cols="ax:az",
+                                    omega_cols="wx:wz", time_col="t", rest_rows=":0.995", rows="1:",
+                                    criterion="eiv")
+    t = np.loadtxt(log, delimiter=",", skiprows=1, usecols=0)
+    return {"t": t[t >= 1.0], "residuals": estimate["residuals"], "rms": estimate["residual_rms"]}
+
+
+def plot_payload_residuals(data):
+    fig, axes = plt.subplots(2, 3, figsize=(12, 5.5), sharex=True)
+    names = ["$f_x$", "$f_y$", "$f_z$", "$\\tau_x$", "$\\tau_y$", "$\\tau_z$"]
+    units = ["N"] * 3 + ["N m"] * 3
+    for k, ax in enumerate(axes.ravel()):
+        ax.plot(data["t"], data["residuals"][:, k], lw=0.6, color="#1f77b4" if k < 3 else "#d62728")
+        ax.axhline(0.0, color="black", lw=0.5)
+        ax.set_title(f"{names[k]}: RMS {data['rms'][k]:.3g} {units[k]}", fontsize=10)
+        ax.grid(alpha=0.3)
+        if k >= 3:
+            ax.set_xlabel("t (s)")
+    axes[0, 0].set_ylabel("residual (N)")
+    axes[1, 0].set_ylabel("residual (N m)")
+    axes[0, 0].axvspan(1.0, 3.4, color="#dddddd", alpha=0.5, lw=0)
+    axes[0, 0].text(1.1, axes[0, 0].get_ylim()[1] * 0.8, "static poses", fontsize=8)
+    fig.suptitle("examples/payload/log.csv: residuals of the errors-in-variables fit (docs/payload.md)", fontsize=11)
+    fig.tight_layout()
+    return fig
+
+
 FIGURES = {
     "thesis_experiments": (thesis_data, plot_thesis),
     "paper_figure2": (paper_figure2_data, plot_paper_figure2),
@@ -311,6 +412,8 @@ FIGURES = {
     "hexapod_model": (hexapod_data, plot_hexapod),
     "error_vs_samples": (error_vs_samples_data, plot_error_vs_samples),
     "physical_vs_generic": (physical_data, plot_physical),
+    "payload_frames": (payload_frames_data, plot_payload_frames),
+    "payload_residuals": (payload_residuals_data, plot_payload_residuals),
 }
 
 

@@ -210,12 +210,13 @@ def mass_matrix(geometry=None, *, mass, center_of_mass, inertia):
                              _np.asarray(inertia, dtype=_np.float64))
 
 
-def inertia_repair(mass, center_of_mass, inertia, *, min_eig_rel=None):
+def inertia_repair(mass, center_of_mass, inertia, *, min_eig_rel=None, metric="inertia"):
     """The nearest physically consistent inertia, mass and centre of mass kept.
 
-    The second moment about the centre of mass, (1/2) tr(I) 1 - I, is replaced by its nearest
-    matrix with eigenvalues at least min_eig_rel times the largest (an eigenvalue clip), so that
-    every principal moment is below the sum of the other two.
+    The second moment about the centre of mass, (1/2) tr(I) 1 - I, must have eigenvalues at least
+    min_eig_rel times the largest, so that every principal moment is below the sum of the other
+    two. metric="inertia" (the default) gives the nearest such inertia in ||I' - I||_F (the distance
+    reported); metric="second-moment" the nearest second moment (an eigenvalue clip).
 
     Parameters
     ----------
@@ -228,12 +229,14 @@ def inertia_repair(mass, center_of_mass, inertia, *, min_eig_rel=None):
     min_eig_rel : float, optional
         The floor as a fraction of the largest second moment (default 1e-6; 0: the plain
         projection).
+    metric : {'inertia', 'second-moment'}, optional
+        The distance minimized (default 'inertia').
 
     Returns
     -------
     dict
         mass, center_of_mass, inertia (arrays), changed, distance, certificate, min_eig,
-        principal_moments, principal_moments_before, second_moments_before.
+        principal_moments, principal_moments_before, second_moments_before, metric, warnings.
 
     Raises
     ------
@@ -249,7 +252,7 @@ def inertia_repair(mass, center_of_mass, inertia, *, min_eig_rel=None):
     (True, True)
     """
     text = _core.repair_inertia(float(mass), _np.asarray(center_of_mass, dtype=_np.float64),
-                                _np.asarray(inertia, dtype=_np.float64), min_eig_rel)
+                                _np.asarray(inertia, dtype=_np.float64), min_eig_rel, str(metric))
     result = _json.loads(text)
     for key in ("center_of_mass", "inertia", "principal_moments", "principal_moments_before",
                 "second_moments_before"):
@@ -257,7 +260,7 @@ def inertia_repair(mass, center_of_mass, inertia, *, min_eig_rel=None):
     return result
 
 
-def inertia_repair_urdf(text, *, min_eig_rel=None, source="<urdf>"):
+def inertia_repair_urdf(text, *, min_eig_rel=None, source="<urdf>", metric="inertia"):
     """Every link's inertia of a URDF document checked, the inconsistent ones repaired in place.
 
     Parameters
@@ -268,6 +271,8 @@ def inertia_repair_urdf(text, *, min_eig_rel=None, source="<urdf>"):
         As for inertia_repair.
     source : str, optional
         The name errors give the document (a file name).
+    metric : {'inertia', 'second-moment'}, optional
+        As for inertia_repair.
 
     Returns
     -------
@@ -291,7 +296,7 @@ def inertia_repair_urdf(text, *, min_eig_rel=None, source="<urdf>"):
     >>> links[0]["changed"], report.splitlines()[-1]
     (True, '1 of 1 links repaired')
     """
-    return _core.repair_urdf(str(text), str(source), min_eig_rel)
+    return _core.repair_urdf(str(text), str(source), min_eig_rel, str(metric))
 
 
 def _prior_bodies(prior):

@@ -14,6 +14,7 @@
 #include "keywords.hpp"
 #include "spdfit/inertia_repair.hpp"
 #include "spdfit/io.hpp"
+#include "spdfit/option_spelling.hpp"
 #include "spdfit/payload/design.hpp"
 #include "spdfit/payload/identify.hpp"
 #include "spdfit/physical/regress.hpp"
