@@ -10,7 +10,7 @@ of docs/payload.md as tests/support/payload_reference.py writes it (not from spd
                   and the sensor origin's kinematic acceleration ax ay az (m/s^2) and angular
                   velocity wx wy wz (rad/s) in the sensor frame. Rows 1-100: the robot at rest
                   (rest rows for the noise model); rows 101-340: 12 static poses of 20 rows each;
-                  rows 341-940: a moving trajectory (5 harmonics per axis). Sensor biases (5, -2,
+                  rows 341-940: a moving trajectory (5 harmonics per axis, starting and stopping smoothly). Sensor biases (5, -2,
                   1) N and (0.3, -0.1, 0.2) N m; noise 0.2 N and 0.01 N m; a and omega with noise of
                   0.05 m/s^2 and 0.005 rad/s.
   candidates.csv  300 candidate orientations (quaternions, the tool pointing at most 120 degrees
@@ -58,6 +58,11 @@ def make_log(rng):
             f = 2 * np.pi * rng.uniform(0.2, 1.5)
             omega[:, axis] += rng.uniform(0.3, 1.0) / (k + 1) * np.sin(f * t_moving + rng.uniform(0, 2 * np.pi))
             accel[:, axis] += rng.uniform(0.5, 2.0) / (k + 1) * np.sin(f * t_moving + rng.uniform(0, 2 * np.pi))
+    # A smooth start and stop (sin^2 window over the first and last second): the robot starts at rest.
+    ramp = np.clip(np.minimum(t_moving, t_moving[-1] - t_moving) / 1.0, 0.0, 1.0)
+    window = np.sin(0.5 * np.pi * ramp)[:, None] ** 2
+    omega *= window
+    accel *= window
     alpha = np.gradient(omega, t_moving, axis=0, edge_order=2)  # the true alpha (not logged)
     # A smooth orientation: interpolate the pose slowly between a few of them (the model needs no
     # relation between R and omega per sample).

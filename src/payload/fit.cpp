@@ -191,12 +191,28 @@ Fit fit_payload(const Kinematics& kin, const IdentifyRequest& request, const Noi
   const Eigen::VectorXd phi_ls_s = minimum_norm(R11, r12, all, cutoff);
   out.phi_ls = phi_ls_s / theta_scale;
   const double rss_ls = (R11 * phi_ls_s - r12).squaredNorm() + rho2;
-  {
-    // Its mass's classical standard error: sigma^2 (R11^T R11)^+_00, sigma^2 = RSS / (rows - rank).
-    const Eigen::MatrixXd Hplus = pseudo_inverse(R11.transpose() * R11, rank);
-    const double sigma2 = rss_ls / static_cast<double>(std::max<Eigen::Index>(rows - rank, 1));
-    out.mass_ls_se = std::sqrt(std::max(sigma2 * Hplus(0, 0), 0.0)) / theta_scale;
-  }
+  // The sandwich of least squares at phi: (X^T X)^+ (sum_k X_k^T r_k r_k^T X_k) (X^T X)^+ in the
+  // whitened units, X^T X = R11^T R11 2^(2 ea); HC1's factor rows / (rows - rank). Robust to force and
+  // torque noise of different sizes without weights.
+  const Eigen::MatrixXd Hplus_ls =
+      pseudo_inverse(R11.transpose() * R11, rank) * std::ldexp(1.0, -2 * factor.exponent_a());
+  const auto sandwich = [&](const Eigen::VectorXd& phi_at) {
+    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(p, p);
+    Eigen::MatrixXd X(6, p);
+    for (Eigen::Index k = 0; k < kin.samples(); ++k) {
+      const double weight = counts.empty() ? 1.0 : counts[static_cast<std::size_t>(k)];
+      if (weight == 0.0) continue;
+      sample_regressor(kin, k, layout, X);
+      Eigen::Matrix<double, 6, 1> r = X * phi_at - kin.wrench.col(k);
+      white.apply(X);
+      white.apply(r);
+      const Eigen::VectorXd score = X.transpose() * r;
+      S.noalias() += weight * score * score.transpose();
+    }
+    const double n = static_cast<double>(rows);
+    return Eigen::MatrixXd(Hplus_ls * S * Hplus_ls * (n / std::max(n - static_cast<double>(rank), 1.0)));
+  };
+  if (reported) out.mass_ls_se = std::sqrt(std::max(sandwich(out.phi_ls)(0, 0), 0.0));
 
   // The solver's coordinates: L from the columns of the mass and the first moment.
   double first = 0.0;
@@ -299,24 +315,7 @@ Fit fit_payload(const Kinematics& kin, const IdentifyRequest& request, const Noi
       }
     }
   } else if (reported) {
-    // The sandwich of least squares: (X^T X)^+ (sum_k X_k^T r_k r_k^T X_k) (X^T X)^+ in the whitened
-    // units, X^T X = R11^T R11 2^(2 ea).
-    const Eigen::MatrixXd Hplus =
-        pseudo_inverse(R11.transpose() * R11, rank) * std::ldexp(1.0, -2 * factor.exponent_a());
-    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(p, p);
-    Eigen::MatrixXd X(6, p);
-    for (Eigen::Index k = 0; k < kin.samples(); ++k) {
-      const double weight = counts.empty() ? 1.0 : counts[static_cast<std::size_t>(k)];
-      if (weight == 0.0) continue;
-      sample_regressor(kin, k, layout, X);
-      Eigen::Matrix<double, 6, 1> r = X * phi - kin.wrench.col(k);
-      white.apply(X);
-      white.apply(r);
-      const Eigen::VectorXd score = X.transpose() * r;
-      S.noalias() += weight * score * score.transpose();
-    }
-    const double n = static_cast<double>(kin.samples());
-    out.covariance = Hplus * S * Hplus * (6.0 * n / std::max(6.0 * n - static_cast<double>(rank), 1.0));
+    out.covariance = sandwich(phi);
   }
   out.phi = phi;
 

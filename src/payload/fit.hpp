@@ -17,7 +17,7 @@ struct Fit {
   ParameterLayout layout;
   Eigen::VectorXd phi;     ///< the estimate, every parameter (undetermined ones too)
   Eigen::VectorXd phi_ls;  ///< the unconstrained least-squares fit
-  double mass_ls_se = 0.0; ///< its mass's classical standard error
+  double mass_ls_se = 0.0; ///< its mass's standard error (the sandwich), when reported
   physical::Identifiability identifiability;
   double criterion = 0.0;
   physical::Certificate certificate;

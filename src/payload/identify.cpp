@@ -185,9 +185,9 @@ PayloadEstimate identify(const PayloadSignals& signals, const IdentifyRequest& r
     const WrenchSign other = request.wrench_sign == WrenchSign::Load ? WrenchSign::Applied : WrenchSign::Load;
     throw SignalError("the unconstrained fit's mass is " + format_number(fit.phi_ls(0)) + " kg (standard error " +
                       format_number(fit.mass_ls_se) + " kg): significantly negative, so the readings have the other "
-                      "sign convention than `wrench_sign` = " + std::string(to_string(request.wrench_sign)) +
-                      " says (try `wrench_sign` = " + std::string(to_string(other)) +
-                      "), or the gravity's direction (`gravity`) or the orientation's convention is wrong");
+                      "sign convention than `wrench_sign` " + std::string(to_string(request.wrench_sign)) +
+                      " says: try `wrench_sign` " + std::string(to_string(other)) +
+                      " (or the gravity's direction, `gravity`, or the orientation's convention is wrong)");
   }
 
   out.status = Status::Success;

@@ -247,6 +247,8 @@ Kinematics kinematics(const PayloadSignals& signals, const IdentifyRequest& requ
     gravity_in_s.col(k) = g_s;
     if (specific) {
       out.specific_force.col(k) = signals.specific_force.row(i).transpose();
+      // Without an orientation the specific force's direction stands for gravity's (at rest they agree).
+      if (orientations == 0) gravity_in_s.col(k) = -out.specific_force.col(k);
     } else {
       const Eigen::Vector3d a = signals.accel.size() > 0 ? Eigen::Vector3d(signals.accel.row(i).transpose())
                                                          : Eigen::Vector3d::Zero();

@@ -2,6 +2,7 @@
 
 #include <Eigen/QR>
 #include <Eigen/SVD>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -95,15 +96,20 @@ Identifiability identifiability(const Eigen::MatrixXd& R, const std::vector<std:
           T.topLeftCorner(r, r).triangularView<Eigen::Upper>().solve(T.topRightCorner(r, p - r));
     }
   }
-  out.base = Eigen::MatrixXd::Zero(r, p);
+  // Rows in the order of their pivot parameters (the regressor's column order), each made 1 on it.
   const auto& perm = qr.colsPermutation().indices();
-  for (Eigen::Index i = 0; i < r; ++i) {
+  std::vector<Eigen::Index> rows(static_cast<std::size_t>(r));
+  for (Eigen::Index i = 0; i < r; ++i) rows[static_cast<std::size_t>(i)] = i;
+  std::sort(rows.begin(), rows.end(), [&perm](Eigen::Index a, Eigen::Index b) { return perm(a) < perm(b); });
+  out.base = Eigen::MatrixXd::Zero(r, p);
+  for (Eigen::Index row = 0; row < r; ++row) {
+    const Eigen::Index i = rows[static_cast<std::size_t>(row)];
     for (Eigen::Index k = 0; k < p; ++k) {
       const Eigen::Index j = perm(k);
-      out.base(i, j) = combination(i, k) / scale(j);  // theta_s = phi / scale
+      out.base(row, j) = combination(i, k) / scale(j);  // theta_s = phi / scale
     }
-    out.base.row(i) /= out.base(i, perm(i));
-    out.base_names.push_back(combination_text(out.base.row(i).transpose(), names));
+    out.base.row(row) /= out.base(row, perm(i));
+    out.base_names.push_back(combination_text(out.base.row(row).transpose(), names));
   }
   return out;
 }

@@ -16,9 +16,10 @@ def random_body(rng, thin=False):
     m = rng.uniform(0.5, 5.0)
     c = rng.uniform(-0.2, 0.2, 3)
     Q, _ = np.linalg.qr(rng.standard_normal((3, 3)))
-    moments = rng.uniform(0.01, 0.1, 3)
+    spread = rng.uniform(0.005, 0.05, 3)  # second moments: >= 0 is the triangle inequality
     if thin:
-        moments = np.array([moments[0], moments[0], 1e-6 * moments[0]])
+        spread = np.array([1e-7 * spread[0], 1e-7 * spread[0], spread[0]])  # a rod along one axis
+    moments = spread.sum() - spread
     return m, c, Q @ np.diag(moments) @ Q.T
 
 
