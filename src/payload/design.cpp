@@ -139,7 +139,6 @@ std::vector<Spec> make_table() {
        [](DesignRequest& r, const OptionValue& v) { r.quat_cols = std::get<std::string>(v); });
   Spec order = physical::detail::text_option<DesignRequest>("quat_order", "--quat-order", "quat_order", "xyzw|wxyz",
                                                              "The quaternion columns' order", "xyzw");
-  order.needs = {"quat_cols"};
   order.set = [](DesignRequest& r, const OptionValue& v) {
     const std::string& name = std::get<std::string>(v);
     const auto parsed = parse_quaternion_order(name);
@@ -438,6 +437,9 @@ DesignResult design_file(const std::string& path, const DesignRequest& request) 
 }
 
 DesignResult design(const PayloadSignals& candidates, const DesignRequest& request) {
+  if (request.quat_order == QuaternionOrder::Wxyz && candidates.quaternion.size() == 0) {
+    throw OptionError("`quat_order` applies to quaternions: the candidates are not given as quaternions");
+  }
   PayloadSignals signals = candidates;
   const Eigen::Index m = std::max({candidates.quaternion.rows(), candidates.rotation.rows(), candidates.gravity.rows()});
   signals.wrench = Eigen::MatrixXd::Zero(m, 6);

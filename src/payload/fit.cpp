@@ -31,6 +31,8 @@ constexpr Eigen::Index kBlock = 4096;
 // Where the least-squares fit lies on or outside the cone, the barrier path starts this fraction
 // of the pseudo-inertia's largest eigenvalue inside.
 constexpr double kStartInside = 1e-2;
+// The ridge's size relative to the criterion's curvature where the poses leave directions undetermined.
+constexpr double kRidge = 1e-12;
 // An eigenvalue of the pseudo-inertia (or the static mass) below this fraction of the largest (of
 // the mass scale) counts as on the boundary: the constraint is active.
 constexpr double kActive = 1e-6;
@@ -190,7 +192,6 @@ Fit fit_payload(const Kinematics& kin, const IdentifyRequest& request, const Noi
   for (int j = 0; j < p; ++j) all[static_cast<std::size_t>(j)] = j;
   const Eigen::VectorXd phi_ls_s = minimum_norm(R11, r12, all, cutoff);
   out.phi_ls = phi_ls_s / theta_scale;
-  const double rss_ls = (R11 * phi_ls_s - r12).squaredNorm() + rho2;
   // The sandwich of least squares at phi: (X^T X)^+ (sum_k X_k^T r_k r_k^T X_k) (X^T X)^+ in the
   // whitened units, X^T X = R11^T R11 2^(2 ea); HC1's factor rows / (rows - rank). Robust to force and
   // torque noise of different sizes without weights.
@@ -224,6 +225,10 @@ Fit fit_payload(const Kinematics& kin, const IdentifyRequest& request, const Noi
   const Eigen::MatrixXd Minv = coordinate_map(layout, out.length, true);
   const double total = r12.squaredNorm() + rho2;
   shared::LinearCriterion ls(R11 * M, r12, rho2, total > 0.0 ? total : 1.0);
+  if (rank < p && layout.moving && request.consistent) {
+    // Undetermined directions: a ridge bounds the barrier problems (LinearCriterion::set_ridge).
+    ls.set_ridge(kRidge * (R11 * M).colwise().squaredNorm().mean() * 2.0 / ls.f0());
+  }
 
   Eigen::VectorXd theta_s = Minv * phi_ls_s;  // scaled units
   const bool m_determined = out.identifiability.determined[0];

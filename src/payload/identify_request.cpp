@@ -38,7 +38,6 @@ std::vector<Spec> make_table() {
               [](IdentifyRequest& r, const OptionValue& v) { r.quat_cols = std::get<std::string>(v); });
   Spec order = text_option<IdentifyRequest>("quat_order", "--quat-order", "quat_order", "xyzw|wxyz",
                                             "The quaternion columns' order", "xyzw");
-  order.needs = {"quat_cols"};
   order.set = [](IdentifyRequest& r, const OptionValue& v) {
     const std::string& name = std::get<std::string>(v);
     const auto parsed = parse_quaternion_order(name);

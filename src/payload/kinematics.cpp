@@ -158,6 +158,9 @@ Kinematics kinematics(const PayloadSignals& signals, const IdentifyRequest& requ
                       "gravity included), not both: gravity would be counted twice");
   }
   const bool has_rotation = signals.quaternion.size() > 0 || signals.rotation.size() > 0;
+  if (request.quat_order == QuaternionOrder::Wxyz && signals.quaternion.size() == 0) {
+    throw OptionError("`quat_order` applies to quaternions (`quat_cols`): the orientation is not given as one");
+  }
   if (orientations == 0 && !specific) {
     throw OptionError("the orientation is needed for gravity: give `quat_cols`, `rotation_cols` or `gravity_cols` "
                       "(or an IMU's `specific_force_cols`)");

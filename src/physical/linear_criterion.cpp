@@ -27,14 +27,19 @@ void LinearCriterion::set_prior(const ConeLayout& layout, std::vector<Eigen::Mat
   weight_ = weight;
 }
 
+void LinearCriterion::set_ridge(double ridge) {
+  gram_.diagonal().array() += 2.0 * (ridge - ridge_);
+  ridge_ = ridge;
+}
+
 double LinearCriterion::residual_squares(const Eigen::VectorXd& theta) const {
   return (X_ * theta - y_).squaredNorm() + rho2_;
 }
 
 bool LinearCriterion::evaluate(const Eigen::VectorXd& theta, int order, Evaluation& out) const {
   const Eigen::VectorXd r = X_ * theta - y_;
-  out.f = (r.squaredNorm() + rho2_) / f0_;
-  if (order >= 1) out.g = (2.0 / f0_) * (X_.transpose() * r);
+  out.f = (r.squaredNorm() + rho2_) / f0_ + ridge_ * theta.squaredNorm();
+  if (order >= 1) out.g = (2.0 / f0_) * (X_.transpose() * r) + (2.0 * ridge_) * theta;
   if (order >= 2) out.H = gram_;
   if (weight_ > 0.0 && !prior_inverse_.empty()) {
     for (std::size_t k = 0; k < prior_inverse_.size(); ++k) {

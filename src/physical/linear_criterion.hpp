@@ -32,6 +32,12 @@ class LinearCriterion : public Criterion {
 
   bool evaluate(const Eigen::VectorXd& theta, int order, Evaluation& out) const override;
 
+  /// Adds ridge ||theta||^2 (a tiny multiple of X^T X's scale): where the data leave directions
+  /// undetermined and nothing else bounds them, the barrier's -log det would push the iterates to
+  /// infinity along them; the ridge keeps the barrier problems bounded and picks, among the
+  /// minimizers, the one of least norm in theta (to the ridge's relative size in the rest).
+  void set_ridge(double ridge);
+
   /// ||X theta - y||^2 + rho^2: the criterion in the data's (whitened) units, without the prior.
   double residual_squares(const Eigen::VectorXd& theta) const;
 
@@ -46,6 +52,7 @@ class LinearCriterion : public Criterion {
   std::vector<Eigen::Matrix4d> prior_inverse_;
   double prior_log_det_ = 0.0;  // sum_k log det prior[k]
   double weight_ = 0.0;
+  double ridge_ = 0.0;
 };
 
 }  // namespace spdfit::physical::detail

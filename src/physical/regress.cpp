@@ -31,6 +31,9 @@ constexpr double kStartInside = 1e-2;
 // The rounding of the pseudo-inertia's computed eigenvalues relative to the largest: what
 // "physically consistent" allows below zero.
 constexpr double kConsistencyRounding = 64.0 * std::numeric_limits<double>::epsilon();
+// The ridge's size relative to the criterion's curvature where the data leave directions undetermined
+// (LinearCriterion::set_ridge): far below what any determined combination is known to.
+constexpr double kRidge = 1e-12;
 // The residual variance that normalizes the criterion beside a prior is at least this fraction of
 // the mean square of the outputs (exact data have none).
 constexpr double kVarianceFloor = 1e-24;
@@ -171,6 +174,11 @@ RegressResult fit_factor(const TriangularFactor& factor, const RegressRequest& r
       prior.push_back(theta_scale * s.asDiagonal() * setup.prior_pseudo[static_cast<std::size_t>(k)] * s.asDiagonal());
     }
     criterion.set_prior(local.layout, prior, request.prior_weight);
+  } else if (rank < p && request.consistent) {
+    // Undetermined directions and no prior: a ridge of kRidge times the Hessian's mean diagonal
+    // bounds the barrier problems (the determined combinations move by about kRidge relative).
+    const double mean_diagonal = (R11 * M).colwise().squaredNorm().mean() * 2.0 / f0;
+    criterion.set_ridge(kRidge * mean_diagonal);
   }
 
   Eigen::VectorXd theta = theta_ls;
