@@ -310,60 +310,70 @@ def plot_physical(data):
 # ---- 8. A payload on a wrist force/torque sensor ----------------------------------------------
 
 def payload_frames_data():
-    """The diagram's geometry: the sensor frame's rotation and origin, the centre of mass."""
-    angle = np.radians(35.0)
+    """The diagram's geometry: the sensor frame's tilt and origin, the centre of mass in S."""
+    angle = np.radians(25.0)
     R = np.array([[np.cos(angle), -np.sin(angle)], [np.sin(angle), np.cos(angle)]])
-    return {"origin": np.array([2.2, 2.0]), "R": R, "com": np.array([0.55, -1.1])}
+    return {"origin": np.array([2.6, 2.5]), "R": R, "com": np.array([0.45, -1.05])}
 
 
 def plot_payload_frames(data):
     from matplotlib.patches import FancyArrowPatch, Polygon
 
-    fig, ax = plt.subplots(figsize=(7.5, 5.2))
+    fig, ax = plt.subplots(figsize=(8.5, 5.2))
     ax.set_aspect("equal")
     ax.axis("off")
 
-    def arrow(start, end, color, text=None, offset=(0.08, 0.08), style="-|>", width=1.8, **kw):
-        ax.add_patch(FancyArrowPatch(start, end, arrowstyle=style, mutation_scale=14, color=color, lw=width, **kw))
-        if text:
-            ax.text(end[0] + offset[0], end[1] + offset[1], text, color=color, fontsize=11)
+    def arrow(start, end, color, width=1.8, **kw):
+        ax.add_patch(FancyArrowPatch(tuple(start), tuple(end), arrowstyle="-|>", mutation_scale=14, color=color,
+                                     lw=width, **kw))
 
-    # The world frame W and gravity.
-    arrow((0.2, 0.2), (1.1, 0.2), "black", "$x_W$", (0.05, -0.2))
-    arrow((0.2, 0.2), (0.2, 1.1), "black", "$z_W$", (-0.25, 0.05))
-    ax.text(0.05, -0.15, "world W", fontsize=10)
-    arrow((0.8, 3.6), (0.8, 2.8), "#1f77b4", "$g$  (0, 0, $-9.81$)", (0.1, 0.2))
-    # The robot's last link and flange, the sensor S (its origin, axes rotated by R).
     o, R = data["origin"], data["R"]
-    ax.add_patch(Polygon([o + R @ p for p in ([-0.25, 0.9], [0.25, 0.9], [0.25, 0.0], [-0.25, 0.0])],
-                         closed=True, color="#bbbbbb"))
-    ax.text(*(o + R @ np.array([0.35, 0.7])), "robot wrist", fontsize=9, color="#555555")
-    ax.add_patch(Polygon([o + R @ p for p in ([-0.35, 0.0], [0.35, 0.0], [0.35, -0.2], [-0.35, -0.2])],
-                         closed=True, color="#ff7f0e", alpha=0.8))
-    ax.text(*(o + R @ np.array([-1.3, -0.05])), "F/T sensor", fontsize=9, color="#ff7f0e")
-    arrow(o, o + R @ np.array([0.9, 0.0]), "#d62728", "$x_S$")
-    arrow(o, o + R @ np.array([0.0, -0.9]), "#d62728", "$z_S$", (0.05, -0.3))
-    ax.plot(*o, "o", color="#d62728")
-    ax.text(o[0] - 0.45, o[1] + 0.05, "$O_S$", color="#d62728", fontsize=11)
-    # The payload (a gripper) and its centre of mass c (in S).
-    body = [[-0.45, -0.2], [0.45, -0.2], [0.45, -0.9], [0.9, -1.7], [0.6, -1.7], [0.15, -1.0], [-0.15, -1.0],
-            [-0.6, -1.7], [-0.9, -1.7], [-0.45, -0.9]]
-    ax.add_patch(Polygon([o + R @ np.array(p) for p in body], closed=True, color="#2ca02c", alpha=0.35))
-    c = o + R @ data["com"]
-    ax.plot(*c, "o", color="black")
-    arrow(o, c, "black", "$c$ (centre of mass, in S)", (0.1, -0.05), style="-|>", width=1.2, linestyle="--")
-    # Gravity on the payload, m g, and the wrench the sensor applies (f, tau about O_S) and reads (-f, -tau).
-    arrow(c, c + np.array([0.0, -0.9]), "#1f77b4", r"$m\,g$", (0.08, -0.1))
-    arrow(o + np.array([0.0, 0.05]), o + np.array([0.0, 1.0]), "#9467bd", "$f$ on the payload", (0.08, 0.0))
-    ax.text(3.5, 4.2, r"$f = m\,(a - R^T g) + \alpha \times m c + \omega \times (\omega \times m c)$" + "\n" +
+    local = lambda p: o + R @ np.asarray(p, dtype=float)  # noqa: E731 (a point given in S's plane)
+    # The world frame W and gravity.
+    arrow((0.2, 0.3), (1.1, 0.3), "black")
+    arrow((0.2, 0.3), (0.2, 1.2), "black")
+    ax.text(1.15, 0.2, "$x_W$", fontsize=11)
+    ax.text(0.05, 1.25, "$z_W$", fontsize=11)
+    ax.text(0.2, -0.05, "world W", fontsize=10)
+    arrow((0.7, 4.3), (0.7, 3.4), "#1f77b4")
+    ax.text(0.8, 3.7, "$g = (0, 0, -9.81)$\nin W", color="#1f77b4", fontsize=10)
+    # The robot's wrist (above the sensor), the sensor, and the tool below it along z_S.
+    ax.add_patch(Polygon([local(p) for p in ([-0.22, 1.3], [0.22, 1.3], [0.22, 0.0], [-0.22, 0.0])], closed=True,
+                         color="#bbbbbb"))
+    ax.text(*(local([0.3, 1.0]) + [0.05, 0.0]), "robot wrist", fontsize=9, color="#555555")
+    ax.add_patch(Polygon([local(p) for p in ([-0.38, 0.0], [0.38, 0.0], [0.38, -0.22], [-0.38, -0.22])], closed=True,
+                         color="#ff7f0e", alpha=0.85))
+    ax.text(*(local([-0.45, -0.1]) + [-1.05, -0.05]), "F/T sensor", fontsize=9, color="#ff7f0e")
+    tool = [[-0.3, -0.22], [0.3, -0.22], [0.3, -0.8], [0.75, -1.6], [0.5, -1.65], [0.12, -0.95], [-0.12, -0.95],
+            [-0.5, -1.65], [-0.75, -1.6], [-0.3, -0.8]]
+    ax.add_patch(Polygon([local(p) for p in tool], closed=True, color="#2ca02c", alpha=0.35))
+    ax.text(*(local([-0.8, -1.4]) + [-1.05, 0.0]), "payload\n(gripper)", fontsize=9, color="#2ca02c")
+    # The sensor frame S at O_S: x_S across the tool, z_S along it, away from the wrist.
+    arrow(o, local([1.0, 0.0]), "#d62728")
+    arrow(o, local([0.0, -1.0]), "#d62728")
+    ax.text(*(local([1.05, 0.05])), "$x_S$", color="#d62728", fontsize=11)
+    ax.text(*(local([-0.3, -1.05]) + [-0.05, -0.15]), "$z_S$", color="#d62728", fontsize=11)
+    ax.plot(*o, "o", color="#d62728", zorder=5)
+    ax.text(o[0] - 0.55, o[1] + 0.05, "$O_S$", color="#d62728", fontsize=11)
+    # The centre of mass c (in S), gravity on the payload, the force the sensor applies.
+    c = local(data["com"])
+    ax.plot(*c, "o", color="black", zorder=5)
+    arrow(o, c, "black", width=1.2, linestyle="--")
+    ax.text(c[0] + 0.12, c[1] + 0.02, "$c$, the centre of mass (in S)", fontsize=10)
+    arrow(c, c + np.array([0.0, -0.9]), "#1f77b4")
+    ax.text(c[0] + 0.1, c[1] - 0.75, "$m\\,g$", color="#1f77b4", fontsize=11)
+    arrow(local([-0.55, 0.0]), local([-0.55, 0.0]) + np.array([0.0, 0.95]), "#9467bd")
+    ax.text(*(local([-0.55, 0.0]) + [-1.35, 0.6]), "$f$, on the payload\n(the sensor reads $-f$)", color="#9467bd",
+            fontsize=9)
+    arrow(local([0.9, -0.45]), local([1.15, 0.25]), "#8c564b", connectionstyle="arc3,rad=0.5")
+    ax.text(*(local([1.2, -0.2]) + [0.05, 0.0]), "$\\omega$, $\\alpha$, $a$ (in S)", color="#8c564b", fontsize=10)
+    ax.text(4.9, 4.6, r"$f = m\,(a - R^T g) + \alpha \times m c + \omega \times (\omega \times m c)$" + "\n" +
             r"$\tau = I_S\,\alpha + \omega \times (I_S\,\omega) + m c \times (a - R^T g)$" + "\n" +
-            r"reading $w = -(f, \tau) + b$  (the load; --wrench-sign applied: $+$)",
-            fontsize=9.5, va="top")
-    arrow(o + R @ np.array([0.9, -0.4]), o + R @ np.array([1.3, 0.2]), "#8c564b", r"$\omega$, $\alpha$ (in S)",
-          (0.05, 0.05), connectionstyle="arc3,rad=0.4")
-    ax.set_xlim(-0.2, 7.5)
-    ax.set_ylim(-0.5, 4.5)
-    ax.set_title("Payload identification: frames and conventions", fontsize=11)
+            r"reading $w = -(f, \tau) + b$  (the load)" + "\n" + r"R: from S to W;  $\tau$ about $O_S$",
+            fontsize=10, va="top")
+    ax.set_xlim(-0.2, 9.6)
+    ax.set_ylim(-0.3, 4.8)
+    ax.set_title("Payload identification: frames and conventions (docs/payload.md)", fontsize=11)
     fig.tight_layout()
     return fig
 

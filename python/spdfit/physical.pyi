@@ -20,5 +20,4 @@ def inertia_repair(mass: float, center_of_mass: npt.ArrayLike, inertia: npt.Arra
                    min_eig_rel: Optional[float] = ..., metric: str = ...) -> Dict[str, Any]: ...
 def inertia_repair_urdf(text: str, *, min_eig_rel: Optional[float] = ...,
                         source: str = ..., metric: str = ...) -> Tuple[str, str, List[Dict[str, Any]]]: ...
-def regress(Y: npt.ArrayLike, tau: npt.ArrayLike, *, noise_cov: Optional[npt.ArrayLike] = ...,
-            prior: Union[None, str, os.PathLike[str], List[Dict[str, Any]]] = ..., **options: Any) -> Dict[str, Any]: ...  # options: physical.regress
+def regress(Y: npt.ArrayLike, tau: npt.ArrayLike, *, noise_cov: Optional[npt.ArrayLike] = ..., prior: Union[None, str, os.PathLike[str], List[Dict[str, Any]]] = ..., **options: Any) -> Dict[str, Any]: ...  # options: physical.regress

@@ -261,10 +261,7 @@ PayloadEstimate identify(const PayloadSignals& signals, const IdentifyRequest& r
         (kin.distinct_orientations == 1 ? "direction" : "directions") +
         " in the sensor frame: log at least 3 (rotations about the vertical add none)");
   }
-  if (!kin.moving) {
-    out.warnings.push_back("static poses determine the mass, the centre of mass and the biases, not the inertia: log "
-                           "moving poses with `omega_cols` and `accel_cols` (or `specific_force_cols`) for it");
-  } else if (!kin.rotating) {
+  if (kin.moving && !kin.rotating) {
     out.warnings.push_back("omega and alpha are zero in every row: nothing excites the inertia");
   }
   if (out.constraint_active && !kin.moving) {
