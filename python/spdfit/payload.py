@@ -18,11 +18,11 @@ biases from a log over many poses, physically consistent (docs/payload.md), and 
 """
 import json as _json
 import os as _os
-import warnings as _warnings
 
 import numpy as _np
 
-from . import NumericalError, SpdfitWarning, _takes_options
+from . import _takes_options
+from ._errors import NumericalError, warn as _warn
 from ._spdfit import payload as _core
 
 __all__ = ["design", "identify", "urdf_link"]
@@ -38,7 +38,7 @@ _COLUMNS = {"wrench": "wrench_cols", "quaternion": "quat_cols", "rotation": "rot
 def _arrays(value):
     """JSON lists as float64 arrays (null as NaN), recursively through dicts."""
     if isinstance(value, dict):
-        return {k: (_arrays(v) if k not in ("names", "warnings", "undetermined") else v) for k, v in value.items()}
+        return {k: (_arrays(v) if k not in ("names", "warnings", "warning_codes", "undetermined") else v) for k, v in value.items()}
     if isinstance(value, list) and value and not isinstance(value[0], (str, dict)):
         return _np.array([_np.nan if v is None else v for v in value] if not isinstance(value[0], list) else
                          [[_np.nan if x is None else x for x in row] for row in value], dtype=_np.float64)
@@ -150,8 +150,8 @@ def identify(log=None, *, wrench=None, quaternion=None, rotation=None, gravity_i
     result = _arrays(_json.loads(text))
     if result["status"] != "success":
         raise NumericalError(result.get("error", "payload identification failed"), result)
-    for message in result["warnings"]:
-        _warnings.warn(message, SpdfitWarning, stacklevel=2)
+    for message, code in zip(result["warnings"], result["warning_codes"]):
+        _warn(message, code)
     result["residuals"] = _np.asarray(residuals)
     result["report"] = report
     return result
@@ -253,7 +253,7 @@ def design(candidates=None, *, quaternion=None, rotation=None, gravity_in_sensor
         result[key] = _np.nan if result[key] is None else result[key]
     result["se_center_of_mass"] = _arrays(result["se_center_of_mass"])
     result["random"] = _arrays(result["random"])
-    for message in result["warnings"]:
-        _warnings.warn(message, SpdfitWarning, stacklevel=2)
+    for message, code in zip(result["warnings"], result["warning_codes"]):
+        _warn(message, code)
     result["report"] = report
     return result
