@@ -67,7 +67,7 @@ Command add_inertia_command(CLI::App& app, const GlobalOptions& global) {
       emit(result.text, options->output);
     } else {
       const InertiaRepairResult result = repair_inertia(read_rigid_body(options->input), repair_options);
-      for (const std::string& w : result.warnings) warn(global, w);
+      for (const Warning& w : result.warnings) warn(global, w);
       emit(inertia_repair_json(result), options->output);
     }
   };

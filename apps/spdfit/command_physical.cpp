@@ -1,5 +1,6 @@
 // spdfit physical regress Y TAU --bodies K [...]: physically consistent least squares for any model
-// linear in the inertial parameters of K rigid bodies. Options from regress_option_table.
+// linear in the inertial parameters of K rigid bodies. The library's workflow (physical/regress.hpp:
+// regress_option_table, check_regress_request, run_regress, its renderers).
 #include <memory>
 #include <string>
 #include <vector>
@@ -7,54 +8,34 @@
 #include <CLI/CLI.hpp>
 
 #include "cli.hpp"
-#include "spdfit/option_spelling.hpp"
 #include "output.hpp"
-#include "spdfit/io.hpp"
+#include "spdfit/option_spelling.hpp"
 #include "spdfit/physical/regress.hpp"
 #include "table_options.hpp"
 
 namespace spdfit::cli {
 
 Command add_physical_command(CLI::App& app, const GlobalOptions& global) {
+  using physical::RegressRequest;
   CLI::App* sub = app.add_subcommand("physical", "Physically consistent identification of rigid bodies");
   sub->require_subcommand(1);
-  struct Cli {
-    std::string y, tau, output;
-    bool json = false;
-    std::unique_ptr<TableOptions<physical::RegressRequest>> table;
-  };
-  auto cli = std::make_shared<Cli>();
+  auto options = std::make_shared<std::unique_ptr<TableOptions<RegressRequest>>>();
   CLI::App* regress = sub->add_subcommand(
       "regress",
       "Physically consistent least squares tau ~= Y phi for K rigid bodies (each body's pseudo-inertia positive "
       "semidefinite): base parameters, undetermined combinations, a prior, the certificate (docs/payload.md)");
-  regress->add_option("Y", cli->y, "The stacked regressor (rows = samples x outputs; 10 K body columns, then any "
-                                   "extra columns)")
-      ->required();
-  regress->add_option("TAU", cli->tau, "The stacked outputs (one column, Y's rows)")->required();
-  cli->table = std::make_unique<TableOptions<physical::RegressRequest>>(*regress, physical::regress_option_table());
-  regress->add_flag("--json", cli->json, "Print the result as JSON");
-  regress->add_option("-o,--output", cli->output, "Write to FILE instead of stdout");
+  *options = std::make_unique<TableOptions<RegressRequest>>(*regress, physical::regress_option_table());
 
-  auto run = [cli, &global]() {
+  auto run = [options, &global]() {
     const auto& table = physical::regress_option_table();
-    physical::RegressRequest request;
-    try {
-      check_option_combination(table, cli->table->given());
-    } catch (const OptionError& e) {
-      throw UsageError(spell_options_with(e.what(), Frontend::Cli, table));
+    RegressRequest request;
+    (*options)->apply(request);
+    run_spelled(table, [&] { physical::check_regress_request(request, (*options)->given()); });
+    const physical::RegressResult result = run_spelled(table, [&] { return physical::run_regress(request, global.read); });
+    for (const Warning& w : result.warnings) {
+      warn(global, Warning(w.code, spell_options_with(w.text, Frontend::Cli, table), w.subject));
     }
-    cli->table->apply(request);
-    physical::RegressResult result;
-    try {
-      result = physical::regress_files(cli->y, cli->tau, request, global.read);
-    } catch (const OptionError& e) {
-      throw UsageError(spell_options_with(e.what(), Frontend::Cli, table));
-    } catch (const io::DataError& e) {
-      throw DataFailure(spell_options_with(e.what(), Frontend::Cli, table));
-    }
-    for (const std::string& w : result.warnings) warn(global, spell_options_with(w, Frontend::Cli, table));
-    emit(cli->json ? physical::to_json(result) : physical::report(result), cli->output);
+    emit(request.output.json ? physical::to_json(result) : physical::report(result), request.output.output);
     if (!result.ok()) throw DataFailure("the regression failed: " + result.message);
   };
   auto command_run = [regress, run]() {

@@ -47,6 +47,25 @@ std::string cli_help(std::string_view help, std::string_view default_text);
 /// the options spelled as here.
 [[noreturn]] void throw_usage(const std::exception& error);
 
+/// Runs `fn`; an error it throws is rethrown with its options spelled through `table` first (a
+/// command whose option shares a library name with another table's: `criterion`) and its code
+/// kept: a usage code as a UsageError (exit 2), any other as a DataFailure (exit 1).
+template <typename Request, typename Fn>
+auto run_spelled(const std::vector<OptionSpec<Request>>& table, Fn&& fn) -> decltype(fn()) {
+  try {
+    return fn();
+  } catch (const UsageError&) {
+    throw;
+  } catch (const DataFailure&) {
+    throw;
+  } catch (const std::exception& e) {
+    const Code code = code_of(e);
+    const std::string message = spell_options_with(e.what(), Frontend::Cli, table);
+    if (tier(code) == Tier::Usage) throw UsageError(message, code);
+    throw DataFailure(message, code);
+  }
+}
+
 /// The options of `table` that the command line offers, added to a subcommand; after parsing,
 /// which were given and their values.
 template <typename Request>
@@ -115,7 +134,7 @@ class TableOptions {
         set_option(request, *entry->spec, value_of(*entry));
       } catch (const OptionError& e) {
         // Spelled with this table first: its names may be another table's too (`criterion`).
-        throw UsageError(spell_options_with(e.what(), Frontend::Cli, *table_));
+        throw UsageError(spell_options_with(e.what(), Frontend::Cli, *table_), e.code());
       }
     }
   }

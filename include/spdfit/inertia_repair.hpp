@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "spdfit/outcome.hpp"
 #include "spdfit/rigid_body.hpp"
 
 namespace spdfit {
@@ -70,7 +71,7 @@ struct InertiaRepairResult {
   /// For the user to know: a principal moment changed by more than 10 % (the input may hold a
   /// typo: a misplaced digit, a product of inertia with the wrong sign), or a body with mass and an
   /// all-zero inertia (a placeholder, not a measured value).
-  std::vector<std::string> warnings;
+  std::vector<Warning> warnings;
 };
 
 /// The nearest physically consistent inertia with the same mass and centre of mass. The second

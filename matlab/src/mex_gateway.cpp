@@ -23,6 +23,7 @@
 #include "spdfit/solve_request.hpp"
 #include "spdfit/hexapod/physical.hpp"
 #include "spdfit/hexapod/render.hpp"
+#include "spdfit/inertia_repair.hpp"
 #include "spdfit/io.hpp"
 #include "spdfit/option_spelling.hpp"
 #include "spdfit/payload/identify.hpp"
@@ -151,14 +152,33 @@ void identify_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* 
 void payload_identify_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
   need_arguments("payload.identify", nrhs, 2,
                  "the wrench: [result, text] = spdfit.payload.identify(W, 'Quaternion', Q, name, value, ...)");
-  PayloadRequest request = payload_request(pairs_from("payload.identify", nrhs, prhs, 2));
-  request.signals.wrench = read_matrix(prhs[1], "W");
-  payload::PayloadEstimate estimate;
-  try {
-    estimate = payload::identify(request.signals, request.request);
-  } catch (const OptionError& e) {
-    throw OptionError(spell_options_with(e.what(), Frontend::Matlab, payload::identify_option_table()));
+  payload::PayloadSignals signals;
+  signals.wrench = read_matrix(prhs[1], "W");
+  // The signals' pairs are matrices; the others are the table's options.
+  std::vector<NameValue> options;
+  for (const NameValue& pair : pairs_from("payload.identify", nrhs, prhs, 2)) {
+    const PayloadSignal* signal = nullptr;
+    for (const PayloadSignal& s : payload_signals()) {
+      if (same_name(camel_case(s.name), pair.name)) signal = &s;
+    }
+    if (signal == nullptr) {
+      options.push_back(pair);
+      continue;
+    }
+    if (mxIsEmpty(pair.value)) continue;
+    const Eigen::MatrixXd value = read_matrix(pair.value, camel_case(signal->name));
+    if (signal->matrix != nullptr) {
+      signals.*(signal->matrix) = value;
+    } else {
+      signals.time = Eigen::Map<const Eigen::VectorXd>(value.data(), value.size());
+    }
   }
+  const auto& table = payload::identify_option_table();
+  payload::IdentifyRequest request;
+  const std::vector<std::string_view> given =
+      set_pairs(request, table, options, matlab_function("payload.identify"));
+  payload::check_identify_request(request, given);
+  payload::PayloadEstimate estimate = payload::identify(signals, request);
   if (!estimate.ok()) throw NumericalError(estimate.message);
   plhs[0] = write_json(payload::to_json(estimate));
   plhs[1] = want_info ? mxCreateString(payload::report(estimate).c_str()) : mxCreateDoubleMatrix(0, 0, mxREAL);
@@ -170,7 +190,19 @@ void regress_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* p
   const Eigen::MatrixXd Y = read_matrix(prhs[1], "Y");
   Eigen::MatrixXd tau = read_matrix(prhs[2], "tau");
   if (tau.rows() == 1 && tau.cols() == Y.rows()) tau.transposeInPlace();
-  const physical::RegressRequest request = regress_request(pairs_from("physical.regress", nrhs, prhs, 3));
+  physical::RegressRequest request;
+  std::vector<NameValue> options;
+  for (const NameValue& pair : pairs_from("physical.regress", nrhs, prhs, 3)) {
+    if (!same_name(pair.name, "NoiseCov")) {
+      options.push_back(pair);
+    } else if (!mxIsEmpty(pair.value)) {
+      request.noise_cov = read_matrix(pair.value, "NoiseCov");
+    }
+  }
+  const std::vector<std::string_view> given =
+      set_pairs(request, physical::regress_option_table(), options, matlab_function("physical.regress"));
+  physical::check_regress_request(request, given);
+  if (!request.prior_path.empty()) request.prior = read_rigid_bodies(request.prior_path);
   const physical::RegressResult result = physical::regress(Y, tau, request);
   if (!result.ok()) throw NumericalError(result.message);
   plhs[0] = write_json(physical::to_json(result));

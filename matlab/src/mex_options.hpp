@@ -11,6 +11,7 @@
 
 #include "mex.h"
 #include "spdfit/options.hpp"
+#include "spdfit/payload/identify.hpp"
 
 namespace spdfit::matlab {
 
@@ -28,6 +29,15 @@ struct MatlabFunction {
   std::string_view table;
   std::vector<std::string_view> unavailable;
 };
+
+/// A signal of spdfit.payload.identify given as a matrix name-value pair ('Quaternion', Q): its
+/// library name, the field of PayloadSignals it fills (nullptr: the time vector) and its help.
+struct PayloadSignal {
+  std::string_view name;
+  Eigen::MatrixXd payload::PayloadSignals::*matrix;
+  std::string_view help;
+};
+const std::vector<PayloadSignal>& payload_signals();
 
 /// The package's functions.
 const std::vector<MatlabFunction>& matlab_functions();

@@ -25,18 +25,10 @@ namespace spdfit::python {
 
 namespace {
 
-// Runs fn with the library's messages spelled for Python with the command's own table first.
-template <typename Request, typename Fn>
-auto spelled(const std::vector<OptionSpec<Request>>& table, Fn&& fn) {
-  try {
-    return fn();
-  } catch (const io::ColumnSelectionError& e) {
-    throw std::invalid_argument(spell_options_with(e.what(), Frontend::Python, table));
-  } catch (const OptionError& e) {
-    throw std::invalid_argument(spell_options_with(e.what(), Frontend::Python, table));
-  } catch (const io::DataError& e) {
-    throw io::DataError(e.source(), e.line(), e.column(), spell_options_with(e.problem(), Frontend::Python, table));
-  }
+// A result's warnings spelled for Python with the command's own table first (the JSON carries them).
+template <typename Request>
+void spell_warnings(std::vector<Warning>& warnings, const std::vector<OptionSpec<Request>>& table) {
+  for (Warning& w : warnings) w.text = spell_options_with(w.text, Frontend::Python, table);
 }
 
 Eigen::MatrixXd matrix_of(const py::dict& arrays, const char* key) {
@@ -69,10 +61,10 @@ void bind_payload(py::module_& parent) {
       "identify",
       [](std::optional<std::string> path, const py::dict& arrays, const py::dict& options) {
         const auto& table = payload::identify_option_table();
-        return spelled(table, [&] {
+        {
           std::vector<std::string_view> given;
           payload::IdentifyRequest request = payload_request("payload.identify", options, given);
-          check_option_combination(table, given);
+          payload::check_identify_request(request, given);
           payload::PayloadEstimate estimate;
           if (path) {
             py::gil_scoped_release release;
@@ -83,16 +75,17 @@ void bind_payload(py::module_& parent) {
               for (std::string_view g : given)
                 if (g == name) {
                   throw OptionError("`" + std::string(name) +
-                                    "` chooses columns of a log file; with arrays, pass the signal itself");
+                                        "` chooses columns of a log file; with arrays, pass the signal itself",
+                                    Code::OptionNotApplicable, name);
                 }
             }
             const payload::PayloadSignals signals = signals_of(arrays);
             py::gil_scoped_release release;
             estimate = payload::identify(signals, request);
           }
-          for (std::string& w : estimate.warnings) w = spell_options_with(w, Frontend::Python, table);
+          spell_warnings(estimate.warnings, table);
           return py::make_tuple(payload::to_json(estimate), estimate.residuals, payload::report(estimate));
-        });
+        }
       },
       py::arg("path"), py::arg("arrays"), py::arg("options"));
 
@@ -109,10 +102,10 @@ void bind_payload(py::module_& parent) {
       "design",
       [](std::optional<std::string> path, const py::dict& arrays, const py::dict& options) {
         const auto& table = payload::design_option_table();
-        return spelled(table, [&] {
+        {
           std::vector<std::string_view> given;
           const payload::DesignRequest request = design_request("payload.design", options, given);
-          check_option_combination(table, given);
+          payload::check_design_request(request, given);
           payload::DesignResult result;
           if (path) {
             py::gil_scoped_release release;
@@ -122,9 +115,9 @@ void bind_payload(py::module_& parent) {
             py::gil_scoped_release release;
             result = payload::design(signals, request);
           }
-          for (std::string& w : result.warnings) w = spell_options_with(w, Frontend::Python, table);
+          spell_warnings(result.warnings, table);
           return py::make_tuple(payload::to_json(result), payload::report(result));
-        });
+        }
       },
       py::arg("path"), py::arg("arrays"), py::arg("options"));
 
@@ -134,10 +127,10 @@ void bind_payload(py::module_& parent) {
       [](const Eigen::MatrixXd& Y, const Eigen::MatrixXd& tau, std::optional<Eigen::MatrixXd> noise_cov,
          std::optional<std::vector<std::tuple<double, Eigen::Vector3d, Eigen::Matrix3d>>> prior, const py::dict& options) {
         const auto& table = physical::regress_option_table();
-        return spelled(table, [&] {
+        {
           std::vector<std::string_view> given;
           physical::RegressRequest request = regress_request("physical.regress", options, given);
-          check_option_combination(table, given);
+          physical::check_regress_request(request, given);
           if (noise_cov) request.noise_cov = *noise_cov;
           if (prior) {
             for (const auto& [mass, com, inertia] : *prior) {
@@ -153,9 +146,9 @@ void bind_payload(py::module_& parent) {
             py::gil_scoped_release release;
             result = physical::regress(Y, tau, request);
           }
-          for (std::string& w : result.warnings) w = spell_options_with(w, Frontend::Python, table);
+          spell_warnings(result.warnings, table);
           return py::make_tuple(physical::to_json(result), physical::report(result));
-        });
+        }
       },
       py::arg("Y"), py::arg("tau"), py::arg("noise_cov"), py::arg("prior"), py::arg("options"));
 }

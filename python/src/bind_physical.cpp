@@ -36,7 +36,9 @@ InertiaRepairOptions repair_options(std::optional<double> min_eig_rel, const std
   InertiaRepairOptions options;
   if (min_eig_rel) options.min_eig_rel = *min_eig_rel;
   const std::optional<InertiaMetric> parsed = parse_inertia_metric(metric);
-  if (!parsed) throw std::invalid_argument("metric must be 'inertia' or 'second-moment', got '" + metric + "'");
+  if (!parsed) {
+    throw OptionError("metric must be 'inertia' or 'second-moment', got '" + metric + "'", Code::OptionValue, "metric");
+  }
   options.metric = *parsed;
   return options;
 }

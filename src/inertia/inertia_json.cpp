@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/json_document.hpp"
+#include "render/json_values.hpp"
 #include "io/read_file.hpp"
 #include "spdfit/inertia_repair.hpp"
 #include "spdfit/io.hpp"
@@ -23,7 +24,7 @@ constexpr const char* kKeyList = "mass, center_of_mass, inertia";
 // unchanged), so they are accepted and ignored.
 bool is_repair_key(const std::string& key) {
   for (const char* k : {"changed", "distance", "certificate", "min_eig", "principal_moments",
-                        "principal_moments_before", "second_moments_before", "metric", "warnings"}) {
+                        "principal_moments_before", "second_moments_before", "metric", "warnings", "warning_codes"}) {
     if (key == k) return true;
   }
   return false;
@@ -159,7 +160,7 @@ std::string inertia_repair_json(const InertiaRepairResult& result) {
   out["principal_moments_before"] = vector_json(result.principal_moments_before);
   out["second_moments_before"] = vector_json(result.second_moments_before);
   out["metric"] = std::string(to_string(result.metric));
-  out["warnings"] = result.warnings;
+  spdfit::detail::put_warnings(out, result.warnings);
   return out.dump(2) + "\n";
 }
 

@@ -109,7 +109,7 @@ InertiaRepairResult repair_inertia(const RigidBodyInertia& body, const InertiaRe
   const Eigen::Matrix3d inertia = 0.5 * (body.inertia + body.inertia.transpose());
   out.principal_moments_before = principal_inertia(inertia).moments;
   if (inertia.cwiseAbs().maxCoeff() == 0.0) {
-    out.warnings.push_back("the inertia is all zero for a mass of " + format_number(body.mass) +
+    out.warnings.push_back(Warning(Code::PhysicalNotice, "the inertia is all zero for a mass of " + format_number(body.mass) +
                            " kg: a placeholder, not a body's inertia (a point mass at the centre of mass)");
   }
 
@@ -146,7 +146,7 @@ InertiaRepairResult repair_inertia(const RigidBodyInertia& body, const InertiaRe
       worst = std::max(worst, fraction);
     }
     if (worst > kTypoFraction) {
-      out.warnings.push_back("the repair changes a principal moment by " + percent(worst) +
+      out.warnings.push_back(Warning(Code::PhysicalNotice, "the repair changes a principal moment by " + percent(worst) +
                              ": the input may hold a typo (a misplaced digit, a product of inertia with the wrong "
                              "sign) rather than rounding; check it against its source");
     }

@@ -1,6 +1,7 @@
 // Choosing K calibration poses (payload/design.hpp): greedy then Fedorov exchange on the static
 // regressor's information, compared with random K-pose choices from the same pool.
 #include "spdfit/payload/design.hpp"
+#include "render/json_values.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -103,6 +104,16 @@ using Spec = OptionSpec<DesignRequest>;
 
 std::vector<Spec> make_table() {
   std::vector<Spec> table;
+  Spec candidates = physical::detail::text_option<DesignRequest>(
+      "candidates", "CANDIDATES", "", "",
+      "The candidate poses: one per row, the orientation as payload identify takes it (`quat_cols`, `rotation_cols` "
+      "or `gravity_cols`)",
+      "");
+  candidates.type = OptionType::File;
+  candidates.positional = true;
+  candidates.required = true;
+  candidates.set = [](DesignRequest& r, const OptionValue& v) { r.candidates = std::get<std::string>(v); };
+  table.push_back(candidates);
   Spec poses;
   poses.name = "poses";
   poses.cli = "--poses";
@@ -116,8 +127,8 @@ std::vector<Spec> make_table() {
   poses.set = [](DesignRequest& r, const OptionValue& v) { r.poses = int(std::get<std::int64_t>(v)); };
   poses.get = [](const DesignRequest& r) -> std::optional<OptionValue> { return std::int64_t{r.poses}; };
   table.push_back(poses);
-  Spec criterion = physical::detail::text_option<DesignRequest>(
-      "criterion", "--criterion", "criterion", "D|E|A",
+  Spec criterion = physical::detail::choice_option<DesignRequest>(
+      "criterion", "--criterion", "criterion", {"D", "E", "A"},
       "D: the largest log det of the information (invariant under units); E: its largest smallest eigenvalue, A: "
       "its smallest trace of the inverse (both with the parameters scaled to unit information over the pool)",
       "D");
@@ -131,14 +142,14 @@ std::vector<Spec> make_table() {
   table.push_back(criterion);
   const auto cols = [&table](std::string_view name, std::string_view cli, std::string_view help,
                              void (*set)(DesignRequest&, const OptionValue&)) {
-    Spec spec = physical::detail::text_option<DesignRequest>(name, cli, name, "COLS", help, "");
+    Spec spec = physical::detail::columns_option<DesignRequest>(name, cli, name, "COLS", help);
     spec.set = set;
     table.push_back(spec);
   };
   cols("quat_cols", "--quat-cols", "The candidates' orientation as quaternions (4 columns, x y z w; `quat_order`)",
        [](DesignRequest& r, const OptionValue& v) { r.quat_cols = std::get<std::string>(v); });
-  Spec order = physical::detail::text_option<DesignRequest>("quat_order", "--quat-order", "quat_order", "xyzw|wxyz",
-                                                             "The quaternion columns' order", "xyzw");
+  Spec order = physical::detail::choice_option<DesignRequest>("quat_order", "--quat-order", "quat_order",
+                                                               {"xyzw", "wxyz"}, "The quaternion columns' order", "xyzw");
   order.set = [](DesignRequest& r, const OptionValue& v) {
     const std::string& name = std::get<std::string>(v);
     const auto parsed = parse_quaternion_order(name);
@@ -241,6 +252,10 @@ std::vector<Spec> make_table() {
   seed.set = [](DesignRequest& r, const OptionValue& v) { r.seed = std::uint64_t(std::get<std::int64_t>(v)); };
   seed.get = [](const DesignRequest& r) -> std::optional<OptionValue> { return static_cast<std::int64_t>(r.seed); };
   table.push_back(seed);
+  for (Spec& spec : output_options(&DesignRequest::output, {"json", "output"},
+                                   {"Print the result as JSON", "Write the chosen rows (every column, as CSV) to FILE"})) {
+    table.push_back(std::move(spec));
+  }
   return table;
 }
 
@@ -388,14 +403,20 @@ DesignResult design(const Eigen::Matrix<double, 3, Eigen::Dynamic>& g, const Des
     out.beats_random = static_cast<double>(beaten) / static_cast<double>(request.random);
   }
   if (out.distinct_candidates < 3) {
-    out.warnings.push_back("the candidates have only " + std::to_string(out.distinct_candidates) +
+    out.warnings.push_back(Warning(Code::RankDeficient, "the candidates have only " + std::to_string(out.distinct_candidates) +
                            " distinct gravity directions in the sensor frame: the mass, centre of mass and biases need 3");
   } else if (!std::isfinite(out.score.log_det)) {
-    out.warnings.push_back("the chosen poses do not determine the ten parameters: choose at least 3 poses with distinct "
+    out.warnings.push_back(Warning(Code::RankDeficient, "the chosen poses do not determine the ten parameters: choose at least 3 poses with distinct "
                            "gravity directions (`poses` >= 3)");
   }
   return out;
 }
+
+void check_design_request(const DesignRequest& /*request*/, const std::vector<std::string_view>& given) {
+  check_option_combination(design_option_table(), given);
+}
+
+DesignResult run_design(const DesignRequest& request) { return design_file(request.candidates, request); }
 
 DesignResult design_file(const std::string& path, const DesignRequest& request) {
   std::string error;
@@ -428,7 +449,7 @@ DesignResult design_file(const std::string& path, const DesignRequest& request) 
   try {
     out = design(signals, request);
   } catch (const detail::SignalError& e) {
-    throw io::DataError(path, 0, 0, e.what());
+    throw io::DataError(path, 0, 0, e.what(), e.code());
   }
   out.column_names = whole.column_names;
   out.chosen_rows.resize(static_cast<Eigen::Index>(out.chosen.size()), whole.values.cols());
@@ -438,7 +459,7 @@ DesignResult design_file(const std::string& path, const DesignRequest& request) 
 
 DesignResult design(const PayloadSignals& candidates, const DesignRequest& request) {
   if (request.quat_order == QuaternionOrder::Wxyz && candidates.quaternion.size() == 0) {
-    throw OptionError("`quat_order` applies to quaternions: the candidates are not given as quaternions");
+    throw OptionError("`quat_order` applies to quaternions: the candidates are not given as quaternions", Code::OptionNotApplicable);
   }
   PayloadSignals signals = candidates;
   const Eigen::Index m = std::max({candidates.quaternion.rows(), candidates.rotation.rows(), candidates.gravity.rows()});
@@ -484,7 +505,7 @@ std::string to_json(const DesignResult& r) {
                    {"condition", vector_json(r.random_condition)},
                    {"beats", r.beats_random}};
   out["distinct_candidates"] = r.distinct_candidates;
-  out["warnings"] = r.warnings;
+  spdfit::detail::put_warnings(out, r.warnings);
   return out.dump(2) + "\n";
 }
 

@@ -77,7 +77,7 @@ Whitening whitening(const NoiseCovariances& noise) {
   if (llt.info() != Eigen::Success || !(llt.matrixLLT().diagonal().minCoeff() > 0.0)) {
     throw SignalError("the wrench's noise covariance (" +
                       std::string(noise.source == "rest" ? "of the rest rows, `rest_rows`" : "`noise_std_wrench`") +
-                      ") is singular: every axis needs some noise (a constant channel in the rest rows?)");
+                      ") is singular: every axis needs some noise (a constant channel in the rest rows?)", Code::NoiseModel);
   }
   w.active = true;
   w.L = llt.matrixL();
@@ -268,7 +268,7 @@ Fit fit_payload(const Kinematics& kin, const IdentifyRequest& request, const Noi
                                       : theta_c;
     if (!eiv.evaluate_phi(M * start, 0, f_start, nullptr, nullptr)) {
       throw SignalError("the noise model makes the errors-in-variables weight singular: give the wrench's noise "
-                        "(`noise_std_wrench` or `rest_rows`)");
+                        "(`noise_std_wrench` or `rest_rows`)", Code::NoiseModel);
     }
     eiv.set_normalization(f_start);
     std::optional<shared::SolveResult> best;

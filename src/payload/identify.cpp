@@ -151,7 +151,7 @@ PayloadEstimate identify(const PayloadSignals& signals, const IdentifyRequest& r
   Kinematics rest;
   if (!request.rest_rows.empty()) {
     rest = detail::kinematics(signals, request, detail::select_rows(request.rest_rows, all, signals.time, "rest_rows"));
-    if (rest.samples() < 2) throw OptionError("`rest_rows` must select at least 2 rows for a covariance");
+    if (rest.samples() < 2) throw OptionError("`rest_rows` must select at least 2 rows for a covariance", Code::OptionValue);
   }
   const bool alpha_derived = kin.moving && signals.alpha.size() == 0;
   const detail::NoiseCovariances noise =
@@ -160,7 +160,7 @@ PayloadEstimate identify(const PayloadSignals& signals, const IdentifyRequest& r
     if (noise.wrench.size() == 0 || noise.pose.size() == 0 || noise.pose.cwiseAbs().maxCoeff() == 0.0) {
       throw OptionError("`criterion` eiv weighs the noise in the pose signals against the wrench's: give "
                         "`noise_std_wrench` and the pose signals' (`noise_std_accel`, `noise_std_omega`, "
-                        "`noise_std_alpha`), or `rest_rows`");
+                        "`noise_std_alpha`), or `rest_rows`", Code::OptionConflict);
     }
   }
 
@@ -187,7 +187,7 @@ PayloadEstimate identify(const PayloadSignals& signals, const IdentifyRequest& r
                       format_number(fit.mass_ls_se) + " kg): significantly negative, so the readings have the other "
                       "sign convention than `wrench_sign` " + std::string(to_string(request.wrench_sign)) +
                       " says: try `wrench_sign` " + std::string(to_string(other)) +
-                      " (or the gravity's direction, `gravity`, or the orientation's convention is wrong)");
+                      " (or the gravity's direction, `gravity`, or the orientation's convention is wrong)", Code::PhysicalData);
   }
 
   out.status = Status::Success;
@@ -246,14 +246,14 @@ PayloadEstimate identify(const PayloadSignals& signals, const IdentifyRequest& r
 
   // What the user should know.
   if (!fit.converged) {
-    out.warnings.push_back("the optimizer did not converge" + (fit.failure.empty() ? std::string() : ": " + fit.failure) +
+    out.warnings.push_back(Warning(Code::NotConverged, "the optimizer did not converge" + (fit.failure.empty() ? std::string() : ": " + fit.failure) +
                            "; the estimate is the last iterate");
   }
   if (!fit.identifiability.undetermined.empty()) {
     std::string list;
     for (const physical::UndeterminedCombination& u : fit.identifiability.undetermined)
       list += (list.empty() ? "" : "; ") + u.text;
-    out.warnings.push_back(
+    out.warnings.push_back(Warning(Code::RankDeficient, 
         "the poses do not determine " + std::to_string(fit.identifiability.undetermined.size()) +
         (fit.identifiability.undetermined.size() == 1 ? " combination" : " combinations") + " of the parameters (" + list +
         "): the parameters they reach are reported as null. The samples have " +
@@ -262,20 +262,20 @@ PayloadEstimate identify(const PayloadSignals& signals, const IdentifyRequest& r
         " in the sensor frame: log at least 3 (rotations about the vertical add none)");
   }
   if (kin.moving && !kin.rotating) {
-    out.warnings.push_back("omega and alpha are zero in every row: nothing excites the inertia");
+    out.warnings.push_back(Warning(Code::PhysicalNotice, "omega and alpha are zero in every row: nothing excites the inertia");
   }
   if (out.constraint_active && !kin.moving) {
-    out.warnings.push_back("the unconstrained fit's mass is " + format_number(fit.phi_ls(0)) + " kg (standard error " +
+    out.warnings.push_back(Warning(Code::Boundary, "the unconstrained fit's mass is " + format_number(fit.phi_ls(0)) + " kg (standard error " +
                            format_number(fit.mass_ls_se) +
                            " kg): the constraint m >= 0 is active, the mass is 0 and the centre of mass undefined; the "
                            "payload is lighter than the data resolve");
   } else if (out.constraint_active) {
-    out.warnings.push_back("the estimate lies on the boundary of physical consistency (the pseudo-inertia's smallest "
+    out.warnings.push_back(Warning(Code::Boundary, "the estimate lies on the boundary of physical consistency (the pseudo-inertia's smallest "
                            "eigenvalue is " + format_number(fit.pseudo_min) +
                            " kg): the constraint is active, as for a payload whose mass lies on a plane or a line");
   }
   if (!request.consistent && !out.physically_consistent) {
-    out.warnings.push_back(std::string("the unconstrained estimate is not physically consistent (") +
+    out.warnings.push_back(Warning(Code::PhysicalNotice, std::string("the unconstrained estimate is not physically consistent (") +
                            (kin.moving ? "the pseudo-inertia's smallest eigenvalue is " + format_number(fit.pseudo_min) + " kg"
                                        : "its mass is negative") +
                            "): no rigid body has these mass properties");
@@ -320,7 +320,7 @@ PayloadEstimate identify(const PayloadSignals& signals, const IdentifyRequest& r
     b.torque_bias = group(19, 3, 1);
     out.bootstrap = b;
     if (b.failed > 0) {
-      out.warnings.push_back(std::to_string(b.failed) + " of " + std::to_string(b.replicates) +
+      out.warnings.push_back(Warning(Code::BootstrapNotice, std::to_string(b.failed) + " of " + std::to_string(b.replicates) +
                              " bootstrap replicates failed and are left out");
     }
   }
@@ -330,15 +330,15 @@ PayloadEstimate identify(const PayloadSignals& signals, const IdentifyRequest& r
 std::string urdf_text(const PayloadEstimate& estimate, const IdentifyRequest& request) {
   if (!estimate.moving) {
     throw OptionError("`urdf` needs the inertia, which static poses do not determine: log moving poses "
-                      "(`omega_cols` with `accel_cols` or `specific_force_cols`)");
+                      "(`omega_cols` with `accel_cols` or `specific_force_cols`)", Code::OptionNotApplicable);
   }
   RigidBodyInertia body;
   body.mass = estimate.mass;
   body.center_of_mass = estimate.center_of_mass;
   body.inertia = estimate.inertia;
   if (!(body.mass > 0.0) || !body.inertia.allFinite() || !body.center_of_mass.allFinite()) {
-    throw std::invalid_argument("cannot write the payload as a URDF link: its mass, centre of mass or inertia is not "
-                                "determined (see the warnings)");
+    throw InputError("cannot write the payload as a URDF link: its mass, centre of mass or inertia is not "
+                                "determined (see the warnings)", Code::PhysicalData);
   }
   return urdf_link(body, request.link_name, request.precision);
 }

@@ -12,6 +12,8 @@ namespace spdfit::payload {
 namespace {
 
 using Spec = OptionSpec<IdentifyRequest>;
+using physical::detail::choice_option;
+using physical::detail::columns_option;
 using physical::detail::flag_option;
 using physical::detail::text_option;
 
@@ -22,9 +24,18 @@ std::optional<OptionValue> list_value(const std::vector<double>& v) {
 
 std::vector<Spec> make_table() {
   std::vector<Spec> table;
+  Spec log = text_option<IdentifyRequest>("log", "LOG", "", "",
+                                          "The log: one table (any format spdfit reads), columns chosen by the "
+                                          "`*_cols` options",
+                                          "");
+  log.type = OptionType::File;
+  log.positional = true;
+  log.required = true;
+  log.set = [](IdentifyRequest& r, const OptionValue& v) { r.log = std::get<std::string>(v); };
+  table.push_back(log);
   const auto add_columns = [&table](std::string_view name, std::string_view cli, std::string_view help,
                                     void (*set)(IdentifyRequest&, const OptionValue&)) {
-    Spec spec = text_option<IdentifyRequest>(name, cli, name, name == "time_col" ? "COL" : "COLS", help, "");
+    Spec spec = columns_option<IdentifyRequest>(name, cli, name, name == "time_col" ? "COL" : "COLS", help);
     spec.set = set;
     table.push_back(spec);
   };
@@ -36,8 +47,8 @@ std::vector<Spec> make_table() {
               "The orientation as a quaternion's 4 columns (the rotation from the sensor frame to the world, x y z w "
               "as ROS writes it; `quat_order` wxyz for w first)",
               [](IdentifyRequest& r, const OptionValue& v) { r.quat_cols = std::get<std::string>(v); });
-  Spec order = text_option<IdentifyRequest>("quat_order", "--quat-order", "quat_order", "xyzw|wxyz",
-                                            "The quaternion columns' order", "xyzw");
+  Spec order = choice_option<IdentifyRequest>("quat_order", "--quat-order", "quat_order", {"xyzw", "wxyz"},
+                                              "The quaternion columns' order", "xyzw");
   order.set = [](IdentifyRequest& r, const OptionValue& v) {
     const std::string& name = std::get<std::string>(v);
     const auto parsed = parse_quaternion_order(name);
@@ -74,17 +85,19 @@ std::vector<Spec> make_table() {
                                            "The rows fitted: 1-based inclusive ranges and lists ('601:', "
                                            "'1:5000,7001:'), in the time column's units with `time_col`",
                                            "all");
+  rows.type = OptionType::Rows;
   rows.set = [](IdentifyRequest& r, const OptionValue& v) { r.rows = std::get<std::string>(v); };
   table.push_back(rows);
   Spec rest = text_option<IdentifyRequest>("rest_rows", "--rest-rows", "rest_rows", "SPEC",
                                            "Rows recorded at rest (as `rows`): the noise model's covariances of the "
                                            "wrench and the pose signals are their sample covariances",
                                            "");
+  rest.type = OptionType::Rows;
   rest.set = [](IdentifyRequest& r, const OptionValue& v) { r.rest_rows = std::get<std::string>(v); };
   table.push_back(rest);
 
-  Spec sign = text_option<IdentifyRequest>(
-      "wrench_sign", "--wrench-sign", "wrench_sign", "load|applied",
+  Spec sign = choice_option<IdentifyRequest>(
+      "wrench_sign", "--wrench-sign", "wrench_sign", {"load", "applied"},
       "What the readings are: the load the payload applies to the sensor (what sensors report: a payload at rest "
       "reads a downward force) or the wrench applied to the payload",
       "load");
@@ -96,8 +109,8 @@ std::vector<Spec> make_table() {
   };
   sign.get = [](const IdentifyRequest& r) -> std::optional<OptionValue> { return std::string(to_string(r.wrench_sign)); };
   table.push_back(sign);
-  Spec frame = text_option<IdentifyRequest>(
-      "frame", "--frame", "frame", "sensor|base",
+  Spec frame = choice_option<IdentifyRequest>(
+      "frame", "--frame", "frame", {"sensor", "base"},
       "The wrench's axes as logged: the sensor frame's, or the base frame's (rotated by the logger; the torque still "
       "about the sensor's origin)",
       "sensor");
@@ -125,8 +138,8 @@ std::vector<Spec> make_table() {
   };
   table.push_back(gravity);
 
-  Spec criterion = text_option<IdentifyRequest>(
-      "criterion", "--criterion", "criterion", "ls|eiv",
+  Spec criterion = choice_option<IdentifyRequest>(
+      "criterion", "--criterion", "criterion", {"ls", "eiv"},
       "Least squares (noise in the wrench only) or errors in variables (noise in the pose signals too, weighed by "
       "the noise model: `noise_std_*` or `rest_rows`)",
       "ls");
@@ -149,12 +162,14 @@ std::vector<Spec> make_table() {
                     "poses); False is the unconstrained fit";
   consistent.default_text = "True";
   consistent.nullable = false;
+  consistent.excludes = {"unconstrained"};
   consistent.set = [](IdentifyRequest& r, const OptionValue& v) { r.consistent = std::get<bool>(v); };
   consistent.get = [](const IdentifyRequest& r) -> std::optional<OptionValue> { return r.consistent; };
   table.push_back(consistent);
   Spec unconstrained = flag_option<IdentifyRequest>(
       "unconstrained", "--unconstrained", "",
       "The fit without the consistency constraint, for comparison (it may return a payload that cannot exist)");
+  unconstrained.excludes = {"consistent"};
   unconstrained.set = [](IdentifyRequest& r, const OptionValue& v) {
     if (std::get<bool>(v)) r.consistent = false;
   };
@@ -204,6 +219,7 @@ std::vector<Spec> make_table() {
                                            "Also write the payload as a URDF <link> with its <inertial> to FILE "
                                            "(moving poses: the inertia is needed)",
                                            "");
+  urdf.type = OptionType::File;
   urdf.set = [](IdentifyRequest& r, const OptionValue& v) { r.urdf = std::get<std::string>(v); };
   table.push_back(urdf);
   Spec link = text_option<IdentifyRequest>("link_name", "--link-name", "", "NAME", "The URDF link's name", "payload");
@@ -222,6 +238,9 @@ std::vector<Spec> make_table() {
   precision.set = [](IdentifyRequest& r, const OptionValue& v) { r.precision = int(std::get<std::int64_t>(v)); };
   precision.get = [](const IdentifyRequest& r) -> std::optional<OptionValue> { return std::int64_t{r.precision}; };
   table.push_back(precision);
+  for (Spec& spec : output_options(&IdentifyRequest::output, {"json", "output"}, {"Print the estimate as JSON"})) {
+    table.push_back(std::move(spec));
+  }
   return table;
 }
 
@@ -259,10 +278,16 @@ bool IdentifyRequest::is_valid(std::string* error) const {
   return true;
 }
 
+void check_identify_request(const IdentifyRequest& /*request*/, const std::vector<std::string_view>& given) {
+  check_option_combination(identify_option_table(), given);
+}
+
+PayloadEstimate run_identify(const IdentifyRequest& request) { return identify_file(request.log, request); }
+
 PayloadEstimate identify_file(const std::string& path, const IdentifyRequest& request) {
   std::string error;
   if (!request.is_valid(&error)) throw OptionError(error);
-  if (request.wrench_cols.empty()) throw OptionError("`wrench_cols` is needed: the wrench's 6 columns in the log");
+  if (request.wrench_cols.empty()) throw OptionError("`wrench_cols` is needed: the wrench's 6 columns in the log", Code::Argument);
   struct Selected {
     const std::string* spec;
     const char* option;
@@ -317,7 +342,7 @@ PayloadEstimate identify_file(const std::string& path, const IdentifyRequest& re
     out.warnings.insert(out.warnings.begin(), table.warnings.begin(), table.warnings.end());
     return out;
   } catch (const detail::SignalError& e) {
-    throw io::DataError(path, 0, 0, e.what());
+    throw io::DataError(path, 0, 0, e.what(), e.code());
   }
 }
 

@@ -31,9 +31,9 @@ std::string row_text(Eigen::Index i) { return "row " + std::to_string(i + 1); }
 void need_columns(const Eigen::MatrixXd& M, Eigen::Index cols, Eigen::Index m, const char* option, const char* what) {
   if (M.size() == 0) return;
   if (M.cols() != cols || M.rows() != m) {
-    throw OptionError("`" + std::string(option) + "` must give " + std::to_string(cols) + " columns (" + what +
+    throw InputError("`" + std::string(option) + "` must give " + std::to_string(cols) + " columns (" + what +
                       ") with the wrench's " + std::to_string(m) + " rows, not " + std::to_string(M.rows()) + " x " +
-                      std::to_string(M.cols()));
+                      std::to_string(M.cols()), Code::DataShape, option);
   }
   if (!M.allFinite()) {
     Eigen::Index bad = 0;
@@ -130,8 +130,8 @@ Kinematics kinematics(const PayloadSignals& signals, const IdentifyRequest& requ
                       const std::vector<Eigen::Index>& rows) {
   const Eigen::Index all = signals.wrench.rows();
   if (signals.wrench.cols() != 6) {
-    throw OptionError("`wrench_cols` must give 6 columns (fx fy fz tx ty tz), not " +
-                      std::to_string(signals.wrench.cols()));
+    throw InputError("`wrench_cols` must give 6 columns (fx fy fz tx ty tz), not " +
+                      std::to_string(signals.wrench.cols()), Code::DataShape, "wrench_cols");
   }
   if (all == 0) throw SignalError("the log has no rows");
   need_columns(signals.wrench, 6, all, "wrench_cols", "wrench");
@@ -143,46 +143,46 @@ Kinematics kinematics(const PayloadSignals& signals, const IdentifyRequest& requ
   need_columns(signals.omega, 3, all, "omega_cols", "angular velocity");
   need_columns(signals.alpha, 3, all, "alpha_cols", "angular acceleration");
   if (signals.time.size() > 0 && signals.time.size() != all) {
-    throw OptionError("`time_col` must give one value per row (" + std::to_string(all) + "), not " +
-                      std::to_string(signals.time.size()));
+    throw InputError("`time_col` must give one value per row (" + std::to_string(all) + "), not " +
+                      std::to_string(signals.time.size()), Code::DataShape, "time_col");
   }
   if (signals.time.size() > 0 && !signals.time.allFinite()) throw SignalError("the time column (`time_col`) is not finite");
 
   const int orientations = (signals.quaternion.size() > 0) + (signals.rotation.size() > 0) + (signals.gravity.size() > 0);
   const bool specific = signals.specific_force.size() > 0;
   if (orientations > 1) {
-    throw OptionError("give the orientation once: `quat_cols`, `rotation_cols` or `gravity_cols`");
+    throw OptionError("give the orientation once: `quat_cols`, `rotation_cols` or `gravity_cols`", Code::OptionConflict);
   }
   if (specific && signals.accel.size() > 0) {
     throw OptionError("give `accel_cols` (the kinematic acceleration) or `specific_force_cols` (an IMU's reading, "
-                      "gravity included), not both: gravity would be counted twice");
+                      "gravity included), not both: gravity would be counted twice", Code::OptionConflict);
   }
   const bool has_rotation = signals.quaternion.size() > 0 || signals.rotation.size() > 0;
   if (request.quat_order == QuaternionOrder::Wxyz && signals.quaternion.size() == 0) {
-    throw OptionError("`quat_order` applies to quaternions (`quat_cols`): the orientation is not given as one");
+    throw OptionError("`quat_order` applies to quaternions (`quat_cols`): the orientation is not given as one", Code::OptionNotApplicable);
   }
   if (orientations == 0 && !specific) {
     throw OptionError("the orientation is needed for gravity: give `quat_cols`, `rotation_cols` or `gravity_cols` "
-                      "(or an IMU's `specific_force_cols`)");
+                      "(or an IMU's `specific_force_cols`)", Code::OptionConflict);
   }
   if (specific && orientations > 0 && !(request.frame == WrenchFrame::Base && has_rotation)) {
     throw OptionError("`specific_force_cols` already holds gravity: the orientation (`quat_cols`, `rotation_cols`, "
-                      "`gravity_cols`) is used only to rotate a wrench logged in base axes (`frame` base); leave it out");
+                      "`gravity_cols`) is used only to rotate a wrench logged in base axes (`frame` base); leave it out", Code::OptionConflict);
   }
   if (request.frame == WrenchFrame::Base && !has_rotation) {
     throw OptionError("`frame` base needs the rotation to bring the wrench into the sensor's axes: give `quat_cols` "
-                      "or `rotation_cols`");
+                      "or `rotation_cols`", Code::OptionConflict);
   }
   if (signals.alpha.size() > 0 && signals.omega.size() == 0) {
-    throw OptionError("`alpha_cols` needs `omega_cols` (the angular velocity) too");
+    throw OptionError("`alpha_cols` needs `omega_cols` (the angular velocity) too", Code::OptionConflict);
   }
   if (signals.omega.size() > 0 && signals.accel.size() == 0 && !specific) {
     throw OptionError("`omega_cols` needs the linear acceleration too: `accel_cols` (kinematic) or "
-                      "`specific_force_cols` (an IMU's)");
+                      "`specific_force_cols` (an IMU's)", Code::OptionConflict);
   }
   if (signals.omega.size() > 0 && signals.alpha.size() == 0 && signals.time.size() == 0) {
     throw OptionError("`omega_cols` without `alpha_cols` needs `time_col`: alpha is then omega's derivative by "
-                      "central differences in time");
+                      "central differences in time", Code::OptionConflict);
   }
   Kinematics out;
   out.sign = request.wrench_sign == WrenchSign::Load ? -1.0 : 1.0;
@@ -262,7 +262,7 @@ Kinematics kinematics(const PayloadSignals& signals, const IdentifyRequest& requ
   }
   if (normalized > 0) {
     const bool quaternion = signals.quaternion.size() > 0;
-    out.warnings.push_back(std::to_string(normalized) + (normalized == 1 ? " row's " : " rows' ") +
+    out.warnings.push_back(Warning(Code::PhysicalNotice, std::to_string(normalized) + (normalized == 1 ? " row's " : " rows' ") +
                            (quaternion ? "quaternion" : "rotation matrix") + " (first " + row_text(first_normalized) +
                            ", worst off by " + format_number(worst_norm) + ") " +
                            (quaternion ? "had a norm off 1 by more than 1e-3: normalized"
@@ -272,7 +272,7 @@ Kinematics kinematics(const PayloadSignals& signals, const IdentifyRequest& requ
     const double mean = gravity_in_s.colwise().norm().mean();
     const double expected = request.gravity.norm();
     if (std::abs(mean - expected) > kGravityMagnitude * expected) {
-      out.warnings.push_back("the gravity columns (`gravity_cols`) have a mean magnitude of " + format_number(mean) +
+      out.warnings.push_back(Warning(Code::PhysicalNotice, "the gravity columns (`gravity_cols`) have a mean magnitude of " + format_number(mean) +
                              " m/s^2, not |g| = " + format_number(expected) +
                              " m/s^2: the mass comes out in their units (are they in g?)");
     }
@@ -294,7 +294,7 @@ Kinematics kinematics(const PayloadSignals& signals, const IdentifyRequest& requ
       const Eigen::Index lo = i == 0 ? 0 : i - 1, hi = i == all - 1 ? all - 1 : i + 1;
       out.alpha.col(k) = (signals.omega.row(hi) - signals.omega.row(lo)).transpose() / (t(hi) - t(lo));
     }
-    out.warnings.push_back("alpha (the angular acceleration) is omega's derivative by central differences in time "
+    out.warnings.push_back(Warning(Code::PhysicalNotice, "alpha (the angular acceleration) is omega's derivative by central differences in time "
                            "(`time_col`): noise in omega is amplified by 1/(2 dt); give `alpha_cols` when the logger "
                            "has it");
   }

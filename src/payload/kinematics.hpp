@@ -16,8 +16,8 @@ namespace spdfit::payload::detail {
 
 /// Bad signals on valid options (a quaternion far from unit norm, a rotation that is not one, time
 /// that does not increase): identify_file turns it into an io::DataError naming the file.
-struct SignalError : std::invalid_argument {
-  using std::invalid_argument::invalid_argument;
+struct SignalError : InputError {
+  explicit SignalError(const std::string& message, Code code = Code::DataValue) : InputError(message, code) {}
 };
 
 /// The samples in S, one column each (3 x m or 6 x m, so that a sample's values are contiguous).
@@ -28,7 +28,7 @@ struct Kinematics {
   bool rotating = false;  ///< omega or alpha nonzero somewhere
   double sign = -1.0;   ///< -1 for WrenchSign::Load, +1 for Applied
   Eigen::Index distinct_orientations = 0;
-  std::vector<std::string> warnings;
+  std::vector<Warning> warnings;
 
   Eigen::Index samples() const { return wrench.cols(); }
 };

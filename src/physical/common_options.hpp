@@ -7,6 +7,7 @@
 #include <limits>
 #include <optional>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "spdfit/options.hpp"
@@ -24,6 +25,32 @@ OptionSpec<Request> text_option(std::string_view name, std::string_view cli, std
   spec.value_name = value_name;
   spec.help = help;
   spec.default_text = default_text;
+  return spec;
+}
+
+/// An option whose value is one of `choices` (matched without regard to case; the set function
+/// receives the table's spelling). The first choice is the default unless `default_text` says.
+template <typename Request>
+OptionSpec<Request> choice_option(std::string_view name, std::string_view cli, std::string_view python,
+                                  std::vector<std::string_view> choices, std::string_view help,
+                                  std::string_view default_text) {
+  OptionSpec<Request> spec;
+  spec.name = name;
+  spec.cli = cli;
+  spec.python = python;
+  spec.type = OptionType::Choice;
+  spec.choices = std::move(choices);
+  spec.help = help;
+  spec.default_text = default_text;
+  return spec;
+}
+
+/// An option that chooses columns of a table (io::ColumnSelection's syntax).
+template <typename Request>
+OptionSpec<Request> columns_option(std::string_view name, std::string_view cli, std::string_view python,
+                                   std::string_view value_name, std::string_view help) {
+  OptionSpec<Request> spec = text_option<Request>(name, cli, python, value_name, help, "");
+  spec.type = OptionType::Columns;
   return spec;
 }
 

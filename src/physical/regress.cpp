@@ -242,17 +242,17 @@ RegressResult fit_factor(const TriangularFactor& factor, const RegressRequest& r
     out.certificate = {nan, nan, nan, nan, nan};
   }
   if (!out.converged) {
-    out.warnings.push_back("the optimizer did not converge" + (failure.empty() ? std::string() : ": " + failure) +
+    out.warnings.push_back(Warning(Code::NotConverged, "the optimizer did not converge" + (failure.empty() ? std::string() : ": " + failure) +
                            "; the estimate is the last iterate");
   }
   if (!out.identifiability.undetermined.empty()) {
     std::string list;
     for (const UndeterminedCombination& u : out.identifiability.undetermined) list += (list.empty() ? "" : "; ") + u.text;
     if (out.prior_used) {
-      out.warnings.push_back("the data do not determine " + std::to_string(out.identifiability.undetermined.size()) +
+      out.warnings.push_back(Warning(Code::RankDeficient, "the data do not determine " + std::to_string(out.identifiability.undetermined.size()) +
                              " combination(s) of the parameters (" + list + "): the prior sets them");
     } else {
-      out.warnings.push_back("the data do not determine " + std::to_string(out.identifiability.undetermined.size()) +
+      out.warnings.push_back(Warning(Code::RankDeficient, "the data do not determine " + std::to_string(out.identifiability.undetermined.size()) +
                              " combination(s) of the parameters (" + list +
                              "): the parameters they reach are reported as null; the base parameters are determined. "
                              "Give a prior (`prior`, e.g. from CAD) to set them");
@@ -262,7 +262,7 @@ RegressResult fit_factor(const TriangularFactor& factor, const RegressRequest& r
     std::string which;
     for (int k = 0; k < request.bodies; ++k)
       if (!out.body[static_cast<std::size_t>(k)].physically_consistent) which += (which.empty() ? "" : ", ") + std::to_string(k + 1);
-    out.warnings.push_back("the unconstrained estimate is not physically consistent (bodies " + which +
+    out.warnings.push_back(Warning(Code::PhysicalNotice, "the unconstrained estimate is not physically consistent (bodies " + which +
                            "): no rigid body has these mass properties");
   }
   return out;
@@ -335,20 +335,20 @@ RegressResult regress(const Eigen::MatrixXd& Y, const Eigen::MatrixXd& tau, cons
   const Eigen::Index p = Y.cols(), rows = Y.rows();
   const int K = request.bodies;
   if (p < kBodyCoordinates * K) {
-    throw std::invalid_argument("Y has " + std::to_string(p) + " columns: " + std::to_string(K) +
+    throw InputError("Y has " + std::to_string(p) + " columns: " + std::to_string(K) +
                                 (K == 1 ? " body needs" : " bodies need") + " at least " +
-                                std::to_string(kBodyCoordinates * K) + " (10 per body, then any extra columns)");
+                                std::to_string(kBodyCoordinates * K) + " (10 per body, then any extra columns)", Code::DataShape);
   }
   if (tau.cols() != 1 || tau.rows() != rows) {
-    throw std::invalid_argument("tau must be one column with Y's " + std::to_string(rows) + " rows, not " +
-                                std::to_string(tau.rows()) + " x " + std::to_string(tau.cols()));
+    throw InputError("tau must be one column with Y's " + std::to_string(rows) + " rows, not " +
+                                std::to_string(tau.rows()) + " x " + std::to_string(tau.cols()), Code::DataShape);
   }
-  if (rows == 0) throw std::invalid_argument("regression needs at least one row of data");
-  if (!Y.allFinite() || !tau.allFinite()) throw std::invalid_argument("Y and tau must be finite (no NaN or Inf)");
+  if (rows == 0) throw InputError("regression needs at least one row of data", Code::DataShape);
+  if (!Y.allFinite() || !tau.allFinite()) throw InputError("Y and tau must be finite (no NaN or Inf)", Code::DataValue);
   const Eigen::Index d = request.noise_cov.size() > 0 ? request.noise_cov.rows() : 1;
   if (rows % d != 0) {
-    throw std::invalid_argument("Y has " + std::to_string(rows) + " rows, not a multiple of the " + std::to_string(d) +
-                                " outputs per sample that `noise_cov` has");
+    throw InputError("Y has " + std::to_string(rows) + " rows, not a multiple of the " + std::to_string(d) +
+                                " outputs per sample that `noise_cov` has", Code::DataShape);
   }
   Whitened w{Y, tau, d, rows / d};
   if (d > 1 || request.noise_cov.size() > 0) {
@@ -415,7 +415,7 @@ RegressResult regress(const Eigen::MatrixXd& Y, const Eigen::MatrixXd& tau, cons
   b.base_upper = bs.upper;
   out.bootstrap = b;
   if (b.failed > 0) {
-    out.warnings.push_back(std::to_string(b.failed) + " of " + std::to_string(b.replicates) +
+    out.warnings.push_back(Warning(Code::BootstrapNotice, std::to_string(b.failed) + " of " + std::to_string(b.replicates) +
                            " bootstrap replicates failed and are left out");
   }
   return out;

@@ -14,6 +14,21 @@ using Spec = OptionSpec<RegressRequest>;
 
 std::vector<Spec> make_table() {
   std::vector<Spec> table;
+  Spec y = detail::text_option<RegressRequest>("y", "Y", "", "",
+                                               "The stacked regressor (rows = samples x outputs; 10 K body columns, "
+                                               "then any extra columns)",
+                                               "");
+  y.type = OptionType::File;
+  y.positional = true;
+  y.required = true;
+  y.set = [](RegressRequest& r, const OptionValue& v) { r.y_path = std::get<std::string>(v); };
+  table.push_back(y);
+  Spec tau = detail::text_option<RegressRequest>("tau", "TAU", "", "", "The stacked outputs (one column, Y's rows)", "");
+  tau.type = OptionType::File;
+  tau.positional = true;
+  tau.required = true;
+  tau.set = [](RegressRequest& r, const OptionValue& v) { r.tau_path = std::get<std::string>(v); };
+  table.push_back(tau);
   Spec bodies;
   bodies.name = "bodies";
   bodies.cli = "--bodies";
@@ -29,8 +44,8 @@ std::vector<Spec> make_table() {
   bodies.get = [](const RegressRequest& r) -> std::optional<OptionValue> { return std::int64_t{r.bodies}; };
   table.push_back(bodies);
 
-  Spec order = detail::text_option<RegressRequest>(
-      "param_order", "--param-order", "param_order", "urdf|pinocchio",
+  Spec order = detail::choice_option<RegressRequest>(
+      "param_order", "--param-order", "param_order", {"urdf", "pinocchio"},
       "The order of each body's 10 columns: m, m c (x, y, z), then the inertia about the body frame's origin as "
       "urdf (xx, xy, xz, yy, yz, zz) or as pinocchio's toDynamicParameters (xx, xy, yy, xz, yz, zz)",
       "urdf");
@@ -66,6 +81,7 @@ std::vector<Spec> make_table() {
       "body's frame, inertia about the centre of mass): `prior_weight` times the log-determinant divergence of each "
       "body's pseudo-inertia from the prior's is added, which sets the parameters the data do not determine",
       "");
+  prior.type = OptionType::File;
   prior.set = [](RegressRequest& r, const OptionValue& v) { r.prior_path = std::get<std::string>(v); };
   table.push_back(prior);
 
@@ -88,6 +104,9 @@ std::vector<Spec> make_table() {
   detail::add_solver_options(table, "500");
   detail::add_bootstrap_options(table, "Resample the samples N times for the parameters' standard errors and "
                                        "percentile intervals (each replicate refitted)");
+  for (Spec& spec : output_options(&RegressRequest::output, {"json", "output"}, {"Print the result as JSON"})) {
+    table.push_back(std::move(spec));
+  }
   return table;
 }
 
@@ -105,25 +124,25 @@ RegressResult regress_files(const std::string& y_path, const std::string& tau_pa
   if (tau.cols() != 1 || tau.rows() != Y.rows()) {
     throw io::DataError(tau_path, 0, 0,
                         "tau is " + std::to_string(tau.rows()) + " x " + std::to_string(tau.cols()) +
-                            ": give one column with Y's " + std::to_string(Y.rows()) + " rows (" + y_path + ")");
+                            ": give one column with Y's " + std::to_string(Y.rows()) + " rows (" + y_path + ")", Code::DataShape);
   }
   if (Y.cols() < 10 * request.bodies) {
     throw io::DataError(y_path, 0, 0,
                         "Y has " + std::to_string(Y.cols()) + " columns: `bodies` = " + std::to_string(request.bodies) +
                             " needs at least " + std::to_string(10 * request.bodies) +
-                            " (10 per body, then any extra columns)");
+                            " (10 per body, then any extra columns)", Code::DataShape);
   }
   if (!request.noise_cov_path.empty()) {
     request.noise_cov = io::read_matrix(request.noise_cov_path, read);
     std::string error;
     RegressRequest check;
     check.noise_cov = request.noise_cov;
-    if (!check.is_valid(&error)) throw io::DataError(request.noise_cov_path, 0, 0, spell_options(error, Frontend::Library));
+    if (!check.is_valid(&error)) throw io::DataError(request.noise_cov_path, 0, 0, spell_options(error, Frontend::Library), Code::NoiseModel);
     if (Y.rows() % request.noise_cov.rows() != 0) {
       throw io::DataError(request.noise_cov_path, 0, 0,
                           "the noise covariance is " + std::to_string(request.noise_cov.rows()) + " x " +
                               std::to_string(request.noise_cov.rows()) + ", but Y's " + std::to_string(Y.rows()) +
-                              " rows are not a whole number of samples of that many outputs");
+                              " rows are not a whole number of samples of that many outputs", Code::NoiseModel);
     }
   }
   if (!request.prior_path.empty()) {
@@ -131,15 +150,23 @@ RegressResult regress_files(const std::string& y_path, const std::string& tau_pa
     if (static_cast<int>(request.prior.size()) != request.bodies) {
       throw io::DataError(request.prior_path, 0, 0,
                           "the prior has " + std::to_string(request.prior.size()) + " bodies, but `bodies` is " +
-                              std::to_string(request.bodies));
+                              std::to_string(request.bodies), Code::DataShape);
     }
     RegressRequest check;
     check.bodies = request.bodies;
     check.prior = request.prior;
     std::string error;
-    if (!check.is_valid(&error)) throw io::DataError(request.prior_path, 0, 0, error);
+    if (!check.is_valid(&error)) throw io::DataError(request.prior_path, 0, 0, error, Code::PhysicalData);
   }
   return regress(Y, tau, request);
+}
+
+void check_regress_request(const RegressRequest& /*request*/, const std::vector<std::string_view>& given) {
+  check_option_combination(regress_option_table(), given);
+}
+
+RegressResult run_regress(const RegressRequest& request, const io::ReadOptions& read) {
+  return regress_files(request.y_path, request.tau_path, request, read);
 }
 
 }  // namespace spdfit::physical

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "physical/json_numbers.hpp"
+#include "render/json_values.hpp"
 #include "spdfit/format.hpp"
 #include "spdfit/payload/identify.hpp"
 
@@ -62,7 +63,7 @@ std::string to_json(const PayloadEstimate& e) {
   out["status"] = to_string(e.status);
   if (!e.ok()) {
     out["error"] = e.message;
-    out["warnings"] = e.warnings;
+    spdfit::detail::put_warnings(out, e.warnings);
     return out.dump(2) + "\n";
   }
   out["model"] = e.moving ? "moving" : "static";
@@ -107,7 +108,7 @@ std::string to_json(const PayloadEstimate& e) {
   out["iterations"] = e.iterations;
   out["converged"] = e.converged;
   out["distinct_orientations"] = e.distinct_orientations;
-  out["warnings"] = e.warnings;
+  spdfit::detail::put_warnings(out, e.warnings);
   if (e.bootstrap) {
     const PayloadEstimate::Bootstrap& b = *e.bootstrap;
     out["bootstrap"] = {{"replicates", b.replicates}, {"failed", b.failed}, {"seed", b.seed}, {"level", b.level}};

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "physical/json_numbers.hpp"
+#include "render/json_values.hpp"
 #include "spdfit/format.hpp"
 #include "spdfit/physical/regress.hpp"
 
@@ -39,7 +40,7 @@ std::string to_json(const RegressResult& r) {
   out["status"] = to_string(r.status);
   if (!r.ok()) {
     out["error"] = r.message;
-    out["warnings"] = r.warnings;
+    spdfit::detail::put_warnings(out, r.warnings);
     return out.dump(2) + "\n";
   }
   out["bodies"] = r.bodies;
@@ -85,7 +86,7 @@ std::string to_json(const RegressResult& r) {
   out["iterations"] = r.iterations;
   out["converged"] = r.converged;
   out["physically_consistent"] = r.physically_consistent;
-  out["warnings"] = r.warnings;
+  spdfit::detail::put_warnings(out, r.warnings);
   if (r.bootstrap) {
     const RegressBootstrap& b = *r.bootstrap;
     out["bootstrap"] = {{"replicates", b.replicates},

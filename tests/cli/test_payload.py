@@ -269,6 +269,8 @@ def test_two_orientations_leave_a_named_combination(spdfit, tmp_path):
     out, err = identify(spdfit, static_file(tmp_path, log), *STATIC)
     assert out["rank"] == 9 and len(out["undetermined"]) == 1
     assert "do not determine 1 combination" in err and "2 distinct gravity directions" in err
+    # The warning's code beside its text: the undetermined combination is a rank deficiency.
+    assert len(out["warning_codes"]) == len(out["warnings"]) and "rank_deficient" in out["warning_codes"]
     # NumPy's null space of the regressor is the same combination.
     X = regressor(-log["gravity"])
     scale = np.linalg.norm(X, axis=0)
@@ -312,7 +314,7 @@ def test_quaternion_norms(spdfit, tmp_path):
     (("--wrench-cols", "fx:tz", "--quat-cols", "qx:qw", "--gravity", "0,0"), 2, "3 numbers"),
     (("--wrench-cols", "fx:tz", "--quat-cols", "nope:qw"), 2, "nope"),
     (("--wrench-cols", "fx:tz", "--quat-cols", "qx:qw", "--rows", "50:"), 2, "beyond"),
-    (("--wrench-cols", "fx:tz", "--quat-cols", "qx:qw", "--quat-order", "zyx"), 2, "xyzw or wxyz"),
+    (("--wrench-cols", "fx:tz", "--quat-cols", "qx:qw", "--quat-order", "zyx"), 2, "'xyzw' or 'wxyz'"),
 ])
 def test_usage_errors(spdfit, tmp_path, options, status, message):
     path = static_file(tmp_path, static_log(np.random.default_rng(12), 10))

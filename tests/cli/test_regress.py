@@ -130,6 +130,7 @@ def test_base_parameters_and_the_prior(spdfit, tmp_path):
     assert out["rank"] == 19 and len(out["undetermined"]) == 1
     assert out["parameters"][0] is None and out["parameters"][10] is None
     assert "do not determine 1 combination" in err
+    assert len(out["warning_codes"]) == len(out["warnings"]) and "rank_deficient" in out["warning_codes"]
     # Each base parameter is determined: orthogonal to NumPy's null space, and equal to its value at phi.
     null = np.linalg.svd(Y)[2][-1]
     for base in out["base_parameters"]:
@@ -175,7 +176,7 @@ def test_bootstrap_and_errors(spdfit, tmp_path):
     too_many = spdfit("physical", "regress", str(y_path), str(t_path), "--bodies", "2")
     assert too_many.returncode == 1 and "needs at least 20" in too_many.stderr
     order = spdfit("physical", "regress", str(y_path), str(t_path), "--param-order", "ros")
-    assert order.returncode == 2 and "urdf or pinocchio" in order.stderr
+    assert order.returncode == 2 and "'urdf' or 'pinocchio'" in order.stderr
     weight = spdfit("physical", "regress", str(y_path), str(t_path), "--prior-weight", "2")
     assert weight.returncode == 2 and "--prior" in weight.stderr
     short = write(tmp_path / "short.csv", tau[:50])

@@ -12,6 +12,8 @@
 
 #include "spdfit/io.hpp"
 #include "spdfit/options.hpp"
+#include "spdfit/output_request.hpp"
+#include "spdfit/outcome.hpp"
 #include "spdfit/payload/identify.hpp"
 
 namespace spdfit::payload {
@@ -25,6 +27,7 @@ std::optional<DesignCriterion> parse_design_criterion(std::string_view name);
 
 /// What `payload design` needs besides the candidates.
 struct DesignRequest {
+  std::string candidates;  ///< the candidates' file (one pose per row), for run_design
   int poses = 6;  ///< K, the poses chosen (>= 1; the ten parameters need 3 distinct gravity directions)
   DesignCriterion criterion = DesignCriterion::D;
   /// The candidates' orientation columns, as payload identify takes them (one of the three).
@@ -43,6 +46,9 @@ struct DesignRequest {
   int random = 1000;
   std::uint64_t seed = 1;
   io::ReadOptions read;
+  /// The command line's: JSON or the report on standard output; `output` is the file the chosen
+  /// rows are written to.
+  OutputRequest output;
 
   bool is_valid(std::string* error = nullptr) const;
 };
@@ -74,7 +80,7 @@ struct DesignResult {
                   random_se_center_of_mass = Eigen::Vector3d::Zero(), random_condition = Eigen::Vector3d::Zero();
   double beats_random = 0.0;
   Eigen::Index distinct_candidates = 0;  ///< distinct gravity directions in the pool
-  std::vector<std::string> warnings;
+  std::vector<Warning> warnings;
   /// From design_file: the chosen rows of the candidates' file, every column, and its header.
   Eigen::MatrixXd chosen_rows;
   std::vector<std::string> column_names;
@@ -93,6 +99,11 @@ DesignResult design(const PayloadSignals& candidates, const DesignRequest& reque
 
 /// design on the candidates' orientation columns of a file (as payload identify reads a log).
 DesignResult design_file(const std::string& path, const DesignRequest& request);
+
+/// `payload design` as one workflow: the table's rules among the options given (OptionError,
+/// Code::OptionConflict), then design_file on request.candidates.
+void check_design_request(const DesignRequest& request, const std::vector<std::string_view>& given);
+DesignResult run_design(const DesignRequest& request);
 
 /// The chosen rows as CSV text (design_file's chosen_rows, with the file's header when it had one),
 /// values that read back exactly: the poses to drive the robot to.

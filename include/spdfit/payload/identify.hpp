@@ -24,6 +24,8 @@
 #include "spdfit/fit_result.hpp"
 #include "spdfit/io.hpp"
 #include "spdfit/options.hpp"
+#include "spdfit/output_request.hpp"
+#include "spdfit/outcome.hpp"
 #include "spdfit/physical/identifiability.hpp"
 #include "spdfit/rigid_body.hpp"
 
@@ -77,6 +79,8 @@ struct PayloadSignals {
 /// conventions, the criterion and its noise model, and the uncertainty. Messages name the fields
 /// in backticks.
 struct IdentifyRequest {
+  /// The log (any format spdfit reads), for run_identify (identify_file's path).
+  std::string log;
   // Columns of the log (io::ColumnSelection's syntax: header names and 1-based positions, ranges,
   // lists), for identify_file; the signals' arrays come from these.
   std::string wrench_cols, quat_cols, rotation_cols, gravity_cols;
@@ -110,14 +114,22 @@ struct IdentifyRequest {
   /// A URDF <link> of the payload: its name (`urdf` is the command line's file).
   std::string urdf, link_name = "payload";
   int precision = 9;
+  OutputRequest output;  ///< the command line's: JSON or the report, and where
 
   /// True when usable (the options' values and combinations); otherwise `error` says why, naming
   /// the fields.
   bool is_valid(std::string* error = nullptr) const;
 };
 
-/// The options of an IdentifyRequest, in the order help lists them.
+/// The options of an IdentifyRequest, in the order help lists them: the log (positional), the
+/// columns, the conventions, the criterion and its noise, the solver's and the bootstrap's, the
+/// URDF export, and the command line's json and output.
 const std::vector<OptionSpec<IdentifyRequest>>& identify_option_table();
+
+/// Checks the options given (`given`: library names) against the table's rules (each option's
+/// `needs` and `excludes`). Throws OptionError (Code::OptionConflict). The rules that depend on
+/// the signals given (an orientation once, eiv's noise model, ...) are identify's.
+void check_identify_request(const IdentifyRequest& request, const std::vector<std::string_view>& given);
 
 /// A parameter group's bootstrap uncertainty, entry by entry.
 struct Interval {
@@ -166,7 +178,7 @@ struct PayloadEstimate {
   bool converged = true;
   /// The distinct gravity directions in S among the samples (to 1e-3 rad), at most 1000 counted.
   Eigen::Index distinct_orientations = 0;
-  std::vector<std::string> warnings;
+  std::vector<Warning> warnings;
   /// With a bootstrap: mass, center_of_mass, inertia, principal_moments, force_bias, torque_bias.
   struct Bootstrap {
     int replicates = 0, failed = 0;
@@ -200,6 +212,9 @@ PayloadEstimate identify(const PayloadSignals& signals, const IdentifyRequest& r
 /// selections that do not fit the file are io::ColumnSelectionError (usage); bad data io::DataError
 /// naming the file and the row.
 PayloadEstimate identify_file(const std::string& path, const IdentifyRequest& request);
+
+/// `payload identify` as one workflow: identify_file on request.log.
+PayloadEstimate run_identify(const IdentifyRequest& request);
 
 /// The payload as a URDF <link> (urdf_link, inertia_repair.hpp) named request.link_name, to
 /// request.precision significant digits: OptionError (naming `urdf`) for static poses, which do

@@ -15,6 +15,8 @@
 #include "spdfit/fit_result.hpp"
 #include "spdfit/io.hpp"
 #include "spdfit/options.hpp"
+#include "spdfit/output_request.hpp"
+#include "spdfit/outcome.hpp"
 #include "spdfit/physical/identifiability.hpp"
 #include "spdfit/rigid_body.hpp"
 
@@ -66,6 +68,9 @@ struct RegressRequest {
   unsigned threads = 0;  ///< for the bootstrap's replicates; 0: one per core
   /// Files of the command line's options (`noise_cov` and `prior`), read by regress_files.
   std::string noise_cov_path, prior_path;
+  /// The command line's: the files of Y and tau (positional), JSON or the report, and where.
+  std::string y_path, tau_path;
+  OutputRequest output;
 
   /// True when usable; otherwise `error` says why, naming the field.
   bool is_valid(std::string* error = nullptr) const;
@@ -116,7 +121,7 @@ struct RegressResult {
   int iterations = 0;
   bool converged = false;
   bool physically_consistent = false;  ///< every body
-  std::vector<std::string> warnings;
+  std::vector<Warning> warnings;
   std::optional<RegressBootstrap> bootstrap;
 
   bool ok() const { return status == Status::Success; }
@@ -148,6 +153,11 @@ RegressResult regress(const Eigen::MatrixXd& Y, const Eigen::MatrixXd& tau, cons
 /// the file for bad files.
 RegressResult regress_files(const std::string& y_path, const std::string& tau_path, RegressRequest request,
                             const io::ReadOptions& read = {});
+
+/// `physical regress` as one workflow: the table's rules among the options given (OptionError,
+/// Code::OptionConflict), then regress_files on request.y_path and request.tau_path.
+void check_regress_request(const RegressRequest& request, const std::vector<std::string_view>& given);
+RegressResult run_regress(const RegressRequest& request, const io::ReadOptions& read = {});
 
 /// The result as JSON text: {"status", "bodies", "param_order", "consistent", "prior", "samples",
 /// "outputs", "rows", "names", "parameters", "body" [{"mass", "center_of_mass", "inertia",
