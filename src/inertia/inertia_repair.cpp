@@ -110,7 +110,7 @@ InertiaRepairResult repair_inertia(const RigidBodyInertia& body, const InertiaRe
   out.principal_moments_before = principal_inertia(inertia).moments;
   if (inertia.cwiseAbs().maxCoeff() == 0.0) {
     out.warnings.push_back(Warning(Code::PhysicalNotice, "the inertia is all zero for a mass of " + format_number(body.mass) +
-                           " kg: a placeholder, not a body's inertia (a point mass at the centre of mass)");
+                           " kg: a placeholder, not a body's inertia (a point mass at the centre of mass)"));
   }
 
   // Sigma_c = V diag(sigma) V^T.
@@ -148,7 +148,7 @@ InertiaRepairResult repair_inertia(const RigidBodyInertia& body, const InertiaRe
     if (worst > kTypoFraction) {
       out.warnings.push_back(Warning(Code::PhysicalNotice, "the repair changes a principal moment by " + percent(worst) +
                              ": the input may hold a typo (a misplaced digit, a product of inertia with the wrong "
-                             "sign) rather than rounding; check it against its source");
+                             "sign) rather than rounding; check it against its source"));
     }
   }
 

@@ -404,10 +404,10 @@ DesignResult design(const Eigen::Matrix<double, 3, Eigen::Dynamic>& g, const Des
   }
   if (out.distinct_candidates < 3) {
     out.warnings.push_back(Warning(Code::RankDeficient, "the candidates have only " + std::to_string(out.distinct_candidates) +
-                           " distinct gravity directions in the sensor frame: the mass, centre of mass and biases need 3");
+                           " distinct gravity directions in the sensor frame: the mass, centre of mass and biases need 3"));
   } else if (!std::isfinite(out.score.log_det)) {
     out.warnings.push_back(Warning(Code::RankDeficient, "the chosen poses do not determine the ten parameters: choose at least 3 poses with distinct "
-                           "gravity directions (`poses` >= 3)");
+                           "gravity directions (`poses` >= 3)"));
   }
   return out;
 }

@@ -247,7 +247,7 @@ PayloadEstimate identify(const PayloadSignals& signals, const IdentifyRequest& r
   // What the user should know.
   if (!fit.converged) {
     out.warnings.push_back(Warning(Code::NotConverged, "the optimizer did not converge" + (fit.failure.empty() ? std::string() : ": " + fit.failure) +
-                           "; the estimate is the last iterate");
+                           "; the estimate is the last iterate"));
   }
   if (!fit.identifiability.undetermined.empty()) {
     std::string list;
@@ -259,26 +259,26 @@ PayloadEstimate identify(const PayloadSignals& signals, const IdentifyRequest& r
         "): the parameters they reach are reported as null. The samples have " +
         std::to_string(kin.distinct_orientations) + " distinct gravity " +
         (kin.distinct_orientations == 1 ? "direction" : "directions") +
-        " in the sensor frame: log at least 3 (rotations about the vertical add none)");
+        " in the sensor frame: log at least 3 (rotations about the vertical add none)"));
   }
   if (kin.moving && !kin.rotating) {
-    out.warnings.push_back(Warning(Code::PhysicalNotice, "omega and alpha are zero in every row: nothing excites the inertia");
+    out.warnings.push_back(Warning(Code::PhysicalNotice, "omega and alpha are zero in every row: nothing excites the inertia"));
   }
   if (out.constraint_active && !kin.moving) {
     out.warnings.push_back(Warning(Code::Boundary, "the unconstrained fit's mass is " + format_number(fit.phi_ls(0)) + " kg (standard error " +
                            format_number(fit.mass_ls_se) +
                            " kg): the constraint m >= 0 is active, the mass is 0 and the centre of mass undefined; the "
-                           "payload is lighter than the data resolve");
+                           "payload is lighter than the data resolve"));
   } else if (out.constraint_active) {
     out.warnings.push_back(Warning(Code::Boundary, "the estimate lies on the boundary of physical consistency (the pseudo-inertia's smallest "
                            "eigenvalue is " + format_number(fit.pseudo_min) +
-                           " kg): the constraint is active, as for a payload whose mass lies on a plane or a line");
+                           " kg): the constraint is active, as for a payload whose mass lies on a plane or a line"));
   }
   if (!request.consistent && !out.physically_consistent) {
     out.warnings.push_back(Warning(Code::PhysicalNotice, std::string("the unconstrained estimate is not physically consistent (") +
                            (kin.moving ? "the pseudo-inertia's smallest eigenvalue is " + format_number(fit.pseudo_min) + " kg"
                                        : "its mass is negative") +
-                           "): no rigid body has these mass properties");
+                           "): no rigid body has these mass properties"));
   }
 
   if (request.bootstrap > 0) {
@@ -321,7 +321,7 @@ PayloadEstimate identify(const PayloadSignals& signals, const IdentifyRequest& r
     out.bootstrap = b;
     if (b.failed > 0) {
       out.warnings.push_back(Warning(Code::BootstrapNotice, std::to_string(b.failed) + " of " + std::to_string(b.replicates) +
-                             " bootstrap replicates failed and are left out");
+                             " bootstrap replicates failed and are left out"));
     }
   }
   return out;

@@ -266,7 +266,7 @@ Kinematics kinematics(const PayloadSignals& signals, const IdentifyRequest& requ
                            (quaternion ? "quaternion" : "rotation matrix") + " (first " + row_text(first_normalized) +
                            ", worst off by " + format_number(worst_norm) + ") " +
                            (quaternion ? "had a norm off 1 by more than 1e-3: normalized"
-                                       : "was off orthonormal by more than 1e-3: replaced by the nearest rotation"));
+                                       : "was off orthonormal by more than 1e-3: replaced by the nearest rotation")));
   }
   if (signals.gravity.size() > 0 && !specific) {
     const double mean = gravity_in_s.colwise().norm().mean();
@@ -274,7 +274,7 @@ Kinematics kinematics(const PayloadSignals& signals, const IdentifyRequest& requ
     if (std::abs(mean - expected) > kGravityMagnitude * expected) {
       out.warnings.push_back(Warning(Code::PhysicalNotice, "the gravity columns (`gravity_cols`) have a mean magnitude of " + format_number(mean) +
                              " m/s^2, not |g| = " + format_number(expected) +
-                             " m/s^2: the mass comes out in their units (are they in g?)");
+                             " m/s^2: the mass comes out in their units (are they in g?)"));
     }
   }
 
@@ -296,7 +296,7 @@ Kinematics kinematics(const PayloadSignals& signals, const IdentifyRequest& requ
     }
     out.warnings.push_back(Warning(Code::PhysicalNotice, "alpha (the angular acceleration) is omega's derivative by central differences in time "
                            "(`time_col`): noise in omega is amplified by 1/(2 dt); give `alpha_cols` when the logger "
-                           "has it");
+                           "has it"));
   }
   out.rotating = out.moving && (out.omega.cwiseAbs().maxCoeff() > 0.0 || out.alpha.cwiseAbs().maxCoeff() > 0.0);
   out.distinct_orientations = distinct_directions(gravity_in_s, 1000);

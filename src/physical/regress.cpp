@@ -243,19 +243,19 @@ RegressResult fit_factor(const TriangularFactor& factor, const RegressRequest& r
   }
   if (!out.converged) {
     out.warnings.push_back(Warning(Code::NotConverged, "the optimizer did not converge" + (failure.empty() ? std::string() : ": " + failure) +
-                           "; the estimate is the last iterate");
+                           "; the estimate is the last iterate"));
   }
   if (!out.identifiability.undetermined.empty()) {
     std::string list;
     for (const UndeterminedCombination& u : out.identifiability.undetermined) list += (list.empty() ? "" : "; ") + u.text;
     if (out.prior_used) {
       out.warnings.push_back(Warning(Code::RankDeficient, "the data do not determine " + std::to_string(out.identifiability.undetermined.size()) +
-                             " combination(s) of the parameters (" + list + "): the prior sets them");
+                             " combination(s) of the parameters (" + list + "): the prior sets them"));
     } else {
       out.warnings.push_back(Warning(Code::RankDeficient, "the data do not determine " + std::to_string(out.identifiability.undetermined.size()) +
                              " combination(s) of the parameters (" + list +
                              "): the parameters they reach are reported as null; the base parameters are determined. "
-                             "Give a prior (`prior`, e.g. from CAD) to set them");
+                             "Give a prior (`prior`, e.g. from CAD) to set them"));
     }
   }
   if (!request.consistent && !out.physically_consistent) {
@@ -263,7 +263,7 @@ RegressResult fit_factor(const TriangularFactor& factor, const RegressRequest& r
     for (int k = 0; k < request.bodies; ++k)
       if (!out.body[static_cast<std::size_t>(k)].physically_consistent) which += (which.empty() ? "" : ", ") + std::to_string(k + 1);
     out.warnings.push_back(Warning(Code::PhysicalNotice, "the unconstrained estimate is not physically consistent (bodies " + which +
-                           "): no rigid body has these mass properties");
+                           "): no rigid body has these mass properties"));
   }
   return out;
 }
@@ -416,7 +416,7 @@ RegressResult regress(const Eigen::MatrixXd& Y, const Eigen::MatrixXd& tau, cons
   out.bootstrap = b;
   if (b.failed > 0) {
     out.warnings.push_back(Warning(Code::BootstrapNotice, std::to_string(b.failed) + " of " + std::to_string(b.replicates) +
-                           " bootstrap replicates failed and are left out");
+                           " bootstrap replicates failed and are left out"));
   }
   return out;
 }

@@ -53,7 +53,7 @@ def test_moving_with_alpha_from_time_and_urdf():
     g_s = np.array([rotation_from_quaternion(qi).T @ G for qi in q])
     inertia = np.diag([0.02, 0.03, 0.025])
     w = -wrench(3.0, [0.01, 0.02, 0.05], inertia, accel - g_s, omega, alpha)
-    with pytest.warns(spdfit.PhysicalNoticeWarning, match="central differences"):
+    with pytest.warns(spdfit.PhysicalWarning, match="central differences"):
         est = pl.identify(wrench=w, quaternion=q, accel=accel, omega=omega, time=t)
     np.testing.assert_allclose(est["inertia"], inertia, atol=3e-4)
     text = pl.urdf_link(est, "tool")
