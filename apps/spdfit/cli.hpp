@@ -61,6 +61,8 @@ Command add_hexapod_command(CLI::App& app, const GlobalOptions& global);
 Command add_experiment_command(CLI::App& app, const GlobalOptions& global);
 Command add_demo_command(CLI::App& app, const GlobalOptions& global);
 Command add_inertia_command(CLI::App& app, const GlobalOptions& global);
+Command add_payload_command(CLI::App& app, const GlobalOptions& global);
+Command add_physical_command(CLI::App& app, const GlobalOptions& global);
 
 /// Prints "spdfit: warning: MESSAGE" on stderr unless quiet.
 void warn(const GlobalOptions& global, const std::string& message);

@@ -8,6 +8,7 @@
 #include "hexapod_commands.hpp"
 #include "output.hpp"
 #include "spdfit/hexapod/identify_request.hpp"
+#include "spdfit/io.hpp"
 #include "table_options.hpp"
 
 namespace spdfit::cli {
@@ -33,6 +34,7 @@ Command add_hexapod_identify(CLI::App& parent, const GlobalOptions& global) {
     emit(request.output.json ? hexapod::to_json(result) : hexapod::report(result), request.output.output);
     // The report says why too; the exit status tells a script that the fit asked for failed.
     if (const auto failure = result.failure()) throw DataFailure(failure->message, failure->code);
+    if (!request.urdf.empty()) io::write_text(request.urdf, hexapod::urdf_text(result, request));
   };
   return {sub, run};
 }

@@ -88,6 +88,8 @@ int main(int argc, char** argv) {
       add_experiment_command(app, global),
       add_demo_command(app, global),
       add_inertia_command(app, global),
+      add_payload_command(app, global),
+      add_physical_command(app, global),
   };
 
   try {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "spdfit/option_spelling.hpp"
 #include "spdfit/fit_request.hpp"
 #include "spdfit/options.hpp"
 #include "validators.hpp"
@@ -46,6 +47,25 @@ std::string cli_help(std::string_view help, std::string_view default_text);
 /// the options spelled as here.
 [[noreturn]] void throw_usage(const std::exception& error);
 
+/// Runs `fn`; an error it throws is rethrown with its options spelled through `table` first (a
+/// command whose option shares a library name with another table's: `criterion`) and its code
+/// kept: a usage code as a UsageError (exit 2), any other as a DataFailure (exit 1).
+template <typename Request, typename Fn>
+auto run_spelled(const std::vector<OptionSpec<Request>>& table, Fn&& fn) -> decltype(fn()) {
+  try {
+    return fn();
+  } catch (const UsageError&) {
+    throw;
+  } catch (const DataFailure&) {
+    throw;
+  } catch (const std::exception& e) {
+    const Code code = code_of(e);
+    const std::string message = spell_options_with(e.what(), Frontend::Cli, table);
+    if (tier(code) == Tier::Usage) throw UsageError(message, code);
+    throw DataFailure(message, code);
+  }
+}
+
 /// The options of `table` that the command line offers, added to a subcommand; after parsing,
 /// which were given and their values.
 template <typename Request>
@@ -54,7 +74,8 @@ class TableOptions {
   /// Adds every option of `table` with a command-line spelling to `sub`, but those named in
   /// `leave_out` (library names), in the table's order. The table must outlive this object.
   TableOptions(CLI::App& sub, const std::vector<OptionSpec<Request>>& table,
-               const std::vector<std::string_view>& leave_out = {}) {
+               const std::vector<std::string_view>& leave_out = {})
+      : table_(&table) {
     for (const OptionSpec<Request>& spec : table) {
       if (spec.cli.empty() || contains(leave_out, spec.name)) continue;
       auto entry = std::make_unique<Entry>();
@@ -112,7 +133,8 @@ class TableOptions {
       try {
         set_option(request, *entry->spec, value_of(*entry));
       } catch (const OptionError& e) {
-        throw_usage(e);
+        // Spelled with this table first: its names may be another table's too (`criterion`).
+        throw UsageError(spell_options_with(e.what(), Frontend::Cli, *table_), e.code());
       }
     }
   }
@@ -134,6 +156,7 @@ class TableOptions {
 
   static OptionValue value_of(const Entry& entry);
 
+  const std::vector<OptionSpec<Request>>* table_ = nullptr;
   std::vector<std::unique_ptr<Entry>> entries_;
 };
 

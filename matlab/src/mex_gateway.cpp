@@ -23,7 +23,11 @@
 #include "spdfit/solve_request.hpp"
 #include "spdfit/hexapod/physical.hpp"
 #include "spdfit/hexapod/render.hpp"
+#include "spdfit/inertia_repair.hpp"
 #include "spdfit/io.hpp"
+#include "spdfit/option_spelling.hpp"
+#include "spdfit/payload/identify.hpp"
+#include "spdfit/physical/regress.hpp"
 #include "spdfit/render.hpp"
 
 namespace spdfit::matlab {
@@ -148,6 +152,67 @@ void identify_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* 
   plhs[2] = warnings_cell(result.warnings);
 }
 
+void payload_identify_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
+  need_arguments("payload.identify", nrhs, 2,
+                 "the wrench: [result, text] = spdfit.payload.identify(W, 'Quaternion', Q, name, value, ...)");
+  payload::PayloadSignals signals;
+  signals.wrench = read_matrix(prhs[1], "W");
+  // The signals' pairs are matrices; the others are the table's options.
+  std::vector<NameValue> options;
+  for (const NameValue& pair : pairs_from("payload.identify", nrhs, prhs, 2)) {
+    const PayloadSignal* signal = nullptr;
+    for (const PayloadSignal& s : payload_signals()) {
+      if (same_name(camel_case(s.name), pair.name)) signal = &s;
+    }
+    if (signal == nullptr) {
+      options.push_back(pair);
+      continue;
+    }
+    if (mxIsEmpty(pair.value)) continue;
+    const Eigen::MatrixXd value = read_matrix(pair.value, camel_case(signal->name));
+    if (signal->matrix != nullptr) {
+      signals.*(signal->matrix) = value;
+    } else {
+      signals.time = Eigen::Map<const Eigen::VectorXd>(value.data(), value.size());
+    }
+  }
+  const auto& table = payload::identify_option_table();
+  payload::IdentifyRequest request;
+  const std::vector<std::string_view> given =
+      set_pairs(request, table, options, matlab_function("payload.identify"));
+  payload::check_identify_request(request, given);
+  payload::PayloadEstimate estimate = payload::identify(signals, request);
+  if (!estimate.ok()) throw NumericalError(estimate.message);
+  plhs[0] = write_json(payload::to_json(estimate));
+  plhs[1] = want_info ? mxCreateString(payload::report(estimate).c_str()) : mxCreateDoubleMatrix(0, 0, mxREAL);
+  plhs[2] = warnings_cell(estimate.warnings);
+}
+
+void regress_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
+  need_arguments("physical.regress", nrhs, 3, "Y and tau: [result, text] = spdfit.physical.regress(Y, tau, 'Bodies', K, ...)");
+  const Eigen::MatrixXd Y = read_matrix(prhs[1], "Y");
+  Eigen::MatrixXd tau = read_matrix(prhs[2], "tau");
+  if (tau.rows() == 1 && tau.cols() == Y.rows()) tau.transposeInPlace();
+  physical::RegressRequest request;
+  std::vector<NameValue> options;
+  for (const NameValue& pair : pairs_from("physical.regress", nrhs, prhs, 3)) {
+    if (!same_name(pair.name, "NoiseCov")) {
+      options.push_back(pair);
+    } else if (!mxIsEmpty(pair.value)) {
+      request.noise_cov = read_matrix(pair.value, "NoiseCov");
+    }
+  }
+  const std::vector<std::string_view> given =
+      set_pairs(request, physical::regress_option_table(), options, matlab_function("physical.regress"));
+  physical::check_regress_request(request, given);
+  if (!request.prior_path.empty()) request.prior = read_rigid_bodies(request.prior_path);
+  const physical::RegressResult result = physical::regress(Y, tau, request);
+  if (!result.ok()) throw NumericalError(result.message);
+  plhs[0] = write_json(physical::to_json(result));
+  plhs[1] = want_info ? mxCreateString(physical::report(result).c_str()) : mxCreateDoubleMatrix(0, 0, mxREAL);
+  plhs[2] = warnings_cell(result.warnings);
+}
+
 // spdfit_mex(COMMAND, WANT_INFO, arguments...) -> [estimate, info, warnings]: the arguments after
 // the first two are the package function's, which the commands index from 1 (prhs + 1).
 void run(int nlhs, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
@@ -160,6 +225,8 @@ void run(int nlhs, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
   if (command == "nearest") return nearest_command(want_info, plhs, nrhs - 1, prhs + 1);
   if (command == "solve") return solve_command(want_info, plhs, nrhs - 1, prhs + 1);
   if (command == "identify") return identify_command(want_info, plhs, nrhs - 1, prhs + 1);
+  if (command == "payload.identify") return payload_identify_command(want_info, plhs, nrhs - 1, prhs + 1);
+  if (command == "physical.regress") return regress_command(want_info, plhs, nrhs - 1, prhs + 1);
   throw UsageError("spdfit_mex has no command '" + command + "'");
 }
 

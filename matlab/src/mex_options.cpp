@@ -8,6 +8,8 @@
 #include "spdfit/fit_request.hpp"
 #include "spdfit/hexapod/identify_request.hpp"
 #include "spdfit/nearest_request.hpp"
+#include "spdfit/payload/identify.hpp"
+#include "spdfit/physical/regress.hpp"
 #include "spdfit/solve_request.hpp"
 
 namespace spdfit::matlab {
@@ -27,9 +29,36 @@ const std::vector<MatlabFunction>& matlab_functions() {
       {"fit", "fit", {"stream", "block_rows", "noise", "a_cols", "b_cols"}},
       {"nearest", "nearest", {}},
       {"solve", "solve", {"json", "output"}},
-      {"identify", "identify", {"noise", "a_cols", "b_cols", "json", "output", "unconstrained"}},
+      {"identify", "identify", {"noise", "a_cols", "b_cols", "json", "output", "unconstrained", "urdf", "precision"}},
+      // The signals come as matrices (payload_signals), not as a log's columns; the URDF file is
+      // the command line's.
+      {"payload.identify",
+       "payload",
+       {"wrench_cols", "quat_cols", "rotation_cols", "gravity_cols", "accel_cols", "specific_force_cols",
+        "omega_cols", "alpha_cols", "time_col", "urdf", "link_name", "precision", "unconstrained", "json",
+        "output"}},
+      // 'NoiseCov' is a matrix (the command line's is a file).
+      {"physical.regress", "regress", {"noise_cov", "unconstrained", "json", "output"}},
   };
   return functions;
+}
+
+const std::vector<PayloadSignal>& payload_signals() {
+  static const std::vector<PayloadSignal> signals = {
+      {"quaternion", &payload::PayloadSignals::quaternion,
+       "m x 4 quaternions (x y z w unless 'QuatOrder' is wxyz): the rotation from the sensor frame to the world."},
+      {"rotation", &payload::PayloadSignals::rotation, "m x 9 rotation matrices, row-major."},
+      {"gravity_in_sensor", &payload::PayloadSignals::gravity, "m x 3 gravity in the sensor frame (m/s^2)."},
+      {"accel", &payload::PayloadSignals::accel,
+       "m x 3 kinematic acceleration of the sensor's origin in the sensor frame (m/s^2)."},
+      {"specific_force", &payload::PayloadSignals::specific_force,
+       "m x 3 IMU specific force (gravity included: no orientation needed)."},
+      {"omega", &payload::PayloadSignals::omega, "m x 3 angular velocity (rad/s): the inertia enters the model."},
+      {"alpha", &payload::PayloadSignals::alpha,
+       "m x 3 angular acceleration (rad/s^2); without it, omega's central differences in 'Time'."},
+      {"time", nullptr, "m x 1 times (s)."},
+  };
+  return signals;
 }
 
 const MatlabFunction& matlab_function(std::string_view name) {
@@ -90,6 +119,22 @@ std::vector<MatlabOption> option_help(std::string_view name) {
   if (function.table == "fit") return help_of(fit_option_table(), function);
   if (function.table == "nearest") return help_of(nearest_option_table(), function);
   if (function.table == "solve") return help_of(solve_option_table(), function);
+  if (function.table == "payload") {
+    std::vector<MatlabOption> out;
+    for (const PayloadSignal& signal : payload_signals()) {
+      out.push_back({camel_case(signal.name), "matrix", std::string(signal.help), ""});
+    }
+    for (MatlabOption& o : help_of(payload::identify_option_table(), function)) out.push_back(std::move(o));
+    return out;
+  }
+  if (function.table == "regress") {
+    std::vector<MatlabOption> out = help_of(physical::regress_option_table(), function);
+    out.push_back({"NoiseCov", "matrix",
+                   "The covariance of the noise in one sample's d outputs (d x d): the rows come in samples of d, "
+                   "each sample's residual weighted by its inverse.",
+                   ""});
+    return out;
+  }
   return help_of(hexapod::identify_option_table(), function);
 }
 

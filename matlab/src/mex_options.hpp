@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "spdfit/options.hpp"
+#include "spdfit/payload/identify.hpp"
 
 namespace spdfit::matlab {
 
@@ -21,6 +22,15 @@ struct MatlabFunction {
   std::string_view table;
   std::vector<std::string_view> unavailable;
 };
+
+/// A signal of spdfit.payload.identify given as a matrix name-value pair ('Quaternion', Q): its
+/// library name, the field of PayloadSignals it fills (nullptr: the time vector) and its help.
+struct PayloadSignal {
+  std::string_view name;
+  Eigen::MatrixXd payload::PayloadSignals::*matrix;
+  std::string_view help;
+};
+const std::vector<PayloadSignal>& payload_signals();
 
 /// The package's functions.
 const std::vector<MatlabFunction>& matlab_functions();

@@ -1271,6 +1271,6 @@ def solve(A, b, *, threshold=None):
 
 
 # Submodules (imported last: they use the helpers above).
-from . import experiment, hexapod, linkage, physical  # noqa: E402
+from . import experiment, hexapod, linkage, payload, physical  # noqa: E402
 from .repair import nearest_covariance  # noqa: E402
 from .factor import Factor  # noqa: E402

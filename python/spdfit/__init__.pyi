@@ -8,6 +8,7 @@ import numpy.typing as npt
 from . import experiment as experiment
 from . import hexapod as hexapod
 from . import linkage as linkage
+from . import payload as payload
 from . import physical as physical
 from . import factor as factor
 from . import repair as repair

@@ -16,6 +16,10 @@ draws, into DIR (default ./figures):
                        at two noise levels: which method to choose for how much data
   physical_vs_generic  mean error of M_p against m (log-log): physical identification of the
                        payload against the generic estimators and the best of them at each m
+  payload_frames       the frames of payload identification: the world, the sensor frame S, the
+                       payload's centre of mass, gravity and the wrench (docs/payload.md)
+  payload_residuals    the residuals per axis of the calibration of examples/payload/log.csv
+                       (docs/payload.md; the log is found under $SPDFIT_SOURCE_DIR or ./)
 
 Each plot_* function takes the data its *_data function returns (the experiment functions'
 results, unchanged), so what is drawn is what the library computed.
@@ -303,6 +307,113 @@ def plot_physical(data):
     return fig
 
 
+# ---- 8. A payload on a wrist force/torque sensor ----------------------------------------------
+
+def payload_frames_data():
+    """The diagram's geometry: the sensor frame's tilt and origin, the centre of mass in S."""
+    angle = np.radians(25.0)
+    R = np.array([[np.cos(angle), -np.sin(angle)], [np.sin(angle), np.cos(angle)]])
+    return {"origin": np.array([2.6, 2.5]), "R": R, "com": np.array([0.45, -1.05])}
+
+
+def plot_payload_frames(data):
+    from matplotlib.patches import FancyArrowPatch, Polygon
+
+    fig, ax = plt.subplots(figsize=(8.5, 5.2))
+    ax.set_aspect("equal")
+    ax.axis("off")
+
+    def arrow(start, end, color, width=1.8, **kw):
+        ax.add_patch(FancyArrowPatch(tuple(start), tuple(end), arrowstyle="-|>", mutation_scale=14, color=color,
+                                     lw=width, **kw))
+
+    o, R = data["origin"], data["R"]
+    local = lambda p: o + R @ np.asarray(p, dtype=float)  # noqa: E731 (a point given in S's plane)
+    # The world frame W and gravity.
+    arrow((0.2, 0.3), (1.1, 0.3), "black")
+    arrow((0.2, 0.3), (0.2, 1.2), "black")
+    ax.text(1.15, 0.2, "$x_W$", fontsize=11)
+    ax.text(0.05, 1.25, "$z_W$", fontsize=11)
+    ax.text(0.2, -0.05, "world W", fontsize=10)
+    arrow((0.7, 4.3), (0.7, 3.4), "#1f77b4")
+    ax.text(0.8, 3.7, "$g = (0, 0, -9.81)$\nin W", color="#1f77b4", fontsize=10)
+    # The robot's wrist (above the sensor), the sensor, and the tool below it along z_S.
+    ax.add_patch(Polygon([local(p) for p in ([-0.22, 1.3], [0.22, 1.3], [0.22, 0.0], [-0.22, 0.0])], closed=True,
+                         color="#bbbbbb"))
+    ax.text(*(local([0.3, 1.0]) + [0.05, 0.0]), "robot wrist", fontsize=9, color="#555555")
+    ax.add_patch(Polygon([local(p) for p in ([-0.38, 0.0], [0.38, 0.0], [0.38, -0.22], [-0.38, -0.22])], closed=True,
+                         color="#ff7f0e", alpha=0.85))
+    ax.text(*(local([-0.45, -0.1]) + [-1.05, -0.05]), "F/T sensor", fontsize=9, color="#ff7f0e")
+    tool = [[-0.3, -0.22], [0.3, -0.22], [0.3, -0.8], [0.75, -1.6], [0.5, -1.65], [0.12, -0.95], [-0.12, -0.95],
+            [-0.5, -1.65], [-0.75, -1.6], [-0.3, -0.8]]
+    ax.add_patch(Polygon([local(p) for p in tool], closed=True, color="#2ca02c", alpha=0.35))
+    ax.text(*(local([-0.8, -1.4]) + [-1.05, 0.0]), "payload\n(gripper)", fontsize=9, color="#2ca02c")
+    # The sensor frame S at O_S: x_S across the tool, z_S along it, away from the wrist.
+    arrow(o, local([1.0, 0.0]), "#d62728")
+    arrow(o, local([0.0, -1.0]), "#d62728")
+    ax.text(*(local([1.05, 0.05])), "$x_S$", color="#d62728", fontsize=11)
+    ax.text(*(local([-0.3, -1.05]) + [-0.05, -0.15]), "$z_S$", color="#d62728", fontsize=11)
+    ax.plot(*o, "o", color="#d62728", zorder=5)
+    ax.text(o[0] - 0.55, o[1] + 0.05, "$O_S$", color="#d62728", fontsize=11)
+    # The centre of mass c (in S), gravity on the payload, the force the sensor applies.
+    c = local(data["com"])
+    ax.plot(*c, "o", color="black", zorder=5)
+    arrow(o, c, "black", width=1.2, linestyle="--")
+    ax.text(c[0] + 0.12, c[1] + 0.02, "$c$, the centre of mass (in S)", fontsize=10)
+    arrow(c, c + np.array([0.0, -0.9]), "#1f77b4")
+    ax.text(c[0] + 0.1, c[1] - 0.75, "$m\\,g$", color="#1f77b4", fontsize=11)
+    arrow(local([-0.55, 0.0]), local([-0.55, 0.0]) + np.array([0.0, 0.95]), "#9467bd")
+    ax.text(*(local([-0.55, 0.0]) + [-1.35, 0.6]), "$f$, on the payload\n(the sensor reads $-f$)", color="#9467bd",
+            fontsize=9)
+    arrow(local([0.9, -0.45]), local([1.15, 0.25]), "#8c564b", connectionstyle="arc3,rad=0.5")
+    ax.text(*(local([1.2, -0.2]) + [0.05, 0.0]), "$\\omega$, $\\alpha$, $a$ (in S)", color="#8c564b", fontsize=10)
+    ax.text(4.9, 4.6, r"$f = m\,(a - R^T g) + \alpha \times m c + \omega \times (\omega \times m c)$" + "\n" +
+            r"$\tau = I_S\,\alpha + \omega \times (I_S\,\omega) + m c \times (a - R^T g)$" + "\n" +
+            r"reading $w = -(f, \tau) + b$  (the load)" + "\n" + r"R: from S to W;  $\tau$ about $O_S$",
+            fontsize=10, va="top")
+    ax.set_xlim(-0.2, 9.6)
+    ax.set_ylim(-0.3, 4.8)
+    ax.set_title("Payload identification: frames and conventions (docs/payload.md)", fontsize=11)
+    fig.tight_layout()
+    return fig
+
+
+def payload_residuals_data(log=None):
+    """The calibration of docs/payload.md on examples/payload/log.csv: the rows' times and the
+    errors-in-variables fit's residuals per axis."""
+    from . import payload
+    if log is None:
+        root = pathlib.Path(os.environ.get("SPDFIT_SOURCE_DIR", "."))
+        log = root / "examples" / "payload" / "log.csv"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SpdfitWarning)
+        estimate = payload.identify(str(log), wrench_cols="fx:tz", quat_cols="qx:qw", accel_cols="ax:az",
+                                    omega_cols="wx:wz", time_col="t", rest_rows=":0.995", rows="1:",
+                                    criterion="eiv")
+    t = np.loadtxt(log, delimiter=",", skiprows=1, usecols=0)
+    return {"t": t[t >= 1.0], "residuals": estimate["residuals"], "rms": estimate["residual_rms"]}
+
+
+def plot_payload_residuals(data):
+    fig, axes = plt.subplots(2, 3, figsize=(12, 5.5), sharex=True)
+    names = ["$f_x$", "$f_y$", "$f_z$", "$\\tau_x$", "$\\tau_y$", "$\\tau_z$"]
+    units = ["N"] * 3 + ["N m"] * 3
+    for k, ax in enumerate(axes.ravel()):
+        ax.plot(data["t"], data["residuals"][:, k], lw=0.6, color="#1f77b4" if k < 3 else "#d62728")
+        ax.axhline(0.0, color="black", lw=0.5)
+        ax.set_title(f"{names[k]}: RMS {data['rms'][k]:.3g} {units[k]}", fontsize=10)
+        ax.grid(alpha=0.3)
+        if k >= 3:
+            ax.set_xlabel("t (s)")
+    axes[0, 0].set_ylabel("residual (N)")
+    axes[1, 0].set_ylabel("residual (N m)")
+    axes[0, 0].axvspan(1.0, 3.4, color="#dddddd", alpha=0.5, lw=0)
+    axes[0, 0].text(1.1, axes[0, 0].get_ylim()[1] * 0.8, "static poses", fontsize=8)
+    fig.suptitle("examples/payload/log.csv: residuals of the errors-in-variables fit (docs/payload.md)", fontsize=11)
+    fig.tight_layout()
+    return fig
+
+
 FIGURES = {
     "thesis_experiments": (thesis_data, plot_thesis),
     "paper_figure2": (paper_figure2_data, plot_paper_figure2),
@@ -311,6 +422,8 @@ FIGURES = {
     "hexapod_model": (hexapod_data, plot_hexapod),
     "error_vs_samples": (error_vs_samples_data, plot_error_vs_samples),
     "physical_vs_generic": (physical_data, plot_physical),
+    "payload_frames": (payload_frames_data, plot_payload_frames),
+    "payload_residuals": (payload_residuals_data, plot_payload_residuals),
 }
 
 

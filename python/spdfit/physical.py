@@ -11,6 +11,7 @@ repair of rigid-body inertias that no body can have (docs/hexapod.md, "Physical 
     14.0
 """
 import json as _json
+import os as _os
 
 import numpy as _np
 
@@ -18,7 +19,7 @@ from . import _as_matrix, _takes_options
 from ._errors import NumericalError, warn as _warn
 from ._spdfit import physical as _core
 
-__all__ = ["design", "identify", "inertia_repair", "inertia_repair_urdf", "mass_matrix"]
+__all__ = ["design", "identify", "inertia_repair", "inertia_repair_urdf", "mass_matrix", "regress"]
 
 # The keys of the estimate that are vectors or matrices, returned as NumPy arrays.
 _ARRAY_KEYS = ("center_of_mass", "inertia", "principal_moments", "principal_axes", "M_p", "M_p_eigenvalues",
@@ -181,12 +182,13 @@ def mass_matrix(geometry=None, *, mass, center_of_mass, inertia):
                              _np.asarray(inertia, dtype=_np.float64))
 
 
-def inertia_repair(mass, center_of_mass, inertia, *, min_eig_rel=None):
+def inertia_repair(mass, center_of_mass, inertia, *, min_eig_rel=None, metric="inertia"):
     """The nearest physically consistent inertia, mass and centre of mass kept.
 
-    The second moment about the centre of mass, (1/2) tr(I) 1 - I, is replaced by its nearest
-    matrix with eigenvalues at least min_eig_rel times the largest (an eigenvalue clip), so that
-    every principal moment is below the sum of the other two.
+    The second moment about the centre of mass, (1/2) tr(I) 1 - I, must have eigenvalues at least
+    min_eig_rel times the largest, so that every principal moment is below the sum of the other
+    two. metric="inertia" (the default) gives the nearest such inertia in ||I' - I||_F (the distance
+    reported); metric="second-moment" the nearest second moment (an eigenvalue clip).
 
     Parameters
     ----------
@@ -199,12 +201,14 @@ def inertia_repair(mass, center_of_mass, inertia, *, min_eig_rel=None):
     min_eig_rel : float, optional
         The floor as a fraction of the largest second moment (default 1e-6; 0: the plain
         projection).
+    metric : {'inertia', 'second-moment'}, optional
+        The distance minimized (default 'inertia').
 
     Returns
     -------
     dict
         mass, center_of_mass, inertia (arrays), changed, distance, certificate, min_eig,
-        principal_moments, principal_moments_before, second_moments_before.
+        principal_moments, principal_moments_before, second_moments_before, metric, warnings.
 
     Raises
     ------
@@ -220,7 +224,7 @@ def inertia_repair(mass, center_of_mass, inertia, *, min_eig_rel=None):
     (True, True)
     """
     text = _core.repair_inertia(float(mass), _np.asarray(center_of_mass, dtype=_np.float64),
-                                _np.asarray(inertia, dtype=_np.float64), min_eig_rel)
+                                _np.asarray(inertia, dtype=_np.float64), min_eig_rel, str(metric))
     result = _json.loads(text)
     for key in ("center_of_mass", "inertia", "principal_moments", "principal_moments_before",
                 "second_moments_before"):
@@ -228,7 +232,7 @@ def inertia_repair(mass, center_of_mass, inertia, *, min_eig_rel=None):
     return result
 
 
-def inertia_repair_urdf(text, *, min_eig_rel=None, source="<urdf>"):
+def inertia_repair_urdf(text, *, min_eig_rel=None, source="<urdf>", metric="inertia"):
     """Every link's inertia of a URDF document checked, the inconsistent ones repaired in place.
 
     Parameters
@@ -239,6 +243,8 @@ def inertia_repair_urdf(text, *, min_eig_rel=None, source="<urdf>"):
         As for inertia_repair.
     source : str, optional
         The name errors give the document (a file name).
+    metric : {'inertia', 'second-moment'}, optional
+        As for inertia_repair.
 
     Returns
     -------
@@ -262,4 +268,104 @@ def inertia_repair_urdf(text, *, min_eig_rel=None, source="<urdf>"):
     >>> links[0]["changed"], report.splitlines()[-1]
     (True, '1 of 1 links repaired')
     """
-    return _core.repair_urdf(str(text), str(source), min_eig_rel)
+    return _core.repair_urdf(str(text), str(source), min_eig_rel, str(metric))
+
+
+def _prior_bodies(prior):
+    """[(mass, center_of_mass, inertia)] from a file of bodies (JSON) or a sequence of dicts."""
+    if prior is None:
+        return None
+    if isinstance(prior, (str, _os.PathLike)):
+        with open(prior, encoding="utf-8") as f:
+            prior = _json.load(f)
+        if isinstance(prior, dict):
+            prior = prior["bodies"]
+    bodies = []
+    for k, body in enumerate(prior):
+        try:
+            bodies.append((float(body["mass"]), _np.asarray(body["center_of_mass"], dtype=float).reshape(3),
+                           _np.asarray(body["inertia"], dtype=float).reshape(3, 3)))
+        except (KeyError, TypeError, ValueError) as error:
+            raise ValueError(f"prior body {k + 1} must be a dict with mass, center_of_mass (3) and inertia (3 x 3): "
+                             f"{error}") from None
+    return bodies
+
+
+@_takes_options("physical.regress")
+def regress(Y, tau, *, noise_cov=None, prior=None, **options):
+    """Physically consistent least squares for any model linear in K rigid bodies' parameters.
+
+    Minimizes ||W^1/2 (Y phi - tau)||^2 over the parameters phi whose every body's pseudo-inertia
+    is positive semidefinite (W the inverse noise covariance of a sample's outputs), with the base
+    parameters (the combinations the data determine), the undetermined combinations named (or set
+    by a prior through the log-determinant divergence) and the KKT certificate. Y's columns: 10 per
+    body (m, m c, the inertia about the body frame's origin in param_order's order), then any extra
+    columns (friction), unconstrained; pinocchio's computeJointTorqueRegressor gives Y in
+    param_order="pinocchio".
+
+    Parameters
+    ----------
+    Y : array_like
+        The stacked regressor, rows = samples x outputs (sample-major).
+    tau : array_like
+        The stacked outputs, one per row of Y.
+    noise_cov : array_like, optional
+        d x d covariance of one sample's d outputs (Y's rows come in samples of d).
+    prior : str, os.PathLike or sequence of dict, optional
+        K prior bodies ({"mass", "center_of_mass", "inertia" about the centre of mass}, each
+        body's frame), e.g. from CAD, or a JSON file of them.
+    {options}
+
+    Returns
+    -------
+    dict
+        The keys of ``spdfit physical regress --json`` (parameters, body, base_parameters,
+        undetermined, criterion, certificate, ...; vectors and matrices as arrays, null as NaN)
+        and "report".
+
+    Raises
+    ------
+    ValueError
+        Bad shapes or options (the message names them), a prior that is not strictly consistent.
+    NumericalError
+        The optimizer failed on valid data.
+
+    Examples
+    --------
+    >>> import numpy as np, spdfit.physical as ph
+    >>> rng = np.random.default_rng(0)
+    >>> Y = rng.normal(size=(60, 10))
+    >>> phi = np.array([2.0, 0.2, 0.0, 0.1, 0.05, 0.0, -0.01, 0.06, 0.0, 0.04])   # m, m c, I about the origin
+    >>> fit = ph.regress(Y, Y @ phi, bodies=1)
+    >>> bool(np.allclose(fit["parameters"], phi, atol=1e-9)), fit["physically_consistent"]
+    (True, True)
+    """
+    cov = None if noise_cov is None else _as_matrix("noise_cov", noise_cov)
+    text, report = _core.regress(_as_matrix("Y", Y), _as_matrix("tau", _np.reshape(_np.asarray(tau, dtype=float), (-1, 1))),
+                                 cov, _prior_bodies(prior), options)
+    result = _json.loads(text)
+    if result["status"] != "success":
+        raise NumericalError(result.get("error", "the regression failed"), result)
+
+    def arrays(value):
+        if isinstance(value, list) and value and not isinstance(value[0], (str, dict)):
+            return _np.array(value, dtype=float) if not isinstance(value[0], list) else \
+                _np.array([[_np.nan if x is None else x for x in row] for row in value], dtype=float)
+        return value
+
+    for key in ("parameters", "extra"):
+        result[key] = _np.array([_np.nan if v is None else v for v in result[key]], dtype=float)
+    for body in result["body"]:
+        for key in ("center_of_mass", "inertia", "parameters"):
+            value = body[key]
+            body[key] = _np.array([[_np.nan if x is None else x for x in row] for row in value] if key == "inertia"
+                                  else [_np.nan if x is None else x for x in value], dtype=float)
+        body["mass"] = _np.nan if body["mass"] is None else body["mass"]
+    for base in result["base_parameters"]:
+        base["coefficients"] = arrays(base["coefficients"])
+    for u in result["undetermined"]:
+        u["coefficients"] = arrays(u["coefficients"])
+    for message, code in zip(result["warnings"], result["warning_codes"]):
+        _warn(message, code)
+    result["report"] = report
+    return result

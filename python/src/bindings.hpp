@@ -49,6 +49,7 @@ void bind_linear_system(pybind11::module_& m);
 void bind_linkage(pybind11::module_& m);
 void bind_hexapod(pybind11::module_& m);
 void bind_physical(pybind11::module_& m);
+void bind_payload(pybind11::module_& m);
 void bind_experiment(pybind11::module_& m);
 void bind_factor(pybind11::module_& m);
 void bind_blas_core(pybind11::module_& m);

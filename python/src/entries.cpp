@@ -6,6 +6,9 @@
 #include "spdfit/hexapod/identify_request.hpp"
 #include "spdfit/hexapod/physical_request.hpp"
 #include "spdfit/nearest_request.hpp"
+#include "spdfit/payload/design.hpp"
+#include "spdfit/payload/identify.hpp"
+#include "spdfit/physical/regress.hpp"
 
 namespace spdfit::python {
 
@@ -52,6 +55,9 @@ const std::vector<Entry>& entries() {
       {"nearest_correlation", "nearest", {"corr"}, {"keep_diag", "via_corr"}},
       // The covariance repair keeps the variances; the correlation route (via_corr) is nearest_spd's.
       {"nearest_covariance", "nearest", {"keep_diag"}, {"corr", "via_corr", "factors", "factors_only"}},
+      {"payload.identify", "payload", {}, {}},
+      {"payload.design", "payload_design", {}, {}},
+      {"physical.regress", "regress", {}, {}},
   };
   return list;
 }
@@ -65,6 +71,15 @@ const Entry& entry(std::string_view name) {
 
 std::vector<Keyword> keywords(const Entry& entry, std::optional<Method> method) {
   if (entry.table == "nearest") return keywords_of(nearest_option_table(), entry, static_cast<NearestRequest*>(nullptr));
+  if (entry.table == "payload") {
+    return keywords_of(payload::identify_option_table(), entry, static_cast<payload::IdentifyRequest*>(nullptr));
+  }
+  if (entry.table == "payload_design") {
+    return keywords_of(payload::design_option_table(), entry, static_cast<payload::DesignRequest*>(nullptr));
+  }
+  if (entry.table == "regress") {
+    return keywords_of(physical::regress_option_table(), entry, static_cast<physical::RegressRequest*>(nullptr));
+  }
   if (entry.table == "physical") {
     return keywords_of(hexapod::physical_option_table(), entry,
                        static_cast<hexapod::PhysicalOptions*>(nullptr));

@@ -31,7 +31,9 @@ struct Keyword {
 /// those it cannot take (an in-memory fit does not stream, fit_all does not bootstrap).
 struct Entry {
   std::string_view name;   ///< the Python function ("fit", "fit_files", "Factor.fit", ...)
-  std::string_view table;  ///< "fit", "nearest" or "physical" (hexapod::physical_option_table)
+  /// "fit", "nearest", "physical" (hexapod::physical_option_table), "payload"
+  /// (payload::identify_option_table), "payload_design" or "regress" (physical::regress_option_table)
+  std::string_view table;
   std::vector<std::string_view> implied;
   std::vector<std::string_view> unavailable;
 };

@@ -176,6 +176,21 @@ hexapod::PhysicalOptions physical_request(std::string_view entry_name, const py:
                       given);
 }
 
+payload::IdentifyRequest payload_request(std::string_view entry_name, const py::dict& kwargs,
+                                         std::vector<std::string_view>& given) {
+  return request_from(payload::identify_option_table(), entry(entry_name), kwargs, payload::IdentifyRequest{}, given);
+}
+
+payload::DesignRequest design_request(std::string_view entry_name, const py::dict& kwargs,
+                                      std::vector<std::string_view>& given) {
+  return request_from(payload::design_option_table(), entry(entry_name), kwargs, payload::DesignRequest{}, given);
+}
+
+physical::RegressRequest regress_request(std::string_view entry_name, const py::dict& kwargs,
+                                         std::vector<std::string_view>& given) {
+  return request_from(physical::regress_option_table(), entry(entry_name), kwargs, physical::RegressRequest{}, given);
+}
+
 Method method_from(const py::handle& method) {
   std::string known;
   for (Method m : kSelectableMethods) known += (known.empty() ? "" : ", ") + std::string(to_string(m));

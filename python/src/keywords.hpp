@@ -12,6 +12,9 @@
 #include "spdfit/hexapod/physical_request.hpp"
 #include "spdfit/method.hpp"
 #include "spdfit/nearest_request.hpp"
+#include "spdfit/payload/design.hpp"
+#include "spdfit/payload/identify.hpp"
+#include "spdfit/physical/regress.hpp"
 
 namespace spdfit::python {
 
@@ -61,6 +64,12 @@ NearestRequest nearest_request(std::string_view entry, const pybind11::dict& kwa
                                std::vector<std::string_view>& given);
 hexapod::PhysicalOptions physical_request(std::string_view entry, const pybind11::dict& kwargs,
                                           std::vector<std::string_view>& given);
+payload::IdentifyRequest payload_request(std::string_view entry, const pybind11::dict& kwargs,
+                                         std::vector<std::string_view>& given);
+payload::DesignRequest design_request(std::string_view entry, const pybind11::dict& kwargs,
+                                      std::vector<std::string_view>& given);
+physical::RegressRequest regress_request(std::string_view entry, const pybind11::dict& kwargs,
+                                         std::vector<std::string_view>& given);
 
 /// The method a Python call names; an OptionError (a ValueError) listing the methods for a name
 /// that is none of them, a TypeError for a value that is not a str.

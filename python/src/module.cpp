@@ -21,6 +21,7 @@ PYBIND11_MODULE(_spdfit, m) {
   spdfit::python::bind_linkage(m);
   spdfit::python::bind_hexapod(m);
   spdfit::python::bind_physical(m);
+  spdfit::python::bind_payload(m);
   spdfit::python::bind_experiment(m);
   spdfit::python::bind_blas_core(m);
   spdfit::python::enable_every_protocol(m);  // after every pickled class is bound

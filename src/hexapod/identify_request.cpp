@@ -8,6 +8,7 @@
 #include "spdfit/hexapod/model.hpp"
 #include "spdfit/hexapod/physical_request.hpp"
 #include "spdfit/hexapod/render.hpp"
+#include "spdfit/inertia_repair.hpp"
 #include "spdfit/io.hpp"
 #include "pipeline/sentinels.hpp"
 
@@ -103,6 +104,29 @@ std::vector<Spec> make_table() {
     spec.needs = {"physical"};
     table.push_back(std::move(spec));
   }
+  Spec urdf;
+  urdf.name = "urdf";
+  urdf.cli = "--urdf";
+  urdf.type = OptionType::File;
+  urdf.value_name = "FILE";
+  urdf.help = "With `physical`: also write the payload as a URDF <link> with its <inertial> to FILE";
+  urdf.needs = {"physical"};
+  urdf.needs_message = "`urdf` needs `physical`: it writes the payload's physical fit";
+  urdf.set = [](IdentifyRequest& r, const OptionValue& v) { r.urdf = std::get<std::string>(v); };
+  table.push_back(urdf);
+  Spec precision;
+  precision.name = "precision";
+  precision.cli = "--precision";
+  precision.type = OptionType::Integer;
+  precision.value_name = "N";
+  precision.help = "Significant digits of `urdf`'s numbers";
+  precision.default_text = "9";
+  precision.range = {1.0, 17.0};
+  precision.needs = {"urdf"};
+  precision.set = [](IdentifyRequest& r, const OptionValue& v) { r.precision = int(std::get<std::int64_t>(v)); };
+  precision.get = [](const IdentifyRequest& r) -> std::optional<OptionValue> { return std::int64_t{r.precision}; };
+  table.push_back(precision);
+
   for (Spec& spec : lifted_options(fit_option_table(), &IdentifyRequest::fit, kSharedFitOptions)) {
     // The iteration limit and the rank cut-off, given, hold for the physical fit too (whose
     // default iteration limit is its own: its barrier path takes more Newton steps).
@@ -256,6 +280,14 @@ Identification run_identify(const IdentifyRequest& request) {
   out.physical = identify_physical(A, B, *out.geometry, physical_options);
   for (const Warning& w : out.physical->warnings) out.warnings.emplace_back(w.code, "physical: " + w.text, w.subject);
   return out;
+}
+
+std::string urdf_text(const Identification& identification, const IdentifyRequest& request) {
+  if (!identification.physical || !identification.physical->ok()) {
+    throw InputError("`urdf` needs a successful physical fit: the payload was not identified", Code::PhysicalData,
+                     "urdf");
+  }
+  return urdf_link(identification.physical->payload, "payload", request.precision);
 }
 
 std::string to_json(const Identification& identification) {

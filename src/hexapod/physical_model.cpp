@@ -7,12 +7,11 @@
 #include <stdexcept>
 
 #include "hexapod/kinematics.hpp"
+#include "physical/cone.hpp"
 
 namespace spdfit::hexapod::detail {
 
 namespace {
-
-const double kRoot2 = std::sqrt(2.0);
 
 // A null-space component counts as reaching a parameter group above this fraction of the
 // vector's largest component (null-space bases from an SVD are exact to about 1e-15 relative).
@@ -86,40 +85,14 @@ PhysicalModel physical_model(const Geometry& geometry, StrutMasses strut_masses)
   return model;
 }
 
-Eigen::Matrix4d basis_matrix(int a) {
-  Eigen::Matrix4d E = Eigen::Matrix4d::Zero();
-  const int i = kPairs[a][0], j = kPairs[a][1];
-  if (i == j) {
-    E(i, i) = 1.0;
-  } else {
-    E(i, j) = E(j, i) = 1.0 / kRoot2;
-  }
-  return E;
-}
-
-double coordinate(const Eigen::Matrix4d& S, int a) {
-  const int i = kPairs[a][0], j = kPairs[a][1];
-  return i == j ? S(i, i) : kRoot2 * S(i, j);
-}
-
 Eigen::Matrix4d scaled_pseudo_inertia(const ParamVector& theta) {
-  Eigen::Matrix4d P = Eigen::Matrix4d::Zero();
-  for (int a = 0; a < kPayloadParameters; ++a) {
-    const int i = kPairs[a][0], j = kPairs[a][1];
-    if (i == j) {
-      P(i, i) = theta(a);
-    } else {
-      P(i, j) = P(j, i) = theta(a) / kRoot2;
-    }
-  }
-  return P;
+  return physical::detail::body_matrix(Eigen::VectorXd(theta.head(kPayloadParameters)), 0);
 }
 
 void set_pseudo_inertia(const Eigen::Matrix4d& P, ParamVector& theta) {
-  for (int a = 0; a < kPayloadParameters; ++a) {
-    const int i = kPairs[a][0], j = kPairs[a][1];
-    theta(a) = i == j ? P(i, i) : 0.5 * (P(i, j) + P(j, i)) * kRoot2;
-  }
+  Eigen::VectorXd coordinates(kPayloadParameters);
+  physical::detail::set_body_matrix(P, coordinates, 0);
+  theta.head(kPayloadParameters) = coordinates;
 }
 
 Matrix6d model_mass_matrix(const PhysicalModel& model, const ParamVector& theta) {
@@ -160,7 +133,7 @@ Eigen::MatrixXd design_matrix(const PhysicalModel& model) {
     const Matrix6d& D = model.D[static_cast<std::size_t>(a)];
     int k = 0;
     for (int j = 0; j < 6; ++j)
-      for (int i = j; i < 6; ++i) out(k++, a) = i == j ? D(i, j) : kRoot2 * D(i, j);
+      for (int i = j; i < 6; ++i) out(k++, a) = i == j ? D(i, j) : std::sqrt(2.0) * D(i, j);
   }
   return out;
 }

@@ -20,15 +20,8 @@ using ParamMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen:
 
 /// The pseudo-inertia's coordinates: theta_0..9 hold the scaled pseudo-inertia
 /// P = diag(1/L, 1/L, 1/L, 1) J diag(1/L, 1/L, 1/L, 1) (every entry in kg) in the orthonormal basis
-/// E_a of the symmetric 4 x 4 matrices, pairs (0,0) (1,1) (2,2) (3,3) (0,1) (0,2) (1,2) (0,3)
-/// (1,3) (2,3), an off-diagonal E_a = (e_i e_j^T + e_j e_i^T) / sqrt 2, so that ||theta|| =
-/// ||P||_F; theta_10.. are the estimated strut masses (kg).
-inline constexpr int kPairs[kPayloadParameters][2] = {{0, 0}, {1, 1}, {2, 2}, {3, 3}, {0, 1},
-                                                       {0, 2}, {1, 2}, {0, 3}, {1, 3}, {2, 3}};
-
-/// The basis matrix E_a, and <S, E_a> for a symmetric S (a coordinate of S).
-Eigen::Matrix4d basis_matrix(int a);
-double coordinate(const Eigen::Matrix4d& S, int a);
+/// of the symmetric 4 x 4 matrices that the shared solver uses (physical/cone.hpp), so that
+/// ||theta|| = ||P||_F; theta_10.. are the estimated strut masses (kg).
 
 /// M_p(theta) = M0 + sum_a theta_a D_a.
 struct PhysicalModel {

@@ -1,7 +1,8 @@
 // Internal: the optimizer of physical identification (hexapod/physical.hpp). The criterion and
-// its exact derivatives in the parameters theta, the log-det barrier of the pseudo-inertia cone,
-// Newton's method on their sum along a decreasing barrier weight, and the KKT numbers of the
-// result. Everything works in the triangular factor's scaled units (TriangularFactor).
+// its exact derivatives in the parameters theta, minimized by the solver that every physically
+// consistent fit shares (physical/cone_solver.hpp: the log-det barrier of the pseudo-inertia cone,
+// Newton's method along a decreasing barrier weight, face solves, the KKT numbers of the result).
+// Everything works in the triangular factor's scaled units (TriangularFactor).
 #pragma once
 
 #include <optional>
@@ -12,20 +13,6 @@
 #include "spdfit/triangular_factor.hpp"
 
 namespace spdfit::hexapod::detail {
-
-/// Newton's method, as the barrier stages and the face solve run it: sufficient decrease of the
-/// backtracking line search (Armijo) and the smallest step tried; the squared decrement (in units of
-/// f0: steps of relative size about 1e-13) at which the last stage stops; the rounding error of a
-/// computed criterion or barrier value in units of eps times its size, and how many steps in a row
-/// may predict a decrease below it before the minimizer counts as found to working accuracy.
-inline constexpr double kArmijo = 1e-4;
-inline constexpr double kMinStep = 1e-12;
-inline constexpr double kFinalDecrement = 1e-26;
-inline constexpr double kRoundingMultiple = 64.0;
-inline constexpr int kRoundingSteps = 2;
-/// An eigenvalue of P (or a strut mass) below this fraction of P's largest is taken to leave the
-/// face a face solve works on.
-inline constexpr double kActiveGuess = 1e-3;
 
 /// One fit's data in the factor's scaled units: A_s = A 2^-ea, B_s = B 2^-eb, so that
 /// M_s = 2^(ea - eb) M and theta_s = 2^(ea - eb) theta (the cone is invariant under that scaling).

@@ -269,6 +269,7 @@ std::string urdf_repair_report(const UrdfRepairResult& result) {
     out += "link \"" + l.link + "\" (line " + std::to_string(l.line) + "): ";
     if (!r.changed) {
       out += "consistent (principal moments " + moments(r.principal_moments) + " kg m^2)\n";
+      for (const Warning& w : r.warnings) out += "  warning: " + w.text + "\n";
       continue;
     }
     const Eigen::Vector3d& I = r.principal_moments_before;
@@ -276,6 +277,7 @@ std::string urdf_repair_report(const UrdfRepairResult& result) {
     out += I(2) > I(0) + I(1) ? "break the triangle inequality (" + g(I(2)) + " > " + g(I(0)) + " + " + g(I(1)) + ")"
                               : "meet the triangle inequality with less than the margin " + g(2 * r.floor);
     out += "; now " + moments(r.principal_moments) + " kg m^2, moved by " + g(r.distance) + " kg m^2\n";
+    for (const Warning& w : r.warnings) out += "  warning: " + w.text + "\n";
   }
   out += std::to_string(result.changed()) + " of " + std::to_string(result.links.size()) + " links repaired\n";
   return out;

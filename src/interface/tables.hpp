@@ -9,6 +9,9 @@
 #include "spdfit/hexapod/identify_request.hpp"
 #include "spdfit/nearest_request.hpp"
 #include "spdfit/output_request.hpp"
+#include "spdfit/payload/design.hpp"
+#include "spdfit/payload/identify.hpp"
+#include "spdfit/physical/regress.hpp"
 #include "spdfit/solve_request.hpp"
 
 namespace spdfit::detail {
@@ -26,6 +29,9 @@ void for_each_option_table(Visit&& visit) {
   visit(nearest_command_table());
   visit(compare_option_table());
   visit(output_option_table());
+  visit(payload::identify_option_table());
+  visit(payload::design_option_table());
+  visit(physical::regress_option_table());
 }
 
 }  // namespace spdfit::detail

@@ -1,7 +1,9 @@
-"""`spdfit inertia repair` against NumPy: the repaired inertia is the eigenvalue clip of the second
-moment (1/2) tr(I) 1 - I with the relative floor, a consistent inertia comes back unchanged, the
-output reads back, URDF files keep every byte but the repaired numbers, and bad input gets clear
-errors with the documented exit statuses."""
+"""`spdfit inertia repair` against independent references: with `--metric second-moment` the repaired
+inertia is the eigenvalue clip of the second moment (1/2) tr(I) 1 - I with the relative floor
+(NumPy); with the default `--metric inertia` it is the nearest consistent inertia in ||I' - I||_F
+(CVXOPT's cone QP over the semidefinite cone); a consistent inertia comes back unchanged, the output
+reads back, URDF files keep every byte but the repaired numbers, and bad input gets clear errors
+with the documented exit statuses."""
 import json
 import os
 import pathlib
@@ -35,10 +37,10 @@ def test_json_repair_is_the_eigenvalue_clip(spdfit, tmp_path):
         Q, _r = np.linalg.qr(rng.standard_normal((3, 3)))
         I = Q @ np.diag([0.1, 0.2, 0.5]) @ Q.T
         I = 0.5 * (I + I.T)
-        result = spdfit("inertia", "repair", body_file(tmp_path, I))
+        result = spdfit("inertia", "repair", "--metric", "second-moment", body_file(tmp_path, I))
         assert result.returncode == 0, result.stderr
         out = json.loads(result.stdout)
-        assert out["changed"] is True
+        assert out["changed"] is True and out["metric"] == "second-moment"
         assert out["mass"] == 2.0 and out["center_of_mass"] == [0.1, 0.0, -0.2]
         np.testing.assert_allclose(out["inertia"], clip(I), rtol=0, atol=1e-15)
         assert out["distance"] == pytest.approx(np.linalg.norm(clip(I) - I), abs=1e-15)
@@ -51,10 +53,11 @@ def test_json_repair_is_the_eigenvalue_clip(spdfit, tmp_path):
 
 def test_floor_option_and_plain_projection(spdfit, tmp_path):
     I = np.diag([0.1, 0.2, 0.5])
-    out = json.loads(spdfit("inertia", "repair", "--min-eig-rel", "0", body_file(tmp_path, I)).stdout)
+    clip_metric = ("--metric", "second-moment")
+    out = json.loads(spdfit("inertia", "repair", *clip_metric, "--min-eig-rel", "0", body_file(tmp_path, I)).stdout)
     np.testing.assert_allclose(out["inertia"], clip(I, 0.0), rtol=0, atol=1e-15)
     assert out["min_eig"] == 0.0
-    out = json.loads(spdfit("inertia", "repair", "--min-eig-rel", "1e-3", body_file(tmp_path, I)).stdout)
+    out = json.loads(spdfit("inertia", "repair", *clip_metric, "--min-eig-rel", "1e-3", body_file(tmp_path, I)).stdout)
     np.testing.assert_allclose(out["inertia"], clip(I, 1e-3), rtol=0, atol=1e-15)
 
 
@@ -74,10 +77,64 @@ def test_consistent_inertia_is_unchanged_and_the_output_reads_back(spdfit, tmp_p
     assert again["inertia"] == json.loads(written.read_text())["inertia"]
 
 
+def nearest_in_inertia_norm(I, floor):
+    """min ||I' - I||_F over I' = tr(S) 1 - S with S >= floor 1, by CVXOPT's cone QP over the 3 x 3
+    semidefinite cone (S - floor 1 = s in the cone), in the six entries of S."""
+    pytest.importorskip("cvxopt")
+    from cvxopt import matrix, solvers
+    pairs = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)]
+
+    def basis(k):
+        E = np.zeros((3, 3))
+        i, j = pairs[k]
+        E[i, j] = E[j, i] = 1.0
+        return E
+
+    T = np.array([(np.trace(basis(k)) * np.eye(3) - basis(k)).ravel() for k in range(6)]).T  # I = T x
+    P = 2 * T.T @ T
+    q = -2 * T.T @ np.asarray(I, dtype=float).ravel()
+    G = -np.array([basis(k).ravel(order="F") for k in range(6)]).T
+    h = -floor * np.eye(3).ravel(order="F")
+    solvers.options.update({"show_progress": False, "abstol": 1e-15, "reltol": 1e-15, "feastol": 1e-15})
+    x = np.array(solvers.coneqp(matrix(P), matrix(q), matrix(G), matrix(h), {"l": 0, "q": [], "s": [3]})["x"]).ravel()
+    return (T @ x).reshape(3, 3)
+
+
+def test_default_metric_is_the_nearest_inertia_and_closer_than_the_clip(spdfit, tmp_path):
+    rng = np.random.default_rng(35)
+    ratios = []
+    for _ in range(8):
+        Q, _r = np.linalg.qr(rng.standard_normal((3, 3)))
+        moments = np.sort(rng.uniform(0.05, 0.2, 3))
+        moments[2] = moments[0] + moments[1] + rng.uniform(0.005, 0.05)  # a broken triangle inequality
+        I = Q @ np.diag(moments) @ Q.T
+        I = 0.5 * (I + I.T)
+        out = json.loads(spdfit("inertia", "repair", body_file(tmp_path, I)).stdout)
+        assert out["metric"] == "inertia" and out["changed"] is True
+        floor = out["min_eig"]
+        reference = nearest_in_inertia_norm(I, floor)
+        assert out["distance"] <= np.linalg.norm(reference - I) * (1 + 1e-7) + 1e-15
+        np.testing.assert_allclose(out["inertia"], reference, atol=1e-7 * np.abs(I).max())
+        cert = out["certificate"]
+        assert cert["primal_min_eig"] >= -1e-15 and cert["dual_min_eig"] >= -1e-14
+        assert abs(cert["complementarity"]) < 1e-14
+        ratios.append(out["distance"] / np.linalg.norm(clip(I) - I))
+    assert max(ratios) <= 1.0 + 1e-12 and np.mean(ratios) < 0.9
+
+
+def test_typo_and_zero_inertia_warnings(spdfit, tmp_path):
+    typo = body_file(tmp_path, np.diag([0.01, 0.02, 0.3]), name="typo.json")
+    result = spdfit("inertia", "repair", typo)
+    assert result.returncode == 0 and "may hold a typo" in result.stderr
+    zero = body_file(tmp_path, np.zeros((3, 3)), name="zero.json")
+    result = spdfit("inertia", "repair", zero)
+    assert result.returncode == 0 and "all zero" in result.stderr
+
+
 def test_urdf_keeps_every_byte_but_the_repaired_numbers(spdfit, tmp_path):
     source = (EXAMPLES / "arm.urdf").read_text()
     out = tmp_path / "fixed.urdf"
-    result = spdfit("inertia", "repair", EXAMPLES / "arm.urdf", "-o", out)
+    result = spdfit("inertia", "repair", "--metric", "second-moment", EXAMPLES / "arm.urdf", "-o", out)
     assert result.returncode == 0, result.stderr
     assert result.stderr.splitlines()[-1] == "2 of 3 links repaired"
     assert 'link "base" (line 11): consistent' in result.stderr

@@ -194,3 +194,22 @@ def test_iteration_limit_reaches_every_fit(cli, tmp_path):
     default = json.loads(cli("hexapod", "identify", "run/A.csv", "run/B.csv", "--geometry", g, "--physical",
                              "--json").stdout)
     assert default["physical"]["converged"]
+
+
+def test_urdf_writes_the_physical_fits_payload(cli, cli_json, tmp_path):
+    import re
+    g = write_geometry(cli, tmp_path)
+    cli("hexapod", "simulate", "--geometry", g, "--samples", 40, "--noise-var", 0, "--out", "run", *payload_args())
+    doc = cli_json("hexapod", "identify", "run/A.csv", "run/B.csv", "--geometry", g, "--physical",
+                   "--urdf", "payload.urdf", "--precision", 12)
+    text = (tmp_path / "payload.urdf").read_text()
+    assert '<link name="payload">' in text
+    # The link's numbers are the JSON's estimate, to the 12 digits asked for; the mass the truth.
+    mass = float(re.search(r'<mass value="([^"]+)"', text).group(1))
+    assert mass == pytest.approx(doc["physical"]["mass"], rel=1e-11)
+    assert mass == pytest.approx(PAYLOAD["mass"], rel=1e-9)
+    origin = [float(v) for v in re.search(r'<origin xyz="([^"]+)"', text).group(1).split()]
+    np.testing.assert_allclose(origin, doc["physical"]["center_of_mass"], rtol=1e-11, atol=1e-15)
+    # --urdf writes the physical fit: without --physical it is a usage error naming both.
+    refused = cli("hexapod", "identify", "run/A.csv", "run/B.csv", "--geometry", g, "--urdf", "x.urdf", expect=2)
+    assert "--urdf" in refused.stderr and "--physical" in refused.stderr

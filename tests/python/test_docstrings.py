@@ -17,11 +17,12 @@ import spdfit
 import spdfit.experiment
 import spdfit.hexapod
 import spdfit.linkage
+import spdfit.payload
 import spdfit.physical
 
 docscrape = pytest.importorskip("numpydoc.docscrape", reason="numpydoc is not installed (Debian: python3-numpydoc)")
 
-MODULES = [spdfit, spdfit.hexapod, spdfit.linkage, spdfit.experiment, spdfit.physical]
+MODULES = [spdfit, spdfit.hexapod, spdfit.linkage, spdfit.experiment, spdfit.physical, spdfit.payload]
 
 
 def is_python_class(value):

@@ -293,7 +293,7 @@ def test_inertia_repair_is_the_eigenvalue_clip_up_to_the_floor():
         I = Q @ np.diag([rng.uniform(0.05, 0.2), rng.uniform(0.1, 0.3), rng.uniform(0.6, 1.0)]) @ Q.T
         I = 0.5 * (I + I.T)
         for rel in (0.0, 1e-6):
-            r = ph.inertia_repair(3.0, [0.1, 0.2, 0.3], I, min_eig_rel=rel)
+            r = ph.inertia_repair(3.0, [0.1, 0.2, 0.3], I, min_eig_rel=rel, metric="second-moment")
             S = 0.5 * np.trace(I) * np.eye(3) - I
             w, V = np.linalg.eigh(S)
             floor = rel * np.abs(w).max()
@@ -325,8 +325,23 @@ URDF = """<?xml version="1.0"?>
 """
 
 
+def test_inertia_repair_default_metric_is_no_farther_than_the_clip():
+    rng = np.random.default_rng(9)
+    for _ in range(10):
+        Q, _r = np.linalg.qr(rng.standard_normal((3, 3)))
+        I = Q @ np.diag([rng.uniform(0.05, 0.2), rng.uniform(0.1, 0.3), rng.uniform(0.6, 1.0)]) @ Q.T
+        I = 0.5 * (I + I.T)
+        nearest = ph.inertia_repair(3.0, [0.1, 0.2, 0.3], I)
+        clip = ph.inertia_repair(3.0, [0.1, 0.2, 0.3], I, metric="second-moment")
+        assert nearest["metric"] == "inertia" and nearest["distance"] <= clip["distance"] * (1 + 1e-12)
+        moments = np.linalg.eigvalsh(nearest["inertia"])
+        assert moments[2] < moments[0] + moments[1]
+    with pytest.raises(ValueError, match="metric"):
+        ph.inertia_repair(1.0, [0, 0, 0], np.eye(3), metric="clip")
+
+
 def test_urdf_with_several_links_comments_and_other_elements():
-    fixed, report, links = ph.inertia_repair_urdf(URDF, source="r.urdf")
+    fixed, report, links = ph.inertia_repair_urdf(URDF, source="r.urdf", metric="second-moment")
     assert [link["link"] for link in links] == ["base", "upper", "lower"]
     assert [link["changed"] for link in links] == [False, True, True]
     assert report.splitlines()[-1] == "2 of 3 links repaired"
@@ -342,7 +357,7 @@ def test_urdf_with_several_links_comments_and_other_elements():
         Sp = V @ np.diag(np.maximum(w, 1e-6 * np.abs(w).max())) @ V.T
         np.testing.assert_allclose(link["inertia"], np.trace(Sp) * np.eye(3) - Sp, rtol=0, atol=1e-14)
     # Idempotent.
-    again, _, again_links = ph.inertia_repair_urdf(fixed)
+    again, _, again_links = ph.inertia_repair_urdf(fixed, metric="second-moment")
     assert again == fixed and not any(link["changed"] for link in again_links)
 
 

@@ -35,6 +35,10 @@ struct IdentifyRequest {
   GeometryInput geometry;  ///< the hexapod's geometry: its stiffness gives the modes
   bool physical = false;   ///< also the physical fit of the payload (needs the geometry)
   PhysicalOptions physical_options;
+  /// With `physical`: also write the payload as a URDF <link> with its <inertial> to this file
+  /// (urdf_link, inertia_repair.hpp), to `precision` significant digits.
+  std::string urdf;
+  int precision = 9;
   OutputRequest output;    ///< the command line's: JSON or the report, and where
 };
 
@@ -74,6 +78,10 @@ struct Identification {
 /// options copied (apply_fit_options). A physical fit that fails numerically is the result's
 /// failure(), not an exception. Cost: identify's and identify_physical's.
 Identification run_identify(const IdentifyRequest& request);
+
+/// The physical fit's payload as a URDF <link> named "payload" (request.precision digits), for
+/// request.urdf; InputError (Code::PhysicalData) when the fit did not succeed.
+std::string urdf_text(const Identification& identification, const IdentifyRequest& request);
 
 /// The result as `spdfit hexapod identify --json` prints it (to_json(methods, options[, physical])).
 std::string to_json(const Identification& identification);

@@ -1,0 +1,40 @@
+// Internal: one payload fit from the samples' kinematics (identify.cpp), shared by the estimate
+// and the bootstrap's replicates.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "payload/kinematics.hpp"
+#include "payload/wrench_model.hpp"
+#include "spdfit/physical/identifiability.hpp"
+
+namespace spdfit::payload::detail {
+
+struct Fit {
+  ParameterLayout layout;
+  Eigen::VectorXd phi;     ///< the estimate, every parameter (undetermined ones too)
+  Eigen::VectorXd phi_ls;  ///< the unconstrained least-squares fit
+  double mass_ls_se = 0.0; ///< its mass's standard error (the sandwich), when reported
+  physical::Identifiability identifiability;
+  double criterion = 0.0;
+  physical::Certificate certificate;
+  int iterations = 0;
+  bool converged = true;
+  std::string failure;
+  bool active = false;           ///< the constraint is active at the estimate
+  double pseudo_min = 0.0;       ///< lambda_min of the scaled pseudo-inertia (moving) or m (static)
+  double length = 1.0;           ///< L of the scaled pseudo-inertia (m)
+  Eigen::MatrixXd covariance;    ///< of phi (sandwich), when reported
+  Eigen::MatrixXd residuals;     ///< samples x 6, when reported
+};
+
+/// The fit of the request's criterion to `kin` with the noise model `noise`; `counts` (empty: 1
+/// each) weighs the samples. `reported` adds the certificate, the covariance and the residuals.
+/// Throws SignalError for a wrench noise covariance that is singular.
+Fit fit_payload(const Kinematics& kin, const IdentifyRequest& request, const NoiseCovariances& noise,
+                const std::vector<double>& counts, bool reported);
+
+}  // namespace spdfit::payload::detail
