@@ -28,11 +28,16 @@ std::string spell_options_with(std::string_view message, Frontend frontend,
     out += message.substr(i, open - i);
     const std::string_view name = message.substr(open + 1, close - open - 1);
     const OptionSpec<Request>* spec = find_option(table, name);
-    const std::string_view own = spec == nullptr             ? std::string_view()
+    std::string_view own = spec == nullptr             ? std::string_view()
                                  : frontend == Frontend::Cli ? spec->cli
                                  : frontend == Frontend::Python ? spec->python
                                                                 : std::string_view();
-    out += !own.empty() ? std::string(own) : spell_option(name, frontend);
+    // "-m,--method", "--threshold,--rank-tol": messages name the first long form.
+    if (frontend == Frontend::Cli && own.find(',') != std::string_view::npos) {
+      const std::size_t start = own.find("--");
+      own = start == std::string_view::npos ? std::string_view() : own.substr(start, own.find(',', start) - start);
+    }
+    out += !own.empty() && !(spec != nullptr && spec->positional) ? std::string(own) : spell_option(name, frontend);
     i = close + 1;
   }
   return out;

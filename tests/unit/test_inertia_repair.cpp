@@ -63,6 +63,7 @@ TEST(InertiaRepair, IsTheEigenvalueClipOfTheSecondMoment) {
     for (double rel : {0.0, 1e-6, 1e-3}) {
       InertiaRepairOptions options;
       options.min_eig_rel = rel;
+      options.metric = InertiaMetric::SecondMoment;  // the clip of Sigma (the default is the inertia metric)
       const InertiaRepairResult r = repair_inertia(b, options);
       ASSERT_TRUE(r.changed);
       // The reference: Sigma = (1/2) tr(I) 1 - I, clipped in its own eigenbasis.
