@@ -10,6 +10,7 @@
 #include "spdfit/hexapod/render.hpp"
 #include "spdfit/inertia_repair.hpp"
 #include "spdfit/io.hpp"
+#include "interface/matrix_inputs.hpp"
 #include "pipeline/sentinels.hpp"
 
 namespace spdfit::hexapod {
@@ -171,20 +172,6 @@ Eigen::MatrixXd stiffness_matrix(const Eigen::MatrixXd& K, Eigen::Index n) {
               " matrix");
 }
 
-// A matrix option's values: its file read (io::DataError naming it) or the values given.
-Eigen::MatrixXd values_of(const MatrixInput& input, const io::ReadOptions& read, std::vector<Warning>& warnings) {
-  if (!input.from_file()) return input.values;
-  io::Table table = io::read_table(input.path, read);
-  warnings.insert(warnings.end(), table.warnings.begin(), table.warnings.end());
-  return std::move(table.values);
-}
-
-// A size problem of option `option`, named by its file when it came from one.
-[[noreturn]] void size_problem(const MatrixInput& input, const std::string& option, const std::string& problem) {
-  if (input.from_file()) throw io::DataError(input.path, 0, 0, problem, Code::DataShape);
-  throw InputError(problem, Code::DataShape, option);
-}
-
 }  // namespace
 
 const std::vector<OptionSpec<IdentifyRequest>>& identify_option_table() {
@@ -194,11 +181,7 @@ const std::vector<OptionSpec<IdentifyRequest>>& identify_option_table() {
 
 void check_identify_request(const IdentifyRequest& request, const std::vector<std::string_view>& given) {
   check_option_combination(identify_option_table(), given);
-  if (!request.b.given() && request.fit.a_cols.empty() && request.fit.b_cols.empty()) {
-    throw OptionError("B's file is missing: give the files of A and B, or one file with `a_cols` and `b_cols` "
-                      "choosing their columns",
-                      Code::Argument, "b");
-  }
+  spdfit::detail::check_b_given(request.b.given(), request.fit.a_cols, request.fit.b_cols);
   if (!request.a.from_file() && (!request.fit.a_cols.empty() || !request.fit.b_cols.empty())) {
     throw OptionError("`a_cols` and `b_cols` choose columns of a file, but A was given as values",
                       Code::OptionNotApplicable, "a_cols");
@@ -226,7 +209,7 @@ Identification run_identify(const IdentifyRequest& request) {
     b_name = b_path.empty() ? request.a.path : b_path;
   } else {
     A = request.a.values;
-    B = values_of(request.b, read, out.warnings);
+    B = spdfit::detail::values_of(request.b, read, out.warnings);
   }
   const Eigen::Index n = A.cols();
   if (B.cols() != n) {
@@ -239,9 +222,9 @@ Identification run_identify(const IdentifyRequest& request) {
     throw InputError(problem, Code::DataShape, "b");
   }
   if (request.truth) {
-    Eigen::MatrixXd truth = values_of(*request.truth, read, out.warnings);
+    Eigen::MatrixXd truth = spdfit::detail::values_of(*request.truth, read, out.warnings);
     if (truth.rows() != n || truth.cols() != n) {
-      size_problem(*request.truth, "truth", "the true M_p must be " + std::to_string(n) + "x" + std::to_string(n));
+      spdfit::detail::shape_problem(*request.truth, "truth", "the true M_p must be " + std::to_string(n) + "x" + std::to_string(n));
     }
     out.options.truth = std::move(truth);
   }
@@ -255,13 +238,13 @@ Identification run_identify(const IdentifyRequest& request) {
     out.options.stiffness = Eigen::MatrixXd(out.geometry->strut_stiffness.asDiagonal());
     out.options.nominal = Eigen::MatrixXd(joint_space_mass_matrix(*out.geometry));
   } else if (request.stiffness) {
-    const Eigen::MatrixXd K = values_of(*request.stiffness, read, out.warnings);
+    const Eigen::MatrixXd K = spdfit::detail::values_of(*request.stiffness, read, out.warnings);
     try {
       out.options.stiffness = stiffness_matrix(K, n);
     } catch (const InputError& e) {
       // Numbers typed as the option's value are the option's problem; a file's, the data's.
       if (!request.stiffness->from_file()) throw OptionError(e.what(), Code::OptionValue, "stiffness");
-      size_problem(*request.stiffness, "stiffness", e.what());
+      spdfit::detail::shape_problem(*request.stiffness, "stiffness", e.what());
     }
   }
   if (std::optional<Warning> w = spdfit::detail::sentinel_warning(A, B)) out.warnings.push_back(std::move(*w));

@@ -1,6 +1,8 @@
 // `solve` as one workflow: its option table and its run.
 #include "spdfit/solve_request.hpp"
 
+#include "interface/matrix_inputs.hpp"
+
 #include <limits>
 #include <string>
 
@@ -67,19 +69,6 @@ std::vector<Spec> make_table() {
   return table;
 }
 
-// A matrix given as a file (read with its warnings) or as values.
-Eigen::MatrixXd values_of(const MatrixInput& input, const io::ReadOptions& read, std::vector<Warning>& warnings) {
-  if (!input.from_file()) return input.values;
-  io::Table table = io::read_table(input.path, read);
-  warnings.insert(warnings.end(), table.warnings.begin(), table.warnings.end());
-  return std::move(table.values);
-}
-
-[[noreturn]] void shape_problem(const MatrixInput& input, const char* name, const std::string& problem) {
-  if (input.from_file()) throw io::DataError(input.path, 0, 0, problem, Code::DataShape);
-  throw InputError(problem, Code::DataShape, name);
-}
-
 }  // namespace
 
 const std::vector<OptionSpec<SolveRequest>>& solve_option_table() {
@@ -94,16 +83,16 @@ std::optional<Problem> SolveRun::failure() const {
 
 SolveRun run_solve(const SolveRequest& request) {
   SolveRun out;
-  const Eigen::MatrixXd A = values_of(request.a, request.read, out.warnings);
+  const Eigen::MatrixXd A = spdfit::detail::values_of(request.a, request.read, out.warnings);
   if (A.cols() > request.options.max_unknowns) {
-    shape_problem(request.a, "A",
+    spdfit::detail::shape_problem(request.a, "A",
                   "A has " + std::to_string(A.cols()) + " columns: solve supports at most " +
                       std::to_string(request.options.max_unknowns) + " unknowns");
   }
-  Eigen::MatrixXd b = values_of(request.b, request.read, out.warnings);
+  Eigen::MatrixXd b = spdfit::detail::values_of(request.b, request.read, out.warnings);
   if (b.rows() != A.rows() && b.rows() == 1 && b.cols() == A.rows()) b.transposeInPlace();
   if (b.rows() != A.rows()) {
-    shape_problem(request.b, "b",
+    spdfit::detail::shape_problem(request.b, "b",
                   "b has " + std::to_string(b.rows()) + " rows but A" +
                       (request.a.from_file() ? " (" + request.a.path + ")" : std::string()) + " has " +
                       std::to_string(A.rows()) + ": one entry of b per equation is needed");

@@ -5,6 +5,7 @@
 #include "spdfit/compare.hpp"
 #include "spdfit/fit_files.hpp"
 #include "spdfit/io.hpp"
+#include "interface/matrix_inputs.hpp"
 #include "pipeline/sentinels.hpp"
 
 namespace spdfit {
@@ -64,11 +65,7 @@ const std::vector<OptionSpec<CompareRequest>>& compare_option_table() {
 
 void check_compare_request(const CompareRequest& request, const std::vector<std::string_view>& given) {
   check_option_combination(compare_option_table(), given);
-  if (!request.b.given() && request.fit.a_cols.empty() && request.fit.b_cols.empty()) {
-    throw OptionError("B's file is missing: give the files of A and B, or one file with `a_cols` and `b_cols` "
-                      "choosing their columns",
-                      Code::Argument, "b");
-  }
+  spdfit::detail::check_b_given(request.b.given(), request.fit.a_cols, request.fit.b_cols);
 }
 
 CompareRun run_compare(const CompareRequest& request) {

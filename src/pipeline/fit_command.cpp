@@ -9,6 +9,7 @@
 #include "spdfit/fit_request.hpp"
 #include "spdfit/io.hpp"
 #include "spdfit/named_arrays.hpp"
+#include "interface/matrix_inputs.hpp"
 
 namespace spdfit {
 
@@ -118,11 +119,7 @@ std::pair<std::string, std::string> fit_command_paths(const FitCommand& command)
   const std::string& a = command.a.path;
   const std::string& b = command.b.path;
   if (a == "-" && b == "-") throw OptionError("A and B cannot both be standard input (-)", Code::Argument, "b");
-  if (b.empty() && command.fit.a_cols.empty() && command.fit.b_cols.empty()) {
-    throw OptionError("B's file is missing: give the files of A and B, or one file with `a_cols` and `b_cols` "
-                      "choosing their columns",
-                      Code::Argument, "b");
-  }
+  spdfit::detail::check_b_given(!b.empty(), command.fit.a_cols, command.fit.b_cols);
   const bool one_file = b.empty();
   if (one_file && !command.var_a.empty() && !command.var_b.empty() && command.var_a != command.var_b) {
     throw OptionError("`var_a` " + command.var_a + " and `var_b` " + command.var_b +
