@@ -70,10 +70,22 @@ PYTHON_BY_HAND = {
 MATLAB_BY_HAND = {"matlab/src/mex_gateway.cpp": 2}
 
 
+# What a hand registration looks like in each front end (the tests below and their self-check).
+CLI_PATTERN = re.compile(r"\badd_(?:option|flag|flag_callback|flag_function)\s*\(")
+MATLAB_PATTERN = re.compile(r"\bsame_name\s*\(|\bstrcmpi?\s*\(|inputParser|\bvalidatestring\s*\(")
+
+
+def keyword_only(source):
+    """(function name, its keyword-only parameters) of each public function defined in `source`."""
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.FunctionDef) and not node.name.startswith("_") and node.args.kwonlyargs:
+            yield node.name, {a.arg for a in node.args.kwonlyargs}
+
+
 def cli_registrations():
     found = {}
     for path in sorted((SOURCE / "apps").rglob("*.[ch]pp")):
-        count = len(re.findall(r"\badd_(?:option|flag|flag_callback|flag_function)\s*\(", path.read_text()))
+        count = len(CLI_PATTERN.findall(path.read_text()))
         if count:
             found[path.relative_to(SOURCE).as_posix()] = count
     return found
@@ -82,9 +94,8 @@ def cli_registrations():
 def python_keywords():
     found = {}
     for path in sorted((SOURCE / "python" / "spdfit").glob("*.py")):
-        for node in ast.walk(ast.parse(path.read_text())):
-            if isinstance(node, ast.FunctionDef) and not node.name.startswith("_") and node.args.kwonlyargs:
-                found[(path.name, node.name)] = {a.arg for a in node.args.kwonlyargs}
+        for name, keywords in keyword_only(path.read_text()):
+            found[(path.name, name)] = keywords
     return found
 
 
@@ -114,8 +125,7 @@ def test_matlab_reads_pairs_only_through_tables():
         if path.suffix not in (".cpp", ".hpp", ".m", ".in") or path.name in ("mex_pairs.hpp", "mex_options.cpp",
                                                                               "mex_options.hpp"):
             continue
-        count = len(re.findall(r"\bsame_name\s*\(|\bstrcmpi?\s*\(|inputParser|\bvalidatestring\s*\(",
-                               path.read_text()))
+        count = len(MATLAB_PATTERN.findall(path.read_text()))
         if count:
             found[path.relative_to(SOURCE).as_posix()] = count
     grown = {f: n for f, n in found.items() if n > MATLAB_BY_HAND.get(f, 0)}
@@ -124,10 +134,8 @@ def test_matlab_reads_pairs_only_through_tables():
     assert not shrunk, f"fewer than listed (update MATLAB_BY_HAND): {shrunk}"
 
 
-def test_the_check_itself_sees_a_hand_registration(tmp_path):
-    # The patterns above are the ones the front ends would use: a scratch file with one hand
-    # option of each kind is caught.
-    assert re.findall(r"\badd_(?:option|flag|flag_callback|flag_function)\s*\(",
-                      'sub->add_option("--scratch", x, "h"); sub->add_flag("--y", y);') == ["add_option(", "add_flag("]
-    tree = ast.parse("def f(A, *, scratch=None, **options):\n    pass\n")
-    assert [a.arg for a in tree.body[0].args.kwonlyargs] == ["scratch"]
+def test_the_check_itself_sees_a_hand_registration():
+    # The scans above, on a scratch hand option of each kind, find it.
+    assert len(CLI_PATTERN.findall('sub->add_option("--scratch", x, "h"); sub->add_flag("--y", y);')) == 2
+    assert list(keyword_only("def f(A, *, scratch=None, **options):\n    pass\n")) == [("f", {"scratch"})]
+    assert len(MATLAB_PATTERN.findall("if same_name(pair.name, 'Scratch')")) == 1
