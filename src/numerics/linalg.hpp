@@ -285,4 +285,33 @@ typename Derived::PlainObject times_power_of_two(const Eigen::MatrixBase<Derived
   return Y;
 }
 
+// The helpers above for the matrix types of the estimators' kernels (MatrixXd and the bounded
+// sizes of the small-problem path: n <= 2 and n <= 8, and their factors of [A B], 4 and 16) are
+// compiled once, in linalg_instances.cpp, and only declared here: each kernel's file would
+// otherwise compile its own copy of Eigen's eigensolver and products for every size.
+template <int Max>
+using BoundedMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, Max, Max>;
+template <int Max>
+using BoundedVector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, Max, 1>;
+
+#define SPDFIT_LINALG_SVD(INSTANTIATE, Max)                                                                   \
+  INSTANTIATE void svd_into<BoundedMatrix<Max>, BoundedMatrix<Max>>(const Eigen::MatrixBase<BoundedMatrix<Max>>&, \
+                                                                   BasicSvd<BoundedMatrix<Max>>&, bool, bool);
+#define SPDFIT_LINALG_EIGEN(INSTANTIATE, Max)                                                              \
+  INSTANTIATE bool symmetric_eigen<BoundedMatrix<Max>, BoundedVector<Max>>(const BoundedMatrix<Max>&,          \
+                                                                           BoundedVector<Max>&, BoundedMatrix<Max>*);
+#define SPDFIT_LINALG_PRODUCT(INSTANTIATE, Max)                                                                \
+  INSTANTIATE void product_into<BoundedMatrix<Max>>(const BoundedMatrix<Max>&, bool, const BoundedMatrix<Max>&, bool, \
+                                                    BoundedMatrix<Max>&);
+/// Every instantiation compiled in linalg_instances.cpp, as INSTANTIATE(kind, bound).
+#define SPDFIT_LINALG_INSTANCES(INSTANTIATE)                                                          \
+  SPDFIT_LINALG_SVD(INSTANTIATE, Eigen::Dynamic) SPDFIT_LINALG_SVD(INSTANTIATE, 2)                     \
+  SPDFIT_LINALG_SVD(INSTANTIATE, 4) SPDFIT_LINALG_SVD(INSTANTIATE, 8) SPDFIT_LINALG_SVD(INSTANTIATE, 16) \
+  SPDFIT_LINALG_EIGEN(INSTANTIATE, Eigen::Dynamic) SPDFIT_LINALG_EIGEN(INSTANTIATE, 2)                 \
+  SPDFIT_LINALG_EIGEN(INSTANTIATE, 8) SPDFIT_LINALG_PRODUCT(INSTANTIATE, 2) SPDFIT_LINALG_PRODUCT(INSTANTIATE, 8)
+
+#define SPDFIT_LINALG_DECLARE extern template
+SPDFIT_LINALG_INSTANCES(SPDFIT_LINALG_DECLARE)
+#undef SPDFIT_LINALG_DECLARE
+
 }  // namespace spdfit::detail
