@@ -29,7 +29,7 @@ import numpy as _np
 
 from . import _spdfit
 from ._spdfit import (AutoReason, DataError, Diagnostics, FitResult, LinearSystemResult, NearestResult,
-                      NoiseModel, PsdCertificate, Bootstrap, Interval, SpectrumUncertainty)
+                      NoiseModel, PsdCertificate, BoundaryCertificate, Bootstrap, Interval, SpectrumUncertainty)
 
 # The repairs' one result class, under the names each function's documentation uses.
 NearestSpdResult = NearestCorrelationResult = NearestResult
@@ -44,7 +44,7 @@ __all__ = [
     "LinearSystemResult", "SpdfitWarning", "area_criterion", "solve", "fit", "fit_all", "fit_files",
     "least_squares", "nearest_spd", "nearest_correlation", "read_matrix",
     "read_table", "spde", "symmetric_procrustes", "total_least_squares", "total_least_squares_psd",
-    "spd_total_least_squares", "psd_least_squares", "auto_fit", "PsdCertificate", "AutoReason", "Bootstrap", "Interval", "SpectrumUncertainty",
+    "spd_total_least_squares", "psd_least_squares", "auto_fit", "PsdCertificate", "BoundaryCertificate", "AutoReason", "Bootstrap", "Interval", "SpectrumUncertainty",
     "NearestCorrelationResult", "NearestResult", "REPAIR_FLOOR_DEFAULT",
     "total_least_squares_symmetric", "write_csv",
 ]

@@ -11,7 +11,8 @@ from . import linkage as linkage
 from . import physical as physical
 from . import factor as factor
 from .factor import Factor as Factor
-from ._spdfit import (AutoReason as AutoReason, PsdCertificate as PsdCertificate, DataError as DataError, Diagnostics as Diagnostics, FitResult as FitResult,
+from ._spdfit import (AutoReason as AutoReason, PsdCertificate as PsdCertificate, BoundaryCertificate as BoundaryCertificate,
+                      DataError as DataError, Diagnostics as Diagnostics, FitResult as FitResult,
                       LinearSystemResult as LinearSystemResult, NearestResult as NearestResult, NoiseModel as NoiseModel,
                       Bootstrap as Bootstrap, Interval as Interval, SpectrumUncertainty as SpectrumUncertainty)
 

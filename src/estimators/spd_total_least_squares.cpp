@@ -6,6 +6,7 @@
 #include "estimators/diagnostics.hpp"
 #include "estimators/kernels.hpp"
 #include "estimators/psd_ls_kernel.hpp"
+#include "estimators/spd_ml_boundary.hpp"
 #include "estimators/spd_ml_kernel.hpp"
 #include "estimators/spd_tls_kernel.hpp"
 
@@ -47,10 +48,11 @@ FitResult spd_total_least_squares(const Reduction& reduction) {
   const int criterion_exponent = noise ? 0 : 2 * data.exponent_a;
   detail::SpdTlsKernel<Eigen::Dynamic> k;
   bool started = false;
+  std::optional<double> r_s;
   if (noise) {
     started = detail::spd_ml_solve(data, *noise, data.options.max_iterations, k);
   } else {
-    const std::optional<double> r_s = detail::spd_tls_noise_ratio(data);
+    r_s = detail::spd_tls_noise_ratio(data);
     if (!r_s) {
       return detail::failure(method, data,
                              "spd-tls: the noise ratio " + detail::format_number(data.options.noise_ratio) +
@@ -93,10 +95,15 @@ FitResult spd_total_least_squares(const Reduction& reduction) {
                        std::to_string(data.options.max_iterations) + ")");
   }
   if (k.boundary_zeros > 0) {
+    // The constrained problem's first-order conditions at the returned X, from X itself (without
+    // a noise model the TLS criterion is the likelihood criterion with Sigma_A = I, Sigma_B = r^2 I).
+    d.boundary_certificate = detail::spd_ml_certificate(
+        data, noise ? *noise : detail::equal_scaled_noise(n, *r_s * *r_s), k.X_s, n - k.boundary_zeros);
     warnings.push_back("the infimum of the " + criterion_name + " over the positive definite matrices is on the boundary: "
                        "the criterion keeps decreasing as " + std::to_string(k.boundary_zeros) +
-                       " eigenvalue(s) of X go to zero, so the estimate is the positive semidefinite limit "
-                       "(rank " + std::to_string(n - k.boundary_zeros) + "), not positive definite");
+                       " eigenvalue(s) of X go to zero, so the estimate is its minimizer over the positive "
+                       "semidefinite matrices (rank " + std::to_string(n - k.boundary_zeros) +
+                       "; `certificate` holds the optimality conditions), not positive definite");
   }
   return detail::finish(method, data, k.X_s, std::move(d), std::move(warnings));
 }
