@@ -4,6 +4,9 @@
 // parameters here, each annotated from its option's type, so that a new option in a table is in
 // the stubs too.
 //
+// A line `# warning classes: FORMAT` becomes one line per warning code of the library
+// (spdfit/outcome.hpp), FORMAT with {} replaced by the code's Python class.
+//
 // Usage: spdfit_stubgen SOURCE.pyi OUTPUT.pyi
 #include <fstream>
 #include <iostream>
@@ -11,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "spdfit/outcome.hpp"
 #include "src/entries.hpp"
 
 namespace {
@@ -59,6 +63,20 @@ int main(int argc, char** argv) {
   const std::string tag = "  # options: ";
   try {
     while (std::getline(in, line)) {
+      const std::string classes = "# warning classes: ";
+      if (line.rfind(classes, 0) == 0) {
+        const std::string format = line.substr(classes.size());
+        for (const spdfit::CodeInfo& info : spdfit::outcome_codes()) {
+          if (info.tier != spdfit::Tier::Warning || info.code == spdfit::Code::Warning) continue;
+          std::string text = format;
+          const std::string name = spdfit::python_class(info.code);
+          for (std::size_t p = text.find("{}"); p != std::string::npos; p = text.find("{}", p + name.size())) {
+            text.replace(p, 2, name);
+          }
+          out << text << '\n';
+        }
+        continue;
+      }
       const std::size_t at = line.find(tag);
       out << (at == std::string::npos ? line : expanded(line, line.substr(at + tag.size()))) << '\n';
     }

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "spdfit/io.hpp"
+#include "spdfit/outcome.hpp"
 
 namespace CLI {
 class App;
@@ -20,13 +21,16 @@ inline constexpr int kExitDataError = 1;
 inline constexpr int kExitUsageError = 2;
 
 /// A usage error found after parsing (e.g. an option value out of range): exit status 2.
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+struct UsageError : std::runtime_error, Coded {
+  explicit UsageError(const std::string& message, Code code = Code::Argument)
+      : std::runtime_error(message), Coded(code, {}) {}
 };
 
-/// Bad data or a numerical failure: exit status 1. The message is shown as is.
-struct DataFailure : std::runtime_error {
-  using std::runtime_error::runtime_error;
+/// A numerical failure (or, with its code, bad data) reported by a result: exit status 1. The
+/// message is shown as is.
+struct DataFailure : std::runtime_error, Coded {
+  explicit DataFailure(const std::string& message, Code code = Code::NumericalFailure)
+      : std::runtime_error(message), Coded(code, {}) {}
 };
 
 class MpiWorld;
@@ -60,5 +64,7 @@ Command add_inertia_command(CLI::App& app, const GlobalOptions& global);
 
 /// Prints "spdfit: warning: MESSAGE" on stderr unless quiet.
 void warn(const GlobalOptions& global, const std::string& message);
+/// The same for a library warning (its text, spelled for the command line).
+inline void warn(const GlobalOptions& global, const Warning& warning) { warn(global, warning.text); }
 
 }  // namespace spdfit::cli

@@ -111,7 +111,7 @@ Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global) {
     options.distribution = *hexapod::parse_noise_distribution(cli->distribution);
     if (force_noise->count() > 0) options.force_noise_var = cli->force_noise_var;
     apply_simulation_noise_options(cli->noise, options);
-    for (const std::string& w : hexapod::simulation_warnings(M, options)) warn(global, w);
+    for (const auto& w : hexapod::simulation_warnings(M, options)) warn(global, w);
     // The payload's simulate draws what simulate(M, options, seed) draws for its M.
     const hexapod::Measurements data = payload
                                            ? hexapod::simulate(*geometry_read, *payload, options, cli->seed)

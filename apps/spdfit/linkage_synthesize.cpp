@@ -142,7 +142,7 @@ nlohmann::json synthesis_json(const SynthesisResult& r, const Prescribed& p) {
   out["branch"] = r.branch;
   out["pairs"] = {{"psi_deg", degrees_json(r.psi)}, {"phi_deg", degrees_json(r.phi)}};
   out["weights"] = p.weights.size() ? vector_json(p.weights) : nlohmann::json(nullptr);
-  out["warnings"] = r.warnings;
+  out["warnings"] = texts(r.warnings);
   return out;
 }
 
@@ -223,7 +223,7 @@ void run_synthesize(const SynthesizeOptionsCli& o, const GlobalOptions& global) 
   }
   const Prescribed p = prescribe(o, options);
   const SynthesisResult r = synthesize(p.pairs.delta_psi, p.pairs.delta_phi, p.weights, options);
-  for (const std::string& w : r.warnings) warn(global, w);
+  for (const auto& w : r.warnings) warn(global, w);
   if (!r.ok()) throw DataFailure(r.message);
   emit(o.json ? synthesis_json(r, p).dump(2) + "\n" : synthesis_text(r, p, o.positions), o.output);
 }

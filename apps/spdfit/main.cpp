@@ -141,29 +141,19 @@ int main(int argc, char** argv) {
       command.run();
     }
     return kExitSuccess;
-  } catch (const UsageError& e) {
-    std::string command;
-    for (const Command& c : commands) {
-      if (c.app->parsed()) command = c.app->get_name() + " ";
-    }
-    std::cerr << "spdfit: error: " << e.what() << "\nRun 'spdfit " << command << "--help' for usage.\n";
-    return kExitUsageError;
-  } catch (const spdfit::io::ColumnSelectionError& e) {
-    // A column selection the file does not have (found when the file is read): a usage error.
-    std::cerr << "spdfit: error: " << spdfit::spell_options(e.what(), spdfit::Frontend::Cli) << '\n';
-    return kExitUsageError;
-  } catch (const spdfit::io::DataError& e) {
-    // A file's problem may name the option that gave the file (`rest_a`): spelled as here.
-    std::cerr << "spdfit: error: " << spdfit::spell_options(e.what(), spdfit::Frontend::Cli) << '\n';
-    return kExitDataError;
-  } catch (const DataFailure& e) {
-    std::cerr << "spdfit: error: " << spdfit::spell_options(e.what(), spdfit::Frontend::Cli) << '\n';
-    return kExitDataError;
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "spdfit: error: " << spdfit::spell_options(e.what(), spdfit::Frontend::Cli) << '\n';
-    return kExitDataError;
   } catch (const std::exception& e) {
-    std::cerr << "spdfit: error: " << e.what() << '\n';
-    return kExitDataError;
+    // The exit status and the usage hint come from the error's code (spdfit/outcome.hpp), never
+    // from its text.
+    const spdfit::Code code = spdfit::code_of(e);
+    std::cerr << "spdfit: error: " << spdfit::spell_options(e.what(), spdfit::Frontend::Cli) << '\n';
+    const bool command_line_usage = dynamic_cast<const UsageError*>(&e) != nullptr;
+    if (command_line_usage || (spdfit::tier(code) == spdfit::Tier::Usage && code != spdfit::Code::ColumnSelection)) {
+      std::string command;
+      for (const Command& c : commands) {
+        if (c.app->parsed()) command = c.app->get_name() + " ";
+      }
+      std::cerr << "Run 'spdfit " << command << "--help' for usage.\n";
+    }
+    return spdfit::exit_status(code);
   }
 }

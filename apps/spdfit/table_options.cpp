@@ -51,28 +51,21 @@ CLI::Validator range_validator(const NumberRange& range, bool integer) {
       what);
 }
 
+std::string choices_text(const std::vector<std::string_view>& choices) {
+  std::string text;
+  for (std::string_view c : choices) text += (text.empty() ? "" : "|") + std::string(c);
+  return text;
+}
+
 std::string cli_help(std::string_view help, std::string_view default_text) {
   std::string text = spell_options(help, Frontend::Cli);
   if (!default_text.empty()) text += " (default " + std::string(default_text) + ")";
   return text;
 }
 
-void throw_usage(const std::exception& error) { throw UsageError(spell_options(error.what(), Frontend::Cli)); }
-
-void check_fit_options(const FitRequest& request, const std::vector<std::string_view>& given) {
-  try {
-    check_fit_request(request, given);
-  } catch (const OptionError& e) {
-    throw_usage(e);
-  }
-}
-
-FitOptions resolved_fit_options(const FitRequest& request, Eigen::Index n, Eigen::Index d) {
-  try {
-    return request.resolved_options(n, d);
-  } catch (const OptionError& e) {
-    throw_usage(e);
-  }
+void throw_usage(const std::exception& error) {
+  const Code code = code_of(error);
+  throw UsageError(spell_options(error.what(), Frontend::Cli), tier(code) == Tier::Usage ? code : Code::Argument);
 }
 
 OptionValue parse_option_text(OptionType type, std::string_view spelling, const std::string& text) {

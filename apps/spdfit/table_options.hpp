@@ -32,6 +32,9 @@ std::vector<std::string_view> all_but(const std::vector<OptionSpec<Request>>& ta
   return out;
 }
 
+/// A Choice option's values as its usage text shows them: "common|each|geometry".
+std::string choices_text(const std::vector<std::string_view>& choices);
+
 /// The validator of a number option with `range`: "'TEXT' is not a <what the range says>".
 CLI::Validator range_validator(const NumberRange& range, bool integer);
 
@@ -42,16 +45,6 @@ std::string cli_help(std::string_view help, std::string_view default_text);
 /// A library message about options (OptionError) as the command line says it: a UsageError with
 /// the options spelled as here.
 [[noreturn]] void throw_usage(const std::exception& error);
-
-/// check_fit_request; its OptionError as a UsageError.
-void check_fit_options(const FitRequest& request, const std::vector<std::string_view>& given);
-
-/// request.resolved_options(n, d) (the noise model read from its files and numbers); an
-/// OptionError as a UsageError, an io::DataError naming a file as it is.
-FitOptions resolved_fit_options(const FitRequest& request, Eigen::Index n, Eigen::Index d);
-
-/// Reads the numbers of a kVector option's file (the command line's reader of data files).
-using VectorReader = std::function<std::vector<double>(const std::string& path)>;
 
 /// The options of `table` that the command line offers, added to a subcommand; after parsing,
 /// which were given and their values.
@@ -71,7 +64,12 @@ class TableOptions {
         entry->option = sub.add_flag(std::string(spec.cli), entry->flag, help);
       } else {
         entry->option = sub.add_option(std::string(spec.cli), entry->text, help);
-        if (!spec.value_name.empty()) entry->option->type_name(std::string(spec.value_name));
+        if (spec.required) entry->option->required();
+        if (!spec.value_name.empty()) {
+          entry->option->type_name(std::string(spec.value_name));
+        } else if (spec.type == OptionType::Choice) {
+          entry->option->type_name(choices_text(spec.choices));
+        }
         if (spec.type == OptionType::Integer || spec.type == OptionType::Real) {
           entry->option->check(range_validator(spec.range, spec.type == OptionType::Integer));
         }
@@ -106,13 +104,13 @@ class TableOptions {
   /// Whether the option `name` was given.
   bool was_given(std::string_view name) const { return contains(given(), name); }
 
-  /// Stores each given option's value in `request` (set_option); a kVector option's file is read
-  /// with `read_vector`. A UsageError for a value the library refuses.
-  void apply(Request& request, const VectorReader& read_vector = {}) const {
+  /// Stores each given option's value in `request` (set_option). A UsageError for a value the
+  /// library refuses.
+  void apply(Request& request) const {
     for (const auto& entry : entries_) {
       if (entry->option->count() == 0) continue;
       try {
-        set_option(request, *entry->spec, value_of(*entry, read_vector));
+        set_option(request, *entry->spec, value_of(*entry));
       } catch (const OptionError& e) {
         throw_usage(e);
       }
@@ -134,7 +132,7 @@ class TableOptions {
     return false;
   }
 
-  static OptionValue value_of(const Entry& entry, const VectorReader& read_vector);
+  static OptionValue value_of(const Entry& entry);
 
   std::vector<std::unique_ptr<Entry>> entries_;
 };
@@ -144,10 +142,10 @@ class TableOptions {
 OptionValue parse_option_text(OptionType type, std::string_view spelling, const std::string& text);
 
 template <typename Request>
-OptionValue TableOptions<Request>::value_of(const Entry& entry, const VectorReader& read_vector) {
+OptionValue TableOptions<Request>::value_of(const Entry& entry) {
   const OptionSpec<Request>& spec = *entry.spec;
   if (spec.type == OptionType::Flag || spec.type == OptionType::Boolean) return entry.flag;
-  if (spec.type == OptionType::Vector) return read_vector(entry.text);
+  if (spec.type == OptionType::Vector) return parse_option_text(OptionType::RealList, spec.cli, entry.text);
   return parse_option_text(spec.type, spec.cli, entry.text);
 }
 

@@ -1,6 +1,13 @@
 // Every estimator on the same data, and how far each estimate is from a known truth.
 #pragma once
 
+#include <string_view>
+#include <vector>
+
+#include "spdfit/fit_request.hpp"
+#include "spdfit/options.hpp"
+#include "spdfit/output_request.hpp"
+
 #include <cstddef>
 #include <optional>
 #include <vector>
@@ -34,5 +41,36 @@ struct Comparison {
 /// not n x d. Cost: fit_all's.
 Comparison compare(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
                    const FitOptions& options = {}, const std::optional<Eigen::MatrixXd>& truth = std::nullopt);
+
+/// `spdfit compare` as one workflow: A and B (files or values), the options every method shares,
+/// a truth, and how the result is printed.
+struct CompareRequest {
+  MatrixInput a;  ///< A (m x n)
+  MatrixInput b;  ///< B (m x d); empty with fit.a_cols and fit.b_cols (both from a's file)
+  /// The noise (ratio or model), the columns of one file, and how files are read (fit.read).
+  FitRequest fit;
+  std::optional<MatrixInput> truth;  ///< the true X (n x d)
+  OutputRequest output;              ///< the command line's: JSON or the report, and where
+};
+
+/// The options of a CompareRequest: a, b (positional), truth, the fit's that every method shares
+/// (the noise's, a_cols, b_cols), and the command line's json and output.
+const std::vector<OptionSpec<CompareRequest>>& compare_option_table();
+
+/// Checks the options given (library names): the table's rules, and B needed unless `a_cols` and
+/// `b_cols` choose both from A's file. Throws OptionError.
+void check_compare_request(const CompareRequest& request, const std::vector<std::string_view>& given);
+
+/// What `spdfit compare` found: the comparison and every warning (the readers', then each
+/// method's prefixed with its name).
+struct CompareRun {
+  Comparison comparison;
+  std::vector<Warning> warnings;
+};
+
+/// Reads A and B (read_pair for files, with the fit's column selections) and the truth (n x d:
+/// io::DataError naming its file, InputError otherwise), resolves the noise model, and compares
+/// (compare). Cost: compare's.
+CompareRun run_compare(const CompareRequest& request);
 
 }  // namespace spdfit

@@ -18,7 +18,7 @@ namespace spdfit {
 /// A and B as read from their files.
 struct DataPair {
   Eigen::MatrixXd A, B;
-  std::vector<std::string> warnings;  ///< the readers' (io::Table::warnings), A's then B's
+  std::vector<Warning> warnings;  ///< the readers' (io::Table::warnings), A's then B's
   std::vector<std::string> a_names, b_names;  ///< the files' column names (empty without a header row)
   /// A and B from one file: the columns each came from (FitResult::a_columns); empty otherwise.
   std::string a_columns, b_columns;

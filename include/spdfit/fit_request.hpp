@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "spdfit/fit_options.hpp"
@@ -12,21 +13,23 @@
 #include "spdfit/io.hpp"
 #include "spdfit/method.hpp"
 #include "spdfit/options.hpp"
+#include "spdfit/output_request.hpp"
 #include "spdfit/stream.hpp"
 
 namespace spdfit {
 
-/// A noise model's sources as a front end without NoiseModel objects gives them: files and numbers
+/// A noise model's sources as a front end without NoiseModel objects gives them: rows at rest and
+/// covariances as files (the command line) or matrices (MATLAB), standard deviations as numbers
 /// (the options rest_a and rest_b, noise_std_a and noise_std_b, noise_cov_a and noise_cov_b; the
 /// table allows one pair). FitRequest::resolved_options reads them into FitOptions::noise.
 struct NoiseInputs {
-  std::string rest_a, rest_b;       ///< files of rows recorded at rest (NoiseModel::from_rest_files)
+  MatrixInput rest_a, rest_b;       ///< rows recorded at rest (NoiseModel::from_rest_files, from_rest)
   std::vector<double> std_a, std_b; ///< standard deviations, one or one per column (from_std)
-  std::string cov_a, cov_b;         ///< files of the covariance matrices (from_cov)
+  MatrixInput cov_a, cov_b;         ///< the covariance matrices (from_cov)
 
   /// Whether no source is given.
   bool empty() const {
-    return rest_a.empty() && rest_b.empty() && std_a.empty() && std_b.empty() && cov_a.empty() && cov_b.empty();
+    return !rest_a.given() && !rest_b.given() && std_a.empty() && std_b.empty() && !cov_a.given() && !cov_b.given();
   }
 };
 
@@ -97,6 +100,28 @@ void check_fit_request(const FitRequest& request, const std::vector<std::string_
 /// not fit the data is an io::DataError naming that file. With request.a_cols and b_cols, A and B
 /// are those columns of the one file `a_path`, and `b_path` must be empty (OptionError otherwise).
 FitResult fit_files(const std::string& a_path, const std::string& b_path, const FitRequest& request);
+
+/// `spdfit fit` as a request: the data's files, the fit's request, the arrays named in .mat and .npz
+/// files, and how the result is printed (the command line's; Python's fit_files and MATLAB take
+/// the fit's options from fit_option_table directly).
+struct FitCommand {
+  MatrixInput a;  ///< A's file ("-": standard input)
+  MatrixInput b;  ///< B's file; empty with fit.a_cols and fit.b_cols (both from a's file)
+  FitRequest fit;
+  std::string var_a, var_b;  ///< the variables of A's and B's .mat or .npz files
+  OutputRequest output;
+};
+
+/// The options of a FitCommand: a, b (positional), the fit's (fit_option_table), var_a and var_b,
+/// and the command line's json, report, header and output.
+const std::vector<OptionSpec<FitCommand>>& fit_command_table();
+
+/// The paths of A and B that command names: each file with its variable (FILE:NAME, the library's
+/// one way of naming an array in a file), B's empty when A and B are columns of one file. Throws
+/// OptionError (Code::Argument) for a variable named in standard input or in a file without named
+/// arrays (text, .npy), for a variable named twice (FILE:NAME and `var_a`), for A and B both
+/// standard input, for B missing without `a_cols` and `b_cols`, and for two variables of one file.
+std::pair<std::string, std::string> fit_command_paths(const FitCommand& command);
 
 /// request.read for the data: with request.a_cols and b_cols, their column selections added
 /// (options a_cols and b_cols), after checking their syntax (io::ColumnSelectionError) and that

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "spdfit/outcome.hpp"
 #include "spdfit/lazy_optional.hpp"
 #include "spdfit/method.hpp"
 #include "spdfit/noise_model.hpp"
@@ -196,7 +197,7 @@ struct FitResult {
   std::string message;  ///< why it failed, when status != Success
   Eigen::MatrixXd X;    ///< the estimate (empty on failure)
   Diagnostics diagnostics;
-  std::vector<std::string> warnings;  ///< conditions the user should know about
+  std::vector<Warning> warnings;  ///< conditions the user should know about
   /// The bootstrap's standard errors, interval and bias, when FitOptions::bootstrap > 0 and the
   /// estimate succeeded.
   std::optional<Bootstrap> bootstrap;

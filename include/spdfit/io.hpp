@@ -8,16 +8,22 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
+
+#include "spdfit/outcome.hpp"
 
 namespace spdfit::io {
 
 /// Bad input data: names the source (a file path) and, for text, the 1-based line and column
 /// (0 when not applicable). what() is the full message, "SOURCE:LINE:COLUMN: problem", ready
 /// to show a user.
-class DataError : public std::runtime_error {
+class DataError : public std::runtime_error, public Coded {
  public:
-  DataError(std::string source, std::size_t line, std::size_t column, const std::string& problem);
+  /// `code`: Code::File for a file's own problem (the default), or the data's (Code::DataShape,
+  /// Code::NoiseModel, ...) where a file's contents are refused by what they are for.
+  DataError(std::string source, std::size_t line, std::size_t column, const std::string& problem,
+            Code code = Code::File);
   const std::string& source() const noexcept { return source_; }
   std::size_t line() const noexcept { return line_; }
   std::size_t column() const noexcept { return column_; }
@@ -73,9 +79,11 @@ struct ColumnSelection {
 /// position beyond the columns, a range backwards, a column in two selections. The message
 /// quotes the selection and names its option in backticks (a front end spells it: --a-cols);
 /// front ends treat it as a usage error.
-class ColumnSelectionError : public std::invalid_argument {
+class ColumnSelectionError : public std::invalid_argument, public Coded {
  public:
-  using std::invalid_argument::invalid_argument;
+  /// `option`: the library name of the option that gave the selection ("a_cols"), or empty.
+  explicit ColumnSelectionError(const std::string& message, std::string option = {})
+      : std::invalid_argument(message), Coded(Code::ColumnSelection, std::move(option)) {}
 };
 
 /// Checks the syntax of a selection (names, positions, ranges, lists) without a file: throws
@@ -101,7 +109,7 @@ struct Table {
   std::vector<std::string> column_names;
   /// What the reader decided for the user to know: a first column of row labels dropped, pandas'
   /// header 0, 1, ... taken as column names.
-  std::vector<std::string> warnings;
+  std::vector<Warning> warnings;
   /// Delimited text: the 1-based line of the first data row (0 for other formats), so that a
   /// caller whose shape check fails can point at a first line that may be a header.
   std::size_t first_data_line = 0;

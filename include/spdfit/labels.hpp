@@ -36,7 +36,7 @@ LabelledTable read_labelled_table(const std::string& path, const ReadOptions& op
 /// is not the matrix's order. When both name the variables and differ, the header's are taken
 /// and a warning naming `source` is appended to `warnings`.
 std::vector<std::string> variable_names(const io::LabelledTable& file, const std::string& source,
-                                        std::vector<std::string>* warnings);
+                                        std::vector<Warning>* warnings);
 
 /// X as a labelled CSV table, as pandas' to_csv and R's write.csv write one (io::write_csv with
 /// names; pandas' read_csv(..., index_col=0) reads the labels back): rows named by `row_names`,

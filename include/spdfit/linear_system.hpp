@@ -8,6 +8,8 @@
 
 #include <Eigen/Core>
 
+#include "spdfit/outcome.hpp"
+
 
 namespace spdfit {
 
@@ -135,7 +137,7 @@ struct LinearSystemResult {
   Eigen::MatrixXd range;      ///< m x rank, orthonormal columns spanning the range of A
 
   std::string explanation;            ///< the answer in words, in the notes' terms
-  std::vector<std::string> warnings;  ///< ill-conditioning, edited singular values
+  std::vector<Warning> warnings;  ///< ill-conditioning, edited singular values
 
   bool ok() const { return status == SolveStatus::Success; }
 };

@@ -4,12 +4,16 @@
 
 #include <Eigen/Core>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
 #include "spdfit/nearest_correlation.hpp"
 #include "spdfit/nearest_spd.hpp"
+#include "spdfit/io.hpp"
 #include "spdfit/options.hpp"
+#include "spdfit/output_request.hpp"
+#include "spdfit/render.hpp"
 
 namespace spdfit {
 
@@ -24,8 +28,10 @@ struct NearestRequest {
   /// The floor: absolute, relative to the largest eigenvalue, or NAG's alpha (a unit diagonal's
   /// floor); none given: the relative EigenvalueFloor::kRepairDefault (EigenvalueFloor::chosen).
   std::optional<double> min_eig, min_eig_rel, alpha;
-  /// The Newton methods' weights, iteration limit and tolerance (NearestCorrelationOptions).
-  Eigen::VectorXd weights;
+  /// The Newton methods' diagonal weights (n numbers; NearestCorrelationOptions::weights) given as
+  /// values, or as a file that the command's workflow (run_nearest) reads into values first.
+  MatrixInput weights;
+  /// The Newton methods' iteration limit and tolerance (NearestCorrelationOptions).
   int max_iterations = NearestCorrelationOptions{}.max_iterations;
   double tolerance = NearestCorrelationOptions{}.tolerance;
 
@@ -33,7 +39,8 @@ struct NearestRequest {
   bool newton() const { return corr || keep_diag || via_corr; }
   /// The floor the options give (EigenvalueFloor::chosen).
   EigenvalueFloor floor() const;
-  /// The Newton methods' options.
+  /// The Newton methods' options. InputError for weights that are not one row or one column
+  /// (std::invalid_argument for weights still in a file: run_nearest reads them).
   NearestCorrelationOptions correlation_options() const;
 };
 
@@ -51,5 +58,38 @@ void check_nearest_request(const std::vector<std::string_view>& given,
 /// The repair the request names: nearest_correlation, nearest_keep_diagonal,
 /// nearest_via_correlation or nearest_spd. Throws std::invalid_argument on bad input, as they do.
 NearestResult nearest(const Eigen::Ref<const Eigen::MatrixXd>& C, const NearestRequest& request);
+
+/// `spdfit nearest` as one workflow: the matrix to repair (a file, with its variables' names, or
+/// values), the repair's options, and how the result is printed.
+struct NearestCommand {
+  MatrixInput matrix;   ///< X (n x n)
+  NearestRequest repair;
+  io::ReadOptions read;  ///< how the files (X, the weights) are read
+  OutputRequest output;  ///< the command line's: JSON or a labelled table, and where
+};
+
+/// The options of a NearestCommand: x (positional), the repair's (nearest_option_table), and the
+/// command line's json, header and output.
+const std::vector<OptionSpec<NearestCommand>>& nearest_command_table();
+
+/// What `spdfit nearest` found: the repair, the names of its variables (from X's file: its header
+/// row or index column), the floor it applied, and every warning (the reader's, the names', the
+/// repair's).
+struct NearestRun {
+  NearestResult result;
+  std::vector<std::string> names;
+  NearestRequest repair;  ///< the options it ran with
+  std::vector<Warning> warnings;
+};
+
+/// Reads X (a file with its labels: io::read_labelled_table; or values) and the weights file,
+/// checks that X is square (a DataError naming the file, and a first row that looks like a header
+/// of numbers), and repairs it (nearest); the repair's refusals (NaN, a bad diagonal) are
+/// io::DataError naming X's file, InputError otherwise. Cost: the repair's.
+NearestRun run_nearest(const NearestCommand& command);
+
+/// The run as `spdfit nearest --json` prints it: the repair's JSON with the variables' names and
+/// the options it ran with (corr, keep_diag, via_corr, min_eig_rel, alpha).
+std::string to_json(const NearestRun& run, JsonStyle style = JsonStyle::Contract);
 
 }  // namespace spdfit

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "spdfit/outcome.hpp"
+
 namespace spdfit {
 
 /// The smallest eigenvalue a repair allows: `value` itself, or with `relative` set, value times
@@ -43,7 +45,7 @@ struct NearestResult {
   double gradient_norm = 0.0;          ///< the Newton methods' final ||diag(X) - d||_2 before the rescaling
   bool converged = true;               ///< the Newton methods: gradient_norm met the stopping test (NearestCorrelationOptions::tolerance)
   bool cholesky_ok = false;            ///< whether X has a Cholesky factorization (positive definite)
-  std::vector<std::string> warnings;   ///< asymmetric input, a floor that moved X more than the repair, ...
+  std::vector<Warning> warnings;   ///< asymmetric input, a floor that moved X more than the repair, ...
 };
 using NearestSpdResult = NearestResult;
 

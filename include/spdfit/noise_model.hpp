@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "spdfit/outcome.hpp"
 #include "spdfit/io.hpp"
 
 namespace spdfit {
@@ -110,7 +111,7 @@ class NoiseModel {
 
   /// What the factory found for the user to know (see from_rest); every fit with this model
   /// repeats them in its warnings.
-  const std::vector<std::string>& warnings() const { return warnings_; }
+  const std::vector<Warning>& warnings() const { return warnings_; }
 
   /// The library names of the options that gave Sigma_A and Sigma_B, in backticks as messages
   /// use them: "`noise_std_a`", "`noise_cov_a`" or "`rest_a`" (and the same for B).
@@ -142,7 +143,7 @@ class NoiseModel {
   std::optional<std::uint64_t> rest_rows_;
   Eigen::VectorXd rest_mean_a_, rest_mean_b_;
   std::string rest_a_path_, rest_b_path_;
-  std::vector<std::string> warnings_;
+  std::vector<Warning> warnings_;
   bool a_zero_ = true, a_definite_ = false, b_definite_ = false;
 };
 

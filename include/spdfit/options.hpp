@@ -1,11 +1,14 @@
 // Options declared once: a table of each request's options (name, type, default, range, help,
 // which methods take them) from which the command line registers its options, Python binds its
 // keyword arguments and MATLAB its name-value pairs, and by which all of them check what a user
-// gave. fit_request.hpp and nearest_request.hpp hold the two tables.
+// gave. This is the layer above the core: the core's option structs (FitOptions, ...) validate
+// themselves in plain C++ (is_valid) and know no front end; the tables here add the spellings.
 #pragma once
 
+#include <Eigen/Core>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -15,14 +18,15 @@
 #include <variant>
 #include <vector>
 
+#include "spdfit/outcome.hpp"
+#include "spdfit/spelling.hpp"
+
 namespace spdfit {
 
 class NoiseModel;
-
-/// The front ends, each of which spells an option its own way: the library by its name
-/// (`max_iterations`), the command line as "--max-iter", Python as max_iter, MATLAB as
-/// 'MaxIterations' (the library name in CamelCase).
-enum class Frontend { Library, Cli, Python, Matlab };
+namespace hexapod {
+struct Geometry;
+}
 
 /// An option's type, which decides how a front end reads a value.
 enum class OptionType {
@@ -30,17 +34,46 @@ enum class OptionType {
   Boolean,  ///< a bool value
   Integer,  ///< an integer within the option's range
   Real,     ///< a finite real number within the option's range
-  Text,     ///< a string (a file name)
+  Text,     ///< a string
   RealList, ///< real numbers: one, or one per column (the command line: comma-separated)
   Vector,   ///< n real numbers (the command line reads them from a file: one column or one row)
   /// A noise model (noise_model.hpp): Python's spdfit.NoiseModel. The command line has none:
   /// it gives a model's sources as options of their own (files and numbers).
   Noise,
+  Choice,   ///< one of the spec's `choices` (matched without regard to case; stored as the table spells it)
+  File,     ///< a file's path (the command line and MATLAB: text; Python: str or os.PathLike)
+  /// A matrix: a file on the command line (any format a data file takes), an array in Python and
+  /// MATLAB (or a path as text). The value is a MatrixInput; the workflow reads the file.
+  Matrix,
+  /// Columns of a table (io::ColumnSelection's syntax: names, 1-based positions, ranges, lists:
+  /// "acc1:acc6", "2:7", "1,3:5,F1"). Python also takes a list of labels or 0-based positions.
+  Columns,
+  /// Rows of a table: 1-based inclusive ranges and lists ("601:", "1:5000,7001:").
+  Rows,
+  /// A hexapod geometry (hexapod/geometry.hpp): a file on the command line and in MATLAB, an
+  /// spdfit.hexapod.Geometry (or a path) in Python. The value is a GeometryInput.
+  Geometry,
+};
+
+/// A matrix given as a file (the command line) or as values (Python, MATLAB; the command line's
+/// comma-separated numbers, one row): one of the two.
+struct MatrixInput {
+  std::string path;        ///< a file any data reader takes (FILE:NAME names an array), or empty
+  Eigen::MatrixXd values;  ///< the matrix, when given as values
+  bool from_file() const { return !path.empty(); }
+  bool given() const { return from_file() || values.size() > 0; }
+};
+
+/// A hexapod geometry given as a file (read_geometry) or as an object: one of the two, or neither.
+struct GeometryInput {
+  std::string path;
+  std::shared_ptr<const hexapod::Geometry> value;
+  bool given() const { return !path.empty() || value != nullptr; }
 };
 
 /// The values an option can take, as a front end hands them over.
 using OptionValue = std::variant<bool, std::int64_t, double, std::string, std::vector<double>,
-                                 std::shared_ptr<const NoiseModel>>;
+                                 std::shared_ptr<const NoiseModel>, MatrixInput, GeometryInput>;
 
 /// The interval an integer or real option's value must lie in.
 struct NumberRange {
@@ -54,13 +87,6 @@ struct NumberRange {
   /// What a value must be, for messages and help: "a finite number > 0", "a number in [0, 1)",
   /// "an integer in [1, 1000000]" (`integer` chooses the noun).
   std::string describe(bool integer) const;
-};
-
-/// A misused option: a value of the wrong type or out of range, an option the chosen method does
-/// not take, or a combination the request's rules forbid. The message names options by their
-/// library names in backticks (`max_iterations`); a front end shows it through spell_options.
-struct OptionError : std::invalid_argument {
-  using std::invalid_argument::invalid_argument;
 };
 
 /// One option of a request type (FitRequest, NearestRequest).
@@ -81,9 +107,16 @@ struct OptionSpec {
   /// and whose "no value" is more likely a mistake: then a type error.
   bool nullable = true;
   NumberRange range;  ///< Integer, Real and each value of a RealList
+  /// A Choice's values, as the table spells them (the first is the default unless `default_text` says).
+  std::vector<std::string_view> choices;
+  /// The command line's positional argument (its `cli` is the name in usage text, "A"); Python and
+  /// MATLAB take it as a positional argument of their own.
+  bool positional = false;
+  /// Must be given (a positional argument without which the command cannot run).
+  bool required = false;
   /// Whether the option takes effect for a request (its method, its kind of repair); nullptr for
   /// every request. Given where it does not apply, the option is an error (misplaced_option).
-  bool (*applies)(const Request&) = nullptr;
+  std::function<bool(const Request&)> applies;
   /// Who takes it, for the message of an option given where it does not apply: "the iterative
   /// methods" (the method names are added), or a whole sentence after "needs".
   std::string_view applies_to;
@@ -94,25 +127,15 @@ struct OptionSpec {
   /// Options it cannot be given with (by library name).
   std::vector<std::string_view> excludes;
   /// Stores a value of the option's type, already checked against `range`, in the request.
-  void (*set)(Request&, const OptionValue&) = nullptr;
+  std::function<void(Request&, const OptionValue&)> set;
   /// The request's value, for the range check of a request built in C++ and for the defaults
   /// that front ends show; nothing for an option without a default.
-  std::optional<OptionValue> (*get)(const Request&) = nullptr;
+  std::function<std::optional<OptionValue>(const Request&)> get;
 };
 
-/// The spelling of option `name` in `frontend`: the command line's and Python's from the tables
-/// (fit_option_table, nearest_option_table), MATLAB's the name in CamelCase; a name no table has
-/// follows the tables' convention ("--" and the name with hyphens on the command line, the name
-/// in Python).
-std::string spell_option(std::string_view name, Frontend frontend);
-
-/// `message` with every backticked library name of an option (`max_iterations`) replaced by its
-/// spelling in `frontend` ("--max-iter" on the command line). Backticks in the library's messages
-/// are for option names only. The library's own spelling is the name without backticks.
-std::string spell_options(std::string_view message, Frontend frontend);
-
-/// MATLAB's spelling of a library name: "max_iterations" -> "MaxIterations".
-std::string camel_case(std::string_view name);
+/// The numbers of `text` separated by commas ("1e6", "1,2.5,3"; spaces around each allowed), or
+/// nothing when it is not such a list (a file's name).
+std::optional<std::vector<double>> comma_separated_numbers(std::string_view text);
 
 /// The text of an option value for messages ("0", "2.5", "yes").
 std::string value_text(const OptionValue& value);
@@ -126,55 +149,17 @@ const OptionSpec<Request>* find_option(const std::vector<OptionSpec<Request>>& t
   return nullptr;
 }
 
-/// `value` checked against the option's type and range (an integer is accepted where a real is
-/// expected, and becomes one). Throws OptionError naming the option.
+/// `value` checked against an option's type, range and choices (an integer is accepted where a
+/// real is expected, and becomes one; a choice matched without regard to case becomes the table's
+/// spelling; a Columns or Rows selection's syntax is checked). Throws OptionError naming the option
+/// `name`: Code::OptionType for a value of another type, Code::OptionValue for one out of range.
+OptionValue checked_option_value(std::string_view name, OptionType type, const NumberRange& range,
+                                 const std::vector<std::string_view>& choices, OptionValue value);
+
+/// `value` checked against the option's type and range (checked_option_value).
 template <typename Request>
 OptionValue checked_value(const OptionSpec<Request>& spec, OptionValue value) {
-  const auto wrong = [&](const std::string& expected) {
-    throw OptionError("`" + std::string(spec.name) + "` must be " + expected + ", got " + value_text(value));
-  };
-  switch (spec.type) {
-    case OptionType::Flag:
-    case OptionType::Boolean:
-      if (!std::holds_alternative<bool>(value)) wrong("true or false");
-      break;
-    case OptionType::Integer:
-      if (!std::holds_alternative<std::int64_t>(value)) wrong("an integer");
-      if (!spec.range.contains(static_cast<double>(std::get<std::int64_t>(value)))) {
-        wrong("an " + spec.range.describe(true));
-      }
-      break;
-    case OptionType::Real: {
-      if (std::holds_alternative<std::int64_t>(value)) value = static_cast<double>(std::get<std::int64_t>(value));
-      if (!std::holds_alternative<double>(value)) wrong("a real number");
-      const double v = std::get<double>(value);
-      if (!(std::abs(v) <= std::numeric_limits<double>::max()) || !spec.range.contains(v)) {
-        wrong("a " + spec.range.describe(false));
-      }
-      break;
-    }
-    case OptionType::Text:
-      if (!std::holds_alternative<std::string>(value)) wrong("text");
-      break;
-    case OptionType::RealList:
-      if (!std::holds_alternative<std::vector<double>>(value)) wrong("a list of real numbers");
-      if (std::get<std::vector<double>>(value).empty()) wrong("one number or a list of numbers, not an empty list");
-      for (double v : std::get<std::vector<double>>(value)) {
-        if (!(std::abs(v) <= std::numeric_limits<double>::max()) || !spec.range.contains(v)) {
-          wrong("a list of numbers, each a " + spec.range.describe(false));
-        }
-      }
-      break;
-    case OptionType::Vector:
-      if (!std::holds_alternative<std::vector<double>>(value)) wrong("a list of real numbers");
-      break;
-    case OptionType::Noise: {
-      const auto* model = std::get_if<std::shared_ptr<const NoiseModel>>(&value);
-      if (model == nullptr || *model == nullptr) wrong("a noise model");
-      break;
-    }
-  }
-  return value;
+  return checked_option_value(spec.name, spec.type, spec.range, spec.choices, std::move(value));
 }
 
 /// Checks `value` (checked_value) and stores it in `request`. Throws OptionError naming the option.
@@ -222,14 +207,17 @@ void check_option_combination(const std::vector<OptionSpec<Request>>& table,
     if (!is_given(spec.name)) continue;
     for (std::string_view other : spec.excludes) {
       if (is_given(other)) {
-        throw OptionError("give `" + std::string(spec.name) + "` or `" + std::string(other) + "`, not both");
+        throw OptionError("give `" + std::string(spec.name) + "` or `" + std::string(other) + "`, not both",
+                          Code::OptionConflict, std::string(spec.name));
       }
     }
     if (spec.needs.empty()) continue;
     bool met = false;
     for (std::string_view other : spec.needs) met = met || is_given(other);
     if (met) continue;
-    if (!spec.needs_message.empty()) throw OptionError(std::string(spec.needs_message));
+    if (!spec.needs_message.empty()) {
+      throw OptionError(std::string(spec.needs_message), Code::OptionConflict, std::string(spec.name));
+    }
     std::vector<std::string_view> possible;
     for (std::string_view need : spec.needs) {
       bool out = false;
@@ -240,7 +228,7 @@ void check_option_combination(const std::vector<OptionSpec<Request>>& table,
     for (std::size_t i = 0; i < possible.size(); ++i) {
       list += (i == 0 ? "" : i + 1 == possible.size() ? " or " : ", ") + ("`" + std::string(possible[i]) + "`");
     }
-    throw OptionError("`" + std::string(spec.name) + "` needs " + list);
+    throw OptionError("`" + std::string(spec.name) + "` needs " + list, Code::OptionConflict, std::string(spec.name));
   }
 }
 
@@ -262,6 +250,67 @@ bool options_in_range(const Request& request, const std::vector<OptionSpec<Reque
     }
   }
   return true;
+}
+
+/// `table` with each entry's `needs` and `excludes` cut to the options the table has (a command
+/// that takes some of another table's options: hexapod identify has the bootstrap's threads but
+/// no stream). An entry whose `needs` were cut keeps its message only when all remain.
+template <typename Request>
+std::vector<OptionSpec<Request>> trimmed_rules(std::vector<OptionSpec<Request>> table) {
+  const auto has = [&table](std::string_view name) { return find_option(table, name) != nullptr; };
+  for (OptionSpec<Request>& spec : table) {
+    std::vector<std::string_view> needs, excludes;
+    for (std::string_view n : spec.needs) {
+      if (has(n)) needs.push_back(n);
+    }
+    for (std::string_view e : spec.excludes) {
+      if (has(e)) excludes.push_back(e);
+    }
+    if (needs.size() != spec.needs.size()) spec.needs_message = {};
+    spec.needs = std::move(needs);
+    spec.excludes = std::move(excludes);
+  }
+  return table;
+}
+
+/// The entries of `table` (options of an Inner request) as options of an Outer request that holds
+/// an Inner at `member` (a command's request holding the fit's: hexapod identify's FitRequest),
+/// those named in `names` only (all when empty), in the table's order. Their `applies` is dropped
+/// unless `keep_applies` (a command that runs every method takes an option that applies to one).
+template <typename Outer, typename Inner>
+std::vector<OptionSpec<Outer>> lifted_options(const std::vector<OptionSpec<Inner>>& table, Inner Outer::*member,
+                                              const std::vector<std::string_view>& names = {},
+                                              bool keep_applies = false) {
+  std::vector<OptionSpec<Outer>> out;
+  for (const OptionSpec<Inner>& inner : table) {
+    bool wanted = names.empty();
+    for (std::string_view n : names) wanted = wanted || n == inner.name;
+    if (!wanted) continue;
+    OptionSpec<Outer> spec;
+    spec.name = inner.name;
+    spec.cli = inner.cli;
+    spec.python = inner.python;
+    spec.type = inner.type;
+    spec.value_name = inner.value_name;
+    spec.help = inner.help;
+    spec.default_text = inner.default_text;
+    spec.nullable = inner.nullable;
+    spec.range = inner.range;
+    spec.choices = inner.choices;
+    spec.positional = inner.positional;
+    spec.required = inner.required;
+    if (keep_applies && inner.applies) {
+      spec.applies = [applies = inner.applies, member](const Outer& o) { return applies(o.*member); };
+    }
+    spec.applies_to = inner.applies_to;
+    spec.needs = inner.needs;
+    spec.needs_message = inner.needs_message;
+    spec.excludes = inner.excludes;
+    if (inner.set) spec.set = [set = inner.set, member](Outer& o, const OptionValue& v) { set(o.*member, v); };
+    if (inner.get) spec.get = [get = inner.get, member](const Outer& o) { return get(o.*member); };
+    out.push_back(std::move(spec));
+  }
+  return out;
 }
 
 }  // namespace spdfit

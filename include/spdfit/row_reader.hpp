@@ -59,7 +59,7 @@ class RowReader {
   const std::vector<std::string>& column_names() const;
   /// What the reader decided for the user to know (see Table::warnings), known after the first
   /// read that returned rows.
-  const std::vector<std::string>& warnings() const;
+  const std::vector<Warning>& warnings() const;
   /// With ReadOptions::columns: each selection's columns as 1-based positions in the file (see
   /// Table::selected_columns), known after the first read that returned rows; the rows read hold
   /// them in this order.

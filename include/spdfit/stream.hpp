@@ -42,6 +42,6 @@ struct StreamOptions {
 /// block_rows < 1. Cost O(m n^2) flops, spread over the threads. When `warnings` is given it
 /// receives the readers' warnings (io::Table::warnings: a first column of row labels dropped).
 TriangularFactor stream_factor(const std::string& a_path, const std::string& b_path,
-                               const StreamOptions& options = {}, std::vector<std::string>* warnings = nullptr);
+                               const StreamOptions& options = {}, std::vector<Warning>* warnings = nullptr);
 
 }  // namespace spdfit

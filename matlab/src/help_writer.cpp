@@ -1,6 +1,7 @@
 // Writes an M-file of the spdfit package from its template: the line `%{options FUNCTION}` becomes
 // the list of FUNCTION's name-value options from the library's option tables (mex_options.hpp),
-// so that an option added to a table is in `help spdfit.fit` with nothing written here.
+// so that an option added to a table is in `help spdfit.fit` with nothing written here; the line
+// `%{warnings}` becomes the list of warning identifiers from the library's outcome codes.
 //
 // Usage: spdfit_matlab_help TEMPLATE.m.in OUTPUT.m
 #include <fstream>
@@ -9,6 +10,7 @@
 #include <string>
 
 #include "mex_options.hpp"
+#include "spdfit/outcome.hpp"
 
 namespace {
 
@@ -37,6 +39,16 @@ std::string options_text(const std::string& function) {
   return out;
 }
 
+// The warning identifiers of the library's codes (spdfit/outcome.hpp), with what each means.
+std::string warnings_text() {
+  std::string out;
+  for (const spdfit::CodeInfo& info : spdfit::outcome_codes()) {
+    if (info.tier != spdfit::Tier::Warning) continue;
+    out += wrapped(spdfit::matlab_identifier(info.code) + ": " + std::string(info.meaning), "%     ");
+  }
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -53,7 +65,9 @@ int main(int argc, char** argv) {
   const std::string marker = "%{options ";
   std::string line;
   while (std::getline(in, line)) {
-    if (line.rfind(marker, 0) == 0 && line.back() == '}') {
+    if (line == "%{warnings}") {
+      out << warnings_text();
+    } else if (line.rfind(marker, 0) == 0 && line.back() == '}') {
       out << options_text(line.substr(marker.size(), line.size() - marker.size() - 1));
     } else {
       out << line << '\n';

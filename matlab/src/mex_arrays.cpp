@@ -1,5 +1,7 @@
 #include "mex_arrays.hpp"
 
+#include "mex_options.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <nlohmann/json.hpp>
@@ -167,38 +169,45 @@ std::string read_text(const mxArray* array, const std::string& what) {
   return out;
 }
 
-NameValue read_name_value(const std::string& name, const mxArray* value, ValueShape shape) {
-  NameValue out{name, OptionValue{}, false, Eigen::MatrixXd()};
-  if (mxIsEmpty(value) && (mxIsDouble(value) || mxIsCell(value))) {
-    out.empty = true;
-    return out;
-  }
-  switch (shape) {
-    case ValueShape::Boolean: {
+std::optional<OptionValue> read_value(OptionType type, const std::string& name, const mxArray* value) {
+  if (mxIsEmpty(value) && (mxIsDouble(value) || mxIsCell(value))) return std::nullopt;
+  switch (type) {
+    case OptionType::Flag:
+    case OptionType::Boolean: {
       const double v = scalar(value, name, "true or false");
       if (v != 0.0 && v != 1.0) throw UsageError("'" + name + "' must be true or false, got " + value_text(v));
-      out.value = v != 0.0;
-      break;
+      return OptionValue{v != 0.0};
     }
-    case ValueShape::Integer: {
+    case OptionType::Integer: {
       const double v = scalar(value, name, "an integer");
       if (v != std::floor(v) || std::abs(v) > 9.0e15) {
         throw UsageError("'" + name + "' must be an integer, got " + value_text(v));
       }
-      out.value = static_cast<std::int64_t>(v);
-      break;
+      return OptionValue{static_cast<std::int64_t>(v)};
     }
-    case ValueShape::Real: out.value = scalar(value, name, "a real number"); break;
-    case ValueShape::Text: out.value = read_text(value, "'" + name + "'"); break;
-    case ValueShape::List: {
+    case OptionType::Real: return OptionValue{scalar(value, name, "a real number")};
+    case OptionType::Text:
+    case OptionType::Choice:
+    case OptionType::File:
+    case OptionType::Columns:
+    case OptionType::Rows:
+    case OptionType::Geometry: return OptionValue{read_text(value, "'" + name + "'")};
+    case OptionType::RealList:
+    case OptionType::Vector: {
       const Eigen::MatrixXd v = read_matrix(value, "'" + name + "'");
       if (v.rows() != 1 && v.cols() != 1) throw UsageError("'" + name + "' must be a vector");
-      out.value = std::vector<double>(v.data(), v.data() + v.size());
-      break;
+      return OptionValue{std::vector<double>(v.data(), v.data() + v.size())};
     }
-    case ValueShape::Matrix: out.matrix = read_matrix(value, "'" + name + "'"); break;
+    case OptionType::Matrix: {
+      // A file's name, or the matrix itself.
+      if (mxIsChar(value)) return OptionValue{read_text(value, "'" + name + "'")};
+      MatrixInput input;
+      input.values = read_matrix(value, "'" + name + "'");
+      return OptionValue{std::move(input)};
+    }
+    case OptionType::Noise: break;
   }
-  return out;
+  throw UsageError("'" + name + "' cannot be given from MATLAB");
 }
 
 mxArray* write_matrix(const Eigen::MatrixXd& X) {

@@ -4,22 +4,25 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <stdexcept>
 #include <string>
 
 #include "mex.h"
-#include "mex_options.hpp"
+#include "spdfit/outcome.hpp"
 
 namespace spdfit::matlab {
 
 /// A wrong kind of argument (sparse, complex, not numeric, more than two dimensions): the gateway
 /// raises it as 'spdfit:UsageError'.
-struct UsageError : std::invalid_argument {
-  using std::invalid_argument::invalid_argument;
+struct UsageError : std::invalid_argument, Coded {
+  explicit UsageError(const std::string& message, Code code = Code::Argument)
+      : std::invalid_argument(message), Coded(code, {}) {}
 };
 
 /// Data that cannot be fitted (empty, NaN or Inf entries): raised as 'spdfit:DataError'.
-struct DataError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+struct DataError : std::runtime_error, Coded {
+  explicit DataError(const std::string& message, Code code = Code::DataValue)
+      : std::runtime_error(message), Coded(code, {}) {}
 };
 
 /// A numeric argument as a double matrix: double, single, any integer class and logical are
@@ -29,10 +32,6 @@ Eigen::MatrixXd read_matrix(const mxArray* array, const std::string& name);
 
 /// The text of a character vector (or a 1x1 cell of one); UsageError naming `what` otherwise.
 std::string read_text(const mxArray* array, const std::string& what);
-
-/// The value of option `name` (as typed) of `type`. UsageError for a value of the wrong kind; its
-/// range is checked by the option table.
-NameValue read_name_value(const std::string& name, const mxArray* value, ValueShape shape);
 
 /// A double matrix with X's entries.
 mxArray* write_matrix(const Eigen::MatrixXd& X);

@@ -18,6 +18,9 @@
 #include "spdfit/fit.hpp"
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/hexapod/identify.hpp"
+#include "spdfit/hexapod/identify_request.hpp"
+#include "spdfit/nearest_request.hpp"
+#include "spdfit/solve_request.hpp"
 #include "spdfit/hexapod/physical.hpp"
 #include "spdfit/hexapod/render.hpp"
 #include "spdfit/io.hpp"
@@ -27,31 +30,19 @@ namespace spdfit::matlab {
 
 namespace {
 
-struct NumericalError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+// A result's numerical failure (Code::NumericalFailure): 'spdfit:NumericalError'.
+struct NumericalError : std::runtime_error, Coded {
+  explicit NumericalError(const std::string& message) : std::runtime_error(message), Coded(Code::NumericalFailure, {}) {}
 };
 
-// The identifier of a library warning, by what it says, so that users can silence one kind.
-const char* warning_id(const std::string& text) {
-  const auto has = [&](const char* part) { return text.find(part) != std::string::npos; };
-  if (has("not positive definite") || has("not positive semidefinite")) return "spdfit:notPositiveDefinite";
-  if (has("rank-deficient")) return "spdfit:rankDeficient";
-  if (has("ill-conditioned")) return "spdfit:illConditioned";
-  if (has("did not converge") || has("not converged")) return "spdfit:notConverged";
-  if (has("noise model")) return "spdfit:noiseModel";
-  if (has("bootstrap")) return "spdfit:bootstrap";
-  if (has("eigenvalue(s)")) return "spdfit:eigenvaluesRaised";
-  if (has("not symmetric") || has("asymmetr")) return "spdfit:notSymmetric";
-  return "spdfit:warning";
-}
-
 // The warnings as an n x 2 cell {identifier, text}, which spdfit_call.m raises with `warning`
-// (MATLAB and Octave would prefix the MEX function's name to a warning raised here).
-mxArray* warnings_cell(const std::vector<std::string>& warnings) {
+// (MATLAB and Octave would prefix the MEX function's name to a warning raised here). The
+// identifier comes from the warning's code (spdfit/outcome.hpp), so that users can silence one kind.
+mxArray* warnings_cell(const std::vector<Warning>& warnings) {
   mxArray* out = mxCreateCellMatrix(warnings.size(), 2);
   for (std::size_t k = 0; k < warnings.size(); ++k) {
-    const std::string text = spell_options(warnings[k], Frontend::Matlab);
-    mxSetCell(out, static_cast<mwIndex>(k), mxCreateString(warning_id(text)));
+    const std::string text = spell_options(warnings[k].text, Frontend::Matlab);
+    mxSetCell(out, static_cast<mwIndex>(k), mxCreateString(matlab_identifier(warnings[k].code).c_str()));
     mxSetCell(out, static_cast<mwIndex>(k + warnings.size()), mxCreateString(text.c_str()));
   }
   return out;
@@ -65,8 +56,7 @@ std::vector<NameValue> pairs_from(std::string_view function, int nrhs, const mxA
   }
   std::vector<NameValue> out;
   for (int k = first; k < nrhs; k += 2) {
-    const std::string name = read_text(prhs[k], "an option's name (argument " + std::to_string(k) + ")");
-    out.push_back(read_name_value(name, prhs[k + 1], option_shape(function, name)));
+    out.push_back({read_text(prhs[k], "an option's name (argument " + std::to_string(k) + ")"), prhs[k + 1]});
   }
   return out;
 }
@@ -91,10 +81,21 @@ void fit_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* prhs[
   if (nrhs >= 4 && mxIsChar(prhs[3])) {
     has_method = parse_method(read_text(prhs[3], "the method")).has_value() || (nrhs - 4) % 2 == 0;
   }
-  const std::string method = has_method ? read_text(prhs[3], "the method") : "auto";
-  const std::vector<NameValue> pairs = pairs_from("fit", nrhs, prhs, has_method ? 4 : 3);
-  const FitRequest request = fit_request(method, pairs);
-  const FitResult result = fit(A, B, request.method, fit_options(request, pairs, A.cols(), B.cols()));
+  FitRequest request;
+  if (has_method) {
+    const std::string method = read_text(prhs[3], "the method");
+    const std::optional<Method> parsed = parse_method(method);
+    if (!parsed) {
+      std::string names;
+      for (Method m : kSelectableMethods) names += (names.empty() ? "" : ", ") + std::string(to_string(m));
+      throw OptionError("unknown method '" + method + "' (methods: " + names + ")", Code::OptionValue, "method");
+    }
+    request.method = *parsed;
+  }
+  const std::vector<std::string_view> given =
+      set_pairs(request, fit_option_table(), pairs_from("fit", nrhs, prhs, has_method ? 4 : 3), matlab_function("fit"));
+  check_fit_request(request, given);
+  const FitResult result = fit(A, B, request.method, request.resolved_options(A.cols(), B.cols()));
   if (!result.ok()) throw NumericalError(result.message);
   plhs[0] = write_matrix(result.X);
   plhs[1] = want_info ? write_json(to_json(result)) : mxCreateDoubleMatrix(0, 0, mxREAL);
@@ -104,7 +105,10 @@ void fit_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* prhs[
 void nearest_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
   need_arguments("nearest", nrhs, 2, "C: [X, info] = spdfit.nearest(C, name, value, ...)");
   const Eigen::MatrixXd C = read_matrix(prhs[1], "C");
-  const NearestRequest request = nearest_request(pairs_from("nearest", nrhs, prhs, 2));
+  NearestRequest request;
+  const std::vector<std::string_view> given =
+      set_pairs(request, nearest_option_table(), pairs_from("nearest", nrhs, prhs, 2), matlab_function("nearest"));
+  check_nearest_request(given);
   const NearestResult result = nearest(C, request);
   plhs[0] = write_matrix(result.X);
   plhs[1] = want_info ? write_json(to_json(result)) : mxCreateDoubleMatrix(0, 0, mxREAL);
@@ -113,53 +117,32 @@ void nearest_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* p
 
 void solve_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
   need_arguments("solve", nrhs, 3, "A and b: [x, info] = spdfit.solve(A, b, name, value, ...)");
-  const Eigen::MatrixXd A = read_matrix(prhs[1], "A");
-  Eigen::MatrixXd b = read_matrix(prhs[2], "b");
-  if (b.rows() == 1 && b.cols() == A.rows() && A.rows() > 1) b.transposeInPlace();
-  const LinearSystemOptions options = solve_options(pairs_from("solve", nrhs, prhs, 3));
-  const LinearSystemResult result = solve(A, b, options);
-  if (result.status != SolveStatus::Success) throw NumericalError(result.message);
-  plhs[0] = write_matrix(result.solution);
-  plhs[1] = want_info ? write_json(to_json(result)) : mxCreateDoubleMatrix(0, 0, mxREAL);
-  plhs[2] = warnings_cell(result.warnings);
+  SolveRequest request;
+  request.a.values = read_matrix(prhs[1], "A");
+  request.b.values = read_matrix(prhs[2], "b");
+  set_pairs(request, solve_option_table(), pairs_from("solve", nrhs, prhs, 3), matlab_function("solve"));
+  const SolveRun run = run_solve(request);
+  if (const auto failure = run.failure()) throw NumericalError(failure->message);
+  plhs[0] = write_matrix(run.result.solution);
+  plhs[1] = want_info ? write_json(to_json(run.result)) : mxCreateDoubleMatrix(0, 0, mxREAL);
+  plhs[2] = warnings_cell(run.warnings);
 }
 
 void identify_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
   need_arguments("hexapod.identify", nrhs, 3,
                  "A and B: [result, text] = spdfit.hexapod.identify(A, B, name, value, ...)");
-  const Eigen::MatrixXd A = read_matrix(prhs[1], "A");
-  const Eigen::MatrixXd B = read_matrix(prhs[2], "B");
-  const std::vector<NameValue> pairs = pairs_from("identify", nrhs, prhs, 3);
-  IdentifyRequest request = identify_request(pairs);
-  hexapod::IdentifyOptions options;
-  options.fit = fit_options(request.fit, request.fit_pairs, A.cols(), B.cols());
-  if (request.truth.size() > 0) options.truth = request.truth;
-  if (request.stiffness.size() > 0) options.stiffness = request.stiffness;
-  hexapod::Geometry geometry;
-  if (!request.geometry.empty()) {
-    geometry = hexapod::read_geometry(request.geometry);
-    if (A.cols() != 6) throw DataError("a hexapod geometry needs data with 6 columns (struts); A has " + std::to_string(A.cols()));
-    options.stiffness = Eigen::MatrixXd(geometry.strut_stiffness.asDiagonal());
-  }
-  const std::vector<hexapod::MethodIdentification> methods = hexapod::identify(A, B, options);
-  std::vector<std::string> warnings;
-  for (const hexapod::MethodIdentification& m : methods) {
-    for (const std::string& w : m.result.warnings) warnings.push_back(std::string(to_string(m.result.method)) + ": " + w);
-  }
-  if (!request.physical) {
-    plhs[0] = write_json(hexapod::to_json(methods, options));
-    plhs[1] = want_info ? mxCreateString(hexapod::report(methods, options).c_str()) : mxCreateDoubleMatrix(0, 0, mxREAL);
-    plhs[2] = warnings_cell(warnings);
-    return;
-  }
-  hexapod::apply_fit_options(options.fit, request.fit_given, request.physical_options);
-  const hexapod::PhysicalEstimate physical = hexapod::identify_physical(A, B, geometry, request.physical_options);
-  if (!physical.ok()) throw std::invalid_argument("the physical fit failed: " + physical.message);
-  for (const std::string& w : physical.warnings) warnings.push_back("physical: " + w);
-  plhs[0] = write_json(hexapod::to_json(methods, options, physical));
-  plhs[1] = want_info ? mxCreateString(hexapod::report(methods, options, physical, geometry).c_str())
-                      : mxCreateDoubleMatrix(0, 0, mxREAL);
-  plhs[2] = warnings_cell(warnings);
+  hexapod::IdentifyRequest request;
+  request.a.values = read_matrix(prhs[1], "A");
+  request.b.values = read_matrix(prhs[2], "B");
+  const std::vector<std::string_view> given = set_pairs(request, hexapod::identify_option_table(),
+                                                        pairs_from("identify", nrhs, prhs, 3),
+                                                        matlab_function("identify"));
+  hexapod::check_identify_request(request, given);
+  const hexapod::Identification result = hexapod::run_identify(request);
+  if (const auto failure = result.failure()) throw NumericalError(failure->message);
+  plhs[0] = write_json(hexapod::to_json(result));
+  plhs[1] = want_info ? mxCreateString(hexapod::report(result).c_str()) : mxCreateDoubleMatrix(0, 0, mxREAL);
+  plhs[2] = warnings_cell(result.warnings);
 }
 
 // spdfit_mex(COMMAND, WANT_INFO, arguments...) -> [estimate, info, warnings]: the arguments after
@@ -183,38 +166,20 @@ void run(int nlhs, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
 
 extern "C" __attribute__((visibility("default"))) void mexFunction(int nlhs, mxArray* plhs[], int nrhs,
                                                                    const mxArray* prhs[]) {
-  // Outside every scope that owns memory: mexErrMsgIdAndTxt does not return.
-  static std::string message;
-  const char* id = nullptr;
+  // Outside every scope that owns memory: mexErrMsgIdAndTxt does not return. The identifier comes
+  // from the error's code (spdfit/outcome.hpp), never from its text.
+  static std::string message, id;
+  bool failed = false;
   try {
     spdfit::matlab::run(nlhs, plhs, nrhs, prhs);
-  } catch (const spdfit::matlab::UsageError& e) {
-    id = "spdfit:UsageError";
-    message = e.what();
-  } catch (const spdfit::OptionError& e) {
-    id = "spdfit:UsageError";
-    message = spdfit::spell_options(e.what(), spdfit::Frontend::Matlab);
-  } catch (const spdfit::matlab::NumericalError& e) {
-    id = "spdfit:NumericalError";
-    message = spdfit::spell_options(e.what(), spdfit::Frontend::Matlab);
-  } catch (const spdfit::matlab::DataError& e) {
-    id = "spdfit:DataError";
-    message = e.what();
-  } catch (const spdfit::io::DataError& e) {
-    id = "spdfit:DataError";
-    message = e.what();
-  } catch (const std::invalid_argument& e) {
-    id = "spdfit:DataError";
-    message = spdfit::spell_options(e.what(), spdfit::Frontend::Matlab);
-  } catch (const std::bad_alloc&) {
-    id = "spdfit:OutOfMemory";
-    message = "out of memory";
   } catch (const std::exception& e) {
-    id = "spdfit:Error";
-    message = e.what();
+    failed = true;
+    id = spdfit::matlab_identifier(spdfit::code_of(e));
+    message = spdfit::spell_options(e.what(), spdfit::Frontend::Matlab);
   } catch (...) {
+    failed = true;
     id = "spdfit:Error";
     message = "an unknown error";
   }
-  if (id != nullptr) mexErrMsgIdAndTxt(id, "%s", message.c_str());
+  if (failed) mexErrMsgIdAndTxt(id.c_str(), "%s", message.c_str());
 }

@@ -28,7 +28,9 @@ import warnings as _warnings
 import numpy as _np
 
 from . import _spdfit
-from ._spdfit import (AutoReason, DataError, Diagnostics, FitResult, LinearSystemResult, NearestResult,
+from ._errors import DataError, NumericalError, SpdfitWarning, WARNING_CLASSES as _WARNING_CLASSES
+from ._errors import warn as _warn
+from ._spdfit import (AutoReason, Diagnostics, FitResult, LinearSystemResult, NearestResult,
                       NoiseModel, PsdCertificate, BoundaryCertificate, Bootstrap, Interval, SpectrumUncertainty)
 
 # The repairs' one result class, under the names each function's documentation uses.
@@ -46,22 +48,18 @@ __all__ = [
     "read_table", "spde", "symmetric_procrustes", "total_least_squares", "total_least_squares_psd",
     "spd_total_least_squares", "psd_least_squares", "auto_fit", "PsdCertificate", "BoundaryCertificate", "AutoReason", "Bootstrap", "Interval", "SpectrumUncertainty",
     "NearestCorrelationResult", "NearestResult", "REPAIR_FLOOR_DEFAULT",
-    "total_least_squares_symmetric", "write_csv",
+    "total_least_squares_symmetric", "write_csv", "outcome_codes",
+    *sorted(cls.__name__ for cls in _WARNING_CLASSES.values()),
 ]
 
-
-class NumericalError(RuntimeError):
-    """Valid input without an answer (e.g. A rank-deficient for spde, V22 singular for tls).
-
-    The failed FitResult, with the diagnostics of the data, is in the `result` attribute."""
-
-    def __init__(self, message, result=None):
-        super().__init__(message)
-        self.result = result
+globals().update({cls.__name__: cls for cls in _WARNING_CLASSES.values()})
 
 
-class SpdfitWarning(UserWarning):
-    """A condition the user should know about (rank deficiency, ill-conditioning, ...)."""
+def outcome_codes():
+    """Every code of spdfit's errors and warnings: a list of (name, tier, Python class, MATLAB
+    identifier, meaning); tier is "usage", "data", "numerical", "internal" or "warning"
+    (docs/errors.md prints the same table)."""
+    return [tuple(row) for row in _spdfit.outcome_codes()]
 
 
 from . import _blas_core  # noqa: E402,F401  (warns once if OpenBLAS runs generic kernels here)
@@ -309,8 +307,8 @@ def read_table(path, *, allow_nonfinite=False, index_col=None, header=None):
         raise TypeError(f"header must be True, False or None, not {type(header).__name__}")
     values, names, messages = _spdfit.read_table(_os.fspath(path), allow_nonfinite=allow_nonfinite,
                                                  index_col=index_col, header=header)
-    for message in messages:
-        _warn(message)
+    for w in messages:
+        _warn(w.text, w.code)
     return values, names
 
 
@@ -354,23 +352,13 @@ def write_csv(path, X):
 _PACKAGE_DIR = _os.path.dirname(_os.path.abspath(__file__))
 
 
-def _warn(message):
-    """Warn as SpdfitWarning at the first caller outside this package: the user's line, not a
-    wrapper's inside spdfit (nor sys:1 when a fixed stacklevel overshoots a short stack)."""
-    frame = _sys._getframe(1)
-    level = 2
-    while frame is not None and _os.path.dirname(_os.path.abspath(frame.f_code.co_filename)) == _PACKAGE_DIR:
-        frame = frame.f_back
-        level += 1
-    _warnings.warn(message, SpdfitWarning, stacklevel=level)
-
-
 def _checked(result, files=()):
     """Warns of the result's warnings (the method's with its name first; a reader's, which name
     one of `files`, as they are) and raises NumericalError when it failed."""
-    for message in result.warnings:
+    for message, code in zip(result.warnings, result.warning_codes):
         from_reader = any(message.startswith(name + ":") for name in files)
-        _warn(_spdfit.spell_options(message) if from_reader else f"{result.method}: {_spdfit.spell_options(message)}")
+        _warn(_spdfit.spell_options(message) if from_reader else f"{result.method}: {_spdfit.spell_options(message)}",
+              code)
     if not result.ok:
         raise NumericalError(_spdfit.spell_options(result.message), result)
     return result
@@ -662,8 +650,8 @@ def fit_all(A, B, **options):
     A, B = _as_matrix("A", A), _as_matrix("B", B)
     results = {}
     for result in _spdfit.fit_all(A, B, options):
-        for message in result.warnings:
-            _warn(f"{result.method}: {_spdfit.spell_options(message)}")
+        for message, code in zip(result.warnings, result.warning_codes):
+            _warn(f"{result.method}: {_spdfit.spell_options(message)}", code)
         results[result.method] = result
     return results
 
@@ -1039,8 +1027,8 @@ def _repair(entry, C, options):
     """The one path of nearest_spd and nearest_correlation: the library's repair with the options
     bound by name, its warnings as SpdfitWarning."""
     result = _spdfit.nearest(_as_matrix("X" if entry == "nearest_spd" else "C", C), entry, options)
-    for message in result.warnings:
-        _warn(f"{entry}: {_spdfit.spell_options(message)}")
+    for message, code in zip(result.warnings, result.warning_codes):
+        _warn(f"{entry}: {_spdfit.spell_options(message)}", code)
     return result
 
 
@@ -1254,8 +1242,8 @@ def solve(A, b, *, threshold=None):
     3 equations in 2 unknowns (overdetermined): 3 lines in the plane. Rank 2, nullity 0.
     """
     result = _spdfit.solve(_as_matrix("A", A), _as_matrix("b", b), threshold, _np.ndim(b) == 1)
-    for message in result.warnings:
-        _warn(message)
+    for message, code in zip(result.warnings, result.warning_codes):
+        _warn(message, code)
     if not result.ok:
         raise NumericalError(result.message, result)
     return result

@@ -11,8 +11,9 @@ from . import linkage as linkage
 from . import physical as physical
 from . import factor as factor
 from .factor import Factor as Factor
+from ._errors import DataError as DataError, NumericalError as NumericalError, SpdfitWarning as SpdfitWarning
 from ._spdfit import (AutoReason as AutoReason, PsdCertificate as PsdCertificate, BoundaryCertificate as BoundaryCertificate,
-                      DataError as DataError, Diagnostics as Diagnostics, FitResult as FitResult,
+                      Diagnostics as Diagnostics, FitResult as FitResult,
                       LinearSystemResult as LinearSystemResult, NearestResult as NearestResult, NoiseModel as NoiseModel,
                       Bootstrap as Bootstrap, Interval as Interval, SpectrumUncertainty as SpectrumUncertainty)
 
@@ -30,11 +31,9 @@ def read_matrix(path: _PathLike, *, allow_nonfinite: bool = ..., index_col: Opti
 def read_table(path: _PathLike, *, allow_nonfinite: bool = ..., index_col: Optional[bool] = ..., header: Optional[bool] = ...) -> Tuple[npt.NDArray[np.float64], List[str]]: ...
 def write_csv(path: _PathLike, X: npt.ArrayLike) -> None: ...
 
-class NumericalError(RuntimeError):
-    result: Optional[object]
-    def __init__(self, message: str, result: Optional[object] = ...) -> None: ...
+# warning classes: from ._errors import {} as {}
 
-class SpdfitWarning(UserWarning): ...
+def outcome_codes() -> List[Tuple[str, str, str, str, str]]: ...
 
 def fit(A: Any, B: Optional[npt.ArrayLike] = ..., method: _Method = ..., *, a_cols: Any = ..., b_cols: Any = ..., **options: Any) -> FitResult: ...  # options: fit
 def fit_files(A_path: _PathLike, B_path: Optional[_PathLike] = ..., method: _Method = ..., **options: Any) -> FitResult: ...  # options: fit_files

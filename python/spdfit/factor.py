@@ -9,9 +9,9 @@ validated bytes (to_bytes), which is what Dask, multiprocessing and Spark send b
 """
 import numbers
 import os as _os
-import warnings as _warnings
 
-from . import SpdfitWarning, _as_matrix, _checked, _options, _shared_doc, _spdfit, _takes_options
+from . import _as_matrix, _checked, _options, _shared_doc, _spdfit, _takes_options
+from ._errors import warn as _warn
 
 # The streaming defaults are the library's (StreamOptions), not retyped here.
 _STREAM_DEFAULTS = _spdfit.StreamOptions()
@@ -174,8 +174,8 @@ class Factor:
         """
         block_rows, threads = _options(block_rows=block_rows, threads=threads)
         core, messages = _spdfit.stream_factor(_os.fspath(A_path), _os.fspath(B_path), block_rows, threads)
-        for message in messages:
-            _warnings.warn(message, SpdfitWarning, stacklevel=2)
+        for w in messages:
+            _warn(w.text, w.code)
         return cls._wrap(core)
 
     @classmethod

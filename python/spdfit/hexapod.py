@@ -14,7 +14,8 @@ from collections import namedtuple as _namedtuple
 
 import numpy as _np
 
-from . import _as_matrix, _takes_options, _warn
+from . import _as_matrix, _spdfit, _takes_options
+from ._errors import NumericalError, warn as _warn
 from ._spdfit import hexapod as _core
 
 Geometry = _core.Geometry
@@ -240,12 +241,12 @@ def simulate(samples=_SIMULATION.samples, noise_var=0.86, *, seed=1, truth="thes
     A, B, A_true, B_true, warnings = _core.simulate(M, int(samples), float(noise_var),
                                                     None if force_noise_var is None else float(force_noise_var),
                                                     float(signal_var), distribution, int(seed))
-    for message in warnings:  # as `spdfit hexapod simulate` warns (too few samples to fit)
-        _warn(message)
+    for w in warnings:  # as `spdfit hexapod simulate` warns (too few samples to fit)
+        _warn(w.text, w.code)
     return Simulation(A, B, M, A_true, B_true)
 
 
-@_takes_options("hexapod.identify", "hexapod.identify.physical")
+@_takes_options("hexapod.identify", given=("truth", "stiffness", "geometry", "physical"))
 def identify(A, B, *, truth=None, stiffness=None, geometry=None, physical=False, **options):
     """Every estimator on accelerations A and forces B, with eigenvalues, modes and errors.
 
@@ -267,11 +268,13 @@ def identify(A, B, *, truth=None, stiffness=None, geometry=None, physical=False,
         The measured accelerations and forces, m x n each.
     truth : array_like, optional
         A known M_p: each method's error_vs_truth is ||M_p - M_hat||_F.
-    stiffness : array_like, optional
-        The stiffness matrix K: each method's modes_hz are its modes sqrt(eig(M_hat^-1 K)) / 2 pi.
+    stiffness : float or array_like, optional
+        The strut stiffness (N/m): one number for every strut, one per strut, or the n x n matrix K;
+        each method's modes_hz are its modes sqrt(eig(M_hat^-1 K)) / 2 pi.
     geometry : None, Geometry, str, os.PathLike or dict, optional
-        The hexapod (as `geometry` takes it): the Jacobian and nominal payload of the physical fit
-        (None: the built-in cubic hexapod), and the modes' stiffness when `stiffness` is not given.
+        The hexapod (as `geometry` takes it): the modes' stiffness, and the Jacobian and nominal
+        payload of the physical fit (which needs it: `cubic_geometry()` for the built-in one). Not
+        with `stiffness`.
     physical : bool, optional
         Also fit the payload's physical parameters (default False).
     {options}
@@ -315,22 +318,16 @@ def identify(A, B, *, truth=None, stiffness=None, geometry=None, physical=False,
     >>> bool(p["error_vs_truth"] < out["spd-tls"].error_vs_truth)
     True
     """
-    import warnings
-
-    from . import NumericalError, SpdfitWarning
-
-    results, physical_text = _core.identify(_as_matrix("A", A), _as_matrix("B", B),
-                                            None if truth is None else _as_matrix("truth", truth),
-                                            None if stiffness is None else _as_matrix("stiffness", stiffness),
-                                            None if geometry is None else _geometry(geometry),
-                                            bool(physical), options)
+    keywords = dict(options, truth=truth, stiffness=stiffness, physical=bool(physical),
+                    geometry=None if geometry is None else _geometry(geometry))
+    results, physical_text, warnings = _core.identify(_as_matrix("A", A), _as_matrix("B", B), keywords)
+    for w in warnings:  # as `spdfit hexapod identify` warns: each method's, then the physical fit's
+        _warn(_spdfit.spell_options(w.text), w.code)
     out = {r.result.method: r for r in results}
     if physical_text is not None:
         from .physical import _arrays
         estimate = _arrays(_json.loads(physical_text))
         if estimate["status"] != "success":
-            raise NumericalError(estimate.get("error", "physical identification failed"), estimate)
-        for message in estimate["warnings"]:
-            warnings.warn(f"physical: {message}", SpdfitWarning, stacklevel=2)
+            raise NumericalError("the physical fit failed: " + estimate.get("error", ""), estimate)
         out["physical"] = estimate
     return out

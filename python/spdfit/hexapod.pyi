@@ -1,6 +1,6 @@
 """Type stubs for spdfit.hexapod (see hexapod.py for the documentation)."""
 import os
-from typing import Any, Dict, NamedTuple, Optional, Union
+from typing import Any, Dict, NamedTuple, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -69,4 +69,4 @@ def model(geometry_source: _GeometrySource = ...) -> Model: ...
 def simulate(samples: int = ..., noise_var: float = ..., *, seed: int = ...,
              truth: Union[str, npt.ArrayLike, _GeometrySource] = ..., signal_var: float = ...,
              distribution: str = ..., force_noise_var: Optional[float] = ...) -> Simulation: ...
-def identify(A: npt.ArrayLike, B: npt.ArrayLike, *, truth: Optional[npt.ArrayLike] = ..., stiffness: Optional[npt.ArrayLike] = ..., geometry: _GeometrySource = ..., physical: bool = ..., **options: Any) -> Dict[str, Any]: ...  # options: hexapod.identify hexapod.identify.physical
+def identify(A: npt.ArrayLike, B: npt.ArrayLike, *, truth: Optional[npt.ArrayLike] = ..., stiffness: Union[None, float, npt.ArrayLike] = ..., geometry: _GeometrySource = ..., physical: bool = ..., **options: Any) -> Dict[str, Any]: ...  # options: hexapod.identify

@@ -7,11 +7,11 @@ sections 3.3-3.6). Angles are in degrees unless ``radians=True``.
     True
 """
 import math as _math
-import warnings as _warnings
 
 import numpy as _np
 
-from . import NumericalError, SpdfitWarning, _spdfit
+from . import _spdfit
+from ._errors import NumericalError, warn as _warn
 from ._spdfit import linkage as _core
 
 FourBar = _core.FourBar
@@ -283,8 +283,8 @@ def synthesize(psi=None, phi=None, *, weights=None, steering=None, function=None
     w = _np.empty(0) if weights is None else _vector("weights", weights)
     result = _core.synthesize(dpsi, dphi, w, a, b, bool(fit_dial_zeros), bool(refine), float(tolerance),
                               int(max_iterations))
-    for message in result.warnings:
-        _warnings.warn(_spdfit.spell_options(message), SpdfitWarning, stacklevel=2)
+    for message, code in zip(result.warnings, result.warning_codes):
+        _warn(_spdfit.spell_options(message), code)
     if not result.ok:
         raise NumericalError(_spdfit.spell_options(result.message), result)
     return result

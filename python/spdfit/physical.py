@@ -14,7 +14,8 @@ import json as _json
 
 import numpy as _np
 
-from . import NumericalError, SpdfitWarning, _as_matrix
+from . import _as_matrix, _takes_options
+from ._errors import NumericalError, warn as _warn
 from ._spdfit import physical as _core
 
 __all__ = ["design", "identify", "inertia_repair", "inertia_repair_urdf", "mass_matrix"]
@@ -52,13 +53,8 @@ def _geometry(geometry):
     return hexapod.geometry(geometry)
 
 
-def _optional_matrix(name, value):
-    return None if value is None else _as_matrix(name, value)
-
-
-def identify(A, B, geometry=None, *, strut_masses="geometry", fit_strut_mass=None, criterion="eiv", consistent=True,
-             noise_cov_a=None, noise_cov_b=None, max_iter=None, rank_tolerance=None, bootstrap=0, confidence=None,
-             seed=None, threads=0):
+@_takes_options("physical.identify")
+def identify(A, B, geometry=None, *, strut_masses=None, **options):
     """The payload's mass, centre of mass and inertia (and strut masses) from A and B.
 
     Fits M_p(theta) = J^-T R M_x(theta) R^T J^-1 + diag(strut masses), linear in the ten inertial
@@ -71,32 +67,12 @@ def identify(A, B, geometry=None, *, strut_masses="geometry", fit_strut_mass=Non
     ----------
     A, B : array_like
         Accelerations along the struts and base forces, m x 6 each, one sample per row.
-    geometry : None, Geometry, str, os.PathLike or dict, optional
-        The hexapod (spdfit.hexapod.geometry); None is the built-in cubic one.
+    geometry : Geometry, str, os.PathLike or dict
+        The hexapod (spdfit.hexapod.geometry): its Jacobian and nominal payload (the built-in one is
+        spdfit.hexapod.cubic_geometry()).
     strut_masses : {'geometry', 'common', 'each'}, optional
-        The geometry's strut masses (default), or one or six estimated (only where the geometry
-        identifies them).
-    fit_strut_mass : {'common', 'each', 'geometry'}, optional
-        The same as strut_masses, spelled as spdfit.hexapod.identify and the command line's
-        --fit-strut-mass spell it (and as error messages name it); give one of the two.
-    criterion : {'eiv', 'ls'}, optional
-        Errors in variables (default) or least squares (noise in B only).
-    consistent : bool, optional
-        Enforce physical consistency (default); False is the unconstrained grey-box fit.
-    noise_cov_a, noise_cov_b : array_like, optional
-        6 x 6 noise covariances of a row of A and of B (default: identity, equal noise).
-    max_iter : int, optional
-        Newton steps at most (default 500).
-    rank_tolerance : float, optional
-        Relative cut-off of A's numerical rank (default: max(m, 6) eps).
-    bootstrap : int, optional
-        Bootstrap replicates for standard errors and intervals (default 0: none).
-    confidence : float, optional
-        The intervals' level (default 0.95).
-    seed : int, optional
-        The bootstrap's seed (default 1).
-    threads : int, optional
-        Threads for the bootstrap (default 0: one per core).
+        The old name of fit_strut_mass; give one of the two.
+    {options}
 
     Returns
     -------
@@ -119,25 +95,21 @@ def identify(A, B, geometry=None, *, strut_masses="geometry", fit_strut_mass=Non
     --------
     >>> import numpy as np, spdfit.hexapod as hx, spdfit.physical as ph
     >>> sim = hx.simulate(samples=500, noise_var=0.86, truth=hx.cubic_geometry(), seed=3)
-    >>> est = ph.identify(sim.A, sim.B)
+    >>> est = ph.identify(sim.A, sim.B, hx.cubic_geometry())
     >>> est["physically_consistent"], abs(est["mass"] - 11.973) < 1.0
     (True, True)
     """
-    import warnings
-
-    if fit_strut_mass is not None:
-        if strut_masses != "geometry":
+    if strut_masses is not None:
+        if "fit_strut_mass" in options:
             raise ValueError("give fit_strut_mass or strut_masses, not both")
-        strut_masses = fit_strut_mass
-    text = _core.identify(_as_matrix("A", A), _as_matrix("B", B), _geometry(geometry), strut_masses, criterion,
-                          bool(consistent), _optional_matrix("noise_cov_a", noise_cov_a),
-                          _optional_matrix("noise_cov_b", noise_cov_b), max_iter, rank_tolerance,
-                          int(bootstrap), confidence, seed, int(threads))
+        options["fit_strut_mass"] = strut_masses
+    text = _core.identify(_as_matrix("A", A), _as_matrix("B", B), None if geometry is None else _geometry(geometry),
+                          options)
     result = _arrays(_json.loads(text))
     if result["status"] != "success":
         raise NumericalError(result.get("error", "physical identification failed"), result)
-    for message in result["warnings"]:
-        warnings.warn(f"physical: {message}", SpdfitWarning, stacklevel=2)
+    for message, code in zip(result["warnings"], result.get("warning_codes", ["warning"] * len(result["warnings"]))):
+        _warn(f"physical: {message}", code)
     return result
 
 

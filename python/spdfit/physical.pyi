@@ -1,6 +1,6 @@
 """Type stubs for spdfit.physical (see physical.py for the documentation)."""
 import os
-from typing import Any, Dict, List, Optional, Tuple, Union
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy.typing as npt
 
@@ -8,11 +8,7 @@ from .hexapod import Geometry
 
 _GeometrySource = Union[None, Geometry, str, os.PathLike[str], Dict[str, Any]]
 
-def identify(A: npt.ArrayLike, B: npt.ArrayLike, geometry: _GeometrySource = ..., *, strut_masses: str = ..., fit_strut_mass: Optional[str] = ...,
-             criterion: str = ..., consistent: bool = ..., noise_cov_a: Optional[npt.ArrayLike] = ...,
-             noise_cov_b: Optional[npt.ArrayLike] = ..., max_iter: Optional[int] = ...,
-             rank_tolerance: Optional[float] = ..., bootstrap: int = ..., confidence: Optional[float] = ...,
-             seed: Optional[int] = ..., threads: int = ...) -> Dict[str, Any]: ...
+def identify(A: npt.ArrayLike, B: npt.ArrayLike, geometry: _GeometrySource = ..., *, strut_masses: Optional[str] = ..., **options: Any) -> Dict[str, Any]: ...  # options: physical.identify
 def design(geometry: _GeometrySource = ..., strut_masses: str = ...) -> Dict[str, Any]: ...
 def mass_matrix(geometry: _GeometrySource = ..., *, mass: float, center_of_mass: npt.ArrayLike,
                 inertia: npt.ArrayLike) -> npt.NDArray[Any]: ...

@@ -91,7 +91,7 @@ void bind_factor(py::module_& m) {
         StreamOptions options;
         options.block_rows = block_rows;
         options.threads = threads;
-        std::vector<std::string> warnings;
+        std::vector<Warning> warnings;
         TriangularFactor factor = [&] {
           py::gil_scoped_release release;
           return stream_factor(a_path, b_path, options, &warnings);

@@ -9,6 +9,7 @@
 #include "pickle.hpp"
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/hexapod/identify.hpp"
+#include "spdfit/hexapod/identify_request.hpp"
 #include "spdfit/hexapod/model.hpp"
 #include "spdfit/hexapod/physical.hpp"
 #include "spdfit/hexapod/render.hpp"
@@ -136,51 +137,27 @@ void bind_hexapod(py::module_& parent) {
         return "MethodIdentification(method='" + std::string(to_string(method.result.method)) + "')\n" +
                report(method.result, python_report_hints());
       });
+  // hexapod identify's workflow (identify_request.hpp): the request from the keywords through its
+  // table, its rules, its run; (methods, the physical estimate's JSON or None, every warning).
   m.def(
       "identify",
-      [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, std::optional<Eigen::MatrixXd> truth,
-         std::optional<Eigen::MatrixXd> stiffness, std::optional<Geometry> geometry, bool physical,
-         const py::dict& options) {
-        // The physical fit's keywords (physical_option_table) apart from the fit's.
-        py::dict fit_keywords, physical_keywords;
-        std::vector<std::string_view> physical_names;
-        for (const Keyword& k : keywords("hexapod.identify.physical")) physical_names.push_back(k.python);
-        for (const auto& [key, value] : options) {
-          const std::string name = py::str(key);
-          bool is_physical = false;
-          for (std::string_view p : physical_names) is_physical = is_physical || p == name;
-          (is_physical ? physical_keywords : fit_keywords)[key] = value;
-        }
-        if (!physical && !physical_keywords.empty()) {
-          throw py::type_error(py::str(physical_keywords.begin()->first).cast<std::string>() +
-                               " is an option of the physical fit: pass physical=True");
-        }
-        std::vector<std::string_view> given, physical_given;
-        IdentifyOptions identify_options;
-        identify_options.truth = std::move(truth);
-        identify_options.stiffness = std::move(stiffness);
-        identify_options.fit = fit_request("hexapod.identify", fit_keywords, FitRequest{}, given).options;
-        check_option_combination(fit_option_table(), given);
-        PhysicalOptions physical_options =
-            physical_request("hexapod.identify.physical", physical_keywords, physical_given);
-        apply_fit_options(identify_options.fit, given, physical_options);
-        const Geometry hexapod_geometry = geometry ? *geometry : cubic_geometry();
-        if (geometry && !identify_options.stiffness) {
-          identify_options.stiffness = Eigen::MatrixXd(hexapod_geometry.strut_stiffness.asDiagonal());
-        }
-        std::vector<MethodIdentification> methods;
-        std::optional<std::string> physical_text;
+      [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const py::dict& options) {
+        IdentifyRequest request;
+        request.a.values = A;
+        request.b.values = B;
+        std::vector<std::string_view> given;
+        request = request_from(identify_option_table(), entry("hexapod.identify"), options, std::move(request), given);
+        check_identify_request(request, given);
+        Identification result;
         {
           py::gil_scoped_release release;
-          methods = identify(A, B, identify_options);
-          if (physical)
-            physical_text =
-                to_json(identify_physical(A, B, hexapod_geometry, physical_options), identify_options);
+          result = run_identify(request);
         }
-        return py::make_tuple(methods, physical_text);
+        std::optional<std::string> physical_text;
+        if (result.physical) physical_text = to_json(*result.physical, result.options);
+        return py::make_tuple(result.methods, physical_text, result.warnings);
       },
-      py::arg("A"), py::arg("B"), py::arg("truth") = py::none(), py::arg("stiffness") = py::none(),
-      py::arg("geometry") = py::none(), py::arg("physical") = false, py::arg("options"));
+      py::arg("A"), py::arg("B"), py::arg("options"));
 }
 
 }  // namespace spdfit::python

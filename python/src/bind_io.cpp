@@ -1,4 +1,4 @@
-// Reading and writing data files from Python, with DataError as a ValueError subclass.
+// Reading and writing data files from Python.
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -11,15 +11,6 @@ namespace py = pybind11;
 namespace spdfit::python {
 
 void bind_io(py::module_& m) {
-  static py::exception<io::DataError> data_error(m, "DataError", PyExc_ValueError);
-  data_error.doc() = "Bad input data; the message names the file and, for text, the line and column.";
-  py::register_exception_translator([](std::exception_ptr p) {
-    try {
-      if (p) std::rethrow_exception(p);
-    } catch (const io::DataError& e) {
-      data_error(e.what());
-    }
-  });
 
   // (values, column_names, warnings); index_col None: decided from the file, True: drop the
   // first column (row labels), False: it is data (io::IndexColumn); header likewise for the first

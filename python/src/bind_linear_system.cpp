@@ -96,7 +96,12 @@ void bind_linear_system(py::module_& m) {
       .def_property_readonly("null_space", result_field(&LinearSystemResult::null_space), "orthonormal columns")
       .def_property_readonly("range", result_field(&LinearSystemResult::range), "orthonormal columns")
       .def_property_readonly("explanation", result_field(&LinearSystemResult::explanation))
-      .def_property_readonly("warnings", result_field(&LinearSystemResult::warnings))
+      .def_property_readonly("warnings", [](const SolveResult& r) { return texts(r.warnings); })
+      .def_property_readonly("warning_codes", [](const SolveResult& r) {
+        std::vector<std::string> out;
+        for (const Warning& w : r.warnings) out.emplace_back(code_info(w.code).name);
+        return out;
+      }, "each warning's code (spdfit.outcome_codes())")
       .def(py::pickle([](const SolveResult& r) { return py::make_tuple(kPickleFormat, solve_payload(r)); },
                       &solve_result_from))
       .def("__repr__", [](const SolveResult& r) {

@@ -115,7 +115,8 @@ void bind_linkage(py::module_& parent) {
       .def_property_readonly("phi", copied(&SynthesisResult::phi))
       .def_property_readonly("design", copied(&SynthesisResult::design))
       .def_property_readonly("structural", copied(&SynthesisResult::structural))
-      .def_property_readonly("warnings", copied(&SynthesisResult::warnings))
+      .def_property_readonly("warnings", warning_texts(&SynthesisResult::warnings))
+      .def_property_readonly("warning_codes", warning_codes(&SynthesisResult::warnings), "each warning's code (spdfit.outcome_codes())")
       .def(pickle_fields<SynthesisResult>(
           "SynthesisResult", enum_field(&SynthesisResult::status, kSynthesisStatuses, "SynthesisResult", "status"),
           state_field(&SynthesisResult::message), state_field(&SynthesisResult::positions),

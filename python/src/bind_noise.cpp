@@ -134,7 +134,13 @@ void bind_noise(py::module_& m) {
           },
           "as std_a, for B")
       .def_property_readonly("rest_rows", &NoiseModel::rest_rows, "the number of rest rows (source 'rest'; else None)")
-      .def_property_readonly("warnings", &NoiseModel::warnings, "what from_rest found for the user to know")
+      .def_property_readonly("warnings", [](const NoiseModel& model) { return texts(model.warnings()); },
+                             "what from_rest found for the user to know")
+      .def_property_readonly("warning_codes", [](const NoiseModel& model) {
+        std::vector<std::string> out;
+        for (const Warning& w : model.warnings()) out.emplace_back(code_info(w.code).name);
+        return out;
+      }, "each warning's code (spdfit.outcome_codes())")
       .def(pickle_json<NoiseModel>("NoiseModel",
                                    [](const NoiseModel& model, JsonStyle style) { return to_json(model, style); }))
       .def("__repr__", [](const NoiseModel& model) { return repr_from_json("NoiseModel", to_json(model)); });

@@ -12,6 +12,8 @@
 #include "bindings.hpp"
 #include "spdfit/hexapod/model.hpp"
 #include "spdfit/hexapod/physical.hpp"
+#include "spdfit/hexapod/physical_request.hpp"
+#include "keywords.hpp"
 #include "spdfit/inertia_repair.hpp"
 
 namespace py = pybind11;
@@ -41,41 +43,27 @@ InertiaRepairOptions repair_options(std::optional<double> min_eig_rel) {
 void bind_physical(py::module_& parent) {
   py::module_ m = parent.def_submodule("physical", "Physical identification of a hexapod payload; inertia repair.");
 
+  // The physical fit's workflow (physical_request.hpp): the request from the keywords through its
+  // table, its rules, its run; the estimate as its JSON (the Python side makes a PhysicalEstimate).
   m.def(
       "identify",
-      [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Geometry& geometry, const std::string& strut_masses,
-         const std::string& criterion, bool consistent, std::optional<Eigen::MatrixXd> noise_cov_a,
-         std::optional<Eigen::MatrixXd> noise_cov_b, std::optional<int> max_iter,
-         std::optional<double> rank_tolerance, int bootstrap, std::optional<double> confidence,
-         std::optional<std::uint64_t> seed, unsigned threads) {
-        PhysicalOptions options;
-        const auto struts = parse_strut_masses(strut_masses);
-        if (!struts) {
-          throw std::invalid_argument("strut_masses must be 'geometry', 'common' or 'each', got '" + strut_masses + "'");
-        }
-        options.strut_masses = *struts;
-        const auto kind = parse_physical_criterion(criterion);
-        if (!kind) throw std::invalid_argument("criterion must be 'eiv' or 'ls', got '" + criterion + "'");
-        options.criterion = *kind;
-        options.consistent = consistent;
-        if (noise_cov_a) options.noise_cov_a = *noise_cov_a;
-        if (noise_cov_b) options.noise_cov_b = *noise_cov_b;
-        if (max_iter) options.max_iterations = *max_iter;
-        if (rank_tolerance) options.rank_tolerance = *rank_tolerance;
-        options.bootstrap = bootstrap;
-        if (confidence) options.confidence = *confidence;
-        if (seed) options.seed = *seed;
-        options.threads = threads;
+      [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const std::optional<Geometry>& geometry,
+         const py::dict& options) {
+        PhysicalRequest request;
+        request.a.values = A;
+        request.b.values = B;
+        if (geometry) request.geometry.value = std::make_shared<const Geometry>(*geometry);
+        std::vector<std::string_view> given;
+        request = request_from(physical_fit_table(), entry("physical.identify"), options, std::move(request), given);
+        check_physical_request(request, given);
         std::string text;
         {
           py::gil_scoped_release release;
-          text = physical_json(identify_physical(A, B, geometry, options));
+          text = physical_json(run_physical(request));
         }
         return text;
       },
-      py::arg("A"), py::arg("B"), py::arg("geometry"), py::arg("strut_masses"), py::arg("criterion"),
-      py::arg("consistent"), py::arg("noise_cov_a"), py::arg("noise_cov_b"), py::arg("max_iter"),
-      py::arg("rank_tolerance"), py::arg("bootstrap"), py::arg("confidence"), py::arg("seed"), py::arg("threads"));
+      py::arg("A"), py::arg("B"), py::arg("geometry"), py::arg("options"));
 
   m.def(
       "design",

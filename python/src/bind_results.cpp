@@ -195,7 +195,8 @@ void bind_results(py::module_& m) {
       .def_property_readonly("message", copied(&FitResult::message), "why it failed ('' on success)")
       .def_property_readonly("X", copied(&FitResult::X), "the estimate (n x n ndarray; empty on failure)")
       .def_property_readonly("diagnostics", copied(&FitResult::diagnostics))
-      .def_property_readonly("warnings", copied(&FitResult::warnings))
+      .def_property_readonly("warnings", warning_texts(&FitResult::warnings))
+      .def_property_readonly("warning_codes", warning_codes(&FitResult::warnings), "each warning's code (spdfit.outcome_codes())")
       .def_property_readonly("standard_errors", from_bootstrap(&Bootstrap::standard_errors),
                              "the bootstrap standard error of every entry of X (n x n), or None without bootstrap=N")
       .def_property_readonly("interval", from_bootstrap(&Bootstrap::interval),
@@ -235,7 +236,8 @@ void bind_results(py::module_& m) {
       .def_property_readonly("converged", copied(&NearestResult::converged))
       .def_property_readonly("cholesky_ok", copied(&NearestResult::cholesky_ok),
                              "whether X has a Cholesky factorization (positive definite)")
-      .def_property_readonly("warnings", copied(&NearestResult::warnings))
+      .def_property_readonly("warnings", warning_texts(&NearestResult::warnings))
+      .def_property_readonly("warning_codes", warning_codes(&NearestResult::warnings), "each warning's code (spdfit.outcome_codes())")
       .def("__repr__", [](const NearestResult& r) { return "NearestResult\n" + report(r); })
       .def(pickle_json<NearestResult>("NearestResult", &exact_json<NearestResult>));
 }

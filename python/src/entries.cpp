@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "spdfit/fit_request.hpp"
+#include "spdfit/hexapod/identify_request.hpp"
 #include "spdfit/hexapod/physical_request.hpp"
 #include "spdfit/nearest_request.hpp"
 
@@ -22,7 +23,7 @@ std::vector<Keyword> keywords_of(const std::vector<OptionSpec<Request>>& table, 
                                  const Request* applies_to) {
   std::vector<Keyword> out;
   for (const OptionSpec<Request>& spec : table) {
-    if (spec.python.empty() || contains(entry.unavailable, spec.name) || contains(entry.implied, spec.name)) continue;
+    if (spec.python.empty() || spec.positional || contains(entry.unavailable, spec.name) || contains(entry.implied, spec.name)) continue;
     if (applies_to && spec.applies && !spec.applies(*applies_to)) continue;
     bool reachable = spec.needs.empty();
     for (std::string_view need : spec.needs) reachable = reachable || !contains(entry.unavailable, need);
@@ -44,8 +45,9 @@ const std::vector<Entry>& entries() {
       {"fit_files", "fit", {"stream"}, {}},
       {"fit_all", "fit", {}, {"stream", "bootstrap", "a_cols", "b_cols"}},
       {"Factor.fit", "fit", {}, {"stream", "bootstrap", "a_cols", "b_cols"}},
-      {"hexapod.identify", "fit", {}, {"stream", "a_cols", "b_cols"}},
-      {"hexapod.identify.physical", "physical", {}, {}},
+      // A and B are positional; their columns of one file (a_cols, b_cols) are files' only.
+      {"hexapod.identify", "identify", {}, {"a", "b", "a_cols", "b_cols"}},
+      {"physical.identify", "physical_fit", {}, {}},
       {"nearest_spd", "nearest", {}, {"corr"}},
       {"nearest_correlation", "nearest", {"corr"}, {"keep_diag", "via_corr"}},
   };
@@ -64,6 +66,12 @@ std::vector<Keyword> keywords(const Entry& entry, std::optional<Method> method) 
   if (entry.table == "physical") {
     return keywords_of(hexapod::physical_option_table(), entry,
                        static_cast<hexapod::PhysicalOptions*>(nullptr));
+  }
+  if (entry.table == "physical_fit") {
+    return keywords_of(hexapod::physical_fit_table(), entry, static_cast<hexapod::PhysicalRequest*>(nullptr));
+  }
+  if (entry.table == "identify") {
+    return keywords_of(hexapod::identify_option_table(), entry, static_cast<hexapod::IdentifyRequest*>(nullptr));
   }
   FitRequest request;
   if (method) request.method = *method;
@@ -104,6 +112,22 @@ std::string annotation(const Keyword& keyword) {
       break;
     case OptionType::Noise:
       type = "NoiseModel";
+      break;
+    case OptionType::Choice:
+      type = "str";
+      break;
+    case OptionType::File:
+      type = "Union[str, os.PathLike]";
+      break;
+    case OptionType::Matrix:
+      type = "npt.ArrayLike";
+      break;
+    case OptionType::Columns:
+    case OptionType::Rows:
+      type = "Union[str, Sequence[Union[str, int]]]";
+      break;
+    case OptionType::Geometry:
+      type = "Union[Geometry, str, os.PathLike]";
       break;
   }
   return keyword.nullable ? "Optional[" + type + "]" : type;

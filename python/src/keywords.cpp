@@ -1,5 +1,6 @@
 #include "keywords.hpp"
 
+#include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
@@ -8,6 +9,7 @@
 #include <string>
 #include <type_traits>
 
+#include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/noise_model.hpp"
 
 namespace py = pybind11;
@@ -44,8 +46,43 @@ const char* type_text(OptionType type) {
       return "array_like";
     case OptionType::Noise:
       return "NoiseModel";
+    case OptionType::Choice:
+      return "str";
+    case OptionType::File:
+      return "str or os.PathLike";
+    case OptionType::Matrix:
+      return "array_like";
+    case OptionType::Columns:
+    case OptionType::Rows:
+      return "str";
+    case OptionType::Geometry:
+      return "Geometry, str or os.PathLike";
   }
   return "object";
+}
+
+// A str or an os.PathLike (pathlib.Path): a file's name.
+bool is_path(const py::handle& value) {
+  return py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__");
+}
+std::string path_text(const py::handle& value) {
+  return py::module_::import("os").attr("fspath")(value).cast<std::string>();
+}
+
+// A real matrix (a 1-D array is one column).
+Eigen::MatrixXd matrix_value(const Keyword& keyword, const py::handle& value) {
+  py::array array = py::module_::import("numpy").attr("asarray")(value);
+  const char kind = array.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u' && kind != 'b') {
+    throw py::type_error(std::string(keyword.python) + " must be a matrix of real numbers, got dtype " +
+                         std::string(py::str(array.dtype())));
+  }
+  if (array.ndim() > 2) throw py::value_error(std::string(keyword.python) + " must be a matrix (at most 2-D)");
+  const auto values = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(array);
+  const Eigen::Index rows = array.ndim() == 0 ? 1 : array.shape(0);
+  const Eigen::Index cols = array.ndim() == 2 ? array.shape(1) : 1;
+  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(values.data(), rows,
+                                                                                                  cols);
 }
 
 std::vector<double> real_vector(const Keyword& keyword, const py::handle& value) {
@@ -60,33 +97,6 @@ std::vector<double> real_vector(const Keyword& keyword, const py::handle& value)
   }
   const auto values = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(array);
   return std::vector<double>(values.data(), values.data() + values.size());
-}
-
-template <typename Request>
-Request request_from(const std::vector<OptionSpec<Request>>& table, const Entry& entry, const py::dict& kwargs,
-                     Request request, std::vector<std::string_view>& given) {
-  const std::vector<Keyword> accepted = keywords(entry);
-  for (const auto& [key, value] : kwargs) {
-    const std::string name = py::str(key);
-    const Keyword* keyword = nullptr;
-    for (const Keyword& k : accepted) {
-      if (k.python == name) keyword = &k;
-    }
-    if (keyword == nullptr) {
-      throw py::type_error(std::string(entry.name) + "() got an unexpected keyword argument '" + name + "'");
-    }
-    if (value.is_none() && keyword->nullable) continue;
-    const OptionValue checked = keyword_value(*keyword, value);
-    set_option(request, *find_option(table, keyword->name), checked);
-    // A flag set to False is not given (keep_diag=False is every repair's default).
-    if (keyword->type == OptionType::Flag && !std::get<bool>(checked)) continue;
-    given.push_back(keyword->name);
-  }
-  for (std::string_view implied : entry.implied) {
-    set_option(request, *find_option(table, implied), OptionValue{true});
-    given.push_back(implied);
-  }
-  return request;
 }
 
 }  // namespace
@@ -125,6 +135,27 @@ OptionValue keyword_value(const Keyword& keyword, const py::handle& value) {
     case OptionType::Noise:
       if (!py::isinstance<NoiseModel>(value)) wrong_type(keyword, "a spdfit.NoiseModel", value);
       return std::make_shared<const NoiseModel>(value.cast<const NoiseModel&>());
+    case OptionType::Choice:
+    case OptionType::Columns:
+    case OptionType::Rows:
+      if (!py::isinstance<py::str>(value)) wrong_type(keyword, "a str", value);
+      return value.cast<std::string>();
+    case OptionType::File:
+      if (!is_path(value)) wrong_type(keyword, "a str or os.PathLike", value);
+      return path_text(value);
+    case OptionType::Matrix: {
+      if (is_path(value)) return path_text(value);
+      MatrixInput input;
+      input.values = matrix_value(keyword, value);
+      return input;
+    }
+    case OptionType::Geometry: {
+      if (is_path(value)) return GeometryInput{path_text(value), nullptr};
+      if (!py::isinstance<hexapod::Geometry>(value)) {
+        wrong_type(keyword, "a spdfit.hexapod.Geometry, str or os.PathLike", value);
+      }
+      return GeometryInput{{}, std::make_shared<const hexapod::Geometry>(value.cast<const hexapod::Geometry&>())};
+    }
   }
   wrong_type(keyword, "a value", value);
 }
@@ -165,8 +196,10 @@ py::dict keyword_table() {
       if (k.default_value) {
         value = std::visit(
             [](const auto& v) -> py::object {
-              if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::shared_ptr<const NoiseModel>>) {
-                return py::none();  // a noise model has no default but None
+              using T = std::decay_t<decltype(v)>;
+              if constexpr (std::is_same_v<T, std::shared_ptr<const NoiseModel>> || std::is_same_v<T, MatrixInput> ||
+                            std::is_same_v<T, GeometryInput>) {
+                return py::none();  // objects, matrices and files have no default but None
               } else {
                 return py::cast(v);
               }

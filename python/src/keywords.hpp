@@ -26,6 +26,35 @@ OptionValue keyword_value(const Keyword& keyword, const pybind11::handle& value)
 /// the library refuses; None leaves the default. The entry's implied options are set too.
 /// `given` receives the library names of the options set (for check_fit_request and
 /// check_nearest_request).
+/// The request of a call to Python function `entry` with keyword arguments `kwargs`, through
+/// `table` (any command's): see fit_request.
+template <typename Request>
+Request request_from(const std::vector<OptionSpec<Request>>& table, const Entry& entry, const pybind11::dict& kwargs,
+                     Request request, std::vector<std::string_view>& given) {
+  const std::vector<Keyword> accepted = keywords(entry);
+  for (const auto& [key, value] : kwargs) {
+    const std::string name = pybind11::str(key);
+    const Keyword* keyword = nullptr;
+    for (const Keyword& k : accepted) {
+      if (k.python == name) keyword = &k;
+    }
+    if (keyword == nullptr) {
+      throw pybind11::type_error(std::string(entry.name) + "() got an unexpected keyword argument '" + name + "'");
+    }
+    if (value.is_none() && keyword->nullable) continue;
+    const OptionValue checked = keyword_value(*keyword, value);
+    set_option(request, *find_option(table, keyword->name), checked);
+    // A flag set to False is not given (keep_diag=False is every repair's default).
+    if (keyword->type == OptionType::Flag && !std::get<bool>(checked)) continue;
+    given.push_back(keyword->name);
+  }
+  for (std::string_view implied : entry.implied) {
+    set_option(request, *find_option(table, implied), OptionValue{true});
+    given.push_back(implied);
+  }
+  return request;
+}
+
 FitRequest fit_request(std::string_view entry, const pybind11::dict& kwargs, FitRequest request,
                        std::vector<std::string_view>& given);
 NearestRequest nearest_request(std::string_view entry, const pybind11::dict& kwargs,

@@ -6,12 +6,12 @@
 
 #include "bindings.hpp"
 #include "pickle.hpp"
-#include "spdfit/options.hpp"
 #include "spdfit/version.hpp"
 
 PYBIND11_MODULE(_spdfit, m) {
   m.doc() = "Compiled core of spdfit; use the `spdfit` package instead.";
   m.attr("__version__") = spdfit::kVersion;
+  spdfit::python::bind_warning_class(m);
   spdfit::python::bind_io(m);
   spdfit::python::bind_noise(m);
   spdfit::python::bind_results(m);
@@ -24,13 +24,5 @@ PYBIND11_MODULE(_spdfit, m) {
   spdfit::python::bind_experiment(m);
   spdfit::python::bind_blas_core(m);
   spdfit::python::enable_every_protocol(m);  // after every pickled class is bound
-  // The library's messages name options by their library names in backticks (OptionError and
-  // other misuse): Python says them with its own keywords, as a ValueError.
-  pybind11::register_exception_translator([](std::exception_ptr p) {
-    try {
-      if (p) std::rethrow_exception(p);
-    } catch (const std::invalid_argument& e) {
-      PyErr_SetString(PyExc_ValueError, spdfit::spell_options(e.what(), spdfit::Frontend::Python).c_str());
-    }
-  });
+  spdfit::python::bind_outcome(m);  // last: its exception translator is tried first
 }

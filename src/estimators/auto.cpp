@@ -149,7 +149,7 @@ FitResult auto_settle(FitResult first, FitResult fallback, AutoReason& reason, d
                                        : chosen + " failed (" + first.message + ")";
     reason = AutoReason{"boundary", why + ": psd-ls with the floor " + format_number(floor) +
                                         " (1e-8 times the least-squares estimate's norm) instead"};
-    fallback.warnings.insert(fallback.warnings.begin(), "auto: " + reason.text);
+    fallback.warnings.insert(fallback.warnings.begin(), Warning(Code::Boundary, "auto: " + reason.text));
     return fallback;
   }
   const std::string fallback_failure =
@@ -160,10 +160,10 @@ FitResult auto_settle(FitResult first, FitResult fallback, AutoReason& reason, d
     first.message += "; psd-ls, auto's fallback, did not give an estimate either: " + fallback_failure;
     return first;
   }
-  first.warnings.push_back("auto: the estimate is not positive definite (smallest eigenvalue " +
+  first.warnings.push_back(Warning(Code::NotPositiveDefinite, "auto: the estimate is not positive definite (smallest eigenvalue " +
                            format_number(first.diagnostics.min_eigenvalue.value_or(0.0)) + "): " + chosen +
                            " ended on the boundary, and psd-ls, auto's fallback, did not give a positive definite "
-                           "estimate (" + fallback_failure + ")");
+                           "estimate (" + fallback_failure + ")"));
   return first;
 }
 
@@ -176,7 +176,7 @@ FitResult auto_settle_on_boundary(FitResult ml, AutoReason& reason) {
           "matrix): its estimate, of rank " + std::to_string(rank) + " < n = " + std::to_string(ml.X.rows()) +
           ", is the constrained maximum-likelihood estimate over the positive semidefinite matrices, with the noise "
           "model's Sigma_A and Sigma_B (`certificate` holds its optimality conditions)"};
-  ml.warnings.insert(ml.warnings.begin(), "auto: " + reason.text);
+  ml.warnings.insert(ml.warnings.begin(), Warning(Code::Boundary, "auto: " + reason.text));
   return ml;
 }
 
@@ -287,11 +287,11 @@ FitResult auto_fit(const Reduction& reduction) {
       if (noise) {
         // spde has no noise model: it runs without, and says so.
         result = spde(detail::without_noise(reduction));
-        result.warnings.push_back("auto: spde ran without the noise model (it has none): it assumes equal noise "
-                                  "in every column of A and B, in the units given");
+        result.warnings.push_back(Warning(Code::NoiseModelNotice, "auto: spde ran without the noise model (it has none): it assumes equal noise "
+                                  "in every column of A and B, in the units given"));
         // The model auto chose by, and what its factory found, are still the result's.
         result.diagnostics.noise_model = data.options.noise;
-        const std::vector<std::string>& found = data.options.noise->warnings();
+        const std::vector<Warning>& found = data.options.noise->warnings();
         result.warnings.insert(result.warnings.begin(), found.begin(), found.end());
       } else {
         result = spde(reduction);

@@ -32,7 +32,7 @@ void fill_shape_and_ranks(const DynamicReduction& data, Diagnostics& d) {
 // The data's diagnostics. The noise estimate's relative standard error is about sqrt(2 / dof),
 // dof = d (m - n) (a chi-squared sum); below n rows beyond the n the fit uses (m - n < n) it is
 // worth a warning, unless the estimate failed anyway.
-void fill_data_diagnostics(const DynamicReduction& data, Diagnostics& d, std::vector<std::string>& warnings,
+void fill_data_diagnostics(const DynamicReduction& data, Diagnostics& d, std::vector<Warning>& warnings,
                            bool warn_thin_noise_estimate = true) {
   fill_shape_and_ranks(data, d);
   // The noise model used, and what its factory found (a short or moving rest segment), first.
@@ -54,9 +54,9 @@ void fill_data_diagnostics(const DynamicReduction& data, Diagnostics& d, std::ve
   // ill-conditioning. reduce_into computed cond(A D) wherever it may exceed the threshold.
   const double cond_a_scaled = data.cond_a_scaled;
   if (data.rank_a == data.n && cond_a_scaled * kIllConditionedRcond > 1.0) {
-    warnings.push_back("A is ill-conditioned (cond(A) = " + format_number(cond_a_scaled) +
+    warnings.push_back(Warning(Code::IllConditioned, "A is ill-conditioned (cond(A) = " + format_number(cond_a_scaled) +
                        " with its columns scaled to unit norm): the estimate may have lost about " +
-                       format_number(std::floor(std::log10(cond_a_scaled))) + " significant digits");
+                       format_number(std::floor(std::log10(cond_a_scaled))) + " significant digits"));
   }
   // The noise estimate is deferred to its first read (it costs an SVD of the whole factor); the
   // TLS family's own, from their SVD, is kept. Its warning depends on the sizes alone.
@@ -64,16 +64,16 @@ void fill_data_diagnostics(const DynamicReduction& data, Diagnostics& d, std::ve
     if (!d.noise_sigma.pending() && !d.noise_sigma.has_value()) d.noise_sigma = noise_sigma_of(data);
     if (warn_thin_noise_estimate && data.m - data.n < data.n) {
       const double dof = static_cast<double>(data.d) * static_cast<double>(data.m - data.n);
-      warnings.push_back("the noise estimate (noise_sigma) rests on " +
+      warnings.push_back(Warning(Code::NoiseEstimate, "the noise estimate (noise_sigma) rests on " +
                          std::string(data.square() ? "n" : "d") + " (m - n) = " + format_number(dof) +
                          " degrees of freedom (m - n < n), so its relative standard error is about " +
-                         format_number(100.0 * std::sqrt(2.0 / dof)) + "%: more samples make it reliable");
+                         format_number(100.0 * std::sqrt(2.0 / dof)) + "%: more samples make it reliable"));
     }
   }
 }
 
 // The result with the estimate in the data's units, or a failure when it overflowed.
-FitResult checked(Method method, MatrixXd X, Diagnostics d, std::vector<std::string> warnings) {
+FitResult checked(Method method, MatrixXd X, Diagnostics d, std::vector<Warning> warnings) {
   FitResult result;
   result.method = method;
   result.status = Status::Success;
@@ -133,7 +133,7 @@ std::optional<double> scaled_area_criterion(const DynamicReduction& data, const 
 }
 
 FitResult finish(Method method, const DynamicReduction& data, const MatrixXd& X_s, Diagnostics d,
-                 std::vector<std::string> warnings) {
+                 std::vector<Warning> warnings) {
   const int ea = data.exponent_a;
   const int eb = data.exponent_b;
   if (!data.options.diagnostics) {
@@ -177,7 +177,7 @@ FitResult finish(Method method, const DynamicReduction& data, const MatrixXd& X_
 }
 
 FitResult failure(Method method, const DynamicReduction& data, std::string message,
-                  std::vector<std::string> warnings) {
+                  std::vector<Warning> warnings) {
   FitResult result;
   result.method = method;
   result.status = Status::NumericalFailure;

@@ -17,11 +17,11 @@ namespace spdfit::detail {
 /// criterion), appends the common warnings, and converts X to the data's units. The
 /// method-specific diagnostics already in `diagnostics` are kept.
 FitResult finish(Method method, const DynamicReduction& data, const Eigen::MatrixXd& X_s, Diagnostics diagnostics,
-                 std::vector<std::string> warnings);
+                 std::vector<Warning> warnings);
 
 /// A failed result: no estimate, the common diagnostics of the data, and the message.
 FitResult failure(Method method, const DynamicReduction& data, std::string message,
-                  std::vector<std::string> warnings = {});
+                  std::vector<Warning> warnings = {});
 
 /// The area criterion of a symmetric X_s in scaled units (see area_criterion.hpp); nothing
 /// when X_s is not positive semidefinite.

@@ -35,13 +35,13 @@ SPDFIT_FOR_EACH_MAX_N(SPDFIT_INSTANTIATE)
 
 FitResult least_squares(const Reduction& reduction) {
   const detail::DynamicReduction& data = detail::data_of(reduction, Method::LeastSquares);
-  std::vector<std::string> warnings;
+  std::vector<Warning> warnings;
   MatrixXd X_s;
   detail::least_squares_kernel(data, X_s);
   if (data.rank_a < data.n) {
-    warnings.push_back("A is rank-deficient (rank " + std::to_string(data.rank_a) + " < n = " +
+    warnings.push_back(Warning(Code::RankDeficient, "A is rank-deficient (rank " + std::to_string(data.rank_a) + " < n = " +
                        std::to_string(data.n) +
-                       "): returning the minimum-norm least-squares solution from the edited SVD");
+                       "): returning the minimum-norm least-squares solution from the edited SVD"));
   }
   // A noise model does not change A^+ B: with Sigma_B alone it is the maximum-likelihood estimate
   // of an unconstrained X whatever Sigma_B; noise in A it ignores, and says so.

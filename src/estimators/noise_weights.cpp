@@ -60,17 +60,20 @@ std::optional<std::string> noise_refusal(const std::optional<NoiseModel>& model,
   return std::nullopt;
 }
 
-std::optional<std::string> ignored_noise_warning(const DynamicReduction& data, Method method) {
+std::optional<Warning> ignored_noise_warning(const DynamicReduction& data, Method method) {
   const std::optional<NoiseModel>& model = data.options.noise;
   if (!model || model->a_is_zero()) return std::nullopt;
   if (method == Method::LeastSquares) {
-    return "ls models noise in B only and is A^+ B whatever the weight: the noise in A that " + model->option_a() +
-           " gives is ignored (it biases least squares towards zero; tls and spd-tls model it)";
+    return Warning(Code::NoiseModelNotice,
+                   "ls models noise in B only and is A^+ B whatever the weight: the noise in A that " +
+                       model->option_a() + " gives is ignored (it biases least squares towards zero; tls and spd-tls "
+                       "model it)");
   }
   if (method == Method::SymmetricProcrustes || method == Method::PsdLeastSquares) {
-    return std::string(to_string(method)) + " models noise in B only (weighted by " + model->option_b() +
-           "): the noise in A that " + model->option_a() +
-           " gives is ignored (it biases least squares towards zero; spd-tls models it)";
+    return Warning(Code::NoiseModelNotice,
+                   std::string(to_string(method)) + " models noise in B only (weighted by " + model->option_b() +
+                       "): the noise in A that " + model->option_a() +
+                       " gives is ignored (it biases least squares towards zero; spd-tls models it)");
   }
   return std::nullopt;
 }

@@ -31,7 +31,7 @@ std::optional<ScaledNoise> scaled_noise(const DynamicReduction& data);
 
 /// The warning for a method that models noise in B only (ls, procrustes, psd-ls) given a noise
 /// model with noise in A, or nothing.
-std::optional<std::string> ignored_noise_warning(const DynamicReduction& data, Method method);
+std::optional<Warning> ignored_noise_warning(const DynamicReduction& data, Method method);
 
 /// `data` without its noise model: the methods as they run without one (fit_all's spde).
 Reduction without_noise(const Reduction& data);

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "estimators/diagnostics.hpp"
-#include "spdfit/options.hpp"
+#include "spdfit/outcome.hpp"
 #include "estimators/noise_weights.hpp"
 #include "numerics/linalg.hpp"
 #include "estimators/psd_ls_kernel.hpp"
@@ -53,12 +53,12 @@ FitResult psd_least_squares_scaled(const DynamicReduction& data, double epsilon_
                                " is out of floating-point range in the units of the data");
   }
   detail::PsdLsKernel<Eigen::Dynamic> k;
-  std::vector<std::string> warnings;
+  std::vector<Warning> warnings;
   const std::optional<ScaledNoise> noise = scaled_noise(data);
   if (noise) {
     // Weighted by Sigma_B^-1: the unweighted problem on the whitened data with the floor 0
     // (whiten_b), and the certificate recomputed for the weighted problem from the returned X.
-    if (!noise->b_definite) throw OptionError(*noise_refusal(data.options.noise, method));
+    if (!noise->b_definite) throw noise_refusal_error(*noise_refusal(data.options.noise, method), method);
     const WhitenedB w = whiten_b(data, *noise, epsilon_s, true);
     if (!detail::psd_ls_kernel(w.data, 0.0, data.options.max_iterations, k) ||
         !weighted_certificate(data, *noise, w, epsilon_s, k)) {
@@ -69,14 +69,14 @@ FitResult psd_least_squares_scaled(const DynamicReduction& data, double epsilon_
     return detail::failure(method, data, "psd-ls: an eigendecomposition did not converge");
   }
   if (data.rank_a < n) {
-    warnings.push_back("A is rank-deficient (rank " + std::to_string(data.rank_a) + " < n = " + std::to_string(n) +
-                       "): the constrained minimizer is not unique");
+    warnings.push_back(Warning(Code::RankDeficient, "A is rank-deficient (rank " + std::to_string(data.rank_a) + " < n = " + std::to_string(n) +
+                       "): the constrained minimizer is not unique"));
   }
   if (!k.converged) {
-    warnings.push_back("psd-ls did not converge in " + std::to_string(k.iterations) +
+    warnings.push_back(Warning(Code::NotConverged, "psd-ls did not converge in " + std::to_string(k.iterations) +
                        " iterations (relative KKT residual " + detail::format_number(k.kkt_residual) +
                        " > 1e-12): returning the best feasible iterate; raise the iteration limit (" +
-                       std::to_string(data.options.max_iterations) + ")");
+                       std::to_string(data.options.max_iterations) + ")"));
   }
   Diagnostics d;
   d.iterations = k.iterations;

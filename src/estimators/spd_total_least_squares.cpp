@@ -24,11 +24,11 @@ FitResult exact_a(const detail::DynamicReduction& data) {
   FitResult result = detail::psd_least_squares_scaled(data, 0.0);
   result.method = Method::SpdTotalLeastSquares;
   if (result.ok() && !detail::clearly_positive_definite(result.X)) {
-    result.warnings.push_back(
+    result.warnings.push_back(Warning(Code::Boundary, 
         "the infimum of the likelihood criterion over the positive definite matrices is on the boundary: A is "
         "exact, so it is weighted least squares, whose minimizer over the positive semidefinite matrices is "
         "singular (smallest eigenvalue " + detail::format_number(result.diagnostics.min_eigenvalue.value_or(0.0)) +
-        ")");
+        ")"));
   }
   return result;
 }
@@ -80,30 +80,30 @@ FitResult spd_total_least_squares(const Reduction& reduction) {
             "decreasing as an eigenvalue of X grows without bound (the data are too noisy for total least "
             "squares: few rows m for n, or noise comparable to the signal); use spde, or collect more data");
   }
-  std::vector<std::string> warnings;
+  std::vector<Warning> warnings;
   Diagnostics d;
   d.iterations = k.iterations;
   // ||X^1/2 grad f X^1/2|| has the units of f.
   d.gradient_norm = std::ldexp(k.gradient_norm, criterion_exponent);
   d.converged = k.converged;
   if (!k.converged) {
-    warnings.push_back("spd-tls did not converge in " + std::to_string(k.iterations) +
+    warnings.push_back(Warning(Code::NotConverged, "spd-tls did not converge in " + std::to_string(k.iterations) +
                        " iterations (||X^1/2 grad f X^1/2||_F = " + detail::format_number(*d.gradient_norm) +
                        " against the " + criterion_name + " f = " +
                        detail::format_number(std::ldexp(k.criterion, criterion_exponent)) +
                        "): returning the best iterate; raise the iteration limit (" +
-                       std::to_string(data.options.max_iterations) + ")");
+                       std::to_string(data.options.max_iterations) + ")"));
   }
   if (k.boundary_zeros > 0) {
     // The constrained problem's first-order conditions at the returned X, from X itself (without
     // a noise model the TLS criterion is the likelihood criterion with Sigma_A = I, Sigma_B = r^2 I).
     d.boundary_certificate = detail::spd_ml_certificate(
         data, noise ? *noise : detail::equal_scaled_noise(n, *r_s * *r_s), k.X_s, n - k.boundary_zeros);
-    warnings.push_back("the infimum of the " + criterion_name + " over the positive definite matrices is on the boundary: "
+    warnings.push_back(Warning(Code::Boundary, "the infimum of the " + criterion_name + " over the positive definite matrices is on the boundary: "
                        "the criterion keeps decreasing as " + std::to_string(k.boundary_zeros) +
                        " eigenvalue(s) of X go to zero, so the estimate is its minimizer over the positive "
                        "semidefinite matrices (rank " + std::to_string(n - k.boundary_zeros) +
-                       "; `certificate` holds the optimality conditions), not positive definite");
+                       "; `certificate` holds the optimality conditions), not positive definite"));
   }
   return detail::finish(method, data, k.X_s, std::move(d), std::move(warnings));
 }

@@ -64,14 +64,14 @@ FitResult spde(const Reduction& reduction) {
                                "), so the area criterion has no minimizer: "
                                "collect data that excites every direction of A");
   }
-  std::vector<std::string> warnings;
+  std::vector<Warning> warnings;
   MatrixXd X_s;
   const double polar_sum = detail::spde_kernel(data, X_s);
   const Index r = data.rank_b;
   if (r < n) {
-    warnings.push_back("B is rank-deficient (rank " + std::to_string(r) + " < n = " + std::to_string(n) +
+    warnings.push_back(Warning(Code::RankDeficient, "B is rank-deficient (rank " + std::to_string(r) + " < n = " + std::to_string(n) +
                        "): returning the positive semidefinite minimizer of rank " + std::to_string(r) +
-                       " (Chen & McInroy, Corollary III.7)");
+                       " (Chen & McInroy, Corollary III.7)"));
   }
 
   // Corollary III.4: min f = 2 tr(Sigma_Q~ - A^T B); tr(Sigma_Q~) is the sum of the singular
@@ -82,11 +82,11 @@ FitResult spde(const Reduction& reduction) {
 
   FitResult result = detail::finish(Method::Spde, data, X_s, std::move(d), std::move(warnings));
   if (result.ok() && r == n && data.options.diagnostics && !result.diagnostics.positive_definite) {
-    result.warnings.push_back(
+    result.warnings.push_back(Warning(Code::NotPositiveDefinite, 
         "the estimate is positive definite in exact arithmetic but numerically singular "
         "(smallest eigenvalue " +
         detail::format_number(result.diagnostics.min_eigenvalue.value_or(0.0)) + " against largest " +
-        detail::format_number(result.diagnostics.max_eigenvalue.value_or(0.0)) + ")");
+        detail::format_number(result.diagnostics.max_eigenvalue.value_or(0.0)) + ")"));
   }
   return result;
 }

@@ -48,7 +48,7 @@ FitResult symmetric_procrustes(const Reduction& reduction) {
   const detail::DynamicReduction& data = detail::data_of(reduction, Method::SymmetricProcrustes);
   const Index n = data.n;
   const Index r = data.rank_a;
-  std::vector<std::string> warnings;
+  std::vector<Warning> warnings;
   MatrixXd X_s;
   // With a noise model, min sum_i r_i^T Sigma_B^-1 r_i over symmetric X is the unweighted problem
   // on the whitened data (whiten_b): X = C Y C with Y their symmetric Procrustes estimate.
@@ -65,8 +65,8 @@ FitResult symmetric_procrustes(const Reduction& reduction) {
   }
 
   if (r < n) {
-    warnings.push_back("A is rank-deficient (rank " + std::to_string(r) + " < n = " + std::to_string(n) +
-                       "): the symmetric minimizer is not unique; returning the one of minimum norm");
+    warnings.push_back(Warning(Code::RankDeficient, "A is rank-deficient (rank " + std::to_string(r) + " < n = " + std::to_string(n) +
+                       "): the symmetric minimizer is not unique; returning the one of minimum norm"));
   }
 
   // Theorem 3.2 (3): A^T B + B^T A positive definite implies a positive definite estimate (with a
@@ -90,10 +90,10 @@ FitResult symmetric_procrustes(const Reduction& reduction) {
     if (!result.diagnostics.cross_term_positive_definite) {
       result.diagnostics.cross_term_positive_definite = cross_term_positive_definite();
     }
-    result.warnings.push_back(
+    result.warnings.push_back(Warning(Code::NotPositiveDefinite, 
         "the procrustes estimate is not positive definite (smallest eigenvalue " +
         detail::format_number(result.diagnostics.min_eigenvalue.value_or(0.0)) + "); A^T B + B^T A is " +
-        (*result.diagnostics.cross_term_positive_definite ? "positive definite" : "not positive definite"));
+        (*result.diagnostics.cross_term_positive_definite ? "positive definite" : "not positive definite")));
   }
   return result;
 }

@@ -74,7 +74,7 @@ namespace {
 struct TlsCore {
   MatrixXd X_s;
   Diagnostics diagnostics;
-  std::vector<std::string> warnings;
+  std::vector<Warning> warnings;
   std::string error;  // empty on success
 };
 
@@ -87,9 +87,9 @@ TlsCore generalized_tls_core(const detail::DynamicReduction& data, const detail:
   if (k.least_squares) {
     out.X_s = std::move(k.X_s);
     if (data.rank_a < data.n) {
-      out.warnings.push_back("A is rank-deficient (rank " + std::to_string(data.rank_a) + " < n = " +
+      out.warnings.push_back(Warning(Code::RankDeficient, "A is rank-deficient (rank " + std::to_string(data.rank_a) + " < n = " +
                              std::to_string(data.n) +
-                             "): returning the minimum-norm least-squares solution from the edited SVD");
+                             "): returning the minimum-norm least-squares solution from the edited SVD"));
     }
     return out;
   }
@@ -105,10 +105,10 @@ TlsCore generalized_tls_core(const detail::DynamicReduction& data, const detail:
     return out;
   }
   if (!k.unique) {
-    out.warnings.push_back("sigma_n = " + detail::format_number(k.sigma_n) + " and sigma_{n+1} = " +
+    out.warnings.push_back(Warning(Code::IllConditioned, "sigma_n = " + detail::format_number(k.sigma_n) + " and sigma_{n+1} = " +
                            detail::format_number(k.sigma_n1) +
                            " of the whitened [A B] are equal to working precision, so the generalized TLS "
-                           "solution is not unique");
+                           "solution is not unique"));
   }
   out.X_s = std::move(k.X_s);
   return out;
@@ -137,10 +137,10 @@ TlsCore tls_core(const detail::DynamicReduction& data) {
     return out;
   }
   if (!k.unique) {
-    out.warnings.push_back("sigma_n = " + detail::format_number(k.sigma_n) +
+    out.warnings.push_back(Warning(Code::IllConditioned, "sigma_n = " + detail::format_number(k.sigma_n) +
                            " and sigma_{n+1} = " + detail::format_number(k.sigma_n1) +
                            " of [A B] are equal to working precision, so the TLS solution is not unique "
-                           "(the condition of thesis Theorem 4.7 fails)");
+                           "(the condition of thesis Theorem 4.7 fails)"));
   }
   out.X_s = std::move(k.X_s);
   return out;

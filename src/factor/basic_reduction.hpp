@@ -12,7 +12,7 @@
 #include "factor/data_cache.hpp"
 #include "spdfit/fit_options.hpp"
 #include "spdfit/method.hpp"
-#include "spdfit/options.hpp"
+#include "spdfit/outcome.hpp"
 #include "spdfit/reduction.hpp"
 
 namespace spdfit::detail {
@@ -103,6 +103,12 @@ constexpr bool uses_vectors_a(Method method) {
 /// there is none (estimators/noise_weights.hpp says what each method needs).
 std::optional<std::string> noise_refusal(const std::optional<NoiseModel>& model, Method method);
 
+/// The usage error of noise_refusal's text for `method`: Code::OptionNotApplicable for spde (it
+/// takes no noise model), Code::OptionValue for a model the method cannot use.
+inline OptionError noise_refusal_error(const std::string& why, Method method) {
+  return OptionError(why, method == Method::Spde ? Code::OptionNotApplicable : Code::OptionValue, "noise");
+}
+
 /// data_of for `method`: also throws std::invalid_argument when B's columns differ from A's and
 /// the method does not fit a non-square X (non_square_refusal) or cannot use the noise model
 /// (noise_refusal), and std::logic_error when the
@@ -110,7 +116,7 @@ std::optional<std::string> noise_refusal(const std::optional<NoiseModel>& model,
 inline const DynamicReduction& data_of(const Reduction& reduction, Method method) {
   const DynamicReduction& data = data_of(reduction);
   if (auto refusal = non_square_refusal(method, data.n, data.d)) throw std::invalid_argument(*refusal);
-  if (auto refusal = noise_refusal(data.options.noise, method)) throw OptionError(*refusal);
+  if (auto refusal = noise_refusal(data.options.noise, method)) throw noise_refusal_error(*refusal, method);
   if (uses_vectors_a(method) && data.V_a.rows() != data.n) {
     throw std::logic_error(std::string("this Reduction was made for another method, without the singular vectors ") +
                            std::string(to_string(method)) + " needs: make one with spdfit::reduce");

@@ -298,25 +298,25 @@ PhysicalEstimate fit_physical(const TriangularFactor& factor, const PhysicalMode
     }
   }
   if (!converged) {
-    out.warnings.push_back("the optimizer did not converge" + (failure.empty() ? std::string() : ": " + failure) +
-                           "; the estimate is the last iterate");
+    out.warnings.push_back(Warning(Code::NotConverged, "the optimizer did not converge" + (failure.empty() ? std::string() : ": " + failure) +
+                           "; the estimate is the last iterate"));
   }
   if (!options.consistent && !out.physically_consistent) {
-    out.warnings.push_back(
+    out.warnings.push_back(Warning(Code::PhysicalNotice, 
         "the unconstrained estimate is not physically consistent (the pseudo-inertia's smallest eigenvalue is " +
         spdfit::detail::format_number(out.pseudo_inertia_min_eig) + " kg" +
         (out.strut_mass.minCoeff() < 0.0 ? ", strut masses " + list_text(out.strut_mass) + " kg" : std::string()) +
-        "): no rigid body has these mass properties");
+        "): no rigid body has these mass properties"));
   }
   if (options.consistent && out.pseudo_inertia_min_eig <= 1e-6 * out.payload.mass) {
-    out.warnings.push_back(
+    out.warnings.push_back(Warning(Code::Boundary, 
         "the estimate lies on the boundary of physical consistency (the pseudo-inertia's smallest eigenvalue is " +
         spdfit::detail::format_number(out.pseudo_inertia_min_eig) +
-        " kg): the constraint is active, as for a payload whose mass lies on a plane or a line");
+        " kg): the constraint is active, as for a payload whose mass lies on a plane or a line"));
   }
   if (options.consistent && struts > 0 && out.strut_mass.minCoeff() <= 1e-9 * out.payload.mass) {
-    out.warnings.push_back("an estimated strut mass is at its bound 0: strut masses " + list_text(out.strut_mass) +
-                           " kg");
+    out.warnings.push_back(Warning(Code::PhysicalNotice, "an estimated strut mass is at its bound 0: strut masses " + list_text(out.strut_mass) +
+                           " kg"));
   }
   return out;
 }

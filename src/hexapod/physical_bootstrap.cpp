@@ -129,11 +129,11 @@ void bootstrap_physical(PhysicalEstimate& estimate, const Eigen::MatrixXd& A, co
       spdfit::detail::summarize_spectrum(estimate.M_p_eigenvalues, eigenvalues, options.confidence);
   if (with_modes) boot.modes_hz = spdfit::detail::summarize_spectrum(*estimate.modes_hz, modes, options.confidence);
   if (present.size() < 2) {
-    estimate.warnings.push_back("the bootstrap has no standard errors: " + std::to_string(boot.failed) + " of " +
-                                std::to_string(boot.replicates) + " replicates had no estimate");
+    estimate.warnings.push_back(Warning(Code::BootstrapNotice, "the bootstrap has no standard errors: " + std::to_string(boot.failed) + " of " +
+                                std::to_string(boot.replicates) + " replicates had no estimate"));
   } else if (boot.failed * 100 > boot.replicates) {
-    estimate.warnings.push_back(std::to_string(boot.failed) + " of " + std::to_string(boot.replicates) +
-                                " bootstrap replicates had no estimate and were left out");
+    estimate.warnings.push_back(Warning(Code::BootstrapNotice, std::to_string(boot.failed) + " of " + std::to_string(boot.replicates) +
+                                " bootstrap replicates had no estimate and were left out"));
   }
   estimate.bootstrap = std::move(boot);
 }

@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "render/json_values.hpp"
 #include "spdfit/hexapod/physical.hpp"
 
 namespace spdfit::hexapod {
@@ -56,7 +57,7 @@ std::string physical_json(const PhysicalEstimate& e) {
   out["status"] = to_string(e.status);
   if (!e.ok()) {
     out["error"] = e.message;
-    out["warnings"] = e.warnings;
+    spdfit::detail::put_warnings(out, e.warnings);
     return out.dump(2) + "\n";
   }
   out["mass"] = number(e.payload.mass);
@@ -91,7 +92,7 @@ std::string physical_json(const PhysicalEstimate& e) {
                    {"confounded", e.design.confounded}};
   out["m"] = e.m;
   out["rank_a"] = e.rank_a;
-  out["warnings"] = e.warnings;
+  spdfit::detail::put_warnings(out, e.warnings);
   if (const auto& b = e.bootstrap) {
     out["standard_errors"] = entries(*b, &EntryUncertainty::standard_errors, e.strut_masses);
     out["interval"] = {{"level", b->level},

@@ -173,7 +173,7 @@ std::string report(const PhysicalEstimate& e, const Geometry& geometry, const Id
       << format_number(e.certificate.complementarity) << "\n"
       << "design: rank " << e.design.rank << " of " << e.design.parameters << " parameters, condition "
       << format_number(e.design.condition) << "\n";
-  for (const std::string& w : e.warnings) out << "warning: " << w << "\n";
+  for (const Warning& w : e.warnings) out << "warning: " << w.text << "\n";
   return out.str();
 }
 

@@ -2,7 +2,11 @@
 #include "spdfit/hexapod/physical_request.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <string>
+#include <utility>
+
+#include "spdfit/io.hpp"
 
 namespace spdfit::hexapod {
 
@@ -17,8 +21,8 @@ std::vector<Spec> make_table() {
   struts.name = "strut_masses";
   struts.cli = "--fit-strut-mass";
   struts.python = "fit_strut_mass";
-  struts.type = OptionType::Text;
-  struts.value_name = "common|each";
+  struts.type = OptionType::Choice;
+  struts.choices = {"geometry", "common", "each"};
   struts.help =
       "Estimate the struts' moving masses too: one mass common to the six struts, or each strut's "
       "(only where the geometry identifies them; 'geometry' takes the geometry's, not estimated)";
@@ -38,8 +42,8 @@ std::vector<Spec> make_table() {
   criterion.name = "criterion";
   criterion.cli = "--physical-criterion";
   criterion.python = "criterion";
-  criterion.type = OptionType::Text;
-  criterion.value_name = "eiv|ls";
+  criterion.type = OptionType::Choice;
+  criterion.choices = {"eiv", "ls"};
   criterion.help =
       "The physical fit's criterion: errors in variables (eiv: noise in A and B, consistent as m "
       "grows) or least squares (ls: noise in B only, biased towards a lighter payload when A is noisy)";
@@ -65,6 +69,7 @@ std::vector<Spec> make_table() {
       "return a payload that cannot exist";
   consistent.default_text = "True";
   consistent.nullable = false;
+  consistent.excludes = {"unconstrained"};
   consistent.set = [](PhysicalOptions& o, const OptionValue& v) { o.consistent = std::get<bool>(v); };
   consistent.get = [](const PhysicalOptions& o) -> std::optional<OptionValue> { return o.consistent; };
   table.push_back(consistent);
@@ -77,6 +82,7 @@ std::vector<Spec> make_table() {
       "The physical fit without the consistency constraint: the grey-box fit of the same model, "
       "for comparison, which may return a payload that cannot exist";
   unconstrained.nullable = false;
+  unconstrained.excludes = {"consistent"};
   unconstrained.set = [](PhysicalOptions& o, const OptionValue& v) {
     if (std::get<bool>(v)) o.consistent = false;
   };
@@ -108,6 +114,86 @@ void apply_fit_options(const FitOptions& fit, const std::vector<std::string_view
     options.noise_cov_a = model.cov_a();
     options.noise_cov_b = model.cov_b();
   }
+}
+
+namespace {
+
+using FitSpec = OptionSpec<PhysicalRequest>;
+
+std::vector<FitSpec> make_fit_table() {
+  std::vector<FitSpec> table;
+  const auto positional = [&table](std::string_view name, std::string_view python, OptionType type,
+                                   std::string_view help, std::function<void(PhysicalRequest&, const OptionValue&)> set) {
+    FitSpec spec;
+    spec.name = name;
+    spec.python = python;
+    spec.type = type;
+    spec.help = help;
+    spec.positional = true;
+    spec.required = true;
+    spec.set = std::move(set);
+    table.push_back(std::move(spec));
+  };
+  positional("a", "A", OptionType::Matrix, "Accelerations along the struts (m x 6)",
+             [](PhysicalRequest& r, const OptionValue& v) { r.a = std::get<MatrixInput>(v); });
+  positional("b", "B", OptionType::Matrix, "Base forces (m x 6)",
+             [](PhysicalRequest& r, const OptionValue& v) { r.b = std::get<MatrixInput>(v); });
+  positional("geometry", "geometry", OptionType::Geometry, "The hexapod's geometry: the Jacobian and nominal payload",
+             [](PhysicalRequest& r, const OptionValue& v) { r.geometry = std::get<GeometryInput>(v); });
+  for (FitSpec& spec : lifted_options(physical_option_table(), &PhysicalRequest::options)) table.push_back(std::move(spec));
+  for (FitSpec& spec : lifted_options(fit_option_table(), &PhysicalRequest::fit,
+                                      {"rank_tolerance", "noise_cov_a", "noise_cov_b", "max_iterations", "bootstrap",
+                                       "confidence", "seed", "threads"})) {
+    // Given, the iteration limit and the rank cut-off are the physical fit's own (its default
+    // iteration limit is 500: its barrier path takes more Newton steps than the fit's 200).
+    if (spec.name == "max_iterations") {
+      spec.default_text = "500";
+      spec.set = [set = spec.set](PhysicalRequest& r, const OptionValue& v) {
+        set(r, v);
+        r.options.max_iterations = r.fit.options.max_iterations;
+      };
+      spec.get = [](const PhysicalRequest& r) -> std::optional<OptionValue> {
+        return std::int64_t{r.options.max_iterations};
+      };
+    } else if (spec.name == "rank_tolerance") {
+      spec.set = [set = spec.set](PhysicalRequest& r, const OptionValue& v) {
+        set(r, v);
+        r.options.rank_tolerance = r.fit.options.rank_tolerance;
+      };
+    } else if (spec.name == "noise_cov_a" || spec.name == "noise_cov_b") {
+      spec.python = spec.name;
+      spec.help = spec.name == "noise_cov_a" ? "Sigma_A, the 6 x 6 covariance of the noise in a row of A (default: "
+                                               "identity, equal noise in A and B)"
+                                             : "Sigma_B, the 6 x 6 covariance of the noise in a row of B";
+    }
+    table.push_back(std::move(spec));
+  }
+  return trimmed_rules(std::move(table));
+}
+
+}  // namespace
+
+const std::vector<OptionSpec<PhysicalRequest>>& physical_fit_table() {
+  static const std::vector<OptionSpec<PhysicalRequest>> table = make_fit_table();
+  return table;
+}
+
+void check_physical_request(const PhysicalRequest& request, const std::vector<std::string_view>& given) {
+  check_option_combination(physical_fit_table(), given);
+  if (!request.geometry.given()) {
+    throw OptionError("the physical fit needs `geometry`: the Jacobian and the nominal payload come from it",
+                      Code::Argument, "geometry");
+  }
+}
+
+PhysicalEstimate run_physical(const PhysicalRequest& request) {
+  const auto values = [&request](const MatrixInput& m) {
+    return m.from_file() ? io::read_matrix(m.path, request.fit.read) : m.values;
+  };
+  const Geometry geometry = request.geometry.value ? *request.geometry.value : read_geometry(request.geometry.path);
+  PhysicalOptions options = request.options;
+  apply_fit_options(request.fit.resolved_options(6, 6), {}, options);
+  return identify_physical(values(request.a), values(request.b), geometry, options);
 }
 
 }  // namespace spdfit::hexapod

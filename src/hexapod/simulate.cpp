@@ -171,11 +171,11 @@ void simulate_into(const Eigen::MatrixXd& truth, const SimulationOptions& option
   }
 }
 
-std::vector<std::string> simulation_warnings(const Eigen::MatrixXd& truth, const SimulationOptions& options) {
-  std::vector<std::string> warnings;
+std::vector<Warning> simulation_warnings(const Eigen::MatrixXd& truth, const SimulationOptions& options) {
+  std::vector<Warning> warnings;
   if (options.samples < truth.cols()) {
-    warnings.push_back("fewer samples (" + std::to_string(options.samples) + ") than M_p has columns (" +
-                       std::to_string(truth.cols()) + "): the estimators need m >= n");
+    warnings.push_back(Warning(Code::FewSamples, "fewer samples (" + std::to_string(options.samples) + ") than M_p has columns (" +
+                       std::to_string(truth.cols()) + "): the estimators need m >= n"));
   }
   return warnings;
 }

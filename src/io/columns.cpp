@@ -35,7 +35,7 @@ std::string trimmed(std::string_view text) {
 std::string prefix(const ColumnSelection& s) { return "`" + s.option + "` '" + s.spec + "': "; }
 
 [[noreturn]] void fail(const ColumnSelection& s, const std::string& problem) {
-  throw ColumnSelectionError(prefix(s) + problem);
+  throw ColumnSelectionError(prefix(s) + problem, s.option);
 }
 
 End parse_end(const ColumnSelection& s, const std::string& text, const std::string& item) {
@@ -176,7 +176,8 @@ std::vector<std::vector<std::size_t>> resolve_columns(const std::vector<ColumnSe
           if (it->second == k) fail(s, "selects " + label(c) + " twice");
           const ColumnSelection& other = selections[it->second];
           throw ColumnSelectionError("`" + other.option + "` '" + other.spec + "' and `" + s.option + "` '" + s.spec +
-                                     "' both select " + label(c) + ": a column can be in one of them only");
+                                     "' both select " + label(c) + ": a column can be in one of them only",
+                                     s.option);
         }
         chosen.push_back(c);
       }

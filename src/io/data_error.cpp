@@ -23,8 +23,10 @@ std::string format_message(const std::string& source, std::size_t line, std::siz
 
 }  // namespace
 
-DataError::DataError(std::string source, std::size_t line, std::size_t column, const std::string& problem)
+DataError::DataError(std::string source, std::size_t line, std::size_t column, const std::string& problem,
+                     Code code)
     : std::runtime_error(format_message(source, line, column, problem)),
+      Coded(code, source),
       source_(std::move(source)),
       line_(line),
       column_(line > 0 ? column : 0),

@@ -108,16 +108,16 @@ void DelimitedParser::parse_line(const Line& line) {
         keep_header(line);
         if (index_mark) {
           drop_first_ = true;
-          warnings_.push_back(source_ + ": the first column holds row labels (its header cell is empty, as pandas "
+          warnings_.push_back(Warning(Code::FileNotice, source_ + ": the first column holds row labels (its header cell is empty, as pandas "
                               "and R write an index): dropped; --no-index-col reads it as data (Python: "
-                              "index_col=False)");
+                              "index_col=False)"));
         }
         if (pandas_names) {
-          warnings_.push_back(source_ + ":" + std::to_string(line.number) + ": the first line, " +
+          warnings_.push_back(Warning(Code::FileNotice, source_ + ":" + std::to_string(line.number) + ": the first line, " +
                               abbreviated_count(line) +
                               ", is read as a header row (pandas' column names of a frame without names, as "
                               "to_csv(index=False) writes them), not as data; --no-header reads it as data "
-                              "(Python: header=False)");
+                              "(Python: header=False)"));
         }
         return;
       }

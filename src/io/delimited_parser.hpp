@@ -71,7 +71,7 @@ class DelimitedParser {
   void keep_row_labels() { keep_row_labels_ = true; }
   const std::vector<std::string>& row_names() const { return row_names_; }
   /// What the parser decided for the user to know (a first column of row labels dropped).
-  const std::vector<std::string>& warnings() const { return warnings_; }
+  const std::vector<Warning>& warnings() const { return warnings_; }
   /// The values of the rows parsed since the caller last cleared them, row-major.
   std::vector<double>& values() { return values_; }
   const std::vector<double>& values() const { return values_; }
@@ -138,7 +138,7 @@ class DelimitedParser {
   bool index_decided_ = false;
   bool first_column_counts_rows_ = true;
   std::size_t first_data_line_ = 0;
-  std::vector<std::string> warnings_;
+  std::vector<Warning> warnings_;
   bool resumed_ = false;  // built from a Layout: the first lines were parsed elsewhere
 
   // ReadOptions::columns, decided at the first data row: each file column's place in a row of

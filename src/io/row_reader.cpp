@@ -40,7 +40,7 @@ struct RowReader::Source {
   virtual Index read(Index max_rows, Eigen::MatrixXd* rows) = 0;
   virtual Index columns() const = 0;
   virtual const std::vector<std::string>& column_names() const { return no_names; }
-  virtual const std::vector<std::string>& warnings() const { return no_names; }
+  virtual const std::vector<Warning>& warnings() const { return no_warnings; }
   virtual double fraction_read() const = 0;
   virtual std::optional<std::uint64_t> rows_declared() const { return std::nullopt; }
   virtual const std::vector<std::vector<std::size_t>>& selected_columns() const { return selected; }
@@ -58,6 +58,7 @@ struct RowReader::Source {
   std::string path;
   std::uint64_t rows_read = 0;
   std::vector<std::string> no_names;
+  std::vector<Warning> no_warnings;
   std::vector<std::vector<std::size_t>> selected;
   std::vector<Index> projection;
   Eigen::MatrixXd full;
@@ -248,7 +249,7 @@ class RowReader::TextSource final : public RowReader::Source {
   }
   Index columns() const override { return static_cast<Index>(parser_.columns()); }
   const std::vector<std::string>& column_names() const override { return parser_.column_names(); }
-  const std::vector<std::string>& warnings() const override { return parser_.warnings(); }
+  const std::vector<Warning>& warnings() const override { return parser_.warnings(); }
   const std::vector<std::vector<std::size_t>>& selected_columns() const override {
     return parser_.selected_columns();
   }
@@ -365,10 +366,10 @@ class RowReader::MatSource final : public RowReader::Source {
 class RowReader::TableSource final : public RowReader::Source {
  public:
   TableSource(const std::string& path, Table table) : Source(path), table_(std::move(table)) {
-    table_.warnings.push_back(
+    table_.warnings.push_back(Warning(Code::FileNotice, 
         (path == "-" ? std::string("standard input") : path) +
         " is read whole, not a block at a time (text, MATLAB 7.3 files and .npy files named by path are "
-        "streamed; .npz, older .mat files and .npy on standard input are not): memory grows with its rows");
+        "streamed; .npz, older .mat files and .npy on standard input are not): memory grows with its rows"));
   }
   Index read(Index max_rows, Eigen::MatrixXd* rows) override {
     const Index left = table_.values.rows() - static_cast<Index>(rows_read);
@@ -385,7 +386,7 @@ class RowReader::TableSource final : public RowReader::Source {
     return static_cast<double>(rows_read) / static_cast<double>(table_.values.rows());
   }
   const std::vector<std::string>& column_names() const override { return table_.column_names; }
-  const std::vector<std::string>& warnings() const override { return table_.warnings; }
+  const std::vector<Warning>& warnings() const override { return table_.warnings; }
   const std::vector<std::vector<std::size_t>>& selected_columns() const override {
     return table_.selected_columns;
   }
@@ -557,7 +558,7 @@ const std::vector<std::vector<std::size_t>>& RowReader::selected_columns() const
   return source_->selected_columns();
 }
 const std::vector<std::string>& RowReader::column_names() const { return source_->column_names(); }
-const std::vector<std::string>& RowReader::warnings() const { return source_->warnings(); }
+const std::vector<Warning>& RowReader::warnings() const { return source_->warnings(); }
 std::uint64_t RowReader::rows_read() const { return source_->rows_read; }
 double RowReader::fraction_read() const { return source_->fraction_read(); }
 std::optional<std::uint64_t> RowReader::rows_declared() const { return source_->rows_declared(); }

@@ -18,15 +18,15 @@ std::string listed(const std::vector<std::string>& names) {
 }  // namespace
 
 std::vector<std::string> variable_names(const io::LabelledTable& file, const std::string& source,
-                                        std::vector<std::string>* warnings) {
+                                        std::vector<Warning>* warnings) {
   const Eigen::MatrixXd& values = file.table.values;
   const auto n = static_cast<std::size_t>(values.cols());
   const bool header = n > 0 && file.table.column_names.size() == n;
   const bool index = n > 0 && values.rows() == values.cols() && file.row_names.size() == n;
   if (header && index && file.row_names != file.table.column_names && warnings != nullptr) {
-    warnings->push_back(source + ": the row labels (" + listed(file.row_names) + ") differ from the column names (" +
+    warnings->push_back(Warning(Code::FileNotice, source + ": the row labels (" + listed(file.row_names) + ") differ from the column names (" +
                         listed(file.table.column_names) +
-                        "); the result's rows and columns are named by the column names");
+                        "); the result's rows and columns are named by the column names"));
   }
   if (header) return file.table.column_names;
   if (index) return file.row_names;

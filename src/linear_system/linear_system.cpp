@@ -183,9 +183,9 @@ LinearSystemResult solve(const Eigen::Ref<const MatrixXd>& A_in, const Eigen::Re
   // solution's error.
   const double scaled_rcond = 1.0 / r.scaled_condition_number;
   if (scaled_rcond < options.rcond_warning) {
-    r.warnings.push_back("A is ill-conditioned: reciprocal condition number " + format_number(scaled_rcond, Precision::Medium) +
+    r.warnings.push_back(Warning(Code::IllConditioned, "A is ill-conditioned: reciprocal condition number " + format_number(scaled_rcond, Precision::Medium) +
                          " < " + format_number(options.rcond_warning, Precision::Medium) +
-                         " with its columns scaled to unit norm (notes 002, section 3.7.2)");
+                         " with its columns scaled to unit norm (notes 002, section 3.7.2)"));
   }
   r.explanation = detail::explain(r);
   return r;

@@ -56,15 +56,15 @@ LinkageSolution describe(const Eigen::Vector3d& k, const DialZeros& zeros, const
 }
 
 void add_check_warnings(const std::string& which, const LinkageSolution& s,
-                        std::vector<std::string>& warnings) {
+                        std::vector<Warning>& warnings) {
   if (!s.check) return;
   if (s.check->branch_defect)
-    warnings.push_back(which + " linkage has a branch defect: " + s.check->branch_defect_reason);
+    warnings.push_back(Warning(Code::LinkageNotice, which + " linkage has a branch defect: " + s.check->branch_defect_reason));
   if (s.check->transmission.min < kTransmissionLow || s.check->transmission.max > kTransmissionHigh) {
-    warnings.push_back(which + " linkage's transmission angle ranges over " +
+    warnings.push_back(Warning(Code::LinkageNotice, which + " linkage's transmission angle ranges over " +
                        detail::degrees(s.check->transmission.min) + " .. " +
                        detail::degrees(s.check->transmission.max) +
-                       ", outside the usual 40..140 deg: the output is poorly driven there");
+                       ", outside the usual 40..140 deg: the output is poorly driven there"));
   }
 }
 
@@ -158,9 +158,9 @@ SynthesisResult synthesize(const Eigen::Ref<const VectorXd>& delta_psi_in,
   r.scaled_condition_number = design.scaled_condition_number;
   r.used_svd = design.used_svd;
   if (r.used_svd) {
-    r.warnings.push_back(
+    r.warnings.push_back(Warning(Code::LinkageNotice, 
         "the synthesis matrix S is rank-deficient (rank " + std::to_string(r.rank) +
-        " < 3): k is the minimum-norm solution of the edited SVD, and other linkages fit as well");
+        " < 3): k is the minimum-norm solution of the edited SVD, and other linkages fit as well"));
   }
 
   // 2. The assembly branch that follows the prescribed outputs.
@@ -260,9 +260,9 @@ SynthesisResult synthesize(const Eigen::Ref<const VectorXd>& delta_psi_in,
   r.structural.final_step_norm = step_norm;
   r.structural.rounding_limited = rounding_limited;
   if (rounding_limited) {
-    r.warnings.push_back(
+    r.warnings.push_back(Warning(Code::LinkageNotice, 
         "Gauss-Newton stopped at rounding level with ||Delta k|| = " + detail::format(step_norm) +
-        " above the tolerance: the Jacobian D^-1 S is ill-conditioned, so k is only as accurate as that");
+        " above the tolerance: the Jacobian D^-1 S is ill-conditioned, so k is only as accurate as that"));
   }
   add_check_warnings("the structural", r.structural, r.warnings);
   return r;

@@ -26,4 +26,14 @@ Eigen::MatrixXd checked_covariance(const Eigen::MatrixXd& S, const std::string& 
 /// "%.6g"-style text for the noise model's messages.
 std::string number(double value);
 
+/// An option's library name without the backticks messages put around it ("`rest_a`" -> "rest_a"):
+/// the subject of an error about it.
+inline std::string bare(const std::string& option) {
+  std::string out;
+  for (char c : option) {
+    if (c != '`') out += c;
+  }
+  return out;
+}
+
 }  // namespace spdfit::detail

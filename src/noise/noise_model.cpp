@@ -10,7 +10,7 @@
 #include <string>
 
 #include "noise/noise_checks.hpp"
-#include "spdfit/options.hpp"
+#include "spdfit/outcome.hpp"
 
 namespace spdfit {
 
@@ -55,31 +55,31 @@ CovarianceClass classify_covariance(const MatrixXd& S) {
 }
 
 MatrixXd checked_covariance(const MatrixXd& S, const std::string& option) {
-  if (S.size() == 0) throw OptionError(option + " is empty: give a covariance matrix");
+  if (S.size() == 0) throw InputError(option + " is empty: give a covariance matrix", Code::NoiseModel, bare(option));
   if (S.rows() != S.cols()) {
-    throw OptionError(option + " is " + size_text(S) + ": a covariance matrix is square");
+    throw InputError(option + " is " + size_text(S) + ": a covariance matrix is square", Code::NoiseModel, bare(option));
   }
   for (Index j = 0; j < S.cols(); ++j)
     for (Index i = 0; i < S.rows(); ++i)
       if (!std::isfinite(S(i, j))) {
-        throw OptionError(option + " entry (" + std::to_string(i + 1) + ", " + std::to_string(j + 1) +
-                                    ") is " + number(S(i, j)) + ": a covariance is finite");
+        throw InputError(option + " entry (" + std::to_string(i + 1) + ", " + std::to_string(j + 1) +
+                                    ") is " + number(S(i, j)) + ": a covariance is finite", Code::NoiseModel, bare(option));
       }
   const double biggest = S.cwiseAbs().maxCoeff();
   for (Index j = 0; j < S.cols(); ++j)
     for (Index i = 0; i < j; ++i)
       if (std::abs(S(i, j) - S(j, i)) > kSymmetryTolerance * biggest) {
-        throw OptionError(option + " is not symmetric: entry (" + std::to_string(i + 1) + ", " +
+        throw InputError(option + " is not symmetric: entry (" + std::to_string(i + 1) + ", " +
                                     std::to_string(j + 1) + ") is " + number(S(i, j)) + " but entry (" +
                                     std::to_string(j + 1) + ", " + std::to_string(i + 1) + ") is " +
-                                    number(S(j, i)));
+                                    number(S(j, i)), Code::NoiseModel, bare(option));
       }
   MatrixXd symmetric = 0.5 * (S + S.transpose());
   const CovarianceClass c = classify_covariance(symmetric);
   if (!c.zero && !c.semidefinite) {
-    throw OptionError(option + " is not positive semidefinite: its smallest eigenvalue is " +
+    throw InputError(option + " is not positive semidefinite: its smallest eigenvalue is " +
                                 number(c.min_eigenvalue) + " (the largest " + number(c.max_eigenvalue) +
-                                "), and a covariance has no negative eigenvalues");
+                                "), and a covariance has no negative eigenvalues", Code::NoiseModel, bare(option));
   }
   return symmetric;
 }
@@ -90,13 +90,14 @@ namespace {
 
 VectorXd checked_std(const VectorXd& s, const std::string& option) {
   if (s.size() == 0) {
-    throw OptionError(option + " is empty: give one standard deviation for every column, or one for all");
+    throw OptionError(option + " is empty: give one standard deviation for every column, or one for all",
+                      Code::OptionValue, detail::bare(option));
   }
   for (Index i = 0; i < s.size(); ++i) {
     if (!(s(i) >= 0.0) || !std::isfinite(s(i))) {
-      throw OptionError(option + (s.size() > 1 ? " value " + std::to_string(i + 1) : std::string()) +
-                                  " is " + detail::number(s(i)) +
-                                  ": a standard deviation is a finite number >= 0 (0: exact)");
+      throw OptionError(option + (s.size() > 1 ? " value " + std::to_string(i + 1) : std::string()) + " is " +
+                            detail::number(s(i)) + ": a standard deviation is a finite number >= 0 (0: exact)",
+                        Code::OptionValue, detail::bare(option));
     }
   }
   return s;
@@ -106,7 +107,8 @@ VectorXd checked_std(const VectorXd& s, const std::string& option) {
 MatrixXd covariance_of_std(const VectorXd& s, Index columns, const char* side, const std::string& option) {
   if (s.size() != 1 && s.size() != columns) {
     throw OptionError(option + " has " + std::to_string(s.size()) + " values but " + side + " has " +
-                                std::to_string(columns) + " columns: give one for every column, or one for all");
+                          std::to_string(columns) + " columns: give one for every column, or one for all",
+                      Code::OptionValue, detail::bare(option));
   }
   const VectorXd variances = s.size() == 1 ? VectorXd::Constant(columns, s(0) * s(0)) : VectorXd(s.cwiseAbs2());
   return variances.asDiagonal();
@@ -195,12 +197,13 @@ NoiseModel NoiseModel::resolved(Index n, Index d) const {
       const std::string problem = "the rest rows of " + std::string(side) + " (" + option + ") have " +
                                   std::to_string(cov.rows()) + " columns but " + side + " has " +
                                   std::to_string(columns) + ": they must come from the same sensors";
-      if (!path.empty()) throw io::DataError(path, 0, 0, problem);
-      throw OptionError(problem);
+      if (!path.empty()) throw io::DataError(path, 0, 0, problem, Code::NoiseModel);
+      throw InputError(problem, Code::NoiseModel, detail::bare(option));
     }
-    throw OptionError(option + " is " + detail::size_text(cov) + " but " + side + " has " +
-                                std::to_string(columns) + " columns: it must be " + std::to_string(columns) + "x" +
-                                std::to_string(columns));
+    throw InputError(option + " is " + detail::size_text(cov) + " but " + side + " has " +
+                         std::to_string(columns) + " columns: it must be " + std::to_string(columns) + "x" +
+                         std::to_string(columns),
+                     Code::NoiseModel, detail::bare(option));
   };
   check(cov_a_, n, "A", option_a(), rest_a_path_);
   check(cov_b_, d, "B", option_b(), rest_b_path_);

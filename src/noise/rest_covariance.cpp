@@ -9,7 +9,7 @@
 #include "noise/noise_checks.hpp"
 #include "noise/rest_moments.hpp"
 #include "spdfit/noise_model.hpp"
-#include "spdfit/options.hpp"
+#include "spdfit/outcome.hpp"
 #include "spdfit/row_reader.hpp"
 
 namespace spdfit {
@@ -78,12 +78,12 @@ NoiseModel NoiseModel::from_rest_moments(const detail::RowMoments& a, const deta
   const Index widest = std::max(model.cov_a_.rows(), model.cov_b_.rows());
   const double wanted = kRestRowsPerColumn * static_cast<double>(widest);
   if (static_cast<double>(rows) < wanted) {
-    model.warnings_.push_back(
+    model.warnings_.push_back(Warning(Code::NoiseModelNotice, 
         "the rest segment has " + std::to_string(rows) + " rows, fewer than " + detail::number(kRestRowsPerColumn) +
         " per column (" + detail::number(wanted) + " for " + std::to_string(widest) +
         " columns): its covariances are uncertain (the variances' relative standard error is about " +
         detail::number(100.0 * std::sqrt(2.0 / (static_cast<double>(rows) - 1.0))) +
-        "%); record a longer stretch at rest");
+        "%); record a longer stretch at rest"));
   }
   std::string moving;
   for (Index j = 0; j < model.rest_mean_a_.size(); ++j) {
@@ -95,28 +95,30 @@ NoiseModel NoiseModel::from_rest_moments(const detail::RowMoments& a, const deta
     }
   }
   if (!moving.empty()) {
-    model.warnings_.push_back(
+    model.warnings_.push_back(Warning(Code::NoiseModelNotice, 
         "the rest rows of A (`rest_a`) have a mean far from zero for their spread in column(s) " + moving +
-        ": at rest the accelerations are zero; was the machine moving, or is there an offset?");
+        ": at rest the accelerations are zero; was the machine moving, or is there an offset?"));
   }
   return model;
 }
 
 NoiseModel NoiseModel::from_rest(const Eigen::Ref<const MatrixXd>& rest_a, const Eigen::Ref<const MatrixXd>& rest_b) {
   auto check = [](const Eigen::Ref<const MatrixXd>& rows, const char* option) {
-    if (rows.cols() < 1) throw OptionError(std::string(option) + " has no columns");
+    const std::string subject = detail::bare(option);
+    if (rows.cols() < 1) throw InputError(std::string(option) + " has no columns", Code::NoiseModel, subject);
     if (rows.rows() < 2) {
-      throw OptionError(std::string(option) + " has " + std::to_string(rows.rows()) +
-                                  " row(s): a covariance needs at least 2 (and about 10 per column to be trusted)");
+      throw InputError(std::string(option) + " has " + std::to_string(rows.rows()) +
+                           " row(s): a covariance needs at least 2 (and about 10 per column to be trusted)",
+                       Code::NoiseModel, subject);
     }
-    if (!rows.allFinite()) throw OptionError(std::string(option) + " holds NaN or Inf");
+    if (!rows.allFinite()) throw InputError(std::string(option) + " holds NaN or Inf", Code::NoiseModel, subject);
   };
   check(rest_a, "`rest_a`");
   check(rest_b, "`rest_b`");
   if (rest_a.rows() != rest_b.rows()) {
-    throw OptionError("`rest_b` has " + std::to_string(rest_b.rows()) + " rows but `rest_a` has " +
-                                std::to_string(rest_a.rows()) +
-                                ": the rest rows of A and B come from the same stretch of log");
+    throw InputError("`rest_b` has " + std::to_string(rest_b.rows()) + " rows but `rest_a` has " +
+                         std::to_string(rest_a.rows()) + ": the rest rows of A and B come from the same stretch of log",
+                     Code::NoiseModel, "rest_b");
   }
   detail::RowMoments a, b;
   a.add(rest_a);
@@ -126,7 +128,7 @@ NoiseModel NoiseModel::from_rest(const Eigen::Ref<const MatrixXd>& rest_a, const
 
 NoiseModel NoiseModel::from_rest_files(const std::string& rest_a_path, const std::string& rest_b_path,
                                        const io::ReadOptions& read, Index block_rows) {
-  if (block_rows < 1) throw OptionError("`block_rows` must be at least 1");
+  if (block_rows < 1) throw OptionError("`block_rows` must be at least 1", Code::OptionValue, "block_rows");
   io::ReadOptions finite = read;
   finite.allow_nonfinite = false;  // a covariance of NaN is no noise model
   auto stream = [&](const std::string& path, const char* option) {
@@ -137,7 +139,8 @@ NoiseModel NoiseModel::from_rest_files(const std::string& rest_a_path, const std
     if (moments.rows() < 2) {
       throw io::DataError(path, 0, 0,
                           std::string("the rest rows (") + option + ") are " + std::to_string(moments.rows()) +
-                              ": a covariance needs at least 2 (and about 10 per column to be trusted)");
+                              ": a covariance needs at least 2 (and about 10 per column to be trusted)",
+                          Code::NoiseModel);
     }
     return moments;
   };
@@ -147,7 +150,8 @@ NoiseModel NoiseModel::from_rest_files(const std::string& rest_a_path, const std
     throw io::DataError(rest_b_path, 0, 0,
                         "the rest rows of B (`rest_b`) are " + std::to_string(b.rows()) + " but those of A (" +
                             rest_a_path + ") are " + std::to_string(a.rows()) +
-                            ": the rest rows of A and B come from the same stretch of log");
+                            ": the rest rows of A and B come from the same stretch of log",
+                        Code::NoiseModel);
   }
   return from_rest_moments(a, b, rest_a_path, rest_b_path);
 }

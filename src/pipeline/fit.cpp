@@ -57,7 +57,7 @@ namespace {
 // covariance is singular where they need it to be definite): run without the model, saying why.
 FitResult fit_without_noise(const Reduction& data, Method method, const std::string& why) {
   FitResult result = fit(detail::without_noise(data), method);
-  result.warnings.push_back(std::string(to_string(method)) + " ran without the noise model: " + why);
+  result.warnings.push_back(Warning(Code::NoiseModelNotice, std::string(to_string(method)) + " ran without the noise model: " + why));
   return result;
 }
 
@@ -87,7 +87,7 @@ std::vector<FitResult> fit_all(const Reduction& data) {
           tls_family = detail::total_least_squares_family(refusal ? detail::without_noise(data) : data);
           if (refusal) {
             for (FitResult& r : *tls_family) {
-              r.warnings.push_back(std::string(to_string(r.method)) + " ran without the noise model: " + *refusal);
+              r.warnings.push_back(Warning(Code::NoiseModelNotice, std::string(to_string(r.method)) + " ran without the noise model: " + *refusal));
             }
           }
         }

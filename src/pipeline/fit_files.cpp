@@ -126,7 +126,7 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
   std::string error;
   if (!options.is_valid(&error)) throw OptionError(error);
   // A noise model the method cannot use is refused before any file is read.
-  if (auto refusal = detail::noise_refusal(options.noise, method)) throw OptionError(*refusal);
+  if (auto refusal = detail::noise_refusal(options.noise, method)) throw detail::noise_refusal_error(*refusal, method);
   std::optional<StreamOptions> streamed = stream;
   if (streamed) streamed->read = read;  // one way of reading, whichever path
   // Standard input is read once: with a streaming bootstrap its text is kept while it is streamed
@@ -199,8 +199,8 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
     const std::string which = kept_input ? "its rows (" + megabytes + ", within the " + budget +
                                                " allowed; standard input's text kept from the streaming pass)"
                                          : "its rows (" + megabytes + ", within the " + budget + " allowed)";
-    result.warnings.push_back(detail::too_few_groups(
-        rows, which + " were resampled one at a time in memory instead (the in-memory bootstrap)"));
+    result.warnings.push_back(Warning(Code::BootstrapNotice, detail::too_few_groups(
+        rows, which + " were resampled one at a time in memory instead (the in-memory bootstrap)")));
     return result;
   }
   if (streamed) {

@@ -29,6 +29,10 @@ std::optional<OptionValue> text_value(const std::string& value) {
   if (value.empty()) return std::nullopt;
   return value;
 }
+std::optional<OptionValue> matrix_value(const MatrixInput& value) {
+  if (!value.given()) return std::nullopt;
+  return value;
+}
 std::optional<OptionValue> list_value(const std::vector<double>& values) {
   if (values.empty()) return std::nullopt;
   return values;
@@ -127,20 +131,20 @@ std::vector<Spec> make_table() {
   table.push_back(noise);
 
   const std::string_view rest_pair = "`rest_a` and `rest_b` come together: the rows of A and of B recorded at rest";
-  Spec rest_a = noise_source("rest_a", "rest_b", "--rest-a", OptionType::Text, "FILE",
+  Spec rest_a = noise_source("rest_a", "rest_b", "--rest-a", OptionType::Matrix, "FILE",
                              "Rows of A recorded with the machine at rest (accelerations zero; any format A "
                              "takes, streamed): the noise model's Sigma_A is their sample covariance. "
                              "Default: equal noise in every column of A and B, in the units given",
                              rest_pair);
-  rest_a.set = [](FitRequest& r, const OptionValue& v) { r.noise_inputs.rest_a = text(v); };
-  rest_a.get = [](const FitRequest& r) { return text_value(r.noise_inputs.rest_a); };
+  rest_a.set = [](FitRequest& r, const OptionValue& v) { r.noise_inputs.rest_a = std::get<MatrixInput>(v); };
+  rest_a.get = [](const FitRequest& r) { return matrix_value(r.noise_inputs.rest_a); };
   table.push_back(rest_a);
-  Spec rest_b = noise_source("rest_b", "rest_a", "--rest-b", OptionType::Text, "FILE",
+  Spec rest_b = noise_source("rest_b", "rest_a", "--rest-b", OptionType::Matrix, "FILE",
                              "Rows of B recorded at rest, as many as `rest_a`'s (forces constant): Sigma_B is "
                              "their sample covariance about their mean, so a static load is not noise",
                              rest_pair);
-  rest_b.set = [](FitRequest& r, const OptionValue& v) { r.noise_inputs.rest_b = text(v); };
-  rest_b.get = [](const FitRequest& r) { return text_value(r.noise_inputs.rest_b); };
+  rest_b.set = [](FitRequest& r, const OptionValue& v) { r.noise_inputs.rest_b = std::get<MatrixInput>(v); };
+  rest_b.get = [](const FitRequest& r) { return matrix_value(r.noise_inputs.rest_b); };
   table.push_back(rest_b);
 
   const std::string_view std_pair =
@@ -159,17 +163,17 @@ std::vector<Spec> make_table() {
   table.push_back(std_b);
 
   const std::string_view cov_pair = "`noise_cov_a` and `noise_cov_b` come together: give the covariances of both";
-  Spec cov_a = noise_source("noise_cov_a", "noise_cov_b", "--noise-cov-a", OptionType::Text, "FILE",
+  Spec cov_a = noise_source("noise_cov_a", "noise_cov_b", "--noise-cov-a", OptionType::Matrix, "FILE",
                             "File of Sigma_A, the covariance of the noise in a row of A (n x n, symmetric positive "
                             "semidefinite)",
                             cov_pair);
-  cov_a.set = [](FitRequest& r, const OptionValue& v) { r.noise_inputs.cov_a = text(v); };
-  cov_a.get = [](const FitRequest& r) { return text_value(r.noise_inputs.cov_a); };
+  cov_a.set = [](FitRequest& r, const OptionValue& v) { r.noise_inputs.cov_a = std::get<MatrixInput>(v); };
+  cov_a.get = [](const FitRequest& r) { return matrix_value(r.noise_inputs.cov_a); };
   table.push_back(cov_a);
-  Spec cov_b = noise_source("noise_cov_b", "noise_cov_a", "--noise-cov-b", OptionType::Text, "FILE",
+  Spec cov_b = noise_source("noise_cov_b", "noise_cov_a", "--noise-cov-b", OptionType::Matrix, "FILE",
                             "File of Sigma_B, the covariance of the noise in a row of B (d x d)", cov_pair);
-  cov_b.set = [](FitRequest& r, const OptionValue& v) { r.noise_inputs.cov_b = text(v); };
-  cov_b.get = [](const FitRequest& r) { return text_value(r.noise_inputs.cov_b); };
+  cov_b.set = [](FitRequest& r, const OptionValue& v) { r.noise_inputs.cov_b = std::get<MatrixInput>(v); };
+  cov_b.get = [](const FitRequest& r) { return matrix_value(r.noise_inputs.cov_b); };
   table.push_back(cov_b);
 
   Spec iterations;
@@ -300,7 +304,7 @@ std::vector<Spec> make_table() {
   a_cols.name = "a_cols";
   a_cols.cli = "--a-cols";
   a_cols.python = "a_cols";
-  a_cols.type = OptionType::Text;
+  a_cols.type = OptionType::Columns;
   a_cols.value_name = "COLUMNS";
   a_cols.help = "A and B from one file: A's columns by header name or 1-based position (digits are positions), "
                 "inclusive ranges and lists: acc1:acc6, 2:7, 1,3,5, 2:4,F1; the other columns are ignored";
@@ -313,7 +317,7 @@ std::vector<Spec> make_table() {
   b_cols.name = "b_cols";
   b_cols.cli = "--b-cols";
   b_cols.python = "b_cols";
-  b_cols.type = OptionType::Text;
+  b_cols.type = OptionType::Columns;
   b_cols.value_name = "COLUMNS";
   b_cols.help = "B's columns in the same file, as `a_cols` (no column in both)";
   b_cols.needs = {"a_cols"};
@@ -363,18 +367,29 @@ FitOptions FitRequest::resolved_options() const {
   }
   FitOptions out = options;
   const NoiseInputs& in = noise_inputs;
-  if (!in.rest_a.empty() || !in.rest_b.empty()) {
-    if (in.rest_a.empty() || in.rest_b.empty()) throw OptionError("`rest_a` and `rest_b` come together");
-    out.noise = NoiseModel::from_rest_files(in.rest_a, in.rest_b, read, block_rows);
+  // A matrix given as a file or as values (MATLAB's; the command line's numbers in one row).
+  const auto values = [this](const MatrixInput& m) { return m.from_file() ? io::read_matrix(m.path, read) : m.values; };
+  if (in.rest_a.given() || in.rest_b.given()) {
+    if (!in.rest_a.given() || !in.rest_b.given()) {
+      throw OptionError("`rest_a` and `rest_b` come together", Code::OptionConflict, "rest_a");
+    }
+    if (in.rest_a.from_file() && in.rest_b.from_file()) {
+      out.noise = NoiseModel::from_rest_files(in.rest_a.path, in.rest_b.path, read, block_rows);
+    } else {
+      const Eigen::MatrixXd rest_a = values(in.rest_a), rest_b = values(in.rest_b);
+      out.noise = detail::naming_noise_files(in, [&] { return NoiseModel::from_rest(rest_a, rest_b); });
+    }
   } else if (!in.std_a.empty() || !in.std_b.empty()) {
     const auto vector = [](const std::vector<double>& v) {
       return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(v.data(), Eigen::Index(v.size())));
     };
     out.noise = NoiseModel::from_std(vector(in.std_a), vector(in.std_b));
   } else {
-    if (in.cov_a.empty() || in.cov_b.empty()) throw OptionError("`noise_cov_a` and `noise_cov_b` come together");
-    const Eigen::MatrixXd cov_a = io::read_matrix(in.cov_a, read);
-    const Eigen::MatrixXd cov_b = io::read_matrix(in.cov_b, read);
+    if (!in.cov_a.given() || !in.cov_b.given()) {
+      throw OptionError("`noise_cov_a` and `noise_cov_b` come together", Code::OptionConflict, "noise_cov_a");
+    }
+    const Eigen::MatrixXd cov_a = values(in.cov_a);
+    const Eigen::MatrixXd cov_b = values(in.cov_b);
     out.noise = detail::naming_noise_files(in, [&] { return NoiseModel::from_cov(cov_a, cov_b); });
   }
   return out;
@@ -396,21 +411,6 @@ const std::vector<std::string_view>& noise_option_names() {
 }
 
 bool FitRequest::is_valid(std::string* error) const { return options_in_range(*this, fit_option_table(), error); }
-
-bool FitOptions::is_valid(std::string* error) const {
-  if (noise && noise_ratio != 1.0) {
-    if (error) {
-      *error = "`noise_ratio` cannot be combined with a noise model (" + noise->option_a() + ", " +
-               noise->option_b() + "): the noise model gives the noise in A and in B, and so their ratio";
-    }
-    return false;
-  }
-  FitRequest request;
-  request.options = *this;
-  request.options.progress = nullptr;  // a copy of the options' numbers only
-  request.options.noise.reset();       // the table checks the numbers; the model checked itself
-  return request.is_valid(error);
-}
 
 void check_fit_request(const FitRequest& request, const std::vector<std::string_view>& given) {
   std::vector<std::pair<std::string, FitRequest>> methods;

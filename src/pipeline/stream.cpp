@@ -228,7 +228,7 @@ class PairReader {
 }  // namespace
 
 TriangularFactor stream_factor(const std::string& a_path, const std::string& b_path,
-                               const StreamOptions& options, std::vector<std::string>* warnings) {
+                               const StreamOptions& options, std::vector<Warning>* warnings) {
   detail::PairInfo info;
   TriangularFactor factor = detail::stream_factor_for(std::nullopt, a_path, b_path, options, &info);
   if (warnings) *warnings = std::move(info.warnings);

@@ -20,7 +20,7 @@ namespace spdfit::detail {
 /// What the readers of A and B found besides the rows: their warnings (A's, then B's) and their
 /// column names.
 struct PairInfo {
-  std::vector<std::string> warnings;
+  std::vector<Warning> warnings;
   std::vector<std::string> a_names, b_names;
   /// A and B from one file: the columns of each (FitResult::a_columns).
   std::string a_columns, b_columns;

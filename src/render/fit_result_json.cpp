@@ -248,7 +248,7 @@ Json fit_result_json(const FitResult& result, JsonStyle style) {
     out["b_columns"] = result.b_columns;
   }
   out["diagnostics"] = diagnostics_json(result.diagnostics, style);
-  out["warnings"] = result.warnings;
+  put_warnings(out, result.warnings);
   // Exact keeps a message that a successful result should not have, too.
   if (!result.ok() || (style == JsonStyle::Exact && !result.message.empty())) out["error"] = result.message;
   if (const auto& b = result.bootstrap) {
@@ -274,7 +274,7 @@ FitResult fit_result_from(const Json& object, const std::string& type) {
     r.a_columns = value_from<std::string>(object, "a_columns", type);
     r.b_columns = value_from<std::string>(object, "b_columns", type);
   }
-  r.warnings = value_from<std::vector<std::string>>(object, "warnings", type);
+  r.warnings = warnings_from(object, type);
   if (optional_field(object, "error")) r.message = value_from<std::string>(object, "error", type);
   // (A hexapod identification's entry may hold only the modes' intervals there.)
   const Json* details = optional_field(object, "bootstrap");

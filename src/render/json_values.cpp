@@ -118,4 +118,27 @@ std::optional<double> optional_number_from(const Json& object, const char* key, 
   return number_from(*value, type + " '" + key + "'");
 }
 
+std::vector<Warning> warnings_from(const Json& object, const std::string& type) {
+  const std::vector<std::string> texts = value_from<std::vector<std::string>>(object, "warnings", type);
+  std::vector<std::string> names;
+  if (optional_field(object, "warning_codes") != nullptr) {
+    names = value_from<std::vector<std::string>>(object, "warning_codes", type);
+    if (names.size() != texts.size()) {
+      throw std::invalid_argument(type + ": 'warning_codes' has " + std::to_string(names.size()) +
+                                  " entries but 'warnings' " + std::to_string(texts.size()));
+    }
+  }
+  std::vector<Warning> out;
+  for (std::size_t i = 0; i < texts.size(); ++i) {
+    Code code = Code::Warning;
+    if (!names.empty()) {
+      const std::optional<Code> named = code_named(names[i]);
+      if (!named) throw std::invalid_argument(type + ": 'warning_codes' has an unknown code '" + names[i] + "'");
+      code = *named;
+    }
+    out.emplace_back(code, texts[i]);
+  }
+  return out;
+}
+
 }  // namespace spdfit::detail

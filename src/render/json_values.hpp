@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
+#include "spdfit/outcome.hpp"
 #include "spdfit/render.hpp"
 
 namespace spdfit::detail {
@@ -54,6 +55,22 @@ T value_from(const Json& object, const char* key, const std::string& type) {
     throw std::invalid_argument(type + ": '" + key + "' has the wrong type (" + value.type_name() + ")");
   }
 }
+
+/// A result's warnings: their texts as "warnings" and their codes' names as "warning_codes"
+/// (in a json or an ordered_json object).
+template <typename Object>
+void put_warnings(Object& object, const std::vector<Warning>& warnings) {
+  Object texts = Object::array(), codes = Object::array();
+  for (const Warning& w : warnings) {
+    texts.push_back(w.text);
+    codes.push_back(std::string(code_info(w.code).name));
+  }
+  object["warnings"] = std::move(texts);
+  object["warning_codes"] = std::move(codes);
+}
+/// What put_warnings wrote; without "warning_codes" (a document written before codes), each
+/// warning's code is Code::Warning.
+std::vector<Warning> warnings_from(const Json& object, const std::string& type);
 
 /// An optional number: written when present, read as absent when the key is missing.
 void put_optional(Json& object, const char* key, const std::optional<double>& value, JsonStyle style);

@@ -77,7 +77,7 @@ std::string to_json(const LinearSystemResult& r, JsonStyle style) {
   }
   out["columns"] = columns;
   out["explanation"] = r.explanation;
-  out["warnings"] = r.warnings;
+  detail::put_warnings(out, r.warnings);
   if (style == JsonStyle::Exact) {
     out["status"] = r.ok() ? "success" : "numerical_failure";
     out["message"] = r.message;
@@ -143,7 +143,7 @@ LinearSystemResult from_json<LinearSystemResult>(const std::string& text) {
   r.null_space = detail::columns_from(detail::field(object, "null_space", type), type + " 'null_space'", r.n);
   r.range = detail::columns_from(detail::field(object, "range", type), type + " 'range'", r.m);
   r.explanation = detail::value_from<std::string>(object, "explanation", type);
-  r.warnings = detail::value_from<std::vector<std::string>>(object, "warnings", type);
+  r.warnings = detail::warnings_from(object, type);
   return r;
 }
 

@@ -1,6 +1,7 @@
 // A repair's result as JSON (the result part of `spdfit nearest --json`).
 #include "render/json_values.hpp"
 #include "spdfit/labels.hpp"
+#include "spdfit/nearest_request.hpp"
 
 namespace spdfit {
 
@@ -19,7 +20,7 @@ Json nearest_json(const NearestResult& r, JsonStyle style) {
   out["gradient_norm"] = detail::number_json(r.gradient_norm, style);
   out["converged"] = r.converged;
   out["cholesky"] = r.cholesky_ok;
-  out["warnings"] = r.warnings;
+  detail::put_warnings(out, r.warnings);
   return out;
 }
 }  // namespace
@@ -29,6 +30,19 @@ std::string to_json(const NearestResult& r, JsonStyle style) { return detail::du
 std::string to_json(const NearestResult& r, const std::vector<std::string>& names, JsonStyle style) {
   Json out = nearest_json(r, style);
   if (!names.empty()) out["names"] = names;
+  return detail::dump(out, style);
+}
+
+std::string to_json(const NearestRun& run, JsonStyle style) {
+  Json out = nearest_json(run.result, style);
+  if (!run.names.empty()) out["names"] = run.names;
+  const EigenvalueFloor floor = run.repair.floor();
+  // The options the repair ran with.
+  out["corr"] = run.repair.corr;
+  out["keep_diag"] = run.repair.keep_diag;
+  out["via_corr"] = run.repair.via_corr;
+  out["min_eig_rel"] = floor.relative ? detail::number_json(floor.value, style) : Json(nullptr);
+  out["alpha"] = detail::number_json(run.repair.alpha.value_or(0.0), style);
   return detail::dump(out, style);
 }
 
@@ -49,7 +63,7 @@ NearestResult from_json<NearestResult>(const std::string& text) {
   r.gradient_norm = number("gradient_norm");
   r.converged = detail::value_from<bool>(object, "converged", type);
   r.cholesky_ok = detail::value_from<bool>(object, "cholesky", type);
-  r.warnings = detail::value_from<std::vector<std::string>>(object, "warnings", type);
+  r.warnings = detail::warnings_from(object, type);
   return r;
 }
 

@@ -22,7 +22,7 @@ struct NoiseModelJson {
     if (m.rest_mean_b_.size() > 0) out["rest_mean_b"] = vector_json(m.rest_mean_b_, style);
     if (!m.rest_a_path_.empty()) out["rest_a_path"] = m.rest_a_path_;
     if (!m.rest_b_path_.empty()) out["rest_b_path"] = m.rest_b_path_;
-    out["warnings"] = m.warnings_;
+    put_warnings(out, m.warnings_);
     return out;
   }
 
@@ -51,7 +51,7 @@ struct NoiseModelJson {
     m.rest_mean_b_ = vector("rest_mean_b");
     if (optional_field(object, "rest_a_path")) m.rest_a_path_ = value_from<std::string>(object, "rest_a_path", type);
     if (optional_field(object, "rest_b_path")) m.rest_b_path_ = value_from<std::string>(object, "rest_b_path", type);
-    m.warnings_ = value_from<std::vector<std::string>>(object, "warnings", type);
+    m.warnings_ = warnings_from(object, type);
     m.classify();  // zero and definite: derived from the covariances, as the factories derive them
     return m;
   }

@@ -130,7 +130,7 @@ struct Prepared {
   // With a floor of the correlation matrix: the extreme eigenvalues of D^-1/2 S D^-1/2.
   double correlation_min = 0.0, correlation_max = 0.0;
   Spectrum spectrum;  // with eigenvectors when the Newton method's first step can use them
-  std::vector<std::string> warnings;
+  std::vector<Warning> warnings;
 };
 
 // `d` the diagonal the repair keeps (empty: C's own); `of_correlation`: the floor applies to the
@@ -235,9 +235,9 @@ NearestResult repair(const Eigen::Ref<const MatrixXd>& C, FixedDiagonalProblem& 
     out.converged = s.converged;
     out.clipped = s.clipped;
     if (!out.converged) {
-      out.warnings.push_back("not converged within " + std::to_string(options.max_iterations) +
+      out.warnings.push_back(Warning(Code::NotConverged, "not converged within " + std::to_string(options.max_iterations) +
                              " iterations (||diag(X) - d|| = " + detail::format_number(out.gradient_norm) +
-                             "): the best iterate, rescaled to the diagonal");
+                             "): the best iterate, rescaled to the diagonal"));
     }
   }
   out.distance = weighted_distance(out.X, C, p.w);
@@ -301,11 +301,11 @@ NearestResult nearest_correlation(const Eigen::Ref<const MatrixXd>& C, const Nea
   // one becomes about I), more often a wrong option than intended.
   const double off = (prepared.S.diagonal().array() - 1.0).abs().maxCoeff();
   if (off > 1e-6) {
-    prepared.warnings.push_back("the diagonal is not 1 (it ranges from " +
+    prepared.warnings.push_back(Warning(Code::Warning, "the diagonal is not 1 (it ranges from " +
                                 detail::format_number(prepared.S.diagonal().minCoeff()) + " to " +
                                 detail::format_number(prepared.S.diagonal().maxCoeff()) +
                                 "): it was repaired to a correlation matrix (unit diagonal); to keep a covariance's variances "
-                                "instead, repair it with its diagonal kept (`keep_diag` or `via_corr`)");
+                                "instead, repair it with its diagonal kept (`keep_diag` or `via_corr`)"));
   }
   FixedDiagonalProblem p{std::move(prepared.S), VectorXd::Ones(n), prepared.w, floor, false, option_of(options)};
   return repair(C, p, prepared, options);

@@ -1,8 +1,12 @@
 // The repairs' option table: each option declared once, with everything the front ends need.
 #include "spdfit/nearest_request.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
+
+#include "spdfit/labels.hpp"
 
 namespace spdfit {
 
@@ -107,15 +111,12 @@ std::vector<Spec> make_table() {
   weights.name = "weights";
   weights.cli = "--weights";
   weights.python = "weights";
-  weights.type = OptionType::Vector;
+  weights.type = OptionType::Matrix;
   weights.value_name = "FILE";
   weights.help = "With `corr`, `keep_diag` or `via_corr`: n positive diagonal weights w; minimizes "
                  "||W^1/2 (X - C) W^1/2||_F, W = diag(w)";
   weights.needs = kNewtonFlags;
-  weights.set = [](NearestRequest& r, const OptionValue& v) {
-    const auto& w = std::get<std::vector<double>>(v);
-    r.weights = Eigen::Map<const Eigen::VectorXd>(w.data(), Eigen::Index(w.size()));
-  };
+  weights.set = [](NearestRequest& r, const OptionValue& v) { r.weights = std::get<MatrixInput>(v); };
   table.push_back(weights);
 
   Spec iterations;
@@ -157,7 +158,14 @@ EigenvalueFloor NearestRequest::floor() const { return EigenvalueFloor::chosen(m
 NearestCorrelationOptions NearestRequest::correlation_options() const {
   NearestCorrelationOptions options;
   options.floor = floor();
-  options.weights = weights;
+  if (weights.from_file()) throw std::invalid_argument("the weights' file is read by run_nearest: give their values");
+  const Eigen::MatrixXd& w = weights.values;
+  if (w.size() > 0 && w.rows() != 1 && w.cols() != 1) {
+    throw InputError("the weights are " + std::to_string(w.rows()) + "x" + std::to_string(w.cols()) +
+                         ": give one per row of X, as one column or one row",
+                     Code::DataShape, "weights");
+  }
+  if (w.size() > 0) options.weights = Eigen::Map<const Eigen::VectorXd>(w.data(), w.size());
   options.alpha = alpha.value_or(options.alpha);
   options.max_iterations = max_iterations;
   options.tolerance = tolerance;
@@ -180,6 +188,104 @@ NearestResult nearest(const Eigen::Ref<const Eigen::MatrixXd>& C, const NearestR
   return request.corr        ? nearest_correlation(C, options)
          : request.keep_diag ? nearest_keep_diagonal(C, options)
                              : nearest_via_correlation(C, options);
+}
+
+namespace {
+
+using CommandSpec = OptionSpec<NearestCommand>;
+
+std::vector<CommandSpec> make_command_table() {
+  std::vector<CommandSpec> table;
+  CommandSpec x;
+  x.name = "x";
+  x.cli = "X";
+  x.type = OptionType::Matrix;
+  x.help = "File of X (n x n): delimited text or .npy";
+  x.positional = true;
+  x.required = true;
+  x.set = [](NearestCommand& c, const OptionValue& v) { c.matrix = std::get<MatrixInput>(v); };
+  table.push_back(x);
+  for (CommandSpec& spec : lifted_options(nearest_option_table(), &NearestCommand::repair)) table.push_back(std::move(spec));
+  for (CommandSpec& spec : output_options(
+           &NearestCommand::output, {"json", "header", "output"},
+           {"Print the result and its diagnostics as JSON (with the variables' names, when X's file has them)",
+            "Print X as CSV with a header row and row labels: the names of X's file (its header row, else its "
+            "index column; numbers where it has none), as pandas' read_csv(..., index_col=0) reads them",
+            "Write to FILE instead of stdout (X.npy: X as a NumPy file)"})) {
+    table.push_back(std::move(spec));
+  }
+  return table;
+}
+
+// One row too many in text, the first of consecutive integers (0, 1, ..., 7 or 1, 2, ..., 8): a
+// header of numbers read as data.
+bool counts_up(const Eigen::MatrixXd& X) {
+  for (Eigen::Index j = 0; j < X.cols(); ++j) {
+    if (X(0, j) != X(0, 0) + static_cast<double>(j) || X(0, j) != std::floor(X(0, j))) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+const std::vector<OptionSpec<NearestCommand>>& nearest_command_table() {
+  static const std::vector<OptionSpec<NearestCommand>> table = make_command_table();
+  return table;
+}
+
+NearestRun run_nearest(const NearestCommand& command) {
+  NearestRun run;
+  run.repair = command.repair;
+  Eigen::MatrixXd X;
+  const std::string& path = command.matrix.path;
+  if (command.matrix.from_file()) {
+    // With the labels of an index column: the names of X's variables (df.cov().to_csv()).
+    io::LabelledTable labelled = io::read_labelled_table(path, command.read);
+    std::vector<Warning> name_warnings;
+    run.names = variable_names(labelled, path, &name_warnings);
+    io::Table& file = labelled.table;
+    run.warnings = std::move(file.warnings);
+    X = std::move(file.values);
+    if (X.rows() != X.cols()) {
+      std::string problem =
+          "X is " + std::to_string(X.rows()) + "x" + std::to_string(X.cols()) + ": a square matrix is needed";
+      if (X.rows() == X.cols() + 1 && X.cols() >= 3 && file.first_data_line > 0 && counts_up(X)) {
+        problem += "; line " + std::to_string(file.first_data_line) +
+                   ", its first row, looks like a header of column names" +
+                   (command.read.header_row == io::HeaderRow::Absent
+                        ? " (read as data because of --no-header)"
+                        : ": delete it or give names that are not numbers");
+      }
+      throw io::DataError(path, 0, 0, problem, Code::DataShape);
+    }
+    run.warnings.insert(run.warnings.end(), name_warnings.begin(), name_warnings.end());
+  } else {
+    X = command.matrix.values;
+  }
+  if (command.repair.weights.from_file()) {
+    const Eigen::MatrixXd W = io::read_matrix(command.repair.weights.path, command.read);
+    const Eigen::Index n = X.rows();
+    if (W.size() != n || (W.rows() != 1 && W.cols() != 1)) {
+      throw io::DataError(command.repair.weights.path, 0, 0,
+                          "the weights are " + std::to_string(W.rows()) + "x" + std::to_string(W.cols()) +
+                              ": give " + std::to_string(n) + " numbers (one per row of X) as one column or one row",
+                          Code::DataShape);
+    }
+    NearestCorrelationOptions weighted;
+    weighted.weights = Eigen::Map<const Eigen::VectorXd>(W.data(), n);
+    std::string error;
+    if (!weighted.is_valid(n, &error)) throw io::DataError(command.repair.weights.path, 0, 0, error, Code::DataValue);
+    run.repair.weights = MatrixInput{{}, W};
+  }
+  try {
+    run.result = nearest(X, run.repair);
+  } catch (const std::invalid_argument& e) {
+    const Code code = tier(code_of(e)) == Tier::Data ? code_of(e) : Code::DataValue;
+    if (command.matrix.from_file()) throw io::DataError(path, 0, 0, e.what(), code);
+    throw;
+  }
+  run.warnings.insert(run.warnings.end(), run.result.warnings.begin(), run.result.warnings.end());
+  return run;
 }
 
 }  // namespace spdfit

@@ -108,10 +108,10 @@ NearestResult nearest_spd(const Eigen::Ref<const MatrixXd>& X, EigenvalueFloor f
   if (out.clipped > 0) {
     // The repair changed the spectrum: say how much of it, so that a user who expected an
     // already valid matrix learns that it was not.
-    out.warnings.push_back(std::to_string(out.clipped) + " eigenvalue(s) of the symmetric part were below " +
+    out.warnings.push_back(Warning(Code::EigenvaluesRaised, std::to_string(out.clipped) + " eigenvalue(s) of the symmetric part were below " +
                            format_number(out.min_eig) +
                            (floor.relative ? " (" + format_number(floor.value) + " x the largest eigenvalue)" : "") +
-                           " and were raised to it");
+                           " and were raised to it"));
   }
   return out;
 }

@@ -45,12 +45,13 @@ void check_repair_input(const Eigen::Ref<const Eigen::MatrixXd>& C, EigenvalueFl
 
 const char* floor_option(EigenvalueFloor floor) { return floor.relative ? "`min_eig_rel`" : "`min_eig`"; }
 
-std::optional<std::string> asymmetry_warning(const Eigen::Ref<const Eigen::MatrixXd>& C) {
+std::optional<Warning> asymmetry_warning(const Eigen::Ref<const Eigen::MatrixXd>& C) {
   const double norm = C.norm();
   const double asymmetry = (C - C.transpose()).norm();
   if (!(asymmetry > 1e-10 * norm)) return std::nullopt;
-  return "the matrix is not symmetric (||X - X^T||_F / ||X||_F = " + format_number(asymmetry / norm) +
-         ", more than rounding): its symmetric part (X + X^T) / 2 was used; is it the right file?";
+  return Warning(Code::NotSymmetric,
+                 "the matrix is not symmetric (||X - X^T||_F / ||X||_F = " + format_number(asymmetry / norm) +
+                     ", more than rounding): its symmetric part (X + X^T) / 2 was used; is it the right file?");
 }
 
 double resolve_floor(EigenvalueFloor floor, double lambda_max) {
@@ -63,14 +64,17 @@ double resolve_floor(EigenvalueFloor floor, double lambda_max) {
   return floor.value * lambda_max;
 }
 
-std::optional<std::string> floor_warning(double floor, double floor_change, double repair, double scale,
+std::optional<Warning> floor_warning(double floor, double floor_change, double repair, double scale,
                                          double lambda_max, bool of_correlation) {
   if (!(floor_change > repair) || !(floor_change > 1e-6 * scale)) return std::nullopt;
-  return std::string("the eigenvalue floor ") + format_number(floor) +
-         (of_correlation ? " of the correlation matrix D^-1/2 X D^-1/2" : "") + " moved the matrix by " +
-         format_number(floor_change) + ", more than the repair itself (" + format_number(repair) + "); the " +
-         (of_correlation ? "correlation matrix" : "matrix") + " repaired has largest eigenvalue " +
-         format_number(lambda_max) + ": a floor meant for another scale does this (a relative floor follows the scale)";
+  return Warning(Code::EigenvaluesRaised,
+                 std::string("the eigenvalue floor ") + format_number(floor) +
+                     (of_correlation ? " of the correlation matrix D^-1/2 X D^-1/2" : "") + " moved the matrix by " +
+                     format_number(floor_change) + ", more than the repair itself (" + format_number(repair) +
+                     "); the " + (of_correlation ? "correlation matrix" : "matrix") +
+                     " repaired has largest eigenvalue " + format_number(lambda_max) +
+                     ": a floor meant for another scale does this (a relative floor follows the scale)",
+                 "min_eig");
 }
 
 }  // namespace detail

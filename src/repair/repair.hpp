@@ -2,6 +2,8 @@
 // checks of their input and floor, and their warnings.
 #pragma once
 
+#include "spdfit/outcome.hpp"
+
 #include <Eigen/Core>
 #include <optional>
 #include <string>
@@ -16,7 +18,7 @@ namespace spdfit::detail {
 void check_repair_input(const Eigen::Ref<const Eigen::MatrixXd>& C, EigenvalueFloor floor);
 
 /// A warning when C is not symmetric to rounding (more often a wrong file than noise).
-std::optional<std::string> asymmetry_warning(const Eigen::Ref<const Eigen::MatrixXd>& C);
+std::optional<Warning> asymmetry_warning(const Eigen::Ref<const Eigen::MatrixXd>& C);
 
 /// A floor resolved to an absolute one: a relative floor times the largest eigenvalue
 /// `lambda_max` of the input's symmetric part. Throws std::invalid_argument when a relative floor
@@ -30,7 +32,7 @@ const char* floor_option(EigenvalueFloor floor);
 /// warning: more than the repair itself (`repair`) and more than rounding of `scale` (the input's
 /// norm). The warning then names the floor and the largest eigenvalue of the matrix it applies to
 /// (`of_correlation`: the correlation matrix D^-1/2 X D^-1/2 of a diagonal-keeping repair).
-std::optional<std::string> floor_warning(double floor, double floor_change, double repair, double scale,
+std::optional<Warning> floor_warning(double floor, double floor_change, double repair, double scale,
                                          double lambda_max, bool of_correlation = false);
 
 }  // namespace spdfit::detail

@@ -235,18 +235,18 @@ void attach_bootstrap(FitResult& result, const std::vector<Replicate>& replicate
     boot.interval.lower.setConstant(nan);
     boot.interval.upper.setConstant(nan);
     boot.eigenvalues.reset();
-    result.warnings.push_back("the bootstrap has no standard errors: its " + std::to_string(present.size()) +
+    result.warnings.push_back(Warning(Code::BootstrapNotice, "the bootstrap has no standard errors: its " + std::to_string(present.size()) +
                               " replicates with an estimate all agree to rounding (at least two different ones are "
-                              "needed)");
+                              "needed)"));
   } else if (present.size() < 2) {
-    result.warnings.push_back("the bootstrap has no standard errors: " + std::to_string(boot.failed) + " of " +
+    result.warnings.push_back(Warning(Code::BootstrapNotice, "the bootstrap has no standard errors: " + std::to_string(boot.failed) + " of " +
                               std::to_string(boot.replicates) + " replicates had no estimate" +
-                              (first_failure ? " (" + *first_failure + ")" : std::string()));
+                              (first_failure ? " (" + *first_failure + ")" : std::string())));
   } else if (boot.failed > 0 && boot.failed * 100 > boot.replicates) {
-    result.warnings.push_back(
+    result.warnings.push_back(Warning(Code::BootstrapNotice, 
         std::to_string(boot.failed) + " of " + std::to_string(boot.replicates) + " bootstrap replicates (" +
         percent(static_cast<double>(boot.failed) / boot.replicates) + ") had no estimate (the first: " +
-        *first_failure + ") and were left out: the standard errors and intervals describe the others");
+        *first_failure + ") and were left out: the standard errors and intervals describe the others"));
   }
   // Noise in A biases the least-squares-type estimators towards zero by a margin that does not
   // shrink with m, so an interval around them can miss the truth; auto's rule says when the
@@ -259,13 +259,13 @@ void attach_bootstrap(FitResult& result, const std::vector<Replicate>& replicate
     const std::optional<double> noise_var = data_noise_variance(data);
     const AutoChoice choice = auto_choice(data, noise_var);
     if (std::string(choice.code) == "many_samples") {
-      result.warnings.push_back(
+      result.warnings.push_back(Warning(Code::Bias, 
           "if A carries noise (the noise estimate cannot tell A's from B's), " + std::string(to_string(m)) +
           " is biased by it at m = " + std::to_string(data.m) + " rows (signal-to-noise ratio " +
           format_number(choice.snr) +
           " in A's weakest direction), and the bootstrap interval, centred on the biased estimate, can miss the "
           "truth; " +
-          std::string(data.square() ? "spd-tls (or auto) is" : "tls (for a non-square X) is") + " consistent here");
+          std::string(data.square() ? "spd-tls (or auto) is" : "tls (for a non-square X) is") + " consistent here"));
     }
   }
   result.bootstrap = std::move(boot);
@@ -306,10 +306,10 @@ void bootstrap_in_memory(FitResult& result, const Eigen::Ref<const MatrixXd>& A,
   // needs on, its one pass over groups of rows is the cheaper way.
   const auto enough_for_groups = static_cast<Index>(kBootstrapMinGroups * kBootstrapGroupRows);
   if (A.rows() >= enough_for_groups) {
-    result.warnings.push_back("the bootstrap refactored all " + std::to_string(A.rows()) + " rows for each of its " +
+    result.warnings.push_back(Warning(Code::BootstrapNotice, "the bootstrap refactored all " + std::to_string(A.rows()) + " rows for each of its " +
                               std::to_string(options.bootstrap) +
                               " replicates; with `stream` it resamples groups of rows in the one pass over the "
-                              "files, which is much faster at this size");
+                              "files, which is much faster at this size"));
   }
 }
 

@@ -122,7 +122,8 @@ def test_usage_errors_of_identify(cli, tmp_path, args, message):
     cli("hexapod", "simulate", "--samples", 20, "--noise-var", 0.86, "--out", "run")
     args = [str(g) if a == "GEOMETRY" else a for a in args]
     proc = cli("hexapod", "identify", "run/A.csv", "run/B.csv", *args, expect=2)
-    assert message.replace("`strut_masses`", "--fit-strut-mass must be common, each or geometry") in proc.stderr
+    assert message.replace("`strut_masses`", "--fit-strut-mass must be one of 'geometry', 'common' or 'each', "
+                           "got 'some'") in proc.stderr
 
 
 @pytest.mark.parametrize("args, message", [

@@ -54,7 +54,7 @@ expect_error(@() spdfit.fit(A, B, 'spd-tls', 'RestA', RA), 'spdfit:UsageError', 
 expect_error(@() spdfit.fit(A, B, 'spde', 'NoiseStdA', 0.1, 'NoiseStdB', 0.1), 'spdfit:UsageError', 'spd-tls');
 expect_error(@() spdfit.fit(A, B, 'spd-tls', 'NoiseStdA', 0.1, 'NoiseStdB', 0.1, 'NoiseRatio', 2), ...
              'spdfit:UsageError', 'NoiseRatio');
-expect_error(@() spdfit.fit(A, B, 'spd-tls', 'RestA', RA(:, 1:2), 'RestB', RB), 'spdfit:UsageError', 'RestA');
+expect_error(@() spdfit.fit(A, B, 'spd-tls', 'RestA', RA(:, 1:2), 'RestB', RB), 'spdfit:DataError', 'RestA');
 
 % nearest, its corr and keep-diagonal repairs.
 C = [2 -1 0 0; -1 2 -1 0; 0 -1 2 -1; 0 0 -1 2] - 0.9 * ones(4) + 0.9 * eye(4);
@@ -102,6 +102,16 @@ assert(abs(result.physical.mass - ref.physical.mass) <= 1e-10 * ref.physical.mas
 assert(~isempty(strfind(text, 'physical')) || ~isempty(strfind(text, 'Physical')), 'identify: the text report');
 expect_error(@() spdfit.hexapod.identify(Ah, Bh, 'Physical', true), 'spdfit:UsageError', 'Geometry');
 expect_error(@() spdfit.hexapod.identify(Ah, Bh, 'StrutMasses', 'common'), 'spdfit:UsageError', 'Physical');
+% One spelling of a setting: 'Consistent', false is the command line's --unconstrained.
+expect_error(@() spdfit.hexapod.identify(Ah, Bh, 'Unconstrained', true), 'spdfit:UsageError', 'no option');
+% A noise model the data refuse is a data error, as on the command line (exit 1).
+expect_error(@() spdfit.fit(A, B, 'spd-tls', 'NoiseCovA', [1 2 0; 2 1 0; 0 0 1], 'NoiseCovB', eye(3)), ...
+             'spdfit:DataError', 'NoiseCovA');
+% The stiffness as one number for every strut, as the command line takes it.
+[result_k] = spdfit.hexapod.identify(Ah, Bh, 'Stiffness', 2e6);
+Xk = result_k.methods.spd_tls.X;
+assert_close(sort(result_k.methods.spd_tls.modes_hz(:)), sort(sqrt(eig(Xk \ (2e6 * eye(6)))) / (2 * pi)), 1e-9, ...
+             'identify: a scalar stiffness');
 assert(~isempty(strfind(help('spdfit.hexapod.identify'), '''Geometry''')), 'help spdfit.hexapod.identify');
 
 % Input types: single, integers and logical convert; a row vector A with a row vector B is one

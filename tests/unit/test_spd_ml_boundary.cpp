@@ -127,7 +127,7 @@ TEST(SpdMlBoundary, SatisfiesTheConstrainedProblemsFirstOrderConditions) {
   for (const Case& c : cases) {
     const FitResult& r = c.r;
     const Index n = r.X.rows();
-    ASSERT_TRUE(r.diagnostics.converged.value_or(false)) << r.warnings.front();
+    ASSERT_TRUE(r.diagnostics.converged.value_or(false)) << r.warnings.front().text;
     const BoundaryCertificate& cert = *r.diagnostics.boundary_certificate;
     EXPECT_FALSE(r.diagnostics.certificate);  // psd-ls's
     ASSERT_GE(cert.rank, 1);
@@ -144,8 +144,9 @@ TEST(SpdMlBoundary, SatisfiesTheConstrainedProblemsFirstOrderConditions) {
     EXPECT_LE(cert.stationarity, kKktTolerance);
     EXPECT_LE(cert.cross_block, kKktTolerance);
     EXPECT_NEAR(cert.multiplier_min_eig, k.multiplier_min_eig, kKktTolerance * (1 + std::abs(k.multiplier_min_eig)));
-    // The warning names the boundary and the rank.
-    EXPECT_NE(r.warnings.back().find("rank " + std::to_string(cert.rank)), std::string::npos) << r.warnings.back();
+    // The warning names the boundary and the rank, under the code Boundary.
+    EXPECT_EQ(r.warnings.back().code, Code::Boundary);
+    EXPECT_NE(r.warnings.back().text.find("rank " + std::to_string(cert.rank)), std::string::npos) << r.warnings.back().text;
   }
 }
 
@@ -254,7 +255,8 @@ TEST(SpdMlBoundary, AutoReturnsTheConstrainedMaximumLikelihoodEstimate) {
     EXPECT_EQ(a.diagnostics.reason->code, "boundary");
     EXPECT_EQ(a.X, c.r.X);
     ASSERT_TRUE(a.diagnostics.boundary_certificate);
-    EXPECT_NE(a.warnings.front().find("auto:"), std::string::npos);
+    EXPECT_NE(a.warnings.front().text.find("auto:"), std::string::npos);
+    EXPECT_EQ(a.warnings.front().code, Code::Boundary);
     const FitResult moved = auto_fit(c.A * D, c.B * D_inv, with_cov(D * c.Sa * D, D_inv * c.Sb * D_inv));
     ASSERT_TRUE(moved.ok());
     EXPECT_EQ(moved.method, a.method);

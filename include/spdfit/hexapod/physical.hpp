@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "spdfit/outcome.hpp"
 #include "spdfit/fit_result.hpp"
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/rigid_body.hpp"
@@ -159,7 +160,7 @@ struct PhysicalEstimate {
   PhysicalDesign design;
   Eigen::Index m = 0;       ///< rows of the data
   Eigen::Index rank_a = 0;  ///< numerical rank of A
-  std::vector<std::string> warnings;
+  std::vector<Warning> warnings;
   std::optional<PhysicalBootstrap> bootstrap;
 
   bool ok() const { return status == Status::Success; }

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include "spdfit/hexapod/simulate.hpp"
+#include "spdfit/outcome.hpp"
 
 namespace spdfit::hexapod {
 
@@ -14,6 +15,6 @@ namespace spdfit::hexapod {
 /// the estimators need at least ("fewer samples (2) than M_p has columns (6): the estimators need
 /// m >= n"). Empty when nothing. `spdfit hexapod simulate` and Python's spdfit.hexapod.simulate
 /// show these as warnings.
-std::vector<std::string> simulation_warnings(const Eigen::MatrixXd& truth, const SimulationOptions& options);
+std::vector<Warning> simulation_warnings(const Eigen::MatrixXd& truth, const SimulationOptions& options);
 
 }  // namespace spdfit::hexapod

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "spdfit/outcome.hpp"
 #include "spdfit/linkage/analysis.hpp"
 #include "spdfit/linkage/freudenstein.hpp"
 #include "spdfit/linkage/prescribed_function.hpp"
@@ -75,7 +76,7 @@ struct SynthesisResult {
   Eigen::VectorXd psi, phi;         ///< prescribed absolute angles (radians) at the design dial zeros
   LinkageSolution design;           ///< minimizes the design error (section 3.4)
   LinkageSolution structural;       ///< minimizes the structural error (section 3.6); = design when not refined
-  std::vector<std::string> warnings;
+  std::vector<Warning> warnings;
 
   bool ok() const { return status == SynthesisStatus::Success; }
 };

@@ -1,0 +1,31 @@
+// Every option table of the library, for what needs all of them: the spellings of option names
+// in messages (spelling.cpp) and the tests that check the tables. A new command's table is added
+// here.
+#pragma once
+
+#include "spdfit/compare.hpp"
+#include "spdfit/fit_request.hpp"
+#include "spdfit/hexapod/physical_request.hpp"
+#include "spdfit/hexapod/identify_request.hpp"
+#include "spdfit/nearest_request.hpp"
+#include "spdfit/output_request.hpp"
+#include "spdfit/solve_request.hpp"
+
+namespace spdfit::detail {
+
+/// Calls `visit(table)` for every option table, in a fixed order.
+template <typename Visit>
+void for_each_option_table(Visit&& visit) {
+  visit(fit_option_table());
+  visit(fit_command_table());
+  visit(nearest_option_table());
+  visit(hexapod::physical_option_table());
+  visit(hexapod::identify_option_table());
+  visit(hexapod::physical_fit_table());
+  visit(solve_option_table());
+  visit(nearest_command_table());
+  visit(compare_option_table());
+  visit(output_option_table());
+}
+
+}  // namespace spdfit::detail
