@@ -47,16 +47,18 @@ def fit(A, B, cov_a, cov_b, method="spd-tls"):
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         result = spdfit.fit(A, B, method, noise=spdfit.NoiseModel(cov_a=cov_a, cov_b=cov_b))
-    return result, [str(w.message) for w in caught]
+    return result, caught
 
 
 def boundary_instances(count, first_seed=0):
-    """The first `count` seeds whose spd-tls ends on the boundary, as spdfit's warning says."""
+    """The first `count` seeds whose spd-tls ends on the boundary, as spdfit's warning says (its
+    class BoundaryWarning, the code 'boundary')."""
     found = []
     for seed in range(first_seed, first_seed + 40 * count):
         A, B, cov_a, cov_b = instance(seed)
-        result, messages = fit(A, B, cov_a, cov_b)
-        if any("on the boundary" in text for text in messages):
+        result, caught = fit(A, B, cov_a, cov_b)
+        if any(issubclass(w.category, spdfit.BoundaryWarning) and "on the boundary" in str(w.message)
+               for w in caught):
             found.append((seed, A, B, cov_a, cov_b, result))
             if len(found) == count:
                 break
@@ -144,12 +146,14 @@ def test_auto_returns_the_constrained_maximum_likelihood_estimate(cases):
     D_inv = np.linalg.inv(D)
     chose_spd_tls = 0
     for seed, A, B, cov_a, cov_b, result in cases[:6]:
-        auto, messages = fit(A, B, cov_a, cov_b, "auto")
+        auto, caught = fit(A, B, cov_a, cov_b, "auto")
         if auto.method != "spd-tls":
             continue  # too few rows for its signal-to-noise ratio: spde
         chose_spd_tls += 1
         assert auto.diagnostics.reason.code == "boundary"
         assert "constrained maximum-likelihood" in auto.diagnostics.reason.text
+        assert any(issubclass(w.category, spdfit.BoundaryWarning) and str(w.message).startswith("auto:")
+                   for w in caught), seed
         np.testing.assert_array_equal(auto.X, result.X)
         assert isinstance(auto.diagnostics.certificate, spdfit.BoundaryCertificate)
         moved, _ = fit(A @ D, B @ D_inv, D @ cov_a @ D, D_inv @ cov_b @ D_inv, "auto")

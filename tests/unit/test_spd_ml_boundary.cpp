@@ -224,6 +224,38 @@ TEST(SpdMlBoundary, IndefiniteTruthGivesARankDeficientKktPoint) {
               1e-8 * k.multiplier_min_eig);
 }
 
+// Without a noise model spd-tls's criterion is tr((A X - B)^T (A X - B) (r^2 I + X^2)^-1), the
+// likelihood criterion with Sigma_A = I and Sigma_B = r^2 I: on the boundary its estimate meets the
+// same first-order conditions, computed here from the rows with those covariances, for the
+// default r = 1 and for r = 2.
+TEST(SpdMlBoundary, WithoutANoiseModelTheTlsCriterionsConditionsHold) {
+  Generator g(707);
+  const Index n = 3, m = 200;
+  const MatrixXd Q = g.orthonormal(n, n);
+  const MatrixXd X0 = Q * VectorXd((VectorXd(3) << 2.0, 1.0, -1.0).finished()).asDiagonal() * Q.transpose();
+  const MatrixXd A0 = g.gaussian(m, n);
+  const MatrixXd A = A0 + 0.05 * g.gaussian(m, n), B = A0 * X0 + 0.05 * g.gaussian(m, n);
+  for (double ratio : {1.0, 2.0}) {
+    FitOptions options;
+    options.noise_ratio = ratio;
+    const FitResult r = spd_total_least_squares(A, B, options);
+    ASSERT_TRUE(r.ok()) << r.message;
+    ASSERT_TRUE(r.diagnostics.boundary_certificate) << ratio;
+    EXPECT_TRUE(r.diagnostics.converged.value_or(false)) << ratio;
+    const Index rank = r.diagnostics.boundary_certificate->rank;
+    EXPECT_EQ(rank, 2) << ratio;
+    const MatrixXd I = MatrixXd::Identity(n, n);
+    const Kkt k = kkt(A, B, r.X, I, ratio * ratio * I, rank);
+    EXPECT_LE(k.stationarity, kKktTolerance) << ratio;
+    EXPECT_LE(k.cross_block, kKktTolerance) << ratio;
+    EXPECT_GT(k.multiplier_min_eig, 1e-3) << ratio;
+    EXPECT_NEAR(r.diagnostics.boundary_certificate->multiplier_min_eig, k.multiplier_min_eig,
+                1e-8 * k.multiplier_min_eig)
+        << ratio;
+    EXPECT_EQ(r.warnings.back().code, Code::Boundary);
+  }
+}
+
 // The certificate's JSON keys, and its way back.
 TEST(SpdMlBoundary, CertificateRendersAndReadsBack) {
   const std::vector<Case> cases = boundary_cases(705, 1);
