@@ -304,8 +304,10 @@ FitResult auto_fit(const Reduction& reduction) {
       result = spd_total_least_squares(reduction);
   }
   const bool settled = result.ok() && detail::clearly_positive_definite(result.X);
-  if (!settled && noise && result.ok() && result.diagnostics.boundary_certificate) {
-    // The likelihood's infimum on the boundary: spd-tls's constrained maximum-likelihood estimate.
+  if (!settled && noise && result.ok() && result.diagnostics.boundary_certificate &&
+      result.diagnostics.converged.value_or(false)) {
+    // The likelihood's infimum on the boundary: spd-tls's constrained maximum-likelihood estimate,
+    // where its first-order conditions hold (converged); otherwise the psd-ls fallback below.
     result = detail::auto_settle_on_boundary(std::move(result), reason);
   } else {
     // psd-ls with the floor, weighted by Sigma_B with a noise model (which needs Sigma_B > 0).

@@ -17,6 +17,11 @@ using Eigen::MatrixXd;
 
 namespace {
 
+// The first-order conditions at a converged boundary estimate, relative to the criterion: Newton
+// stops at 1e-10, and the certificate, computed from X afresh, adds rounding of about m eps times
+// the gradient's terms; 1e-8 leaves room for both (the unit tests' KKT tolerance).
+constexpr double kCertificateTolerance = 1e-8;
+
 // Sigma_A = 0: the criterion is sum_i r_i^T Sigma_B^-1 r_i, a convex quadratic, and its infimum over
 // the positive definite matrices is weighted psd-ls's minimum over the semidefinite ones (floor 0),
 // solved exactly there with its certificate, on the boundary too.
@@ -104,6 +109,21 @@ FitResult spd_total_least_squares(const Reduction& reduction) {
                        " eigenvalue(s) of X go to zero, so the estimate is its minimizer over the positive "
                        "semidefinite matrices (rank " + std::to_string(n - k.boundary_zeros) +
                        "; `certificate` holds the optimality conditions), not positive definite"));
+    // The stopping rule judged the iteration's own coordinates and rounding level; the certificate
+    // judges X itself. Where they disagree (the iteration stopped far from a point of the
+    // conditions, as where the criterion's infimum is near infinity), converged says so.
+    const BoundaryCertificate& c = *d.boundary_certificate;
+    const bool certified = c.stationarity <= kCertificateTolerance && c.cross_block <= kCertificateTolerance &&
+                           c.multiplier_min_eig >= -kCertificateTolerance;
+    if (k.converged && !certified) {
+      d.converged = false;
+      warnings.push_back(Warning(Code::NotConverged,
+                                 "spd-tls stopped on the boundary where the first-order conditions do not hold "
+                                 "(`certificate`: stationarity " + detail::format_number(c.stationarity) +
+                                 ", cross_block " + detail::format_number(c.cross_block) + ", multiplier_min_eig " +
+                                 detail::format_number(c.multiplier_min_eig) +
+                                 ", relative to the criterion): the estimate is not its constrained minimizer"));
+    }
   }
   return detail::finish(method, data, k.X_s, std::move(d), std::move(warnings));
 }

@@ -201,13 +201,13 @@ TEST(RestModelTest, WarnsAboutAShortRestSegmentAndAccelerationsFarFromZero) {
   // 30 rows for 6 columns: fewer than 10 per column.
   const NoiseModel short_segment = NoiseModel::from_rest(0.1 * g.gaussian(30, 6), g.gaussian(30, 6));
   ASSERT_EQ(short_segment.warnings().size(), 1u);
-  EXPECT_TRUE(contains(short_segment.warnings()[0], "the rest segment has 30 rows, fewer than 10 per column (60"));
+  EXPECT_TRUE(contains(short_segment.warnings()[0].text, "the rest segment has 30 rows, fewer than 10 per column (60"));
   // Column 3 of A moving (mean 1, spread 0.1).
   MatrixXd moving = 0.1 * g.gaussian(500, 4);
   moving.col(2).array() += 1.0;
   const NoiseModel not_at_rest = NoiseModel::from_rest(moving, g.gaussian(500, 4));
   ASSERT_EQ(not_at_rest.warnings().size(), 1u);
-  EXPECT_TRUE(contains(not_at_rest.warnings()[0], "in column(s) 3 (mean 0.99")) << not_at_rest.warnings()[0];
+  EXPECT_TRUE(contains(not_at_rest.warnings()[0].text, "in column(s) 3 (mean 0.99")) << not_at_rest.warnings()[0].text;
 }
 
 TEST(RestModelTest, BadRestRowsNameTheOption) {

@@ -255,7 +255,7 @@ TEST(SpdTotalLeastSquares, InfimumOnTheBoundaryIsTheSemidefiniteLimitWithAWarnin
   EXPECT_TRUE(r.diagnostics.positive_semidefinite);
   EXPECT_FALSE(r.diagnostics.positive_definite);
   ASSERT_FALSE(r.warnings.empty());
-  EXPECT_NE(r.warnings.back().find("boundary"), std::string::npos);
+  EXPECT_NE(r.warnings.back().text.find("boundary"), std::string::npos);
 }
 
 TEST(SpdTotalLeastSquares, BoundaryFaceIsOptimalForN2) {
@@ -271,7 +271,7 @@ TEST(SpdTotalLeastSquares, BoundaryFaceIsOptimalForN2) {
   EXPECT_TRUE(r.diagnostics.positive_semidefinite);
   EXPECT_FALSE(r.diagnostics.positive_definite);
   ASSERT_FALSE(r.warnings.empty());
-  EXPECT_NE(r.warnings.back().find("boundary"), std::string::npos);
+  EXPECT_NE(r.warnings.back().text.find("boundary"), std::string::npos);
   Eigen::SelfAdjointEigenSolver<MatrixXd> eig(r.X);
   const Eigen::VectorXd v = eig.eigenvectors().col(0), u = eig.eigenvectors().col(1);
   ASSERT_LT(std::abs(eig.eigenvalues()(0)), 1e-12 * eig.eigenvalues()(1));
@@ -306,7 +306,7 @@ TEST(SpdTotalLeastSquares, IterationLimitReturnsTheBestIterateWithAWarning) {
   EXPECT_EQ(r.diagnostics.iterations.value_or(-1), 1);
   EXPECT_TRUE(is_spd(r.X));
   ASSERT_FALSE(r.warnings.empty());
-  EXPECT_NE(r.warnings.back().find("did not converge"), std::string::npos);
+  EXPECT_NE(r.warnings.back().text.find("did not converge"), std::string::npos);
   const FitResult start = spde(p.A, p.B);
   EXPECT_LE(criterion(p.A, p.B, r.X), criterion(p.A, p.B, start.X));
 }
