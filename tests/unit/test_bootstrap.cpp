@@ -98,7 +98,7 @@ TEST(Bootstrap, NoStandardErrorsFromReplicatesThatAgreeToRounding) {
   EXPECT_TRUE(r.bootstrap->standard_errors.array().isNaN().all());
   EXPECT_FALSE(r.bootstrap->eigenvalues.has_value());
   bool warned = false;
-  for (const std::string& w : r.warnings) warned |= w.find("all agree to rounding") != std::string::npos;
+  for (const Warning& w : r.warnings) warned |= w.text.find("all agree to rounding") != std::string::npos;
   EXPECT_TRUE(warned);
 }
 
@@ -146,7 +146,7 @@ TEST_F(StreamingBootstrapFiles, TooFewGroupsFromStandardInputResampleItsKeptText
   EXPECT_EQ(resampled.bootstrap->scheme, "multinomial");
   EXPECT_EQ(resampled.bootstrap->standard_errors, fit(d.A, d.B, Method::Spde, options).bootstrap->standard_errors);
   bool said = false;
-  for (const std::string& w : resampled.warnings) said |= w.find("standard input's text kept") != std::string::npos;
+  for (const Warning& w : resampled.warnings) said |= w.text.find("standard input's text kept") != std::string::npos;
   EXPECT_TRUE(said);
 
   // The text (more than 100 KiB: 9000 numbers of about 19 digits) is beyond a budget of 100 KiB: refused, naming standard input.
