@@ -41,8 +41,8 @@ namespace spdfit {
 /// With a noise model, where spd-tls ends on the boundary (the likelihood criterion has no
 /// minimizer over the positive definite matrices), its estimate is the minimizer over the positive
 /// semidefinite ones, of rank r < n: the constrained maximum-likelihood estimate, which honours
-/// Sigma_A and follows the data's units. auto returns it (code "boundary"), with a warning, and
-/// diagnostics.boundary_certificate holds its optimality conditions.
+/// Sigma_A and follows the data's units. auto returns it (code "boundary"), with a warning, when
+/// spd-tls converged (its optimality conditions, diagnostics.boundary_certificate, hold to 1e-8).
 /// Otherwise, if the chosen method fails or returns a matrix that is not positive definite (the
 /// criterion's infimum on the boundary, without a noise model), psd-ls (weighted by Sigma_B with
 /// a noise model, which needs Sigma_B positive definite) with the floor 1e-8 ||X_ls||_F (X_ls the

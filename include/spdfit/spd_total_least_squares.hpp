@@ -55,8 +55,9 @@ namespace spdfit {
 /// matrices of rank r, whose range turns as well as its eigenvalues move, r falling where an
 /// eigenvalue leaves and rising where the multiplier of X >= 0 has a negative eigenvalue), with
 /// the warning above and diagnostics.boundary_certificate: the constrained problem's first-order
-/// conditions (BoundaryCertificate), each to about 1e-10 relative to f when converged; an
-/// estimate that is not singular has none. gradient_norm is then in the units of f, which is
+/// conditions (BoundaryCertificate), each to about 1e-10 relative to f when converged; where they
+/// do not hold to 1e-8, converged is false with a warning quoting them. An estimate that is not
+/// singular has none. gradient_norm is then in the units of f, which is
 /// dimensionless (about d (m - n) at the minimum when the noise model is right). Needs Sigma_A or
 /// Sigma_B positive definite (else std::invalid_argument naming the options). The estimate follows
 /// the data's units, on the boundary too: scaling A by a and B by b (and Sigma_A by a^2, Sigma_B by b^2) gives (b / a) X,
