@@ -243,15 +243,71 @@ NewtonEnd newton(const BasicReduction<MaxN>& data, double r2, double infinity, c
 
 namespace {
 
-// On the boundary: the criterion is the likelihood criterion with Sigma_A = I and Sigma_B = r^2 I
-// (spd_ml_kernel.hpp), whose minimizer over the positive semidefinite matrices spd_ml_boundary
-// finds from the iterate without the eigenvalues that left (`zero`), in dynamic matrices.
+// On the boundary, in two stages. (1) The face: continue Newton on X = U Y U^T (U the
+// eigenvectors whose eigenvalues stay, Y positive definite), where f(U Y U^T) is the same criterion
+// for the data R11 U, R12 U, R22 U, from Y = the kept eigenvalues; and so on while eigenvalues keep
+// leaving. An infimum at infinity on the face (an eigenvalue growing while f decreases) ends here:
+// there is no minimizer. (2) The face's minimizer keeps the null space the iteration happened to
+// have; the minimizer over all positive semidefinite matrices (the criterion is the likelihood
+// criterion with Sigma_A = I, Sigma_B = r^2 I, spd_ml_kernel.hpp) is found by spd_ml_boundary from
+// it, in dynamic matrices. Its answer replaces the face's only where its criterion is lower (it
+// starts there and only descends, so a higher one means it failed): the estimate is never worse
+// than the face's.
 template <int MaxN>
-bool boundary(const BasicReduction<MaxN>& data, double r2, double infinity, int max_iterations,
-              const Point<MaxN>& cur, const Eigen::Matrix<bool, Eigen::Dynamic, 1, Eigen::ColMajor, MaxN, 1>& zero,
+bool boundary(const BasicReduction<MaxN>& data, double r2, double infinity, int max_iterations, Point<MaxN> cur,
+              Eigen::Matrix<bool, Eigen::Dynamic, 1, Eigen::ColMajor, MaxN, 1> zero, double gnorm,
               SpdTlsKernel<MaxN>& out) {
   using Eigen::MatrixXd;
-  const Index n = data.n, kept = n - zero.count();
+  using Matrix = SquareMatrix<MaxN>;
+  const Index n = data.n;
+  const double r_s = std::sqrt(r2);
+
+  // (1) The face. U's columns and the directions that left (the null space) stay orthonormal.
+  Matrix U = Matrix::Identity(n, n), null(n, 0);
+  BasicReduction<MaxN> face;
+  NewtonEnd end = NewtonEnd::Boundary;
+  int iterations = 0;
+  while (end == NewtonEnd::Boundary) {
+    const Index k = U.cols(), kept = k - zero.count();
+    Matrix U_next(n, kept), null_next(n, null.cols() + (k - kept)), Y0 = Matrix::Zero(kept, kept);
+    null_next.leftCols(null.cols()) = null;
+    for (Index i = 0, j = 0, z = null.cols(); i < k; ++i) {
+      const auto u = (U * cur.Q.col(i)).eval();
+      if (zero(i)) {
+        null_next.col(z++) = u;
+        continue;
+      }
+      U_next.col(j) = u;
+      Y0(j, j) = cur.lambda(i);
+      ++j;
+    }
+    U = U_next;
+    null = null_next;
+    if (kept == 0) break;
+    face.n = kept;
+    face.R11.noalias() = data.R11 * U;
+    face.R12.noalias() = data.R12 * U;
+    face.R22.noalias() = data.R22 * U;
+    end = newton(face, r2, infinity, Y0, max_iterations - out.iterations, cur, gnorm, iterations, zero);
+    out.iterations += iterations;
+    if (end == NewtonEnd::Failed) return false;
+  }
+  out.unbounded = end == NewtonEnd::Unbounded;
+  out.boundary_zeros = n - U.cols();
+  if (U.cols() == 0) {
+    out.X_s = Matrix::Zero(n, n);
+    gnorm = 0.0;
+    end = NewtonEnd::Converged;
+  } else {
+    out.X_s.noalias() = U * cur.X * U.transpose();
+    out.X_s = symmetric_part(out.X_s);
+  }
+  out.criterion = spd_tls_criterion(data, out.X_s, r_s);
+  out.gradient_norm = gnorm;
+  out.converged = end == NewtonEnd::Converged;
+  if (out.unbounded) return true;
+
+  // (2) From the face's minimizer over the whole semidefinite cone.
   DynamicReduction dynamic;
   dynamic.m = data.m;
   dynamic.n = n;
@@ -262,24 +318,24 @@ bool boundary(const BasicReduction<MaxN>& data, double r2, double infinity, int 
   const ScaledNoise noise = equal_scaled_noise(n, r2);
   const spd_ml::Problem pr{dynamic, noise, dynamic.R11.transpose() * dynamic.R11,
                            dynamic.R22.transpose() * dynamic.R22};
+  const Index kept = U.cols();
   MatrixXd V(n, n);
   Eigen::VectorXd lambda(kept);
-  for (Index i = 0, j = 0, z = kept; i < n; ++i) {
-    if (zero(i)) {
-      V.col(z++) = cur.Q.col(i);
-    } else {
-      V.col(j) = cur.Q.col(i);
-      lambda(j++) = cur.lambda(i);
-    }
+  if (kept > 0) {
+    V.leftCols(kept) = U * cur.Q;
+    lambda = cur.lambda;
   }
+  V.rightCols(n - kept) = null;
   SpdTlsKernel<Eigen::Dynamic> k;
   k.iterations = out.iterations;
-  if (!spd_ml_boundary(pr, infinity, max_iterations, std::move(V), std::move(lambda), k)) return false;
-  out.X_s = k.X_s;
+  if (!spd_ml_boundary(pr, infinity, max_iterations, std::move(V), std::move(lambda), k)) return true;
   out.iterations = k.iterations;
+  const Matrix X = k.X_s;
+  const double criterion = spd_tls_criterion(data, X, r_s);
+  if (k.unbounded || !(criterion <= out.criterion)) return true;
+  out.X_s = X;
   out.boundary_zeros = k.boundary_zeros;
-  out.unbounded = k.unbounded;
-  out.criterion = spd_tls_criterion(data, out.X_s, std::sqrt(r2));
+  out.criterion = criterion;
   out.gradient_norm = k.gradient_norm;
   out.converged = k.converged;
   return true;
@@ -305,7 +361,7 @@ bool spd_tls_kernel(const BasicReduction<MaxN>& data, double r_s, int max_iterat
   out.iterations = iterations;
   if (end == NewtonEnd::Failed) return false;
 
-  if (end == NewtonEnd::Boundary) return boundary(data, r2, infinity, max_iterations, cur, zero, out);
+  if (end == NewtonEnd::Boundary) return boundary(data, r2, infinity, max_iterations, cur, zero, gnorm, out);
 
   out.unbounded = end == NewtonEnd::Unbounded;
   out.boundary_zeros = 0;

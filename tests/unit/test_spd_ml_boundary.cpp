@@ -13,6 +13,10 @@
 #include <vector>
 
 #include "spdfit/auto.hpp"
+#include "spdfit/experiment/monte_carlo.hpp"
+#include "spdfit/experiment/physical.hpp"
+#include "spdfit/hexapod/model.hpp"
+#include "spdfit/hexapod/simulate.hpp"
 #include "spdfit/noise_model.hpp"
 #include "spdfit/render.hpp"
 #include "spdfit/spd_total_least_squares.hpp"
@@ -262,6 +266,39 @@ TEST(SpdMlBoundary, ConvergedOnlyWhereTheConditionsHold) {
     }
   }
   EXPECT_GT(boundary, 0);
+}
+
+// Without a noise model, where the iteration first heads to the boundary and the criterion then
+// keeps decreasing on the boundary as another eigenvalue grows without bound, there is no
+// minimizer: spd-tls fails saying so, as in the interior. The case is trial 60 of the physical
+// experiment's defaults at m = 12 (seed 1), where an earlier version of the boundary iteration
+// stopped at an estimate of norm 3e6 (the truth's is about 20), which the experiment counted.
+// Every other trial's estimate there stays near the truth.
+TEST(SpdMlBoundary, AnInfimumAtInfinityOnTheBoundaryIsAFailure) {
+  const hexapod::Geometry geometry = hexapod::cubic_geometry();
+  const MatrixXd truth = hexapod::joint_space_mass_matrix(geometry, hexapod::nominal_payload(geometry));
+  hexapod::SimulationOptions simulation = experiment::PhysicalExperimentOptions().simulation;
+  simulation.samples = 12;
+  experiment::MonteCarloOptions trials;
+  trials.trials = 100;
+  trials.threads = 1;
+  std::vector<double> errors(trials.trials, -1.0);
+  std::vector<std::string> messages(trials.trials);
+  experiment::run_trials(trials, [&](std::size_t k, Random& random) {
+    hexapod::Measurements data;
+    hexapod::simulate_into(truth, simulation, random, data);
+    const FitResult r = spd_total_least_squares(data.A, data.B);
+    if (r.ok()) {
+      errors[k] = (r.X - truth).norm();
+    } else {
+      messages[k] = r.message;
+    }
+  });
+  EXPECT_FALSE(errors[60] >= 0.0) << errors[60];
+  EXPECT_NE(messages[60].find("no minimizer"), std::string::npos) << messages[60];
+  for (std::size_t k = 0; k < trials.trials; ++k) {
+    if (errors[k] >= 0.0) EXPECT_LT(errors[k], 5.0 * truth.norm()) << k;
+  }
 }
 
 // The certificate's JSON keys, and its way back.
