@@ -10,8 +10,9 @@ namespace spdfit {
 
 /// Chooses among spde, spd-tls and psd-ls from the data (rows m, columns n, the noise against the
 /// weakest direction of the signal) and runs the chosen method. The estimate is positive definite,
-/// or a warning says that it is not (when the chosen method ended on the boundary and the
-/// fallback below failed too, which an eigensolver failure alone causes).
+/// or a warning says that it is not: with a noise model where the likelihood's infimum is on the
+/// boundary (the constrained maximum-likelihood estimate, below), or when the chosen method ended
+/// on the boundary and the fallback below failed too (which an eigensolver failure alone causes).
 ///
 /// Without a noise model (FitOptions::noise), from the noise estimate (Diagnostics::noise_sigma),
 /// assuming equal noise in every column of A and B in the units given (the reason's text says so
@@ -37,11 +38,17 @@ namespace spdfit {
 ///   stable likelihood fit spde, which runs without the noise model and says so (code
 ///   "few_samples").
 ///
-/// If the chosen method fails or returns a matrix that is not positive definite (the criterion's
-/// infimum on the boundary), psd-ls (weighted by Sigma_B with a noise model, which needs Sigma_B
-/// positive definite) with the floor 1e-8 ||X_ls||_F (X_ls the least-squares estimate) (code
-/// "boundary"); if that fails too, the first failure is returned (its message says that the
-/// fallback failed), or the first estimate with a warning that it is not positive definite.
+/// With a noise model, where spd-tls ends on the boundary (the likelihood criterion has no
+/// minimizer over the positive definite matrices), its estimate is the minimizer over the positive
+/// semidefinite ones, of rank r < n: the constrained maximum-likelihood estimate, which honours
+/// Sigma_A and follows the data's units. auto returns it (code "boundary"), with a warning, when
+/// spd-tls converged (its optimality conditions, diagnostics.boundary_certificate, hold to 1e-8).
+/// Otherwise, if the chosen method fails or returns a matrix that is not positive definite (the
+/// criterion's infimum on the boundary, without a noise model), psd-ls (weighted by Sigma_B with
+/// a noise model, which needs Sigma_B positive definite) with the floor 1e-8 ||X_ls||_F (X_ls the
+/// least-squares estimate) (code "boundary"); if that fails too, the first failure is returned
+/// (its message says that the fallback failed), or the first estimate with a warning that it is
+/// not positive definite.
 ///
 /// The result's `method` is the chosen one; diagnostics.chosen_method and diagnostics.reason
 /// (code and text) say which and why; diagnostics.noise_model is the noise model auto chose by.

@@ -50,6 +50,23 @@ struct PsdCertificate {
   double duality_gap = 0.0;
 };
 
+/// spd-tls's proof of optimality on the boundary (where its criterion f, the likelihood with a
+/// noise model and the TLS criterion without, has no minimizer over the positive definite
+/// matrices and the estimate is the X of rank r < n minimizing it over the positive semidefinite
+/// ones): the first-order (KKT) conditions of that constrained problem. With X = V_r Lambda V_r^T (V_0 an orthonormal
+/// basis of its null space) and G = grad f(X), X satisfies them exactly when
+/// Lambda^1/2 V_r^T G V_r Lambda^1/2 = 0 (stationarity on the face), V_r^T G V_0 = 0 (the cross
+/// block: turning X's range does not lower f) and V_0^T G V_0 >= 0 (the multiplier of X >= 0:
+/// growing X into its null space does not lower f). Every number is computed in the coordinates
+/// where X has a unit diagonal (X -> D^-1 X D^-1, G -> D G D, D = diag(X)^1/2), so that a change
+/// of units A -> A E, B -> B E^-1 leaves it alone, and relative to f (dimensionless).
+struct BoundaryCertificate {
+  Eigen::Index rank = 0;            ///< r, X's rank
+  double stationarity = 0.0;        ///< ||Lambda^1/2 V_r^T G V_r Lambda^1/2||_F / f
+  double cross_block = 0.0;         ///< ||Lambda^1/2 V_r^T G V_0||_F / f
+  double multiplier_min_eig = 0.0;  ///< lambda_min(V_0^T G V_0) / f, >= 0 at the optimum
+};
+
 /// Why `auto` chose its method: a stable code for scripts and a sentence for people.
 struct AutoReason {
   std::string code;  ///< "few_samples", "many_samples", "noise_free", "rank_deficient_a" or "boundary"
@@ -121,6 +138,9 @@ struct Diagnostics {
   std::optional<bool> converged;
   /// psd-ls only: the optimality certificate.
   std::optional<PsdCertificate> certificate;
+  /// spd-tls (and auto when it returned spd-tls's estimate), when the estimate is on the boundary
+  /// (singular): the constrained problem's first-order conditions. The JSON's "certificate" too.
+  std::optional<BoundaryCertificate> boundary_certificate;
   /// The noise model the estimate used (FitOptions::noise, resolved to n x n and d x d covariances
   /// in the data's units), with its source; empty when none was given or the method ran without
   /// it (spde in fit_all): the methods then assume equal noise in every column of A and B, in the

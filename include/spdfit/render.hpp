@@ -33,6 +33,7 @@ std::string to_json(const FitResult& result, JsonStyle style = JsonStyle::Contra
 /// carries m, n and d, and a Bootstrap its standard_errors, interval and bias).
 std::string to_json(const Diagnostics& diagnostics, JsonStyle style = JsonStyle::Contract);
 std::string to_json(const PsdCertificate& certificate, JsonStyle style = JsonStyle::Contract);
+std::string to_json(const BoundaryCertificate& certificate, JsonStyle style = JsonStyle::Contract);
 std::string to_json(const AutoReason& reason, JsonStyle style = JsonStyle::Contract);
 std::string to_json(const Interval& interval, JsonStyle style = JsonStyle::Contract);
 std::string to_json(const SpectrumUncertainty& spectrum, JsonStyle style = JsonStyle::Contract);
@@ -53,9 +54,9 @@ std::string to_json(const NoiseModel& model, JsonStyle style = JsonStyle::Contra
 
 /// The object that to_json wrote, from its text in either style (Contract's null reads as NaN, so
 /// a Contract text loses the sign of an infinity; keys Contract leaves out take their defaults).
-/// Defined for FitResult, Diagnostics, PsdCertificate, AutoReason, Interval, SpectrumUncertainty,
-/// Bootstrap, NoiseModel, NearestResult, LinearSystemResult, ColumnClassification and
-/// hexapod::MethodIdentification. Throws std::invalid_argument, naming the class and the field,
+/// Defined for FitResult, Diagnostics, PsdCertificate, BoundaryCertificate, AutoReason, Interval,
+/// SpectrumUncertainty, Bootstrap, NoiseModel, NearestResult, LinearSystemResult,
+/// ColumnClassification and hexapod::MethodIdentification. Throws std::invalid_argument, naming the class and the field,
 /// for text that is not such a document. Cost O(length of the text).
 template <typename T>
 T from_json(const std::string& text);
@@ -63,6 +64,7 @@ T from_json(const std::string& text);
 template <> FitResult from_json<FitResult>(const std::string& text);
 template <> Diagnostics from_json<Diagnostics>(const std::string& text);
 template <> PsdCertificate from_json<PsdCertificate>(const std::string& text);
+template <> BoundaryCertificate from_json<BoundaryCertificate>(const std::string& text);
 template <> AutoReason from_json<AutoReason>(const std::string& text);
 template <> Interval from_json<Interval>(const std::string& text);
 template <> SpectrumUncertainty from_json<SpectrumUncertainty>(const std::string& text);

@@ -50,10 +50,17 @@ namespace spdfit {
 /// SPDE and the positive definite projection of generalized tls-sym). Equal noise, Sigma_A =
 /// s^2 I and Sigma_B = s^2 r^2 I, is the criterion above divided by s^2: the same estimate.
 /// Sigma_A = 0 is least squares weighted by Sigma_B^-1 over the positive semidefinite matrices
-/// (psd-ls's weighted problem). gradient_norm is then in the units of f, which is dimensionless
-/// (about d (m - n) at the minimum when the noise model is right). Needs Sigma_A or Sigma_B
-/// positive definite (else std::invalid_argument naming the options). The estimate follows the
-/// data's units: scaling A by a and B by b (and Sigma_A by a^2, Sigma_B by b^2) gives (b / a) X,
+/// (psd-ls's weighted problem). Where the infimum is on the boundary, the estimate is the
+/// minimizer of f over the positive semidefinite matrices, of rank r < n (Newton's method on the
+/// matrices of rank r, whose range turns as well as its eigenvalues move, r falling where an
+/// eigenvalue leaves and rising where the multiplier of X >= 0 has a negative eigenvalue), with
+/// the warning above and diagnostics.boundary_certificate: the constrained problem's first-order
+/// conditions (BoundaryCertificate), each to about 1e-10 relative to f when converged; where they
+/// do not hold to 1e-8, converged is false with a warning quoting them. An estimate that is not
+/// singular has none. gradient_norm is then in the units of f, which is
+/// dimensionless (about d (m - n) at the minimum when the noise model is right). Needs Sigma_A or
+/// Sigma_B positive definite (else std::invalid_argument naming the options). The estimate follows
+/// the data's units, on the boundary too: scaling A by a and B by b (and Sigma_A by a^2, Sigma_B by b^2) gives (b / a) X,
 /// and A D, B D^-1 (Sigma_A -> D Sigma_A D, Sigma_B -> D^-1 Sigma_B D^-1) gives D^-1 X D^-1.
 ///
 /// Preconditions: as least_squares. Cost: O(m n^2) for the factor, then O(n^6) per Newton step

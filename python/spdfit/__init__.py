@@ -31,7 +31,7 @@ from . import _spdfit
 from ._errors import DataError, NumericalError, SpdfitWarning, WARNING_CLASSES as _WARNING_CLASSES
 from ._errors import warn as _warn
 from ._spdfit import (AutoReason, Diagnostics, FitResult, LinearSystemResult, NearestResult,
-                      NoiseModel, PsdCertificate, Bootstrap, Interval, SpectrumUncertainty)
+                      NoiseModel, PsdCertificate, BoundaryCertificate, Bootstrap, Interval, SpectrumUncertainty)
 
 # The repairs' one result class, under the names each function's documentation uses.
 NearestSpdResult = NearestCorrelationResult = NearestResult
@@ -46,7 +46,7 @@ __all__ = [
     "LinearSystemResult", "SpdfitWarning", "area_criterion", "solve", "fit", "fit_all", "fit_files",
     "least_squares", "nearest_spd", "nearest_correlation", "nearest_covariance", "read_matrix",
     "read_table", "spde", "symmetric_procrustes", "total_least_squares", "total_least_squares_psd",
-    "spd_total_least_squares", "psd_least_squares", "auto_fit", "PsdCertificate", "AutoReason", "Bootstrap", "Interval", "SpectrumUncertainty",
+    "spd_total_least_squares", "psd_least_squares", "auto_fit", "PsdCertificate", "BoundaryCertificate", "AutoReason", "Bootstrap", "Interval", "SpectrumUncertainty",
     "NearestCorrelationResult", "NearestResult", "REPAIR_FLOOR_DEFAULT",
     "total_least_squares_symmetric", "write_csv", "outcome_codes",
     *sorted(cls.__name__ for cls in _WARNING_CLASSES.values()),

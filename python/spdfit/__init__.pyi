@@ -15,7 +15,8 @@ from . import repair as repair
 from .repair import nearest_covariance as nearest_covariance
 from .factor import Factor as Factor
 from ._errors import DataError as DataError, NumericalError as NumericalError, SpdfitWarning as SpdfitWarning
-from ._spdfit import (AutoReason as AutoReason, PsdCertificate as PsdCertificate, Diagnostics as Diagnostics, FitResult as FitResult,
+from ._spdfit import (AutoReason as AutoReason, PsdCertificate as PsdCertificate, BoundaryCertificate as BoundaryCertificate,
+                      Diagnostics as Diagnostics, FitResult as FitResult,
                       LinearSystemResult as LinearSystemResult, NearestResult as NearestResult, NoiseModel as NoiseModel,
                       Bootstrap as Bootstrap, Interval as Interval, SpectrumUncertainty as SpectrumUncertainty)
 

@@ -51,6 +51,22 @@ void bind_results(py::module_& m) {
                     "|complementarity| / (||A^T A||_2 ||X||_F + ||A^T B||_F)")
       .def(pickle_json<PsdCertificate>("PsdCertificate", &exact_json<PsdCertificate>))
       .def("__repr__", json_repr<PsdCertificate>("PsdCertificate"));
+  py::class_<BoundaryCertificate>(
+      m, "BoundaryCertificate",
+      "spd-tls's proof of optimality on the boundary (a singular estimate): the first-order conditions of "
+      "minimizing its criterion f (the likelihood with a noise model) over the positive semidefinite matrices, with X = "
+      "V_r Lambda V_r^T, V_0 its null space and G = grad f(X), in the coordinates where X has a unit diagonal and "
+      "relative to f. X satisfies them when stationarity = 0, cross_block = 0 and multiplier_min_eig >= 0 (to "
+      "rounding).")
+      .def_property_readonly("rank", copied(&BoundaryCertificate::rank), "X's rank r")
+      .def_property_readonly("stationarity", copied(&BoundaryCertificate::stationarity),
+                             "||Lambda^1/2 V_r^T G V_r Lambda^1/2||_F / f")
+      .def_property_readonly("cross_block", copied(&BoundaryCertificate::cross_block),
+                             "||Lambda^1/2 V_r^T G V_0||_F / f")
+      .def_property_readonly("multiplier_min_eig", copied(&BoundaryCertificate::multiplier_min_eig),
+                             "lambda_min(V_0^T G V_0) / f")
+      .def(pickle_json<BoundaryCertificate>("BoundaryCertificate", &exact_json<BoundaryCertificate>))
+      .def("__repr__", json_repr<BoundaryCertificate>("BoundaryCertificate"));
   py::class_<AutoReason>(m, "AutoReason", "Why auto chose its method: a stable code and a sentence.")
       .def_property_readonly("code", copied(&AutoReason::code))
       .def_property_readonly("text", copied(&AutoReason::text))
@@ -118,7 +134,15 @@ void bind_results(py::module_& m) {
       .def_property_readonly("gradient_norm", copied(&Diagnostics::gradient_norm),
                     "spd-tls: ||X^1/2 grad f X^1/2||_F; psd-ls: the relative KKT residual")
       .def_property_readonly("converged", copied(&Diagnostics::converged), "spd-tls, psd-ls: the stopping rule held")
-      .def_property_readonly("certificate", copied(&Diagnostics::certificate), "psd-ls: the optimality certificate")
+      .def_property_readonly(
+          "certificate",
+          [](const Diagnostics& d) -> py::object {
+            if (d.certificate) return py::cast(*d.certificate);
+            if (d.boundary_certificate) return py::cast(*d.boundary_certificate);
+            return py::none();
+          },
+          "the optimality certificate: psd-ls's (PsdCertificate), or spd-tls's on the boundary "
+          "(BoundaryCertificate)")
       .def_property_readonly(
           "chosen_method",
           [](const Diagnostics& d) -> std::optional<std::string> {

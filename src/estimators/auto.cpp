@@ -167,6 +167,19 @@ FitResult auto_settle(FitResult first, FitResult fallback, AutoReason& reason, d
   return first;
 }
 
+FitResult auto_settle_on_boundary(FitResult ml, AutoReason& reason) {
+  const Eigen::Index rank = ml.diagnostics.boundary_certificate->rank;
+  reason = AutoReason{
+      "boundary",
+      std::string(to_string(ml.method)) +
+          " ended on the boundary (the likelihood's infimum over the positive definite matrices is at a singular "
+          "matrix): its estimate, of rank " + std::to_string(rank) + " < n = " + std::to_string(ml.X.rows()) +
+          ", is the constrained maximum-likelihood estimate over the positive semidefinite matrices, with the noise "
+          "model's Sigma_A and Sigma_B (`certificate` holds its optimality conditions)"};
+  ml.warnings.insert(ml.warnings.begin(), Warning(Code::Boundary, "auto: " + reason.text));
+  return ml;
+}
+
 #define SPDFIT_INSTANTIATE(MaxN)                                                                          \
   template AutoChoice auto_choice<MaxN>(const BasicReduction<MaxN>&, std::optional<double>);           \
   template double auto_floor<MaxN>(const BasicReduction<MaxN>&);                                       \
@@ -290,11 +303,18 @@ FitResult auto_fit(const Reduction& reduction) {
     default:
       result = spd_total_least_squares(reduction);
   }
-  // psd-ls with the floor, weighted by Sigma_B with a noise model (which needs Sigma_B > 0).
-  FitResult fallback;
   const bool settled = result.ok() && detail::clearly_positive_definite(result.X);
-  if (!settled && (!noise || noise->b_definite)) fallback = detail::psd_least_squares_scaled(data, floor_s);
-  result = detail::auto_settle(std::move(result), std::move(fallback), reason, floor);
+  if (!settled && noise && result.ok() && result.diagnostics.boundary_certificate &&
+      result.diagnostics.converged.value_or(false)) {
+    // The likelihood's infimum on the boundary: spd-tls's constrained maximum-likelihood estimate,
+    // where its first-order conditions hold (converged); otherwise the psd-ls fallback below.
+    result = detail::auto_settle_on_boundary(std::move(result), reason);
+  } else {
+    // psd-ls with the floor, weighted by Sigma_B with a noise model (which needs Sigma_B > 0).
+    FitResult fallback;
+    if (!settled && (!noise || noise->b_definite)) fallback = detail::psd_least_squares_scaled(data, floor_s);
+    result = detail::auto_settle(std::move(result), std::move(fallback), reason, floor);
+  }
   result.diagnostics.chosen_method = result.method;
   result.diagnostics.reason = std::move(reason);
   return result;

@@ -27,4 +27,12 @@ AutoChoice auto_noise_choice(const DynamicReduction& data, const ScaledNoise& no
 /// message, and when it succeeded, with a warning that the estimate is not positive definite.
 FitResult auto_settle(FitResult first, FitResult fallback, AutoReason& reason, double floor);
 
+/// auto's last step with a noise model where spd-tls ended on the boundary (`ml` succeeded and
+/// converged, with a Diagnostics::boundary_certificate whose conditions hold): its estimate, the minimizer of the likelihood criterion over
+/// the positive semidefinite matrices (rank r < n; no positive definite X has a lower criterion),
+/// is the constrained maximum-likelihood estimate, and auto's: it honours Sigma_A and follows the
+/// data's units, as psd-ls with an isotropic floor would not. `reason` becomes "boundary" and
+/// the first warning says so.
+FitResult auto_settle_on_boundary(FitResult ml, AutoReason& reason);
+
 }  // namespace spdfit::detail

@@ -6,6 +6,8 @@
 #include <limits>
 
 #include "estimators/generalized_tls.hpp"
+#include "estimators/spd_ml_boundary.hpp"
+#include "estimators/spd_ml_model.hpp"
 #include "estimators/newton_common.hpp"
 #include "numerics/linalg.hpp"
 #include "repair/nearest_spd_kernel.hpp"
@@ -17,26 +19,8 @@ using Eigen::MatrixXd;
 using Eigen::VectorXd;
 using namespace trust_region;
 
-namespace {
+namespace spd_ml {
 
-// What stays fixed while Newton runs: the data, the covariances, P = R11^T R11, R22^T R22, and the
-// face X = U Y U^T the iteration moves on (U n x k orthonormal; U = I for the whole cone).
-struct Problem {
-  const DynamicReduction& data;
-  const ScaledNoise& noise;
-  MatrixXd P, E22;
-  MatrixXd U;
-};
-
-// A point: Y = Q diag(lambda) Q^T (k x k), X = V diag(lambda) V^T with V = U Q, and what f needs.
-struct Point {
-  MatrixXd Q, V, X, G, E, K;
-  VectorXd lambda;
-  double f = 0.0;
-};
-
-// f at X (n x n, symmetric): fills G, E and K = W^-1; false when W is not numerically positive
-// definite or f is not finite.
 bool criterion_at(const Problem& pr, Point& p) {
   const DynamicReduction& data = pr.data;
   p.G.noalias() = data.R11 * p.X;
@@ -55,29 +39,44 @@ bool criterion_at(const Problem& pr, Point& p) {
   return std::isfinite(p.f) && p.f >= 0.0;
 }
 
-// Fills p from Y given as T = Q0^T Y Q0 for an orthogonal Q0 in which Y is nearly diagonal (the
-// identity, or the previous iterate's eigenvectors); false when the eigensolver fails, Y is not
-// numerically positive definite, or f is not defined.
-bool evaluate(const Problem& pr, MatrixXd T, const MatrixXd& Q0, Point& p) {
-  const Index k = pr.U.cols();
-  p.Q = Q0;
-  if (!jacobi_eigen(T, p.Q)) return false;
-  p.lambda = T.diagonal();
-  if (!(p.lambda.minCoeff() > static_cast<double>(k) * kEps * p.lambda.maxCoeff())) return false;
-  p.V.noalias() = pr.U * p.Q;
-  p.X.noalias() = p.V * p.lambda.asDiagonal() * p.V.transpose();
-  p.X = symmetric_part(p.X);
-  return criterion_at(pr, p);
+void gradient_at(const Problem& pr, const Point& p, Gradient& d) {
+  d.M.noalias() = pr.data.R11.transpose() * p.G;
+  d.N.noalias() = pr.noise.cov_a * p.X;
+  d.F.noalias() = p.K * p.E * p.K;
+  d.F = symmetric_part(d.F);
+  d.MK.noalias() = d.M * p.K;
+  d.NF.noalias() = d.N * d.F;
+  d.gradX = d.MK + d.MK.transpose() - d.NF - d.NF.transpose();
 }
 
-// How a Newton run on one face ended.
-enum class NewtonEnd { Failed, Converged, Stopped, Boundary, Unbounded };
+void curvature_at(const Problem& pr, const Point& p, const Gradient& d, Curvature& c) {
+  c.NK.noalias() = d.N * p.K;
+  c.C1 = pr.P;
+  {
+    const MatrixXd MKN = d.MK * d.N.transpose();
+    c.C1 -= MKN + MKN.transpose();
+    c.C1.noalias() += d.NF * d.N.transpose();
+  }
+  c.C2.noalias() = c.NK * d.N.transpose();
+  c.C2 -= pr.noise.cov_a;
+  c.J = d.NF - d.MK;
+}
 
-// The Hessian of the Newton model in packed coordinates s of the symmetric step S (|s| = ||S||_F):
-// the model's quadratic part is sum_t tr(S U_t S V_t) = s^T H s / 2, so
+MatrixXd gradient_magnitude(const Problem& pr, const Point& p) {
+  const DynamicReduction& data = pr.data;
+  const MatrixXd Xabs = p.X.cwiseAbs();
+  const MatrixXd Gabs = data.R11.cwiseAbs() * Xabs + data.R12.cwiseAbs();
+  const MatrixXd Mabs = data.R11.cwiseAbs().transpose() * Gabs;
+  const MatrixXd Kabs = p.K.cwiseAbs();
+  const MatrixXd Eabs = Gabs.transpose() * Gabs + pr.E22.cwiseAbs();
+  const MatrixXd Fabs = Kabs * Eabs * Kabs;
+  const MatrixXd Nabs = pr.noise.cov_a.cwiseAbs() * Xabs;
+  const MatrixXd MKabs = Mabs * Kabs, NFabs = Nabs * Fabs;
+  return MKabs + MKabs.transpose() + NFabs + NFabs.transpose();
+}
+
 // H_pq = sum_t tr(E_p U_t E_q V_t) + tr(E_q U_t E_p V_t) over the basis E_p of the packed
-// coordinates (e_i e_i^T, (e_i e_j^T + e_j e_i^T) / sqrt 2), and
-// tr(e_a e_b^T U e_c e_d^T V) = U_bc V_da.
+// coordinates (e_i e_i^T, (e_i e_j^T + e_j e_i^T) / sqrt 2), and tr(e_a e_b^T U e_c e_d^T V) = U_bc V_da.
 void model_hessian(const MatrixXd* const* Us, const MatrixXd* const* Vs, int terms, MatrixXd& H) {
   const Index k = Us[0]->rows(), np = k * (k + 1) / 2;
   const double w = 1.0 / std::sqrt(2.0);
@@ -122,22 +121,47 @@ void model_hessian(const MatrixXd* const* Us, const MatrixXd* const* Vs, int ter
     }
 }
 
-// Newton's method on the positive definite k x k matrices Y of the face X = U Y U^T, from Y0. On
-// Boundary, `zero` marks the eigenvalues of cur (in cur.Q) heading to zero.
-NewtonEnd newton_on_face(const Problem& pr, double infinity, const MatrixXd& Y0, int max_iterations, Point& cur,
+}  // namespace spd_ml
+
+namespace {
+
+using namespace spd_ml;
+
+// Fills p from X given as T = Q0^T X Q0 for an orthogonal Q0 in which X is nearly diagonal (the
+// identity, or the previous iterate's eigenvectors); false when the eigensolver fails, X is not
+// numerically positive definite, or f is not defined.
+bool evaluate(const Problem& pr, MatrixXd T, const MatrixXd& Q0, Point& p) {
+  const Index k = pr.data.n;
+  p.Q = Q0;
+  if (!jacobi_eigen(T, p.Q)) return false;
+  p.lambda = T.diagonal();
+  if (!(p.lambda.minCoeff() > static_cast<double>(k) * kEps * p.lambda.maxCoeff())) return false;
+  p.V = p.Q;
+  p.X.noalias() = p.V * p.lambda.asDiagonal() * p.V.transpose();
+  p.X = symmetric_part(p.X);
+  return criterion_at(pr, p);
+}
+
+// How a Newton run in the open cone ended.
+enum class NewtonEnd { Failed, Converged, Stopped, Boundary, Unbounded };
+
+// Newton's method on the positive definite n x n matrices X, from X0. On Boundary, `zero` marks
+// the eigenvalues of cur (in cur.Q) heading to zero.
+NewtonEnd newton_in_cone(const Problem& pr, double infinity, const MatrixXd& X0, int max_iterations, Point& cur,
                          double& gnorm, int& iterations, Eigen::Matrix<bool, Eigen::Dynamic, 1>& zero) {
   const DynamicReduction& data = pr.data;
-  const Index n = data.n, k = pr.U.cols(), np = k * (k + 1) / 2;
+  const Index n = data.n, k = n, np = k * (k + 1) / 2;
   const double root2 = std::sqrt(2.0);
   const double norm_a = data.R11.norm();
   const double data_scale = norm_a > 0.0 ? data.R12.norm() / norm_a : 0.0;
-  const MatrixXd& Sa = pr.noise.cov_a;
 
   iterations = 0;
   Point trial;
-  if (!evaluate(pr, Y0, MatrixXd::Identity(k, k), cur)) return NewtonEnd::Failed;
+  if (!evaluate(pr, X0, MatrixXd::Identity(k, k), cur)) return NewtonEnd::Failed;
 
-  MatrixXd M, N, F, MK, NF, NK, gradX, g, gS, C1, C2, J, H, Hmu, T;
+  Gradient d;
+  Curvature cv;
+  MatrixXd g, gS, H, Hmu, T;
   MatrixXd scaled[8];
   VectorXd grad(np), s(np), sqrt_lambda;
   Eigen::LLT<MatrixXd> llt(np);
@@ -148,18 +172,9 @@ NewtonEnd newton_on_face(const Problem& pr, double infinity, const MatrixXd& Y0,
     const VectorXd& lambda = cur.lambda;
     sqrt_lambda = lambda.cwiseSqrt();
     const MatrixXd& V = cur.V;
-    // The Euclidean gradient in X (F = K E K, M = R11^T G, N = Sigma_A X):
-    //   grad f = M K + K M^T - N F - F N^T,
-    // from df = tr(dE K) - tr(F dW), dE = D M + M^T D, dW = D N + N^T D.
-    M.noalias() = data.R11.transpose() * cur.G;
-    N.noalias() = Sa * cur.X;
-    F.noalias() = cur.K * cur.E * cur.K;
-    F = symmetric_part(F);
-    MK.noalias() = M * cur.K;
-    NF.noalias() = N * F;
-    gradX = MK + MK.transpose() - NF - NF.transpose();
-    // In Y's eigenbasis (the face's coordinates), and the Riemannian gradient Y^1/2 g Y^1/2.
-    g.noalias() = V.transpose() * gradX * V;
+    gradient_at(pr, cur, d);
+    // In X's eigenbasis, and the Riemannian gradient X^1/2 g X^1/2.
+    g.noalias() = V.transpose() * d.gradX * V;
     g = symmetric_part(g);
     gS = sqrt_lambda.asDiagonal() * g * sqrt_lambda.asDiagonal();
     gnorm = gS.norm();
@@ -172,18 +187,9 @@ NewtonEnd newton_on_face(const Problem& pr, double infinity, const MatrixXd& Y0,
     for (Index i = 0; i < k; ++i)
       if (lambda(i) >= infinity && g(i, i) < 0.0) return NewtonEnd::Unbounded;
 
-    // The rounding level of gS: each term's rounding error from the sizes of what it cancels
-    // (G = R11 X - R12 cancels to the residual on consistent data).
+    // The rounding level of gS: each term's rounding error from the sizes of what it cancels.
     {
-      const MatrixXd Xabs = cur.X.cwiseAbs();
-      const MatrixXd Gabs = data.R11.cwiseAbs() * Xabs + data.R12.cwiseAbs();
-      const MatrixXd Mabs = data.R11.cwiseAbs().transpose() * Gabs;
-      const MatrixXd Kabs = cur.K.cwiseAbs();
-      const MatrixXd Eabs = Gabs.transpose() * Gabs + pr.E22.cwiseAbs();
-      const MatrixXd Fabs = Kabs * Eabs * Kabs;
-      const MatrixXd Nabs = Sa.cwiseAbs() * Xabs;
-      const MatrixXd MKabs = Mabs * Kabs, NFabs = Nabs * Fabs;
-      const MatrixXd termX = MKabs + MKabs.transpose() + NFabs + NFabs.transpose();
+      const MatrixXd termX = gradient_magnitude(pr, cur);
       const MatrixXd Vabs = V.cwiseAbs();
       const MatrixXd term = sqrt_lambda.asDiagonal() * (Vabs.transpose() * termX * Vabs) * sqrt_lambda.asDiagonal();
       const double floor = kRoundingMultiple * static_cast<double>(n) * kEps * term.norm();
@@ -191,32 +197,21 @@ NewtonEnd newton_on_face(const Problem& pr, double infinity, const MatrixXd& Y0,
     }
     if (iterations >= max_iterations || radius < kMinRadius) return NewtonEnd::Stopped;
 
-    // The second derivative: d^2 f [D, D] / 2 = tr(D K D C1) + tr(D F D C2) + 2 tr(D L D J) with
-    //   C1 = P - M K N^T - N K M^T + N F N^T,  C2 = N K N^T - Sigma_A,  L = N K,  J = N F - M K
-    // (from d^2E = 2 D P D, d^2W = 2 D Sigma_A D, dK = -K dW K). With D = V Lambda^1/2 S Lambda^1/2 V^T
-    // and the second-order term of X^1/2 exp(S) X^1/2, tr(gS S^2) / 2, the model's quadratic part is
-    // sum_t tr(S U_t S V_t) over the four pairs below, each matrix taken to the face's eigenbasis
+    // The second derivative (curvature_at). With D = V Lambda^1/2 S Lambda^1/2 V^T and the
+    // second-order term of X^1/2 exp(S) X^1/2, tr(gS S^2) / 2, the model's quadratic part is
+    // sum_t tr(S U_t S V_t) over the four pairs below, each matrix taken to X's eigenbasis
     // and scaled by Lambda^1/2 on both sides.
-    NK.noalias() = N * cur.K;
-    C1 = pr.P;
-    {
-      const MatrixXd MKN = MK * N.transpose();
-      C1 -= MKN + MKN.transpose();
-      C1.noalias() += NF * N.transpose();
-    }
-    C2.noalias() = NK * N.transpose();
-    C2 -= Sa;
-    J = NF - MK;
-    auto to_face = [&](const MatrixXd& A, MatrixXd& out, double factor) {
+    curvature_at(pr, cur, d, cv);
+    auto to_eigenbasis = [&](const MatrixXd& A, MatrixXd& out, double factor) {
       out.noalias() = V.transpose() * A * V;
       out = factor * (sqrt_lambda.asDiagonal() * out * sqrt_lambda.asDiagonal());
     };
-    to_face(cur.K, scaled[0], 1.0);
-    to_face(C1, scaled[1], 1.0);
-    to_face(F, scaled[2], 1.0);
-    to_face(C2, scaled[3], 1.0);
-    to_face(NK, scaled[4], 1.0);
-    to_face(J, scaled[5], 2.0);
+    to_eigenbasis(cur.K, scaled[0], 1.0);
+    to_eigenbasis(cv.C1, scaled[1], 1.0);
+    to_eigenbasis(d.F, scaled[2], 1.0);
+    to_eigenbasis(cv.C2, scaled[3], 1.0);
+    to_eigenbasis(cv.NK, scaled[4], 1.0);
+    to_eigenbasis(cv.J, scaled[5], 2.0);
     scaled[6] = MatrixXd::Identity(k, k);
     scaled[7] = 0.5 * gS;
     const MatrixXd* const Us[4] = {&scaled[0], &scaled[2], &scaled[4], &scaled[6]};
@@ -249,7 +244,7 @@ NewtonEnd newton_on_face(const Problem& pr, double infinity, const MatrixXd& Y0,
 }  // namespace
 
 double spd_ml_criterion(const DynamicReduction& data, const ScaledNoise& noise, const MatrixXd& X_s) {
-  Problem pr{data, noise, {}, data.R22.transpose() * data.R22, {}};
+  const Problem pr{data, noise, {}, data.R22.transpose() * data.R22};
   Point p;
   p.X = X_s;
   if (!criterion_at(pr, p)) return std::numeric_limits<double>::quiet_NaN();
@@ -262,45 +257,39 @@ namespace {
 bool ml_kernel(const DynamicReduction& data, const ScaledNoise& noise, int max_iterations, const MatrixXd& X0_s,
                double infinity, SpdTlsKernel<Eigen::Dynamic>& out) {
   const Index n = data.n;
-  Problem pr{data, noise, data.R11.transpose() * data.R11, data.R22.transpose() * data.R22,
-             MatrixXd::Identity(n, n)};
+  const Problem pr{data, noise, data.R11.transpose() * data.R11, data.R22.transpose() * data.R22};
   Point cur;
   Eigen::Matrix<bool, Eigen::Dynamic, 1> zero;
   double gnorm = 0.0;
   int iterations = 0;
   out.iterations = 0;
-  NewtonEnd end = newton_on_face(pr, infinity, X0_s, max_iterations, cur, gnorm, iterations, zero);
+  NewtonEnd end = newton_in_cone(pr, infinity, X0_s, max_iterations, cur, gnorm, iterations, zero);
   out.iterations = iterations;
   if (end == NewtonEnd::Failed) return false;
 
-  // On the boundary, continue on the face X = U Y U^T (U the eigenvectors whose eigenvalues
-  // stay), from Y = the kept eigenvalues; and so on while eigenvalues keep leaving. As in
-  // spd_tls_kernel, the face is the one the iterate had when the eigenvalues left.
-  while (end == NewtonEnd::Boundary) {
-    const Index k = pr.U.cols(), kept = k - zero.count();
-    MatrixXd U_next(n, kept), Y0 = MatrixXd::Zero(kept, kept);
-    for (Index i = 0, j = 0; i < k; ++i) {
-      if (zero(i)) continue;
-      U_next.col(j) = cur.V.col(i);
-      Y0(j, j) = cur.lambda(i);
-      ++j;
+  // On the boundary, the rank-r matrices from the iterate without the eigenvalues that left:
+  // spd_ml_boundary turns their range too, and changes r, until the constrained problem's
+  // first-order conditions hold.
+  if (end == NewtonEnd::Boundary) {
+    const Index kept = n - zero.count();
+    MatrixXd V(n, n);
+    VectorXd lambda(kept);
+    for (Index i = 0, j = 0, z = kept; i < n; ++i) {
+      if (zero(i)) {
+        V.col(z++) = cur.V.col(i);
+      } else {
+        V.col(j) = cur.V.col(i);
+        lambda(j++) = cur.lambda(i);
+      }
     }
-    pr.U = std::move(U_next);
-    if (kept == 0) break;
-    end = newton_on_face(pr, infinity, Y0, max_iterations - out.iterations, cur, gnorm, iterations, zero);
-    out.iterations += iterations;
-    if (end == NewtonEnd::Failed) return false;
+    if (!spd_ml_boundary(pr, infinity, max_iterations, std::move(V), std::move(lambda), out)) return false;
+    out.criterion = spd_ml_criterion(data, noise, out.X_s);
+    return true;
   }
 
   out.unbounded = end == NewtonEnd::Unbounded;
-  out.boundary_zeros = n - pr.U.cols();
-  if (pr.U.cols() == 0) {
-    out.X_s = MatrixXd::Zero(n, n);
-    gnorm = 0.0;
-    end = NewtonEnd::Converged;
-  } else {
-    out.X_s = cur.X;
-  }
+  out.boundary_zeros = 0;
+  out.X_s = cur.X;
   out.criterion = spd_ml_criterion(data, noise, out.X_s);
   out.gradient_norm = gnorm;
   out.converged = end == NewtonEnd::Converged;

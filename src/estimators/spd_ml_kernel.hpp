@@ -23,10 +23,11 @@ double spd_ml_criterion(const DynamicReduction& data, const ScaledNoise& noise, 
 
 /// Minimizes spd_ml_criterion over the symmetric positive definite X_s from the positive definite
 /// X0_s, as spd_tls_kernel minimizes its criterion (the same trust-region Newton method in the
-/// affine-invariant geometry with the exact Hessian, stopping rule, boundary faces and unbounded
-/// test), with `out` in the same form (out.criterion is the likelihood criterion). Returns false
-/// as spd_tls_kernel does. O(n^6) per iteration (the Hessian's Cholesky factorization; O(n^4) to
-/// form it), as spd_tls_kernel.
+/// affine-invariant geometry with the exact Hessian, stopping rule and unbounded test), with `out`
+/// in the same form (out.criterion is the likelihood criterion). Where eigenvalues head to zero
+/// while f decreases (the infimum on the boundary), spd_ml_boundary continues to the minimizer over
+/// the positive semidefinite matrices. Returns false as spd_tls_kernel does. O(n^6) per iteration
+/// (the Hessian's Cholesky factorization; O(n^4) to form it), as spd_tls_kernel.
 bool spd_ml_kernel(const DynamicReduction& data, const ScaledNoise& noise, int max_iterations,
                    const Eigen::MatrixXd& X0_s, SpdTlsKernel<Eigen::Dynamic>& out);
 

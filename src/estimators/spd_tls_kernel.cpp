@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "estimators/newton_common.hpp"
+#include "estimators/spd_ml_boundary.hpp"
 #include "numerics/linalg.hpp"
 #include "repair/nearest_spd_kernel.hpp"
 
@@ -61,7 +62,7 @@ double spd_tls_criterion(const BasicReduction<MaxN>& data, const SquareMatrix<Ma
   return p.f;
 }
 
-// How a Newton run on one face ended.
+// How a Newton run ended.
 enum class NewtonEnd { Failed, Converged, Stopped, Boundary, Unbounded };
 
 namespace {
@@ -100,7 +101,7 @@ void gradient(const BasicReduction<MaxN>& data, const Point<MaxN>& cur, Derivati
 
 // Where the iteration leaves the open cone: Boundary when an eigenvalue is driven towards zero
 // while the criterion still decreases along it (g_ii > 0: its limit is 0, and the caller
-// continues on the face without it; `zero` marks them), Unbounded when an eigenvalue grows past
+// continues on the boundary without it; `zero` marks them), Unbounded when an eigenvalue grows past
 // any sensible size while f still decreases along it (no minimizer); nothing otherwise.
 template <int MaxN>
 std::optional<NewtonEnd> leaves_the_cone(const Point<MaxN>& cur, const Derivatives<MaxN>& d, double data_scale,
@@ -174,9 +175,8 @@ void newton_model(const Point<MaxN>& cur, const Derivatives<MaxN>& d, PMatrix& H
 
 }  // namespace
 
-// Newton's method on the positive definite k x k matrices, k = data.n (the whole problem, or a
-// face X = U Y U^T of the boundary, whose data are R11 U, R12 U, R22 U), a Riemannian trust
-// region in the metric of the cone: at each iterate the gradient, the exits from the cone, the
+// Newton's method on the positive definite n x n matrices, a Riemannian trust region in the
+// metric of the cone: at each iterate the gradient, the exits from the cone, the
 // convergence test against the gradient's rounding level, Newton's model, its step within the
 // region, the trial point on the cone, and the region's update. On Boundary, `zero` marks the
 // eigenvalues of cur (in cur.Q) heading to zero.
@@ -241,10 +241,111 @@ NewtonEnd newton(const BasicReduction<MaxN>& data, double r2, double infinity, c
   }
 }
 
+namespace {
+
+// On the boundary, in two stages. (1) The face: continue Newton on X = U Y U^T (U the
+// eigenvectors whose eigenvalues stay, Y positive definite), where f(U Y U^T) is the same criterion
+// for the data R11 U, R12 U, R22 U, from Y = the kept eigenvalues; and so on while eigenvalues keep
+// leaving. An infimum at infinity on the face (an eigenvalue growing while f decreases) ends here:
+// there is no minimizer. (2) The face's minimizer keeps the null space the iteration happened to
+// have; the minimizer over all positive semidefinite matrices (the criterion is the likelihood
+// criterion with Sigma_A = I, Sigma_B = r^2 I, spd_ml_kernel.hpp) is found by spd_ml_boundary from
+// it, in dynamic matrices. Its answer replaces the face's only where its criterion is lower (it
+// starts there and only descends, so a higher one means it failed): the estimate is never worse
+// than the face's.
+template <int MaxN>
+bool boundary(const BasicReduction<MaxN>& data, double r2, double infinity, int max_iterations, Point<MaxN> cur,
+              Eigen::Matrix<bool, Eigen::Dynamic, 1, Eigen::ColMajor, MaxN, 1> zero, double gnorm,
+              SpdTlsKernel<MaxN>& out) {
+  using Eigen::MatrixXd;
+  using Matrix = SquareMatrix<MaxN>;
+  const Index n = data.n;
+  const double r_s = std::sqrt(r2);
+
+  // (1) The face. U's columns and the directions that left (the null space) stay orthonormal.
+  Matrix U = Matrix::Identity(n, n), null(n, 0);
+  BasicReduction<MaxN> face;
+  NewtonEnd end = NewtonEnd::Boundary;
+  int iterations = 0;
+  while (end == NewtonEnd::Boundary) {
+    const Index k = U.cols(), kept = k - zero.count();
+    Matrix U_next(n, kept), null_next(n, null.cols() + (k - kept)), Y0 = Matrix::Zero(kept, kept);
+    null_next.leftCols(null.cols()) = null;
+    for (Index i = 0, j = 0, z = null.cols(); i < k; ++i) {
+      const auto u = (U * cur.Q.col(i)).eval();
+      if (zero(i)) {
+        null_next.col(z++) = u;
+        continue;
+      }
+      U_next.col(j) = u;
+      Y0(j, j) = cur.lambda(i);
+      ++j;
+    }
+    U = U_next;
+    null = null_next;
+    if (kept == 0) break;
+    face.n = kept;
+    face.R11.noalias() = data.R11 * U;
+    face.R12.noalias() = data.R12 * U;
+    face.R22.noalias() = data.R22 * U;
+    end = newton(face, r2, infinity, Y0, max_iterations - out.iterations, cur, gnorm, iterations, zero);
+    out.iterations += iterations;
+    if (end == NewtonEnd::Failed) return false;
+  }
+  out.unbounded = end == NewtonEnd::Unbounded;
+  out.boundary_zeros = n - U.cols();
+  if (U.cols() == 0) {
+    out.X_s = Matrix::Zero(n, n);
+    gnorm = 0.0;
+    end = NewtonEnd::Converged;
+  } else {
+    out.X_s.noalias() = U * cur.X * U.transpose();
+    out.X_s = symmetric_part(out.X_s);
+  }
+  out.criterion = spd_tls_criterion(data, out.X_s, r_s);
+  out.gradient_norm = gnorm;
+  out.converged = end == NewtonEnd::Converged;
+  if (out.unbounded) return true;
+
+  // (2) From the face's minimizer over the whole semidefinite cone.
+  DynamicReduction dynamic;
+  dynamic.m = data.m;
+  dynamic.n = n;
+  dynamic.d = data.d;
+  dynamic.R11 = data.R11;
+  dynamic.R12 = data.R12;
+  dynamic.R22 = data.R22;
+  const ScaledNoise noise = equal_scaled_noise(n, r2);
+  const spd_ml::Problem pr{dynamic, noise, dynamic.R11.transpose() * dynamic.R11,
+                           dynamic.R22.transpose() * dynamic.R22};
+  const Index kept = U.cols();
+  MatrixXd V(n, n);
+  Eigen::VectorXd lambda(kept);
+  if (kept > 0) {
+    V.leftCols(kept) = U * cur.Q;
+    lambda = cur.lambda;
+  }
+  V.rightCols(n - kept) = null;
+  SpdTlsKernel<Eigen::Dynamic> k;
+  k.iterations = out.iterations;
+  if (!spd_ml_boundary(pr, infinity, max_iterations, std::move(V), std::move(lambda), k)) return true;
+  out.iterations = k.iterations;
+  const Matrix X = k.X_s;
+  const double criterion = spd_tls_criterion(data, X, r_s);
+  if (k.unbounded || !(criterion <= out.criterion)) return true;
+  out.X_s = X;
+  out.boundary_zeros = k.boundary_zeros;
+  out.criterion = criterion;
+  out.gradient_norm = k.gradient_norm;
+  out.converged = k.converged;
+  return true;
+}
+
+}  // namespace
+
 template <int MaxN>
 bool spd_tls_kernel(const BasicReduction<MaxN>& data, double r_s, int max_iterations,
                     const SquareMatrix<MaxN>& X0_s, SpdTlsKernel<MaxN>& out) {
-  using Matrix = SquareMatrix<MaxN>;
   const double r2 = r_s * r_s;
   const Index n = data.n;
   Point<MaxN> cur;
@@ -260,43 +361,11 @@ bool spd_tls_kernel(const BasicReduction<MaxN>& data, double r_s, int max_iterat
   out.iterations = iterations;
   if (end == NewtonEnd::Failed) return false;
 
-  // On the boundary, continue on the face X = U Y U^T (U the eigenvectors whose eigenvalues
-  // stay), where f(U Y U^T) is the same criterion for the data A U, B U plus a constant, from
-  // Y = the kept eigenvalues; and so on while eigenvalues keep leaving.
-  Matrix U = Matrix::Identity(n, n);
-  BasicReduction<MaxN> face;
-  while (end == NewtonEnd::Boundary) {
-    const Index k = U.cols(), kept = k - zero.count();
-    Matrix U_next(n, kept), Y0 = Matrix::Zero(kept, kept);
-    for (Index i = 0, j = 0; i < k; ++i) {
-      if (zero(i)) continue;
-      U_next.col(j) = U * cur.Q.col(i);
-      Y0(j, j) = cur.lambda(i);
-      ++j;
-    }
-    U = U_next;
-    if (kept == 0) break;
-    face.n = kept;
-    face.R11.noalias() = data.R11 * U;
-    face.R12.noalias() = data.R12 * U;
-    face.R22.noalias() = data.R22 * U;
-    end = newton(face, r2, infinity, Y0, max_iterations - out.iterations, cur, gnorm, iterations, zero);
-    out.iterations += iterations;
-    if (end == NewtonEnd::Failed) return false;
-  }
+  if (end == NewtonEnd::Boundary) return boundary(data, r2, infinity, max_iterations, cur, zero, gnorm, out);
 
   out.unbounded = end == NewtonEnd::Unbounded;
-  out.boundary_zeros = n - U.cols();
-  if (U.cols() == n) {
-    out.X_s = cur.X;
-  } else if (U.cols() == 0) {
-    out.X_s = Matrix::Zero(n, n);
-    gnorm = 0.0;
-    end = NewtonEnd::Converged;
-  } else {
-    out.X_s.noalias() = U * cur.X * U.transpose();
-    out.X_s = symmetric_part(out.X_s);
-  }
+  out.boundary_zeros = 0;
+  out.X_s = cur.X;
   out.criterion = spd_tls_criterion(data, out.X_s, r_s);
   out.gradient_norm = gnorm;
   out.converged = end == NewtonEnd::Converged;

@@ -6,6 +6,7 @@
 #include "estimators/diagnostics.hpp"
 #include "estimators/kernels.hpp"
 #include "estimators/psd_ls_kernel.hpp"
+#include "estimators/spd_ml_boundary.hpp"
 #include "estimators/spd_ml_kernel.hpp"
 #include "estimators/spd_tls_kernel.hpp"
 
@@ -15,6 +16,11 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 
 namespace {
+
+// The first-order conditions at a converged boundary estimate, relative to the criterion: Newton
+// stops at 1e-10, and the certificate, computed from X afresh, adds rounding of about m eps times
+// the gradient's terms; 1e-8 leaves room for both (the unit tests' KKT tolerance).
+constexpr double kCertificateTolerance = 1e-8;
 
 // Sigma_A = 0: the criterion is sum_i r_i^T Sigma_B^-1 r_i, a convex quadratic, and its infimum over
 // the positive definite matrices is weighted psd-ls's minimum over the semidefinite ones (floor 0),
@@ -47,10 +53,11 @@ FitResult spd_total_least_squares(const Reduction& reduction) {
   const int criterion_exponent = noise ? 0 : 2 * data.exponent_a;
   detail::SpdTlsKernel<Eigen::Dynamic> k;
   bool started = false;
+  std::optional<double> r_s;
   if (noise) {
     started = detail::spd_ml_solve(data, *noise, data.options.max_iterations, k);
   } else {
-    const std::optional<double> r_s = detail::spd_tls_noise_ratio(data);
+    r_s = detail::spd_tls_noise_ratio(data);
     if (!r_s) {
       return detail::failure(method, data,
                              "spd-tls: the noise ratio " + detail::format_number(data.options.noise_ratio) +
@@ -93,10 +100,30 @@ FitResult spd_total_least_squares(const Reduction& reduction) {
                        std::to_string(data.options.max_iterations) + ")"));
   }
   if (k.boundary_zeros > 0) {
+    // The constrained problem's first-order conditions at the returned X, from X itself (without
+    // a noise model the TLS criterion is the likelihood criterion with Sigma_A = I, Sigma_B = r^2 I).
+    d.boundary_certificate = detail::spd_ml_certificate(
+        data, noise ? *noise : detail::equal_scaled_noise(n, *r_s * *r_s), k.X_s, n - k.boundary_zeros);
     warnings.push_back(Warning(Code::Boundary, "the infimum of the " + criterion_name + " over the positive definite matrices is on the boundary: "
                        "the criterion keeps decreasing as " + std::to_string(k.boundary_zeros) +
-                       " eigenvalue(s) of X go to zero, so the estimate is the positive semidefinite limit "
-                       "(rank " + std::to_string(n - k.boundary_zeros) + "), not positive definite"));
+                       " eigenvalue(s) of X go to zero, so the estimate is its minimizer over the positive "
+                       "semidefinite matrices (rank " + std::to_string(n - k.boundary_zeros) +
+                       "; `certificate` holds the optimality conditions), not positive definite"));
+    // The stopping rule judged the iteration's own coordinates and rounding level; the certificate
+    // judges X itself. Where they disagree (the iteration stopped far from a point of the
+    // conditions, as where the criterion's infimum is near infinity), converged says so.
+    const BoundaryCertificate& c = *d.boundary_certificate;
+    const bool certified = c.stationarity <= kCertificateTolerance && c.cross_block <= kCertificateTolerance &&
+                           c.multiplier_min_eig >= -kCertificateTolerance;
+    if (k.converged && !certified) {
+      d.converged = false;
+      warnings.push_back(Warning(Code::NotConverged,
+                                 "spd-tls stopped on the boundary where the first-order conditions do not hold "
+                                 "(`certificate`: stationarity " + detail::format_number(c.stationarity) +
+                                 ", cross_block " + detail::format_number(c.cross_block) + ", multiplier_min_eig " +
+                                 detail::format_number(c.multiplier_min_eig) +
+                                 ", relative to the criterion): the estimate is not its constrained minimizer"));
+    }
   }
   return detail::finish(method, data, k.X_s, std::move(d), std::move(warnings));
 }

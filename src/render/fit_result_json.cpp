@@ -41,6 +41,24 @@ PsdCertificate certificate_from(const Json& object, const std::string& type) {
   return {number("primal_min_eig"), number("dual_min_eig"), number("complementarity"), number("duality_gap")};
 }
 
+// spd-tls's certificate on the boundary: the JSON's "certificate" too, told from psd-ls's by its keys.
+Json boundary_certificate_json(const BoundaryCertificate& c, JsonStyle style) {
+  return {{"rank", c.rank},
+          {"stationarity", number_json(c.stationarity, style)},
+          {"cross_block", number_json(c.cross_block, style)},
+          {"multiplier_min_eig", number_json(c.multiplier_min_eig, style)}};
+}
+
+BoundaryCertificate boundary_certificate_from(const Json& object, const std::string& type) {
+  const auto number = [&](const char* key) { return number_from(field(object, key, type), type + " '" + key + "'"); };
+  BoundaryCertificate c;
+  c.rank = value_from<Eigen::Index>(object, "rank", type);
+  c.stationarity = number("stationarity");
+  c.cross_block = number("cross_block");
+  c.multiplier_min_eig = number("multiplier_min_eig");
+  return c;
+}
+
 Json reason_json(const AutoReason& reason) { return {{"code", reason.code}, {"text", reason.text}}; }
 
 AutoReason reason_from(const Json& object, const std::string& type) {
@@ -91,6 +109,7 @@ Json diagnostics_json(const Diagnostics& d, JsonStyle style) {
   put_optional(out, "gradient_norm", d.gradient_norm, style);
   if (d.converged) out["converged"] = *d.converged;
   if (d.certificate) out["certificate"] = certificate_json(*d.certificate, style);
+  if (d.boundary_certificate) out["certificate"] = boundary_certificate_json(*d.boundary_certificate, style);
   // Without a model the estimate assumed equal noise in every column of A and B: said so.
   out["noise_model"] = d.noise_model ? noise_model_json(*d.noise_model, style) : Json{{"source", kAssumedEqual}};
   if (d.chosen_method) out["chosen_method"] = std::string(to_string(*d.chosen_method));
@@ -134,7 +153,13 @@ Diagnostics diagnostics_from(const Json& object, const Json& shape, const std::s
   if (optional_field(object, "iterations")) d.iterations = value_from<int>(object, "iterations", what);
   d.gradient_norm = optional("gradient_norm");
   if (optional_field(object, "converged")) d.converged = value_from<bool>(object, "converged", what);
-  if (const Json* c = optional_field(object, "certificate")) d.certificate = certificate_from(*c, what + " certificate");
+  if (const Json* c = optional_field(object, "certificate")) {
+    if (optional_field(*c, "stationarity")) {
+      d.boundary_certificate = boundary_certificate_from(*c, what + " certificate");
+    } else {
+      d.certificate = certificate_from(*c, what + " certificate");
+    }
+  }
   if (const Json* m = optional_field(object, "noise_model")) {
     const Json* source = optional_field(*m, "source");
     if (!(source && source->is_string() && source->get<std::string>() == kAssumedEqual)) {
@@ -278,6 +303,10 @@ std::string to_json(const PsdCertificate& certificate, JsonStyle style) {
   return dump(detail::certificate_json(certificate, style), style);
 }
 
+std::string to_json(const BoundaryCertificate& certificate, JsonStyle style) {
+  return dump(detail::boundary_certificate_json(certificate, style), style);
+}
+
 std::string to_json(const AutoReason& reason, JsonStyle style) { return dump(detail::reason_json(reason), style); }
 
 std::string to_json(const Interval& interval, JsonStyle style) {
@@ -306,6 +335,11 @@ Diagnostics from_json<Diagnostics>(const std::string& text) {
 template <>
 PsdCertificate from_json<PsdCertificate>(const std::string& text) {
   return detail::certificate_from(detail::parse_object(text, "PsdCertificate"), "PsdCertificate");
+}
+
+template <>
+BoundaryCertificate from_json<BoundaryCertificate>(const std::string& text) {
+  return detail::boundary_certificate_from(detail::parse_object(text, "BoundaryCertificate"), "BoundaryCertificate");
 }
 
 template <>

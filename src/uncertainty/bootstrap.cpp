@@ -75,8 +75,12 @@ Replicate replicate_of(FitResult&& fitted) {
 }
 
 namespace {
-// Whether the full data's estimate ended at psd-ls's boundary, which replicates then follow.
-bool at_boundary(const FitResult& full) { return full.diagnostics.reason && full.diagnostics.reason->code == "boundary"; }
+// Whether auto's estimate of the full data is its psd-ls fallback at the boundary, which replicates
+// then follow (with a noise model auto keeps spd-tls's constrained estimate there, and replicates
+// run spd-tls).
+bool at_boundary(const FitResult& full) {
+  return full.method == Method::PsdLeastSquares && full.diagnostics.reason && full.diagnostics.reason->code == "boundary";
+}
 }  // namespace
 
 FitResult fit_replicate(const Reduction& data, const FitResult& full) {

@@ -226,8 +226,29 @@ def identified(truth_and_modes):
     return quiet(hx.identify, sim.A, sim.B, truth=sim.truth, stiffness=stiffness, bootstrap=12, threads=1)
 
 
+def boundary_fit():
+    """spd-tls with a noise model whose likelihood's infimum is on the boundary (issue 42's
+    reproduction, seed 1 of tests/python/test_boundary_ml.py): its diagnostics hold a
+    BoundaryCertificate."""
+    rng = np.random.default_rng(1)
+    Q, _ = np.linalg.qr(rng.standard_normal((3, 3)))
+    X = Q @ np.diag(np.logspace(0, -6, 3)) @ Q.T
+
+    def covariance():
+        G = rng.standard_normal((3, 3))
+        C = G @ G.T + 0.3 * np.eye(3)
+        return 0.09 * 3 * C / np.trace(C)
+
+    cov_a, cov_b = covariance(), covariance()
+    A0 = rng.standard_normal((40, 3))
+    A = A0 + rng.multivariate_normal(np.zeros(3), cov_a, 40)
+    B = A0 @ X + rng.multivariate_normal(np.zeros(3), cov_b, 40)
+    return quiet(spdfit.fit, A, B, "spd-tls", noise=spdfit.NoiseModel(cov_a=cov_a, cov_b=cov_b))
+
+
 # Objects made through the public API, with their optional parts present and absent.
 EXAMPLES = {
+    "fit, spd-tls on the boundary": boundary_fit,
     "fit, auto": lambda: quiet(spdfit.fit, *ref.thesis_generator(30, 6, 1.0, np.random.default_rng(8))[:2]),
     "nearest_spd": lambda: quiet(spdfit.nearest_spd, np.array([[2.0, 3.0], [3.0, 1.0]]), full_output=True),
     "solve, full rank, 3 right-hand sides": lambda: spdfit.solve(gaussian(7, 4), gaussian(7, 3, seed=6)),
@@ -398,7 +419,7 @@ def first_instances():
 # checks test_factor.py corrupts byte by byte.
 JSON_STATES = ["AutoReason", "Bootstrap", "ColumnClassification", "Diagnostics", "FitResult", "Interval",
                "LinearSystemResult", "MethodIdentification", "NearestResult", "NoiseModel", "PsdCertificate",
-               "SpectrumUncertainty"]
+               "BoundaryCertificate", "SpectrumUncertainty"]
 TUPLE_STATES = sorted(set(module_classes()) - set(JSON_STATES) - {"TriangularFactor"})
 
 
