@@ -2,10 +2,10 @@
 # Sets up, builds and runs every test (unit tests, the reference comparison, CLI tests, the Python
 # module's, `pip install .` into a virtual environment from the same build), then the
 # same tests again under AddressSanitizer and UndefinedBehaviorSanitizer (build-sanitize/), then
-# each fuzz target for about a minute (docs/errors.md says what they check).
+# each fuzz target for half a minute (docs/errors.md says what they check).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 ctest --test-dir build --output-on-failure --parallel "$(nproc 2>/dev/null || echo 2)"
 scripts/sanitize.sh
-scripts/fuzz.sh
+FUZZ_SECONDS=${FUZZ_SECONDS:-30} scripts/fuzz.sh

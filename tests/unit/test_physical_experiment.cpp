@@ -38,6 +38,9 @@ std::pair<double, double> ratio_of_means(const std::vector<double>& a, const std
 }
 
 TEST(PhysicalExperiment, BeatsTheBestGenericMethodByTheGoalsMargin) {
+#ifdef SPDFIT_TEST_SANITIZED
+  GTEST_SKIP() << "a statistical Monte Carlo test: run in the plain build (a second there, minutes under the sanitizers)";
+#endif
   experiment::PhysicalExperimentOptions options;  // built-in hexapod, width-3.2 noise, m = 12 ... 1000
   options.variants = {"physical"};
   experiment::MonteCarloOptions monte_carlo;
@@ -60,6 +63,9 @@ TEST(PhysicalExperiment, BeatsTheBestGenericMethodByTheGoalsMargin) {
 }
 
 TEST(PhysicalExperiment, ThinRodIsConsistentWhereTheGreyBoxIsNot) {
+#ifdef SPDFIT_TEST_SANITIZED
+  GTEST_SKIP() << "a statistical Monte Carlo test: run in the plain build (a second there, minutes under the sanitizers)";
+#endif
   experiment::PhysicalExperimentOptions options;
   RigidBodyInertia rod;
   rod.mass = 11.973;
