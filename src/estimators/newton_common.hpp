@@ -154,6 +154,26 @@ inline double updated_radius(double radius, double ratio, double step) {
   return radius;
 }
 
+/// A trial point's verdict: true when the iteration moves to it, with `radius` updated. f and
+/// f_trial are the criterion at the current and the trial point (f_trial unused when !valid:
+/// the trial point is not in the domain), predicted the model's decrease, step the step's length,
+/// n the problem's size. Below the resolution of f (the last Newton steps: the decrease is about
+/// g^2 / H, the rounding of f about eps f) the ratio of actual to predicted decrease is noise: the
+/// step is taken unless f rose beyond its rounding, and the gradient at the new point judges it.
+/// Otherwise the ratio decides (updated_radius, kAcceptRatio).
+inline bool accept_trial(bool valid, double f, double f_trial, double predicted, double step, Eigen::Index n,
+                         double& radius) {
+  const double resolution = kCriterionRounding * static_cast<double>(n) * kEps;
+  if (predicted < resolution * f) {
+    if (valid && f_trial <= f * (1.0 + resolution)) return true;
+    radius = 0.25 * step;
+    return false;
+  }
+  const double ratio = valid && predicted > 0.0 ? (f - f_trial) / predicted : -1.0;
+  radius = updated_radius(radius, ratio, step);
+  return ratio > kAcceptRatio;
+}
+
 }  // namespace trust_region
 
 }  // namespace spdfit::detail

@@ -204,17 +204,7 @@ RankEnd newton_on_rank(const Problem& pr, double infinity, int max_iterations, R
       trial.lambda = Y.diagonal();
       valid = evaluate(pr, trial);
     }
-    const double ratio = valid && predicted > 0.0 ? (cur.p.f - trial.p.f) / predicted : -1.0;
-    if (predicted < kCriterionRounding * static_cast<double>(n) * kEps * cur.p.f) {
-      if (valid && trial.p.f <= cur.p.f * (1.0 + kCriterionRounding * static_cast<double>(n) * kEps)) {
-        std::swap(cur, trial);
-      } else {
-        radius = 0.25 * step;
-      }
-      continue;
-    }
-    radius = updated_radius(radius, ratio, step);
-    if (ratio > kAcceptRatio) std::swap(cur, trial);
+    if (accept_trial(valid, cur.p.f, trial.p.f, predicted, step, n, radius)) std::swap(cur, trial);
   }
 }
 

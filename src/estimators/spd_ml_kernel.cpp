@@ -227,17 +227,7 @@ NewtonEnd newton_in_cone(const Problem& pr, double infinity, const MatrixXd& X0,
     ++iterations;
 
     const bool valid = evaluate(pr, T, cur.Q, trial);
-    const double ratio = valid && predicted > 0.0 ? (cur.f - trial.f) / predicted : -1.0;
-    if (predicted < kCriterionRounding * static_cast<double>(n) * kEps * cur.f) {
-      if (valid && trial.f <= cur.f * (1.0 + kCriterionRounding * static_cast<double>(n) * kEps)) {
-        std::swap(cur, trial);
-      } else {
-        radius = 0.25 * step;
-      }
-      continue;
-    }
-    radius = updated_radius(radius, ratio, step);
-    if (ratio > kAcceptRatio) std::swap(cur, trial);
+    if (accept_trial(valid, cur.f, trial.f, predicted, step, n, radius)) std::swap(cur, trial);
   }
 }
 

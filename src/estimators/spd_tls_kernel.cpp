@@ -224,20 +224,7 @@ NewtonEnd newton(const BasicReduction<MaxN>& data, double r2, double infinity, c
     ++iterations;
 
     const bool valid = evaluate<MaxN>(data, r2, T, cur.Q, trial);
-    const double ratio = valid && predicted > 0.0 ? (cur.f - trial.f) / predicted : -1.0;
-    // Below the resolution of f (the last Newton steps: the decrease is about g^2 / H, the
-    // rounding of f about eps f), the ratio is noise: take the step unless f rose beyond its
-    // rounding, and let the gradient at the new point judge it.
-    if (predicted < kCriterionRounding * static_cast<double>(n) * kEps * cur.f) {
-      if (valid && trial.f <= cur.f * (1.0 + kCriterionRounding * static_cast<double>(n) * kEps)) {
-        std::swap(cur, trial);
-      } else {
-        radius = 0.25 * step;
-      }
-      continue;
-    }
-    radius = updated_radius(radius, ratio, step);
-    if (ratio > kAcceptRatio) std::swap(cur, trial);
+    if (accept_trial(valid, cur.f, trial.f, predicted, step, n, radius)) std::swap(cur, trial);
   }
 }
 

@@ -38,9 +38,11 @@ double spd_tls_criterion(const BasicReduction<MaxN>& data, const SquareMatrix<Ma
 /// rounding level of the computed gradient) or max_iterations steps. Returns false, touching
 /// nothing but `out.iterations`, when X0_s is not numerically positive definite (smallest
 /// eigenvalue <= n eps times the largest) or the eigensolver fails. An infimum on the boundary
-/// (eigenvalues heading to 0 while f decreases) continues to the minimizer over the positive
-/// semidefinite matrices (spd_ml_boundary with Sigma_A = I, Sigma_B = r^2 I; boundary_zeros its
-/// rank deficiency; dynamic matrices there); an infimum at infinity stops with `unbounded`.
+/// (eigenvalues heading to 0 while f decreases) continues on the face without them (where an
+/// infimum at infinity stops with `unbounded`, as in the interior), then from the face's minimizer
+/// to the minimizer over the positive semidefinite matrices (spd_ml_boundary with Sigma_A = I,
+/// Sigma_B = r^2 I, in dynamic matrices), kept where its criterion is lower; boundary_zeros is the
+/// estimate's rank deficiency.
 /// O(n^3) per iteration in the interior, O(n^6) on the boundary.
 template <int MaxN>
 bool spd_tls_kernel(const BasicReduction<MaxN>& data, double r_s, int max_iterations,

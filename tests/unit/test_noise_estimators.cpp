@@ -20,6 +20,7 @@
 #include "spdfit/spd_total_least_squares.hpp"
 #include "spdfit/symmetric_procrustes.hpp"
 #include "spdfit/total_least_squares.hpp"
+#include "likelihood_reference.hpp"
 #include "test_support.hpp"
 
 namespace spdfit {
@@ -30,18 +31,7 @@ using Eigen::MatrixXd;
 using Eigen::VectorXd;
 using test::Generator;
 using test::relative_error;
-
-// The likelihood criterion sum_i r_i^T (X^T Sigma_A X + Sigma_B)^-1 r_i, row by row from the data.
-double criterion(const MatrixXd& A, const MatrixXd& B, const MatrixXd& X, const MatrixXd& Sa, const MatrixXd& Sb) {
-  const MatrixXd W = X.transpose() * Sa * X + Sb;
-  const Eigen::LLT<MatrixXd> llt(W);
-  double f = 0.0;
-  for (Index i = 0; i < A.rows(); ++i) {
-    const VectorXd r = (A.row(i) * X - B.row(i)).transpose();
-    f += r.dot(llt.solve(r));
-  }
-  return f;
-}
+using test::likelihood_criterion;
 
 MatrixXd sqrtm(const MatrixXd& X) {
   Eigen::SelfAdjointEigenSolver<MatrixXd> eig(X);
@@ -105,7 +95,7 @@ TEST(MaximumLikelihood, RiemannianGradientVanishesAndTheResultIsSpd) {
       EXPECT_TRUE(r.diagnostics.converged.value_or(false));
       ASSERT_TRUE(r.diagnostics.noise_model);
       EXPECT_EQ(r.diagnostics.noise_model->source(), NoiseSource::Std);
-      const double f = criterion(p.A, p.B, r.X, p.Sa, p.Sb);
+      const double f = likelihood_criterion(p.A, p.B, r.X, p.Sa, p.Sb);
       EXPECT_LE(*r.diagnostics.gradient_norm, 1e-10 * f);
       // <X^1/2 grad f X^1/2, S> by fourth-order central differences along X^1/2 S X^1/2: they
       // resolve about 1e-9 f here; at the start (SPDE) the derivatives are of order f.
@@ -115,7 +105,7 @@ TEST(MaximumLikelihood, RiemannianGradientVanishesAndTheResultIsSpd) {
         const MatrixXd S = Generator::symmetrize(g.gaussian(n, n)).normalized();
         const MatrixXd D = root * S * root;
         const double h = 1e-3;
-        auto at = [&](double t) { return criterion(p.A, p.B, r.X + t * D, p.Sa, p.Sb); };
+        auto at = [&](double t) { return likelihood_criterion(p.A, p.B, r.X + t * D, p.Sa, p.Sb); };
         const double slope = (at(-2 * h) - 8 * at(-h) + 8 * at(h) - at(2 * h)) / (12 * h);
         EXPECT_LE(std::abs(slope), 1e-7 * f) << "n = " << n << ", m = " << m;
       }
@@ -125,7 +115,7 @@ TEST(MaximumLikelihood, RiemannianGradientVanishesAndTheResultIsSpd) {
         for (double t : {1e-4, 1e-2, 1e-1}) {
           const MatrixXd X = r.X + t * r.X.norm() * S;
           if (Eigen::LLT<MatrixXd>(X).info() != Eigen::Success) continue;
-          EXPECT_GE(criterion(p.A, p.B, X, p.Sa, p.Sb), f * (1 - 1e-12));
+          EXPECT_GE(likelihood_criterion(p.A, p.B, X, p.Sa, p.Sb), f * (1 - 1e-12));
         }
       }
     }
@@ -137,7 +127,7 @@ TEST(MaximumLikelihood, RiemannianGradientVanishesAndTheResultIsSpd) {
 MatrixXd descend(const Problem& p, const MatrixXd& start, int steps) {
   const Index n = start.rows();
   MatrixXd L = Eigen::LLT<MatrixXd>(start).matrixL();
-  auto f_of = [&](const MatrixXd& Lc) { return criterion(p.A, p.B, Lc * Lc.transpose(), p.Sa, p.Sb); };
+  auto f_of = [&](const MatrixXd& Lc) { return likelihood_criterion(p.A, p.B, Lc * Lc.transpose(), p.Sa, p.Sb); };
   double f = f_of(L), t = 1e-2;
   for (int it = 0; it < steps; ++it) {
     MatrixXd grad = MatrixXd::Zero(n, n);
@@ -171,7 +161,8 @@ TEST(MaximumLikelihood, NoWorseThanASeparateOptimizer) {
     const MatrixXd X_ref = descend(p, start.X, 3000);
     const FitResult r = spd_total_least_squares(p.A, p.B, with_std(p));
     ASSERT_TRUE(r.ok()) << r.message;
-    const double f = criterion(p.A, p.B, r.X, p.Sa, p.Sb), f_ref = criterion(p.A, p.B, X_ref, p.Sa, p.Sb);
+    const double f = likelihood_criterion(p.A, p.B, r.X, p.Sa, p.Sb);
+    const double f_ref = likelihood_criterion(p.A, p.B, X_ref, p.Sa, p.Sb);
     EXPECT_LE(f, f_ref * (1 + 1e-10)) << "n = " << n;
     EXPECT_LT(relative_error(X_ref, r.X), 1e-4) << "n = " << n;
   }

@@ -20,6 +20,7 @@
 #include "spdfit/noise_model.hpp"
 #include "spdfit/render.hpp"
 #include "spdfit/spd_total_least_squares.hpp"
+#include "likelihood_reference.hpp"
 #include "test_support.hpp"
 
 namespace spdfit {
@@ -30,20 +31,9 @@ using Eigen::MatrixXd;
 using Eigen::VectorXd;
 using test::Generator;
 using test::relative_error;
+using test::likelihood_criterion;
 
-// The likelihood criterion sum_i r_i^T W^-1 r_i, W = X Sigma_A X + Sigma_B, r_i = X a_i - b_i
-// (X symmetric), row by row.
-double criterion(const MatrixXd& A, const MatrixXd& B, const MatrixXd& X, const MatrixXd& Sa, const MatrixXd& Sb) {
-  const Eigen::LLT<MatrixXd> llt(X * Sa * X + Sb);
-  double f = 0.0;
-  for (Index i = 0; i < A.rows(); ++i) {
-    const VectorXd r = X * A.row(i).transpose() - B.row(i).transpose();
-    f += r.dot(llt.solve(r));
-  }
-  return f;
-}
-
-// Its gradient over the symmetric matrices, row by row: with u_i = W^-1 r_i,
+// The likelihood criterion's gradient over the symmetric matrices, row by row: with u_i = W^-1 r_i,
 // df = sum_i 2 a_i^T dX u_i - 2 u_i^T dX Sigma_A X u_i, so
 // grad f = sum_i a_i u_i^T + u_i a_i^T - Sigma_A X u_i u_i^T - u_i u_i^T X Sigma_A.
 MatrixXd gradient(const MatrixXd& A, const MatrixXd& B, const MatrixXd& X, const MatrixXd& Sa, const MatrixXd& Sb) {
@@ -73,7 +63,7 @@ Kkt kkt(const MatrixXd& A, const MatrixXd& B, const MatrixXd& X, const MatrixXd&
   const Eigen::SelfAdjointEigenSolver<MatrixXd> eig(0.5 * (Xh + Xh.transpose()));
   const MatrixXd Vr = eig.eigenvectors().rightCols(r), V0 = eig.eigenvectors().leftCols(n - r);
   const VectorXd root = eig.eigenvalues().tail(r).cwiseMax(0.0).cwiseSqrt();
-  const double f = criterion(A, B, X, Sa, Sb);
+  const double f = likelihood_criterion(A, B, X, Sa, Sb);
   const MatrixXd multiplier = V0.transpose() * Gh * V0;
   return {f, (root.asDiagonal() * Vr.transpose() * Gh * Vr * root.asDiagonal()).norm() / f,
           (root.asDiagonal() * Vr.transpose() * Gh * V0).norm() / f,
@@ -164,7 +154,7 @@ TEST(SpdMlBoundary, NoNearbySemidefiniteMatrixIsBetter) {
   for (const Case& c : boundary_cases(702, 4)) {
     const MatrixXd& X = c.r.X;
     const Index n = X.rows();
-    const double f = criterion(c.A, c.B, X, c.Sa, c.Sb);
+    const double f = likelihood_criterion(c.A, c.B, X, c.Sa, c.Sb);
     const Eigen::SelfAdjointEigenSolver<MatrixXd> eig(X);
     const Index r = c.r.diagnostics.boundary_certificate->rank;
     const MatrixXd Vr = eig.eigenvectors().rightCols(r), V0 = eig.eigenvectors().leftCols(n - r);
@@ -177,17 +167,17 @@ TEST(SpdMlBoundary, NoNearbySemidefiniteMatrixIsBetter) {
         const MatrixXd Vt = qr.householderQ() * MatrixXd::Identity(n, r);
         const MatrixXd Rt = qr.matrixQR().topRows(r).triangularView<Eigen::Upper>();
         const MatrixXd turned = Vt * Rt * lambda.asDiagonal() * Rt.transpose() * Vt.transpose();
-        EXPECT_GE(criterion(c.A, c.B, turned, c.Sa, c.Sb), f * (1 - 1e-12)) << "turned by " << t;
+        EXPECT_GE(likelihood_criterion(c.A, c.B, turned, c.Sa, c.Sb), f * (1 - 1e-12)) << "turned by " << t;
         // Growth into the null space.
         const VectorXd u = V0 * g.gaussian(n - r, 1).normalized();
-        EXPECT_GE(criterion(c.A, c.B, X + t * lambda.maxCoeff() * u * u.transpose(), c.Sa, c.Sb), f * (1 - 1e-12))
+        EXPECT_GE(likelihood_criterion(c.A, c.B, X + t * lambda.maxCoeff() * u * u.transpose(), c.Sa, c.Sb), f * (1 - 1e-12))
             << "grown by " << t;
         // Any direction, projected onto the cone.
         const MatrixXd S = Generator::symmetrize(g.gaussian(n, n));
         const Eigen::SelfAdjointEigenSolver<MatrixXd> moved(X + t * X.norm() * S);
         const MatrixXd P = moved.eigenvectors() * moved.eigenvalues().cwiseMax(0.0).asDiagonal() *
                            moved.eigenvectors().transpose();
-        EXPECT_GE(criterion(c.A, c.B, P, c.Sa, c.Sb), f * (1 - 1e-12)) << "moved by " << t;
+        EXPECT_GE(likelihood_criterion(c.A, c.B, P, c.Sa, c.Sb), f * (1 - 1e-12)) << "moved by " << t;
       }
     }
   }
@@ -297,7 +287,9 @@ TEST(SpdMlBoundary, AnInfimumAtInfinityOnTheBoundaryIsAFailure) {
   EXPECT_FALSE(errors[60] >= 0.0) << errors[60];
   EXPECT_NE(messages[60].find("no minimizer"), std::string::npos) << messages[60];
   for (std::size_t k = 0; k < trials.trials; ++k) {
-    if (errors[k] >= 0.0) EXPECT_LT(errors[k], 5.0 * truth.norm()) << k;
+    if (errors[k] >= 0.0) {
+      EXPECT_LT(errors[k], 5.0 * truth.norm()) << k;
+    }
   }
 }
 
