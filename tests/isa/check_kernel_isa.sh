@@ -2,13 +2,10 @@
 # Runtime dispatch of spdfit's own kernels (src/numerics/block_qr.cpp), checked in the machine code
 # of each binary given: only the block QR's AVX2 and AVX-512 variants use the wider registers
 # (ymm, zmm), the AVX2 one no zmm, and the baseline variant none, so no Eigen code or other kernel
-# was compiled for more than SSE2 and the binary runs on any x86-64. Skipped off x86-64.
-# --sanitized: only that check (the sanitizers' instrumentation keeps GCC from vectorizing the
-# variants, so whether they use the wide registers says nothing there).
+# was compiled for more than SSE2 and the binary runs on any x86-64. Skipped off x86-64. For the
+# plain build only: the sanitizers' instrumentation keeps the compiler from vectorizing the variants.
 set -eu
 case "$(uname -m)" in x86_64) ;; *) echo "not x86-64: skipped"; exit 0 ;; esac
-widths=yes
-if [ "${1:-}" = "--sanitized" ]; then widths=no; shift; fi
 status=0
 for binary in "$@"; do
   listing=$(objdump -d --no-show-raw-insn -C "$binary" |
@@ -22,15 +19,13 @@ for binary in "$@"; do
   if printf '%s\n' "$listing" | grep -q "^zmm	.*::absorb_avx2("; then
     echo "$binary: the AVX2 variant uses zmm registers"; status=1
   fi
-  if [ "$widths" = yes ]; then
-    for expected in absorb_avx2 absorb_avx512; do
-      if ! printf '%s\n' "$wide_functions" | grep -q "::${expected}("; then
-        echo "$binary: the block QR's $expected variant is missing or uses no ymm/zmm register"; status=1
-      fi
-    done
-    if ! printf '%s\n' "$listing" | grep -q "^zmm	.*::absorb_avx512("; then
-      echo "$binary: the AVX-512 variant uses no zmm register"; status=1
+  for expected in absorb_avx2 absorb_avx512; do
+    if ! printf '%s\n' "$wide_functions" | grep -q "::${expected}("; then
+      echo "$binary: the block QR's $expected variant is missing or uses no ymm/zmm register"; status=1
     fi
+  done
+  if ! printf '%s\n' "$listing" | grep -q "^zmm	.*::absorb_avx512("; then
+    echo "$binary: the AVX-512 variant uses no zmm register"; status=1
   fi
   if ! objdump -d -C "$binary" | grep -q "::absorb_baseline("; then
     echo "$binary: the baseline variant is missing"; status=1

@@ -121,6 +121,7 @@ def test_total_least_squares_standard_errors_match_the_spread_over_repeated_expe
     np.testing.assert_allclose(r.standard_errors, spread, rtol=0.2)
 
 
+@monte_carlo
 def test_stream_bootstrap_agrees_with_in_memory_within_monte_carlo_error(tmp_path):
     rng = np.random.default_rng(7)
     m = 500_000  # 123 groups of 4096 rows
