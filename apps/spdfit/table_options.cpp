@@ -1,7 +1,9 @@
 #include "table_options.hpp"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
 
 namespace spdfit::cli {
@@ -26,6 +28,19 @@ std::optional<std::int64_t> integer_of(const std::string& text) {
   } catch (const std::exception&) {
   }
   return std::nullopt;
+}
+
+// A number as the data files' reader takes one: the whole text is a double, and a value below the
+// smallest normal double (1e-308, 1e-320: subnormal, or 0 below that) is that value where stod
+// reported "out of range"; an overflow (1e999) is not a number.
+std::optional<double> real_of(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  errno = 0;
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size()) return std::nullopt;
+  if (errno == ERANGE && std::isinf(value)) return std::nullopt;
+  return value;
 }
 
 }  // namespace
@@ -74,12 +89,7 @@ OptionValue parse_option_text(OptionType type, std::string_view spelling, const 
       if (const auto value = integer_of(text)) return *value;
       break;
     case OptionType::Real:
-      try {
-        std::size_t used = 0;
-        const double value = std::stod(text, &used);
-        if (used == text.size()) return value;
-      } catch (const std::exception&) {
-      }
+      if (const auto value = real_of(text)) return *value;
       break;
     case OptionType::RealList: {
       std::vector<double> values;
@@ -87,14 +97,9 @@ OptionValue parse_option_text(OptionType type, std::string_view spelling, const 
       bool ok = !text.empty();
       while (ok && start <= text.size()) {
         const std::size_t comma = std::min(text.find(',', start), text.size());
-        const std::string part = text.substr(start, comma - start);
-        try {
-          std::size_t used = 0;
-          values.push_back(std::stod(part, &used));
-          ok = used == part.size() && std::isfinite(values.back());
-        } catch (const std::exception&) {
-          ok = false;
-        }
+        const auto value = real_of(text.substr(start, comma - start));
+        ok = value && std::isfinite(*value);
+        if (ok) values.push_back(*value);
         start = comma + 1;
       }
       if (ok) return values;

@@ -118,6 +118,14 @@ struct Table {
   std::vector<std::vector<std::size_t>> selected_columns;
 };
 
+/// Each selection's columns in a table whose columns are named `names` (a header row, a pandas
+/// DataFrame's labels), as 1-based positions, by the rules of ReadOptions::columns: the same
+/// selection picks the same columns from a file with that header and from the table. Throws
+/// ColumnSelectionError naming `source` for bad syntax, a name not among `names` (listing them),
+/// a position beyond them, a range backwards, a column selected twice or by two selections.
+std::vector<std::vector<std::size_t>> select_columns(const std::vector<ColumnSelection>& selections,
+                                                     const std::vector<std::string>& names, const std::string& source);
+
 /// "columns acc1..acc6 (2-7)", "columns 2, 4, 9", "column F1 (8)": the columns a selection chose,
 /// for reports. `positions` are 1-based, `names` their header names (empty without a header).
 std::string describe_columns(const std::vector<std::size_t>& positions, const std::vector<std::string>& names);

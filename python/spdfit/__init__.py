@@ -385,10 +385,13 @@ def _checked(result, files=()):
 
 def _column_spec(name, columns):
     """fit_files' a_cols or b_cols as the library's text: a str as it is ("acc1:acc6", "2:7", 1-based
-    as on the command line), a list of header labels and 0-based int positions (as pandas' iloc)."""
+    as on the command line), a list of header labels and 0-based int positions (as pandas' iloc), a
+    slice of either."""
     import numbers
     if columns is None or isinstance(columns, str):
         return columns
+    if isinstance(columns, slice):
+        return _slice_spec(name, columns)
     if isinstance(columns, (numbers.Integral, bytes)) or not hasattr(columns, "__iter__"):
         raise TypeError(f"{name} must be a str (as --{name.replace('_', '-')} takes it) or a list of labels "
                         f"and 0-based positions, not {type(columns).__name__}")
@@ -410,9 +413,31 @@ def _column_spec(name, columns):
     return ",".join(items)
 
 
+def _slice_spec(name, columns):
+    """A slice of a file's columns as the library's text: labels inclusive ("acc1":"acc6", as
+    df.loc), or 0-based positions with the end excluded (1:7 -> "2:7", as df.iloc)."""
+    import numbers
+    start, stop, step = columns.start, columns.stop, columns.step
+    if step not in (None, 1):
+        raise ValueError(f"{name}: a slice with a step cannot choose a file's columns; give a list")
+    if all(x is None or (isinstance(x, numbers.Integral) and not isinstance(x, bool)) for x in (start, stop)):
+        start = 0 if start is None else start
+        if stop is None or start < 0 or stop < 0:
+            raise ValueError(f"{name}: a slice of a file's columns needs a non-negative start and an end "
+                             f"(the file's columns are not counted before it is read); got {columns}")
+        if stop <= start:
+            raise ValueError(f"{name}: the slice {columns} chooses no columns")
+        return f"{start + 1}:{stop}"
+    if isinstance(start, str) and isinstance(stop, str):
+        return f"{_column_spec(name, [start])}:{_column_spec(name, [stop])}"
+    raise TypeError(f"{name}: a slice of labels (str) or of 0-based positions (int), not {columns}")
+
+
 def _frame_columns(frame, name, columns):
     """0-based positions of `columns` in a pandas DataFrame, as df.loc (labels, a label slice,
-    inclusive) or df.iloc (ints, an int slice) would take them."""
+    inclusive) or df.iloc (ints, an int slice) would take them; a str that is not one of its labels
+    is a selection as the command line and fit_files write it ("acc1:acc6", "2:7" 1-based,
+    "1,3:5,F1"), read by the library's rules for a file with that header."""
     import numbers
     import numpy as np
     labels = frame.columns
@@ -422,6 +447,9 @@ def _frame_columns(frame, name, columns):
             return list(range(len(labels)))[columns]
         start, stop = labels.slice_locs(columns.start, columns.stop)
         return list(range(start, stop))[::columns.step or 1]
+    if isinstance(columns, str) and not (labels.is_unique and columns in labels):
+        (chosen,) = _spdfit.select_columns([(columns, name)], [str(c) for c in labels], "the DataFrame")
+        return [p - 1 for p in chosen]
     if isinstance(columns, str) or not hasattr(columns, "__iter__"):
         columns = [columns]
     columns = list(columns)
@@ -441,8 +469,18 @@ def _frame_columns(frame, name, columns):
     return [int(p) for p in positions]
 
 
+def _labels_of(value):
+    """A DataFrame's column labels (a Series' name) as str, or [] for an array."""
+    if hasattr(value, "columns"):
+        return [str(c) for c in value.columns]
+    name = getattr(value, "name", None) if hasattr(value, "iloc") else None
+    return [] if name is None else [str(name)]
+
+
 def _split_frame(A, B, a_cols, b_cols):
-    """A and B from the columns of one pandas DataFrame, for fit(df, a_cols=..., b_cols=...)."""
+    """A, B and their labels (X's row and column names, the columns each came from) from the
+    columns of one pandas DataFrame, for fit(df, a_cols=..., b_cols=...) and the other functions
+    that take them."""
     if (a_cols is None) != (b_cols is None):
         raise ValueError("a_cols and b_cols come together: the columns of A and of B in the one table")
     if isinstance(B, str):
@@ -453,14 +491,29 @@ def _split_frame(A, B, a_cols, b_cols):
     if hasattr(A, "iloc") and hasattr(A, "columns"):
         a = _frame_columns(A, "a_cols", a_cols)
         b = _frame_columns(A, "b_cols", b_cols)
-        labels = list(A.columns)
+        labels = _labels_of(A)
         both = sorted(set(a) & set(b))
         if both:
             raise ValueError(f"a_cols and b_cols both select column {labels[both[0]]!r} (position {both[0]}): a "
                              f"column can be in one of them only")
-        return _as_matrix("A", A.iloc[:, a]), _as_matrix("B", A.iloc[:, b])
+        a_names, b_names = [labels[i] for i in a], [labels[i] for i in b]
+        described = ["DataFrame " + _spdfit.describe_columns([i + 1 for i in chosen], names)
+                     for chosen, names in ((a, a_names), (b, b_names))]
+        return (_as_matrix("A", A.iloc[:, a]), _as_matrix("B", A.iloc[:, b]),
+                (a_names, b_names, described[0], described[1]))
     raise TypeError("a_cols and b_cols choose columns of a pandas DataFrame; slice an array instead, "
                     f"fit(T[:, a], T[:, b]) (got {type(A).__name__})")
+
+
+def _data(function, A, B, a_cols, b_cols):
+    """A, B and the labels a result carries, from (A, B) or from one DataFrame A with a_cols and
+    b_cols; None for labels when neither is labelled."""
+    if a_cols is not None or b_cols is not None:
+        return _split_frame(A, B, a_cols, b_cols)
+    if B is None:
+        raise TypeError(f"{function}() needs B, or a_cols and b_cols choosing A's and B's columns of a DataFrame A")
+    labels = (_labels_of(A), _labels_of(B), "", "")
+    return _as_matrix("A", A), _as_matrix("B", B), labels if labels[0] or labels[1] else None
 
 
 @_shared_doc
@@ -492,10 +545,15 @@ def fit(A, B=None, method="auto", *, a_cols=None, b_cols=None, **options):
         a pandas DataFrame holding both, and B is left out.
     method : str, default "auto"
         One of METHODS.
-    a_cols, b_cols : label, list, slice or None, default None
+    a_cols, b_cols : label, list, slice, str or None, default None
         A's and B's columns of the DataFrame A: labels, a list of labels, a label slice (inclusive,
-        as df.loc) or 0-based positions (a list or slice of ints, as df.iloc); both or neither, no
-        column in both. The other columns (a timestamp, text) are ignored.
+        as df.loc), 0-based positions (a list or slice of ints, as df.iloc), or a str that is not
+        one of its labels: a selection as the command line and fit_files write it ("acc1:acc6",
+        "2:7" counting from 1, "1,3:5,F1"); both or neither, no column in both. The other columns
+        (a timestamp, text) are ignored. The result keeps the labels: row_names are A's column
+        labels (X's rows), column_names B's, and a_columns and b_columns say which columns of the
+        DataFrame they were ("DataFrame columns acc1..acc6 (2-7)", counting from 1). DataFrames A
+        and B given apart label the result the same way.
     {options}
 
     {returns}
@@ -542,13 +600,12 @@ def fit(A, B=None, method="auto", *, a_cols=None, b_cols=None, **options):
     >>> r = spdfit.fit(log, a_cols=["a1", "a2"], b_cols=[3, 4])
     >>> bool(np.allclose(r.X, X))
     True
+    >>> r = spdfit.fit(log, a_cols="a1:a2", b_cols=slice("f1", "f2"))
+    >>> r.row_names, r.column_names, r.a_columns
+    (['a1', 'a2'], ['f1', 'f2'], 'DataFrame columns a1..a2 (2-3)')
     """
-    if a_cols is not None or b_cols is not None:
-        A, B = _split_frame(A, B, a_cols, b_cols)
-    elif B is None:
-        raise TypeError("fit() needs B, or a_cols and b_cols choosing A's and B's columns of a DataFrame A")
-    A, B = _as_matrix("A", A), _as_matrix("B", B)
-    return _checked(_spdfit.fit(A, B, method, options))
+    A, B, labels = _data("fit", A, B, a_cols, b_cols)
+    return _checked(_spdfit.fit(A, B, method, options, labels))
 
 
 # The streaming defaults are the library's (StreamOptions), not retyped here.
@@ -581,7 +638,9 @@ def fit_files(A_path, B_path=None, method="auto", **options):
         The data files of A and B (the same number of rows). Without B_path, a_cols and b_cols choose
         A's and B's columns in A_path's one file ("log.mat:log" names a .mat or .npz array): as the
         command line's --a-cols and --b-cols ("acc1:acc6", "2:7", "1,3:5,F1": header names and
-        1-based positions), or lists of header labels and 0-based positions (as pandas' iloc).
+        1-based positions), lists of header labels and 0-based positions (as pandas' iloc), or
+        slices of labels (inclusive, as df.loc) or of 0-based positions (as df.iloc), as fit
+        takes them from a DataFrame.
     method : str, default "auto"
         One of METHODS, as in fit.
     {options}
@@ -627,7 +686,7 @@ def fit_files(A_path, B_path=None, method="auto", **options):
 
 @_shared_doc
 @_takes_options("fit_all")
-def fit_all(A, B, **options):
+def fit_all(A, B=None, *, a_cols=None, b_cols=None, **options):
     """Every estimator (METHODS but "auto") on the same data, from one shared QR.
 
     For B with d != n columns only "ls" and "tls", which fit a non-square X. Failures are not raised
@@ -637,7 +696,9 @@ def fit_all(A, B, **options):
     ----------
     A, B : array_like
         The measurements, m x n each, one sample per row (any real dtype; a 1-D array is one
-        column).
+        column). With a_cols and b_cols, A is a pandas DataFrame holding both, and B is left out.
+    a_cols, b_cols : label, list, slice, str or None, default None
+        A's and B's columns of the DataFrame A, as fit takes them; every result keeps the labels.
     {options}
 
     Returns
@@ -666,9 +727,9 @@ def fit_all(A, B, **options):
     >>> all(r.ok for r in results.values())
     True
     """
-    A, B = _as_matrix("A", A), _as_matrix("B", B)
+    A, B, labels = _data("fit_all", A, B, a_cols, b_cols)
     results = {}
-    for result in _spdfit.fit_all(A, B, options):
+    for result in _spdfit.fit_all(A, B, options, labels):
         for message, code in zip(result.warnings, result.warning_codes):
             _warn(f"{result.method}: {_spdfit.spell_options(message)}", code)
         results[result.method] = result

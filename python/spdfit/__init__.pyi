@@ -29,6 +29,9 @@ METHODS: Tuple[str, ...]
 _Method = Literal["ls", "procrustes", "tls", "tls-sym", "tls-psd", "spde", "spd-tls", "psd-ls", "auto"]
 
 _PathLike = Union[str, "os.PathLike[str]"]
+# a_cols and b_cols: a label (a str that is none is a selection as the command line writes it,
+# "acc1:acc6"), a slice of labels or of 0-based positions, or a list of labels and positions.
+_Columns = Union[None, str, int, slice, Sequence[Any]]
 
 def read_matrix(path: _PathLike, *, allow_nonfinite: bool = ..., index_col: Optional[bool] = ..., header: Optional[bool] = ...) -> npt.NDArray[np.float64]: ...
 def read_table(path: _PathLike, *, allow_nonfinite: bool = ..., index_col: Optional[bool] = ..., header: Optional[bool] = ...) -> Tuple[npt.NDArray[np.float64], List[str]]: ...
@@ -38,9 +41,9 @@ def write_csv(path: _PathLike, X: npt.ArrayLike) -> None: ...
 
 def outcome_codes() -> List[Tuple[str, str, str, str, str]]: ...
 
-def fit(A: Any, B: Optional[npt.ArrayLike] = ..., method: _Method = ..., *, a_cols: Any = ..., b_cols: Any = ..., **options: Any) -> FitResult: ...  # options: fit
+def fit(A: Any, B: Optional[npt.ArrayLike] = ..., method: _Method = ..., *, a_cols: _Columns = ..., b_cols: _Columns = ..., **options: Any) -> FitResult: ...  # options: fit
 def fit_files(A_path: _PathLike, B_path: Optional[_PathLike] = ..., method: _Method = ..., **options: Any) -> FitResult: ...  # options: fit_files
-def fit_all(A: npt.ArrayLike, B: npt.ArrayLike, **options: Any) -> Dict[str, FitResult]: ...  # options: fit_all
+def fit_all(A: Any, B: Optional[npt.ArrayLike] = ..., *, a_cols: _Columns = ..., b_cols: _Columns = ..., **options: Any) -> Dict[str, FitResult]: ...  # options: fit_all
 def spd_total_least_squares(A: npt.ArrayLike, B: npt.ArrayLike, **options: Any) -> FitResult: ...  # options: fit:spd-tls
 def psd_least_squares(A: npt.ArrayLike, B: npt.ArrayLike, **options: Any) -> FitResult: ...  # options: fit:psd-ls
 def auto_fit(A: npt.ArrayLike, B: npt.ArrayLike, **options: Any) -> FitResult: ...  # options: fit:auto

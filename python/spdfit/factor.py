@@ -10,7 +10,7 @@ validated bytes (to_bytes), which is what Dask, multiprocessing and Spark send b
 import numbers
 import os as _os
 
-from . import _as_matrix, _checked, _options, _shared_doc, _spdfit, _takes_options
+from . import _checked, _data, _options, _shared_doc, _spdfit, _takes_options
 from ._errors import warn as _warn
 
 # The streaming defaults are the library's (StreamOptions), not retyped here.
@@ -89,7 +89,7 @@ class Factor:
         return factor
 
     @classmethod
-    def from_data(cls, A, B):
+    def from_data(cls, A, B=None, *, a_cols=None, b_cols=None):
         """The factor of the data A (m x n) and B (m x d), one sample per row.
 
         Any number of rows, none included (a block of a split may be short). Cost O(m (n + d)^2).
@@ -98,7 +98,10 @@ class Factor:
         ----------
         A, B : array_like
             The measurements, m x n and m x d (any real dtype, converted to float64; a 1-D array
-            is one column).
+            is one column). With a_cols and b_cols, A is a pandas DataFrame holding both, and B is
+            left out.
+        a_cols, b_cols : label, list, slice, str or None, default None
+            A's and B's columns of the DataFrame A, as spdfit.fit takes them.
 
         Returns
         -------
@@ -119,7 +122,8 @@ class Factor:
         >>> f.rows, f.n, f.d
         (4, 2, 2)
         """
-        return cls._wrap(_spdfit.TriangularFactor.from_data(_as_matrix("A", A), _as_matrix("B", B)))
+        A, B, _ = _data("Factor.from_data", A, B, a_cols, b_cols)
+        return cls._wrap(_spdfit.TriangularFactor.from_data(A, B))
 
     @classmethod
     def from_files(cls, A_path, B_path, *, block_rows=_STREAM_DEFAULTS.block_rows, threads=_STREAM_DEFAULTS.threads):

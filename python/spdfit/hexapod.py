@@ -14,7 +14,7 @@ from collections import namedtuple as _namedtuple
 
 import numpy as _np
 
-from . import _as_matrix, _spdfit, _takes_options
+from . import _as_matrix, _data, _spdfit, _takes_options
 from ._errors import NumericalError, warn as _warn
 from ._spdfit import hexapod as _core
 
@@ -247,7 +247,8 @@ def simulate(samples=_SIMULATION.samples, noise_var=0.86, *, seed=1, truth="thes
 
 
 @_takes_options("hexapod.identify", given=("truth", "stiffness", "geometry", "physical"))
-def identify(A, B, *, truth=None, stiffness=None, geometry=None, physical=False, **options):
+def identify(A, B=None, *, a_cols=None, b_cols=None, truth=None, stiffness=None, geometry=None, physical=False,
+             **options):
     """Every estimator on accelerations A and forces B, with eigenvalues, modes and errors.
 
     The options are spdfit.fit's (each method takes those that apply to it) and, with
@@ -265,7 +266,10 @@ def identify(A, B, *, truth=None, stiffness=None, geometry=None, physical=False,
     Parameters
     ----------
     A, B : array_like
-        The measured accelerations and forces, m x n each.
+        The measured accelerations and forces, m x n each. With a_cols and b_cols, A is a pandas
+        DataFrame holding both (one log), and B is left out.
+    a_cols, b_cols : label, list, slice, str or None, default None
+        The accelerations' and forces' columns of the DataFrame A, as spdfit.fit takes them.
     truth : array_like, optional
         A known M_p: each method's error_vs_truth is ||M_p - M_hat||_F.
     stiffness : float or array_like, optional
@@ -320,7 +324,8 @@ def identify(A, B, *, truth=None, stiffness=None, geometry=None, physical=False,
     """
     keywords = dict(options, truth=truth, stiffness=stiffness, physical=bool(physical),
                     geometry=None if geometry is None else _geometry(geometry))
-    results, physical_text, warnings = _core.identify(_as_matrix("A", A), _as_matrix("B", B), keywords)
+    A, B, _ = _data("hexapod.identify", A, B, a_cols, b_cols)
+    results, physical_text, warnings = _core.identify(A, B, keywords)
     for w in warnings:  # as `spdfit hexapod identify` warns: each method's, then the physical fit's
         _warn(_spdfit.spell_options(w.text), w.code)
     out = {r.result.method: r for r in results}

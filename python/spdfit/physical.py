@@ -15,7 +15,7 @@ import os as _os
 
 import numpy as _np
 
-from . import _as_matrix, _takes_options
+from . import _as_matrix, _data, _takes_options
 from ._errors import NumericalError, warn as _warn
 from ._spdfit import physical as _core
 
@@ -55,7 +55,7 @@ def _geometry(geometry):
 
 
 @_takes_options("physical.identify")
-def identify(A, B, geometry=None, *, strut_masses=None, **options):
+def identify(A, B=None, geometry=None, *, a_cols=None, b_cols=None, strut_masses=None, **options):
     """The payload's mass, centre of mass and inertia (and strut masses) from A and B.
 
     Fits M_p(theta) = J^-T R M_x(theta) R^T J^-1 + diag(strut masses), linear in the ten inertial
@@ -67,10 +67,13 @@ def identify(A, B, geometry=None, *, strut_masses=None, **options):
     Parameters
     ----------
     A, B : array_like
-        Accelerations along the struts and base forces, m x 6 each, one sample per row.
+        Accelerations along the struts and base forces, m x 6 each, one sample per row. With a_cols
+        and b_cols, A is a pandas DataFrame holding both (one log), and B is left out (None).
     geometry : Geometry, str, os.PathLike or dict
         The hexapod (spdfit.hexapod.geometry): its Jacobian and nominal payload (the built-in one is
         spdfit.hexapod.cubic_geometry()).
+    a_cols, b_cols : label, list, slice, str or None, default None
+        The accelerations' and forces' columns of the DataFrame A, as spdfit.fit takes them.
     strut_masses : {'geometry', 'common', 'each'}, optional
         The old name of fit_strut_mass; give one of the two.
     {options}
@@ -104,8 +107,8 @@ def identify(A, B, geometry=None, *, strut_masses=None, **options):
         if "fit_strut_mass" in options:
             raise ValueError("give fit_strut_mass or strut_masses, not both")
         options["fit_strut_mass"] = strut_masses
-    text = _core.identify(_as_matrix("A", A), _as_matrix("B", B), None if geometry is None else _geometry(geometry),
-                          options)
+    A, B, _ = _data("physical.identify", A, B, a_cols, b_cols)
+    text = _core.identify(A, B, None if geometry is None else _geometry(geometry), options)
     result = _arrays(_json.loads(text))
     if result["status"] != "success":
         raise NumericalError(result.get("error", "physical identification failed"), result)
@@ -256,8 +259,11 @@ def inertia_repair_urdf(text, *, min_eig_rel=None, source="<urdf>", metric="iner
     Raises
     ------
     DataError
-        XML that does not parse, a missing or non-numeric attribute, a mass that is not positive;
-        the message names the source, the line and the link.
+        XML that does not parse, a missing or non-numeric attribute, a second <inertia> (or
+        <inertial>, <origin>, <mass>) where one is read, a mass that is not positive; the message
+        names the source, the line and the link.
+    TypeError
+        text that is not a str (bytes, a path).
 
     Examples
     --------
@@ -268,7 +274,10 @@ def inertia_repair_urdf(text, *, min_eig_rel=None, source="<urdf>", metric="iner
     >>> links[0]["changed"], report.splitlines()[-1]
     (True, '1 of 1 links repaired')
     """
-    return _core.repair_urdf(str(text), str(source), min_eig_rel, str(metric))
+    if not isinstance(text, str):
+        hint = "decode the bytes first" if isinstance(text, (bytes, bytearray)) else "pass the file's text, open(path).read()"
+        raise TypeError(f"text is the URDF's text (a str), not {type(text).__name__}: {hint}")
+    return _core.repair_urdf(text, str(source), min_eig_rel, str(metric))
 
 
 def _prior_bodies(prior):

@@ -8,7 +8,7 @@ from .hexapod import Geometry
 
 _GeometrySource = Union[None, Geometry, str, os.PathLike[str], Dict[str, Any]]
 
-def identify(A: npt.ArrayLike, B: npt.ArrayLike, geometry: _GeometrySource = ..., *, strut_masses: Optional[str] = ..., **options: Any) -> Dict[str, Any]: ...  # options: physical.identify
+def identify(A: Any, B: Optional[npt.ArrayLike] = ..., geometry: _GeometrySource = ..., *, a_cols: Any = ..., b_cols: Any = ..., strut_masses: Optional[str] = ..., **options: Any) -> Dict[str, Any]: ...  # options: physical.identify
 def design(geometry: _GeometrySource = ..., strut_masses: str = ...) -> Dict[str, Any]: ...
 def mass_matrix(geometry: _GeometrySource = ..., *, mass: float, center_of_mass: npt.ArrayLike,
                 inertia: npt.ArrayLike) -> npt.NDArray[Any]: ...

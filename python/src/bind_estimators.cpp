@@ -5,6 +5,11 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <optional>
+#include <string>
+#include <tuple>
+#include <vector>
+
 #include "bindings.hpp"
 #include "keywords.hpp"
 #include "pickle.hpp"
@@ -41,6 +46,15 @@ auto stream_read_field() {
       });
 }
 
+// A pandas DataFrame's labels for a result (fit, fit_all): X's row names (A's columns), its column
+// names (B's) and, when A and B came from one table, the columns each came from; None: none.
+using Labels = std::optional<std::tuple<std::vector<std::string>, std::vector<std::string>, std::string, std::string>>;
+
+FitResult labelled(FitResult result, const Labels& labels) {
+  if (labels) std::tie(result.row_names, result.column_names, result.a_columns, result.b_columns) = *labels;
+  return result;
+}
+
 }  // namespace
 
 void bind_estimators(py::module_& m) {
@@ -56,16 +70,17 @@ void bind_estimators(py::module_& m) {
       py::arg("message"), "A library message (a warning) with its options named as Python names them.");
   m.def(
       "fit",
-      [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const py::handle& method, const py::dict& options) {
+      [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const py::handle& method, const py::dict& options,
+         const Labels& labels) {
         std::vector<std::string_view> given;
         FitRequest base;
         base.method = method_from(method);
         const FitRequest request = fit_request("fit", options, base, given);
         check_fit_request(request, given);
         py::gil_scoped_release release;
-        return fit(A, B, request.method, request.options);
+        return labelled(fit(A, B, request.method, request.options), labels);
       },
-      py::arg("A"), py::arg("B"), py::arg("method"), py::arg("options"));
+      py::arg("A"), py::arg("B"), py::arg("method"), py::arg("options"), py::arg("labels") = py::none());
   py::class_<StreamOptions>(m, "StreamOptions",
                             "How fit_files streams its files; the defaults are the library's own.")
       .def(py::init<>())
@@ -87,14 +102,16 @@ void bind_estimators(py::module_& m) {
       py::arg("A_path"), py::arg("B_path"), py::arg("method"), py::arg("options"));
   m.def(
       "fit_all",
-      [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const py::dict& options) {
+      [](const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const py::dict& options, const Labels& labels) {
         std::vector<std::string_view> given;
         const FitRequest request = fit_request("fit_all", options, FitRequest{}, given);
         check_option_combination(fit_option_table(), given);
         py::gil_scoped_release release;
-        return fit_all(A, B, request.options);
+        auto results = fit_all(A, B, request.options);
+        for (auto& result : results) result = labelled(std::move(result), labels);
+        return results;
       },
-      py::arg("A"), py::arg("B"), py::arg("options"));
+      py::arg("A"), py::arg("B"), py::arg("options"), py::arg("labels") = py::none());
 
   m.attr("REPAIR_FLOOR_DEFAULT") = EigenvalueFloor::kRepairDefault;
   // nearest_spd, nearest_correlation and nearest_covariance (`entry`): the repair their keyword

@@ -32,6 +32,19 @@ void bind_io(py::module_& m) {
       py::arg("path"), py::kw_only(), py::arg("allow_nonfinite") = false, py::arg("index_col") = py::none(),
       py::arg("header") = py::none(),
       "The matrix, column names and reader warnings of a data file (spdfit.read_table).");
+  // fit(df, a_cols=..., b_cols=...): each selection, (spec, option), in a table with these column
+  // labels, by the rules of a file's header (io::select_columns): 1-based positions.
+  m.def(
+      "select_columns",
+      [](const std::vector<std::pair<std::string, std::string>>& selections, const std::vector<std::string>& names,
+         const std::string& source) {
+        std::vector<io::ColumnSelection> chosen;
+        for (const auto& [spec, option] : selections) chosen.push_back({spec, option});
+        return io::select_columns(chosen, names, source);
+      },
+      py::arg("selections"), py::arg("names"), py::arg("source"));
+  m.def("describe_columns", &io::describe_columns, py::arg("positions"), py::arg("names"),
+        "'columns acc1..acc6 (2-7)': 1-based positions and the names of the columns a selection chose.");
   m.def(
       "write_csv", [](const std::string& path, const Eigen::MatrixXd& X) { io::write_csv(path, X); },
       py::arg("path"), py::arg("X"), "Write X as CSV with values that read back exactly.");

@@ -48,7 +48,7 @@ const std::vector<Entry>& entries() {
       {"fit_files", "fit", {"stream"}, {}},
       {"fit_all", "fit", {}, {"stream", "bootstrap", "a_cols", "b_cols"}},
       {"Factor.fit", "fit", {}, {"stream", "bootstrap", "a_cols", "b_cols"}},
-      // A and B are positional; their columns of one file (a_cols, b_cols) are files' only.
+      // A and B are positional; a_cols and b_cols (columns of a DataFrame) are spelled out in Python.
       {"hexapod.identify", "identify", {}, {"a", "b", "a_cols", "b_cols"}},
       {"physical.identify", "physical_fit", {}, {}},
       {"nearest_spd", "nearest", {}, {"corr", "factors", "factors_only"}},

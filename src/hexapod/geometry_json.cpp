@@ -1,14 +1,19 @@
 // Reading and writing geometry files (JSON). Every error names the file and the key.
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <iterator>
+#include <limits>
 #include <string>
 
+#include <Eigen/Cholesky>
 #include <nlohmann/json.hpp>
 
 #include "io/json_document.hpp"
 #include "io/read_file.hpp"
+#include "spdfit/format.hpp"
 #include "spdfit/hexapod/geometry.hpp"
+#include "spdfit/hexapod/model.hpp"
 #include "spdfit/io.hpp"
 
 namespace spdfit::hexapod {
@@ -147,6 +152,19 @@ Geometry parse_geometry(const std::string& text, const std::string& source) {
 
   std::string error;
   if (!g.is_valid(&error)) in.fail(error);
+  // The masses and the inertia together: M_p, which every command computes (its Cholesky factor
+  // for the modes), must be positive definite with entries whose squares are finite (a
+  // payload_mass of 1e300 is not), named here with the file.
+  const Matrix6d Mp = joint_space_mass_matrix(g);
+  const double largest = Mp.allFinite() ? Mp.cwiseAbs().maxCoeff() : std::numeric_limits<double>::infinity();
+  const bool too_large = !(largest < std::sqrt(std::numeric_limits<double>::max()));
+  if (too_large || Eigen::LLT<Matrix6d>(Mp).info() != Eigen::Success) {
+    in.fail("payload_mass " + format_number(g.payload_mass) + " kg with this payload_inertia and strut_mass makes a " +
+            "joint-space mass matrix M_p " +
+            (too_large ? "with entries too large to compute with (up to " + format_number(largest) + ")"
+                       : std::string("that is not positive definite")) +
+            ": are they in kg and kg m^2?");
+  }
   return g;
 }
 

@@ -108,6 +108,14 @@ RigidBodyInertia body_from(const json& root, const std::string& source, const st
 }  // namespace
 
 RigidBodyInertia parse_rigid_body(const std::string& text, const std::string& source) {
+  // XML where a JSON body was expected: a URDF named otherwise, or a xacro file (URDF macros).
+  const std::size_t first = text.find_first_not_of(" \t\r\n");
+  if (first != std::string::npos && text[first] == '<') {
+    const bool xacro = text.find("xacro") != std::string::npos;
+    fail(source, xacro ? "is a xacro file (macros that make a URDF), not a JSON body: expand it first (xacro " + source +
+                             " > robot.urdf) and repair robot.urdf"
+                       : "is XML, not a JSON body: a URDF file is read as one when its name ends in .urdf or .xml");
+  }
   const json root = io::detail::parse_json_document(text, source, kMaxInertiaBytes, "an inertia file", 4);
   // The JSON of `spdfit hexapod identify --physical --json`: its "physical" object; of `spdfit
   // payload identify --json`: its own top-level keys (it has "force_bias").

@@ -158,8 +158,19 @@ class LinkReader {
   }
 
   const XMLElement* child(const XMLElement* parent, const char* name) const {
-    const XMLElement* c = parent->FirstChildElement(name);
+    const XMLElement* c = only(parent, name);
     if (!c) fail(parent, std::string("<") + parent->Name() + "> has no <" + name + ">");
+    return c;
+  }
+
+  // The one <name> in `parent`, or none; a second is an error (which one is meant?), never ignored.
+  const XMLElement* only(const XMLElement* parent, const char* name) const {
+    const XMLElement* c = parent->FirstChildElement(name);
+    if (c && c->NextSiblingElement(name)) {
+      fail(c->NextSiblingElement(name), std::string("<") + parent->Name() + "> has a second <" + name +
+                                            "> (the first is on line " + std::to_string(c->GetLineNum()) +
+                                            "): keep the one that is meant");
+    }
     return c;
   }
 
@@ -167,6 +178,28 @@ class LinkReader {
   const std::string& source_;
   const std::string& link_;
 };
+
+// tinyxml2's error as words: "not valid XML: mismatched element (XMLElement name=link)" for
+// XML_ERROR_MISMATCHED_ELEMENT, without its numeric ErrorID (the line is the DataError's).
+std::string xml_error(const tinyxml2::XMLDocument& doc) {
+  std::string what = doc.ErrorName();
+  for (const std::string prefix : {"XML_ERROR_", "XML_"}) {
+    if (what.rfind(prefix, 0) == 0) {
+      what.erase(0, prefix.size());
+      break;
+    }
+  }
+  std::transform(what.begin(), what.end(), what.begin(),
+                 [](unsigned char c) { return c == '_' ? ' ' : static_cast<char>(std::tolower(c)); });
+  std::string detail;
+  if (const char* text = doc.ErrorStr()) {
+    const std::string full = text;
+    const std::size_t line = full.find("Line number=");
+    const std::size_t colon = line == std::string::npos ? line : full.find(": ", line);
+    if (colon != std::string::npos) detail = " (" + full.substr(colon + 2) + ")";
+  }
+  return "not valid XML: " + what + detail;
+}
 
 }  // namespace
 
@@ -185,8 +218,7 @@ UrdfRepairResult repair_urdf(const std::string& text, const std::string& source,
   }
   tinyxml2::XMLDocument doc;
   if (doc.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS) {
-    throw io::DataError(source, static_cast<std::size_t>(std::max(doc.ErrorLineNum(), 0)), 0,
-                        std::string("not valid XML: ") + doc.ErrorName() + (doc.ErrorStr() ? std::string(" (") + doc.ErrorStr() + ")" : ""));
+    throw io::DataError(source, static_cast<std::size_t>(std::max(doc.ErrorLineNum(), 0)), 0, xml_error(doc));
   }
   XMLElement* robot = doc.RootElement();
   if (!robot || std::string(robot->Name()) != "robot") {
@@ -210,13 +242,13 @@ UrdfRepairResult repair_urdf(const std::string& text, const std::string& source,
   };
   std::vector<Edit> edits;
   for (XMLElement* link = robot->FirstChildElement("link"); link; link = link->NextSiblingElement("link")) {
-    const XMLElement* inertial = link->FirstChildElement("inertial");
-    if (!inertial) continue;
     const std::string name = link->Attribute("name") ? link->Attribute("name") : "";
     const LinkReader in(source, name);
+    const XMLElement* inertial = in.only(link, "inertial");
+    if (!inertial) continue;
     RigidBodyInertia body;
     body.mass = in.numbers(in.child(inertial, "mass"), "value", 1, true)[0];
-    if (const XMLElement* origin = inertial->FirstChildElement("origin")) {
+    if (const XMLElement* origin = in.only(inertial, "origin")) {
       const std::vector<double> xyz = in.numbers(origin, "xyz", 3, false, {0.0, 0.0, 0.0});
       body.center_of_mass = Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
     }

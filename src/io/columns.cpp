@@ -119,6 +119,11 @@ std::string describe_columns(const std::vector<std::size_t>& positions, const st
   return named ? "columns " + labels + " (" + numbers + ")" : "columns " + numbers;
 }
 
+std::vector<std::vector<std::size_t>> select_columns(const std::vector<ColumnSelection>& selections,
+                                                     const std::vector<std::string>& names, const std::string& source) {
+  return detail::one_based(detail::resolve_columns(selections, names, names.size(), true, source));
+}
+
 namespace detail {
 
 std::vector<std::vector<std::size_t>> resolve_columns(const std::vector<ColumnSelection>& selections,

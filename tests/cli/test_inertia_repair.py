@@ -181,12 +181,33 @@ def test_json_errors_name_the_file_and_key(spdfit, tmp_path, text, message):
      "</inertial></link></robot>", ':3: link "a": <inertia izz> is missing'),
     ("<robot><link name='a'><inertial><mass value='0'/><inertia ixx='1' ixy='0' ixz='0' iyy='1' iyz='0' izz='1'/>"
      "</inertial></link></robot>", 'link "a": mass must be positive'),
+    # tinyxml2's error in words, without its numeric ErrorID (issue 45).
+    ("<robot>\n<link name='a'></robot>", ":2: not valid XML: mismatched element"),
+    # A second <inertia> (or <inertial>) was silently ignored.
+    ("<robot><link name='a'><inertial><mass value='1'/><inertia ixx='1' ixy='0' ixz='0' iyy='1' iyz='0' izz='1'/>\n"
+     "<inertia ixx='2' ixy='0' ixz='0' iyy='2' iyz='0' izz='2'/></inertial></link></robot>",
+     ':2: link "a": <inertial> has a second <inertia> (the first is on line 1): keep the one that is meant'),
+    ("<robot><link name='a'><inertial><mass value='1'/><inertia ixx='1' ixy='0' ixz='0' iyy='1' iyz='0' izz='1'/>"
+     "</inertial>\n<inertial/></link></robot>", ':2: link "a": <link> has a second <inertial>'),
 ])
 def test_urdf_errors_name_the_file_line_and_link(spdfit, tmp_path, text, message):
     (tmp_path / "robot.urdf").write_text(text)
     result = spdfit("inertia", "repair", tmp_path / "robot.urdf")
     assert result.returncode == 1
     assert message in result.stderr, result.stderr
+    assert "ErrorID" not in result.stderr
+
+
+@pytest.mark.parametrize("name, text, message", [
+    ("robot.urdf.xacro", '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="r"/>',
+     "is a xacro file (macros that make a URDF), not a JSON body: expand it first (xacro"),
+    ("robot.txt", '<robot name="r"/>', "is XML, not a JSON body: a URDF file is read as one when its name ends in .urdf"),
+])
+def test_xml_where_a_json_body_was_expected_says_what_it_is(spdfit, tmp_path, name, text, message):
+    (tmp_path / name).write_text(text)
+    result = spdfit("inertia", "repair", tmp_path / name)
+    assert result.returncode == 1
+    assert result.stderr.startswith(f"spdfit: error: {tmp_path / name}: {message}"), result.stderr
 
 
 def test_usage_errors(spdfit, tmp_path):

@@ -1,6 +1,9 @@
 """Messages where new users meet them: a timestamp column names --index-col, an empty cell says it
 may be pandas' NaN, an output file that cannot be written says why (CSV, .mat and .npy alike), and a
-negative zero is printed as 0."""
+negative zero is printed as 0; a subnormal number given as an option is a number, as in a data
+file."""
+import json
+
 import numpy as np
 import pytest
 
@@ -82,3 +85,23 @@ def test_too_few_samples_to_fit_warn_with_the_text_python_warns(spdfit, tmp_path
     assert (tmp_path / "s" / "A.csv").exists()
     quiet = spdfit("hexapod", "simulate", "--noise-var", "0.86", "--samples", "6", "--out", str(tmp_path / "t"))
     assert quiet.returncode == 0 and "fewer samples" not in quiet.stderr
+
+
+@pytest.mark.parametrize("value", ["1e-308", "1e-320"])
+def test_a_subnormal_option_value_is_a_number_as_in_a_data_file(spdfit, pair, value):
+    # Below the smallest normal double (2.2e-308): a data file's reader takes such a value, and so
+    # does a numeric option (it was "is not a number"). Its square, the variance, is 0 in double
+    # precision: the model of exact B.
+    common = ("fit", "--method", "spd-tls", str(pair / "A.csv"), str(pair / "B.csv"), "--noise-std-a", "0.01", "--json")
+    tiny = spdfit(*common, "--noise-std-b", f"{value},{value}")
+    exact = spdfit(*common, "--noise-std-b", "0")
+    assert tiny.returncode == 0, tiny.stderr
+    assert exact.returncode == 0, exact.stderr
+    np.testing.assert_allclose(json.loads(tiny.stdout)["X"], json.loads(exact.stdout)["X"], rtol=1e-12)
+
+
+def test_an_overflowing_option_value_is_still_not_a_number(spdfit, pair):
+    result = spdfit("fit", "--method", "spd-tls", str(pair / "A.csv"), str(pair / "B.csv"), "--noise-std-a", "0.01",
+                    "--noise-std-b", "1e999")
+    assert result.returncode == 2
+    assert "--noise-std-b: '1e999' is not a number or a comma-separated list of numbers" in result.stderr

@@ -239,6 +239,9 @@ def builtin_geometry(cli, tmp_path):
     (lambda g: g.update(payload_points=[[0, 0, 0.01 * i] for i in range(6)],
                         base_points=[[0, 0, -0.1 + 0.01 * i] for i in range(6)]), "lie on the same line"),
     (lambda g: g.update(colour="red"), 'unknown key "colour"'),
+    # It was "modal_frequencies_hz: the mass matrix is not positive definite", with no file (issue 45).
+    (lambda g: g.update(payload_mass=1e300), "payload_mass 1e+300 kg with this payload_inertia and strut_mass makes "
+                                             "a joint-space mass matrix M_p with entries too large to compute with"),
 ])
 def test_bad_geometry_exits_1_naming_file_and_key(cli, tmp_path, change, message):
     g = builtin_geometry(cli, tmp_path)

@@ -361,6 +361,12 @@ def test_urdf_with_several_links_comments_and_other_elements():
     assert again == fixed and not any(link["changed"] for link in again_links)
 
 
+@pytest.mark.parametrize("text", [b"<robot/>", bytearray(b"<robot/>")])
+def test_urdf_text_that_is_not_a_str_is_a_type_error(text):
+    with pytest.raises(TypeError, match="the URDF's text \\(a str\\), not (bytes|bytearray): decode the bytes first"):
+        ph.inertia_repair_urdf(text)
+
+
 def test_urdf_errors_name_the_source_line_and_link():
     with pytest.raises(spdfit.DataError, match=r"r\.urdf:3: link \"a\": <inertia izz> must be a finite number"):
         ph.inertia_repair_urdf('<robot>\n<link name="a"><inertial><mass value="1"/>\n'

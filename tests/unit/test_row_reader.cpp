@@ -7,6 +7,8 @@
 #include <cstring>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "file_test_support.hpp"
 #include "spdfit/io.hpp"
@@ -255,6 +257,29 @@ TEST_F(RowReaderTest, ColumnSelectionsStreamAsReadTableReadsThem) {
   EXPECT_THROW(io::check_column_selection({"3:1", "a_cols"}), io::ColumnSelectionError);
   options.columns = {{"a:c", "a_cols"}, {"c", "b_cols"}};
   EXPECT_THROW(io::read_table(path, options), io::ColumnSelectionError);
+}
+
+// The same selection picks the same columns from a list of names (a DataFrame's) as from a file
+// with that header: the file's reader is the reference.
+TEST_F(RowReaderTest, SelectColumnsOnNamesIsTheFilesSelection) {
+  const std::vector<std::string> names{"time", "a", "b", "c", "note"};
+  const std::string path = Write("named.csv", "time,a,b,c,note\n1,2,3,4,5\n6,7,8,9,10\n");
+  for (const auto& [a, b] : std::vector<std::pair<std::string, std::string>>{{"c,a", "3"}, {"a:b", "4"}, {"2:3", "c"}}) {
+    io::ReadOptions options;
+    options.columns = {{a, "a_cols"}, {b, "b_cols"}};
+    EXPECT_EQ(io::select_columns(options.columns, names, "the table"), io::read_table(path, options).selected_columns)
+        << a << " " << b;
+  }
+  try {
+    io::select_columns({{"a:z", "a_cols"}}, names, "the table");
+    ADD_FAILURE() << "no error";
+  } catch (const io::ColumnSelectionError& e) {
+    EXPECT_NE(std::string(e.what()).find("no column named z in the table; its columns: time, a, b, c, note"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(io::select_columns({{"a:b", "a_cols"}, {"b", "b_cols"}}, names, "the table"), io::ColumnSelectionError);
+  EXPECT_THROW(io::select_columns({{"6", "a_cols"}}, names, "the table"), io::ColumnSelectionError);
 }
 
 }  // namespace
