@@ -1,8 +1,11 @@
 #include "estimators/noise_weights.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <memory>
+#include <string>
 #include <utility>
 
 #include "factor/reduce.hpp"
@@ -53,6 +56,17 @@ std::optional<std::string> noise_refusal(const std::optional<NoiseModel>& model,
     case Method::SpdTotalLeastSquares:
     case Method::Auto:
       if (model->a_is_positive_definite() || model->b_is_positive_definite()) return std::nullopt;
+      if (const auto rows = model->rest_rows()) {
+        // Singular because the rest rows are too few, whatever the noise: say that, not "exact columns".
+        const auto columns = static_cast<std::uint64_t>(std::min(model->cov_a().rows(), model->cov_b().rows()));
+        if (*rows <= columns) {
+          return std::to_string(*rows) + " rest rows for " + std::to_string(columns) + " columns (" + a + ", " + b +
+                 "): their sample covariances are singular whatever the noise (N rows give rank N - 1 at most), and " +
+                 name + " with a noise model needs one of them positive definite; record more rest rows: at least " +
+                 std::to_string(columns + 1) + ", and hundreds for a good estimate (its relative error is about "
+                 "sqrt(2 / N))";
+        }
+      }
       return name + " with a noise model is the maximum-likelihood estimate, which needs X Sigma_A X + Sigma_B "
                     "positive definite for every positive definite X, so Sigma_A (" + a + ") or Sigma_B (" + b +
                     ") positive definite: both are singular (exact columns or directions in A and in B)";

@@ -163,6 +163,18 @@ def test_few_rest_rows_warn(spdfit, files, tmp_path):
     assert r.returncode == 0 and "fewer than" in r.stderr
 
 
+@pytest.mark.parametrize("rows", [2, 3])
+def test_too_few_rest_rows_for_the_columns_say_so(spdfit, files, tmp_path, rows):
+    # It was "both are singular (exact columns or directions in A and in B)" (issue 45).
+    rng = np.random.default_rng(4)
+    a = write(tmp_path / "ra.csv", rng.standard_normal((rows, 3)) * STD_A)
+    b = write(tmp_path / "rb.csv", rng.standard_normal((rows, 3)) * STD_B)
+    r = spdfit("fit", "--method", "spd-tls", "--rest-a", a, "--rest-b", b, files["A"], files["B"])
+    assert r.returncode == 2, r.stderr  # as every noise model the method cannot use
+    assert f"{rows} rest rows for 3 columns (--rest-a, --rest-b): their sample covariances are singular" in r.stderr
+    assert "record more rest rows: at least 4" in r.stderr and "exact columns" not in r.stderr
+
+
 @pytest.mark.parametrize("bad,words", [
     (np.array([[1.0, 0.5, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]), "not symmetric"),
     (np.array([[1.0, 2.0, 0.0], [2.0, 1.0, 0.0], [0.0, 0.0, 1.0]]), "not positive semidefinite"),
