@@ -53,6 +53,13 @@ def _repair(entry, C, options):
         if options.get(name) is not None:
             options[name] = _aligned(name, options[name], frame)
     values = frame.to_numpy(dtype=_np.float64) if frame is not None else C
+    if frame is not None and not _np.isfinite(values).all():
+        # The library names the entry by position; a DataFrame's pair is named by its labels.
+        i, j = map(int, _np.argwhere(~_np.isfinite(values))[0])
+        what = "NaN" if _np.isnan(values[i, j]) else "Inf"
+        raise DataError(f"the matrix to repair has {what} at ({frame.index[i]!r}, {frame.columns[j]!r}) (iloc [{i}, {j}]): "
+                        f"a pair of variables never observed together (pandas' corr() and cov() give NaN there)? "
+                        f"Every entry needs a value")
     result = _spdfit.nearest(_as_matrix("X" if entry == "nearest_spd" else "C", values), entry, options)
     for message, code in zip(result.warnings, result.warning_codes):
         _warn(f"{entry}: {_spdfit.spell_options(message)}", code)

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <string>
 #include <utility>
 
 #include "spdfit/labels.hpp"
@@ -442,8 +443,11 @@ NearestRun run_nearest(const NearestCommand& command) {
   Eigen::MatrixXd X;
   const std::string& path = command.matrix.path;
   if (command.matrix.from_file()) {
-    // With the labels of an index column: the names of X's variables (df.cov().to_csv()).
-    io::LabelledTable labelled = io::read_labelled_table(path, command.read);
+    // With the labels of an index column: the names of X's variables (df.cov().to_csv()). NaN and
+    // Inf are read, to be named below by the variables they pair.
+    io::ReadOptions read = command.read;
+    read.allow_nonfinite = true;
+    io::LabelledTable labelled = io::read_labelled_table(path, read);
     std::vector<Warning> name_warnings;
     run.names = variable_names(labelled, path, &name_warnings);
     io::Table& file = labelled.table;
@@ -462,6 +466,19 @@ NearestRun run_nearest(const NearestCommand& command) {
       throw io::DataError(path, 0, 0, problem, Code::DataShape);
     }
     run.warnings.insert(run.warnings.end(), name_warnings.begin(), name_warnings.end());
+    for (Eigen::Index i = 0; i < X.rows() && !X.allFinite(); ++i) {
+      for (Eigen::Index j = 0; j < X.cols(); ++j) {
+        if (std::isfinite(X(i, j))) continue;
+        const bool named = run.names.size() == static_cast<std::size_t>(X.rows());
+        const std::string where = named ? "(" + run.names[static_cast<std::size_t>(i)] + ", " +
+                                              run.names[static_cast<std::size_t>(j)] + "), " : std::string();
+        throw io::DataError(path, 0, 0,
+                            std::string(std::isnan(X(i, j)) ? "NaN" : "Inf") + " at " + where + "row " +
+                                std::to_string(i + 1) + ", column " + std::to_string(j + 1) +
+                                ": a pair of variables never observed together (pandas' corr() and cov() give NaN "
+                                "there)? Every entry needs a value");
+      }
+    }
   } else {
     X = command.matrix.values;
   }

@@ -170,3 +170,17 @@ def test_pairwise_deleted_covariance_of_sensors_in_many_units(spdfit, tmp_path, 
     X = np.array(j["X"])
     assert np.array_equal(np.diag(X), np.diag(S))
     np.linalg.cholesky(X)
+
+
+def test_nan_in_the_matrix_names_the_pair_by_its_labels(spdfit, tmp_path):
+    # df.corr().to_csv() with two variables never observed together (issue 45): the pair is named,
+    # where the reader said "NaN is not allowed".
+    path = tmp_path / "corr.csv"
+    path.write_text(",oil,gas,coal\noil,1,0.5,NaN\ngas,0.5,1,0.2\ncoal,NaN,0.2,1\n")
+    result = spdfit("nearest", "--corr", path)
+    assert result.returncode == 1
+    assert result.stderr.startswith(f"spdfit: error: {path}: NaN at (oil, coal), row 1, column 3: a pair of variables "
+                                    "never observed together"), result.stderr
+    (tmp_path / "plain.csv").write_text("1,0.5,0\n0.5,1,inf\n0,inf,1\n")
+    result = spdfit("nearest", tmp_path / "plain.csv")
+    assert result.returncode == 1 and "Inf at row 2, column 3:" in result.stderr, result.stderr

@@ -86,3 +86,18 @@ def test_full_output_is_the_result():
     C = frame_with_gaps().corr()
     r = quiet(spdfit.nearest_correlation, C, full_output=True)
     assert isinstance(r, spdfit.NearestResult) and r.X.shape == (5, 5)
+
+
+def test_a_pair_never_observed_together_is_named_by_its_labels():
+    # df.corr() gives NaN for two columns that never overlap; the message names the pair (issue 45),
+    # where it said "contains NaN or Inf". An array gets row and column (from 1) and the NumPy index.
+    pd = pytest.importorskip("pandas")
+    labels = ["oil", "gas", "coal"]
+    C = pd.DataFrame([[1.0, 0.5, np.nan], [0.5, 1.0, 0.2], [np.nan, 0.2, 1.0]], index=labels, columns=labels)
+    with pytest.raises(spdfit.DataError, match=r"has NaN at \('oil', 'coal'\) \(iloc \[0, 2\]\): a pair of variables "
+                                               r"never observed together"):
+        spdfit.nearest_correlation(C)
+    with pytest.raises(ValueError, match=r"has NaN at row 1, column 3 \(counting from 1; \[0, 2\] in NumPy\)"):
+        spdfit.nearest_correlation(C.to_numpy())
+    with pytest.raises(ValueError, match=r"has Inf at row 2, column 2"):
+        spdfit.nearest_spd(np.diag([1.0, np.inf, 1.0]))
