@@ -93,7 +93,9 @@ void check_column_selection(const ColumnSelection& selection);
 
 /// Options for reading.
 struct ReadOptions {
-  bool allow_nonfinite = false;  ///< NaN and Inf are rejected unless this is set
+  /// NaN and Inf are rejected unless this is set; with it, an empty field of delimited text (as
+  /// pandas' to_csv writes NaN) reads as NaN.
+  bool allow_nonfinite = false;
   IndexColumn index_column = IndexColumn::Auto;  ///< delimited text only (.npy has no labels)
   HeaderRow header_row = HeaderRow::Auto;        ///< delimited text only
   /// When given, only these columns are read, in this order: the first selection's columns,

@@ -221,7 +221,8 @@ def read_matrix(path, *, allow_nonfinite=False, index_col=None, header=None):
     path : str or os.PathLike
         The file's name (a pathlib.Path works).
     allow_nonfinite : bool, default False
-        Accept NaN and Inf, which are rejected otherwise.
+        Accept NaN and Inf, which are rejected otherwise; an empty field of delimited text (as
+        pandas' to_csv writes NaN) then reads as NaN.
     index_col : bool or None, default None
         True when the first column holds row labels (an index, as pandas' to_csv and R's write.csv
         write one): it is dropped. False: the first column is data. None: a header whose first cell
@@ -279,7 +280,8 @@ def read_table(path, *, allow_nonfinite=False, index_col=None, header=None):
     path : str or os.PathLike
         The file's name (a pathlib.Path works).
     allow_nonfinite : bool, default False
-        Accept NaN and Inf, which are rejected otherwise.
+        Accept NaN and Inf, which are rejected otherwise; an empty field of delimited text (as
+        pandas' to_csv writes NaN) then reads as NaN.
     index_col : bool or None, default None
         Whether the first column holds row labels, as in read_matrix.
     header : bool or None, default None

@@ -2,6 +2,7 @@
 // and space-aligned columns (MATLAB's save -ascii).
 #include <cctype>
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -401,11 +402,13 @@ std::size_t DelimitedParser::parse_row(const Line& line) {
         fail(line, field.offset, quote_token(quoted) + " is quoted text, not a number");
       }
     }
-    if (value.text.empty()) fail_empty_field(line, field, count);
+    // An empty field is pandas' NaN: read as one where NaN is allowed, an error otherwise.
+    if (value.text.empty() && !options_.allow_nonfinite) fail_empty_field(line, field, count);
+    const double parsed = value.text.empty() ? std::numeric_limits<double>::quiet_NaN() : parse_value(line, value);
     if (selecting) {
-      values_[base + static_cast<std::size_t>(slot)] = parse_value(line, value);
+      values_[base + static_cast<std::size_t>(slot)] = parsed;
     } else {
-      values_.push_back(parse_value(line, value));
+      values_.push_back(parsed);
     }
     ++count;
   }

@@ -181,6 +181,15 @@ def test_nan_in_the_matrix_names_the_pair_by_its_labels(spdfit, tmp_path):
     assert result.returncode == 1
     assert result.stderr.startswith(f"spdfit: error: {path}: NaN at (oil, coal), row 1, column 3: a pair of variables "
                                     "never observed together"), result.stderr
+    # pandas' to_csv writes NaN as an empty field: the same message, not "drop such rows first".
+    pd = pytest.importorskip("pandas")
+    frame = pd.DataFrame({"oil": [1.0, 2.0, np.nan, np.nan], "gas": [2.0, 1.0, 3.0, 4.0],
+                          "coal": [np.nan, np.nan, 1.0, 2.0]})
+    frame.corr().to_csv(tmp_path / "pairwise.csv")
+    result = spdfit("nearest", "--corr", tmp_path / "pairwise.csv")
+    assert result.returncode == 1
+    assert "pairwise.csv: NaN at (oil, coal), row 1, column 3: a pair of variables never observed" in result.stderr
+    assert "drop such rows" not in result.stderr, result.stderr
     (tmp_path / "plain.csv").write_text("1,0.5,0\n0.5,1,inf\n0,inf,1\n")
     result = spdfit("nearest", tmp_path / "plain.csv")
     assert result.returncode == 1 and "Inf at row 2, column 3:" in result.stderr, result.stderr

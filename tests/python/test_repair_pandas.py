@@ -101,3 +101,11 @@ def test_a_pair_never_observed_together_is_named_by_its_labels():
         spdfit.nearest_correlation(C.to_numpy())
     with pytest.raises(ValueError, match=r"has Inf at row 2, column 2"):
         spdfit.nearest_spd(np.diag([1.0, np.inf, 1.0]))
+
+
+def test_read_matrix_reads_an_empty_field_as_nan_where_nan_is_allowed(tmp_path):
+    (tmp_path / "holes.csv").write_text("1,,3\n4,5,\n")
+    X = spdfit.read_matrix(tmp_path / "holes.csv", allow_nonfinite=True)
+    np.testing.assert_array_equal(np.isnan(X), [[False, True, False], [False, False, True]])
+    with pytest.raises(spdfit.DataError, match="empty field"):
+        spdfit.read_matrix(tmp_path / "holes.csv")

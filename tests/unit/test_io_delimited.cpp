@@ -251,6 +251,20 @@ TEST(IoDelimited, Utf8TextInHeader) {
   EXPECT_EQ(table.column_names, (std::vector<std::string>{"Température", "Kraft µN"}));
 }
 
+// An empty field is pandas' NaN: NaN where NaN is allowed (the error's message says so otherwise).
+TEST(IoDelimited, AnEmptyFieldIsNanWhenNanIsAllowed) {
+  ReadOptions options;
+  options.allow_nonfinite = true;
+  const MatrixXd X = Parse("1,,3\n,5,\n", options);
+  ASSERT_EQ(X.rows(), 2);
+  ASSERT_EQ(X.cols(), 3);
+  EXPECT_EQ(X(0, 0), 1.0);
+  EXPECT_TRUE(std::isnan(X(0, 1)));
+  EXPECT_TRUE(std::isnan(X(1, 0)));
+  EXPECT_EQ(X(1, 1), 5.0);
+  EXPECT_TRUE(std::isnan(X(1, 2)));
+}
+
 TEST(IoDelimited, NonfiniteWhenAllowed) {
   ReadOptions options;
   options.allow_nonfinite = true;
