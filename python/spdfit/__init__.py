@@ -172,9 +172,21 @@ def _shared_doc(function):
 _KEYWORDS = _spdfit.KEYWORDS
 
 
+# Options Python takes in more forms than the table's text (fit_files' column selections take
+# lists and slices too, _column_spec): their documented type and what the text adds.
+_PYTHON_FORMS = {
+    "a_cols": ("str, list or slice", "; or a list of header labels and 0-based positions, or a slice of labels "
+                                     "(inclusive) or of 0-based positions, as fit takes them from a DataFrame"),
+    "b_cols": ("str, list or slice", ""),
+}
+
+
 def _option_doc(keyword, kind, text, default_text, default):
     """The numpydoc entry of one option (indented by 4, as a function's Parameters section)."""
     import textwrap
+    if keyword in _PYTHON_FORMS:
+        kind, more = _PYTHON_FORMS[keyword]
+        text = text.rstrip(".") + more
     head = f"{keyword} : {kind}, " + ("optional" if default is None else f"default {default!r}")
     if default is None and default_text:
         text += f" (default {default_text})"

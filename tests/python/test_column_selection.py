@@ -186,3 +186,10 @@ def test_fit_files_takes_slices(log, tmp_path):
         spdfit.fit_files(tmp_path / "log.csv", a_cols=slice(1, None), b_cols=slice(3, 5))
     with pytest.raises(ValueError, match="chooses no columns"):
         spdfit.fit_files(tmp_path / "log.csv", a_cols=slice(3, 1), b_cols=slice(3, 5))
+
+
+def test_fit_files_documents_every_form_it_takes():
+    # The table's type is the command line's text; Python's fit_files takes lists and slices too.
+    doc = spdfit.fit_files.__doc__
+    assert "a_cols : str, list or slice, optional" in doc and "b_cols : str, list or slice, optional" in doc
+    assert "as fit takes them from a DataFrame" in doc
