@@ -190,6 +190,12 @@ state = warning();
 restore = onCleanup(@() warning(state));
 expect_warning(@() spdfit.fit(Ar, B, 'ls'), 'spdfit:rankDeficient');
 expect_warning(@() spdfit.nearest([1 2; 2 1]), 'spdfit:eigenvaluesRaised');
+% ... and no "called from" trace (they are about the data), with the backtrace setting kept.
+warning('on', 'backtrace');
+printed = evalc('spdfit.fit(Ar, B, ''ls'');');
+assert(~isempty(strfind(printed, 'rank-deficient')) && isempty(strfind(printed, 'called from')), printed);
+kept = warning('query', 'backtrace');
+assert(strcmp(kept.state, 'on'), 'spdfit.fit changed the backtrace setting');
 % Silenced by its identifier, a warning is not raised (and the result still lists it).
 warning('off', 'spdfit:eigenvaluesRaised');
 lastwarn('', '');
