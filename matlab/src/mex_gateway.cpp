@@ -7,8 +7,11 @@
 // objects are destroyed before mexErrMsgIdAndTxt (which does not return) raises the error with
 // an identifier: 'spdfit:UsageError' (an option or argument misused), 'spdfit:DataError' (data
 // the library cannot fit) or 'spdfit:NumericalError' (valid data without an answer).
+#include <algorithm>
+#include <cctype>
 #include <cstring>
 #include <exception>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +36,13 @@
 namespace spdfit::matlab {
 
 namespace {
+
+// A method named in any case, as option names are matched ('SPD-TLS', 'Auto'): MATLAB users
+// expect names to be case-insensitive.
+std::optional<Method> method_named(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return parse_method(text);
+}
 
 // A result's numerical failure (Code::NumericalFailure): 'spdfit:NumericalError'.
 struct NumericalError : std::runtime_error, Coded {
@@ -83,12 +93,12 @@ void fit_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* prhs[
   // otherwise it is an option's name ('Bootstrap', 1000 without a method).
   bool has_method = false;
   if (nrhs >= 4 && mxIsChar(prhs[3])) {
-    has_method = parse_method(read_text(prhs[3], "the method")).has_value() || (nrhs - 4) % 2 == 0;
+    has_method = method_named(read_text(prhs[3], "the method")).has_value() || (nrhs - 4) % 2 == 0;
   }
   FitRequest request;
   if (has_method) {
     const std::string method = read_text(prhs[3], "the method");
-    const std::optional<Method> parsed = parse_method(method);
+    const std::optional<Method> parsed = method_named(method);
     if (!parsed) {
       std::string names;
       for (Method m : kSelectableMethods) names += (names.empty() ? "" : ", ") + std::string(to_string(m));

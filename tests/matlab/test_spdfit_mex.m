@@ -190,6 +190,9 @@ state = warning();
 restore = onCleanup(@() warning(state));
 expect_warning(@() spdfit.fit(Ar, B, 'ls'), 'spdfit:rankDeficient');
 expect_warning(@() spdfit.nearest([1 2; 2 1]), 'spdfit:eigenvaluesRaised');
+% Method names in any case, as option names (issue 45).
+assert_close(spdfit.fit(A, B, 'SPD-TLS'), spdfit.fit(A, B, 'spd-tls'), 0, 'SPD-TLS');
+assert_close(spdfit.fit(A, B, 'Ls'), spdfit.fit(A, B, 'ls'), 0, 'Ls');
 % ... and no "called from" trace (they are about the data), with the backtrace setting kept.
 warning('on', 'backtrace');
 printed = evalc('spdfit.fit(Ar, B, ''ls'');');
