@@ -1,9 +1,8 @@
 #include "table_options.hpp"
 
-#include <cerrno>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <limits>
 
 namespace spdfit::cli {
@@ -28,19 +27,6 @@ std::optional<std::int64_t> integer_of(const std::string& text) {
   } catch (const std::exception&) {
   }
   return std::nullopt;
-}
-
-// A number as the data files' reader takes one: the whole text is a double, and a value below the
-// smallest normal double (1e-308, 1e-320: subnormal, or 0 below that) is that value where stod
-// reported "out of range"; an overflow (1e999) is not a number.
-std::optional<double> real_of(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  errno = 0;
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() + text.size()) return std::nullopt;
-  if (errno == ERANGE && std::isinf(value)) return std::nullopt;
-  return value;
 }
 
 }  // namespace
@@ -88,21 +74,16 @@ OptionValue parse_option_text(OptionType type, std::string_view spelling, const 
     case OptionType::Integer:
       if (const auto value = integer_of(text)) return *value;
       break;
+    // The library's parser of numbers (options.hpp), as the other front ends': a value below the
+    // smallest normal double (1e-308) is that value, an overflow (1e999) is Inf.
     case OptionType::Real:
-      if (const auto value = real_of(text)) return *value;
+      if (const auto values = comma_separated_numbers(text); values && values->size() == 1) return values->front();
       break;
     case OptionType::RealList: {
-      std::vector<double> values;
-      std::size_t start = 0;
-      bool ok = !text.empty();
-      while (ok && start <= text.size()) {
-        const std::size_t comma = std::min(text.find(',', start), text.size());
-        const auto value = real_of(text.substr(start, comma - start));
-        ok = value && std::isfinite(*value);
-        if (ok) values.push_back(*value);
-        start = comma + 1;
+      const auto values = comma_separated_numbers(text);
+      if (values && std::all_of(values->begin(), values->end(), [](double v) { return std::isfinite(v); })) {
+        return *values;
       }
-      if (ok) return values;
       throw UsageError(std::string(spelling) + ": '" + text +
                        "' is not a number or a comma-separated list of numbers (one per column)");
     }

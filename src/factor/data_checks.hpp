@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 
 namespace spdfit::detail {
@@ -15,6 +16,14 @@ void check_data(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<con
 void check_shapes(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
                   Eigen::Index n, Eigen::Index d);
 void check_finite(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B);
+
+/// The first NaN or Inf of M, row by row as a user looks for it: its 0-based row and column and
+/// "NaN", "Inf" or "-Inf"; nothing when M is finite.
+struct NonfiniteEntry {
+  Eigen::Index row, column;
+  const char* what;
+};
+std::optional<NonfiniteEntry> first_nonfinite(const Eigen::Ref<const Eigen::MatrixXd>& M);
 
 /// The message for data with fewer rows m than columns n.
 std::string too_few_rows(Eigen::Index m, Eigen::Index n);

@@ -37,22 +37,26 @@ void check_shapes(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Ma
   }
 }
 
-namespace {
-// "A contains NaN or Inf: NaN in row 3, column 2 (counting from 1; A[2, 1] in NumPy)": the first
-// such entry, row by row, as a user looks for it.
-void check_finite_named(const Eigen::Ref<const MatrixXd>& M, const char* name) {
-  if (M.allFinite()) return;
+std::optional<NonfiniteEntry> first_nonfinite(const Eigen::Ref<const MatrixXd>& M) {
+  if (M.allFinite()) return std::nullopt;
   for (Index i = 0; i < M.rows(); ++i) {
     for (Index j = 0; j < M.cols(); ++j) {
       const double v = M(i, j);
-      if (std::isfinite(v)) continue;
-      const std::string what = std::isnan(v) ? "NaN" : v > 0 ? "Inf" : "-Inf";
-      throw std::invalid_argument(std::string(name) + " contains NaN or Inf: " + what + " in row " +
-                                  std::to_string(i + 1) + ", column " + std::to_string(j + 1) +
-                                  " (counting from 1; " + name + "[" + std::to_string(i) + ", " + std::to_string(j) +
-                                  "] in NumPy)");
+      if (!std::isfinite(v)) return NonfiniteEntry{i, j, std::isnan(v) ? "NaN" : v > 0 ? "Inf" : "-Inf"};
     }
   }
+  return std::nullopt;
+}
+
+namespace {
+// "A contains NaN or Inf: NaN in row 3, column 2 (counting from 1; A[2, 1] in NumPy)".
+void check_finite_named(const Eigen::Ref<const MatrixXd>& M, const char* name) {
+  const std::optional<NonfiniteEntry> e = first_nonfinite(M);
+  if (!e) return;
+  throw std::invalid_argument(std::string(name) + " contains NaN or Inf: " + e->what + " in row " +
+                              std::to_string(e->row + 1) + ", column " + std::to_string(e->column + 1) +
+                              " (counting from 1; " + name + "[" + std::to_string(e->row) + ", " +
+                              std::to_string(e->column) + "] in NumPy)");
 }
 }  // namespace
 

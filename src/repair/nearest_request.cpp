@@ -8,6 +8,8 @@
 #include <string>
 #include <utility>
 
+#include "factor/data_checks.hpp"
+#include "repair/repair.hpp"
 #include "spdfit/labels.hpp"
 
 namespace spdfit {
@@ -466,18 +468,14 @@ NearestRun run_nearest(const NearestCommand& command) {
       throw io::DataError(path, 0, 0, problem, Code::DataShape);
     }
     run.warnings.insert(run.warnings.end(), name_warnings.begin(), name_warnings.end());
-    for (Eigen::Index i = 0; i < X.rows() && !X.allFinite(); ++i) {
-      for (Eigen::Index j = 0; j < X.cols(); ++j) {
-        if (std::isfinite(X(i, j))) continue;
-        const bool named = run.names.size() == static_cast<std::size_t>(X.rows());
-        const std::string where = named ? "(" + run.names[static_cast<std::size_t>(i)] + ", " +
-                                              run.names[static_cast<std::size_t>(j)] + "), " : std::string();
-        throw io::DataError(path, 0, 0,
-                            std::string(std::isnan(X(i, j)) ? "NaN" : "Inf") + " at " + where + "row " +
-                                std::to_string(i + 1) + ", column " + std::to_string(j + 1) +
-                                ": a pair of variables never observed together (pandas' corr() and cov() give NaN "
-                                "there)? Every entry needs a value");
-      }
+    if (const std::optional<detail::NonfiniteEntry> e = detail::first_nonfinite(X)) {
+      const bool named = run.names.size() == static_cast<std::size_t>(X.rows());
+      const std::string where = named ? "(" + run.names[static_cast<std::size_t>(e->row)] + ", " +
+                                            run.names[static_cast<std::size_t>(e->column)] + "), "
+                                      : std::string();
+      throw io::DataError(path, 0, 0,
+                          std::string(e->what) + " at " + where + "row " + std::to_string(e->row + 1) + ", column " +
+                              std::to_string(e->column + 1) + detail::kNonfiniteCause);
     }
   } else {
     X = command.matrix.values;

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "estimators/diagnostics.hpp"
+#include "factor/data_checks.hpp"
 
 namespace spdfit {
 
@@ -38,18 +39,11 @@ void check_repair_input(const Eigen::Ref<const Eigen::MatrixXd>& C, EigenvalueFl
     throw std::invalid_argument("the matrix to repair must be square and non-empty, not " + std::to_string(C.rows()) +
                                 "x" + std::to_string(C.cols()));
   }
-  if (!C.allFinite()) {
-    // Name the first entry (in row-major order, as the file reads), and the usual cause.
-    for (Eigen::Index i = 0; i < C.rows(); ++i) {
-      for (Eigen::Index j = 0; j < C.cols(); ++j) {
-        if (std::isfinite(C(i, j))) continue;
-        throw std::invalid_argument(
-            "the matrix to repair has " + std::string(std::isnan(C(i, j)) ? "NaN" : "Inf") + " at row " +
-            std::to_string(i + 1) + ", column " + std::to_string(j + 1) + " (counting from 1; [" + std::to_string(i) +
-            ", " + std::to_string(j) + "] in NumPy): a pair of variables never observed together (pandas' corr() "
-            "and cov() give NaN there)? Every entry needs a value");
-      }
-    }
+  if (const std::optional<NonfiniteEntry> e = first_nonfinite(C)) {
+    throw std::invalid_argument("the matrix to repair has " + std::string(e->what) + " at row " +
+                                std::to_string(e->row + 1) + ", column " + std::to_string(e->column + 1) +
+                                " (counting from 1; [" + std::to_string(e->row) + ", " + std::to_string(e->column) +
+                                "] in NumPy)" + kNonfiniteCause);
   }
   std::string error;
   if (!floor.is_valid(&error)) throw std::invalid_argument(error);

@@ -12,6 +12,10 @@
 
 namespace spdfit::detail {
 
+/// Why a matrix to repair has NaN or Inf, as its message ends (check_repair_input, run_nearest).
+inline constexpr const char* kNonfiniteCause =
+    ": a pair of variables never observed together (pandas' corr() and cov() give NaN there)? Every entry needs a value";
+
 /// Throws std::invalid_argument unless C is square, non-empty and finite and the floor is valid.
 /// The repairs' messages name options (`min_eig`, `min_eig_rel`, in backticks for the front ends
 /// to spell), never the library's functions.
