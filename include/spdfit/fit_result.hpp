@@ -119,7 +119,9 @@ struct Diagnostics {
   /// (noise_ratio * sigma in B, FitOptions::noise_ratio) under the TLS model A_true X = B_true,
   /// from sigma^2 = sum_{i>n} s_i^2 / (d (m - n)), s_i the singular values of [A, B / noise_ratio]
   /// (unbiased for sigma^2). Present whenever m > n, for every method; its relative standard
-  /// error is about sqrt(2 / (d (m - n))), and a warning says so when m - n < n.
+  /// error is about sqrt(2 / (d (m - n))), and a warning says so when m - n < n. It is the
+  /// equal-noise model's estimate: with a noise model (`noise_model`) the text report leaves it
+  /// out and no warning is about it.
   /// It costs a values-only SVD of that (n + d) x (n + d) factor, longer than spde's or
   /// procrustes' whole estimate at large n, so a fit computes it when it is first read (it reads
   /// like std::optional<double>; the number does not depend on when it is read): once for every

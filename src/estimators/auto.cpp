@@ -35,10 +35,6 @@ constexpr double kDefiniteMargin = 64.0;
 // Above this signal-to-noise ratio the data are consistent to rounding: spde, exact there to
 // cond(A) eps (spd-tls is not, on ill-conditioned A; spd_total_least_squares.hpp).
 constexpr double kNoiseFreeSnr = 1e10;
-// With a noise model, A's noise is negligible when the bias it gives least squares, in units of
-// least squares' standard errors (a Mahalanobis norm squared), is below this fraction of the
-// number of parameters: on average below a third of a standard error per parameter.
-constexpr double kNegligibleBias = 0.1;
 }  // namespace
 
 template <int MaxN>
@@ -110,20 +106,8 @@ AutoChoice auto_noise_choice(const DynamicReduction& data, const ScaledNoise& no
                                      : std::numeric_limits<double>::infinity();
   bool negligible = noise.a_zero;
   if (!negligible && noise.b_definite) {
-    // Least squares' bias b = m (A^T A)^-1 Sigma_A X (X the least-squares estimate's symmetric part)
-    // in units of its scatter, Cov(vec X_ls) = W (x) (A^T A)^-1 with W = X Sigma_A X + Sigma_B:
-    // chi = vec(b)^T Cov^-1 vec(b) = ||R11 b L^-T||_F^2, W = L L^T; negligible when below a tenth
-    // of the n d parameters' count.
-    SquareMatrix<Eigen::Dynamic> X;
-    least_squares_kernel(data, X);
-    X = symmetric_part(X);
-    const Eigen::MatrixXd bias = static_cast<double>(m) * (R_inv * (R_inv.transpose() * (noise.cov_a * X)));
-    const Eigen::LLT<Eigen::MatrixXd> W(symmetric_part(Eigen::MatrixXd(X * noise.cov_a * X + noise.cov_b)));
-    if (W.info() == Eigen::Success) {
-      const Eigen::MatrixXd scaled = W.matrixL().solve(Eigen::MatrixXd((data.R11 * bias).transpose())).transpose();
-      const double chi = scaled.squaredNorm();
-      negligible = std::isfinite(chi) && chi <= kNegligibleBias * static_cast<double>(n * data.d);
-    }
+    const std::optional<double> bias = noise_in_a_bias(data, noise);
+    negligible = bias && *bias <= kNegligibleNoiseBias;
   }
   if (negligible && noise.b_definite) {
     choice.method = Method::PsdLeastSquares;

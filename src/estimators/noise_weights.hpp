@@ -29,8 +29,22 @@ std::optional<ScaledNoise> scaled_noise(const DynamicReduction& data);
 // spd-tls and auto need Sigma_A > 0 or Sigma_B > 0 (X Sigma_A X + Sigma_B > 0 for every X > 0).
 // ls takes any. data_of and fit_files throw OptionError with the refusal.
 
+/// The bias that the noise model's Sigma_A gives least squares, b = m (A^T A)^-1 Sigma_A X (X the
+/// least-squares estimate; its symmetric part when square), in units of least squares' scatter:
+/// the Mahalanobis norm squared vec(b)^T Cov^-1 vec(b), Cov(vec X) = W (x) (A^T A)^-1 with
+/// W = X^T Sigma_A X + Sigma_B, divided by the n d parameters (the mean squared bias per
+/// parameter, in standard errors). Nothing where A is rank-deficient or W is not positive
+/// definite. Unchanged by a change of units A -> A D, B -> B D^-1. O(n^3).
+std::optional<double> noise_in_a_bias(const DynamicReduction& data, const ScaledNoise& noise);
+
+/// Below this noise_in_a_bias, A's noise is negligible for the methods that model noise in B only
+/// (on average below a third of a standard error per parameter): auto chooses psd-ls there, and
+/// those methods do not warn that they ignore it. One threshold, so that the two never disagree.
+inline constexpr double kNegligibleNoiseBias = 0.1;
+
 /// The warning for a method that models noise in B only (ls, procrustes, psd-ls) given a noise
-/// model with noise in A, or nothing.
+/// model whose noise in A is not negligible (noise_in_a_bias above kNegligibleNoiseBias, or
+/// unknown), with the bias's size; or nothing.
 std::optional<Warning> ignored_noise_warning(const DynamicReduction& data, Method method);
 
 /// `data` without its noise model: the methods as they run without one (fit_all's spde).

@@ -85,28 +85,6 @@ std::vector<MethodIdentification> identify(const Eigen::MatrixXd& A, const Eigen
     MethodIdentification m;
     m.result = std::move(result);
     FitResult& r = m.result;
-    if (r.ok() && options.nominal && options.nominal->rows() == n && options.nominal->trace() > 0.0) {
-      // Data in other units than the geometry's SI: the estimate's scale gives them away.
-      constexpr double kPlausibleFactor = 100.0;
-      const double ratio = r.X.trace() / options.nominal->trace();
-      if (!(ratio >= 1.0 / kPlausibleFactor && ratio <= kPlausibleFactor)) {
-        std::string how = "not positive, unlike";
-        std::string fix = "check the data's units, signs and strut order against the geometry's";
-        if (ratio > 0.0) {
-          how = format_number(ratio > 1.0 ? ratio : 1.0 / ratio) + " times " + (ratio > 1.0 ? "above" : "below");
-          const double decade = std::pow(10.0, std::round(std::log10(1.0 / ratio)));
-          fix = "multiply the forces by " +
-                (decade >= 1.0 ? std::to_string(std::llround(decade)) : format_number(decade)) +
-                " (or the accelerations by its inverse) before fitting";
-        }
-        r.warnings.emplace_back(Code::PhysicalNotice,
-                                "the estimate's trace is " + format_number(r.X.trace()) + ", " + how +
-                                    " the geometry's M_p (" + format_number(options.nominal->trace()) +
-                                    " kg): the geometry is in SI units, and the data are probably in others "
-                                    "(forces in kN?): " + fix,
-                                "geometry");
-      }
-    }
     if (r.ok()) {
       if (options.truth) m.error_vs_truth = error_vs_truth(r, *options.truth);
       if (r.diagnostics.symmetric) {

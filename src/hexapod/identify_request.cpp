@@ -1,10 +1,15 @@
 // `hexapod identify` as one workflow: its option table, its rules, its run.
 #include "spdfit/hexapod/identify_request.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <optional>
 #include <string>
+#include <vector>
 #include <utility>
 
 #include "spdfit/fit_files.hpp"
+#include "spdfit/format.hpp"
 #include "spdfit/hexapod/model.hpp"
 #include "spdfit/hexapod/physical_request.hpp"
 #include "spdfit/hexapod/render.hpp"
@@ -16,6 +21,77 @@
 namespace spdfit::hexapod {
 
 namespace {
+
+// Data in other units than the geometry's SI give themselves away by the estimates' scale: one
+// warning (not one per method) when the median of the estimates' traces is more than a factor
+// kPlausibleFactor from the trace of the geometry's M_p, naming the factor the units are off by.
+std::optional<Warning> units_warning(const std::vector<MethodIdentification>& methods, const Eigen::MatrixXd& nominal) {
+  constexpr double kPlausibleFactor = 100.0;
+  const double reference = nominal.trace();
+  if (!(reference > 0.0) || !std::isfinite(reference)) return std::nullopt;
+  std::vector<double> traces;
+  for (const MethodIdentification& m : methods) {
+    if (m.result.ok() && std::isfinite(m.result.X.trace())) traces.push_back(m.result.X.trace());
+  }
+  if (traces.empty()) return std::nullopt;
+  std::sort(traces.begin(), traces.end());
+  const std::size_t k = traces.size();
+  const double median = k % 2 == 1 ? traces[k / 2] : 0.5 * (traces[k / 2 - 1] + traces[k / 2]);
+  const double ratio = median / reference;
+  if (ratio >= 1.0 / kPlausibleFactor && ratio <= kPlausibleFactor) return std::nullopt;
+  std::string how = "not positive, unlike";
+  std::string fix = "check the data's units, signs and strut order against the geometry's";
+  if (ratio > 0.0) {
+    how = format_number(ratio > 1.0 ? ratio : 1.0 / ratio) + " times " + (ratio > 1.0 ? "above" : "below");
+    const double decade = std::pow(10.0, std::round(std::log10(1.0 / ratio)));
+    fix = "multiply the forces by " + (decade >= 1.0 ? std::to_string(std::llround(decade)) : format_number(decade)) +
+          " (or the accelerations by its inverse) before fitting";
+  }
+  const std::string range = traces.front() == traces.back()
+                                ? format_number(median)
+                                : format_number(traces.front()) + " to " + format_number(traces.back()) + " (median " +
+                                      format_number(median) + ")";
+  return Warning(Code::PhysicalNotice,
+                 "the estimates' traces are " + range + ", " + how + " the geometry's M_p (" + format_number(reference) +
+                     " kg): the geometry is in SI units, and the data are probably in others (forces in kN?): " + fix,
+                 "geometry");
+}
+
+// Each method's warnings, after its name ("spde: ..."), each fact once: a warning that several
+// methods give alike (the same code and text, the method's own name at its start aside: a notice
+// about the data or the noise model) is one warning after all their names ("ls, procrustes,
+// psd-ls: each models noise in B only ...").
+void add_method_warnings(const std::vector<MethodIdentification>& methods, std::vector<Warning>& out) {
+  struct Group {
+    Code code;
+    std::string key, subject;
+    bool named = false;
+    std::vector<std::string> names;
+  };
+  std::vector<Group> groups;
+  for (const MethodIdentification& m : methods) {
+    const std::string name(to_string(m.result.method));
+    for (const Warning& w : m.result.warnings) {
+      const bool named = w.text.rfind(name + " ", 0) == 0;
+      const std::string key = named ? w.text.substr(name.size() + 1) : w.text;
+      auto same = std::find_if(groups.begin(), groups.end(), [&](const Group& g) {
+        return g.code == w.code && g.named == named && g.key == key;
+      });
+      if (same == groups.end()) {
+        groups.push_back(Group{w.code, key, w.subject, named, {name}});
+      } else {
+        same->names.push_back(name);
+      }
+    }
+  }
+  for (Group& g : groups) {
+    std::string names;
+    for (const std::string& name : g.names) names += (names.empty() ? "" : ", ") + name;
+    const std::string text = g.names.size() == 1 ? names + ": " + (g.named ? names + " " : std::string()) + g.key
+                                                 : names + ": " + (g.named ? "each " : "") + g.key;
+    out.emplace_back(g.code, text, g.subject);
+  }
+}
 
 using Spec = OptionSpec<IdentifyRequest>;
 
@@ -159,7 +235,7 @@ Eigen::MatrixXd stiffness_matrix(const Eigen::MatrixXd& K, Eigen::Index n) {
   const auto fail = [&](const std::string& problem) -> Eigen::MatrixXd {
     throw InputError("`stiffness` " + problem, Code::DataShape, "stiffness");
   };
-  if (!K.allFinite() || (K.array() < 0.0).any() && (K.rows() == 1 || K.cols() == 1)) {
+  if (!K.allFinite() || ((K.array() < 0.0).any() && (K.rows() == 1 || K.cols() == 1))) {
     return fail("must be finite numbers >= 0 (N/m)");
   }
   if (K.size() == 1) return Eigen::MatrixXd::Identity(n, n) * K(0, 0);
@@ -236,7 +312,6 @@ Identification run_identify(const IdentifyRequest& request) {
       throw InputError(problem + "; A has " + std::to_string(n), Code::DataShape, "a");
     }
     out.options.stiffness = Eigen::MatrixXd(out.geometry->strut_stiffness.asDiagonal());
-    out.options.nominal = Eigen::MatrixXd(joint_space_mass_matrix(*out.geometry));
   } else if (request.stiffness) {
     const Eigen::MatrixXd K = spdfit::detail::values_of(*request.stiffness, read, out.warnings);
     try {
@@ -250,11 +325,12 @@ Identification run_identify(const IdentifyRequest& request) {
   if (std::optional<Warning> w = spdfit::detail::sentinel_warning(A, B)) out.warnings.push_back(std::move(*w));
   out.options.fit = request.fit.resolved_options(n, n);
   out.methods = identify(A, B, out.options);
-  for (const MethodIdentification& m : out.methods) {
-    for (const Warning& w : m.result.warnings) {
-      out.warnings.emplace_back(w.code, std::string(to_string(m.result.method)) + ": " + w.text, w.subject);
+  if (out.geometry) {
+    if (std::optional<Warning> w = units_warning(out.methods, joint_space_mass_matrix(*out.geometry))) {
+      out.warnings.push_back(std::move(*w));
     }
   }
+  add_method_warnings(out.methods, out.warnings);
   if (!request.physical) return out;
   // The bootstrap's options and the noise model, as every estimator had them (the iteration limit
   // and the rank cut-off were set for both by their options).

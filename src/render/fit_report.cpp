@@ -151,7 +151,8 @@ std::string report(const FitResult& result, const ReportHints& hints) {
     out << "\n" << format_percent(b->interval.level, Precision::Medium)
         << " percentile intervals of every entry and the bias estimate: " << hints.details << "\n";
   }
-  if (d.noise_sigma) {
+  // noise_sigma is the equal-noise model's estimate: beside a noise model it would contradict it.
+  if (d.noise_sigma && !d.noise_model) {
     out << "noise estimate: sigma = " << format_number(*d.noise_sigma, Precision::Full)
         << " in every entry of A (times the noise ratio in B)\n";
   }

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "estimators/auto_settle.hpp"
 #include "estimators/diagnostics.hpp"
 #include "factor/reduce.hpp"
 #include "estimators/kernels.hpp"
@@ -176,6 +177,40 @@ SpectrumUncertainty summarize_spectrum(const VectorXd& estimate, const std::vect
   return out;
 }
 
+namespace {
+
+// Noise in A biases the least-squares-type estimators and spde towards zero by a margin that does
+// not shrink with m, so an interval around them can miss the truth: said where auto's rule, with
+// the same data and noise model, would choose the consistent spd-tls instead. Not for a method
+// that auto chose (its reason says why), and not for ls, procrustes and psd-ls with a noise model,
+// whose notice (ignored_noise_warning) already gives the bias's size and the intervals' risk.
+std::optional<Warning> bias_warning(const FitResult& result, const DynamicReduction& data) {
+  const Method m = result.method;
+  const bool b_only = m == Method::LeastSquares || m == Method::SymmetricProcrustes || m == Method::PsdLeastSquares;
+  if ((!b_only && m != Method::Spde) || result.diagnostics.reason) return std::nullopt;
+  const std::string consistent = data.square() ? "spd-tls (or auto) is" : "tls (for a non-square X) is";
+  const std::string name(to_string(m));
+  if (const std::optional<ScaledNoise> noise = scaled_noise(data)) {
+    if (b_only) return std::nullopt;
+    const AutoChoice choice = auto_noise_choice(data, *noise);
+    if (std::string(choice.code) != "many_samples") return std::nullopt;
+    return Warning(Code::Bias, name + " is biased by the noise in A that " + data.options.noise->option_a() +
+                                   " gives, at m = " + std::to_string(data.m) +
+                                   " rows (signal-to-noise ratio " + format_number(choice.snr) +
+                                   " in A's weakest direction): the bootstrap interval, centred on the biased "
+                                   "estimate, can miss the truth; " + consistent + " consistent here");
+  }
+  const AutoChoice choice = auto_choice(data, data_noise_variance(data));
+  if (std::string(choice.code) != "many_samples") return std::nullopt;
+  return Warning(Code::Bias, "if A carries noise (the noise estimate cannot tell A's from B's), " + name +
+                                 " is biased by it at m = " + std::to_string(data.m) + " rows (signal-to-noise ratio " +
+                                 format_number(choice.snr) +
+                                 " in A's weakest direction), and the bootstrap interval, centred on the biased "
+                                 "estimate, can miss the truth; " + consistent + " consistent here");
+}
+
+}  // namespace
+
 void attach_bootstrap(FitResult& result, const std::vector<Replicate>& replicates, const FitOptions& options,
                       const Reduction& full_data) {
   Bootstrap boot;
@@ -248,26 +283,7 @@ void attach_bootstrap(FitResult& result, const std::vector<Replicate>& replicate
         percent(static_cast<double>(boot.failed) / boot.replicates) + ") had no estimate (the first: " +
         *first_failure + ") and were left out: the standard errors and intervals describe the others"));
   }
-  // Noise in A biases the least-squares-type estimators towards zero by a margin that does not
-  // shrink with m, so an interval around them can miss the truth; auto's rule says when the
-  // data carry enough rows for the consistent spd-tls to do better.
-  const Method m = result.method;
-  const bool biased_kind = m == Method::LeastSquares || m == Method::SymmetricProcrustes || m == Method::Spde ||
-                           m == Method::PsdLeastSquares;
-  if (biased_kind) {
-    const DynamicReduction& data = data_of(full_data);
-    const std::optional<double> noise_var = data_noise_variance(data);
-    const AutoChoice choice = auto_choice(data, noise_var);
-    if (std::string(choice.code) == "many_samples") {
-      result.warnings.push_back(Warning(Code::Bias, 
-          "if A carries noise (the noise estimate cannot tell A's from B's), " + std::string(to_string(m)) +
-          " is biased by it at m = " + std::to_string(data.m) + " rows (signal-to-noise ratio " +
-          format_number(choice.snr) +
-          " in A's weakest direction), and the bootstrap interval, centred on the biased estimate, can miss the "
-          "truth; " +
-          std::string(data.square() ? "spd-tls (or auto) is" : "tls (for a non-square X) is") + " consistent here"));
-    }
-  }
+  if (std::optional<Warning> w = bias_warning(result, data_of(full_data))) result.warnings.push_back(std::move(*w));
   result.bootstrap = std::move(boot);
 }
 

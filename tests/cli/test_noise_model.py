@@ -250,3 +250,80 @@ def test_experiment_thesis_fits_with_each_noise_model(spdfit):
     assert set(methods) == {"psd-ls", "spd-tls", "psd-ls/true", "spd-tls/true", "psd-ls/rest", "spd-tls/rest"}
     r = spdfit("experiment", "thesis", "--noise-var", "1", "--fit-noise", "rest", "--trials", "2")
     assert r.returncode == 2 and "--rest-samples" in r.stderr
+
+
+# ---- warnings that agree with the method chosen and the noise model (issue 45 item 1) ------------
+
+@pytest.fixture(scope="module")
+def quiet_a(tmp_path_factory):
+    """docs/matlab.md's noise-model example: A's noise (0.01) negligible against its signal, B's
+    per column (3, 1, 0.3), 2000 rest rows with a constant load in B."""
+    d = tmp_path_factory.mktemp("quiet_a")
+    t = np.arange(1, 301)[:, None]
+    A0 = np.hstack([np.sin(0.7 * t), np.cos(1.3 * t), np.sin(2.9 * t + 1)])
+    A = A0 + 0.01 * np.cos(t * [4.3, 9.1, 6.7])
+    B = A0 @ np.array([[4, 1, 0.5], [1, 3, 0.2], [0.5, 0.2, 2]]) + np.array([3, 1, 0.3]) * np.sin(t * [5.1, 3.7, 8.3])
+    r = np.arange(1, 2001)[:, None]
+    rest_A = 0.01 * np.cos(r * [4.3, 9.1, 6.7])
+    rest_B = np.array([10, -5, 2]) + np.array([3, 1, 0.3]) * np.sin(r * [5.1, 3.7, 8.3])
+    return {"A": write(d / "A.csv", A), "B": write(d / "B.csv", B), "rest_A": write(d / "rest_A.csv", rest_A),
+            "rest_B": write(d / "rest_B.csv", rest_B)}
+
+
+def least_squares_bias(files):
+    """The bias that the rest rows' Sigma_A gives least squares, in its standard errors (root mean
+    square over X's entries), by the Kronecker form: vec(b)^T (W (x) (A^T A)^-1)^-1 vec(b) =
+    tr(b^T A^T A b W^-1), b = m (A^T A)^-1 Sigma_A X, W = X Sigma_A X + Sigma_B."""
+    A, B = (np.loadtxt(files[k], delimiter=",") for k in ("A", "B"))
+    Sa, Sb = (np.cov(np.loadtxt(files[k], delimiter=","), rowvar=False) for k in ("rest_A", "rest_B"))
+    X = np.linalg.lstsq(A, B, rcond=None)[0]
+    X = (X + X.T) / 2
+    G = A.T @ A
+    b = A.shape[0] * np.linalg.solve(G, Sa @ X)
+    chi = np.trace(b.T @ G @ b @ np.linalg.inv(X @ Sa @ X + Sb))
+    return np.sqrt(chi / X.size)
+
+
+def warning_lines(stderr):
+    return [line for line in stderr.splitlines() if line.startswith("spdfit: warning:")]
+
+
+def test_auto_choosing_psd_ls_warns_nothing_against_it(spdfit, quiet_a):
+    assert least_squares_bias(quiet_a) < 0.1  # negligible: a small fraction of a standard error
+    out = fit_json(spdfit, quiet_a, *rest(quiet_a), method="auto")
+    assert out["diagnostics"]["reason"]["code"] == "noise_in_b"
+    assert out["warnings"] == []
+    report = spdfit("fit", "--method", "auto", "--report", *rest(quiet_a), quiet_a["A"], quiet_a["B"])
+    assert report.returncode == 0, report.stderr
+    assert warning_lines(report.stderr) == []
+    # The equal-noise model's sigma is not printed beside the noise model it would contradict.
+    assert "in every entry of A" not in report.stdout and "noise model: rest" in report.stdout
+    # psd-ls chosen by hand: the same rule as auto's, so no notice either.
+    psd = spdfit("fit", "--method", "psd-ls", *rest(quiet_a), quiet_a["A"], quiet_a["B"])
+    assert psd.returncode == 0 and warning_lines(psd.stderr) == [], psd.stderr
+
+
+@pytest.mark.parametrize("method", ["ls", "procrustes", "psd-ls"])
+def test_methods_that_ignore_noise_in_a_say_by_how_much(spdfit, files, method):
+    expected = least_squares_bias(files)
+    assert expected > 1.0  # STD_A biases least squares by more than a standard error here
+    r = spdfit("fit", "--method", method, *rest(files), files["A"], files["B"])
+    assert r.returncode == 0, r.stderr
+    [notice] = [line for line in warning_lines(r.stderr) if "models noise in B only" in line]
+    printed = float(notice.split("by about ")[1].split(" standard errors")[0])
+    assert printed == pytest.approx(expected, rel=5e-3), notice
+    # auto's rule agrees: it does not choose a method that models noise in B only here.
+    assert fit_json(spdfit, files, *rest(files), method="auto")["diagnostics"]["reason"]["code"] != "noise_in_b"
+
+
+def test_identify_states_each_fact_once_and_uses_the_model(spdfit, files, quiet_a):
+    r = spdfit("hexapod", "identify", "--bootstrap", "30", *rest(files), files["A"], files["B"])
+    assert r.returncode == 0, r.stderr
+    lines = warning_lines(r.stderr)
+    [notice] = [line for line in lines if "models noise in B only" in line]
+    assert notice.startswith("spdfit: warning: ls, procrustes, psd-ls: each models noise in B only"), notice
+    assert len(lines) == len(set(lines)) and not any("cannot tell A's from B's" in line for line in lines), lines
+    quiet = spdfit("hexapod", "identify", "--bootstrap", "30", *rest(quiet_a), quiet_a["A"], quiet_a["B"])
+    assert quiet.returncode == 0, quiet.stderr
+    # Only spde's: it runs without the model.
+    assert [line.split(":")[2].strip() for line in warning_lines(quiet.stderr)] == ["spde"], quiet.stderr

@@ -1,6 +1,6 @@
 """docs/hexapod.md stays true: every `$ spdfit ...` command in it runs (in order, in one scratch
-directory) with the exit status and the output lines the page shows, and its results tables are
-what the commands they name produce."""
+directory) with the exit status and the output lines the page shows and no warning that
+contradicts the run, and its results tables are what the commands they name produce."""
 import json
 import re
 import shlex
@@ -55,6 +55,10 @@ def test_every_command_runs_as_shown(spdfit_cli, tmp_path):
         produced = {line.rstrip() for line in (proc.stdout + proc.stderr).splitlines()}
         for line in expected:
             assert line in produced, f"{command}: the page shows\n{line}\nbut the command printed\n{proc.stdout}{proc.stderr}"
+        # No warning that contradicts the method the run chose or the noise model it was given.
+        bad = spdfit_testing.contradicting_warnings((proc.stdout + proc.stderr).splitlines(),
+                                                    *spdfit_testing.command_context(words))
+        assert not bad, f"{command}: prints what contradicts its method or noise model:\n" + "\n".join(bad)
 
 
 def table_rows(name):

@@ -113,3 +113,42 @@ def mpirun_environment(extra=None):
         env["OMPI_MCA_mca_base_component_disable_dlclose"] = "1"
         env["ASAN_OPTIONS"] = ":".join(filter(None, [env.get("ASAN_OPTIONS", ""), "fast_unwind_on_malloc=0"]))
     return env
+
+
+# ---- warnings that contradict the run (issue 45 item 1) ----------------------------------------
+
+# What, in a warning or a report line, contradicts a method that auto chose: a bias warning about
+# it, a notice that it ignores noise the model gives, or advice to use auto (which chose it).
+_AGAINST_AUTO = ("is biased", "models noise in B only", "(or auto)", "use auto")
+# What contradicts a noise model that the run was given: statements of the equal-noise model.
+_AGAINST_MODEL = ("cannot tell A's from B's", "in every entry of A")
+# Command-line options and keywords that give a noise model.
+NOISE_MODEL_OPTIONS = ("--rest-a", "--noise-std-a", "--noise-cov-a", "--noise-std-b", "--noise-cov-b", "--rest-b")
+
+
+def contradicting_warnings(lines, chosen_by_auto, noise_model):
+    """The lines (warnings, or a report's lines) that contradict the run: with `chosen_by_auto`,
+    any that calls the chosen estimator biased, says it ignores the model's noise in A or
+    recommends auto; with `noise_model`, any that states the equal-noise model's view (the noise
+    estimate "in every entry of A", "cannot tell A's from B's"). Rules, not a parser: a new
+    warning that contradicts the run in other words needs its words here."""
+    bad = []
+    for line in lines:
+        if chosen_by_auto and any(words in line for words in _AGAINST_AUTO):
+            bad.append(line)
+        elif noise_model and any(words in line for words in _AGAINST_MODEL):
+            bad.append(line)
+    return bad
+
+
+def command_context(words):
+    """(chosen_by_auto, noise_model) of a `spdfit ...` command's words."""
+    method = None
+    for i, word in enumerate(words):
+        if word in ("--method", "-m") and i + 1 < len(words):
+            method = words[i + 1]
+        elif word.startswith("--method="):
+            method = word.split("=", 1)[1]
+    chosen_by_auto = len(words) > 1 and words[1] == "fit" and method == "auto"
+    noise_model = any(word.split("=", 1)[0] in NOISE_MODEL_OPTIONS for word in words)
+    return chosen_by_auto, noise_model

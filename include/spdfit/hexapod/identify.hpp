@@ -30,10 +30,6 @@ struct IdentifyOptions {
   std::optional<Eigen::MatrixXd> truth;      ///< the true M_p (n x n), to report errors
   std::optional<Eigen::MatrixXd> stiffness;  ///< K (n x n, symmetric), to report modes
   FitOptions fit;
-  /// The M_p a geometry gives (in its SI units): an estimate whose trace is more than a factor 100
-  /// from its trace gets a warning (Code::PhysicalNotice) naming the factor the data's units are
-  /// off by (forces logged in kN).
-  std::optional<Eigen::MatrixXd> nominal;
 };
 
 /// Every estimator (kAllMethods, sharing one QR of [A B]) on accelerations A and forces B
