@@ -26,6 +26,12 @@ std::string format_number(double value, Precision precision = Precision::Brief);
 /// "-" for NaN. decimals in [0, 17].
 std::string format_fixed(double value, int decimals = 4);
 
+/// Decimals for an estimate printed beside its standard error and interval, so that whether a
+/// value lies inside the interval can be read: down to the standard error's third significant
+/// digit (its first and two more), "12.4788 +- 0.0118   [12.4600, 12.4974]". 4 where the
+/// standard error is missing, zero or not finite; in [0, 12].
+int interval_decimals(double standard_error);
+
 /// A fraction as a percentage in `precision` significant digits: "95%" for 0.95, "2.5%" for 0.025.
 std::string format_percent(double fraction, Precision precision = Precision::Brief);
 

@@ -4,6 +4,9 @@
 #include <cctype>
 #include <cmath>
 #include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "spdfit/fit_request.hpp"
 #include "spdfit/hexapod/identify_request.hpp"
@@ -101,13 +104,32 @@ std::string type_name(OptionType type, const std::vector<std::string_view>& choi
   return "real";
 }
 
+// The tables' help is written for the command line and Python: MATLAB's words for their values
+// (a vector, not comma-separated numbers; [] for None; true and false), whole words only.
+std::string matlab_words(std::string text) {
+  static const std::vector<std::pair<std::string, std::string>> words = {
+      {"(comma-separated)", "(a vector)"}, {"None", "[]"}, {"True", "true"}, {"False", "false"}};
+  const auto word_char = [&text](std::size_t i) {
+    return i < text.size() && (std::isalnum(static_cast<unsigned char>(text[i])) || text[i] == '_');
+  };
+  for (const auto& [from, to] : words) {
+    std::size_t at = text.find(from);
+    while (at != std::string::npos) {
+      const bool whole = (at == 0 || !word_char(at - 1)) && !word_char(at + from.size());
+      if (whole) text.replace(at, from.size(), to);
+      at = text.find(from, at + (whole ? to.size() : 1));
+    }
+  }
+  return text;
+}
+
 template <typename Request>
 std::vector<MatlabOption> help_of(const std::vector<OptionSpec<Request>>& table, const MatlabFunction& function) {
   std::vector<MatlabOption> out;
   for (const OptionSpec<Request>& spec : table) {
     if (!takes(function, spec.name, spec.positional)) continue;
-    out.push_back({camel_case(spec.name), type_name(spec.type, spec.choices), spell_options(spec.help, Frontend::Matlab),
-                   std::string(spec.default_text)});
+    out.push_back({camel_case(spec.name), type_name(spec.type, spec.choices),
+                   matlab_words(spell_options(spec.help, Frontend::Matlab)), matlab_words(std::string(spec.default_text))});
   }
   return out;
 }

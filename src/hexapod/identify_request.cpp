@@ -60,7 +60,7 @@ std::optional<Warning> units_warning(const std::vector<MethodIdentification>& me
 // Each method's warnings, after its name ("spde: ..."), each fact once: a warning that several
 // methods give alike (the same code and text, the method's own name at its start aside: a notice
 // about the data or the noise model) is one warning after all their names ("ls, procrustes,
-// psd-ls: each models noise in B only ...").
+// psd-ls: each models noise in B only ..."; "every estimator: ..." when all give it).
 void add_method_warnings(const std::vector<MethodIdentification>& methods, std::vector<Warning>& out) {
   struct Group {
     Code code;
@@ -87,6 +87,7 @@ void add_method_warnings(const std::vector<MethodIdentification>& methods, std::
   for (Group& g : groups) {
     std::string names;
     for (const std::string& name : g.names) names += (names.empty() ? "" : ", ") + name;
+    if (g.names.size() > 1 && g.names.size() == methods.size()) names = "every estimator";
     const std::string text = g.names.size() == 1 ? names + ": " + (g.named ? names + " " : std::string()) + g.key
                                                  : names + ": " + (g.named ? "each " : "") + g.key;
     out.emplace_back(g.code, text, g.subject);

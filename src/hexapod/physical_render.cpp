@@ -28,16 +28,20 @@ struct Row {
   std::optional<double> se, lower, upper;
 };
 
+// With a bootstrap, the estimate and its interval to the standard error's third significant
+// digit (interval_decimals), so that whether a value lies inside can be read.
 std::string row_text(const Row& r, bool bootstrap) {
   char line[256];
-  std::snprintf(line, sizeof line, "  %-28s %12s %12s", r.name.c_str(),
-                format_number(r.estimate, Precision::Full).c_str(),
+  const bool interval = bootstrap && r.se;
+  const int decimals = interval ? interval_decimals(*r.se) : 0;
+  const std::string estimate =
+      interval ? format_fixed(r.estimate, decimals) : format_number(r.estimate, Precision::Full);
+  std::snprintf(line, sizeof line, "  %-28s %12s %12s", r.name.c_str(), estimate.c_str(),
                 r.nominal ? format_number(*r.nominal, Precision::Full).c_str() : "-");
   std::string out = line;
-  if (bootstrap && r.se) {
-    std::snprintf(line, sizeof line, " %11s   [%s, %s]", format_number(*r.se, Precision::Medium).c_str(),
-                  format_number(*r.lower, Precision::Medium).c_str(),
-                  format_number(*r.upper, Precision::Medium).c_str());
+  if (interval) {
+    std::snprintf(line, sizeof line, " %11s   [%s, %s]", format_fixed(*r.se, decimals).c_str(),
+                  format_fixed(*r.lower, decimals).c_str(), format_fixed(*r.upper, decimals).c_str());
     out += line;
   }
   return out + "\n";

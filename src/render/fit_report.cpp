@@ -67,7 +67,7 @@ std::string report(const SpectrumUncertainty& s, const std::string& indent) {
   std::ostringstream out;
   for (const std::vector<Eigen::Index>& cluster : s.clusters) {
     for (Eigen::Index i : cluster) {
-      const int d = decimals_for(s.standard_errors(i));
+      const int d = interval_decimals(s.standard_errors(i));
       out << indent << std::setw(2) << i + 1 << "  " << std::setw(12) << format_fixed(s.estimate(i), d) << " +- "
           << format_fixed(s.standard_errors(i), d);
       if (i == cluster.front()) {

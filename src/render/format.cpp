@@ -31,6 +31,11 @@ std::string format_fixed(double value, int decimals) {
   return without_negative_zero(buffer);
 }
 
+int interval_decimals(double standard_error) {
+  if (!(standard_error > 0.0) || !std::isfinite(standard_error)) return 4;
+  return std::clamp(2 - static_cast<int>(std::floor(std::log10(standard_error))), 0, 12);
+}
+
 std::string format_percent(double fraction, Precision precision) {
   return format_number(100.0 * fraction, precision) + "%";
 }

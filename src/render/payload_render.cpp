@@ -52,6 +52,15 @@ std::string with_se(double value, double se) {
   return out;
 }
 
+// An interval "[12.4600, 12.4974]" to its standard error's third significant digit, so that
+// whether a value lies inside can be read.
+std::string bounds(const Interval& interval, Eigen::Index i) {
+  const double lower = interval.lower(i, 0), upper = interval.upper(i, 0);
+  if (!std::isfinite(lower) || !std::isfinite(upper)) return "undetermined";
+  const int decimals = interval_decimals(interval.standard_errors(i, 0));
+  return "[" + format_fixed(lower, decimals) + ", " + format_fixed(upper, decimals) + "]";
+}
+
 std::string vector_with_se(const Eigen::Vector3d& v, const Eigen::Vector3d& se) {
   return "(" + with_se(v(0), se(0)) + ", " + with_se(v(1), se(1)) + ", " + with_se(v(2), se(2)) + ")";
 }
@@ -146,11 +155,9 @@ std::string report(const PayloadEstimate& e) {
   out << "  torque bias     " << vector_with_se(e.torque_bias, e.torque_bias_se) << " N m\n";
   if (e.bootstrap) {
     const PayloadEstimate::Bootstrap& b = *e.bootstrap;
-    out << "  bootstrap (" << b.replicates << " replicates, " << g(100.0 * b.level, 3) << "% intervals): mass ["
-        << g(b.mass.lower(0, 0)) << ", " << g(b.mass.upper(0, 0)) << "] kg, centre of mass x [" << g(b.center_of_mass.lower(0))
-        << ", " << g(b.center_of_mass.upper(0)) << "], y [" << g(b.center_of_mass.lower(1)) << ", "
-        << g(b.center_of_mass.upper(1)) << "], z [" << g(b.center_of_mass.lower(2)) << ", " << g(b.center_of_mass.upper(2))
-        << "] m\n";
+    out << "  bootstrap (" << b.replicates << " replicates, " << g(100.0 * b.level, 3) << "% intervals): mass "
+        << bounds(b.mass, 0) << " kg, centre of mass x " << bounds(b.center_of_mass, 0) << ", y "
+        << bounds(b.center_of_mass, 1) << ", z " << bounds(b.center_of_mass, 2) << " m\n";
   }
   out << "  residual RMS    force (" << g(e.residual_rms(0), 3) << ", " << g(e.residual_rms(1), 3) << ", "
       << g(e.residual_rms(2), 3) << ") N, torque (" << g(e.residual_rms(3), 3) << ", " << g(e.residual_rms(4), 3)

@@ -88,6 +88,24 @@ def test_report_shows_nominal_values_and_the_bootstrap(cli, tmp_path):
     assert {"mass", "center_of_mass", "inertia", "strut_mass", "M_p"} <= p["standard_errors"].keys()
     assert p["interval"]["level"] == 0.95
     assert p["interval"]["lower"]["mass"] <= p["mass"] <= p["interval"]["upper"]["mass"]
+    # Membership can be read (issue 45 item 2): each row shows the estimate, the standard error and
+    # the bounds to the standard error's third significant digit, and they are the JSON's numbers
+    # rounded there (the same seed: the same replicates).
+    values = {"mass (kg)": lambda d: d["mass"], "centre of mass z (m)": lambda d: d["center_of_mass"][2],
+              "inertia xx (kg m^2)": lambda d: d["inertia"][0][0]}
+    text_again = cli("hexapod", "identify", "run/A.csv", "run/B.csv", "--geometry", g, "--physical",
+                     "--bootstrap", 50, "--threads", 2).stdout
+    rows = {line[:31].strip(): line[31:].replace("[", " ").replace("]", " ").replace(",", " ").split()
+            for line in text_again.splitlines() if line.startswith("  ") and line[:31].strip() in values}
+    assert rows.keys() == values.keys()
+    for label, value in values.items():
+        estimate, _nominal, se, lower, upper = rows[label]
+        se_json = value(p["standard_errors"])
+        decimals = 2 - int(np.floor(np.log10(se_json)))
+        for shown, exact in ((estimate, value(p)), (se, se_json), (lower, value(p["interval"]["lower"])),
+                             (upper, value(p["interval"]["upper"]))):
+            assert len(shown.split(".")[1]) == decimals, (label, shown, se_json)
+            assert float(shown) == pytest.approx(exact, abs=0.51 * 10.0 ** -decimals), (label, shown, exact)
 
 
 def test_each_strut_mass_on_an_asymmetric_geometry(cli, cli_json, tmp_path):

@@ -141,6 +141,26 @@ Xk = result_k.methods.spd_tls.X;
 assert_close(sort(result_k.methods.spd_tls.modes_hz(:)), sort(sqrt(eig(Xk \ (2e6 * eye(6)))) / (2 * pi)), 1e-9, ...
              'identify: a scalar stiffness');
 assert(~isempty(strfind(help('spdfit.hexapod.identify'), '''Geometry''')), 'help spdfit.hexapod.identify');
+% One stiffness per strut (a vector), as the command line's --stiffness k1,...,k6.
+kv = [1 2 3 4 5 6] * 1e6;
+result_v = spdfit.hexapod.identify(Ah, Bh, 'Stiffness', kv);
+assert_close(sort(result_v.methods.spd_tls.modes_hz(:)), sort(sqrt(eig(Xk \ diag(kv)))) / (2 * pi), 1e-9, ...
+             'identify: a stiffness per strut');
+% MATLAB's words in the help, not the command line's or Python's (issue 45 item 3).
+for f = {'spdfit.fit', 'spdfit.hexapod.identify', 'spdfit.nearest'}
+  h = help(f{1});
+  for w = {'comma-separated)', 'None', 'True', 'False'}
+    assert(isempty(regexp(h, ['(?<![A-Za-z_])' regexptranslate('escape', w{1}) '(?![A-Za-z_])'], 'once')), ...
+           sprintf('help %s says "%s"', f{1}, w{1}));
+  end
+end
+% Issue 45 item 5's messages through MATLAB: too few rest rows say so, a subnormal standard
+% deviation is a number, NaN in a matrix to repair is named by its entry.
+expect_error(@() spdfit.fit(A, B, 'spd-tls', 'RestA', RA(1:3, :), 'RestB', RB(1:3, :)), 'spdfit:UsageError', ...
+             'record more rest rows: at least 4');
+spdfit.fit(A, B, 'ls', 'NoiseStdA', 0, 'NoiseStdB', 1e-308);
+Cn = [1 0.5 NaN; 0.5 1 0.2; NaN 0.2 1];
+expect_error(@() spdfit.nearest(Cn, 'Corr', true), 'spdfit:DataError', 'C(3,1) is NaN');
 
 % Input types: single, integers and logical convert; a row vector A with a row vector B is one
 % variable.
