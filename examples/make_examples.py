@@ -16,6 +16,8 @@ The files are committed; this script documents exactly how they were made:
               a reference cell with noise of std 0.5 N, and the cell's 4 strain-gauge readings
               (mV, noise of std 0.05 mV); readings = loads X with X 3 x 4, which `spdfit fit
               --method ls` or `--method tls` estimates
+  logged/     log.csv: one hexapod log with a time column, 300 rows at rest then 700 moving, forces
+              in kN (`spdfit fit --rest-rows 1:300 --scale-b 1000 ...`)
 """
 import os
 import pathlib
@@ -118,8 +120,28 @@ def load_cell(rng):
     save(HERE / "load_cell/readings.csv", B, "strain-gauge readings (mV)", ["g1", "g2", "g3", "g4"])
 
 
+def logged(rng):
+    """A hexapod log as a logger writes it: a time column (s), 300 rows recorded at rest, then 700
+    while the payload moves; accelerations in m/s^2 and forces in kN (a load-cell amplifier's
+    unit), tared, with per-strut noise: `spdfit fit --rest-rows 1:300 --scale-b 1000`."""
+    n, rest, moving = 6, 300, 700
+    sd_a = np.array([0.05, 0.05, 0.1, 0.1, 0.2, 0.2])
+    sd_b = np.array([0.5, 0.5, 0.3, 0.3, 0.2, 0.2])  # N
+    rest_A = rng.standard_normal((rest, n)) * sd_a
+    rest_B = rng.standard_normal((rest, n)) * sd_b
+    A0 = rng.uniform(-5, 5, (moving, n))
+    A = A0 + rng.standard_normal((moving, n)) * sd_a
+    B = A0 @ M_P + rng.standard_normal((moving, n)) * sd_b
+    t = 0.002 * np.arange(rest + moving)
+    table = np.column_stack([t, np.vstack([rest_A, A]), np.vstack([rest_B, B]) / 1000.0])
+    names = ["t"] + [f"acc{i + 1}" for i in range(n)] + [f"F{i + 1}" for i in range(n)]
+    save(HERE / "logged/log.csv", table, "hexapod log: time (s), strut accelerations (m/s^2), base forces (kN); "
+         "rows 1-300 at rest", names)
+
+
 if __name__ == "__main__":
     hexapod(np.random.default_rng(2))
     paper_2x2(np.random.default_rng(7))
     covariance(np.random.default_rng(11))
     load_cell(np.random.default_rng(17))
+    logged(np.random.default_rng(23))

@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <optional>
+#include <vector>
 #include <string>
 
 #include "spdfit/noise_model.hpp"
@@ -51,6 +52,15 @@ struct FitOptions {
   /// A^+ B whatever the weight, and spde (which has none) refuses it. Checked against the data's
   /// sizes when the data are reduced (NoiseModel::resolved). Not together with noise_ratio != 1.
   std::optional<NoiseModel> noise;
+  /// Units: every column of A multiplied by scale_a as the data are read (one factor for every
+  /// column, or one per column; empty, the default: as given), and B's by scale_b, so that data
+  /// logged in other units are fitted in the ones wanted (forces in kN: scale_b = {1000}; X is then
+  /// in N per unit of A). The noise model describes the data as given (rest rows, standard
+  /// deviations and covariances in the files' units) and is scaled with them. Each factor a finite
+  /// number > 0; a count other than 1, n (d) is refused when the data are fitted. fit(A, B, ...),
+  /// fit_all(A, B, ...) and fit_files apply them (also streamed); the overloads taking a Reduction
+  /// or a TriangularFactor have data already factored and refuse them.
+  std::vector<double> scale_a, scale_b;
   /// The iterative methods (spd-tls, psd-ls, auto) stop after this many iterations at most, with
   /// the best iterate, converged = false and a warning. An integer >= 1.
   int max_iterations = 200;

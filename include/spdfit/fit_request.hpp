@@ -49,6 +49,12 @@ struct FitRequest {
   /// A and B from one file: the columns of each ("acc1:acc6", "2:7", "1,3,5", "1,3:5,F1": header
   /// names and 1-based positions, inclusive ranges, lists; io::ColumnSelection). Both or neither.
   std::string a_cols, b_cols;
+  /// One log: the rows of the data files fitted (`rows`) and the rest segment taken from the same
+  /// files (`rest_rows`: a noise model, as rest_a and rest_b give one), each a row selection
+  /// ("601:", "1:5000,7001:", "3,8:12": 1-based inclusive ranges and lists of the files' data rows;
+  /// a_cols and b_cols apply to both). Without `rows`, the rows not in `rest_rows` are fitted. In
+  /// memory only (not with `stream`). Empty: every row, no rest segment.
+  std::string rows, rest_rows;
   /// Told the fraction of A's file read while streaming (StreamOptions::progress); the bootstrap's
   /// progress is options.progress.
   ProgressCallback read_progress;

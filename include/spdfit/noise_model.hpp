@@ -129,6 +129,13 @@ class NoiseModel {
   /// naming the rest file, when a size differs from n or d. Cost O(n^2 + d^2).
   NoiseModel resolved(Eigen::Index n, Eigen::Index d) const;
 
+  /// The model of data whose columns were multiplied by `scale_a` (n factors) and `scale_b` (d
+  /// factors), as FitOptions::scale_a and scale_b multiply data given in other units: the
+  /// covariances D_a Sigma_A D_a and D_b Sigma_B D_b, the standard deviations and the rest rows'
+  /// means scaled alike; source, rest rows, file names and warnings kept. A model resolved to n and
+  /// d (resolved()); factors finite and > 0 (std::invalid_argument otherwise). Cost O(n^2 + d^2).
+  NoiseModel scaled(const Eigen::VectorXd& scale_a, const Eigen::VectorXd& scale_b) const;
+
  private:
   friend struct detail::NoiseModelJson;  // the JSON rendering (render/noise_model_json.cpp) reads and restores it
   NoiseModel() = default;

@@ -87,6 +87,12 @@ class TriangularFactor {
   /// that are not zero. Cost O((n + d)^2).
   static TriangularFactor deserialize(std::string_view bytes);
 
+  /// The factor of [A D_a, B D_b] (D = diag(scale)): R's columns multiplied by the factors (n for
+  /// A's, d for B's; each finite and > 0, else std::invalid_argument), the stored exponents moved
+  /// by the largest factor's power of two. For data logged in other units (FitOptions::scale_a,
+  /// scale_b) after the last append: rows appended later are taken in the new units. O((n + d)^2).
+  void scale_columns(const Eigen::VectorXd& scale_a, const Eigen::VectorXd& scale_b);
+
   Eigen::Index n() const { return n_; }  ///< A's columns: X has n rows
   Eigen::Index d() const { return d_; }  ///< B's columns: X has d columns (d = n: X square)
   Eigen::Index rows() const { return rows_; }  ///< m, the number of rows accumulated

@@ -26,13 +26,16 @@ bool same_name(std::string_view a, std::string_view b) {
 const std::vector<MatlabFunction>& matlab_functions() {
   // What each function cannot take: the stream's options and the columns of one file (MATLAB
   // passes arrays), Python's NoiseModel object (MATLAB gives the model's numbers and matrices),
-  // the positional arguments, the command line's presentation, and the command line's spelling of
+  // the positional arguments, the rows of a log (MATLAB indexes its arrays: A(601:end, :)), the
+  // command line's presentation, and the command line's spelling of
   // a setting MATLAB has under its own name (--unconstrained is 'Consistent', false).
   static const std::vector<MatlabFunction> functions = {
-      {"fit", "fit", {"stream", "block_rows", "noise", "a_cols", "b_cols"}},
+      {"fit", "fit", {"stream", "block_rows", "noise", "a_cols", "b_cols", "rows", "rest_rows"}},
       {"nearest", "nearest", {}},
       {"solve", "solve", {"json", "output"}},
-      {"identify", "identify", {"noise", "a_cols", "b_cols", "json", "output", "unconstrained", "urdf", "precision"}},
+      {"identify",
+       "identify",
+       {"noise", "a_cols", "b_cols", "rows", "rest_rows", "json", "output", "unconstrained", "urdf", "precision"}},
       // The signals come as matrices (payload_signals), not as a log's columns; the URDF file is
       // the command line's.
       {"payload.identify",

@@ -44,12 +44,15 @@ std::vector<Keyword> keywords_of(const std::vector<OptionSpec<Request>>& table, 
 const std::vector<Entry>& entries() {
   static const std::vector<Entry> list = {
       // fit's a_cols and b_cols (columns of a DataFrame) are spelled out in Python, not the table's text.
-      {"fit", "fit", {}, {"stream", "a_cols", "b_cols"}},
-      {"fit_files", "fit", {"stream"}, {}},
-      {"fit_all", "fit", {}, {"stream", "bootstrap", "a_cols", "b_cols"}},
-      {"Factor.fit", "fit", {}, {"stream", "bootstrap", "a_cols", "b_cols"}},
+      // rows and rest_rows are the command line's: arrays and DataFrames are sliced in Python.
+      {"fit", "fit", {}, {"stream", "a_cols", "b_cols", "rows", "rest_rows"}},
+      // fit_files streams: rows and rest_rows choose rows of a fit in memory (slice in Python).
+      {"fit_files", "fit", {"stream"}, {"rows", "rest_rows"}},
+      {"fit_all", "fit", {}, {"stream", "bootstrap", "a_cols", "b_cols", "rows", "rest_rows"}},
+      // A factor holds the data in their units already: no scale_a, scale_b.
+      {"Factor.fit", "fit", {}, {"stream", "bootstrap", "a_cols", "b_cols", "scale_a", "scale_b", "rows", "rest_rows"}},
       // A and B are positional; a_cols and b_cols (columns of a DataFrame) are spelled out in Python.
-      {"hexapod.identify", "identify", {}, {"a", "b", "a_cols", "b_cols"}},
+      {"hexapod.identify", "identify", {}, {"a", "b", "a_cols", "b_cols", "rows", "rest_rows"}},
       {"physical.identify", "physical_fit", {}, {}},
       {"nearest_spd", "nearest", {}, {"corr", "factors", "factors_only"}},
       {"nearest_correlation", "nearest", {"corr"}, {"keep_diag", "via_corr"}},

@@ -139,6 +139,13 @@ Reduction reduction_of(std::shared_ptr<const DynamicReduction> data) { return Re
 Reduction reduce_with(const TriangularFactor& factor, const FitOptions& options, bool vectors_a) {
   std::string error;
   if (!options.is_valid(&error)) throw std::invalid_argument(error);
+  if (!options.scale_a.empty() || !options.scale_b.empty()) {
+    // The factor's data are in their units already: scaling is the caller's, before or after
+    // factoring (fit(A, B, ...), fit_files; TriangularFactor::scale_columns).
+    throw std::invalid_argument("`scale_a` and `scale_b` apply to data as given (fit(A, B, ...), fit_files), not to "
+                                "a factor or a reduction: scale the factor (TriangularFactor::scale_columns) and "
+                                "its noise model instead");
+  }
   const Eigen::Index n = factor.n();
   if (factor.rows() < n) {
     throw std::invalid_argument(detail::too_few_rows(factor.rows(), n));

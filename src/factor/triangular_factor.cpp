@@ -86,6 +86,27 @@ TriangularFactor TriangularFactor::from_data(const Eigen::Ref<const MatrixXd>& A
   return factor;
 }
 
+void TriangularFactor::scale_columns(const Eigen::VectorXd& scale_a, const Eigen::VectorXd& scale_b) {
+  const auto valid = [](const Eigen::VectorXd& f, Index size) {
+    return f.size() == size && f.allFinite() && (f.array() > 0.0).all();
+  };
+  if (!valid(scale_a, n_) || !valid(scale_b, d_)) {
+    throw std::invalid_argument("TriangularFactor::scale_columns: " + std::to_string(n_) + " and " +
+                                std::to_string(d_) + " factors, each finite and > 0, are needed");
+  }
+  // R's column j is the data's column j (in Q's basis): it scales with the data. The stored data
+  // are A 2^-ea: A D_a 2^-(ea + k) keeps them in range when 2^k is the largest factor's power.
+  auto scale = [this](const Eigen::VectorXd& f, std::optional<int>& exponent, Index first) {
+    const int k = detail::scale_exponent(f.maxCoeff()).value_or(0);
+    auto block = R_.middleCols(first, f.size());
+    block = block * f.asDiagonal();
+    detail::multiply_by_power_of_two(block, -k);
+    if (exponent) *exponent += k;
+  };
+  scale(scale_a, exponent_a_, 0);
+  scale(scale_b, exponent_b_, n_);
+}
+
 void TriangularFactor::raise_exponents(std::optional<int> ea, std::optional<int> eb) {
   // R = [R11 R12; 0 R22]: the first n columns come from A, the last d from B, so a column
   // block scales with its own exponent. Powers of two make this exact (bar underflow of

@@ -17,6 +17,8 @@
 #include "spdfit/io.hpp"
 #include "interface/matrix_inputs.hpp"
 #include "pipeline/sentinels.hpp"
+#include "pipeline/log_rows.hpp"
+#include "pipeline/units.hpp"
 
 namespace spdfit::hexapod {
 
@@ -44,8 +46,8 @@ std::optional<Warning> units_warning(const std::vector<MethodIdentification>& me
   if (ratio > 0.0) {
     how = format_number(ratio > 1.0 ? ratio : 1.0 / ratio) + " times " + (ratio > 1.0 ? "above" : "below");
     const double decade = std::pow(10.0, std::round(std::log10(1.0 / ratio)));
-    fix = "multiply the forces by " + (decade >= 1.0 ? std::to_string(std::llround(decade)) : format_number(decade)) +
-          " (or the accelerations by its inverse) before fitting";
+    const std::string f = decade >= 1.0 ? std::to_string(std::llround(decade)) : format_number(decade);
+    fix = "multiply the forces by " + f + " (`scale_b` " + f + "; or the accelerations by its inverse, `scale_a`)";
   }
   const std::string range = traces.front() == traces.back()
                                 ? format_number(median)
@@ -99,7 +101,8 @@ using Spec = OptionSpec<IdentifyRequest>;
 // The fit's options every estimator of identify shares.
 const std::vector<std::string_view> kSharedFitOptions = {
     "rank_tolerance", "noise_ratio", "noise", "rest_a", "rest_b", "noise_std_a", "noise_std_b", "noise_cov_a",
-    "noise_cov_b", "max_iterations", "min_eig", "bootstrap", "confidence", "seed", "threads", "a_cols", "b_cols"};
+    "noise_cov_b", "max_iterations", "min_eig", "bootstrap", "confidence", "seed", "threads", "a_cols", "b_cols",
+    "scale_a", "scale_b", "rows", "rest_rows"};
 
 const MatrixInput& matrix(const OptionValue& v) { return std::get<MatrixInput>(v); }
 
@@ -324,7 +327,17 @@ Identification run_identify(const IdentifyRequest& request) {
     }
   }
   if (std::optional<Warning> w = spdfit::detail::sentinel_warning(A, B)) out.warnings.push_back(std::move(*w));
+  // One log: the rows fitted and the rest segment (a noise model) from the data themselves.
+  spdfit::detail::LogRows log =
+      spdfit::detail::apply_log_rows(request.fit, A, B, request.a.from_file() ? request.a.path : "A");
+  out.warnings.insert(out.warnings.end(), log.warnings.begin(), log.warnings.end());
   out.options.fit = request.fit.resolved_options(n, n);
+  if (log.noise) out.options.fit.noise = log.noise->resolved(n, n);
+  // Data in other units: A and B multiplied as read, the noise model (the files' units) with them.
+  if (const std::optional<spdfit::detail::Units> units = spdfit::detail::units_of(out.options.fit, n, n)) {
+    spdfit::detail::apply_units(*units, A, B);
+    out.options.fit = spdfit::detail::options_in_units(out.options.fit, *units);
+  }
   out.methods = identify(A, B, out.options);
   if (out.geometry) {
     if (std::optional<Warning> w = units_warning(out.methods, joint_space_mass_matrix(*out.geometry))) {

@@ -78,8 +78,8 @@ std::string implausible_mass(const std::string& fitted, double mass, double nomi
             " times the geometry's M_p's";
   }
   return text + ": the geometry is in SI units (N, m/s^2, m, kg), and the data are probably in others" + units +
-         ": multiply the forces by " + factor_text(round_decade ? decade : factor) +
-         " (or the accelerations by its inverse) before fitting";
+         ": multiply the forces by " + factor_text(round_decade ? decade : factor) + " (`scale_b` " +
+         factor_text(round_decade ? decade : factor) + "; or the accelerations by its inverse, `scale_a`)";
 }
 
 // Throws the implausible payload's error (Code::PhysicalData) unless `mass` is within

@@ -1,8 +1,10 @@
 // Column selections: "acc1:acc6", "3:8", "1,3:5,F1" parsed, and resolved against a file's header.
 #include "columns.hpp"
+#include "io/row_selection.hpp"
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <map>
 #include <string_view>
 
@@ -222,3 +224,99 @@ void select_table_columns(Table* table, const ReadOptions& options, const std::s
 }  // namespace detail
 
 }  // namespace spdfit::io
+
+namespace spdfit::io::detail {
+
+namespace {
+
+// One item of a row selection: first..last (1-based; a missing end is open).
+struct RowItem {
+  std::string text;
+  bool has_first = false, has_last = false;
+  std::uint64_t first = 0, last = 0;
+};
+
+std::vector<RowItem> row_items(const std::string& spec, const std::string& option) {
+  const std::string prefix = "`" + option + "` '" + spec + "': ";
+  const auto fail = [&](const std::string& problem) {
+    throw OptionError(prefix + problem, Code::OptionValue, option);
+  };
+  const auto trim = [](std::string_view text) {
+    std::size_t a = 0, b = text.size();
+    while (a < b && std::isspace(static_cast<unsigned char>(text[a]))) ++a;
+    while (b > a && std::isspace(static_cast<unsigned char>(text[b - 1]))) --b;
+    return std::string(text.substr(a, b - a));
+  };
+  if (trim(spec).empty()) fail("no rows given");
+  std::vector<RowItem> items;
+  std::size_t start = 0;
+  while (start <= spec.size()) {
+    std::size_t comma = spec.find(',', start);
+    if (comma == std::string::npos) comma = spec.size();
+    RowItem item;
+    item.text = trim(std::string_view(spec).substr(start, comma - start));
+    start = comma + 1;
+    if (item.text.empty()) fail("an empty item in the list (two commas in a row, or one at an end)");
+    const auto number = [&](const std::string& part, std::uint64_t* value) {
+      const std::string t = trim(part);
+      if (t.empty()) return false;
+      const bool digits =
+          std::all_of(t.begin(), t.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+      if (!digits || t.size() > 15) {
+        fail("'" + t + "' in '" + item.text + "' is not a row number (rows are numbered 1, 2, ... among the file's "
+             "data rows, as the column selections number columns)");
+      }
+      *value = std::stoull(t);
+      if (*value == 0) fail("rows are numbered from 1: there is no row 0");
+      return true;
+    };
+    const std::size_t colon = item.text.find(':');
+    if (colon == std::string::npos) {
+      number(item.text, &item.first);
+      item.last = item.first;
+      item.has_first = item.has_last = true;
+    } else {
+      if (item.text.find(':', colon + 1) != std::string::npos) fail("'" + item.text + "' has more than one ':'");
+      item.has_first = number(item.text.substr(0, colon), &item.first);
+      item.has_last = number(item.text.substr(colon + 1), &item.last);
+      if (!item.has_first && !item.has_last) fail("the range '" + item.text + "' has neither a start nor an end");
+      if (item.has_first && item.has_last && item.first > item.last) {
+        fail("the range " + item.text + " runs backwards (write " + std::to_string(item.last) + ":" +
+             std::to_string(item.first) + ")");
+      }
+    }
+    items.push_back(std::move(item));
+  }
+  return items;
+}
+
+}  // namespace
+
+void check_row_selection(const std::string& spec, const std::string& option) {
+  static_cast<void>(row_items(spec, option));
+}
+
+std::vector<Eigen::Index> selected_rows(const std::string& spec, const std::string& option, std::uint64_t rows,
+                                        const std::string& source) {
+  const std::vector<RowItem> items = row_items(spec, option);
+  std::vector<bool> kept(rows, false);
+  for (const RowItem& item : items) {
+    const std::uint64_t first = item.has_first ? item.first : 1;
+    const std::uint64_t last = item.has_last ? item.last : rows;
+    if (std::max(first, last) > rows) {
+      throw DataError(source, 0, 0,
+                      "`" + option + "` '" + spec + "': row " + std::to_string(std::max(first, last)) +
+                          " is beyond the " + std::to_string(rows) + " data rows of " +
+                          (source == "-" ? std::string("standard input") : source),
+                      Code::DataShape);
+    }
+    for (std::uint64_t r = first; r <= last; ++r) kept[r - 1] = true;
+  }
+  std::vector<Eigen::Index> out;
+  for (std::uint64_t r = 0; r < rows; ++r) {
+    if (kept[r]) out.push_back(static_cast<Eigen::Index>(r));
+  }
+  return out;
+}
+
+}  // namespace spdfit::io::detail

@@ -210,4 +210,28 @@ NoiseModel NoiseModel::resolved(Index n, Index d) const {
   return out;
 }
 
+NoiseModel NoiseModel::scaled(const Eigen::VectorXd& scale_a, const Eigen::VectorXd& scale_b) const {
+  if (cov_a_.rows() != scale_a.size() || cov_b_.rows() != scale_b.size()) {
+    throw std::invalid_argument("NoiseModel::scaled: a model resolved to the factors' sizes is needed");
+  }
+  const auto valid = [](const Eigen::VectorXd& f) { return f.allFinite() && (f.array() > 0.0).all(); };
+  if (!valid(scale_a) || !valid(scale_b)) {
+    throw std::invalid_argument("NoiseModel::scaled: the factors must be finite numbers > 0");
+  }
+  NoiseModel out = *this;
+  out.cov_a_ = scale_a.asDiagonal() * cov_a_ * scale_a.asDiagonal();
+  out.cov_b_ = scale_b.asDiagonal() * cov_b_ * scale_b.asDiagonal();
+  // A side given by one standard deviation for every column has one per column once scaled.
+  const auto scale_std = [](const VectorXd& std_dev, const VectorXd& f) -> VectorXd {
+    if (std_dev.size() == 0) return std_dev;
+    return std_dev.size() == f.size() ? VectorXd(std_dev.cwiseProduct(f)) : VectorXd(std_dev(0) * f);
+  };
+  out.std_a_ = scale_std(std_a_, scale_a);
+  out.std_b_ = scale_std(std_b_, scale_b);
+  if (rest_mean_a_.size() == scale_a.size()) out.rest_mean_a_ = rest_mean_a_.cwiseProduct(scale_a);
+  if (rest_mean_b_.size() == scale_b.size()) out.rest_mean_b_ = rest_mean_b_.cwiseProduct(scale_b);
+  out.classify();
+  return out;
+}
+
 }  // namespace spdfit

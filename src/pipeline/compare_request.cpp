@@ -2,6 +2,7 @@
 #include <string>
 #include <utility>
 
+#include "pipeline/log_rows.hpp"
 #include "spdfit/compare.hpp"
 #include "spdfit/fit_files.hpp"
 #include "spdfit/io.hpp"
@@ -48,7 +49,7 @@ std::vector<Spec> make_table() {
   // The fit options that every method shares: the noise (its ratio, or a noise model), and A's and
   // B's columns in one file.
   std::vector<std::string_view> shared = noise_option_names();
-  shared.insert(shared.end(), {"a_cols", "b_cols"});
+  shared.insert(shared.end(), {"a_cols", "b_cols", "scale_a", "scale_b", "rows"});
   for (Spec& spec : lifted_options(fit_option_table(), &CompareRequest::fit, shared)) table.push_back(std::move(spec));
   for (Spec& spec : output_options(&CompareRequest::output, {"json", "output"}, {"Print every result as JSON"})) {
     table.push_back(std::move(spec));
@@ -81,6 +82,9 @@ CompareRun run_compare(const CompareRequest& request) {
     A = request.a.values;
     B = request.b.values;
   }
+  // One log: the rows fitted and the rest segment (a noise model) from the data themselves.
+  detail::LogRows log = detail::apply_log_rows(request.fit, A, B, request.a.from_file() ? request.a.path : "A");
+  out.warnings.insert(out.warnings.end(), log.warnings.begin(), log.warnings.end());
   std::optional<Eigen::MatrixXd> truth;
   if (request.truth) {
     if (request.truth->from_file()) {
@@ -97,7 +101,9 @@ CompareRun run_compare(const CompareRequest& request) {
     }
   }
   if (std::optional<Warning> w = detail::sentinel_warning(A, B)) out.warnings.push_back(std::move(*w));
-  out.comparison = compare(A, B, request.fit.resolved_options(A.cols(), B.cols()), truth);
+  FitOptions options = request.fit.resolved_options(A.cols(), B.cols());
+  if (log.noise) options.noise = log.noise->resolved(A.cols(), B.cols());
+  out.comparison = compare(A, B, options, truth);
   for (const FitResult& r : out.comparison.results) {
     for (const Warning& w : r.warnings) {
       out.warnings.emplace_back(w.code, std::string(to_string(r.method)) + ": " + w.text, w.subject);

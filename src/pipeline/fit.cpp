@@ -1,12 +1,18 @@
 #include "spdfit/fit.hpp"
 
 #include <array>
+#include <cmath>
+#include <string>
+#include <vector>
 #include <optional>
 
 #include "factor/reduce.hpp"
 #include "estimators/kernels.hpp"
 #include "estimators/noise_weights.hpp"
 #include "pipeline/sentinels.hpp"
+#include "pipeline/units.hpp"
+#include "spdfit/format.hpp"
+#include "spdfit/outcome.hpp"
 #include "spdfit/auto.hpp"
 #include "spdfit/least_squares.hpp"
 #include "spdfit/psd_least_squares.hpp"
@@ -15,6 +21,58 @@
 #include "spdfit/symmetric_procrustes.hpp"
 #include "spdfit/total_least_squares.hpp"
 #include "uncertainty/bootstrap.hpp"
+
+// FitOptions::scale_a and scale_b (pipeline/units.hpp): here, beside fit(A, B, ...), their first user.
+namespace spdfit::detail {
+
+namespace {
+
+Eigen::VectorXd unit_factors(const std::vector<double>& given, Eigen::Index columns, const char* option, const char* side) {
+  if (given.empty()) return Eigen::VectorXd::Ones(columns);
+  if (given.size() != 1 && static_cast<Eigen::Index>(given.size()) != columns) {
+    throw OptionError("`" + std::string(option) + "` has " + std::to_string(given.size()) + " values but " + side +
+                          " has " + std::to_string(columns) +
+                          " columns: give one factor for every column, or one per column",
+                      Code::OptionValue, option);
+  }
+  for (double f : given) {
+    if (!(std::isfinite(f) && f > 0.0)) {
+      throw OptionError("`" + std::string(option) + "` must be finite numbers > 0 (the factor each column of " + side +
+                            " is multiplied by), not " + format_number(f),
+                        Code::OptionValue, option);
+    }
+  }
+  return given.size() == 1 ? Eigen::VectorXd::Constant(columns, given.front())
+                           : Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(given.data(), columns));
+}
+
+}  // namespace
+
+std::optional<Units> units_of(const FitOptions& options, Eigen::Index n, Eigen::Index d) {
+  if (options.scale_a.empty() && options.scale_b.empty()) return std::nullopt;
+  return Units{unit_factors(options.scale_a, n, "scale_a", "A"), unit_factors(options.scale_b, d, "scale_b", "B")};
+}
+
+FitOptions options_in_units(const FitOptions& options, const Units& units) {
+  FitOptions out = options;
+  out.scale_a.clear();
+  out.scale_b.clear();
+  if (out.noise) out.noise = out.noise->resolved(units.a.size(), units.b.size()).scaled(units.a, units.b);
+  return out;
+}
+
+void apply_units(const Units& units, Eigen::Ref<Eigen::MatrixXd> A, Eigen::Ref<Eigen::MatrixXd> B) {
+  A = A * units.a.asDiagonal();
+  B = B * units.b.asDiagonal();
+}
+
+TriangularFactor factor_in_units(const TriangularFactor& factor, const Units& units) {
+  TriangularFactor out = factor;
+  out.scale_columns(units.a, units.b);
+  return out;
+}
+
+}  // namespace spdfit::detail
 
 namespace spdfit {
 
@@ -46,6 +104,11 @@ FitResult fit(const Reduction& data, Method method) {
 
 FitResult fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Method method,
               const FitOptions& options) {
+  if (const std::optional<detail::Units> units = detail::units_of(options, A.cols(), B.cols())) {
+    MatrixXd A_units = A, B_units = B;
+    detail::apply_units(*units, A_units, B_units);
+    return fit(A_units, B_units, method, detail::options_in_units(options, *units));
+  }
   const Reduction data = detail::reduce_for(TriangularFactor::from_data(A, B), options, method);
   FitResult result = fit(data, method);
   if (options.bootstrap > 0 && result.ok()) detail::bootstrap_in_memory(result, A, B, data);
@@ -109,6 +172,11 @@ std::vector<FitResult> fit_all(const Reduction& data) {
 
 std::vector<FitResult> fit_all(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
                                const FitOptions& options) {
+  if (const std::optional<detail::Units> units = detail::units_of(options, A.cols(), B.cols())) {
+    MatrixXd A_units = A, B_units = B;
+    detail::apply_units(*units, A_units, B_units);
+    return fit_all(A_units, B_units, detail::options_in_units(options, *units));
+  }
   return fit_all(reduce(TriangularFactor::from_data(A, B), options));
 }
 

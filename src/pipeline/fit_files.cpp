@@ -1,6 +1,7 @@
 #include "spdfit/fit_files.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -9,6 +10,8 @@
 #include "io/containers.hpp"
 #include "io/kept_text.hpp"
 #include "io/parse.hpp"
+#include "pipeline/log_rows.hpp"
+#include "pipeline/units.hpp"
 #include "pipeline/pair_checks.hpp"
 #include "spdfit/options.hpp"
 #include "pipeline/stream_resampling.hpp"
@@ -46,6 +49,9 @@ namespace detail {
 FitResult fit_streamed(Method method, const FitOptions& options, const TriangularFactor& factor, const PairInfo& info,
                        const std::string& a_path) {
   check_enough_rows_for(method, a_path, factor.rows(), factor.n(), factor.d());
+  if (const std::optional<Units> units = units_of(options, factor.n(), factor.d())) {
+    return fit_streamed(method, options_in_units(options, *units), factor_in_units(factor, *units), info, a_path);
+  }
   FitResult result = fit(detail::reduce_for(factor, options, method), method);
   attach_read_info(result, info);
   return result;
@@ -54,6 +60,12 @@ FitResult fit_streamed(Method method, const FitOptions& options, const Triangula
 FitResult fit_streamed_bootstrap(Method method, const FitOptions& options, const ResampledFactors& factors,
                                  const std::string& a_path) {
   check_enough_rows_for(method, a_path, factors.total.rows(), factors.total.n(), factors.total.d());
+  if (const std::optional<Units> units = units_of(options, factors.total.n(), factors.total.d())) {
+    ResampledFactors scaled{factor_in_units(factors.total, *units), {}, factors.groups, factors.info};
+    scaled.replicates.reserve(factors.replicates.size());
+    for (const TriangularFactor& replicate : factors.replicates) scaled.replicates.push_back(factor_in_units(replicate, *units));
+    return fit_streamed_bootstrap(method, options_in_units(options, *units), scaled, a_path);
+  }
   const Reduction data = reduce(factors.total, options);
   FitResult result = fit(data, method);
   attach_read_info(result, factors.info);
@@ -121,6 +133,32 @@ DataPair read_pair(const std::string& a_path, const std::string& b_path, const i
   return read_pair_from(a_path, b_path, options, nullptr);
 }
 
+namespace detail {
+
+FitResult fit_pair_in_memory(DataPair data, const std::string& a_path, const std::string& b_path, Method method,
+                             FitOptions options,
+                             const std::function<std::vector<Warning>(DataPair&, FitOptions&)>& prepare) {
+  if (prepare) {
+    std::vector<Warning> found = prepare(data, options);
+    data.warnings.insert(data.warnings.end(), found.begin(), found.end());
+  }
+  check_method_fits(method, b_path.empty() ? a_path : b_path, data.A.cols(), data.B.cols());
+  if (options.noise) static_cast<void>(options.noise->resolved(data.A.cols(), data.B.cols()));
+  check_enough_rows_for(method, a_path, data.A.rows(), data.A.cols(), data.B.cols());
+  FitResult result = fit(data.A, data.B, method, options);
+  attach_read_info(result, {std::move(data.warnings), std::move(data.a_names), std::move(data.b_names),
+                            std::move(data.a_columns), std::move(data.b_columns)});
+  return result;
+}
+
+FitResult fit_files_in_memory(const std::string& a_path, const std::string& b_path, Method method, FitOptions options,
+                              const io::ReadOptions& read,
+                              const std::function<std::vector<Warning>(DataPair&, FitOptions&)>& prepare) {
+  return fit_pair_in_memory(read_pair(a_path, b_path, read), a_path, b_path, method, std::move(options), prepare);
+}
+
+}  // namespace detail
+
 FitResult fit_files(const std::string& a_path, const std::string& b_path, Method method, const FitOptions& options,
                     const std::optional<StreamOptions>& stream, const io::ReadOptions& read) {
   std::string error;
@@ -154,14 +192,8 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
     return pair;
   };
   auto in_memory = [&] {
-    DataPair data = read_pair_from(a_path, b_path, read, kept_input ? &kept_input->text : nullptr);
-    detail::check_method_fits(method, b_path.empty() ? a_path : b_path, data.A.cols(), data.B.cols());
-    if (options.noise) static_cast<void>(options.noise->resolved(data.A.cols(), data.B.cols()));
-    detail::check_enough_rows_for(method, a_path, data.A.rows(), data.A.cols(), data.B.cols());
-    FitResult result = fit(data.A, data.B, method, options);
-    attach_read_info(result, {std::move(data.warnings), std::move(data.a_names), std::move(data.b_names),
-                              std::move(data.a_columns), std::move(data.b_columns)});
-    return result;
+    return detail::fit_pair_in_memory(read_pair_from(a_path, b_path, read, kept_input ? &kept_input->text : nullptr),
+                                      a_path, b_path, method, options, {});
   };
   if (streamed && options.bootstrap > 0) {
     if (streamed->block_rows < 1) throw std::invalid_argument("block_rows must be at least 1");

@@ -1,10 +1,14 @@
 // The fit's option table: each option declared once, with everything the front ends need.
 #include "spdfit/fit_request.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <utility>
 
+#include "estimators/noise_weights.hpp"
+#include "io/row_selection.hpp"
+#include "pipeline/log_rows.hpp"
 #include "pipeline/noise_files.hpp"
 #include "spdfit/fit_files.hpp"
 #include "spdfit/noise_model.hpp"
@@ -45,7 +49,7 @@ constexpr std::string_view kNoiseAppliesTo =
 
 // The options of a noise model's sources: one pair, not with noise_ratio (the model gives the ratio).
 const std::vector<std::string_view> kNoiseOptions = {"noise",       "rest_a",      "rest_b",     "noise_std_a",
-                                                     "noise_std_b", "noise_cov_a", "noise_cov_b"};
+                                                     "noise_std_b", "noise_cov_a", "noise_cov_b", "rest_rows"};
 
 // The options that `name`'s pair cannot be given with: noise_ratio and the other sources.
 std::vector<std::string_view> noise_excludes(std::string_view name, std::string_view partner) {
@@ -175,6 +179,73 @@ std::vector<Spec> make_table() {
   cov_b.set = [](FitRequest& r, const OptionValue& v) { r.noise_inputs.cov_b = std::get<MatrixInput>(v); };
   cov_b.get = [](const FitRequest& r) { return matrix_value(r.noise_inputs.cov_b); };
   table.push_back(cov_b);
+
+  // One log: the rows fitted and the rest segment from the data files themselves (in memory).
+  Spec rows;
+  rows.name = "rows";
+  rows.cli = "--rows";
+  rows.python = "rows";
+  rows.type = OptionType::Rows;
+  rows.value_name = "SPEC";
+  rows.help = "Fit these rows of the data files: 1-based inclusive ranges and lists of their data rows "
+              "(601:, 1:5000,7001:), as `a_cols` numbers columns. Default: every row (but `rest_rows`)";
+  rows.excludes = {"stream"};
+  rows.set = [](FitRequest& r, const OptionValue& v) {
+    io::detail::check_row_selection(std::get<std::string>(v), "rows");
+    r.rows = std::get<std::string>(v);
+  };
+  rows.get = [](const FitRequest& r) -> std::optional<OptionValue> {
+    if (r.rows.empty()) return std::nullopt;
+    return r.rows;
+  };
+  table.push_back(rows);
+  Spec rest_rows;
+  rest_rows.name = "rest_rows";
+  rest_rows.cli = "--rest-rows";
+  rest_rows.python = "rest_rows";
+  rest_rows.type = OptionType::Rows;
+  rest_rows.value_name = "SPEC";
+  rest_rows.help = "The rest segment from the data files themselves (1:600: the first 600 rows, recorded with the "
+                   "machine at rest): a noise model, as `rest_a` and `rest_b` give one from files of their own; "
+                   "`a_cols` and `b_cols` apply, and without `rows` the other rows are fitted";
+  rest_rows.applies = takes_noise_model;
+  rest_rows.applies_to = kNoiseAppliesTo;
+  rest_rows.excludes = noise_excludes("rest_rows", "rest_rows");
+  rest_rows.excludes.push_back("stream");
+  rest_rows.set = [](FitRequest& r, const OptionValue& v) {
+    io::detail::check_row_selection(std::get<std::string>(v), "rest_rows");
+    r.rest_rows = std::get<std::string>(v);
+  };
+  rest_rows.get = [](const FitRequest& r) -> std::optional<OptionValue> {
+    if (r.rest_rows.empty()) return std::nullopt;
+    return r.rest_rows;
+  };
+  table.push_back(rest_rows);
+
+  // Units: each column multiplied as the data are read (the noise model, in the files' units,
+  // scaled with them: FitOptions::scale_a, scale_b).
+  const auto unit_scale = [](std::string_view name, std::string_view cli, std::string_view help,
+                             std::vector<double> FitOptions::*member) {
+    Spec spec;
+    spec.name = name;
+    spec.cli = cli;
+    spec.python = name;
+    spec.type = OptionType::RealList;
+    spec.value_name = "F";
+    spec.help = help;
+    spec.range = {0.0, std::numeric_limits<double>::infinity(), true, false};
+    spec.set = [member](FitRequest& r, const OptionValue& v) { r.options.*member = reals(v); };
+    spec.get = [member](const FitRequest& r) { return list_value(r.options.*member); };
+    return spec;
+  };
+  table.push_back(unit_scale("scale_a", "--scale-a",
+                             "Multiply A by F as read: one factor for every column, or one per column "
+                             "(comma-separated), for data logged in other units (accelerations in g: 9.80665); "
+                             "rest rows and noise standard deviations are in the files' units and are scaled "
+                             "with them. Default: as given",
+                             &FitOptions::scale_a));
+  table.push_back(unit_scale("scale_b", "--scale-b",
+                             "Multiply B by F as read, as `scale_a` (forces logged in kN: 1000)", &FitOptions::scale_b));
 
   Spec iterations;
   iterations.name = "max_iterations";
@@ -346,6 +417,51 @@ std::vector<Spec> make_table() {
 
 }  // namespace
 
+namespace detail {
+
+LogRows apply_log_rows(const FitRequest& request, Eigen::MatrixXd& A, Eigen::MatrixXd& B, const std::string& source) {
+  LogRows out;
+  if (request.rows.empty() && request.rest_rows.empty()) return out;
+  const auto m = static_cast<std::uint64_t>(A.rows());
+  std::vector<Eigen::Index> rest;
+  if (!request.rest_rows.empty()) rest = io::detail::selected_rows(request.rest_rows, "rest_rows", m, source);
+  std::vector<Eigen::Index> fitted;
+  if (!request.rows.empty()) {
+    fitted = io::detail::selected_rows(request.rows, "rows", m, source);
+    std::size_t shared = 0;
+    for (Eigen::Index r : fitted) shared += std::binary_search(rest.begin(), rest.end(), r) ? 1 : 0;
+    if (shared > 0) {
+      out.warnings.push_back(Warning(Code::NoiseModelNotice,
+                                     "`rows` and `rest_rows` share " + std::to_string(shared) +
+                                         " rows: the rest segment is fitted as data too",
+                                     "rows"));
+    }
+  } else {
+    for (Eigen::Index r = 0; r < A.rows(); ++r) {
+      if (!std::binary_search(rest.begin(), rest.end(), r)) fitted.push_back(r);
+    }
+  }
+  if (fitted.empty()) {
+    throw io::DataError(source, 0, 0,
+                        "`rest_rows` '" + request.rest_rows + "' takes every one of the " + std::to_string(m) +
+                            " data rows: none is left to fit (give `rows`)",
+                        Code::DataShape);
+  }
+  if (!rest.empty()) {
+    const Eigen::MatrixXd rest_a = A(rest, Eigen::all), rest_b = B(rest, Eigen::all);
+    try {
+      out.noise = NoiseModel::from_rest(rest_a, rest_b);
+    } catch (const std::invalid_argument& e) {
+      throw io::DataError(source, 0, 0, "`rest_rows` '" + request.rest_rows + "': " + e.what(), Code::NoiseModel);
+    }
+  }
+  A = Eigen::MatrixXd(A(fitted, Eigen::all));
+  B = Eigen::MatrixXd(B(fitted, Eigen::all));
+  return out;
+}
+
+}  // namespace detail
+
 StreamOptions FitRequest::stream_options() const {
   StreamOptions stream;
   stream.block_rows = block_rows;
@@ -449,6 +565,24 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, const 
   std::optional<StreamOptions> stream;
   if (request.stream) stream = request.stream_options();
   const FitOptions options = request.resolved_options();
+  if (!request.rows.empty() || !request.rest_rows.empty()) {
+    if (request.stream) {
+      throw OptionError("`rows` and `rest_rows` choose rows of a log fitted in memory, not streamed: leave out "
+                        "`stream` (and mpirun), or cut the files first",
+                        Code::OptionConflict, request.rows.empty() ? "rest_rows" : "rows");
+    }
+    return detail::fit_files_in_memory(
+        a_path, b_path, request.method, options, read, [&](DataPair& data, FitOptions& fit_options) {
+          detail::LogRows log = detail::apply_log_rows(request, data.A, data.B, a_path);
+          if (log.noise) {
+            fit_options.noise = std::move(log.noise);
+            if (auto refusal = detail::noise_refusal(fit_options.noise, request.method)) {
+              throw detail::noise_refusal_error(*refusal, request.method);
+            }
+          }
+          return log.warnings;
+        });
+  }
   return detail::naming_noise_files(request.noise_inputs, [&] {
     return fit_files(a_path, b_path, request.method, options, stream, read);
   });

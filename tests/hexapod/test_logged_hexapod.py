@@ -75,16 +75,21 @@ def test_forces_in_kn_are_refused_with_the_factor_and_converted_give_the_si_answ
     A, B = read_csv(tmp_path / "si" / "A.csv"), read_csv(tmp_path / "si" / "B.csv")
     kn = [write(tmp_path / "A.csv", A), write(tmp_path / "Bkn.csv", B / 1000), "--geometry", g]
     _, err = physical(cli, *kn, expect=1)
-    assert "(kN instead of N?)" in err and "multiply the forces by 1000" in err, err
+    assert "(kN instead of N?)" in err and "multiply the forces by 1000 (--scale-b 1000;" in err, err
     assert "physically consistent" not in err
+    # The option it names gives the SI data's payload from the kN file itself (issue 42 item 2).
+    scaled, _ = physical(cli, *kn, "--scale-b", "1000")
     # The fix it names (B times 1000) gives the SI data's payload.
     fixed, _ = physical(cli, "A.csv", write(tmp_path / "Bn.csv", read_csv(tmp_path / "Bkn.csv") * 1000),
                         "--geometry", g)
     si, _ = physical(cli, "si/A.csv", "si/B.csv", "--geometry", g)
     assert abs(fixed["physical"]["mass"] - si["physical"]["mass"]) <= SAME * si["physical"]["mass"]
+    assert abs(scaled["physical"]["mass"] - si["physical"]["mass"]) <= SAME * si["physical"]["mass"]
+    np.testing.assert_allclose(scaled["physical"]["M_p"], si["physical"]["M_p"], rtol=SAME, atol=SAME)
     # The generic estimators, given the geometry, warn about the units instead of reporting kg
     # and modes a thousand times off.
     proc = cli("hexapod", "identify", "--json", *kn)
-    assert "the geometry is in SI units" in proc.stderr and "multiply the forces by 1000" in proc.stderr
+    assert "the geometry is in SI units" in proc.stderr and "multiply the forces by 1000 (--scale-b 1000" in proc.stderr
+    assert proc.stderr.count("the geometry is in SI units") == 1, proc.stderr  # once, not once per estimator
     # --no-plausibility-check fits them as they are (the user's decision).
     physical(cli, *kn, "--no-plausibility-check")

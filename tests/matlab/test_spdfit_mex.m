@@ -154,6 +154,13 @@ for f = {'spdfit.fit', 'spdfit.hexapod.identify', 'spdfit.nearest'}
            sprintf('help %s says "%s"', f{1}, w{1}));
   end
 end
+% Units (issue 42 item 2): B logged in kN with 'ScaleB', 1000 is the fit of B in N; a noise
+% model in the file's units is scaled with it.
+assert_close(spdfit.fit(A, B / 1000, 'spd-tls', 'ScaleB', 1000), spdfit.fit(A, B, 'spd-tls'), 1e-9, 'ScaleB');
+assert_close(spdfit.fit(A / 2, B / 1000, 'spd-tls', 'ScaleA', [2 2 2], 'ScaleB', 1000, 'NoiseStdA', 0.05, ...
+                        'NoiseStdB', 1e-4), ...
+             spdfit.fit(A, B, 'spd-tls', 'NoiseStdA', 0.1, 'NoiseStdB', 0.1), 1e-9, 'ScaleA with a noise model');
+expect_error(@() spdfit.fit(A, B, 'ls', 'ScaleB', [1 2]), 'spdfit:UsageError', 'ScaleB');
 % Issue 45 item 5's messages through MATLAB: too few rest rows say so, a subnormal standard
 % deviation is a number, NaN in a matrix to repair is named by its entry.
 expect_error(@() spdfit.fit(A, B, 'spd-tls', 'RestA', RA(1:3, :), 'RestB', RB(1:3, :)), 'spdfit:UsageError', ...

@@ -93,6 +93,17 @@ def test_auto_makes_the_same_choice_and_spd_tls_agrees_to_its_tolerance(files):
         assert relative(out["X"], reference["X"]) < 1e-8
 
 
+def test_units_apply_to_the_merged_factor(files, tmp_path):
+    """--scale-a and --scale-b (issue 42 item 2) under mpirun: B written in kN with --scale-b 1000
+    gives the newton data's estimate of one process."""
+    B = np.load(files / "B.npy")
+    np.save(tmp_path / "B_kN.npy", B / 1000)
+    reference = single(files, "npy", "spde")
+    out = fit_json(mpirun(3, "fit", "--method", "spde", "--stream", "--json", "--scale-b", "1000",
+                          files / "A.npy", tmp_path / "B_kN.npy"))
+    assert relative(out["X"], reference["X"]) < 1e-12
+
+
 def test_the_output_is_the_same_run_to_run_and_written_once(files, tmp_path):
     first = mpirun(3, "fit", "--method", "spde", "--stream", files / "A.csv", files / "B.csv")
     second = mpirun(3, "fit", "--method", "spde", "--stream", files / "A.csv", files / "B.csv")

@@ -38,6 +38,35 @@ def test_forces_in_kn_are_a_data_error_naming_the_factor():
     assert unchecked["physical"]["mass"] < g.payload_mass / 100
 
 
+
+def test_scale_a_and_scale_b_fit_data_in_other_units():
+    """scale_b=1000 on forces in kN gives the fit of the forces in N (issue 42 item 2): fit, fit_all,
+    hexapod.identify's physical fit, and the error naming the keyword. (rows and rest_rows are the
+    command line's: Python slices its arrays and DataFrames.)"""
+    g = hx.cubic_geometry()
+    sim = hx.simulate(samples=300, noise_var=0.5, truth=g, seed=5)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        with pytest.raises(spdfit.DataError, match=r"multiply the forces by 1000 \(scale_b 1000"):
+            hx.identify(sim.A, sim.B / 1000, geometry=g, physical=True)
+        si = hx.identify(sim.A, sim.B, geometry=g, physical=True)["physical"]
+        kn = hx.identify(sim.A, sim.B / 1000, geometry=g, physical=True, scale_b=1000)["physical"]
+        assert abs(kn["mass"] - si["mass"]) <= 1e-9 * si["mass"]
+        for method in ("ls", "spd-tls", "auto"):
+            want = spdfit.fit(sim.A, sim.B, method=method).X
+            got = spdfit.fit(sim.A / 9.80665, sim.B / 1000, method=method, scale_a=9.80665, scale_b=[1000.0] * 6).X
+            assert np.linalg.norm(got - want) <= 1e-10 * np.linalg.norm(want), method
+        every, plain = spdfit.fit_all(sim.A, sim.B / 1000, scale_b=1000), spdfit.fit_all(sim.A, sim.B)
+        assert list(every) == list(plain)
+        for method in plain:
+            if plain[method].ok:
+                assert np.linalg.norm(every[method].X - plain[method].X) <= 1e-9 * np.linalg.norm(plain[method].X)
+    with pytest.raises(ValueError, match="scale_b"):
+        spdfit.fit(sim.A, sim.B, method="ls", scale_b=[1.0, 2.0])
+    with pytest.raises(ValueError, match="scale_b"):
+        spdfit.fit(sim.A, sim.B, method="ls", scale_b=0)
+
+
 def test_offsets_rest_tares_the_physical_fit():
     g = hx.cubic_geometry()
     sim = hx.simulate(samples=400, noise_var=0.5, truth=g, seed=3)
@@ -65,3 +94,4 @@ def test_offsets_rest_tares_the_physical_fit():
         hx.identify(sim.A, B, geometry=g, physical=True, offsets="rest")
     with pytest.raises(ValueError, match="'none' or 'rest'"):
         hx.identify(sim.A, B, geometry=g, physical=True, noise=rest, offsets="tare")
+

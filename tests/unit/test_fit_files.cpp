@@ -5,8 +5,10 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "file_test_support.hpp"
+#include "io/row_selection.hpp"
 #include "spdfit/fit.hpp"
 #include "spdfit/fit_files.hpp"
 #include "spdfit/io.hpp"
@@ -72,6 +74,31 @@ TEST_F(FitFilesTest, InvalidOptionsAreMisuse) {
   FitOptions options;
   options.rank_tolerance = 2.0;
   EXPECT_THROW(fit_files(a_path_, b_path_, Method::Spde, options), std::invalid_argument);
+}
+
+TEST(RowSelection, RangesAndListsOfOneBasedRows) {
+  using io::detail::selected_rows;
+  const std::vector<Eigen::Index> some = selected_rows("2:4, 9,7:", "rows", 10, "log.csv");
+  EXPECT_EQ(some, (std::vector<Eigen::Index>{1, 2, 3, 6, 7, 8, 9}));  // 0-based, ascending, each once
+  EXPECT_EQ(selected_rows(":3,2:3", "rows", 10, "log.csv"), (std::vector<Eigen::Index>{0, 1, 2}));
+  EXPECT_EQ(selected_rows("10", "rows", 10, "log.csv"), (std::vector<Eigen::Index>{9}));
+  auto message = [](const std::string& spec, std::uint64_t rows) -> std::string {
+    try {
+      (void)selected_rows(spec, "rest_rows", rows, "log.csv");
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_NE(message("0:3", 10).find("no row 0"), std::string::npos);
+  EXPECT_NE(message("5:3", 10).find("runs backwards (write 3:5)"), std::string::npos);
+  EXPECT_NE(message("1,,2", 10).find("empty item"), std::string::npos);
+  EXPECT_NE(message(":", 10).find("neither a start nor an end"), std::string::npos);
+  EXPECT_NE(message("1.5", 10).find("not a row number"), std::string::npos);
+  EXPECT_NE(message("8:11", 10).find("row 11 is beyond the 10 data rows of log.csv"), std::string::npos);
+  EXPECT_NE(message("8:11", 10).find("`rest_rows` '8:11'"), std::string::npos);
+  EXPECT_THROW(selected_rows("8:11", "rows", 10, "log.csv"), io::DataError);
+  EXPECT_THROW(io::detail::check_row_selection("x", "rows"), OptionError);
 }
 
 TEST(FitResultTest, ADefaultResultIsNotComputed) {

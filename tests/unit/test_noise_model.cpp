@@ -41,6 +41,29 @@ std::string invalid_argument_of(Call call) {
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
+TEST(NoiseModelUnits, ScaledIsTheModelOfTheScaledRows) {
+  // FitOptions::scale_a, scale_b: the model of rest rows in other units, scaled, is the model of
+  // the rest rows converted (NumPy's np.cov of the converted rows is the same covariance).
+  Generator g(31);
+  const MatrixXd rest_a = g.gaussian(200, 3), rest_b = g.gaussian(200, 2);
+  VectorXd a(3), b(2);
+  a << 9.80665, 2.0, 0.001;
+  b << 1000.0, 0.5;
+  const NoiseModel scaled = NoiseModel::from_rest(rest_a, rest_b).resolved(3, 2).scaled(a, b);
+  const NoiseModel converted = NoiseModel::from_rest(rest_a * a.asDiagonal(), rest_b * b.asDiagonal());
+  EXPECT_LT(relative_error(scaled.cov_a(), converted.cov_a()), 1e-13);
+  EXPECT_LT(relative_error(scaled.cov_b(), converted.cov_b()), 1e-13);
+  EXPECT_LT(relative_error(scaled.rest_mean_b(), converted.rest_mean_b()), 1e-13);
+  EXPECT_EQ(scaled.source(), NoiseSource::Rest);
+  EXPECT_EQ(scaled.rest_rows(), converted.rest_rows());
+  // One standard deviation for every column becomes one per column.
+  const NoiseModel std_model = NoiseModel::from_std(0.1, 0.2).resolved(3, 2).scaled(a, b);
+  EXPECT_LT(relative_error(std_model.std_a(), VectorXd(0.1 * a)), 1e-15);
+  EXPECT_LT(relative_error(std_model.cov_b(), MatrixXd((0.2 * b).cwiseAbs2().asDiagonal())), 1e-15);
+  EXPECT_THROW(NoiseModel::from_std(0.1, 0.2).scaled(a, b), std::invalid_argument);  // not resolved
+  EXPECT_THROW(NoiseModel::from_std(0.1, 0.2).resolved(3, 2).scaled(-a, b), std::invalid_argument);
+}
+
 TEST(NoiseModelTest, StandardDeviationsPerColumnArePerColumnVariances) {
   const VectorXd std_a = (VectorXd(3) << 0.2, 0.0, 0.8).finished();
   const VectorXd std_b = (VectorXd(3) << 3.0, 1.0, 0.3).finished();

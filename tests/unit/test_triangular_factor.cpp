@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include "spdfit/triangular_factor.hpp"
@@ -53,6 +54,24 @@ TEST(TriangularFactor, IsUpperTriangularAndReproducesTheGramMatrix) {
   EXPECT_TRUE(f.R().isUpperTriangular(0.0));
   const MatrixXd G = gram_of_data(A, B);
   EXPECT_LT((gram_from_factor(f) - G).norm() / G.norm(), kGramTolerance);
+}
+
+TEST(TriangularFactor, ScaledColumnsAreTheFactorOfTheScaledData) {
+  // FitOptions::scale_a and scale_b on a streamed factor: R diag(a, b) is a factor of
+  // [A diag(a), B diag(b)], whatever the factors (kN to N, g to m/s^2, tiny ones).
+  Generator g(7);
+  const MatrixXd A = g.gaussian(60, 4), B = g.gaussian(60, 4);
+  Eigen::VectorXd a(4), b(4);
+  a << 9.80665, 1.0, 1e-3, 3.0;
+  b << 1000.0, 1000.0, 0.5, 1e6;
+  TriangularFactor f = TriangularFactor::from_data(A, B);
+  f.scale_columns(a, b);
+  EXPECT_EQ(f.rows(), 60);
+  EXPECT_TRUE(f.R().isUpperTriangular(0.0));
+  const MatrixXd G = gram_of_data(A * a.asDiagonal(), B * b.asDiagonal());
+  EXPECT_LT((gram_from_factor(f) - G).norm() / G.norm(), kGramTolerance);
+  EXPECT_THROW(f.scale_columns(Eigen::VectorXd::Ones(3), b), std::invalid_argument);
+  EXPECT_THROW(f.scale_columns(-a, b), std::invalid_argument);
 }
 
 TEST(TriangularFactor, ChunksAndMergesGiveTheSameGramMatrix) {
