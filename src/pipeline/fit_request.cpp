@@ -181,45 +181,41 @@ std::vector<Spec> make_table() {
   table.push_back(cov_b);
 
   // One log: the rows fitted and the rest segment from the data files themselves (in memory).
-  Spec rows;
-  rows.name = "rows";
-  rows.cli = "--rows";
-  rows.python = "rows";
-  rows.type = OptionType::Rows;
-  rows.value_name = "SPEC";
-  rows.help = "Fit these rows of the data files: 1-based inclusive ranges and lists of their data rows "
-              "(601:, 1:5000,7001:), as `a_cols` numbers columns. Default: every row (but `rest_rows`)";
-  rows.excludes = {"stream"};
-  rows.set = [](FitRequest& r, const OptionValue& v) {
-    io::detail::check_row_selection(std::get<std::string>(v), "rows");
-    r.rows = std::get<std::string>(v);
+  const auto row_selection = [](std::string_view name, std::string_view cli, std::string_view help,
+                                std::string FitRequest::*member) {
+    Spec spec;
+    spec.name = name;
+    spec.cli = cli;
+    spec.python = name;
+    spec.type = OptionType::Rows;
+    spec.value_name = "SPEC";
+    spec.help = help;
+    spec.excludes = {"stream"};
+    spec.set = [member, name](FitRequest& r, const OptionValue& v) {
+      io::detail::check_row_selection(std::get<std::string>(v), std::string(name));
+      r.*member = std::get<std::string>(v);
+    };
+    spec.get = [member](const FitRequest& r) -> std::optional<OptionValue> {
+      if ((r.*member).empty()) return std::nullopt;
+      return r.*member;
+    };
+    return spec;
   };
-  rows.get = [](const FitRequest& r) -> std::optional<OptionValue> {
-    if (r.rows.empty()) return std::nullopt;
-    return r.rows;
-  };
-  table.push_back(rows);
-  Spec rest_rows;
-  rest_rows.name = "rest_rows";
-  rest_rows.cli = "--rest-rows";
-  rest_rows.python = "rest_rows";
-  rest_rows.type = OptionType::Rows;
-  rest_rows.value_name = "SPEC";
-  rest_rows.help = "The rest segment from the data files themselves (1:600: the first 600 rows, recorded with the "
-                   "machine at rest): a noise model, as `rest_a` and `rest_b` give one from files of their own; "
-                   "`a_cols` and `b_cols` apply, and without `rows` the other rows are fitted";
+  table.push_back(row_selection("rows", "--rows",
+                                "Fit these rows of the data files: 1-based inclusive ranges and lists of their data "
+                                "rows (601:, 1:5000,7001:), as `a_cols` numbers columns. Default: every row (but "
+                                "`rest_rows`)",
+                                &FitRequest::rows));
+  Spec rest_rows = row_selection("rest_rows", "--rest-rows",
+                                 "The rest segment from the data files themselves (1:600: the first 600 rows, "
+                                 "recorded with the machine at rest): a noise model, as `rest_a` and `rest_b` give "
+                                 "one from files of their own; `a_cols` and `b_cols` apply, and without `rows` the "
+                                 "other rows are fitted",
+                                 &FitRequest::rest_rows);
   rest_rows.applies = takes_noise_model;
   rest_rows.applies_to = kNoiseAppliesTo;
   rest_rows.excludes = noise_excludes("rest_rows", "rest_rows");
   rest_rows.excludes.push_back("stream");
-  rest_rows.set = [](FitRequest& r, const OptionValue& v) {
-    io::detail::check_row_selection(std::get<std::string>(v), "rest_rows");
-    r.rest_rows = std::get<std::string>(v);
-  };
-  rest_rows.get = [](const FitRequest& r) -> std::optional<OptionValue> {
-    if (r.rest_rows.empty()) return std::nullopt;
-    return r.rest_rows;
-  };
   table.push_back(rest_rows);
 
   // Units: each column multiplied as the data are read (the noise model, in the files' units,
