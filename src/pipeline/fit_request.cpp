@@ -235,13 +235,15 @@ std::vector<Spec> make_table() {
     return spec;
   };
   table.push_back(unit_scale("scale_a", "--scale-a",
-                             "Multiply A by F as read: one factor for every column, or one per column "
-                             "(comma-separated), for data logged in other units (accelerations in g: 9.80665); "
-                             "rest rows and noise standard deviations are in the files' units and are scaled "
-                             "with them. Default: as given",
+                             "The factor A's columns are multiplied by as they are read: one for every column, or "
+                             "one per column (comma-separated), for data logged in other units (accelerations in "
+                             "g: 9.80665); rest rows and noise standard deviations are in the files' units and "
+                             "are scaled with them. Default: as given",
                              &FitOptions::scale_a));
   table.push_back(unit_scale("scale_b", "--scale-b",
-                             "Multiply B by F as read, as `scale_a` (forces logged in kN: 1000)", &FitOptions::scale_b));
+                             "The factor B's columns are multiplied by as they are read, as `scale_a` (forces "
+                             "logged in kN: 1000)",
+                             &FitOptions::scale_b));
 
   Spec iterations;
   iterations.name = "max_iterations";
