@@ -95,7 +95,9 @@ std::optional<double> noise_in_a_bias(const DynamicReduction& data, const Scaled
 
 std::optional<Warning> ignored_noise_warning(const DynamicReduction& data, Method method) {
   const std::optional<NoiseModel>& model = data.options.noise;
-  if (!model || model->a_is_zero()) return std::nullopt;
+  // A quiet fit (diagnostics off: a bootstrap replicate, a Monte Carlo trial) has no warnings to
+  // give, and the bias costs a least-squares solve.
+  if (!model || model->a_is_zero() || !data.options.diagnostics) return std::nullopt;
   if (method != Method::LeastSquares && method != Method::SymmetricProcrustes && method != Method::PsdLeastSquares) {
     return std::nullopt;
   }

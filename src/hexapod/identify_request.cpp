@@ -328,11 +328,10 @@ Identification run_identify(const IdentifyRequest& request) {
   }
   if (std::optional<Warning> w = spdfit::detail::sentinel_warning(A, B)) out.warnings.push_back(std::move(*w));
   // One log: the rows fitted and the rest segment (a noise model) from the data themselves.
-  spdfit::detail::LogRows log =
-      spdfit::detail::apply_log_rows(request.fit, A, B, request.a.from_file() ? request.a.path : "A");
-  out.warnings.insert(out.warnings.end(), log.warnings.begin(), log.warnings.end());
   out.options.fit = request.fit.resolved_options(n, n);
-  if (log.noise) out.options.fit.noise = log.noise->resolved(n, n);
+  const std::vector<Warning> found = spdfit::detail::apply_log_rows(
+      request.fit, A, B, request.a.from_file() ? request.a.path : "A", out.options.fit);
+  out.warnings.insert(out.warnings.end(), found.begin(), found.end());
   // Data in other units: A and B multiplied as read, the noise model (the files' units) with them.
   if (const std::optional<spdfit::detail::Units> units = spdfit::detail::units_of(out.options.fit, n, n)) {
     spdfit::detail::apply_units(*units, A, B);

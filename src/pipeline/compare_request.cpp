@@ -83,8 +83,10 @@ CompareRun run_compare(const CompareRequest& request) {
     B = request.b.values;
   }
   // One log: the rows fitted and the rest segment (a noise model) from the data themselves.
-  detail::LogRows log = detail::apply_log_rows(request.fit, A, B, request.a.from_file() ? request.a.path : "A");
-  out.warnings.insert(out.warnings.end(), log.warnings.begin(), log.warnings.end());
+  FitOptions options = request.fit.resolved_options(A.cols(), B.cols());
+  const std::vector<Warning> found =
+      detail::apply_log_rows(request.fit, A, B, request.a.from_file() ? request.a.path : "A", options);
+  out.warnings.insert(out.warnings.end(), found.begin(), found.end());
   std::optional<Eigen::MatrixXd> truth;
   if (request.truth) {
     if (request.truth->from_file()) {
@@ -101,8 +103,6 @@ CompareRun run_compare(const CompareRequest& request) {
     }
   }
   if (std::optional<Warning> w = detail::sentinel_warning(A, B)) out.warnings.push_back(std::move(*w));
-  FitOptions options = request.fit.resolved_options(A.cols(), B.cols());
-  if (log.noise) options.noise = log.noise->resolved(A.cols(), B.cols());
   out.comparison = compare(A, B, options, truth);
   for (const FitResult& r : out.comparison.results) {
     for (const Warning& w : r.warnings) {

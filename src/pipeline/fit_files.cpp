@@ -1,7 +1,6 @@
 #include "spdfit/fit_files.hpp"
 
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -136,12 +135,7 @@ DataPair read_pair(const std::string& a_path, const std::string& b_path, const i
 namespace detail {
 
 FitResult fit_pair_in_memory(DataPair data, const std::string& a_path, const std::string& b_path, Method method,
-                             FitOptions options,
-                             const std::function<std::vector<Warning>(DataPair&, FitOptions&)>& prepare) {
-  if (prepare) {
-    std::vector<Warning> found = prepare(data, options);
-    data.warnings.insert(data.warnings.end(), found.begin(), found.end());
-  }
+                             const FitOptions& options) {
   check_method_fits(method, b_path.empty() ? a_path : b_path, data.A.cols(), data.B.cols());
   if (options.noise) static_cast<void>(options.noise->resolved(data.A.cols(), data.B.cols()));
   check_enough_rows_for(method, a_path, data.A.rows(), data.A.cols(), data.B.cols());
@@ -149,12 +143,6 @@ FitResult fit_pair_in_memory(DataPair data, const std::string& a_path, const std
   attach_read_info(result, {std::move(data.warnings), std::move(data.a_names), std::move(data.b_names),
                             std::move(data.a_columns), std::move(data.b_columns)});
   return result;
-}
-
-FitResult fit_files_in_memory(const std::string& a_path, const std::string& b_path, Method method, FitOptions options,
-                              const io::ReadOptions& read,
-                              const std::function<std::vector<Warning>(DataPair&, FitOptions&)>& prepare) {
-  return fit_pair_in_memory(read_pair(a_path, b_path, read), a_path, b_path, method, std::move(options), prepare);
 }
 
 }  // namespace detail
@@ -193,7 +181,7 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
   };
   auto in_memory = [&] {
     return detail::fit_pair_in_memory(read_pair_from(a_path, b_path, read, kept_input ? &kept_input->text : nullptr),
-                                      a_path, b_path, method, options, {});
+                                      a_path, b_path, method, options);
   };
   if (streamed && options.bootstrap > 0) {
     if (streamed->block_rows < 1) throw std::invalid_argument("block_rows must be at least 1");

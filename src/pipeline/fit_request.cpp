@@ -6,7 +6,6 @@
 #include <limits>
 #include <utility>
 
-#include "estimators/noise_weights.hpp"
 #include "io/row_selection.hpp"
 #include "pipeline/log_rows.hpp"
 #include "pipeline/noise_files.hpp"
@@ -417,8 +416,9 @@ std::vector<Spec> make_table() {
 
 namespace detail {
 
-LogRows apply_log_rows(const FitRequest& request, Eigen::MatrixXd& A, Eigen::MatrixXd& B, const std::string& source) {
-  LogRows out;
+std::vector<Warning> apply_log_rows(const FitRequest& request, Eigen::MatrixXd& A, Eigen::MatrixXd& B,
+                                    const std::string& source, FitOptions& options) {
+  std::vector<Warning> out;
   if (request.rows.empty() && request.rest_rows.empty()) return out;
   const auto m = static_cast<std::uint64_t>(A.rows());
   std::vector<Eigen::Index> rest;
@@ -429,7 +429,7 @@ LogRows apply_log_rows(const FitRequest& request, Eigen::MatrixXd& A, Eigen::Mat
     std::size_t shared = 0;
     for (Eigen::Index r : fitted) shared += std::binary_search(rest.begin(), rest.end(), r) ? 1 : 0;
     if (shared > 0) {
-      out.warnings.push_back(Warning(Code::NoiseModelNotice,
+      out.push_back(Warning(Code::NoiseModelNotice,
                                      "`rows` and `rest_rows` share " + std::to_string(shared) +
                                          " rows: the rest segment is fitted as data too",
                                      "rows"));
@@ -448,7 +448,7 @@ LogRows apply_log_rows(const FitRequest& request, Eigen::MatrixXd& A, Eigen::Mat
   if (!rest.empty()) {
     const Eigen::MatrixXd rest_a = A(rest, Eigen::all), rest_b = B(rest, Eigen::all);
     try {
-      out.noise = NoiseModel::from_rest(rest_a, rest_b);
+      options.noise = NoiseModel::from_rest(rest_a, rest_b);
     } catch (const std::invalid_argument& e) {
       throw io::DataError(source, 0, 0, "`rest_rows` '" + request.rest_rows + "': " + e.what(), Code::NoiseModel);
     }
@@ -569,17 +569,12 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, const 
                         "`stream` (and mpirun), or cut the files first",
                         Code::OptionConflict, request.rows.empty() ? "rest_rows" : "rows");
     }
-    return detail::fit_files_in_memory(
-        a_path, b_path, request.method, options, read, [&](DataPair& data, FitOptions& fit_options) {
-          detail::LogRows log = detail::apply_log_rows(request, data.A, data.B, a_path);
-          if (log.noise) {
-            fit_options.noise = std::move(log.noise);
-            if (auto refusal = detail::noise_refusal(fit_options.noise, request.method)) {
-              throw detail::noise_refusal_error(*refusal, request.method);
-            }
-          }
-          return log.warnings;
-        });
+    // The fit refuses a noise model its method cannot use (data_of), as for rest files.
+    DataPair data = read_pair(a_path, b_path, read);
+    FitOptions log_options = options;
+    const std::vector<Warning> found = detail::apply_log_rows(request, data.A, data.B, a_path, log_options);
+    data.warnings.insert(data.warnings.end(), found.begin(), found.end());
+    return detail::fit_pair_in_memory(std::move(data), a_path, b_path, request.method, log_options);
   }
   return detail::naming_noise_files(request.noise_inputs, [&] {
     return fit_files(a_path, b_path, request.method, options, stream, read);
