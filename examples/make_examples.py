@@ -123,7 +123,8 @@ def load_cell(rng):
 def logged(rng):
     """A hexapod log as a logger writes it: a time column (s), 300 rows recorded at rest, then 700
     while the payload moves; accelerations in m/s^2 and forces in kN (a load-cell amplifier's
-    unit), tared, with per-strut noise: `spdfit fit --rest-rows 1:300 --scale-b 1000`."""
+    unit), untared (a static load of about 21 N on every strut, at rest and moving), with
+    per-strut noise: `spdfit fit --rest-rows 1:300 --scale-b 1000 --offsets rest`."""
     n, rest, moving = 6, 300, 700
     sd_a = np.array([0.05, 0.05, 0.1, 0.1, 0.2, 0.2])
     sd_b = np.array([0.5, 0.5, 0.3, 0.3, 0.2, 0.2])  # N
@@ -132,10 +133,11 @@ def logged(rng):
     A0 = rng.uniform(-5, 5, (moving, n))
     A = A0 + rng.standard_normal((moving, n)) * sd_a
     B = A0 @ M_P + rng.standard_normal((moving, n)) * sd_b
+    preload = np.array([21.0, 20.0, 22.0, 21.5, 20.5, 21.0])  # N, in every row: the forces untared
     t = 0.002 * np.arange(rest + moving)
-    table = np.column_stack([t, np.vstack([rest_A, A]), np.vstack([rest_B, B]) / 1000.0])
+    table = np.column_stack([t, np.vstack([rest_A, A]), (np.vstack([rest_B, B]) + preload) / 1000.0])
     names = ["t"] + [f"acc{i + 1}" for i in range(n)] + [f"F{i + 1}" for i in range(n)]
-    save(HERE / "logged/log.csv", table, "hexapod log: time (s), strut accelerations (m/s^2), base forces (kN); "
+    save(HERE / "logged/log.csv", table, "hexapod log: time (s), strut accelerations (m/s^2), base forces (kN, untared); "
          "rows 1-300 at rest", names)
 
 

@@ -12,6 +12,7 @@
 #include "output.hpp"
 #include "payload_options.hpp"
 #include "simulation_noise_options.hpp"
+#include "table_options.hpp"
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/hexapod/model.hpp"
 #include "spdfit/hexapod/simulate.hpp"
@@ -28,6 +29,7 @@ Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global) {
     std::string distribution = "uniform", truth = "thesis", geometry, out;
     std::uint64_t seed = 1;
     double force_noise_var = 0.0;
+    std::string preload;
     PayloadCli payload;
     SimulationNoiseCli noise;
   };
@@ -71,6 +73,10 @@ Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global) {
                   "with --rest-samples)")
       ->required();
   add_simulation_noise_options(*sub, cli->noise, noise_var);
+  sub->add_option("--preload", cli->preload,
+                  "A static load in every row of B, moving or at rest (untared forces): one value for every strut, "
+                  "or one per strut (comma-separated), in B's units before --scale-b. Default: none")
+      ->type_name("F");
 
   auto run = [cli, force_noise, noise_var, &global]() {
     if (noise_var->count() == 0 && !gives_noise_std(cli->noise)) {
@@ -111,6 +117,16 @@ Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global) {
     options.distribution = *hexapod::parse_noise_distribution(cli->distribution);
     if (force_noise->count() > 0) options.force_noise_var = cli->force_noise_var;
     apply_simulation_noise_options(cli->noise, options);
+    if (!cli->preload.empty()) {
+      const auto values =
+          std::get<std::vector<double>>(parse_option_text(OptionType::RealList, "--preload", cli->preload));
+      if (values.size() != 1 && static_cast<Eigen::Index>(values.size()) != M.rows()) {
+        throw UsageError("--preload has " + std::to_string(values.size()) + " values for " +
+                         std::to_string(M.rows()) + " struts: give one for every strut, or one per strut");
+      }
+      options.rest_force = values.size() == 1 ? Eigen::VectorXd::Constant(M.rows(), values.front())
+                                              : Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(values.data(), M.rows()));
+    }
     for (const auto& w : hexapod::simulation_warnings(M, options)) warn(global, w);
     // The payload's simulate draws what simulate(M, options, seed) draws for its M.
     const hexapod::Measurements data = payload
@@ -143,6 +159,9 @@ Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global) {
     if (options.noise_std_b) settings["noise_std_b"] = std::vector<double>(options.noise_std_b->begin(), options.noise_std_b->end());
     settings["scale_b"] = options.scale_b;
     settings["rest_samples"] = options.rest_samples;
+    if (options.rest_force.size() > 0) {
+      settings["preload"] = std::vector<double>(options.rest_force.begin(), options.rest_force.end());
+    }
     settings["files"] = {{"A", "A.csv"}, {"B", "B.csv"}, {"truth", "truth.csv"}};
     if (options.rest_samples > 0) {
       settings["files"]["rest_A"] = "rest_A.csv";

@@ -13,6 +13,19 @@
 
 namespace spdfit {
 
+/// Constant offsets in the data's columns (FitOptions::offsets): a static load in forces logged
+/// untared, an accelerometer's bias.
+enum class Offsets {
+  None,      ///< the model A X ~= B as the data are given
+  Estimate,  ///< A X + 1 c^T ~= B, unknown constants in A's and B's columns fitted with X
+  Rest,      ///< the rest rows' means (the noise model's, NoiseModel::from_rest) subtracted first
+};
+
+/// "none", "estimate" or "rest".
+inline const char* to_string(Offsets offsets) {
+  return offsets == Offsets::Estimate ? "estimate" : offsets == Offsets::Rest ? "rest" : "none";
+}
+
 /// Options for the estimators. The defaults follow the source documents.
 struct FitOptions {
   /// Relative cut-off for the numerical rank (spdfit/rank.hpp): a singular value sigma_i counts
@@ -61,6 +74,16 @@ struct FitOptions {
   /// fit_all(A, B, ...) and fit_files apply them (also streamed); the overloads taking a Reduction
   /// or a TriangularFactor have data already factored and refuse them.
   std::vector<double> scale_a, scale_b;
+  /// Constant offsets in the columns of A and B. None (the default): the data as given. Estimate:
+  /// the model A X + 1 c^T ~= B, errors in variables with intercepts (only c = mu_B - X^T mu_A,
+  /// d numbers, is identifiable, not A's and B's offsets apart): the estimators see the data
+  /// centred by their column means (the triangular factor of [1 A B], TriangularFactor with an
+  /// intercept), the noise estimate counts the degree of freedom lost, and FitResult::offsets has
+  /// c. Rest: the means of the rows recorded at rest (the noise model's, which must come from
+  /// rest rows) are subtracted from A and B (taring); FitResult::offsets has them. fit(A, B, ...),
+  /// fit_all(A, B, ...) and fit_files apply them (also streamed); the overloads taking a Reduction
+  /// take a factor with an intercept for Estimate and refuse Rest.
+  Offsets offsets = Offsets::None;
   /// The iterative methods (spd-tls, psd-ls, auto) stop after this many iterations at most, with
   /// the best iterate, converged = false and a warning. An integer >= 1.
   int max_iterations = 200;

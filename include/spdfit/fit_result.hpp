@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "spdfit/outcome.hpp"
+#include "spdfit/fit_options.hpp"
 #include "spdfit/lazy_optional.hpp"
 #include "spdfit/method.hpp"
 #include "spdfit/noise_model.hpp"
@@ -192,6 +193,16 @@ struct Bootstrap {
   std::optional<SpectrumUncertainty> eigenvalues;  ///< when the estimate is symmetric
 };
 
+/// The constant offsets a fit took out of the data (FitOptions::offsets other than None).
+struct FitOffsets {
+  Offsets mode = Offsets::None;
+  /// Estimate: c = mu_B - X^T mu_A (d numbers, in B's units), the constants of A X + 1 c^T ~= B,
+  /// mu_A and mu_B the column means of A and B.
+  Eigen::VectorXd c;
+  /// Rest: the rest rows' means subtracted from A (n) and from B (d).
+  Eigen::VectorXd a, b;
+};
+
 /// The result of one estimator on one data set.
 struct FitResult {
   Method method = Method::Spde;
@@ -209,6 +220,8 @@ struct FitResult {
   /// A and B from one file (FitRequest::a_cols, b_cols): the file and the columns each came from,
   /// "log.csv columns acc1..acc6 (2-7)"; empty when each came from a file of its own.
   std::string a_columns, b_columns;
+  /// The offsets taken out of the data (FitOptions::offsets Estimate or Rest); nothing without.
+  std::optional<FitOffsets> offsets;
 
   bool ok() const { return status == Status::Success; }
 };

@@ -3,7 +3,7 @@
 Checked against the module by mypy.stubtest (tests/python/test_stubs.py). The attributes of the
 result classes are read-only properties, as the bindings define them (def_property_readonly).
 """
-from typing import Dict, List, Optional, Tuple, Union
+from typing import Any, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -226,6 +226,8 @@ class FitResult(metaclass=_Pybind11Type):
     def a_columns(self) -> str: ...
     @property
     def b_columns(self) -> str: ...
+    @property
+    def offsets(self) -> Optional[Dict[str, Any]]: ...
 
 class NearestResult(metaclass=_Pybind11Type):
     @property

@@ -213,6 +213,22 @@ void bind_results(py::module_& m) {
                              "A and B from one file (a_cols, b_cols): the file and A's columns, "
                              "'log.csv columns acc1..acc6 (2-7)'; else ''")
       .def_property_readonly("b_columns", copied(&FitResult::b_columns), "the same for B's columns")
+      .def_property_readonly(
+          "offsets",
+          [](const FitResult& r) -> py::object {
+            if (!r.offsets) return py::none();
+            py::dict out;
+            out["mode"] = std::string(to_string(r.offsets->mode));
+            if (r.offsets->mode == Offsets::Estimate) out["c"] = r.offsets->c;
+            if (r.offsets->mode == Offsets::Rest) {
+              out["a"] = r.offsets->a;
+              out["b"] = r.offsets->b;
+            }
+            return out;
+          },
+          "the offsets taken out of the data with offsets='estimate' ({'mode': 'estimate', 'c': ndarray}: "
+          "A X + 1 c^T ~= B) or offsets='rest' ({'mode': 'rest', 'a': ..., 'b': ...}: the rest rows' means "
+          "subtracted), or None")
       .def(pickle_json<FitResult>("FitResult", &exact_json<FitResult>))
       .def("__repr__", [](const FitResult& r) {
         return "FitResult(method='" + std::string(to_string(r.method)) + "', status='" + to_string(r.status) +

@@ -40,7 +40,7 @@ constexpr double kNoiseFreeSnr = 1e10;
 template <int MaxN>
 AutoChoice auto_choice(const BasicReduction<MaxN>& data, std::optional<double> noise_var) {
   AutoChoice choice;
-  const Index n = data.n, m = data.m;
+  const Index n = data.n, m = data.dof_rows();  // centred data: one degree of freedom fewer
   choice.snr = std::numeric_limits<double>::quiet_NaN();
   if (data.rank_a < n) {
     choice.method = Method::SpdTotalLeastSquares;
@@ -86,7 +86,7 @@ double auto_floor(const BasicReduction<MaxN>& data) {
 
 AutoChoice auto_noise_choice(const DynamicReduction& data, const ScaledNoise& noise) {
   AutoChoice choice;
-  const Index n = data.n, m = data.m;
+  const Index n = data.n, m = data.dof_rows();  // centred data: one degree of freedom fewer
   choice.snr = std::numeric_limits<double>::quiet_NaN();
   if (data.rank_a < n) {
     choice.method = Method::SpdTotalLeastSquares;

@@ -60,11 +60,11 @@ void fill_data_diagnostics(const DynamicReduction& data, Diagnostics& d, std::ve
   }
   // The noise estimate is deferred to its first read (it costs an SVD of the whole factor); the
   // TLS family's own, from their SVD, is kept. Its warning depends on the sizes alone.
-  if (data.options.diagnostics && data.options.reported_diagnostics && data.m > data.n) {
+  if (data.options.diagnostics && data.options.reported_diagnostics && data.dof_rows() > data.n) {
     if (!d.noise_sigma.pending() && !d.noise_sigma.has_value()) d.noise_sigma = noise_sigma_of(data);
     // With a noise model nothing rests on noise_sigma (the equal-noise model's estimate): no warning.
-    if (warn_thin_noise_estimate && !data.options.noise && data.m - data.n < data.n) {
-      const double dof = static_cast<double>(data.d) * static_cast<double>(data.m - data.n);
+    if (warn_thin_noise_estimate && !data.options.noise && data.dof_rows() - data.n < data.n) {
+      const double dof = static_cast<double>(data.d) * static_cast<double>(data.dof_rows() - data.n);
       warnings.push_back(Warning(Code::NoiseEstimate, "the noise estimate (noise_sigma) rests on " +
                          std::string(data.square() ? "n" : "d") + " (m - n) = " + format_number(dof) +
                          " degrees of freedom (m - n < n), so its relative standard error is about " +

@@ -85,7 +85,7 @@ std::optional<double> noise_in_a_bias(const DynamicReduction& data, const Scaled
   if (data.square()) X = symmetric_part(X);
   const auto R = data.R11.triangularView<Eigen::Upper>();
   // b = m (A^T A)^-1 Sigma_A X = m R11^-1 R11^-T Sigma_A X; chi = ||R11 b L^-T||_F^2 with W = L L^T.
-  const MatrixXd bias = static_cast<double>(data.m) * R.solve(R.transpose().solve(MatrixXd(noise.cov_a * X)));
+  const MatrixXd bias = static_cast<double>(data.dof_rows()) * R.solve(R.transpose().solve(MatrixXd(noise.cov_a * X)));
   const Eigen::LLT<MatrixXd> W(symmetric_part(MatrixXd(X.transpose() * noise.cov_a * X + noise.cov_b)));
   if (W.info() != Eigen::Success) return std::nullopt;
   const MatrixXd scaled = W.matrixL().solve(MatrixXd((data.R11 * bias).transpose())).transpose();

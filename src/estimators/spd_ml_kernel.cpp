@@ -320,6 +320,7 @@ bool spd_ml_solve(const DynamicReduction& data, const ScaledNoise& noise, int ma
     const VectorXd d_inv = d.cwiseInverse();
     DynamicReduction scaled;
     scaled.m = data.m;
+    scaled.centred = data.centred;
     scaled.n = n;
     scaled.d = data.d;
     scaled.rank_a = data.rank_a;

@@ -297,6 +297,7 @@ bool boundary(const BasicReduction<MaxN>& data, double r2, double infinity, int 
   // (2) From the face's minimizer over the whole semidefinite cone.
   DynamicReduction dynamic;
   dynamic.m = data.m;
+  dynamic.centred = data.centred;
   dynamic.n = n;
   dynamic.d = data.d;
   dynamic.R11 = data.R11;

@@ -42,7 +42,7 @@ void tls_kernel(const BasicReduction<MaxN>& data, TlsKernel<MaxN>& out) {
   out.correction = std::ldexp(sigma.tail(d).norm(), e);  // thesis eq. 4.33
   // The noise estimate is made of the same singular values: one SVD serves both.
   out.noise_var.reset();
-  if (data.m > n) out.noise_var = noise_variance_from(sigma, data.m, n, e);
+  if (data.dof_rows() > n) out.noise_var = noise_variance_from(sigma, data.dof_rows(), n, e);
 
   const Matrix V12 = dec.V.topRightCorner(n, d);
   const Matrix V22 = dec.V.bottomRightCorner(d, d);

@@ -51,6 +51,11 @@ struct BasicReduction : std::enable_shared_from_this<BasicReduction<MaxN>> {
 
   Eigen::Index m = 0, n = 0;
   Eigen::Index d = 0;                   ///< B's columns: X is n x d
+  /// The data centred by their column means (a factor with an intercept, Offsets::Estimate): its
+  /// m rows carry m - 1 degrees of freedom.
+  bool centred = false;
+  /// The rows' degrees of freedom: m, or m - 1 for centred data (what noise estimates divide by).
+  Eigen::Index dof_rows() const { return centred ? m - 1 : m; }
   bool square() const { return d == n; }
   int exponent_a = 0, exponent_b = 0;   ///< data scaled by 2^-exponent (TriangularFactor)
   Matrix R11, R12, R22;                 ///< blocks of R: n x n, n x d, d x d (R22 zero-padded)

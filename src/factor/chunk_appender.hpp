@@ -31,6 +31,13 @@ class ChunkAppender {
   /// R exactly, by powers of two, so the result has the bits of all the rows at once. When fill
   /// throws, the factor is put back as it was.
   static void append(TriangularFactor& factor, Eigen::Index count, const Fill& fill, Eigen::MatrixXd* scratch);
+
+  /// The factor whose state is given: R ((n + d) x (n + d), upper triangular, of the data scaled by
+  /// 2^-exponent_a and 2^-exponent_b), the rows, and with an intercept the column means (data units)
+  /// and the rows' total weight. For the robust fit's inner iterations, whose R comes from a
+  /// weighted Gram matrix (robust/m_estimator.cpp); the caller vouches for R.
+  static TriangularFactor from_triangle(const Eigen::MatrixXd& R, Eigen::Index n, Eigen::Index rows, int exponent_a,
+                                        int exponent_b, bool intercept, const Eigen::VectorXd& means, double mass);
 };
 
 }  // namespace spdfit::detail

@@ -19,6 +19,8 @@ constexpr char kMagic[8] = {'s', 'p', 'd', 'f', 'i', 't', 'R', '\0'};
 // layout 2 adds d after n.
 constexpr std::uint32_t kSquareLayout = 1;
 constexpr std::uint32_t kRectangularLayout = 2;
+// Layout 3: a factor of [1 A B] (TriangularFactor::intercept): d always, and the column means.
+constexpr std::uint32_t kInterceptLayout = 3;
 // Columns a factor can have: far beyond what memory holds, small enough that sizes cannot overflow.
 constexpr std::uint64_t kMaxColumns = std::uint64_t{1} << 28;
 // Binary exponents a factor of finite data can carry: the doubles' range, denormals included.
@@ -67,13 +69,25 @@ TriangularFactor TriangularFactor::merged(const TriangularFactor& a, const Trian
 std::string TriangularFactor::serialize() const {
   const Eigen::Index size = n_ + d_;
   std::string out(kMagic, sizeof kMagic);
-  put(out, d_ == n_ ? kSquareLayout : kRectangularLayout, 4);
+  const std::uint32_t layout = intercept_ ? kInterceptLayout : d_ == n_ ? kSquareLayout : kRectangularLayout;
+  put(out, layout, 4);
   put(out, static_cast<std::uint64_t>(n_), 8);
-  if (d_ != n_) put(out, static_cast<std::uint64_t>(d_), 8);
+  if (layout != kSquareLayout) put(out, static_cast<std::uint64_t>(d_), 8);
   put(out, static_cast<std::uint64_t>(rows_), 8);
   for (const std::optional<int>& e : {exponent_a_, exponent_b_}) {
     put(out, e ? 1 : 0, 1);
     put(out, static_cast<std::uint32_t>(static_cast<std::int32_t>(e.value_or(0))), 4);
+  }
+  if (intercept_) {
+    std::uint64_t mass_bits = 0;
+    std::memcpy(&mass_bits, &mass_, sizeof mass_bits);
+    put(out, mass_bits, 8);
+    for (Eigen::Index j = 0; j < size; ++j) {
+      std::uint64_t bits = 0;
+      const double value = rows_ > 0 ? means_(j) : 0.0;
+      std::memcpy(&bits, &value, sizeof bits);
+      put(out, bits, 8);
+    }
   }
   for (Eigen::Index j = 0; j < size; ++j) {
     for (Eigen::Index i = 0; i <= j; ++i) {
@@ -93,8 +107,8 @@ TriangularFactor TriangularFactor::deserialize(std::string_view bytes) {
   }
   in.rest(sizeof kMagic);
   const std::uint64_t version = in.take(4, "the layout version");
-  if (version != kSquareLayout && version != kRectangularLayout) {
-    bad("layout version " + std::to_string(version) + " is not 1 or 2");
+  if (version != kSquareLayout && version != kRectangularLayout && version != kInterceptLayout) {
+    bad("layout version " + std::to_string(version) + " is not 1, 2 or 3");
   }
   const auto n = static_cast<std::int64_t>(in.take(8, "n"));
   const auto d = version == kSquareLayout ? n : static_cast<std::int64_t>(in.take(8, "d"));
@@ -117,13 +131,30 @@ TriangularFactor TriangularFactor::deserialize(std::string_view bytes) {
     if (value < -kMaxExponent || value > kMaxExponent) bad("exponent " + std::to_string(value) + " is out of range");
     if (flag == 1) e = value;
   }
+  const bool intercept = version == kInterceptLayout;
+  Eigen::VectorXd means;
+  double mass = 0.0;
+  if (intercept) {
+    const std::uint64_t mass_bits = in.take(8, "the rows' weight");
+    std::memcpy(&mass, &mass_bits, sizeof mass);
+    if (!std::isfinite(mass) || mass < 0.0) bad("the rows' weight is not a finite number >= 0");
+    if (in.left() < size * 8) bad("the bytes end inside the column means");
+    means.resize(static_cast<Eigen::Index>(size));
+    for (Eigen::Index j = 0; j < static_cast<Eigen::Index>(size); ++j) {
+      const std::uint64_t bits = in.take(8, "the column means");
+      std::memcpy(&means(j), &bits, sizeof bits);
+      if (!std::isfinite(means(j))) bad("column mean " + std::to_string(j) + " is not finite");
+    }
+  }
   const std::uint64_t entries = size * (size + 1) / 2;
   if (in.left() != entries * 8) {
     bad(std::to_string(in.left()) + " bytes of R where n = " + std::to_string(n) + ", d = " + std::to_string(d) +
         " needs " + std::to_string(entries * 8));
   }
-  TriangularFactor out(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(d));
+  TriangularFactor out(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(d), intercept);
   out.rows_ = static_cast<Eigen::Index>(rows);
+  if (intercept && rows > 0) out.means_ = means;
+  out.mass_ = mass;
   out.exponent_a_ = exponents[0];
   out.exponent_b_ = exponents[1];
   for (Eigen::Index j = 0; j < static_cast<Eigen::Index>(size); ++j) {
@@ -132,7 +163,8 @@ TriangularFactor TriangularFactor::deserialize(std::string_view bytes) {
       double value = 0.0;
       std::memcpy(&value, &bits, sizeof value);
       if (!std::isfinite(value)) bad("R(" + std::to_string(i) + ", " + std::to_string(j) + ") is not finite");
-      if (static_cast<std::uint64_t>(i) >= rows && value != 0.0) {
+      // (A factor of centred rows absorbs one row more per chunk: the rows beyond are not checked.)
+      if (!intercept && static_cast<std::uint64_t>(i) >= rows && value != 0.0) {
         bad("R has a nonzero entry in row " + std::to_string(i) + " beyond the " + std::to_string(rows) +
             " rows accumulated");
       }

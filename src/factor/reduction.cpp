@@ -109,7 +109,7 @@ LazyDouble scaled_condition_of(const DynamicReduction& data, bool of_b) {
 template <int MaxN>
 std::optional<double> noise_variance(const BasicReduction<MaxN>& data) {
   using Factor = typename BasicReduction<MaxN>::Factor;
-  const Index n = data.n, m = data.m;
+  const Index n = data.n, m = data.dof_rows();
   if (m <= n) return std::nullopt;
   int e = 0;
   Factor R;
@@ -146,12 +146,26 @@ Reduction reduce_with(const TriangularFactor& factor, const FitOptions& options,
                                 "a factor or a reduction: scale the factor (TriangularFactor::scale_columns) and "
                                 "its noise model instead");
   }
+  if (options.offsets == Offsets::Rest) {
+    throw std::invalid_argument("`offsets` rest subtracts the rest rows' means from the data as given (fit(A, B, ...), "
+                                "fit_files), not from a factor or a reduction: subtract them before factoring");
+  }
+  if (options.offsets == Offsets::Estimate && !factor.intercept()) {
+    throw std::invalid_argument("`offsets` estimate needs the factor of [1 A B] (TriangularFactor with an intercept, "
+                                "which fit(A, B, ...) and fit_files build), not of [A B]");
+  }
   const Eigen::Index n = factor.n();
   if (factor.rows() < n) {
     throw std::invalid_argument(detail::too_few_rows(factor.rows(), n));
   }
+  if (factor.intercept() && factor.rows() < n + 1) {
+    throw InputError("with `offsets` estimate the data need at least n + 1 = " + std::to_string(n + 1) +
+                         " rows (one goes to the offsets), not " + std::to_string(factor.rows()),
+                     Code::DataShape, "offsets");
+  }
   auto r = std::make_shared<detail::DynamicReduction>();
   r->options = options;
+  r->centred = factor.intercept();
   // The noise model completed to the data's sizes, or refused (naming the option or rest file).
   if (options.noise) r->options.noise = options.noise->resolved(n, factor.d());
   detail::reduce_into(factor.R(), factor.rows(), n, factor.exponent_a(), factor.exponent_b(), *r, vectors_a);

@@ -79,9 +79,20 @@ TriangularFactor::TriangularFactor(Index n, Index d) : n_(n), d_(d) {
   R_ = MatrixXd::Zero(n + d, n + d);
 }
 
+TriangularFactor::TriangularFactor(Index n, Index d, bool intercept) : TriangularFactor(n, d) {
+  intercept_ = intercept;
+}
+
 TriangularFactor TriangularFactor::from_data(const Eigen::Ref<const MatrixXd>& A,
                                              const Eigen::Ref<const MatrixXd>& B) {
   TriangularFactor factor(A.cols(), B.cols());
+  factor.append(A, B);
+  return factor;
+}
+
+TriangularFactor TriangularFactor::from_data(const Eigen::Ref<const MatrixXd>& A,
+                                             const Eigen::Ref<const MatrixXd>& B, bool intercept) {
+  TriangularFactor factor(A.cols(), B.cols(), intercept);
   factor.append(A, B);
   return factor;
 }
@@ -105,6 +116,11 @@ void TriangularFactor::scale_columns(const Eigen::VectorXd& scale_a, const Eigen
   };
   scale(scale_a, exponent_a_, 0);
   scale(scale_b, exponent_b_, n_);
+  // The means are in the data's units: they scale with them.
+  if (intercept_ && means_.size() == n_ + d_) {
+    means_.head(n_) = means_.head(n_).cwiseProduct(scale_a);
+    means_.tail(d_) = means_.tail(d_).cwiseProduct(scale_b);
+  }
 }
 
 void TriangularFactor::raise_exponents(std::optional<int> ea, std::optional<int> eb) {
@@ -164,21 +180,43 @@ void ChunkAppender::append(TriangularFactor& factor, Index count, const Fill& fi
   const MatrixXd saved_r = factor.R_;
   const std::optional<int> saved_a = factor.exponent_a_, saved_b = factor.exponent_b_;
   const Index saved_rows = factor.rows_;
+  const Eigen::VectorXd saved_means = factor.means_;
+  const double saved_mass = factor.mass_;
   try {
     for (Index first = 0; first < count; first += chunk) {
       const Index len = std::min(chunk, count - first);
       auto rows = scratch->topRows(len);
       const Extent extent = fill(first, len, rows);
       factor.raise_exponents(scale_exponent(extent.max_a), scale_exponent(extent.max_b));
-      factor.absorb_rows(rows, len);
+      if (factor.intercept_) {
+        factor.absorb_centred(rows, nullptr, static_cast<double>(len), len);
+      } else {
+        factor.absorb_rows(rows, len);
+      }
     }
   } catch (...) {
     factor.R_ = saved_r;
     factor.exponent_a_ = saved_a;
     factor.exponent_b_ = saved_b;
     factor.rows_ = saved_rows;
+    factor.means_ = saved_means;
+    factor.mass_ = saved_mass;
     throw;
   }
+}
+
+TriangularFactor ChunkAppender::from_triangle(const MatrixXd& R, Index n, Index rows, int exponent_a, int exponent_b,
+                                              bool intercept, const Eigen::VectorXd& means, double mass) {
+  TriangularFactor out(n, R.cols() - n, intercept);
+  out.R_ = R;
+  out.rows_ = rows;
+  out.exponent_a_ = exponent_a;
+  out.exponent_b_ = exponent_b;
+  if (intercept) {
+    out.means_ = means;
+    out.mass_ = mass;
+  }
+  return out;
 }
 
 }  // namespace detail
@@ -190,6 +228,53 @@ void TriangularFactor::absorb_rows(Eigen::Ref<MatrixXd> rows, Index count) {
   detail::multiply_by_power_of_two(rows_b, -exponent_b());
   absorb(rows);  // the rows are a scratch copy
   rows_ += count;
+}
+
+void TriangularFactor::absorb_centred(Eigen::Ref<MatrixXd> rows, const std::vector<double>* weights, double count,
+                                      Index row_count) {
+  const Index k = rows.rows(), cols = n_ + d_;
+  if (k == 0 || !(count > 0.0)) return;
+  auto rows_a = rows.leftCols(n_);
+  auto rows_b = rows.rightCols(d_);
+  detail::multiply_by_power_of_two(rows_a, -exponent_a());
+  detail::multiply_by_power_of_two(rows_b, -exponent_b());
+  // The chunk's (weighted) mean in two passes: the second removes what rounding left of an offset
+  // much larger than the spread, so that the centred rows carry the spread alone.
+  const auto weighted_mean = [&]() -> Eigen::RowVectorXd {
+    if (!weights) return rows.colwise().sum() / count;
+    Eigen::RowVectorXd sum = Eigen::RowVectorXd::Zero(cols);
+    for (Index i = 0; i < k; ++i) sum += (*weights)[static_cast<std::size_t>(i)] * rows.row(i);
+    return sum / count;
+  };
+  Eigen::RowVectorXd mean = weighted_mean();
+  rows.rowwise() -= mean;
+  const Eigen::RowVectorXd correction = weighted_mean();
+  rows.rowwise() -= correction;
+  mean += correction;
+  if (weights) {
+    for (Index i = 0; i < k; ++i) rows.row(i) *= std::sqrt((*weights)[static_cast<std::size_t>(i)]);
+  }
+  // The chunk's mean and the means so far in the data's units (powers of two: exact).
+  Eigen::VectorXd chunk_mean = mean.transpose();
+  chunk_mean.head(n_) = detail::times_power_of_two(chunk_mean.head(n_), exponent_a());
+  chunk_mean.tail(d_) = detail::times_power_of_two(chunk_mean.tail(d_), exponent_b());
+  const double before = mass_;
+  if (rows_ == 0 || means_.size() != cols) {
+    absorb(rows);
+    means_ = chunk_mean;
+  } else {
+    absorb(rows);
+    // The between-chunk part of the scatter: m k / (m + k) (mu - mu_k)(mu - mu_k)^T, one row.
+    MatrixXd between = (std::sqrt(before * count / (before + count)) * (means_ - chunk_mean)).transpose();
+    auto between_a = between.leftCols(n_);
+    auto between_b = between.rightCols(d_);
+    detail::multiply_by_power_of_two(between_a, -exponent_a());
+    detail::multiply_by_power_of_two(between_b, -exponent_b());
+    absorb(between);
+    means_ += (chunk_mean - means_) * (count / (before + count));
+  }
+  mass_ += count;
+  rows_ += row_count;
 }
 
 void TriangularFactor::merge(const TriangularFactor& other) { merge({&other}, {1}); }
@@ -205,6 +290,33 @@ void TriangularFactor::append(const Eigen::Ref<const MatrixXd>& A, const Eigen::
   for (std::uint32_t c : counts) kept += c > 0;
   if (kept == 0) return;
   raise_exponents(detail::scale_exponent(A), detail::scale_exponent(B));
+  if (intercept_) {
+    // Chunks of the kept rows, each centred by its weighted mean (the counts are the weights).
+    constexpr Index kCentredChunk = 1024;
+    MatrixXd chunk(std::min(kept, kCentredChunk), n_ + d_);
+    std::vector<double> weights;
+    double total = 0.0;
+    Index at = 0;
+    for (Index i = 0; i < A.rows(); ++i) {
+      const std::uint32_t c = counts[static_cast<std::size_t>(i)];
+      if (c == 0) continue;
+      chunk.row(at).head(n_) = A.row(i);
+      chunk.row(at).tail(d_) = B.row(i);
+      weights.push_back(static_cast<double>(c));
+      total += c;
+      if (++at == chunk.rows()) {
+        absorb_centred(chunk, &weights, total, static_cast<Index>(total));
+        at = 0;
+        weights.clear();
+        total = 0.0;
+      }
+    }
+    if (at > 0) {
+      auto last = chunk.topRows(at);
+      absorb_centred(last, &weights, total, static_cast<Index>(total));
+    }
+    return;
+  }
   // The kept rows are scaled by sqrt(count) into chunks of at most kChunk rows, each absorbed in
   // turn (a TSQR), so the work space stays small however many rows there are.
   constexpr Index kChunk = 1024;
@@ -230,6 +342,53 @@ void TriangularFactor::append(const Eigen::Ref<const MatrixXd>& A, const Eigen::
   }
 }
 
+void TriangularFactor::append(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
+                              const Eigen::Ref<const Eigen::VectorXd>& weights) {
+  detail::check_data(A, B, n_, d_);
+  if (weights.size() != A.rows()) {
+    throw std::invalid_argument("append: " + std::to_string(weights.size()) + " weights for " +
+                                std::to_string(A.rows()) + " rows");
+  }
+  Index kept = 0;
+  for (Index i = 0; i < weights.size(); ++i) {
+    if (!(weights(i) >= 0.0) || !std::isfinite(weights(i))) {
+      throw std::invalid_argument("append: weight " + std::to_string(i + 1) + " is not a finite number >= 0");
+    }
+    kept += weights(i) > 0.0;
+  }
+  if (kept == 0) return;
+  raise_exponents(detail::scale_exponent(A), detail::scale_exponent(B));
+  constexpr Index kChunk = 1024;
+  MatrixXd chunk(std::min(kept, kChunk), n_ + d_);
+  std::vector<double> chunk_weights;
+  Index at = 0;
+  double total = 0.0;
+  const auto flush = [&](Index rows) {
+    auto part = chunk.topRows(rows);
+    if (intercept_) {
+      absorb_centred(part, &chunk_weights, total, rows);
+    } else {
+      for (Index i = 0; i < rows; ++i) part.row(i) *= std::sqrt(chunk_weights[static_cast<std::size_t>(i)]);
+      absorb_rows(part, rows);
+    }
+    chunk_weights.clear();
+    total = 0.0;
+  };
+  for (Index i = 0; i < A.rows(); ++i) {
+    const double w = weights(i);
+    if (w == 0.0) continue;
+    chunk.row(at).head(n_) = A.row(i);
+    chunk.row(at).tail(d_) = B.row(i);
+    chunk_weights.push_back(w);
+    total += w;
+    if (++at == chunk.rows()) {
+      flush(at);
+      at = 0;
+    }
+  }
+  if (at > 0) flush(at);
+}
+
 void TriangularFactor::merge(const std::vector<const TriangularFactor*>& others,
                              const std::vector<std::uint32_t>& counts) {
   if (others.size() != counts.size()) {
@@ -243,13 +402,58 @@ void TriangularFactor::merge(const std::vector<const TriangularFactor*>& others,
                                   std::to_string(d_) + " columns and with " + std::to_string(others[k]->n_) +
                                   " and " + std::to_string(others[k]->d_) + " columns");
     }
+    if (others[k]->intercept_ != intercept_) {
+      throw std::invalid_argument("cannot merge a factor of [1 A B] (with an intercept) and one of [A B]");
+    }
     if (counts[k] == 0 || others[k]->rows_ == 0) continue;
     raise_exponents(others[k]->exponent_a_, others[k]->exponent_b_);
     ++kept;
   }
   if (kept == 0) return;
   const Index size = n_ + d_;
-  MatrixXd stacked(size * kept, size);
+  // With an intercept, one row per factor besides the factors: sqrt(w m_k) (mu_k - mu), the part of
+  // the scatter between the factors' means mu_k and the merged mean mu.
+  const Index between_rows = intercept_ ? kept + 1 : 0;
+  MatrixXd stacked(size * kept + between_rows, size);
+  if (intercept_) {
+    double mass = mass_;
+    Eigen::VectorXd mean = rows_ > 0 ? means_ : Eigen::VectorXd::Zero(size);
+    Eigen::VectorXd shift = Eigen::VectorXd::Zero(size);  // sum of w m_k (mu_k - origin)
+    bool have = rows_ > 0;
+    for (std::size_t k = 0; k < others.size(); ++k) {
+      if (counts[k] == 0 || others[k]->rows_ == 0) continue;
+      const double w = static_cast<double>(counts[k]) * others[k]->mass_;
+      if (!have) {
+        mean = others[k]->means_;
+        mass = w;
+        have = true;
+        continue;
+      }
+      shift += w * (others[k]->means_ - mean);
+      mass += w;
+    }
+    mean += shift / mass;
+    Index row = size * kept;
+    const auto between = [&](double weight, const Eigen::VectorXd& mu) {
+      auto r = stacked.row(row++);
+      r = (std::sqrt(weight) * (mu - mean)).transpose();
+      auto ra = r.head(n_);
+      auto rb = r.tail(d_);
+      detail::multiply_by_power_of_two(ra, -exponent_a());
+      detail::multiply_by_power_of_two(rb, -exponent_b());
+    };
+    if (rows_ > 0) {
+      between(mass_, means_);
+    } else {
+      stacked.row(row++).setZero();
+    }
+    for (std::size_t k = 0; k < others.size(); ++k) {
+      if (counts[k] == 0 || others[k]->rows_ == 0) continue;
+      between(static_cast<double>(counts[k]) * others[k]->mass_, others[k]->means_);
+    }
+    means_ = mean;
+    mass_ = mass;
+  }
   Index at = 0;
   std::uint64_t total = 0;
   for (std::size_t k = 0; k < others.size(); ++k) {

@@ -10,7 +10,9 @@
 #include "spdfit/fit.hpp"
 #include "spdfit/format.hpp"
 #include "spdfit/hexapod/model.hpp"
+#include "factor/basic_reduction.hpp"
 #include "numerics/parallel.hpp"
+#include "pipeline/offsets.hpp"
 #include "uncertainty/bootstrap.hpp"
 
 namespace spdfit::hexapod {
@@ -35,9 +37,10 @@ void bootstrap(std::vector<MethodIdentification>& methods, const Eigen::MatrixXd
   const FitOptions& fit_options = options.fit;
   const auto replicates = static_cast<std::size_t>(fit_options.bootstrap);
   std::vector<std::vector<detail::Replicate>> per_method(methods.size(), std::vector<detail::Replicate>(replicates));
-  const FitOptions quiet = detail::replicate_options(fit_options);
+  const FitOptions quiet = detail::replicate_options(detail::options_after_tare(fit_options));
+  const bool intercept = detail::data_of(data).centred;
   detail::parallel_for(replicates, fit_options.threads, [&](std::size_t r) {
-    const TriangularFactor factor = detail::resample_rows(A, B, fit_options.seed, r);
+    const TriangularFactor factor = detail::resample_rows(A, B, fit_options.seed, r, intercept);
     std::vector<FitResult> results;
     std::string failure;
     try {
@@ -80,11 +83,24 @@ std::vector<MethodIdentification> identify(const Eigen::MatrixXd& A, const Eigen
   }
 
   std::vector<MethodIdentification> out;
-  const Reduction data = reduce(TriangularFactor::from_data(A, B), options.fit);
+  // Offsets (FitOptions::offsets): rest, the rest rows' means subtracted first; estimate, the
+  // factor of [1 A B] (the data centred), c reported per estimator.
+  std::optional<detail::Tare> tare;
+  Eigen::MatrixXd At, Bt;
+  if (options.fit.offsets == Offsets::Rest) {
+    tare = detail::rest_tare(options.fit, n, B.cols());
+    At = A.rowwise() - tare->a.transpose();
+    Bt = B.rowwise() - tare->b.transpose();
+  }
+  const Eigen::MatrixXd& Ad = tare ? At : A;
+  const Eigen::MatrixXd& Bd = tare ? Bt : B;
+  const TriangularFactor factor = TriangularFactor::from_data(Ad, Bd, options.fit.offsets == Offsets::Estimate);
+  const Reduction data = reduce(factor, detail::options_after_tare(options.fit));
   for (FitResult& result : fit_all(data)) {
     MethodIdentification m;
     m.result = std::move(result);
     FitResult& r = m.result;
+    r.offsets = detail::offsets_of(r, factor, options.fit, tare ? &*tare : nullptr);
     if (r.ok()) {
       if (options.truth) m.error_vs_truth = error_vs_truth(r, *options.truth);
       if (r.diagnostics.symmetric) {
@@ -102,7 +118,7 @@ std::vector<MethodIdentification> identify(const Eigen::MatrixXd& A, const Eigen
     }
     out.push_back(std::move(m));
   }
-  if (options.fit.bootstrap > 0) bootstrap(out, A, B, options, data);
+  if (options.fit.bootstrap > 0) bootstrap(out, Ad, Bd, options, data);
   return out;
 }
 

@@ -18,6 +18,7 @@
 #include "interface/matrix_inputs.hpp"
 #include "pipeline/sentinels.hpp"
 #include "pipeline/log_rows.hpp"
+#include "pipeline/offsets.hpp"
 #include "pipeline/units.hpp"
 
 namespace spdfit::hexapod {
@@ -102,7 +103,7 @@ using Spec = OptionSpec<IdentifyRequest>;
 const std::vector<std::string_view> kSharedFitOptions = {
     "rank_tolerance", "noise_ratio", "noise", "rest_a", "rest_b", "noise_std_a", "noise_std_b", "noise_cov_a",
     "noise_cov_b", "max_iterations", "min_eig", "bootstrap", "confidence", "seed", "threads", "a_cols", "b_cols",
-    "scale_a", "scale_b", "rows", "rest_rows"};
+    "scale_a", "scale_b", "rows", "rest_rows", "offsets"};
 
 const MatrixInput& matrix(const OptionValue& v) { return std::get<MatrixInput>(v); }
 
@@ -182,6 +183,8 @@ std::vector<Spec> make_table() {
   table.push_back(physical);
 
   for (Spec& spec : lifted_options(physical_option_table(), &IdentifyRequest::physical_options)) {
+    // The fit's `offsets` (below) sets the physical fit's too: one option for every estimator.
+    if (spec.name == "offsets") continue;
     spec.needs = {"physical"};
     table.push_back(std::move(spec));
   }
@@ -215,6 +218,15 @@ std::vector<Spec> make_table() {
       spec.set = [set = spec.set](IdentifyRequest& r, const OptionValue& v) {
         set(r, v);
         r.physical_options.max_iterations = r.fit.options.max_iterations;
+      };
+    } else if (spec.name == "offsets") {
+      spec.help = "Constant offsets in the columns of A and B (a static load in untared forces, an "
+                  "accelerometer's bias): estimate fits A X + 1 c^T ~= B (the data centred by their column "
+                  "means) for every generic estimator, rest subtracts the means of the rows recorded at rest (those "
+                  "the noise model is made from) for them and for `physical`, none takes the data as given";
+      spec.set = [set = spec.set](IdentifyRequest& r, const OptionValue& v) {
+        set(r, v);
+        r.physical_options.tare = r.fit.options.offsets == Offsets::Rest;
       };
     } else if (spec.name == "rank_tolerance") {
       spec.set = [set = spec.set](IdentifyRequest& r, const OptionValue& v) {
@@ -337,6 +349,16 @@ Identification run_identify(const IdentifyRequest& request) {
     spdfit::detail::apply_units(*units, A, B);
     out.options.fit = spdfit::detail::options_in_units(out.options.fit, *units);
   }
+  if (request.physical && out.options.fit.offsets == Offsets::Estimate) {
+    throw OptionError("`offsets` estimate is not available with `physical` (its model has no intercept yet): give "
+                      "rest rows and `offsets` rest, or fit the generic estimators alone",
+                      Code::OptionConflict, "offsets");
+  }
+  // Offsets a fit without them would take for signal: said once for every estimator.
+  // (Untared forces with `physical`: its fit says so itself, in the physical model's words.)
+  const std::vector<Warning> offset_notes =
+      spdfit::detail::offset_warnings(A, B, nullptr, out.options.fit, !request.physical);
+  out.warnings.insert(out.warnings.end(), offset_notes.begin(), offset_notes.end());
   out.methods = identify(A, B, out.options);
   if (out.geometry) {
     if (std::optional<Warning> w = units_warning(out.methods, joint_space_mass_matrix(*out.geometry))) {

@@ -13,6 +13,7 @@
 #include "hexapod/kinematics.hpp"
 #include "hexapod/physical_fit.hpp"
 #include "hexapod/physical_solver.hpp"
+#include "pipeline/offsets.hpp"
 #include "spdfit/format.hpp"
 #include "spdfit/hexapod/model.hpp"
 #include "spdfit/rank.hpp"
@@ -37,10 +38,6 @@ constexpr double kSymmetryTolerance = 1e-12;
 // the geometry's SI units: data in kN or mm/s^2 are off by 1000, while a payload a hundred times
 // heavier or lighter than the one the geometry was designed for is not one it would carry.
 constexpr double kPlausibleMassFactor = 100.0;
-// The untared data's test: a rest mean this many standard errors from 0, and the data's column
-// mean within as many standard errors of it (a static load that the motion does not change).
-constexpr double kOffsetStandardErrors = 5.0;
-
 // A factor as a user types it: a power of ten as its digits (1000, 0.001), else 3 digits.
 std::string factor_text(double factor) {
   const double decade = std::pow(10.0, std::round(std::log10(factor)));
@@ -92,28 +89,12 @@ void check_plausible_mass(double mass, const Geometry& geometry, const std::stri
                    Code::PhysicalData, "no_plausibility_check");
 }
 
-// The warning for forces that look untared: the rest rows' mean of B (a static load) more than
-// kOffsetStandardErrors standard errors from 0 in some column, and the data's column mean of B
-// within as many standard errors of it there (the load is in every row, moving or not).
+// The warning for forces that look untared (spdfit::detail::untared_columns): the load is in every
+// row, moving or not.
 std::optional<Warning> untared_warning(const Eigen::MatrixXd& B, const PhysicalOptions& options) {
-  const Eigen::VectorXd& rest = options.rest_mean_b;
-  if (rest.size() != B.cols() || options.rest_rows < 2 || B.rows() < 2 || options.noise_cov_b.rows() != B.cols()) {
-    return std::nullopt;
-  }
-  const double m = static_cast<double>(B.rows());
-  const Eigen::RowVectorXd mean = B.colwise().mean();
-  const Eigen::RowVectorXd spread = ((B.rowwise() - mean).colwise().squaredNorm() / (m - 1.0)).cwiseSqrt();
-  std::string columns;
-  for (Eigen::Index j = 0; j < B.cols(); ++j) {
-    const double rest_se = std::sqrt(std::max(options.noise_cov_b(j, j), 0.0) / static_cast<double>(options.rest_rows));
-    const double data_se = spread(j) / std::sqrt(m);
-    const bool loaded = std::abs(rest(j)) > kOffsetStandardErrors * rest_se;
-    const bool same = std::abs(mean(j) - rest(j)) <= kOffsetStandardErrors * std::hypot(rest_se, data_se);
-    if (loaded && same) {
-      columns += (columns.empty() ? "" : ", ") + std::string("B's column ") + std::to_string(j + 1) + ": " +
-                 format_number(rest(j)) + " at rest, " + format_number(mean(j)) + " in the data";
-    }
-  }
+  if (options.noise_cov_b.rows() != B.cols()) return std::nullopt;
+  const std::string columns = spdfit::detail::untared_columns(B, options.rest_mean_b, options.noise_cov_b.diagonal(),
+                                                              options.rest_rows);
   if (columns.empty()) return std::nullopt;
   return Warning(Code::Bias,
                  "the forces look untared: the rest rows' means are far from 0 and the data's column means are the "

@@ -151,15 +151,17 @@ void simulate_into(const Eigen::MatrixXd& truth, const SimulationOptions& option
   out.B_true.resize(m, n);
   out.B_true.noalias() = out.A_true * truth;  // fb = lddot * Mprel (eq. 6.2)
   out.B = out.B_true;
+  // A static load (preload, untared forces) in every row, moving or at rest.
+  if (options.rest_force.size() == n) out.B.rowwise() += options.rest_force.transpose();
   noise_b(out.B);  // fbm (eq. 6.4)
 
-  // Rows at rest: the accelerations zero, the forces a constant load, each with its sensor's noise.
+  // Rows at rest: the accelerations zero, the forces the static load (none: zero), each with its
+  // sensor's noise.
   const Eigen::Index rest = options.rest_samples;
   out.rest_A.setZero(rest, n);
   out.rest_B.resize(rest, n);
   if (rest > 0) {
-    const Eigen::VectorXd force =
-        options.rest_force.size() == n ? options.rest_force : Eigen::VectorXd(truth * Eigen::VectorXd::Ones(n));
+    const Eigen::VectorXd force = options.rest_force.size() == n ? options.rest_force : Eigen::VectorXd::Zero(n);
     out.rest_B.rowwise() = force.transpose();
     noise_a(out.rest_A);
     noise_b(out.rest_B);

@@ -7,6 +7,7 @@
 #include "spdfit/fit_files.hpp"
 #include "spdfit/io.hpp"
 #include "interface/matrix_inputs.hpp"
+#include "pipeline/offsets.hpp"
 #include "pipeline/sentinels.hpp"
 
 namespace spdfit {
@@ -49,7 +50,7 @@ std::vector<Spec> make_table() {
   // The fit options that every method shares: the noise (its ratio, or a noise model), and A's and
   // B's columns in one file.
   std::vector<std::string_view> shared = noise_option_names();
-  shared.insert(shared.end(), {"a_cols", "b_cols", "scale_a", "scale_b", "rows"});
+  shared.insert(shared.end(), {"a_cols", "b_cols", "scale_a", "scale_b", "rows", "offsets"});
   for (Spec& spec : lifted_options(fit_option_table(), &CompareRequest::fit, shared)) table.push_back(std::move(spec));
   for (Spec& spec : output_options(&CompareRequest::output, {"json", "output"}, {"Print every result as JSON"})) {
     table.push_back(std::move(spec));
@@ -103,6 +104,8 @@ CompareRun run_compare(const CompareRequest& request) {
     }
   }
   if (std::optional<Warning> w = detail::sentinel_warning(A, B)) out.warnings.push_back(std::move(*w));
+  // Offsets a fit without them would take for signal: said once for every estimator.
+  for (Warning& w : detail::offset_warnings_as_given(A, B, options)) out.warnings.push_back(std::move(w));
   out.comparison = compare(A, B, options, truth);
   for (const FitResult& r : out.comparison.results) {
     for (const Warning& w : r.warnings) {

@@ -281,7 +281,7 @@ DistributedFit fit_files_distributed(const std::string& a_path, const std::strin
           if (user) user(fraction);
         };
         if (my_rows == 0) {
-          part.factors.total = TriangularFactor(n_columns, d);
+          part.factors.total = TriangularFactor(n_columns, d, options.offsets != Offsets::None);
           part.factors.replicates.assign(static_cast<std::size_t>(options.bootstrap), part.factors.total);
           return std::string();
         }
@@ -291,6 +291,7 @@ DistributedFit fit_files_distributed(const std::string& a_path, const std::strin
                      : detail::PairReaders(a->open(my_first, my_rows, position(rank, 0), position(rank + 1, 0)),
                                            b->open(my_first, my_rows, position(rank, 1), position(rank + 1, 1)),
                                            my_first);
+        readers.intercept = options.offsets != Offsets::None;
         if (bootstrap) {
           part.factors = detail::stream_resampled_factors(method, std::move(readers), mine, options.bootstrap,
                                                           options.seed);

@@ -9,6 +9,7 @@
 #include "factor/reduce.hpp"
 #include "estimators/kernels.hpp"
 #include "estimators/noise_weights.hpp"
+#include "pipeline/offsets.hpp"
 #include "pipeline/sentinels.hpp"
 #include "pipeline/units.hpp"
 #include "spdfit/format.hpp"
@@ -109,9 +110,19 @@ FitResult fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Matrix
     detail::apply_units(*units, A_units, B_units);
     return fit(A_units, B_units, method, detail::options_in_units(options, *units));
   }
-  const Reduction data = detail::reduce_for(TriangularFactor::from_data(A, B), options, method);
+  if (options.offsets == Offsets::Rest) {  // tared: the rest rows' means subtracted, then as given
+    const detail::Tare tare = detail::rest_tare(options, A.cols(), B.cols());
+    const MatrixXd At = A.rowwise() - tare.a.transpose(), Bt = B.rowwise() - tare.b.transpose();
+    FitResult result = fit(At, Bt, method, detail::options_after_tare(options));
+    result.offsets = FitOffsets{Offsets::Rest, {}, tare.a, tare.b};
+    return result;
+  }
+  const TriangularFactor factor = TriangularFactor::from_data(A, B, options.offsets == Offsets::Estimate);
+  const Reduction data = detail::reduce_for(factor, options, method);
   FitResult result = fit(data, method);
   if (options.bootstrap > 0 && result.ok()) detail::bootstrap_in_memory(result, A, B, data);
+  result.offsets = detail::offsets_of(result, factor, options, nullptr);
+  for (Warning& w : detail::offset_warnings(A, B, &factor, options)) result.warnings.push_back(std::move(w));
   if (std::optional<Warning> w = detail::sentinel_warning(A, B)) {
     result.warnings.insert(result.warnings.begin(), std::move(*w));
     if (!result.ok()) result.message += detail::sentinel_failure_note();
@@ -177,7 +188,17 @@ std::vector<FitResult> fit_all(const Eigen::Ref<const MatrixXd>& A, const Eigen:
     detail::apply_units(*units, A_units, B_units);
     return fit_all(A_units, B_units, detail::options_in_units(options, *units));
   }
-  return fit_all(reduce(TriangularFactor::from_data(A, B), options));
+  if (options.offsets == Offsets::Rest) {
+    const detail::Tare tare = detail::rest_tare(options, A.cols(), B.cols());
+    const MatrixXd At = A.rowwise() - tare.a.transpose(), Bt = B.rowwise() - tare.b.transpose();
+    std::vector<FitResult> results = fit_all(At, Bt, detail::options_after_tare(options));
+    for (FitResult& r : results) r.offsets = FitOffsets{Offsets::Rest, {}, tare.a, tare.b};
+    return results;
+  }
+  const TriangularFactor factor = TriangularFactor::from_data(A, B, options.offsets == Offsets::Estimate);
+  std::vector<FitResult> results = fit_all(reduce(factor, options));
+  for (FitResult& r : results) r.offsets = detail::offsets_of(r, factor, options, nullptr);
+  return results;
 }
 
 }  // namespace spdfit

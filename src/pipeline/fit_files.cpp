@@ -10,6 +10,7 @@
 #include "io/kept_text.hpp"
 #include "io/parse.hpp"
 #include "pipeline/log_rows.hpp"
+#include "pipeline/offsets.hpp"
 #include "pipeline/units.hpp"
 #include "pipeline/pair_checks.hpp"
 #include "spdfit/options.hpp"
@@ -51,7 +52,14 @@ FitResult fit_streamed(Method method, const FitOptions& options, const Triangula
   if (const std::optional<Units> units = units_of(options, factor.n(), factor.d())) {
     return fit_streamed(method, options_in_units(options, *units), factor_in_units(factor, *units), info, a_path);
   }
+  if (options.offsets == Offsets::Rest) {
+    const Tare tare = rest_tare(options, factor.n(), factor.d());
+    FitResult result = fit_streamed(method, options_after_tare(options), tared_factor(factor, tare), info, a_path);
+    result.offsets = offsets_of(result, factor, options, &tare);
+    return result;
+  }
   FitResult result = fit(detail::reduce_for(factor, options, method), method);
+  result.offsets = offsets_of(result, factor, options, nullptr);
   attach_read_info(result, info);
   return result;
 }
@@ -65,8 +73,18 @@ FitResult fit_streamed_bootstrap(Method method, const FitOptions& options, const
     for (const TriangularFactor& replicate : factors.replicates) scaled.replicates.push_back(factor_in_units(replicate, *units));
     return fit_streamed_bootstrap(method, options_in_units(options, *units), scaled, a_path);
   }
+  if (options.offsets == Offsets::Rest) {
+    const Tare tare = rest_tare(options, factors.total.n(), factors.total.d());
+    ResampledFactors tared{tared_factor(factors.total, tare), {}, factors.groups, factors.info};
+    tared.replicates.reserve(factors.replicates.size());
+    for (const TriangularFactor& replicate : factors.replicates) tared.replicates.push_back(tared_factor(replicate, tare));
+    FitResult result = fit_streamed_bootstrap(method, options_after_tare(options), tared, a_path);
+    result.offsets = offsets_of(result, factors.total, options, &tare);
+    return result;
+  }
   const Reduction data = reduce(factors.total, options);
   FitResult result = fit(data, method);
+  result.offsets = offsets_of(result, factors.total, options, nullptr);
   attach_read_info(result, factors.info);
   if (!result.ok()) return result;
   const std::vector<detail::Replicate> replicates =
@@ -171,6 +189,7 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
                                : b_path.empty() ? detail::PairReaders(reader(a_path), 0)  // A and B in one file
                                                 : detail::PairReaders(reader(a_path), reader(b_path), 0);
     pair.whole = true;
+    pair.intercept = options.offsets != Offsets::None;  // estimate: centred; rest: tared after the pass
     // The noise model's sizes against the data's columns, at the first block, not after the pass.
     if (options.noise) {
       pair.check_columns = [noise = &*options.noise](Eigen::Index n, Eigen::Index d) {

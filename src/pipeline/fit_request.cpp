@@ -244,6 +244,28 @@ std::vector<Spec> make_table() {
                              "logged in kN: 1000)",
                              &FitOptions::scale_b));
 
+  Spec offsets;
+  offsets.name = "offsets";
+  offsets.cli = "--offsets";
+  offsets.python = "offsets";
+  offsets.type = OptionType::Choice;
+  offsets.value_name = "none|estimate|rest";
+  offsets.choices = {"none", "estimate", "rest"};
+  offsets.help = "Constant offsets in the columns of A and B (a static load in untared forces, a sensor's bias): "
+                 "estimate fits A X + 1 c^T ~= B (the data centred by their column means; c is reported), rest "
+                 "subtracts the means of the rows recorded at rest (those the noise model is made from), none "
+                 "takes the data as given";
+  offsets.default_text = "none";
+  offsets.set = [](FitRequest& r, const OptionValue& v) {
+    const std::string& mode = std::get<std::string>(v);
+    r.options.offsets = mode == "estimate" ? Offsets::Estimate : mode == "rest" ? Offsets::Rest : Offsets::None;
+  };
+  offsets.get = [](const FitRequest& r) -> std::optional<OptionValue> {
+    return std::string(to_string(r.options.offsets));
+  };
+  offsets.nullable = false;
+  table.push_back(offsets);
+
   Spec iterations;
   iterations.name = "max_iterations";
   iterations.cli = "--max-iter";

@@ -54,9 +54,9 @@ struct Block {
 // (the first in A's rows, then in B's), or, when non-finite values are allowed, as
 // TriangularFactor refuses them.
 TriangularFactor factor_rows(const io::detail::NpyRows& a, const io::detail::NpyRows& b, std::uint64_t first,
-                             Index count, Block* buffers) {
+                             Index count, Block* buffers, bool intercept) {
   const Index n = a.columns(), d = b.columns();
-  TriangularFactor factor(n, d);
+  TriangularFactor factor(n, d, intercept);
   detail::ChunkAppender::append(
       factor, count,
       [&](Index at, Index len, Eigen::Ref<MatrixXd> rows) {
@@ -263,6 +263,7 @@ TriangularFactor stream_factor_for(const std::optional<Method>& method, PairRead
                                    const StreamOptions& options, PairInfo* info) {
   if (options.block_rows < 1) throw std::invalid_argument("block_rows must be at least 1");
   const unsigned threads = pipeline_threads(options);
+  const bool intercept = readers.intercept;
   PairReader reader(std::move(readers), options, threads > 1, method);
 
   // Blocks' factors are computed on up to `threads` threads while the next blocks are read, and
@@ -308,15 +309,16 @@ TriangularFactor stream_factor_for(const std::optional<Method>& method, PairRead
     std::uint64_t first = 0;
     Index count = 0;
     while (reader.next_rows(&first, &count)) {
-      submit([&a = reader.direct_a(), &b = reader.direct_b(), first, count, buffers = std::move(block)]() mutable {
-        TriangularFactor factor = factor_rows(a, b, first, count, &buffers);
+      submit([&a = reader.direct_a(), &b = reader.direct_b(), first, count, intercept,
+              buffers = std::move(block)]() mutable {
+        TriangularFactor factor = factor_rows(a, b, first, count, &buffers, intercept);
         return Factored{std::move(factor), std::move(buffers)};
       });
     }
   } else {
     while (reader.next(&block)) {
-      submit([b = std::move(block)]() mutable {
-        TriangularFactor factor = TriangularFactor::from_data(b.A, b.B);
+      submit([b = std::move(block), intercept]() mutable {
+        TriangularFactor factor = TriangularFactor::from_data(b.A, b.B, intercept);
         return Factored{std::move(factor), std::move(b)};
       });
     }
@@ -344,6 +346,7 @@ ResampledFactors stream_resampled_factors(Method method, PairReaders readers, co
   }
   const unsigned threads = resolve_threads(options.threads);
   const std::uint64_t first_group = readers.first_row / static_cast<std::uint64_t>(kBootstrapGroupRows);
+  const bool intercept = readers.intercept;
   // The groups are factored on the threads whatever the block size; B is read beside A only in
   // blocks large enough to pay for it.
   PairReader reader(std::move(readers), options, pipeline_threads(options) > 1, method);
@@ -358,9 +361,9 @@ ResampledFactors stream_resampled_factors(Method method, PairReaders readers, co
 
   auto flush = [&] {
     if (batch.empty()) return;
-    std::vector<TriangularFactor> factors(batch.size(), TriangularFactor(out.total.n(), out.total.d()));
+    std::vector<TriangularFactor> factors(batch.size(), TriangularFactor(out.total.n(), out.total.d(), intercept));
     parallel_for(batch.size(), threads, [&](std::size_t k) {
-      factors[k] = TriangularFactor::from_data(batch[k].A, batch[k].B);
+      factors[k] = TriangularFactor::from_data(batch[k].A, batch[k].B, intercept);
     });
     std::vector<const TriangularFactor*> pointers;
     for (const TriangularFactor& f : factors) pointers.push_back(&f);
@@ -379,8 +382,8 @@ ResampledFactors stream_resampled_factors(Method method, PairReaders readers, co
   while (reader.next(&block)) {
     const Index n = block.A.cols(), d = block.B.cols();
     if (out.replicates.empty()) {
-      out.total = TriangularFactor(n, d);
-      out.replicates.assign(static_cast<std::size_t>(replicates), TriangularFactor(n, d));
+      out.total = TriangularFactor(n, d, intercept);
+      out.replicates.assign(static_cast<std::size_t>(replicates), TriangularFactor(n, d, intercept));
     }
     Index offset = 0;
     while (offset < block.A.rows()) {

@@ -42,6 +42,9 @@ struct PairReaders {
   /// Called with A's and B's column counts at the first block (both files opened and read), to
   /// refuse data that will not fit before the whole pass: the noise model's sizes (fit_files).
   std::function<void(Eigen::Index, Eigen::Index)> check_columns;
+  /// Factor [1 A B] (TriangularFactor with an intercept): for FitOptions::offsets Estimate, and
+  /// Rest, whose tare is subtracted from the factor after the pass (tared_factor, offsets.hpp).
+  bool intercept = false;
 };
 
 /// stream_factor for data that `method` (when given) will fit: B with a column count the method

@@ -157,6 +157,18 @@ std::string report(const FitResult& result, const ReportHints& hints) {
         << " in every entry of A (times the noise ratio in B)\n";
   }
   out << noise_model_line(d, result);
+  if (const auto& o = result.offsets) {
+    const auto listed = [](const Eigen::VectorXd& v) {
+      std::string text;
+      for (Eigen::Index i = 0; i < v.size(); ++i) text += (i ? ", " : "") + format_number(v(i), Precision::Full);
+      return "[" + text + "]";
+    };
+    if (o->mode == Offsets::Estimate) {
+      out << "offsets: estimated with X (A X + 1 c^T ~= B), c = " << listed(o->c) << "\n";
+    } else if (o->mode == Offsets::Rest) {
+      out << "offsets: the rest rows' means subtracted, A " << listed(o->a) << ", B " << listed(o->b) << "\n";
+    }
+  }
   return out.str();
 }
 

@@ -247,6 +247,15 @@ Json fit_result_json(const FitResult& result, JsonStyle style) {
     out["a_columns"] = result.a_columns;
     out["b_columns"] = result.b_columns;
   }
+  if (const auto& o = result.offsets) {
+    Json offsets{{"mode", to_string(o->mode)}};
+    if (o->mode == Offsets::Estimate) offsets["c"] = vector_json(o->c, style);
+    if (o->mode == Offsets::Rest) {
+      offsets["a"] = vector_json(o->a, style);
+      offsets["b"] = vector_json(o->b, style);
+    }
+    out["offsets"] = std::move(offsets);
+  }
   out["diagnostics"] = diagnostics_json(result.diagnostics, style);
   put_warnings(out, result.warnings);
   // Exact keeps a message that a successful result should not have, too.
@@ -273,6 +282,15 @@ FitResult fit_result_from(const Json& object, const std::string& type) {
   if (optional_field(object, "a_columns")) {
     r.a_columns = value_from<std::string>(object, "a_columns", type);
     r.b_columns = value_from<std::string>(object, "b_columns", type);
+  }
+  if (const Json* o = optional_field(object, "offsets")) {
+    FitOffsets offsets;
+    const std::string mode = value_from<std::string>(*o, "mode", type + " offsets");
+    offsets.mode = mode == "estimate" ? Offsets::Estimate : mode == "rest" ? Offsets::Rest : Offsets::None;
+    if (optional_field(*o, "c")) offsets.c = vector_from(field(*o, "c", type), type + " offsets 'c'");
+    if (optional_field(*o, "a")) offsets.a = vector_from(field(*o, "a", type), type + " offsets 'a'");
+    if (optional_field(*o, "b")) offsets.b = vector_from(field(*o, "b", type), type + " offsets 'b'");
+    r.offsets = std::move(offsets);
   }
   r.warnings = warnings_from(object, type);
   if (optional_field(object, "error")) r.message = value_from<std::string>(object, "error", type);

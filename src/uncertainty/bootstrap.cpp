@@ -28,7 +28,7 @@ using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
 TriangularFactor resample_rows(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
-                               std::uint64_t seed, std::size_t replicate) {
+                               std::uint64_t seed, std::size_t replicate, bool intercept) {
   const Index m = A.rows();
   std::vector<std::uint32_t> counts(static_cast<std::size_t>(m), 0);
   Random random(trial_seed(seed, replicate));
@@ -37,7 +37,7 @@ TriangularFactor resample_rows(const Eigen::Ref<const MatrixXd>& A, const Eigen:
     const auto row = std::min(static_cast<Index>(random.uniform() * rows), m - 1);
     ++counts[static_cast<std::size_t>(row)];
   }
-  TriangularFactor factor(A.cols(), B.cols());
+  TriangularFactor factor(A.cols(), B.cols(), intercept);
   factor.append(A, B, counts);
   return factor;
 }
@@ -316,7 +316,9 @@ void bootstrap_in_memory(FitResult& result, const Eigen::Ref<const MatrixXd>& A,
   const FitOptions& options = full_data.options();
   const std::vector<Replicate> replicates =
       run_replicates(static_cast<std::size_t>(options.bootstrap), options,
-                     [&](std::size_t r) { return refit(resample_rows(A, B, options.seed, r), options, result); });
+                     [&](std::size_t r) {
+                       return refit(resample_rows(A, B, options.seed, r, data_of(full_data).centred), options, result);
+                     });
   attach_bootstrap(result, replicates, options, full_data);
   // Each replicate refactors all m rows (O(m n^2) each); from the rows the streaming bootstrap
   // needs on, its one pass over groups of rows is the cheaper way.

@@ -35,9 +35,10 @@ std::string too_few_groups(std::uint64_t rows, const std::string& instead);
 
 /// The factor of replicate r's multinomial resample of the rows of A, B: m rows drawn with
 /// replacement by a generator keyed by (seed, r), each row counted as often as it was drawn
-/// (TriangularFactor::append with counts).
+/// (TriangularFactor::append with counts); with `intercept`, of [1 A B] (FitOptions::offsets
+/// Estimate: each resample centred by its own means).
 TriangularFactor resample_rows(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
-                               std::uint64_t seed, std::size_t replicate);
+                               std::uint64_t seed, std::size_t replicate, bool intercept = false);
 
 /// Replicate r's Poisson(1) count for the group with global index `group`.
 std::uint32_t poisson_count(std::uint64_t seed, std::size_t replicate, std::uint64_t group);

@@ -161,6 +161,17 @@ assert_close(spdfit.fit(A / 2, B / 1000, 'spd-tls', 'ScaleA', [2 2 2], 'ScaleB',
                         'NoiseStdB', 1e-4), ...
              spdfit.fit(A, B, 'spd-tls', 'NoiseStdA', 0.1, 'NoiseStdB', 0.1), 1e-9, 'ScaleA with a noise model');
 expect_error(@() spdfit.fit(A, B, 'ls', 'ScaleB', [1 2]), 'spdfit:UsageError', 'ScaleB');
+% Offsets (issue 42 item 1): 'estimate' is the fit of the centred data, info.offsets.c the
+% constants of A X + 1 c' ~= B; 'rest' the fit of the data less the rest rows' means.
+[Xo, io] = spdfit.fit(A + 100, B - 50, 'spd-tls', 'Offsets', 'estimate');
+assert_close(Xo, spdfit.fit(A - mean(A), B - mean(B), 'spd-tls'), 1e-9, 'Offsets estimate');
+assert(strcmp(io.offsets.mode, 'estimate'), 'info.offsets.mode');
+assert_close(io.offsets.c(:)', mean(B - 50) - mean(A + 100) * Xo, 1e-9, 'info.offsets.c');
+[Xr, ir] = spdfit.fit(A, B, 'spd-tls', 'RestA', RA, 'RestB', RB, 'Offsets', 'rest');
+assert_close(Xr, spdfit.fit(A - mean(RA), B - mean(RB), 'spd-tls', 'RestA', RA, 'RestB', RB), 1e-9, ...
+             'Offsets rest');
+assert_close(ir.offsets.b(:)', mean(RB), 1e-12, 'info.offsets.b');
+expect_error(@() spdfit.fit(A, B, 'ls', 'Offsets', 'rest'), 'spdfit:UsageError', 'rest');
 % Issue 45 item 5's messages through MATLAB: too few rest rows say so, a subnormal standard
 % deviation is a number, NaN in a matrix to repair is named by its entry.
 expect_error(@() spdfit.fit(A, B, 'spd-tls', 'RestA', RA(1:3, :), 'RestB', RB(1:3, :)), 'spdfit:UsageError', ...

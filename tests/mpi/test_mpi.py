@@ -104,6 +104,36 @@ def test_units_apply_to_the_merged_factor(files, tmp_path):
     assert relative(out["X"], reference["X"]) < 1e-12
 
 
+def test_offsets_apply_to_the_merged_factor_of_one_a_b(files, tmp_path):
+    """--offsets (issue 42 item 1) under mpirun: constants 1e4 times the columns' spread added to A
+    and B leave X unchanged with --offsets estimate (each process factors [1 A B], the factors merge
+    with their means), c the NumPy one; --offsets rest tares the merged factor as NumPy tares the rows."""
+    A, B = np.load(files / "A.npy"), np.load(files / "B.npy")
+    shift_a, shift_b = 1e4 * A.std(0) * np.arange(1, N + 1), -1e4 * B.std(0)
+    np.save(tmp_path / "As.npy", A + shift_a)
+    np.save(tmp_path / "Bs.npy", B + shift_b)
+    reference = single(files, "npy", "spde", "--offsets", "estimate")
+    out = fit_json(mpirun(3, "fit", "--method", "spde", "--stream", "--json", "--offsets", "estimate",
+                          tmp_path / "As.npy", tmp_path / "Bs.npy"))
+    assert relative(out["X"], reference["X"]) < 1e-10
+    X = np.array(out["X"])
+    c = (B + shift_b).mean(0) - X.T @ (A + shift_a).mean(0)
+    np.testing.assert_allclose(out["offsets"]["c"], c, rtol=1e-9, atol=1e-9 * np.abs(shift_b).max())
+    # rest: rows at rest with a load, given as files; the tared rows fitted in one process.
+    rng = np.random.default_rng(5)
+    rest_a, rest_b = 0.05 * rng.standard_normal((50, N)), 7.0 + 0.05 * rng.standard_normal((50, N))
+    for name, M in [("rA", rest_a), ("rB", rest_b), ("Bl", B + 7.0), ("Bt", B + 7.0 - rest_b.mean(0)),
+                    ("At", A - rest_a.mean(0))]:
+        np.save(tmp_path / f"{name}.npy", M)
+    rest = ["--rest-a", tmp_path / "rA.npy", "--rest-b", tmp_path / "rB.npy"]
+    tared = fit_json(mpirun(3, "fit", "--method", "spd-tls", "--stream", "--json", "--offsets", "rest", *rest,
+                            files / "A.npy", tmp_path / "Bl.npy"))
+    by_hand = fit_json(run_cli(cli_path(), "fit", "--method", "spd-tls", "--json", *rest, tmp_path / "At.npy",
+                               tmp_path / "Bt.npy"))
+    assert relative(tared["X"], by_hand["X"]) < 1e-10
+    np.testing.assert_allclose(tared["offsets"]["b"], rest_b.mean(0), rtol=1e-12)
+
+
 def test_the_output_is_the_same_run_to_run_and_written_once(files, tmp_path):
     first = mpirun(3, "fit", "--method", "spde", "--stream", files / "A.csv", files / "B.csv")
     second = mpirun(3, "fit", "--method", "spde", "--stream", files / "A.csv", files / "B.csv")

@@ -285,7 +285,7 @@ def corrupted(data):
     nan = struct.pack("<d", float("nan"))
     return [
         ("wrong magic bytes", b"X" + data[1:]),
-        ("layout version 7 is not 1 or 2", data[:8] + struct.pack("<I", 7) + data[12:]),
+        ("layout version 7 is not 1, 2 or 3", data[:8] + struct.pack("<I", 7) + data[12:]),
         ("end inside", data[:10]),
         ("bytes of R", data[:-3]),
         ("bytes of R", data + b"\0"),

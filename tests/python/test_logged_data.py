@@ -92,6 +92,6 @@ def test_offsets_rest_tares_the_physical_fit():
     assert abs(tared["mass"] - g.payload_mass) < 0.05 * g.payload_mass
     with pytest.raises(ValueError, match="offsets"):
         hx.identify(sim.A, B, geometry=g, physical=True, offsets="rest")
-    with pytest.raises(ValueError, match="'none' or 'rest'"):
+    with pytest.raises(ValueError, match="'none', 'estimate' or 'rest'"):
         hx.identify(sim.A, B, geometry=g, physical=True, noise=rest, offsets="tare")
 

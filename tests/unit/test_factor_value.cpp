@@ -78,8 +78,8 @@ TEST(FactorValue, DeserializeRefusesWhatIsNotAFactor) {
   expect_refused("", "wrong magic");
   expect_refused("not a factor at all", "wrong magic");
   std::string bytes = good;
-  bytes[8] = 3;  // layout version 3
-  expect_refused(bytes, "layout version 3 is not 1 or 2");
+  bytes[8] = 4;  // layout version 4 (3 is a factor with an intercept)
+  expect_refused(bytes, "layout version 4 is not 1, 2 or 3");
   bytes = good;
   bytes[12] = 0;  // n = 0
   expect_refused(bytes, "n = 0");

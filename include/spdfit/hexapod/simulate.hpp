@@ -46,11 +46,12 @@ struct SimulationOptions {
   /// The same for B (then force_noise_var must be unset), in B's units before scale_b.
   std::optional<Eigen::VectorXd> noise_std_b;
   /// Rows recorded at rest, drawn after the data (Measurements::rest_A, rest_B): zero accelerations
-  /// plus A's noise, and the constant force rest_force plus B's noise. 0: none.
+  /// plus A's noise, and the static load rest_force plus B's noise. 0: none.
   Eigen::Index rest_samples = 0;
-  /// The force at rest (one value per column of B, before scale_b); empty means truth (1, ..., 1)^T,
-  /// the load of a unit acceleration along every strut. Its value does not change the rest rows'
-  /// covariance, only their mean.
+  /// A static load (a preload: forces logged untared) in every row of B, moving or at rest, as real
+  /// logs have it (one value per column of B, before scale_b); empty (the default): none, the rest
+  /// rows of B then noise about 0. Its value does not change the rest rows' covariance, only the
+  /// means of B's columns (FitOptions::offsets Rest subtracts it).
   Eigen::VectorXd rest_force;
   /// A change of B's units: B, B_true and the rest rows of B are multiplied by this after they are
   /// drawn (1e-3: newtons to kilonewtons), so that the true X is truth * scale_b. 1: none.
