@@ -26,6 +26,18 @@ inline const char* to_string(Offsets offsets) {
   return offsets == Offsets::Estimate ? "estimate" : offsets == Offsets::Rest ? "rest" : "none";
 }
 
+/// A robust fit's loss (FitOptions::robust): how a row's weight falls with its whitened residual.
+enum class RobustLoss {
+  None,   ///< every row weighs 1 (least squares and the methods as they are)
+  Huber,  ///< weight min(1, k / u): large residuals count linearly, not squared
+  Tukey,  ///< weight (1 - (u / k)^2)^2 below k, 0 beyond: gross errors count not at all
+};
+
+/// "none", "huber" or "tukey".
+inline const char* to_string(RobustLoss loss) {
+  return loss == RobustLoss::Huber ? "huber" : loss == RobustLoss::Tukey ? "tukey" : "none";
+}
+
 /// Options for the estimators. The defaults follow the source documents.
 struct FitOptions {
   /// Relative cut-off for the numerical rank (spdfit/rank.hpp): a singular value sigma_i counts
@@ -84,6 +96,18 @@ struct FitOptions {
   /// fit_all(A, B, ...) and fit_files apply them (also streamed); the overloads taking a Reduction
   /// take a factor with an intercept for Estimate and refuse Rest.
   Offsets offsets = Offsets::None;
+  /// A robust fit (an M-estimator of X by iteratively reweighted rows, each row weighed by its
+  /// residual whitened by the noise model and scaled by the residuals' robust scale): for ls,
+  /// procrustes, psd-ls, spd-tls, tls, tls-sym, tls-psd and auto (choosing among them), in memory
+  /// (fit(A, B, ...), fit_files without streaming); spde (no rows in its criterion), a Reduction and
+  /// a stream (one pass cannot reweigh rows) refuse it. Huber starts from the plain fit; Tukey from
+  /// least trimmed squares on the rows, so that wrong rows of A (leverage points) cannot capture
+  /// it. FitResult::robust reports the weights. None (the default): the plain fit.
+  RobustLoss robust = RobustLoss::None;
+  /// The loss's constant k, in standard deviations of a row's whitened residual norm; nothing (the
+  /// default): the constant giving 95% of least squares' efficiency at Gaussian noise for B's d
+  /// columns (d = 1: Huber's 1.345, Tukey's 4.685). A finite number > 0.
+  std::optional<double> robust_tuning;
   /// The iterative methods (spd-tls, psd-ls, auto) stop after this many iterations at most, with
   /// the best iterate, converged = false and a warning. An integer >= 1.
   int max_iterations = 200;

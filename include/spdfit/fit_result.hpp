@@ -203,6 +203,19 @@ struct FitOffsets {
   Eigen::VectorXd a, b;
 };
 
+/// What a robust fit (FitOptions::robust) did to the rows.
+struct RobustReport {
+  RobustLoss method = RobustLoss::None;
+  double tuning = 0.0;  ///< the loss's constant k
+  double scale = 0.0;   ///< the robust scale of the whitened residual norms (their median over the chi median)
+  /// The rows (1-based, as the data's) whose final weight is below 0.5: at most 1000 listed, all counted.
+  std::vector<std::uint64_t> rows_downweighted;
+  std::uint64_t rows_downweighted_count = 0;
+  double weights_min = 1.0;  ///< the smallest final weight
+  int iterations = 0;        ///< reweighting iterations
+  bool converged = true;     ///< the weights settled within FitOptions::max_iterations
+};
+
 /// The result of one estimator on one data set.
 struct FitResult {
   Method method = Method::Spde;
@@ -222,6 +235,8 @@ struct FitResult {
   std::string a_columns, b_columns;
   /// The offsets taken out of the data (FitOptions::offsets Estimate or Rest); nothing without.
   std::optional<FitOffsets> offsets;
+  /// What the robust fit did (FitOptions::robust other than None); nothing without.
+  std::optional<RobustReport> robust;
 
   bool ok() const { return status == Status::Success; }
 };

@@ -65,6 +65,7 @@ enum class Code : std::uint16_t {
   BootstrapNotice,      ///< what the bootstrap could not do, or did differently
   PhysicalNotice,       ///< the physical fit's notices (a parameter at its bound, a nominal far off)
   LinkageNotice,        ///< a linkage's design or synthesis notices
+  Outliers,             ///< rows that dominate a fit: a logger's codes for invalid readings, gross errors
 };
 
 /// A code's forms and meaning.

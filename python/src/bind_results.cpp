@@ -229,6 +229,24 @@ void bind_results(py::module_& m) {
           "the offsets taken out of the data with offsets='estimate' ({'mode': 'estimate', 'c': ndarray}: "
           "A X + 1 c^T ~= B) or offsets='rest' ({'mode': 'rest', 'a': ..., 'b': ...}: the rest rows' means "
           "subtracted), or None")
+      .def_property_readonly(
+          "robust",
+          [](const FitResult& r) -> py::object {
+            if (!r.robust) return py::none();
+            py::dict out;
+            out["method"] = std::string(to_string(r.robust->method));
+            out["tuning"] = r.robust->tuning;
+            out["scale"] = r.robust->scale;
+            out["rows_downweighted"] = r.robust->rows_downweighted;
+            out["rows_downweighted_count"] = r.robust->rows_downweighted_count;
+            out["weights_min"] = r.robust->weights_min;
+            out["iterations"] = r.robust->iterations;
+            out["converged"] = r.robust->converged;
+            return out;
+          },
+          "what robust='huber' or 'tukey' did: {'method', 'tuning' (the loss's constant k), 'scale' (the robust "
+          "scale of the whitened residuals), 'rows_downweighted' (1-based, weight below 0.5), "
+          "'rows_downweighted_count', 'weights_min', 'iterations', 'converged'}, or None")
       .def(pickle_json<FitResult>("FitResult", &exact_json<FitResult>))
       .def("__repr__", [](const FitResult& r) {
         return "FitResult(method='" + std::string(to_string(r.method)) + "', status='" + to_string(r.status) +

@@ -46,11 +46,14 @@ const std::vector<Entry>& entries() {
       // fit's a_cols and b_cols (columns of a DataFrame) are spelled out in Python, not the table's text.
       // rows and rest_rows are the command line's: arrays and DataFrames are sliced in Python.
       {"fit", "fit", {}, {"stream", "a_cols", "b_cols", "rows", "rest_rows"}},
-      // fit_files streams: rows and rest_rows choose rows of a fit in memory (slice in Python).
-      {"fit_files", "fit", {"stream"}, {"rows", "rest_rows"}},
-      {"fit_all", "fit", {}, {"stream", "bootstrap", "a_cols", "b_cols", "rows", "rest_rows"}},
-      // A factor holds the data in their units already: no scale_a, scale_b.
-      {"Factor.fit", "fit", {}, {"stream", "bootstrap", "a_cols", "b_cols", "scale_a", "scale_b", "rows", "rest_rows"}},
+      // fit_files streams: rows and rest_rows choose rows of a fit in memory (slice in Python), and
+      // robust reweighs rows in memory (spdfit.fit on the arrays).
+      {"fit_files", "fit", {"stream"}, {"rows", "rest_rows", "robust", "robust_tuning"}},
+      {"fit_all", "fit", {}, {"stream", "bootstrap", "a_cols", "b_cols", "rows", "rest_rows", "robust", "robust_tuning"}},
+      // A factor holds the data in their units already (no scale_a, scale_b), of [A B] (no offsets),
+      // and no rows to reweigh (no robust).
+      {"Factor.fit", "fit", {}, {"stream", "bootstrap", "a_cols", "b_cols", "scale_a", "scale_b", "rows", "rest_rows",
+                                  "offsets", "robust", "robust_tuning"}},
       // A and B are positional; a_cols and b_cols (columns of a DataFrame) are spelled out in Python.
       {"hexapod.identify", "identify", {}, {"a", "b", "a_cols", "b_cols", "rows", "rest_rows"}},
       {"physical.identify", "physical_fit", {}, {}},

@@ -146,6 +146,10 @@ Reduction reduce_with(const TriangularFactor& factor, const FitOptions& options,
                                 "a factor or a reduction: scale the factor (TriangularFactor::scale_columns) and "
                                 "its noise model instead");
   }
+  if (options.robust != RobustLoss::None) {
+    throw std::invalid_argument("`robust` reweighs the rows of A and B: fit(A, B, ...) and fit_files in memory apply it, "
+                                "not a factor or a reduction");
+  }
   if (options.offsets == Offsets::Rest) {
     throw std::invalid_argument("`offsets` rest subtracts the rest rows' means from the data as given (fit(A, B, ...), "
                                 "fit_files), not from a factor or a reduction: subtract them before factoring");

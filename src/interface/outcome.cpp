@@ -55,6 +55,9 @@ std::vector<CodeInfo> make_codes() {
       {Code::PhysicalNotice, "physical", Tier::Warning,
        "the physical fit's notices (a parameter at its bound, a nominal value far off)"},
       {Code::LinkageNotice, "linkage", Tier::Warning, "a linkage design's or synthesis' notices"},
+      {Code::Outliers, "outliers", Tier::Warning,
+       "rows that dominate a fit: values of magnitude 1e30 or more (a logger's codes for invalid readings), rows "
+       "whose studentized residual is far out among all rows' (gross errors, wrong values in A)"},
   };
 }
 

@@ -204,6 +204,11 @@ DistributedFit fit_files_distributed(const std::string& a_path, const std::strin
   }
   std::string error;
   if (!options.is_valid(&error)) throw OptionError(error);
+  if (options.robust != RobustLoss::None) {
+    throw OptionError("`robust` reweighs every row at each of its iterations, which processes that each read a part "
+                      "of the files once cannot: fit the rows in memory in one process (without mpirun)",
+                      Code::OptionConflict, "robust");
+  }
   if (stream.block_rows < 1) throw std::invalid_argument("block_rows must be at least 1");
 
   // The counting pass: each process opens both files (learning a text file's layout from its

@@ -10,6 +10,8 @@
 #include "estimators/kernels.hpp"
 #include "estimators/noise_weights.hpp"
 #include "pipeline/offsets.hpp"
+#include "pipeline/row_scores.hpp"
+#include "robust/m_estimator.hpp"
 #include "pipeline/sentinels.hpp"
 #include "pipeline/units.hpp"
 #include "spdfit/format.hpp"
@@ -117,12 +119,25 @@ FitResult fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Matrix
     result.offsets = FitOffsets{Offsets::Rest, {}, tare.a, tare.b};
     return result;
   }
+  if (options.robust != RobustLoss::None) {  // rows reweighted: the M-estimator's own iterations
+    detail::RobustFit robust = detail::robust_fit(A, B, method, options);
+    FitResult result = std::move(robust.result);
+    if (robust.factor) result.offsets = detail::offsets_of(result, *robust.factor, options, nullptr);
+    if (std::optional<Warning> w = detail::sentinel_warning(A, B)) {
+      result.warnings.insert(result.warnings.begin(), std::move(*w));
+      if (!result.ok()) result.message += detail::sentinel_failure_note();
+    }
+    return result;
+  }
   const TriangularFactor factor = TriangularFactor::from_data(A, B, options.offsets == Offsets::Estimate);
   const Reduction data = detail::reduce_for(factor, options, method);
   FitResult result = fit(data, method);
   if (options.bootstrap > 0 && result.ok()) detail::bootstrap_in_memory(result, A, B, data);
   result.offsets = detail::offsets_of(result, factor, options, nullptr);
   for (Warning& w : detail::offset_warnings(A, B, &factor, options)) result.warnings.push_back(std::move(w));
+  if (std::optional<Warning> w = detail::dominant_rows_warning(A, B, result, factor, options)) {
+    result.warnings.push_back(std::move(*w));
+  }
   if (std::optional<Warning> w = detail::sentinel_warning(A, B)) {
     result.warnings.insert(result.warnings.begin(), std::move(*w));
     if (!result.ok()) result.message += detail::sentinel_failure_note();

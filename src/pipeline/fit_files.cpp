@@ -202,6 +202,11 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
     return detail::fit_pair_in_memory(read_pair_from(a_path, b_path, read, kept_input ? &kept_input->text : nullptr),
                                       a_path, b_path, method, options);
   };
+  if (streamed && options.robust != RobustLoss::None) {
+    throw OptionError("`robust` reweighs every row at each of its iterations, which one pass over the files cannot: "
+                      "fit the rows in memory (without `stream`; in Python spdfit.fit on the arrays read)",
+                      Code::OptionConflict, "robust");
+  }
   if (streamed && options.bootstrap > 0) {
     if (streamed->block_rows < 1) throw std::invalid_argument("block_rows must be at least 1");
     // The streaming bootstrap: Poisson counts on fixed row groups, all in the one pass.

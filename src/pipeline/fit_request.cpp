@@ -8,6 +8,7 @@
 
 #include "io/row_selection.hpp"
 #include "pipeline/log_rows.hpp"
+#include "robust/m_estimator.hpp"
 #include "pipeline/noise_files.hpp"
 #include "spdfit/fit_files.hpp"
 #include "spdfit/noise_model.hpp"
@@ -265,6 +266,46 @@ std::vector<Spec> make_table() {
   };
   offsets.nullable = false;
   table.push_back(offsets);
+
+  Spec robust;
+  robust.name = "robust";
+  robust.cli = "--robust";
+  robust.python = "robust";
+  robust.type = OptionType::Choice;
+  robust.value_name = "none|huber|tukey";
+  robust.choices = {"none", "huber", "tukey"};
+  robust.help = "A robust fit: rows reweighted by their residual, whitened by the noise model (an M-estimator). "
+                "huber for gross errors in B, tukey (from least trimmed squares) also for wrong values in A; "
+                "in memory, every method but spde";
+  robust.default_text = "none";
+  robust.applies = [](const FitRequest& r) { return detail::robust_applies(r.method); };
+  robust.applies_to = "every method but spde";
+  robust.excludes = {"stream"};
+  robust.set = [](FitRequest& r, const OptionValue& v) {
+    const std::string& loss = std::get<std::string>(v);
+    r.options.robust = loss == "huber" ? RobustLoss::Huber : loss == "tukey" ? RobustLoss::Tukey : RobustLoss::None;
+  };
+  robust.get = [](const FitRequest& r) -> std::optional<OptionValue> { return std::string(to_string(r.options.robust)); };
+  robust.nullable = false;
+  table.push_back(robust);
+
+  Spec tuning;
+  tuning.name = "robust_tuning";
+  tuning.cli = "--robust-tuning";
+  tuning.python = "robust_tuning";
+  tuning.type = OptionType::Real;
+  tuning.value_name = "K";
+  tuning.help = "The robust loss's constant, in standard deviations of a row's whitened residual norm (default: "
+                "95% of least squares' efficiency at Gaussian noise; one column of B: Huber 1.345, Tukey 4.685)";
+  tuning.range = {0.0, std::numeric_limits<double>::infinity(), true, true};
+  tuning.needs = {"robust"};
+  tuning.needs_message = "`robust_tuning` is the constant of `robust`'s loss: give `robust` huber or tukey as well";
+  tuning.set = [](FitRequest& r, const OptionValue& v) { r.options.robust_tuning = real(v); };
+  tuning.get = [](const FitRequest& r) -> std::optional<OptionValue> {
+    if (!r.options.robust_tuning) return std::nullopt;
+    return *r.options.robust_tuning;
+  };
+  table.push_back(tuning);
 
   Spec iterations;
   iterations.name = "max_iterations";

@@ -83,7 +83,7 @@ std::optional<Warning> sentinel_warning(const Eigen::Ref<const Eigen::MatrixXd>&
           (one ? "it" : "them") + " out of A and B";
   const std::string kept = kept_rows(m, rows);
   if (!kept.empty()) text += " (fit rows " + kept + ")";
-  return Warning(Code::Warning, text);
+  return Warning(Code::Outliers, text, "rows");
 }
 
 }  // namespace spdfit::detail

@@ -157,6 +157,13 @@ std::string report(const FitResult& result, const ReportHints& hints) {
         << " in every entry of A (times the noise ratio in B)\n";
   }
   out << noise_model_line(d, result);
+  if (const auto& r = result.robust) {
+    out << "robust: " << to_string(r->method) << " (k = " << format_number(r->tuning, Precision::Medium) << "), "
+        << r->rows_downweighted_count << (r->rows_downweighted_count == 1 ? " row" : " rows")
+        << " down-weighted below 0.5 (smallest weight " << format_number(r->weights_min, Precision::Medium)
+        << "), residual scale " << format_number(r->scale, Precision::Medium) << ", " << r->iterations
+        << (r->iterations == 1 ? " iteration" : " iterations") << (r->converged ? "" : " (not settled)") << "\n";
+  }
   if (const auto& o = result.offsets) {
     const auto listed = [](const Eigen::VectorXd& v) {
       std::string text;

@@ -256,6 +256,16 @@ Json fit_result_json(const FitResult& result, JsonStyle style) {
     }
     out["offsets"] = std::move(offsets);
   }
+  if (const auto& r = result.robust) {
+    out["robust"] = Json{{"method", to_string(r->method)},
+                         {"tuning", number_json(r->tuning, style)},
+                         {"scale", number_json(r->scale, style)},
+                         {"rows_downweighted", r->rows_downweighted},
+                         {"rows_downweighted_count", r->rows_downweighted_count},
+                         {"weights_min", number_json(r->weights_min, style)},
+                         {"iterations", r->iterations},
+                         {"converged", r->converged}};
+  }
   out["diagnostics"] = diagnostics_json(result.diagnostics, style);
   put_warnings(out, result.warnings);
   // Exact keeps a message that a successful result should not have, too.
@@ -291,6 +301,20 @@ FitResult fit_result_from(const Json& object, const std::string& type) {
     if (optional_field(*o, "a")) offsets.a = vector_from(field(*o, "a", type), type + " offsets 'a'");
     if (optional_field(*o, "b")) offsets.b = vector_from(field(*o, "b", type), type + " offsets 'b'");
     r.offsets = std::move(offsets);
+  }
+  if (const Json* o = optional_field(object, "robust")) {
+    RobustReport report;
+    const std::string what = type + " robust";
+    const std::string loss = value_from<std::string>(*o, "method", what);
+    report.method = loss == "huber" ? RobustLoss::Huber : loss == "tukey" ? RobustLoss::Tukey : RobustLoss::None;
+    report.tuning = number_from(field(*o, "tuning", what), what + " 'tuning'");
+    report.scale = number_from(field(*o, "scale", what), what + " 'scale'");
+    report.rows_downweighted = value_from<std::vector<std::uint64_t>>(*o, "rows_downweighted", what);
+    report.rows_downweighted_count = value_from<std::uint64_t>(*o, "rows_downweighted_count", what);
+    report.weights_min = number_from(field(*o, "weights_min", what), what + " 'weights_min'");
+    report.iterations = value_from<int>(*o, "iterations", what);
+    report.converged = value_from<bool>(*o, "converged", what);
+    r.robust = std::move(report);
   }
   r.warnings = warnings_from(object, type);
   if (optional_field(object, "error")) r.message = value_from<std::string>(object, "error", type);

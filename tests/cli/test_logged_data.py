@@ -42,7 +42,7 @@ def test_a_sentinel_is_named_with_the_rows_to_keep(spdfit, tmp_path):
     assert "(fit rows 1-16, 18-50)" in result.stderr
     if result.returncode == 0:
         doc = json.loads(result.stdout)
-        assert "logger" in " ".join(doc["warnings"]) and "warning" in doc["warning_codes"]
+        assert "logger" in " ".join(doc["warnings"]) and "outliers" in doc["warning_codes"]
     # The fix it names gives the truth (to the noise), and no warning.
     keep = np.r_[0:16, 17:50]
     out, err = fit_json(spdfit, "--method", "spde", write_csv(tmp_path / "A2.csv", A[keep]),

@@ -172,6 +172,13 @@ assert_close(Xr, spdfit.fit(A - mean(RA), B - mean(RB), 'spd-tls', 'RestA', RA, 
              'Offsets rest');
 assert_close(ir.offsets.b(:)', mean(RB), 1e-12, 'info.offsets.b');
 expect_error(@() spdfit.fit(A, B, 'ls', 'Offsets', 'rest'), 'spdfit:UsageError', 'rest');
+% Robust (issue 42 item 3): gross errors in two rows of B are down-weighted, the fit is the clean one's.
+Bg = B;
+Bg([5 27], :) = Bg([5 27], :) + 50;
+[Xh, ih] = spdfit.fit(A, Bg, 'ls', 'Robust', 'huber');
+assert(strcmp(ih.robust.method, 'huber') && all(ismember([5 27], ih.robust.rows_downweighted)), 'info.robust');
+assert_close(Xh, spdfit.fit(A, B, 'ls'), 0.05, 'Robust huber');
+expect_error(@() spdfit.fit(A, B, 'spde', 'Robust', 'huber'), 'spdfit:UsageError', 'spde');
 % Issue 45 item 5's messages through MATLAB: too few rest rows say so, a subnormal standard
 % deviation is a number, NaN in a matrix to repair is named by its entry.
 expect_error(@() spdfit.fit(A, B, 'spd-tls', 'RestA', RA(1:3, :), 'RestB', RB(1:3, :)), 'spdfit:UsageError', ...

@@ -23,7 +23,7 @@ TEST(Sentinels, NamesTheRowTheValueAndTheRowsToKeep) {
   A(16, 1) = 9.9e37;
   const auto w = sentinel_warning(A, B);
   ASSERT_TRUE(w.has_value());
-  EXPECT_EQ(w->code, Code::Warning);
+  EXPECT_EQ(w->code, Code::Outliers);
   EXPECT_NE(w->text.find("row 17 (9.9e+37 in A's column 2) holds a value of magnitude 1e30 or more"),
             std::string::npos)
       << w->text;

@@ -1,0 +1,171 @@
+#include "pipeline/row_scores.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "numerics/linalg.hpp"
+#include "pipeline/sentinels.hpp"
+#include "spdfit/format.hpp"
+#include "spdfit/method.hpp"
+#include "spdfit/noise_model.hpp"
+
+namespace spdfit::detail {
+
+using Eigen::Index;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+namespace {
+
+// The consistency constant of the MAD at the normal distribution: 1 / Phi^-1(3/4).
+constexpr double kRowScoreMadToSigma = 1.482602218505602;
+// Rows named in the warning; the count says how many more.
+constexpr std::size_t kNamedDominantRows = 5;
+// A row that alone decides a direction (h_i = 1) has no residual left to judge it by: its score is
+// its residual over this floor's root.
+constexpr double kRowScoreLeverageFloor = 1e-12;
+// Rows beyond A's columns needed for the median and the MAD of the rows' scores to judge a row by.
+constexpr Eigen::Index kRowScoreMinExtraRows = 10;
+// A row whose residual is this small against the row itself is fitted to rounding, whatever its z.
+constexpr double kRowScoreRounding = 1e-8;
+// Above this many multiply-adds the check is made only when the diagnostics are read.
+constexpr double kRowScoreUnreadFlops = 1e8;
+
+}  // namespace
+
+double median(std::vector<double> values) {
+  const std::size_t k = values.size() / 2;
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
+  const double upper = values[k];
+  if (values.size() % 2 == 1) return upper;
+  return 0.5 * (upper + *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k)));
+}
+
+MatrixXd residual_covariance(const MatrixXd& X, Method method, const FitOptions& options) {
+  const Index n = X.rows(), d = X.cols();
+  if (options.noise) {
+    const NoiseModel model = options.noise->resolved(n, d);
+    return X.transpose() * model.cov_a() * X + model.cov_b();
+  }
+  if (uses_noise_ratio(method) || method == Method::Spde) {
+    MatrixXd S = X.transpose() * X;
+    S.diagonal().array() += options.noise_ratio * options.noise_ratio;
+    return S;
+  }
+  return MatrixXd::Identity(d, d);
+}
+
+VectorXd whitened_residuals(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, const MatrixXd& X,
+                            const VectorXd& c, const MatrixXd& covariance) {
+  MatrixXd residual;
+  multiply(A, false, X, false, residual);
+  residual -= B;
+  if (c.size() == B.cols()) residual.rowwise() += c.transpose();
+  MatrixXd S = 0.5 * (covariance + covariance.transpose());
+  const double top = S.size() ? S.diagonal().cwiseAbs().maxCoeff() : 0.0;
+  Eigen::LLT<MatrixXd> llt(S);
+  if (llt.info() != Eigen::Success || !(top > 0.0)) {
+    S.diagonal().array() += std::max(top, 1.0) * 1e-12;
+    llt.compute(S);
+  }
+  return llt.matrixL().solve(residual.transpose()).colwise().norm().transpose();
+}
+
+VectorXd robust_z_scores(const VectorXd& x) {
+  VectorXd z = VectorXd::Zero(x.size());
+  if (x.size() < 3) return z;
+  const std::vector<double> values(x.data(), x.data() + x.size());
+  const double mid = median(values);
+  std::vector<double> deviations(values.size());
+  for (std::size_t i = 0; i < values.size(); ++i) deviations[i] = std::abs(values[i] - mid);
+  const double spread = kRowScoreMadToSigma * median(deviations);
+  if (!(spread > 0.0)) return z;
+  return (x.array() - mid) / spread;
+}
+
+VectorXd row_scores(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, const FitResult& result,
+                    const TriangularFactor& factor, const FitOptions& options) {
+  const Index m = A.rows(), n = A.cols(), d = B.cols();
+  if (!result.ok() || result.X.rows() != n || result.X.cols() != d || !result.X.allFinite() || m <= n + 1 ||
+      factor.rows() != m) {
+    return VectorXd();
+  }
+  const MatrixXd& X = result.X;
+  const Method method = result.diagnostics.chosen_method.value_or(result.method);
+  // Whitened residuals (the offsets c with an intercept).
+  const bool intercept = factor.intercept();
+  const VectorXd c = intercept && result.offsets && result.offsets->c.size() == d ? result.offsets->c : VectorXd();
+  const VectorXd whitened = whitened_residuals(A, B, X, c, residual_covariance(X, method, options));
+  // Leverages h_i = ||a_i V_r S_r^-1||^2 from the SVD of R11 in the data's units (A^T A = R11^T
+  // R11; the centred A's with an intercept, plus 1/m), directions below the rank cut-off left out.
+  const MatrixXd R11 = times_power_of_two(MatrixXd(factor.R11()), factor.exponent_a());
+  const Svd dec = svd(R11, false, true);
+  const double largest = dec.s.size() ? dec.s(0) : 0.0;
+  const double cutoff = options.rank_cutoff(m, n) * largest;
+  Index rank = 0;
+  while (rank < dec.s.size() && dec.s(rank) > cutoff && dec.s(rank) > 0.0) ++rank;
+  const MatrixXd map = dec.V.leftCols(rank) * dec.s.head(rank).cwiseInverse().asDiagonal();
+  MatrixXd projected;
+  if (intercept && factor.means().size() == n + d) {
+    const MatrixXd centred = A.rowwise() - factor.means().head(n).transpose();
+    multiply(centred, false, map, false, projected);
+  } else {
+    multiply(A, false, map, false, projected);
+  }
+  VectorXd h = projected.rowwise().squaredNorm();
+  if (intercept) h.array() += 1.0 / static_cast<double>(m);
+  return (whitened.array() / (1.0 - h.array()).max(kRowScoreLeverageFloor).sqrt()).matrix();
+}
+
+std::optional<Warning> dominant_rows_warning(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
+                                             const FitResult& result, const TriangularFactor& factor,
+                                             const FitOptions& options) {
+  if (!options.diagnostics) return std::nullopt;
+  const double flops = static_cast<double>(A.rows()) * static_cast<double>(A.cols()) *
+                       static_cast<double>(A.cols() + B.cols());
+  if (!options.reported_diagnostics && flops > kRowScoreUnreadFlops) return std::nullopt;
+  if (A.rows() - A.cols() < kRowScoreMinExtraRows) return std::nullopt;
+  const VectorXd score = row_scores(A, B, result, factor, options);
+  if (score.size() == 0 || !score.allFinite()) return std::nullopt;
+  const VectorXd z = robust_z_scores(score);
+  std::vector<Index> flagged;
+  for (Index i = 0; i < z.size(); ++i) {
+    if (!(z(i) > kDominantZScore)) continue;
+    // Noise-free data: residuals of rounding's size, whose spread says nothing.
+    Eigen::RowVectorXd residual = A.row(i) * result.X - B.row(i);
+    double row_size = A.row(i).norm() * result.X.norm() + B.row(i).norm();
+    if (result.offsets && result.offsets->c.size() == B.cols()) {
+      residual += result.offsets->c.transpose();
+      row_size += result.offsets->c.norm();
+    }
+    if (residual.norm() <= kRowScoreRounding * row_size) continue;
+    // A row holding a logger's code is named by the sentinel warning.
+    const bool sentinel = (A.row(i).cwiseAbs().array() >= kSentinelMagnitude).any() ||
+                          (B.row(i).cwiseAbs().array() >= kSentinelMagnitude).any();
+    if (!sentinel) flagged.push_back(i);
+  }
+  if (flagged.empty()) return std::nullopt;
+  std::vector<Index> by_score = flagged;
+  std::stable_sort(by_score.begin(), by_score.end(), [&](Index x, Index y) { return z(x) > z(y); });
+  std::string named;
+  for (std::size_t k = 0; k < by_score.size() && k < kNamedDominantRows; ++k) {
+    const Index i = by_score[k];
+    named += (k == 0 ? "" : ", ") + std::to_string(i + 1) + " (z = " + format_number(z(i)) + ")";
+  }
+  const bool one = flagged.size() == 1;
+  std::string text = (one ? "row " : "rows ") + named;
+  if (flagged.size() > kNamedDominantRows) text += " and " + std::to_string(flagged.size() - kNamedDominantRows) + " more";
+  text += std::string(one ? " dominates" : " dominate") + " the fit: the robust z-score (median and MAD of all " +
+          std::to_string(A.rows()) + " rows') of " + (one ? "its" : "their") +
+          " residual, whitened by the noise model and studentized by " + (one ? "its" : "their") +
+          " leverage in A, is above " + format_number(kDominantZScore) +
+          ", which clean data do not reach: gross errors in B, or wrong values in A? Check " +
+          (one ? "it" : "them") + ", and leave " + (one ? "it" : "them") + " out of the fit if " +
+          (one ? "it is" : "they are") + " (`rows` chooses the rows fitted)";
+  return Warning(Code::Outliers, text, "rows");
+}
+
+}  // namespace spdfit::detail

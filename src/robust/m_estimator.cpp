@@ -1,0 +1,524 @@
+// The robust fit: Huber's and Tukey's M-estimators of X by iteratively reweighted rows, Tukey's from a
+// least-trimmed-squares start, and their bootstrap.
+#include "robust/m_estimator.hpp"
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <numeric>
+#include <string>
+#include <tuple>
+
+#include <Eigen/Cholesky>
+
+#include "factor/basic_reduction.hpp"
+#include "factor/chunk_appender.hpp"
+#include "factor/reduce.hpp"
+#include "numerics/linalg.hpp"
+#include "pipeline/row_scores.hpp"
+#include "spdfit/fit.hpp"
+#include "spdfit/random.hpp"
+#include "uncertainty/bootstrap.hpp"
+
+namespace spdfit::detail {
+
+using Eigen::Index;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+namespace {
+
+// The chi distribution's density with d degrees of freedom at u, and a quadrature of E[f(u)].
+double chi_density(double u, double d) {
+  if (u <= 0.0) return d == 1.0 ? std::sqrt(2.0 / 3.14159265358979323846) : 0.0;
+  const double log_f = (d - 1.0) * std::log(u) - 0.5 * u * u - (0.5 * d - 1.0) * std::log(2.0) - std::lgamma(0.5 * d);
+  return std::exp(log_f);
+}
+
+// Simpson's rule on [a, b] with `steps` (even) intervals of f(u) chi_density(u).
+template <typename F>
+double expectation(F f, double a, double b, double d, int steps = 2000) {
+  if (!(b > a)) return 0.0;
+  const double h = (b - a) / steps;
+  double sum = 0.0;
+  for (int i = 0; i <= steps; ++i) {
+    const double u = a + i * h;
+    const double weight = (i == 0 || i == steps) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
+    sum += weight * f(u) * chi_density(u, d);
+  }
+  return sum * h / 3.0;
+}
+
+// The upper end of the quadratures: the chi distribution's mass beyond is below 1e-30.
+double upper_end(double d) { return std::sqrt(d) + 14.0; }
+
+double efficiency(RobustLoss loss, double d, double k) {
+  const double top = upper_end(d);
+  if (loss == RobustLoss::Huber) {
+    const double inside = expectation([](double) { return 1.0; }, 0.0, std::min(k, top), d);
+    const double tail_inv = expectation([k](double u) { return k / u; }, std::min(k, top), top, d);
+    const double tail_mass = expectation([](double) { return 1.0; }, std::min(k, top), top, d);
+    const double squares = expectation([](double u) { return u * u; }, 0.0, std::min(k, top), d) + k * k * tail_mass;
+    const double slope = inside + (1.0 - 1.0 / d) * tail_inv;
+    return slope * slope / (squares / d);
+  }
+  const double end = std::min(k, top);
+  const double w_mean = expectation(
+      [k](double u) {
+        const double t = 1.0 - (u / k) * (u / k);
+        return t * t;
+      },
+      0.0, end, d);
+  const double uw_mean = expectation(
+      [k](double u) {
+        const double t = 1.0 - (u / k) * (u / k);
+        return -4.0 * u * u * t / (k * k);
+      },
+      0.0, end, d);
+  const double squares = expectation(
+      [k](double u) {
+        const double t = 1.0 - (u / k) * (u / k);
+        return t * t * t * t * u * u;
+      },
+      0.0, end, d);
+  const double slope = w_mean + uw_mean / d;
+  return slope * slope / (squares / d);
+}
+
+}  // namespace
+
+double robust_tuning(RobustLoss loss, Index d, double target) {
+  static std::mutex mutex;
+  static std::map<std::tuple<int, Index, double>, double> known;
+  const auto key = std::make_tuple(static_cast<int>(loss), d, target);
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    const auto it = known.find(key);
+    if (it != known.end()) return it->second;
+  }
+  const double dd = static_cast<double>(std::max<Index>(d, 1));
+  // Efficiency rises with k for both losses; bisection between a low and a high constant.
+  double lo = loss == RobustLoss::Huber ? 1e-3 : 0.5, hi = loss == RobustLoss::Huber ? 20.0 + dd : 40.0 + dd;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (efficiency(loss, dd, mid) < target ? lo : hi) = mid;
+  }
+  const double k = 0.5 * (lo + hi);
+  const std::lock_guard<std::mutex> lock(mutex);
+  known[key] = k;
+  return k;
+}
+
+double chi_median(Index d) {
+  const double dd = static_cast<double>(std::max<Index>(d, 1));
+  double lo = 0.0, hi = upper_end(dd);
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    const double cdf = expectation([](double) { return 1.0; }, 0.0, mid, dd);
+    (cdf < 0.5 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+double robust_weight(RobustLoss loss, double u, double k) {
+  switch (loss) {
+    case RobustLoss::None:
+      return 1.0;
+    case RobustLoss::Huber:
+      return u <= k ? 1.0 : k / u;
+    case RobustLoss::Tukey: {
+      if (u >= k) return 0.0;
+      const double t = 1.0 - (u / k) * (u / k);
+      return t * t;
+    }
+  }
+  return 1.0;
+}
+
+namespace {
+
+// The least-squares fit of B on [1 A] (intercept) or A over the rows `rows`: X, and c (empty without).
+bool least_squares_on(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
+                      const std::vector<Index>& rows, bool intercept, MatrixXd& X, VectorXd& c) {
+  const Index n = A.cols(), d = B.cols(), k = static_cast<Index>(rows.size());
+  const Index p = n + (intercept ? 1 : 0);
+  MatrixXd Z(k, p), Y(k, d);
+  for (Index r = 0; r < k; ++r) {
+    const Index i = rows[static_cast<std::size_t>(r)];
+    if (intercept) Z(r, 0) = 1.0;
+    Z.row(r).tail(n) = A.row(i);
+    Y.row(r) = B.row(i);
+  }
+  const Eigen::ColPivHouseholderQR<MatrixXd> qr(Z);
+  if (qr.rank() < p) return false;
+  const MatrixXd coef = qr.solve(Y);
+  if (!coef.allFinite()) return false;
+  X = coef.bottomRows(n);
+  c = intercept ? VectorXd(coef.row(0).transpose()) : VectorXd();
+  return true;
+}
+
+// The h rows of least whitened residual, their sum of squares.
+double trimmed(const VectorXd& u, Index h, std::vector<Index>& rows) {
+  std::vector<Index> order(static_cast<std::size_t>(u.size()));
+  std::iota(order.begin(), order.end(), Index{0});
+  std::nth_element(order.begin(), order.begin() + (h - 1), order.end(),
+                   [&u](Index a, Index b) { return u(a) < u(b); });
+  rows.assign(order.begin(), order.begin() + h);
+  std::sort(rows.begin(), rows.end());
+  double sum = 0.0;
+  for (Index i : rows) sum += u(i) * u(i);
+  return sum;
+}
+
+struct Candidate {
+  MatrixXd X;
+  VectorXd c;
+  double objective = std::numeric_limits<double>::infinity();
+};
+
+// Concentration steps (C-steps) on the rows of A, B: refit on the h rows of least residual until the
+// trimmed sum stops falling (at most `steps`).
+void concentrate(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, bool intercept,
+                 Method method, const FitOptions& options, Index h, int steps, Candidate& cand) {
+  std::vector<Index> rows;
+  for (int s = 0; s < steps; ++s) {
+    const VectorXd u = whitened_residuals(A, B, cand.X, cand.c, residual_covariance(cand.X, method, options));
+    const double objective = trimmed(u, h, rows);
+    if (!(objective < cand.objective * (1.0 - 1e-12)) && s > 0) {
+      cand.objective = std::min(cand.objective, objective);
+      return;
+    }
+    cand.objective = objective;
+    MatrixXd X;
+    VectorXd c;
+    if (!least_squares_on(A, B, rows, intercept, X, c)) return;
+    cand.X = X;
+    cand.c = c;
+  }
+  const VectorXd u = whitened_residuals(A, B, cand.X, cand.c, residual_covariance(cand.X, method, options));
+  cand.objective = trimmed(u, h, rows);
+}
+
+// Elemental starts: this many random subsets of p rows, each concentrated twice on a subsample.
+constexpr int kElementalStarts = 500;
+constexpr Index kSubsampleRows = 1500;
+constexpr int kBestStarts = 5;
+// Of those, the best few are concentrated on all the rows (each step a pass over every row).
+constexpr std::size_t kFullDataStarts = 2;
+constexpr int kFullDataSteps = 10;
+
+}  // namespace
+
+TrimmedStart least_trimmed_squares(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
+                                   bool intercept, Method method, const FitOptions& options) {
+  const Index m = A.rows(), n = A.cols(), d = B.cols();
+  const Index p = n + (intercept ? 1 : 0);
+  const Index h = std::min(m, (m + p + 1) / 2);
+  Random random(trial_seed(0x4c5453, static_cast<std::uint64_t>(m)));  // "LTS": a fixed seed
+  // The subsample the elemental starts are judged on.
+  std::vector<Index> sub(static_cast<std::size_t>(m));
+  std::iota(sub.begin(), sub.end(), Index{0});
+  if (m > kSubsampleRows) {
+    for (Index i = 0; i < kSubsampleRows; ++i) {
+      const Index j = i + std::min(static_cast<Index>(random.uniform() * static_cast<double>(m - i)), m - i - 1);
+      std::swap(sub[static_cast<std::size_t>(i)], sub[static_cast<std::size_t>(j)]);
+    }
+    sub.resize(static_cast<std::size_t>(kSubsampleRows));
+    std::sort(sub.begin(), sub.end());
+  }
+  const Index ms = static_cast<Index>(sub.size());
+  MatrixXd As(ms, n), Bs(ms, d);
+  for (Index r = 0; r < ms; ++r) {
+    As.row(r) = A.row(sub[static_cast<std::size_t>(r)]);
+    Bs.row(r) = B.row(sub[static_cast<std::size_t>(r)]);
+  }
+  const Index hs = std::min(ms, (ms + p + 1) / 2);
+  std::vector<Candidate> best;
+  std::vector<Index> elemental(static_cast<std::size_t>(p));
+  // Elemental subsets need more rows than parameters (else the least-squares start on all rows).
+  const int starts = ms > p ? kElementalStarts : 0;
+  for (int t = 0; t < starts; ++t) {
+    // p distinct rows of the subsample.
+    for (Index k = 0; k < p; ++k) {
+      Index pick;
+      do {
+        pick = std::min(static_cast<Index>(random.uniform() * static_cast<double>(ms)), ms - 1);
+      } while (std::find(elemental.begin(), elemental.begin() + k, pick) != elemental.begin() + k);
+      elemental[static_cast<std::size_t>(k)] = pick;
+    }
+    Candidate cand;
+    if (!least_squares_on(As, Bs, elemental, intercept, cand.X, cand.c)) continue;
+    concentrate(As, Bs, intercept, method, options, hs, 2, cand);
+    if (!std::isfinite(cand.objective)) continue;
+    best.push_back(std::move(cand));
+    std::sort(best.begin(), best.end(), [](const Candidate& a, const Candidate& b) { return a.objective < b.objective; });
+    if (best.size() > static_cast<std::size_t>(kBestStarts)) best.pop_back();
+  }
+  TrimmedStart out;
+  if (best.empty()) {
+    // No elemental subset of full rank (a design of few distinct rows): least squares on all rows.
+    std::vector<Index> all(static_cast<std::size_t>(m));
+    std::iota(all.begin(), all.end(), Index{0});
+    if (!least_squares_on(A, B, all, intercept, out.X, out.c)) {
+      out.X = MatrixXd::Zero(n, d);
+      if (intercept) out.c = VectorXd::Zero(d);
+    }
+  } else {
+    // The best starts concentrated on all the rows.
+    Candidate winner;
+    if (best.size() > kFullDataStarts) best.resize(kFullDataStarts);
+    for (Candidate& cand : best) {
+      cand.objective = std::numeric_limits<double>::infinity();
+      concentrate(A, B, intercept, method, options, h, m > ms ? kFullDataSteps : 20, cand);
+      if (cand.objective < winner.objective) winner = cand;
+    }
+    out.X = winner.X;
+    out.c = winner.c;
+  }
+  const VectorXd u = whitened_residuals(A, B, out.X, out.c, residual_covariance(out.X, method, options));
+  out.scale = median(std::vector<double>(u.data(), u.data() + u.size())) / chi_median(d);
+  return out;
+}
+
+namespace {
+
+// The offsets c = mu_B - X^T mu_A of an intercept factor (empty without one).
+VectorXd fitted_offsets(const TriangularFactor& factor, const MatrixXd& X) {
+  if (!factor.intercept() || factor.means().size() != factor.n() + factor.d() || X.rows() != factor.n()) {
+    return VectorXd();
+  }
+  return factor.means().tail(factor.d()) - X.transpose() * factor.means().head(factor.n());
+}
+
+// The factor of the rows of [A B] weighted by w (with an intercept, about their weighted means) from
+// the weighted Gram matrix and its Cholesky factor: for the reweighting's inner iterations, which
+// need X only to the accuracy at which the weights settle, at a fraction of a QR's cost (one
+// symmetric rank-k product on the BLAS). The Gram matrix squares the condition number, so the
+// converged weights are fitted once more by the QR (TriangularFactor::append), and a Cholesky that
+// breaks down (A ill-conditioned beyond about 1e7) gives nothing: the caller uses the QR.
+std::optional<TriangularFactor> gram_factor(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
+                                            const VectorXd& w, bool intercept) {
+  const Index m = A.rows(), n = A.cols(), d = B.cols();
+  Index rows = 0;
+  double mass = 0.0;
+  for (Index i = 0; i < m; ++i) {
+    rows += w(i) > 0.0;
+    mass += w(i);
+  }
+  if (rows <= n + d || !(mass > 0.0)) return std::nullopt;
+  const int ea = scale_exponent(A).value_or(0), eb = scale_exponent(B).value_or(0);
+  MatrixXd Z(m, n + d);
+  Z.leftCols(n) = times_power_of_two(MatrixXd(A), -ea);
+  Z.rightCols(d) = times_power_of_two(MatrixXd(B), -eb);
+  VectorXd means;
+  if (intercept) {
+    Eigen::RowVectorXd mu = (w.transpose() * Z) / mass;
+    Z.rowwise() -= mu;
+    const Eigen::RowVectorXd again = (w.transpose() * Z) / mass;  // what rounding left of the mean
+    Z.rowwise() -= again;
+    mu += again;
+    means = mu.transpose();
+    means.head(n) = times_power_of_two(VectorXd(means.head(n)), ea);
+    means.tail(d) = times_power_of_two(VectorXd(means.tail(d)), eb);
+  }
+  Z.array().colwise() *= w.array().sqrt();
+  MatrixXd G;
+  multiply(Z, true, Z, false, G);
+  const Eigen::LLT<MatrixXd> llt(0.5 * (G + G.transpose()));
+  if (llt.info() != Eigen::Success) return std::nullopt;
+  const MatrixXd R = llt.matrixU();
+  if (!R.allFinite()) return std::nullopt;
+  return ChunkAppender::from_triangle(R, n, rows, ea, eb, intercept, means, mass);
+}
+
+// One robust fit's iterations, from X (and c) with the scale `scale` (Huber: re-estimated each
+// iteration). `counts` (empty: 1) multiply the weights (a bootstrap resample).
+struct Iterated {
+  FitResult result;
+  VectorXd weights;
+  VectorXd c;
+  double scale = 0.0;
+  int iterations = 0;
+  bool converged = false;
+  std::optional<TriangularFactor> factor;
+  Reduction data;
+};
+
+Iterated iterate(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Method method,
+                 const FitOptions& inner, bool intercept, RobustLoss loss, double k, MatrixXd X, VectorXd c,
+                 double scale, const VectorXd& counts, int max_iterations) {
+  Iterated out;
+  const Index m = A.rows(), d = B.cols();
+  const double median_chi = chi_median(d);
+  for (int it = 1; it <= max_iterations; ++it) {
+    const VectorXd u = whitened_residuals(A, B, X, c, residual_covariance(X, method, inner));
+    if (loss == RobustLoss::Huber) {
+      std::vector<double> values;
+      values.reserve(static_cast<std::size_t>(m));
+      for (Index i = 0; i < m; ++i) {
+        if (counts.size() == 0 || counts(i) > 0) values.push_back(u(i));
+      }
+      if (!values.empty()) scale = median(values) / median_chi;
+    }
+    VectorXd w(m);
+    for (Index i = 0; i < m; ++i) {
+      w(i) = robust_weight(loss, scale > 0.0 ? u(i) / scale : 0.0, k);
+      if (counts.size()) w(i) *= counts(i);
+    }
+    // The weighted fit: from the Gram matrix while the weights settle, by the QR for the last.
+    const auto weighted_fit = [&](bool by_gram, std::optional<TriangularFactor>& factor, Reduction& data) {
+      factor.reset();
+      if (by_gram) factor = gram_factor(A, B, w, intercept);
+      if (!factor) {
+        factor.emplace(A.cols(), B.cols(), intercept);
+        factor->append(A, B, w);
+      }
+      FitOptions step = inner;
+      if (by_gram) step.diagnostics = false;
+      data = reduce_for(*factor, step, method);
+      FitResult fitted = fit(data, method);
+      // auto chooses among the methods that weigh rows: never spde, whose criterion has no rows.
+      if (method == Method::Auto && fitted.diagnostics.chosen_method == Method::Spde) {
+        fitted = fit(data, Method::SpdTotalLeastSquares);
+      }
+      return fitted;
+    };
+    std::optional<TriangularFactor> factor;
+    Reduction data;
+    FitResult fitted = weighted_fit(true, factor, data);
+    const double step_change = fitted.ok() ? (fitted.X - X).norm() : 0.0;
+    const double step_size = fitted.ok() ? std::max(fitted.X.norm(), std::numeric_limits<double>::min()) : 1.0;
+    // The weights have settled (X moves by less than 1e-8 of itself, far below its standard errors,
+    // or the iterations are spent): the last fit by the QR, with every diagnostic.
+    constexpr double kSettledGram = 1e-8;
+    const bool last = !fitted.ok() || step_change <= kSettledGram * step_size || scale == 0.0 || it == max_iterations;
+    if (last) fitted = weighted_fit(false, factor, data);
+    out.iterations = it;
+    out.weights = std::move(w);
+    out.scale = scale;
+    if (!fitted.ok() || !fitted.X.allFinite()) {
+      out.result = std::move(fitted);
+      out.factor = std::move(factor);
+      out.data = data;
+      return out;
+    }
+    X = fitted.X;
+    c = fitted_offsets(*factor, X);
+    out.result = std::move(fitted);
+    out.factor = std::move(factor);
+    out.data = data;
+    out.c = c;
+    if (last) {
+      out.converged = it < max_iterations || step_change <= kSettledGram * step_size || scale == 0.0;
+      break;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Method method,
+                     const FitOptions& options) {
+  if (!robust_applies(method)) {
+    throw OptionError("`robust` weighs the rows, and spde's area criterion is not a sum over rows: use auto, spd-tls or "
+                      "another method with `robust`",
+                      Code::OptionConflict, "robust");
+  }
+  const Index m = A.rows(), d = B.cols();
+  const RobustLoss loss = options.robust;
+  const double k = options.robust_tuning ? *options.robust_tuning : robust_tuning(loss, d);
+  const bool intercept = options.offsets == Offsets::Estimate;
+  FitOptions inner = options;
+  inner.bootstrap = 0;
+  inner.robust = RobustLoss::None;
+  inner.robust_tuning.reset();
+  // The plain fit: Huber's start, and auto's choice.
+  const TriangularFactor plain_factor = TriangularFactor::from_data(A, B, intercept);
+  FitOptions quiet = inner;
+  quiet.diagnostics = false;
+  FitResult plain = fit(reduce_for(plain_factor, quiet, method), method);
+  if (method == Method::Auto && plain.diagnostics.chosen_method == Method::Spde) {
+    plain = fit(reduce_for(plain_factor, quiet, Method::SpdTotalLeastSquares), Method::SpdTotalLeastSquares);
+  }
+  MatrixXd X;
+  VectorXd c;
+  double scale = 0.0;
+  if (loss == RobustLoss::Tukey) {
+    const TrimmedStart start = least_trimmed_squares(A, B, intercept, method, inner);
+    X = start.X;
+    c = start.c;
+    scale = start.scale;
+  } else {
+    if (!plain.ok()) {
+      RobustFit failed{fit(reduce_for(plain_factor, inner, method), method), plain_factor};
+      return failed;
+    }
+    X = plain.X;
+    c = fitted_offsets(plain_factor, X);
+  }
+  const int max_iterations = std::max(options.max_iterations, 1);
+  Iterated fitted = iterate(A, B, method, inner, intercept, loss, k, X, c, scale, VectorXd(), max_iterations);
+  FitResult result = std::move(fitted.result);
+  if (method == Method::Auto && result.diagnostics.chosen_method == Method::Spde) {
+    result.diagnostics.chosen_method = Method::SpdTotalLeastSquares;
+  }
+  RobustReport report;
+  report.method = loss;
+  report.tuning = k;
+  report.iterations = fitted.iterations;
+  report.converged = fitted.converged;
+  report.scale = fitted.scale;
+  report.weights_min = fitted.weights.size() ? fitted.weights.minCoeff() : 1.0;
+  constexpr double kDownweighted = 0.5;
+  constexpr std::size_t kListedRows = 1000;
+  for (Index i = 0; i < fitted.weights.size(); ++i) {
+    if (fitted.weights(i) < kDownweighted) {
+      ++report.rows_downweighted_count;
+      if (report.rows_downweighted.size() < kListedRows) {
+        report.rows_downweighted.push_back(static_cast<std::uint64_t>(i) + 1);
+      }
+    }
+  }
+  if (!fitted.converged && result.ok()) {
+    result.warnings.emplace_back(Code::NotConverged,
+                                 "the robust fit's weights had not settled after " +
+                                     std::to_string(fitted.iterations) +
+                                     " iterations (`max_iterations`): the last iterate is returned",
+                                 "robust");
+  }
+  if (result.ok() && options.bootstrap > 0) {
+    // Each replicate: the rows resampled (their counts multiply the weights), refitted robustly from
+    // this estimate with its scale.
+    FitOptions boot = inner;
+    boot.bootstrap = options.bootstrap;
+    const MatrixXd X_full = result.X;
+    const VectorXd c_full = fitted.c;
+    const double scale_full = fitted.scale;
+    const auto replicates = run_replicates(
+        static_cast<std::size_t>(options.bootstrap), options, [&](std::size_t r) -> Replicate {
+          VectorXd counts = VectorXd::Zero(m);
+          Random random(trial_seed(options.seed, r));
+          for (Index draw = 0; draw < m; ++draw) {
+            counts(std::min(static_cast<Index>(random.uniform() * static_cast<double>(m)), m - 1)) += 1.0;
+          }
+          FitOptions rep = replicate_options(inner);
+          try {
+            Iterated again =
+                iterate(A, B, method, rep, intercept, loss, k, X_full, c_full, scale_full, counts, max_iterations);
+            return replicate_of(std::move(again.result));
+          } catch (const std::invalid_argument& e) {
+            return Replicate{{}, e.what()};
+          }
+        });
+    attach_bootstrap(result, replicates, boot, fitted.data);
+  }
+  result.robust = std::move(report);
+  return RobustFit{std::move(result), std::move(fitted.factor)};
+}
+
+}  // namespace spdfit::detail

@@ -1,0 +1,78 @@
+// The robust fit's constants and weights (robust/m_estimator.hpp) against their published values,
+// and the row scores (pipeline/row_scores.hpp) against a direct computation.
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+
+#include <cmath>
+
+#include "pipeline/row_scores.hpp"
+#include "robust/m_estimator.hpp"
+#include "spdfit/fit.hpp"
+#include "test_support.hpp"
+
+namespace spdfit {
+namespace {
+
+using test::Generator;
+
+TEST(Robust, TuningConstantsAreTheTextbooksForOneColumn) {
+  // 95% efficiency at the normal distribution: Huber's k = 1.345, Tukey's c = 4.685 (Holland and
+  // Welsch 1977; Beaton and Tukey 1974), to the 3-4 digits they are quoted with.
+  EXPECT_NEAR(detail::robust_tuning(RobustLoss::Huber, 1), 1.345, 1e-3);
+  EXPECT_NEAR(detail::robust_tuning(RobustLoss::Tukey, 1), 4.685, 1e-3);
+  // The chi median with 1 degree of freedom is the normal's 0.6745 (the MAD's constant).
+  EXPECT_NEAR(detail::chi_median(1), 0.6744897501960817, 1e-8);
+  // More columns: larger constants (a row's norm grows like sqrt(d)).
+  EXPECT_GT(detail::robust_tuning(RobustLoss::Huber, 6), detail::robust_tuning(RobustLoss::Huber, 3));
+  EXPECT_GT(detail::robust_tuning(RobustLoss::Tukey, 6), detail::robust_tuning(RobustLoss::Tukey, 3));
+}
+
+TEST(Robust, WeightsFollowTheirLosses) {
+  EXPECT_EQ(detail::robust_weight(RobustLoss::Huber, 1.0, 1.345), 1.0);
+  EXPECT_DOUBLE_EQ(detail::robust_weight(RobustLoss::Huber, 2.69, 1.345), 0.5);
+  EXPECT_DOUBLE_EQ(detail::robust_weight(RobustLoss::Tukey, 0.0, 4.685), 1.0);
+  EXPECT_EQ(detail::robust_weight(RobustLoss::Tukey, 4.685, 4.685), 0.0);
+  const double u = 2.0, k = 4.0;
+  EXPECT_DOUBLE_EQ(detail::robust_weight(RobustLoss::Tukey, u, k), std::pow(1.0 - 0.25, 2));
+}
+
+TEST(Robust, OnCleanDataTheRobustFitIsNearThePlainOne) {
+  Generator g(21);
+  // Equal noise in A and B: the model spd-tls whitens the residuals with.
+  const MatrixXd A0 = g.gaussian(300, 3), X = g.spd(3, 5.0);
+  const MatrixXd A = A0 + 0.01 * g.gaussian(300, 3), B = A0 * X + 0.01 * g.gaussian(300, 3);
+  FitOptions options;
+  const FitResult plain = fit(A, B, Method::SpdTotalLeastSquares, options);
+  for (RobustLoss loss : {RobustLoss::Huber, RobustLoss::Tukey}) {
+    options.robust = loss;
+    const FitResult robust = fit(A, B, Method::SpdTotalLeastSquares, options);
+    ASSERT_TRUE(robust.ok() && robust.robust) << robust.message;
+    EXPECT_TRUE(robust.robust->converged);
+    EXPECT_LT((robust.X - plain.X).norm(), 0.01 * plain.X.norm());
+    // Gaussian rows weighed below 0.5 (Huber: u > 2 k; Tukey: u > 0.54 k): a few percent of them.
+    EXPECT_LE(robust.robust->rows_downweighted_count, 30u);
+  }
+  options.robust = RobustLoss::Huber;
+  EXPECT_THROW(fit(A, B, Method::Spde, options), OptionError);
+  EXPECT_THROW(reduce(TriangularFactor::from_data(A, B), options), std::invalid_argument);
+}
+
+TEST(Robust, RowScoresAreStudentizedResidualsForLeastSquares) {
+  Generator g(22);
+  const MatrixXd A = g.gaussian(40, 2), B = A * g.spd(2, 3.0) + 0.1 * g.gaussian(40, 2);
+  const FitResult r = fit(A, B, Method::LeastSquares);
+  const TriangularFactor factor = TriangularFactor::from_data(A, B);
+  const VectorXd score = detail::row_scores(A, B, r, factor, FitOptions{});
+  ASSERT_EQ(score.size(), 40);
+  // h = diag(A (A^T A)^-1 A^T), ls whitens by I.
+  const MatrixXd G = A.transpose() * A;
+  const MatrixXd H = A * G.inverse() * A.transpose();
+  for (Index i = 0; i < 40; ++i) {
+    const double expected = (A.row(i) * r.X - B.row(i)).norm() / std::sqrt(1.0 - H(i, i));
+    EXPECT_NEAR(score(i), expected, 1e-10 * expected);
+  }
+}
+
+}  // namespace
+}  // namespace spdfit
