@@ -6,6 +6,7 @@
 #include <optional>
 #include <vector>
 #include <string>
+#include <string_view>
 
 #include "spdfit/noise_model.hpp"
 #include "spdfit/progress.hpp"
@@ -26,6 +27,14 @@ inline const char* to_string(Offsets offsets) {
   return offsets == Offsets::Estimate ? "estimate" : offsets == Offsets::Rest ? "rest" : "none";
 }
 
+/// The mode to_string spells `name`, or nothing.
+inline std::optional<Offsets> offsets_named(std::string_view name) {
+  for (Offsets o : {Offsets::None, Offsets::Estimate, Offsets::Rest}) {
+    if (name == to_string(o)) return o;
+  }
+  return std::nullopt;
+}
+
 /// A robust fit's loss (FitOptions::robust): how a row's weight falls with its whitened residual.
 enum class RobustLoss {
   None,   ///< every row weighs 1 (least squares and the methods as they are)
@@ -36,6 +45,14 @@ enum class RobustLoss {
 /// "none", "huber" or "tukey".
 inline const char* to_string(RobustLoss loss) {
   return loss == RobustLoss::Huber ? "huber" : loss == RobustLoss::Tukey ? "tukey" : "none";
+}
+
+/// The loss to_string spells `name`, or nothing.
+inline std::optional<RobustLoss> robust_loss_named(std::string_view name) {
+  for (RobustLoss loss : {RobustLoss::None, RobustLoss::Huber, RobustLoss::Tukey}) {
+    if (name == to_string(loss)) return loss;
+  }
+  return std::nullopt;
 }
 
 /// Options for the estimators. The defaults follow the source documents.

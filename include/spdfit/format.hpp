@@ -32,6 +32,10 @@ std::string format_fixed(double value, int decimals = 4);
 /// standard error is missing, zero or not finite; in [0, 12].
 int interval_decimals(double standard_error);
 
+/// The values in `precision` significant digits, separated by ", ": "1.5, -2, 0.25" (empty for
+/// none). Messages and reports put lists of numbers this way.
+std::string format_numbers(const Eigen::VectorXd& values, Precision precision = Precision::Brief);
+
 /// A fraction as a percentage in `precision` significant digits: "95%" for 0.95, "2.5%" for 0.025.
 std::string format_percent(double fraction, Precision precision = Precision::Brief);
 

@@ -85,6 +85,10 @@ constexpr bool uses_noise_ratio(Method method) {
          method == Method::Auto;
 }
 
+/// Whether the method models noise in A (the total least-squares methods, spde, auto), unlike ls,
+/// procrustes and psd-ls, which model noise in B only.
+constexpr bool models_noise_in_a(Method method) { return uses_noise_ratio(method) || method == Method::Spde; }
+
 /// Whether the method iterates, and so takes FitOptions::max_iterations: spd-tls, psd-ls, auto.
 constexpr bool uses_max_iterations(Method method) {
   return method == Method::SpdTotalLeastSquares || method == Method::PsdLeastSquares || method == Method::Auto;

@@ -85,22 +85,17 @@ std::vector<MethodIdentification> identify(const Eigen::MatrixXd& A, const Eigen
   std::vector<MethodIdentification> out;
   // Offsets (FitOptions::offsets): rest, the rest rows' means subtracted first; estimate, the
   // factor of [1 A B] (the data centred), c reported per estimator.
-  std::optional<detail::Tare> tare;
-  Eigen::MatrixXd At, Bt;
-  if (options.fit.offsets == Offsets::Rest) {
-    tare = detail::rest_tare(options.fit, n, B.cols());
-    At = A.rowwise() - tare->a.transpose();
-    Bt = B.rowwise() - tare->b.transpose();
-  }
-  const Eigen::MatrixXd& Ad = tare ? At : A;
-  const Eigen::MatrixXd& Bd = tare ? Bt : B;
+  std::optional<detail::TaredData> tared;
+  if (options.fit.offsets == Offsets::Rest) tared = detail::tared_data(A, B, options.fit);
+  const Eigen::MatrixXd& Ad = tared ? tared->A : A;
+  const Eigen::MatrixXd& Bd = tared ? tared->B : B;
   const TriangularFactor factor = TriangularFactor::from_data(Ad, Bd, options.fit.offsets == Offsets::Estimate);
   const Reduction data = reduce(factor, detail::options_after_tare(options.fit));
   for (FitResult& result : fit_all(data)) {
     MethodIdentification m;
     m.result = std::move(result);
     FitResult& r = m.result;
-    r.offsets = detail::offsets_of(r, factor, options.fit, tare ? &*tare : nullptr);
+    r.offsets = detail::offsets_of(r, factor, options.fit, tared ? &tared->tare : nullptr);
     if (r.ok()) {
       if (options.truth) m.error_vs_truth = error_vs_truth(r, *options.truth);
       if (r.diagnostics.symmetric) {

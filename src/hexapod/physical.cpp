@@ -127,11 +127,7 @@ bool valid_covariance(const Eigen::MatrixXd& S, const char* name, bool& definite
   return true;
 }
 
-std::string list_text(const Eigen::VectorXd& v) {
-  std::string out;
-  for (Eigen::Index i = 0; i < v.size(); ++i) out += (i ? ", " : "") + spdfit::detail::format_number(v(i));
-  return out;
-}
+std::string list_text(const Eigen::VectorXd& v) { return format_numbers(v); }
 
 }  // namespace
 

@@ -113,30 +113,26 @@ FitResult fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Matrix
     return fit(A_units, B_units, method, detail::options_in_units(options, *units));
   }
   if (options.offsets == Offsets::Rest) {  // tared: the rest rows' means subtracted, then as given
-    const detail::Tare tare = detail::rest_tare(options, A.cols(), B.cols());
-    const MatrixXd At = A.rowwise() - tare.a.transpose(), Bt = B.rowwise() - tare.b.transpose();
-    FitResult result = fit(At, Bt, method, detail::options_after_tare(options));
-    result.offsets = FitOffsets{Offsets::Rest, {}, tare.a, tare.b};
+    const detail::TaredData tared = detail::tared_data(A, B, options);
+    FitResult result = fit(tared.A, tared.B, method, detail::options_after_tare(options));
+    result.offsets = tared.tare.offsets();
     return result;
   }
+  FitResult result;
   if (options.robust != RobustLoss::None) {  // rows reweighted: the M-estimator's own iterations
     detail::RobustFit robust = detail::robust_fit(A, B, method, options);
-    FitResult result = std::move(robust.result);
+    result = std::move(robust.result);
     if (robust.factor) result.offsets = detail::offsets_of(result, *robust.factor, options, nullptr);
-    if (std::optional<Warning> w = detail::sentinel_warning(A, B)) {
-      result.warnings.insert(result.warnings.begin(), std::move(*w));
-      if (!result.ok()) result.message += detail::sentinel_failure_note();
+  } else {
+    const TriangularFactor factor = TriangularFactor::from_data(A, B, options.offsets == Offsets::Estimate);
+    const Reduction data = detail::reduce_for(factor, options, method);
+    result = fit(data, method);
+    if (options.bootstrap > 0 && result.ok()) detail::bootstrap_in_memory(result, A, B, data);
+    result.offsets = detail::offsets_of(result, factor, options, nullptr);
+    for (Warning& w : detail::offset_warnings(A, B, &factor, options)) result.warnings.push_back(std::move(w));
+    if (std::optional<Warning> w = detail::dominant_rows_warning(A, B, result, factor, options)) {
+      result.warnings.push_back(std::move(*w));
     }
-    return result;
-  }
-  const TriangularFactor factor = TriangularFactor::from_data(A, B, options.offsets == Offsets::Estimate);
-  const Reduction data = detail::reduce_for(factor, options, method);
-  FitResult result = fit(data, method);
-  if (options.bootstrap > 0 && result.ok()) detail::bootstrap_in_memory(result, A, B, data);
-  result.offsets = detail::offsets_of(result, factor, options, nullptr);
-  for (Warning& w : detail::offset_warnings(A, B, &factor, options)) result.warnings.push_back(std::move(w));
-  if (std::optional<Warning> w = detail::dominant_rows_warning(A, B, result, factor, options)) {
-    result.warnings.push_back(std::move(*w));
   }
   if (std::optional<Warning> w = detail::sentinel_warning(A, B)) {
     result.warnings.insert(result.warnings.begin(), std::move(*w));
@@ -204,10 +200,9 @@ std::vector<FitResult> fit_all(const Eigen::Ref<const MatrixXd>& A, const Eigen:
     return fit_all(A_units, B_units, detail::options_in_units(options, *units));
   }
   if (options.offsets == Offsets::Rest) {
-    const detail::Tare tare = detail::rest_tare(options, A.cols(), B.cols());
-    const MatrixXd At = A.rowwise() - tare.a.transpose(), Bt = B.rowwise() - tare.b.transpose();
-    std::vector<FitResult> results = fit_all(At, Bt, detail::options_after_tare(options));
-    for (FitResult& r : results) r.offsets = FitOffsets{Offsets::Rest, {}, tare.a, tare.b};
+    const detail::TaredData tared = detail::tared_data(A, B, options);
+    std::vector<FitResult> results = fit_all(tared.A, tared.B, detail::options_after_tare(options));
+    for (FitResult& r : results) r.offsets = tared.tare.offsets();
     return results;
   }
   const TriangularFactor factor = TriangularFactor::from_data(A, B, options.offsets == Offsets::Estimate);

@@ -258,8 +258,7 @@ std::vector<Spec> make_table() {
                  "takes the data as given";
   offsets.default_text = "none";
   offsets.set = [](FitRequest& r, const OptionValue& v) {
-    const std::string& mode = std::get<std::string>(v);
-    r.options.offsets = mode == "estimate" ? Offsets::Estimate : mode == "rest" ? Offsets::Rest : Offsets::None;
+    r.options.offsets = offsets_named(std::get<std::string>(v)).value_or(Offsets::None);  // a choice: named
   };
   offsets.get = [](const FitRequest& r) -> std::optional<OptionValue> {
     return std::string(to_string(r.options.offsets));
@@ -282,8 +281,7 @@ std::vector<Spec> make_table() {
   robust.applies_to = "every method but spde";
   robust.excludes = {"stream"};
   robust.set = [](FitRequest& r, const OptionValue& v) {
-    const std::string& loss = std::get<std::string>(v);
-    r.options.robust = loss == "huber" ? RobustLoss::Huber : loss == "tukey" ? RobustLoss::Tukey : RobustLoss::None;
+    r.options.robust = robust_loss_named(std::get<std::string>(v)).value_or(RobustLoss::None);  // a choice: named
   };
   robust.get = [](const FitRequest& r) -> std::optional<OptionValue> { return std::string(to_string(r.options.robust)); };
   robust.nullable = false;

@@ -20,13 +20,6 @@ using Eigen::VectorXd;
 
 namespace {
 
-// "[1.5, -2, 0.25]": a short vector as messages show it.
-std::string listed(const VectorXd& v) {
-  std::string out = "[";
-  for (Index i = 0; i < v.size(); ++i) out += (i ? ", " : "") + format_number(v(i));
-  return out + "]";
-}
-
 // R's columns rescaled from a factor's exponents to (ea, eb): powers of two, exact.
 MatrixXd in_exponents(const TriangularFactor& f, int ea, int eb) {
   MatrixXd R = f.R();
@@ -37,9 +30,10 @@ MatrixXd in_exponents(const TriangularFactor& f, int ea, int eb) {
   return R;
 }
 
-// The factor of the centred data in the plain factor's scaled units: by a downdate of its Gram
-// matrix, R^T R - m mu mu^T, where that loses at most half the digits (offsets up to about 1e4
-// times the columns' spread), else straight from the rows, centred in two passes.
+// The factor of the centred data in the plain factor's scaled units, for a fit that has only the
+// plain factor: by a downdate of its Gram matrix, R^T R - m mu mu^T, where that loses at most half
+// the digits (offsets up to about 1e4 times the columns' spread; O((n + d)^3), no pass over the
+// rows), else straight from the rows, centred in two passes.
 MatrixXd centred_factor(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
                         const TriangularFactor& plain, const VectorXd& mean_scaled) {
   const double m = static_cast<double>(plain.rows());
@@ -55,8 +49,9 @@ MatrixXd centred_factor(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<co
   return in_exponents(direct, plain.exponent_a(), plain.exponent_b());
 }
 
+// `centred`: the factor of [1 A B] when the caller has it (then no downdate), else null.
 std::optional<Warning> intercept_warning(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
-                                         const TriangularFactor& plain) {
+                                         const TriangularFactor& plain, const TriangularFactor* centred) {
   const Index n = plain.n(), d = plain.d(), m = plain.rows();
   const double dof = static_cast<double>(m - 1 - n);
   if (dof < 1.0 || A.rows() != m) return std::nullopt;
@@ -67,7 +62,7 @@ std::optional<Warning> intercept_warning(const Eigen::Ref<const MatrixXd>& A, co
   VectorXd mean_scaled = mean;
   mean_scaled.head(n) = times_power_of_two(mean.head(n), -ea);
   mean_scaled.tail(d) = times_power_of_two(mean.tail(d), -eb);
-  const MatrixXd Rc = centred_factor(A, B, plain, mean_scaled);
+  const MatrixXd Rc = centred ? in_exponents(*centred, ea, eb) : centred_factor(A, B, plain, mean_scaled);
   const MatrixXd Rc11 = Rc.topLeftCorner(n, n), R11 = plain.R11();
   const VectorXd diag = Rc11.diagonal().cwiseAbs(), plain_diag = R11.diagonal().cwiseAbs();
   const double tiny = 1e-12 * std::max(diag.maxCoeff(), std::numeric_limits<double>::min());
@@ -107,7 +102,7 @@ std::optional<Warning> intercept_warning(const Eigen::Ref<const MatrixXd>& A, co
   };
   return Warning(Code::Bias,
                  "the data have constant offsets that a fit without them takes for signal: least squares with an "
-                 "intercept (B ~= A X + 1 c^T) gives c = " + listed(c_units) + ", " + count(z_c) +
+                 "intercept (B ~= A X + 1 c^T) gives c = [" + format_numbers(c_units) + "], " + count(z_c) +
                      " standard errors from 0, and moves X by up to " + count(z_x) +
                      " of its standard errors: `offsets` estimate fits them with X (or `offsets` rest subtracts "
                      "the means of rows recorded at rest)",
@@ -130,6 +125,21 @@ Tare rest_tare(const FitOptions& options, Index n, Index d) {
                       Code::OptionConflict, "offsets");
   }
   return Tare{noise.rest_mean_a(), noise.rest_mean_b()};
+}
+
+TaredData tared_data(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
+                     const FitOptions& options) {
+  Tare tare = rest_tare(options, A.cols(), B.cols());
+  MatrixXd At = A.rowwise() - tare.a.transpose(), Bt = B.rowwise() - tare.b.transpose();
+  return TaredData{std::move(tare), std::move(At), std::move(Bt)};
+}
+
+VectorXd intercept_offsets(const TriangularFactor& factor, const MatrixXd& X) {
+  if (!factor.intercept() || factor.means().size() != factor.n() + factor.d() || X.rows() != factor.n() ||
+      X.cols() != factor.d()) {
+    return VectorXd();
+  }
+  return factor.means().tail(factor.d()) - X.transpose() * factor.means().head(factor.n());
 }
 
 TriangularFactor tared_factor(const TriangularFactor& centred, const Tare& tare) {
@@ -156,19 +166,11 @@ FitOptions options_after_tare(const FitOptions& options) {
 
 std::optional<FitOffsets> offsets_of(const FitResult& result, const TriangularFactor& factor, const FitOptions& options,
                                      const Tare* tare) {
-  FitOffsets out;
-  out.mode = options.offsets;
-  if (options.offsets == Offsets::Rest && tare) {
-    out.a = tare->a;
-    out.b = tare->b;
-    return out;
-  }
-  if (options.offsets != Offsets::Estimate || !factor.intercept() || !result.ok() ||
-      factor.means().size() != factor.n() + factor.d() || result.X.rows() != factor.n()) {
-    return std::nullopt;
-  }
-  out.c = factor.means().tail(factor.d()) - result.X.transpose() * factor.means().head(factor.n());
-  return out;
+  if (options.offsets == Offsets::Rest && tare) return tare->offsets();
+  if (options.offsets != Offsets::Estimate || !result.ok()) return std::nullopt;
+  VectorXd c = intercept_offsets(factor, result.X);
+  if (c.size() == 0) return std::nullopt;
+  return FitOffsets{Offsets::Estimate, std::move(c), {}, {}};
 }
 
 std::string untared_columns(const Eigen::Ref<const MatrixXd>& B, const VectorXd& rest_mean, const VectorXd& rest_variance,
@@ -210,10 +212,16 @@ std::vector<Warning> offset_warnings(const Eigen::Ref<const MatrixXd>& A, const 
     }
   }
   if (A.rows() <= A.cols() + 1) return out;
-  const TriangularFactor own = plain && !plain->intercept() ? TriangularFactor(1) : TriangularFactor::from_data(A, B);
-  if (std::optional<Warning> w = intercept_warning(A, B, plain && !plain->intercept() ? *plain : own)) {
-    out.push_back(std::move(*w));
+  std::optional<Warning> w;
+  if (plain) {
+    w = intercept_warning(A, B, *plain, nullptr);
+  } else {
+    // No factor at hand: one pass for the factor of [1 A B], and the plain one from it (no tare).
+    const TriangularFactor centred = TriangularFactor::from_data(A, B, true);
+    const Tare none{VectorXd::Zero(A.cols()), VectorXd::Zero(B.cols())};
+    w = intercept_warning(A, B, tared_factor(centred, none), &centred);
   }
+  if (w) out.push_back(std::move(*w));
   return out;
 }
 

@@ -21,8 +21,22 @@ namespace spdfit::detail {
 /// `offsets`) when the options have no noise model from rest rows.
 struct Tare {
   Eigen::VectorXd a, b;
+  /// FitResult::offsets of a fit of the tared data.
+  FitOffsets offsets() const { return FitOffsets{Offsets::Rest, {}, a, b}; }
 };
 Tare rest_tare(const FitOptions& options, Eigen::Index n, Eigen::Index d);
+
+/// The data with rest_tare subtracted from every row (for a fit in memory with Offsets::Rest).
+struct TaredData {
+  Tare tare;
+  Eigen::MatrixXd A, B;
+};
+TaredData tared_data(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
+                     const FitOptions& options);
+
+/// The offsets c = mu_B - X^T mu_A of the intercept factor's means (d numbers); empty when the
+/// factor has no intercept (or no rows) or X is not n x d.
+Eigen::VectorXd intercept_offsets(const TriangularFactor& factor, const Eigen::MatrixXd& X);
 
 /// The factor of [A B] with the tare subtracted from every row, from the factor of [1 A B] of the
 /// rows as read (`centred`: intercept() true): the QR of [R_c; sqrt(m) (mu - tare)^T], R_c the
@@ -38,13 +52,15 @@ FitOptions options_after_tare(const FitOptions& options);
 std::optional<FitOffsets> offsets_of(const FitResult& result, const TriangularFactor& factor, const FitOptions& options,
                                      const Tare* tare);
 
-/// The warnings for a fit without offsets (Offsets::None) of A and B (in the units fitted, factored
-/// as `plain` when the caller has the factor of [A B]; null: factored here): the intercept of least squares with one (B ~= A X + 1 c^T) more than
-/// kOffsetStandardErrors standard errors from 0 and changing X by more than kOffsetShift of X's
-/// standard errors (naming `offsets` estimate); and, with a noise model from rest rows, B's rest
+/// The warnings for a fit without offsets (Offsets::None) of A and B (in the units fitted): the
+/// intercept of least squares with one (B ~= A X + 1 c^T) more than kOffsetStandardErrors
+/// standard errors from 0 and changing X by more than kOffsetShift of X's standard errors (naming
+/// `offsets` estimate); and, with a noise model from rest rows, B's rest
 /// means far from 0 while the data's means are the same (untared forces, naming `offsets` rest;
 /// then nothing else). Without `say_untared` untared data get no warning here (a caller whose own
-/// fit says it: the hexapod's physical fit).
+/// fit says it: the hexapod's physical fit). `plain`: the factor of [A B] when the caller has it
+/// (the centred one is then a downdate of it); null: the factor of [1 A B] is made here, one pass
+/// over the rows, and the plain one from it.
 std::vector<Warning> offset_warnings(const Eigen::Ref<const Eigen::MatrixXd>& A,
                                      const Eigen::Ref<const Eigen::MatrixXd>& B, const TriangularFactor* plain,
                                      const FitOptions& options, bool say_untared = true);

@@ -50,7 +50,7 @@ MatrixXd residual_covariance(const MatrixXd& X, Method method, const FitOptions&
     const NoiseModel model = options.noise->resolved(n, d);
     return X.transpose() * model.cov_a() * X + model.cov_b();
   }
-  if (uses_noise_ratio(method) || method == Method::Spde) {
+  if (models_noise_in_a(method)) {
     MatrixXd S = X.transpose() * X;
     S.diagonal().array() += options.noise_ratio * options.noise_ratio;
     return S;

@@ -165,15 +165,11 @@ std::string report(const FitResult& result, const ReportHints& hints) {
         << (r->iterations == 1 ? " iteration" : " iterations") << (r->converged ? "" : " (not settled)") << "\n";
   }
   if (const auto& o = result.offsets) {
-    const auto listed = [](const Eigen::VectorXd& v) {
-      std::string text;
-      for (Eigen::Index i = 0; i < v.size(); ++i) text += (i ? ", " : "") + format_number(v(i), Precision::Full);
-      return "[" + text + "]";
-    };
     if (o->mode == Offsets::Estimate) {
-      out << "offsets: estimated with X (A X + 1 c^T ~= B), c = " << listed(o->c) << "\n";
+      out << "offsets: estimated with X (A X + 1 c^T ~= B), c = [" << format_numbers(o->c, Precision::Full) << "]\n";
     } else if (o->mode == Offsets::Rest) {
-      out << "offsets: the rest rows' means subtracted, A " << listed(o->a) << ", B " << listed(o->b) << "\n";
+      out << "offsets: the rest rows' means subtracted, A [" << format_numbers(o->a, Precision::Full) << "], B ["
+          << format_numbers(o->b, Precision::Full) << "]\n";
     }
   }
   return out.str();

@@ -296,7 +296,9 @@ FitResult fit_result_from(const Json& object, const std::string& type) {
   if (const Json* o = optional_field(object, "offsets")) {
     FitOffsets offsets;
     const std::string mode = value_from<std::string>(*o, "mode", type + " offsets");
-    offsets.mode = mode == "estimate" ? Offsets::Estimate : mode == "rest" ? Offsets::Rest : Offsets::None;
+    const std::optional<Offsets> named = offsets_named(mode);
+    if (!named) throw std::invalid_argument(type + ": 'offsets' has an unknown mode '" + mode + "'");
+    offsets.mode = *named;
     if (optional_field(*o, "c")) offsets.c = vector_from(field(*o, "c", type), type + " offsets 'c'");
     if (optional_field(*o, "a")) offsets.a = vector_from(field(*o, "a", type), type + " offsets 'a'");
     if (optional_field(*o, "b")) offsets.b = vector_from(field(*o, "b", type), type + " offsets 'b'");
@@ -306,7 +308,9 @@ FitResult fit_result_from(const Json& object, const std::string& type) {
     RobustReport report;
     const std::string what = type + " robust";
     const std::string loss = value_from<std::string>(*o, "method", what);
-    report.method = loss == "huber" ? RobustLoss::Huber : loss == "tukey" ? RobustLoss::Tukey : RobustLoss::None;
+    const std::optional<RobustLoss> named = robust_loss_named(loss);
+    if (!named) throw std::invalid_argument(what + ": unknown method '" + loss + "'");
+    report.method = *named;
     report.tuning = number_from(field(*o, "tuning", what), what + " 'tuning'");
     report.scale = number_from(field(*o, "scale", what), what + " 'scale'");
     report.rows_downweighted = value_from<std::vector<std::uint64_t>>(*o, "rows_downweighted", what);

@@ -36,6 +36,12 @@ int interval_decimals(double standard_error) {
   return std::clamp(2 - static_cast<int>(std::floor(std::log10(standard_error))), 0, 12);
 }
 
+std::string format_numbers(const Eigen::VectorXd& values, Precision precision) {
+  std::string out;
+  for (Eigen::Index i = 0; i < values.size(); ++i) out += (i ? ", " : "") + format_number(values(i), precision);
+  return out;
+}
+
 std::string format_percent(double fraction, Precision precision) {
   return format_number(100.0 * fraction, precision) + "%";
 }

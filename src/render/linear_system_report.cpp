@@ -10,11 +10,7 @@ namespace {
 
 std::string number(double value) { return format_number(value, Precision::Full); }
 
-std::string vector_text(const Eigen::VectorXd& v) {
-  std::string out = "[";
-  for (Eigen::Index i = 0; i < v.size(); ++i) out += (i ? ", " : "") + number(v(i));
-  return out + "]";
-}
+std::string vector_text(const Eigen::VectorXd& v) { return "[" + format_numbers(v, Precision::Full) + "]"; }
 
 }  // namespace
 

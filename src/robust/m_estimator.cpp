@@ -18,6 +18,7 @@
 #include "factor/chunk_appender.hpp"
 #include "factor/reduce.hpp"
 #include "numerics/linalg.hpp"
+#include "pipeline/offsets.hpp"
 #include "pipeline/row_scores.hpp"
 #include "spdfit/fit.hpp"
 #include "spdfit/random.hpp"
@@ -286,14 +287,6 @@ TrimmedStart least_trimmed_squares(const Eigen::Ref<const MatrixXd>& A, const Ei
 
 namespace {
 
-// The offsets c = mu_B - X^T mu_A of an intercept factor (empty without one).
-VectorXd fitted_offsets(const TriangularFactor& factor, const MatrixXd& X) {
-  if (!factor.intercept() || factor.means().size() != factor.n() + factor.d() || X.rows() != factor.n()) {
-    return VectorXd();
-  }
-  return factor.means().tail(factor.d()) - X.transpose() * factor.means().head(factor.n());
-}
-
 // The factor of the rows of [A B] weighted by w (with an intercept, about their weighted means) from
 // the weighted Gram matrix and its Cholesky factor: for the reweighting's inner iterations, which
 // need X only to the accuracy at which the weights settle, at a fraction of a QR's cost (one
@@ -407,7 +400,7 @@ Iterated iterate(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Mat
       return out;
     }
     X = fitted.X;
-    c = fitted_offsets(*factor, X);
+    c = intercept_offsets(*factor, X);
     out.result = std::move(fitted);
     out.factor = std::move(factor);
     out.data = data;
@@ -437,14 +430,6 @@ RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const
   inner.bootstrap = 0;
   inner.robust = RobustLoss::None;
   inner.robust_tuning.reset();
-  // The plain fit: Huber's start, and auto's choice.
-  const TriangularFactor plain_factor = TriangularFactor::from_data(A, B, intercept);
-  FitOptions quiet = inner;
-  quiet.diagnostics = false;
-  FitResult plain = fit(reduce_for(plain_factor, quiet, method), method);
-  if (method == Method::Auto && plain.diagnostics.chosen_method == Method::Spde) {
-    plain = fit(reduce_for(plain_factor, quiet, Method::SpdTotalLeastSquares), Method::SpdTotalLeastSquares);
-  }
   MatrixXd X;
   VectorXd c;
   double scale = 0.0;
@@ -454,19 +439,21 @@ RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const
     c = start.c;
     scale = start.scale;
   } else {
-    if (!plain.ok()) {
-      RobustFit failed{fit(reduce_for(plain_factor, inner, method), method), plain_factor};
-      return failed;
+    // Huber starts from the plain fit (auto's choice; spd-tls where that is spde, which has no rows).
+    const TriangularFactor plain_factor = TriangularFactor::from_data(A, B, intercept);
+    FitOptions quiet = inner;
+    quiet.diagnostics = false;
+    FitResult plain = fit(reduce_for(plain_factor, quiet, method), method);
+    if (method == Method::Auto && plain.diagnostics.chosen_method == Method::Spde) {
+      plain = fit(reduce_for(plain_factor, quiet, Method::SpdTotalLeastSquares), Method::SpdTotalLeastSquares);
     }
+    if (!plain.ok()) return RobustFit{fit(reduce_for(plain_factor, inner, method), method), plain_factor};
     X = plain.X;
-    c = fitted_offsets(plain_factor, X);
+    c = intercept_offsets(plain_factor, X);
   }
   const int max_iterations = std::max(options.max_iterations, 1);
   Iterated fitted = iterate(A, B, method, inner, intercept, loss, k, X, c, scale, VectorXd(), max_iterations);
   FitResult result = std::move(fitted.result);
-  if (method == Method::Auto && result.diagnostics.chosen_method == Method::Spde) {
-    result.diagnostics.chosen_method = Method::SpdTotalLeastSquares;
-  }
   RobustReport report;
   report.method = loss;
   report.tuning = k;

@@ -186,7 +186,7 @@ namespace {
 // whose notice (ignored_noise_warning) already gives the bias's size and the intervals' risk.
 std::optional<Warning> bias_warning(const FitResult& result, const DynamicReduction& data) {
   const Method m = result.method;
-  const bool b_only = m == Method::LeastSquares || m == Method::SymmetricProcrustes || m == Method::PsdLeastSquares;
+  const bool b_only = !models_noise_in_a(m);
   if ((!b_only && m != Method::Spde) || result.diagnostics.reason) return std::nullopt;
   const std::string consistent = data.square() ? "spd-tls (or auto) is" : "tls (for a non-square X) is";
   const std::string name(to_string(m));
