@@ -17,7 +17,8 @@ The files are committed; this script documents exactly how they were made:
               (mV, noise of std 0.05 mV); readings = loads X with X 3 x 4, which `spdfit fit
               --method ls` or `--method tls` estimates
   logged/     log.csv: one hexapod log with a time column, 300 rows at rest then 700 moving, forces
-              in kN (`spdfit fit --rest-rows 1:300 --scale-b 1000 ...`)
+              in kN, untared, one spike (`spdfit fit --time-col t --rest-rows :0.599 --scale-b 1000
+              --offsets rest ...`)
 """
 import os
 import pathlib
@@ -124,7 +125,8 @@ def logged(rng):
     """A hexapod log as a logger writes it: a time column (s), 300 rows recorded at rest, then 700
     while the payload moves; accelerations in m/s^2 and forces in kN (a load-cell amplifier's
     unit), untared (a static load of about 21 N on every strut, at rest and moving), with
-    per-strut noise: `spdfit fit --rest-rows 1:300 --scale-b 1000 --offsets rest`."""
+    per-strut noise, and one spike (data row 650: 60 N on strut 2, about 120 of its standard
+    deviations): `spdfit fit --time-col t --rest-rows :0.599 --scale-b 1000 --offsets rest`."""
     n, rest, moving = 6, 300, 700
     sd_a = np.array([0.05, 0.05, 0.1, 0.1, 0.2, 0.2])
     sd_b = np.array([0.5, 0.5, 0.3, 0.3, 0.2, 0.2])  # N
@@ -135,10 +137,12 @@ def logged(rng):
     B = A0 @ M_P + rng.standard_normal((moving, n)) * sd_b
     preload = np.array([21.0, 20.0, 22.0, 21.5, 20.5, 21.0])  # N, in every row: the forces untared
     t = 0.002 * np.arange(rest + moving)
-    table = np.column_stack([t, np.vstack([rest_A, A]), (np.vstack([rest_B, B]) + preload) / 1000.0])
+    forces = np.vstack([rest_B, B]) + preload
+    forces[649, 1] += 60.0  # a spike: one reading of strut 2 off by 60 N
+    table = np.column_stack([t, np.vstack([rest_A, A]), forces / 1000.0])
     names = ["t"] + [f"acc{i + 1}" for i in range(n)] + [f"F{i + 1}" for i in range(n)]
     save(HERE / "logged/log.csv", table, "hexapod log: time (s), strut accelerations (m/s^2), base forces (kN, untared); "
-         "rows 1-300 at rest", names)
+         "rows 1-300 at rest (t <= 0.598)", names)
 
 
 if __name__ == "__main__":

@@ -55,6 +55,9 @@ struct FitRequest {
   /// a_cols and b_cols apply to both). Without `rows`, the rows not in `rest_rows` are fitted. In
   /// memory only (not with `stream`). Empty: every row, no rest segment.
   std::string rows, rest_rows;
+  /// The column of the same file (with a_cols and b_cols) holding each row's time: `rows` and
+  /// `rest_rows` are then ranges of its values ("12.5:60", ":0.995"), not row numbers. Empty: none.
+  std::string time_col;
   /// Told the fraction of A's file read while streaming (StreamOptions::progress); the bootstrap's
   /// progress is options.progress.
   ProgressCallback read_progress;

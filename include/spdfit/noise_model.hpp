@@ -83,7 +83,9 @@ class NoiseModel {
   /// from_rest with the rows in files (any format io::RowReader reads), streamed `block_rows`
   /// at a time in O(block_rows (n + d) + n^2 + d^2) memory. Throws io::DataError naming the file
   /// for bad data, too few rows, or row counts that differ; std::invalid_argument when
-  /// block_rows < 1.
+  /// block_rows < 1. With two column selections in read.columns (A's and B's in one log, as
+  /// FitRequest::a_cols and b_cols give them), rest_a_path is read with the first and rest_b_path
+  /// with the second (the same file may be both).
   static NoiseModel from_rest_files(const std::string& rest_a_path, const std::string& rest_b_path,
                                     const io::ReadOptions& read = {}, Eigen::Index block_rows = Eigen::Index{1} << 15);
 

@@ -30,12 +30,12 @@ const std::vector<MatlabFunction>& matlab_functions() {
   // command line's presentation, and the command line's spelling of
   // a setting MATLAB has under its own name (--unconstrained is 'Consistent', false).
   static const std::vector<MatlabFunction> functions = {
-      {"fit", "fit", {"stream", "block_rows", "noise", "a_cols", "b_cols", "rows", "rest_rows"}},
+      {"fit", "fit", {"stream", "block_rows", "noise", "a_cols", "b_cols", "rows", "rest_rows", "time_col"}},
       {"nearest", "nearest", {}},
       {"solve", "solve", {"json", "output"}},
       {"identify",
        "identify",
-       {"noise", "a_cols", "b_cols", "rows", "rest_rows", "json", "output", "unconstrained", "urdf", "precision"}},
+       {"noise", "a_cols", "b_cols", "rows", "rest_rows", "time_col", "json", "output", "unconstrained", "urdf", "precision"}},
       // The signals come as matrices (payload_signals), not as a log's columns; the URDF file is
       // the command line's.
       {"payload.identify",

@@ -44,18 +44,18 @@ std::vector<Keyword> keywords_of(const std::vector<OptionSpec<Request>>& table, 
 const std::vector<Entry>& entries() {
   static const std::vector<Entry> list = {
       // fit's a_cols and b_cols (columns of a DataFrame) are spelled out in Python, not the table's text.
-      // rows and rest_rows are the command line's: arrays and DataFrames are sliced in Python.
-      {"fit", "fit", {}, {"stream", "a_cols", "b_cols", "rows", "rest_rows"}},
-      // fit_files streams: rows and rest_rows choose rows of a fit in memory (slice in Python), and
+      // rows, rest_rows and time_col are the command line's: arrays and DataFrames are sliced in Python.
+      {"fit", "fit", {}, {"stream", "a_cols", "b_cols", "rows", "rest_rows", "time_col"}},
+      // fit_files streams: rows, rest_rows and time_col choose rows of a fit in memory (slice in Python), and
       // robust reweighs rows in memory (spdfit.fit on the arrays).
-      {"fit_files", "fit", {"stream"}, {"rows", "rest_rows", "robust", "robust_tuning"}},
-      {"fit_all", "fit", {}, {"stream", "bootstrap", "a_cols", "b_cols", "rows", "rest_rows", "robust", "robust_tuning"}},
+      {"fit_files", "fit", {"stream"}, {"rows", "rest_rows", "time_col", "robust", "robust_tuning"}},
+      {"fit_all", "fit", {}, {"stream", "bootstrap", "a_cols", "b_cols", "rows", "rest_rows", "time_col", "robust", "robust_tuning"}},
       // A factor holds the data in their units already (no scale_a, scale_b), of [A B] (no offsets),
       // and no rows to reweigh (no robust).
-      {"Factor.fit", "fit", {}, {"stream", "bootstrap", "a_cols", "b_cols", "scale_a", "scale_b", "rows", "rest_rows",
+      {"Factor.fit", "fit", {}, {"stream", "bootstrap", "a_cols", "b_cols", "scale_a", "scale_b", "rows", "rest_rows", "time_col",
                                   "offsets", "robust", "robust_tuning"}},
       // A and B are positional; a_cols and b_cols (columns of a DataFrame) are spelled out in Python.
-      {"hexapod.identify", "identify", {}, {"a", "b", "a_cols", "b_cols", "rows", "rest_rows"}},
+      {"hexapod.identify", "identify", {}, {"a", "b", "a_cols", "b_cols", "rows", "rest_rows", "time_col"}},
       {"physical.identify", "physical_fit", {}, {}},
       {"nearest_spd", "nearest", {}, {"corr", "factors", "factors_only"}},
       {"nearest_correlation", "nearest", {"corr"}, {"keep_diag", "via_corr"}},

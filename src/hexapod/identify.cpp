@@ -13,6 +13,7 @@
 #include "factor/basic_reduction.hpp"
 #include "numerics/parallel.hpp"
 #include "pipeline/offsets.hpp"
+#include "robust/m_estimator.hpp"
 #include "uncertainty/bootstrap.hpp"
 
 namespace spdfit::hexapod {
@@ -90,12 +91,31 @@ std::vector<MethodIdentification> identify(const Eigen::MatrixXd& A, const Eigen
   const Eigen::MatrixXd& Ad = tared ? tared->A : A;
   const Eigen::MatrixXd& Bd = tared ? tared->B : B;
   const TriangularFactor factor = TriangularFactor::from_data(Ad, Bd, options.fit.offsets == Offsets::Estimate);
-  const Reduction data = reduce(factor, detail::options_after_tare(options.fit));
-  for (FitResult& result : fit_all(data)) {
+  // The estimators on the rows as given (with `robust`, refitted below on reweighted rows).
+  FitOptions plain = detail::options_after_tare(options.fit);
+  plain.robust = RobustLoss::None;
+  plain.robust_tuning.reset();
+  const Reduction data = reduce(factor, plain);
+  std::vector<FitResult> results = fit_all(data);
+  if (options.fit.robust != RobustLoss::None) {
+    // Robust: every estimator that weighs rows refitted on reweighted rows (its own iterations);
+    // spde, which has none, as it is.
+    if (options.fit.bootstrap > 0) {
+      throw OptionError("`bootstrap` with `robust` refits every resample robustly, which identify does not yet: fit "
+                        "one method with `fit` (`robust` and `bootstrap`), or leave one of them out",
+                        Code::OptionConflict, "robust");
+    }
+    const FitOptions each = detail::options_after_tare(options.fit);
+    for (FitResult& r : results) {
+      if (detail::robust_applies(r.method)) r = fit(Ad, Bd, r.method, each);
+    }
+  }
+  for (FitResult& result : results) {
     MethodIdentification m;
     m.result = std::move(result);
     FitResult& r = m.result;
-    r.offsets = detail::offsets_of(r, factor, options.fit, tared ? &tared->tare : nullptr);
+    // (A robust fit's offsets are its weighted rows', set by fit.)
+    if (!r.robust || tared) r.offsets = detail::offsets_of(r, factor, options.fit, tared ? &tared->tare : nullptr);
     if (r.ok()) {
       if (options.truth) m.error_vs_truth = error_vs_truth(r, *options.truth);
       if (r.diagnostics.symmetric) {

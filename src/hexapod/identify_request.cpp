@@ -103,7 +103,7 @@ using Spec = OptionSpec<IdentifyRequest>;
 const std::vector<std::string_view> kSharedFitOptions = {
     "rank_tolerance", "noise_ratio", "noise", "rest_a", "rest_b", "noise_std_a", "noise_std_b", "noise_cov_a",
     "noise_cov_b", "max_iterations", "min_eig", "bootstrap", "confidence", "seed", "threads", "a_cols", "b_cols",
-    "scale_a", "scale_b", "rows", "rest_rows", "offsets"};
+    "scale_a", "scale_b", "rows", "rest_rows", "time_col", "offsets", "robust", "robust_tuning"};
 
 const MatrixInput& matrix(const OptionValue& v) { return std::get<MatrixInput>(v); }
 
@@ -183,8 +183,8 @@ std::vector<Spec> make_table() {
   table.push_back(physical);
 
   for (Spec& spec : lifted_options(physical_option_table(), &IdentifyRequest::physical_options)) {
-    // The fit's `offsets` (below) sets the physical fit's too: one option for every estimator.
-    if (spec.name == "offsets") continue;
+    // The fit's `offsets` and `robust` (below) set the physical fit's too: one option for every estimator.
+    if (spec.name == "offsets" || spec.name == "robust" || spec.name == "robust_tuning") continue;
     spec.needs = {"physical"};
     table.push_back(std::move(spec));
   }
@@ -222,11 +222,25 @@ std::vector<Spec> make_table() {
     } else if (spec.name == "offsets") {
       spec.help = "Constant offsets in the columns of A and B (a static load in untared forces, an "
                   "accelerometer's bias): estimate fits A X + 1 c^T ~= B (the data centred by their column "
-                  "means) for every generic estimator, rest subtracts the means of the rows recorded at rest (those "
-                  "the noise model is made from) for them and for `physical`, none takes the data as given";
+                  "means), rest subtracts the means of the rows recorded at rest (those the noise model is made "
+                  "from), for every estimator and `physical`; none takes the data as given";
       spec.set = [set = spec.set](IdentifyRequest& r, const OptionValue& v) {
         set(r, v);
         r.physical_options.tare = r.fit.options.offsets == Offsets::Rest;
+        r.physical_options.intercept = r.fit.options.offsets == Offsets::Estimate;
+      };
+    } else if (spec.name == "robust") {
+      spec.help = "A robust fit: rows reweighted by their residual, whitened by the noise model (an M-estimator), "
+                  "for every estimator but spde and for `physical`: huber for gross errors in B, tukey (from least "
+                  "trimmed squares) also for wrong values in A";
+      spec.set = [set = spec.set](IdentifyRequest& r, const OptionValue& v) {
+        set(r, v);
+        r.physical_options.robust = r.fit.options.robust;
+      };
+    } else if (spec.name == "robust_tuning") {
+      spec.set = [set = spec.set](IdentifyRequest& r, const OptionValue& v) {
+        set(r, v);
+        r.physical_options.robust_tuning = r.fit.options.robust_tuning;
       };
     } else if (spec.name == "rank_tolerance") {
       spec.set = [set = spec.set](IdentifyRequest& r, const OptionValue& v) {
@@ -338,27 +352,27 @@ Identification run_identify(const IdentifyRequest& request) {
       spdfit::detail::shape_problem(*request.stiffness, "stiffness", e.what());
     }
   }
-  if (std::optional<Warning> w = spdfit::detail::sentinel_warning(A, B)) out.warnings.push_back(std::move(*w));
   // One log: the rows fitted and the rest segment (a noise model) from the data themselves.
   out.options.fit = request.fit.resolved_options(n, n);
+  spdfit::detail::RowNumbers numbers;
   const std::vector<Warning> found = spdfit::detail::apply_log_rows(
-      request.fit, A, B, request.a.from_file() ? request.a.path : "A", out.options.fit);
+      request.fit, A, B, request.a.from_file() ? request.a.path : "A", out.options.fit, &numbers);
   out.warnings.insert(out.warnings.end(), found.begin(), found.end());
+  if (std::optional<Warning> w = spdfit::detail::sentinel_warning(A, B, numbers)) out.warnings.push_back(std::move(*w));
   // Data in other units: A and B multiplied as read, the noise model (the files' units) with them.
   if (const std::optional<spdfit::detail::Units> units = spdfit::detail::units_of(out.options.fit, n, n)) {
     spdfit::detail::apply_units(*units, A, B);
     out.options.fit = spdfit::detail::options_in_units(out.options.fit, *units);
-  }
-  if (request.physical && out.options.fit.offsets == Offsets::Estimate) {
-    throw OptionError("`offsets` estimate is not available with `physical` (its model has no intercept yet): give "
-                      "rest rows and `offsets` rest, or fit the generic estimators alone",
-                      Code::OptionConflict, "offsets");
   }
   // Offsets a fit without them would take for signal: said once for every estimator.
   // (Untared forces with `physical`: its fit says so itself, in the physical model's words.)
   const std::vector<Warning> offset_notes =
       spdfit::detail::offset_warnings(A, B, nullptr, out.options.fit, !request.physical);
   out.warnings.insert(out.warnings.end(), offset_notes.begin(), offset_notes.end());
+  // Rows that dominate the fit: said once, as auto's fit finds them.
+  if (std::optional<Warning> w = spdfit::detail::dominant_rows_check(A, B, Method::Auto, out.options.fit, numbers)) {
+    out.warnings.push_back(std::move(*w));
+  }
   out.methods = identify(A, B, out.options);
   if (out.geometry) {
     if (std::optional<Warning> w = units_warning(out.methods, joint_space_mass_matrix(*out.geometry))) {
@@ -372,6 +386,11 @@ Identification run_identify(const IdentifyRequest& request) {
   PhysicalOptions physical_options = request.physical_options;
   apply_fit_options(out.options.fit, {}, physical_options);
   out.physical = identify_physical(A, B, *out.geometry, physical_options);
+  if (out.physical->robust) {  // rows numbered as in the file
+    for (std::uint64_t& row : out.physical->robust->rows_downweighted) {
+      row = spdfit::detail::file_row(numbers, static_cast<Eigen::Index>(row - 1));
+    }
+  }
   for (const Warning& w : out.physical->warnings) out.warnings.emplace_back(w.code, "physical: " + w.text, w.subject);
   return out;
 }

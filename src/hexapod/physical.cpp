@@ -8,12 +8,16 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "estimators/diagnostics.hpp"
 #include "hexapod/kinematics.hpp"
 #include "hexapod/physical_fit.hpp"
 #include "hexapod/physical_solver.hpp"
 #include "pipeline/offsets.hpp"
+#include "pipeline/row_scores.hpp"
+#include "robust/m_estimator.hpp"
+#include "spdfit/noise_model.hpp"
 #include "spdfit/format.hpp"
 #include "spdfit/hexapod/model.hpp"
 #include "spdfit/rank.hpp"
@@ -176,6 +180,16 @@ bool PhysicalOptions::is_valid(std::string* error) const {
     return fail("`rank_tolerance` must be a number in [0, 1)");
   }
   if (bootstrap < 0) return fail("`bootstrap` must be a number of replicates >= 0");
+  if (tare && intercept) {
+    return fail("`offsets` is one of rest (the rest rows' means subtracted) and estimate (constants fitted), not both");
+  }
+  if (robust_tuning && !(std::isfinite(*robust_tuning) && *robust_tuning > 0.0)) {
+    return fail("`robust_tuning` must be a finite number > 0");
+  }
+  if (robust_tuning && robust == RobustLoss::None) return fail("`robust_tuning` needs `robust`");
+  if (robust != RobustLoss::None && bootstrap > 0) {
+    return fail("`bootstrap` of the robust physical fit is not available yet: give one of `robust` and `bootstrap`");
+  }
   if (!(confidence > 0.0 && confidence < 1.0)) {
     return fail("`confidence` must be a fraction strictly between 0 and 1 (0.95 for 95%)");
   }
@@ -425,6 +439,110 @@ PhysicalEstimate identify_from_factor(const TriangularFactor& factor, const Geom
   return out;
 }
 
+// Reweightings of the robust physical fit at most, and when they stop: M_p moving by less than
+// this, relative (as the generic robust fit's X; far below M_p's standard errors).
+constexpr int kPhysicalReweightings = 50;
+constexpr double kPhysicalSettled = 1e-8;
+
+// The covariance of a row's residual a_i M - b_i as the physical criterion models it: M^T Sigma_A M
+// + Sigma_B (the identities without covariances) for errors in variables, I for least squares.
+Eigen::MatrixXd physical_residual_covariance(const Matrix6d& M, const PhysicalOptions& options) {
+  if (options.criterion == PhysicalCriterion::LeastSquares) return Eigen::MatrixXd::Identity(6, 6);
+  const Matrix6d Sa = options.noise_cov_a.size() ? Matrix6d(options.noise_cov_a) : Matrix6d(Matrix6d::Identity());
+  const Matrix6d Sb = options.noise_cov_b.size() ? Matrix6d(options.noise_cov_b) : Matrix6d(Matrix6d::Identity());
+  return M.transpose() * Sa * M + Sb;
+}
+
+// The robust physical fit (PhysicalOptions::robust): weights from the residuals of the current
+// M_p (and offsets), each step the physical fit of the weighted rows (TriangularFactor::append with
+// weights), as spdfit::detail::robust_fit does for the generic estimators. `factor` receives the
+// last weighted factor (for the offsets' weighted means).
+PhysicalEstimate robust_physical(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Geometry& geometry,
+                                 const PhysicalOptions& options, detail::PhysicalModel& model,
+                                 std::optional<TriangularFactor>& factor) {
+  const Eigen::Index m = A.rows();
+  const RobustLoss loss = options.robust;
+  const double k = options.robust_tuning.value_or(spdfit::detail::robust_tuning(loss, 6));
+  PhysicalOptions plain = options;
+  plain.robust = RobustLoss::None;
+  const auto offsets_of = [&](const TriangularFactor& f, const Matrix6d& M) {
+    if (!options.intercept || f.means().size() != 12) return Eigen::VectorXd();
+    return Eigen::VectorXd(f.means().tail(6) - M.transpose() * f.means().head(6));
+  };
+  Matrix6d M;
+  Eigen::VectorXd c;
+  double scale = 0.0;
+  PhysicalEstimate out;
+  if (loss == RobustLoss::Tukey) {
+    // A high-breakdown start: least trimmed squares of the generic model, whitened as the criterion.
+    FitOptions trimmed;
+    Method method = Method::LeastSquares;
+    if (options.criterion == PhysicalCriterion::ErrorsInVariables) {
+      method = Method::SpdTotalLeastSquares;
+      if (options.noise_cov_a.size() && options.noise_cov_b.size()) {
+        trimmed.noise = NoiseModel::from_cov(options.noise_cov_a, options.noise_cov_b);
+      }
+    }
+    const spdfit::detail::TrimmedStart start =
+        spdfit::detail::least_trimmed_squares(A, B, options.intercept, method, trimmed);
+    M = Matrix6d(start.X);
+    c = start.c;
+    scale = start.scale;
+  } else {
+    factor.emplace(TriangularFactor::from_data(A, B, options.intercept));
+    out = identify_from_factor(*factor, geometry, plain, model);
+    if (!out.ok()) return out;
+    M = out.M_p;
+    c = offsets_of(*factor, M);
+  }
+  const double median_chi = spdfit::detail::chi_median(6);
+  Eigen::VectorXd w(m);
+  RobustReport report;
+  report.method = loss;
+  report.tuning = k;
+  report.converged = false;
+  for (int it = 1; it <= kPhysicalReweightings; ++it) {
+    const Eigen::VectorXd u =
+        spdfit::detail::whitened_residuals(A, B, M, c, physical_residual_covariance(M, options));
+    if (loss == RobustLoss::Huber) scale = spdfit::detail::median(std::vector<double>(u.data(), u.data() + m)) / median_chi;
+    for (Eigen::Index i = 0; i < m; ++i) w(i) = spdfit::detail::robust_weight(loss, scale > 0.0 ? u(i) / scale : 0.0, k);
+    factor.emplace(6, 6, options.intercept);
+    factor->append(A, B, w);
+    PhysicalEstimate next = identify_from_factor(*factor, geometry, plain, model);
+    report.iterations = it;
+    if (!next.ok()) {
+      out = std::move(next);
+      break;
+    }
+    const double change = (next.M_p - M).norm(), size = std::max(next.M_p.norm(), std::numeric_limits<double>::min());
+    M = next.M_p;
+    c = offsets_of(*factor, M);
+    out = std::move(next);
+    if (change <= kPhysicalSettled * size || scale == 0.0) {
+      report.converged = true;
+      break;
+    }
+  }
+  report.scale = scale;
+  report.weights_min = m > 0 ? w.minCoeff() : 1.0;
+  constexpr double kDownweighted = 0.5;
+  constexpr std::size_t kListedRows = 1000;
+  for (Eigen::Index i = 0; i < m; ++i) {
+    if (w(i) < kDownweighted) {
+      ++report.rows_downweighted_count;
+      if (report.rows_downweighted.size() < kListedRows) report.rows_downweighted.push_back(static_cast<std::uint64_t>(i) + 1);
+    }
+  }
+  if (out.ok() && !report.converged) {
+    out.warnings.emplace_back(Code::NotConverged,
+                              "the robust physical fit's weights had not settled after " +
+                                  std::to_string(report.iterations) + " reweightings: the last fit is returned",
+                              "robust");
+  }
+  out.robust = std::move(report);
+  return out;
+}
+
 }  // namespace
 
 PhysicalEstimate identify_physical(const TriangularFactor& factor, const Geometry& geometry,
@@ -458,12 +576,24 @@ PhysicalEstimate identify_physical(const Eigen::MatrixXd& A, const Eigen::Matrix
   const Eigen::MatrixXd& Ad = options.tare ? At : A;
   const Eigen::MatrixXd& Bd = options.tare ? Bt : B;
   detail::PhysicalModel model;
-  PhysicalEstimate out = identify_from_factor(TriangularFactor::from_data(Ad, Bd), geometry, options, model);
+  std::optional<TriangularFactor> factor;
+  PhysicalEstimate out;
+  if (options.robust != RobustLoss::None) {
+    std::string error;
+    if (!options.is_valid(&error)) throw std::invalid_argument(error);
+    out = robust_physical(Ad, Bd, geometry, options, model, factor);
+  } else {
+    factor.emplace(TriangularFactor::from_data(Ad, Bd, options.intercept));
+    out = identify_from_factor(*factor, geometry, options, model);
+  }
+  if (options.intercept && out.ok() && factor && factor->means().size() == 12) {
+    out.offsets_c = factor->means().tail(6) - out.M_p.transpose() * factor->means().head(6);
+  }
   if (options.tare) {
     out.tare_a = options.rest_mean_a;
     out.tare_b = options.rest_mean_b;
-  } else if (std::optional<Warning> w = untared_warning(B, options)) {
-    out.warnings.push_back(std::move(*w));
+  } else if (!options.intercept) {
+    if (std::optional<Warning> w = untared_warning(B, options)) out.warnings.push_back(std::move(*w));
   }
   // The estimate itself may still end far from any payload of this geometry (a fit that did not
   // converge on data the check let through): never reported as one.

@@ -58,7 +58,7 @@ void bootstrap_physical(PhysicalEstimate& estimate, const Eigen::MatrixXd& A, co
   quiet.bootstrap = 0;
   spdfit::detail::parallel_for(replicates, options.threads, [&](std::size_t r) {
     try {
-      const TriangularFactor factor = spdfit::detail::resample_rows(A, B, options.seed, r);
+      const TriangularFactor factor = spdfit::detail::resample_rows(A, B, options.seed, r, options.intercept);
       const PhysicalEstimate e = fit_physical(factor, model, geometry, quiet, false);
       if (!e.ok()) return;
       Values v;

@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "render/fit_result_json.hpp"
 #include "render/json_values.hpp"
 #include "spdfit/hexapod/physical.hpp"
 
@@ -92,8 +93,11 @@ std::string physical_json(const PhysicalEstimate& e) {
                    {"confounded", e.design.confounded}};
   out["m"] = e.m;
   out["rank_a"] = e.rank_a;
-  out["offsets"] = e.tare_b.size() ? json{{"mode", "rest"}, {"a", vector(e.tare_a)}, {"b", vector(e.tare_b)}}
-                                   : json{{"mode", "none"}};
+  out["offsets"] = e.tare_b.size()      ? json{{"mode", "rest"}, {"a", vector(e.tare_a)}, {"b", vector(e.tare_b)}}
+                   : e.offsets_c.size() ? json{{"mode", "estimate"}, {"c", vector(e.offsets_c)}}
+                                        : json{{"mode", "none"}};
+  // The robust report as the fit's (render/fit_result_json.cpp), in this document's key order.
+  if (e.robust) out["robust"] = json::parse(spdfit::detail::robust_json(*e.robust, spdfit::JsonStyle::Contract).dump());
   spdfit::detail::put_warnings(out, e.warnings);
   if (const auto& b = e.bootstrap) {
     out["standard_errors"] = entries(*b, &EntryUncertainty::standard_errors, e.strut_masses);

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <string>
 
+#include "render/fit_result_json.hpp"
 #include "spdfit/format.hpp"
 #include "spdfit/hexapod/render.hpp"
 
@@ -177,6 +178,14 @@ std::string report(const PhysicalEstimate& e, const Geometry& geometry, const Id
       << format_number(e.certificate.complementarity) << "\n"
       << "design: rank " << e.design.rank << " of " << e.design.parameters << " parameters, condition "
       << format_number(e.design.condition) << "\n";
+  if (e.robust) out << spdfit::detail::robust_line(*e.robust);
+  if (e.offsets_c.size()) {
+    out << "offsets: estimated with the payload (B ~= A M_p + 1 c^T), c = [" << format_numbers(e.offsets_c, Precision::Full)
+        << "] N\n";
+  } else if (e.tare_b.size()) {
+    out << "offsets: the rest rows' means subtracted, A [" << format_numbers(e.tare_a, Precision::Full) << "], B ["
+        << format_numbers(e.tare_b, Precision::Full) << "]\n";
+  }
   for (const Warning& w : e.warnings) out << "warning: " << w.text << "\n";
   return out.str();
 }

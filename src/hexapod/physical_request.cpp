@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "spdfit/fit_request.hpp"
 #include "spdfit/io.hpp"
 
 namespace spdfit::hexapod {
@@ -13,6 +14,26 @@ namespace spdfit::hexapod {
 namespace {
 
 using Spec = OptionSpec<PhysicalOptions>;
+
+// The fit table's option `name` (its spelling, type, choices, range, default and rules among the
+// fit's own options), for the physical fit: the caller gives what it sets (and may word its help).
+Spec like_fit_option(std::string_view name) {
+  const OptionSpec<FitRequest>& fit = *find_option(fit_option_table(), name);
+  Spec spec;
+  spec.name = fit.name;
+  spec.cli = fit.cli;
+  spec.python = fit.python;
+  spec.type = fit.type;
+  spec.value_name = fit.value_name;
+  spec.help = fit.help;
+  spec.default_text = fit.default_text;
+  spec.nullable = fit.nullable;
+  spec.range = fit.range;
+  spec.choices = fit.choices;
+  spec.needs = fit.needs;
+  spec.needs_message = fit.needs_message;
+  return spec;
+}
 
 std::vector<Spec> make_table() {
   std::vector<Spec> table;
@@ -93,17 +114,40 @@ std::vector<Spec> make_table() {
   offsets.cli = "--offsets";
   offsets.python = "offsets";
   offsets.type = OptionType::Choice;
-  offsets.value_name = "none|rest";
-  offsets.choices = {"none", "rest"};
+  offsets.value_name = "none|estimate|rest";
+  offsets.choices = {"none", "estimate", "rest"};
   offsets.help = "Constant offsets in the data (a static load in untared forces, an accelerometer's bias): rest "
                  "subtracts the means of the rest rows (`rest_a` and `rest_b`) from A and B before the physical fit "
-                 "(taring); none fits the data as given, with a warning when the forces look untared";
+                 "(taring); estimate fits B ~= A M_p + 1 c^T (the data centred by their column means; c is "
+                 "reported), for logs without rest rows; none fits the data as given, with a warning when the "
+                 "forces look untared";
   offsets.default_text = "none";
-  offsets.set = [](PhysicalOptions& o, const OptionValue& v) { o.tare = std::get<std::string>(v) == "rest"; };
+  offsets.set = [](PhysicalOptions& o, const OptionValue& v) {
+    o.tare = std::get<std::string>(v) == "rest";
+    o.intercept = std::get<std::string>(v) == "estimate";
+  };
   offsets.get = [](const PhysicalOptions& o) -> std::optional<OptionValue> {
-    return std::string(o.tare ? "rest" : "none");
+    return std::string(o.tare ? "rest" : o.intercept ? "estimate" : "none");
   };
   table.push_back(offsets);
+
+  // The fit's robust options, spelled and checked as the fit table does, setting the physical fit's.
+  Spec robust = like_fit_option("robust");
+  robust.help = "A robust physical fit: rows reweighted by their residual under the physical model, whitened by the "
+                "noise covariances (an M-estimator); huber for gross errors in B, tukey (from least trimmed squares) "
+                "also for wrong values in A. Not with `bootstrap`";
+  robust.set = [](PhysicalOptions& o, const OptionValue& v) {
+    o.robust = robust_loss_named(std::get<std::string>(v)).value_or(RobustLoss::None);  // a choice: named
+  };
+  robust.get = [](const PhysicalOptions& o) -> std::optional<OptionValue> { return std::string(to_string(o.robust)); };
+  table.push_back(robust);
+  Spec tuning = like_fit_option("robust_tuning");
+  tuning.set = [](PhysicalOptions& o, const OptionValue& v) { o.robust_tuning = std::get<double>(v); };
+  tuning.get = [](const PhysicalOptions& o) -> std::optional<OptionValue> {
+    if (!o.robust_tuning) return std::nullopt;
+    return *o.robust_tuning;
+  };
+  table.push_back(tuning);
 
   Spec no_plausible;
   no_plausible.name = "no_plausibility_check";

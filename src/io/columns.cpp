@@ -4,9 +4,13 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <string_view>
+
+#include "spdfit/format.hpp"
 
 namespace spdfit::io {
 
@@ -229,14 +233,20 @@ namespace spdfit::io::detail {
 
 namespace {
 
-// One item of a row selection: first..last (1-based; a missing end is open).
+// One item of a row selection: first..last (1-based row numbers, or times with `by_time`; a
+// missing end is open).
 struct RowItem {
   std::string text;
   bool has_first = false, has_last = false;
-  std::uint64_t first = 0, last = 0;
+  double first = 0.0, last = 0.0;
 };
 
-std::vector<RowItem> row_items(const std::string& spec, const std::string& option) {
+// How the numbers of a selection read: row numbers, times, or either (checked before `time_col` is
+// known: the numbers' syntax only).
+enum class RowUnits { Rows, Times, Either };
+
+std::vector<RowItem> row_items(const std::string& spec, const std::string& option, RowUnits units) {
+  const bool by_time = units != RowUnits::Rows;
   const std::string prefix = "`" + option + "` '" + spec + "': ";
   const auto fail = [&](const std::string& problem) {
     throw OptionError(prefix + problem, Code::OptionValue, option);
@@ -257,17 +267,27 @@ std::vector<RowItem> row_items(const std::string& spec, const std::string& optio
     item.text = trim(std::string_view(spec).substr(start, comma - start));
     start = comma + 1;
     if (item.text.empty()) fail("an empty item in the list (two commas in a row, or one at an end)");
-    const auto number = [&](const std::string& part, std::uint64_t* value) {
+    const auto number = [&](const std::string& part, double* value) {
       const std::string t = trim(part);
       if (t.empty()) return false;
+      if (by_time) {
+        char* end = nullptr;
+        *value = std::strtod(t.c_str(), &end);
+        if (end != t.c_str() + t.size() || !std::isfinite(*value)) {
+          fail("'" + t + "' in '" + item.text + "' is not " +
+               (units == RowUnits::Times ? std::string("a time (a number in the units of `time_col`)")
+                                         : std::string("a row number (nor a time, with `time_col`)")));
+        }
+        return true;
+      }
       const bool digits =
           std::all_of(t.begin(), t.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
       if (!digits || t.size() > 15) {
         fail("'" + t + "' in '" + item.text + "' is not a row number (rows are numbered 1, 2, ... among the file's "
-             "data rows, as the column selections number columns)");
+             "data rows, as the column selections number columns; give `time_col` for ranges of time)");
       }
-      *value = std::stoull(t);
-      if (*value == 0) fail("rows are numbered from 1: there is no row 0");
+      *value = static_cast<double>(std::stoull(t));
+      if (*value == 0.0) fail("rows are numbered from 1: there is no row 0");
       return true;
     };
     const std::size_t colon = item.text.find(':');
@@ -281,8 +301,8 @@ std::vector<RowItem> row_items(const std::string& spec, const std::string& optio
       item.has_last = number(item.text.substr(colon + 1), &item.last);
       if (!item.has_first && !item.has_last) fail("the range '" + item.text + "' has neither a start nor an end");
       if (item.has_first && item.has_last && item.first > item.last) {
-        fail("the range " + item.text + " runs backwards (write " + std::to_string(item.last) + ":" +
-             std::to_string(item.first) + ")");
+        fail("the range " + item.text + " runs backwards (write " + trim(item.text.substr(colon + 1)) + ":" +
+             trim(item.text.substr(0, colon)) + ")");
       }
     }
     items.push_back(std::move(item));
@@ -292,17 +312,17 @@ std::vector<RowItem> row_items(const std::string& spec, const std::string& optio
 
 }  // namespace
 
-void check_row_selection(const std::string& spec, const std::string& option) {
-  static_cast<void>(row_items(spec, option));
+void check_row_selection(const std::string& spec, const std::string& option, bool by_time) {
+  static_cast<void>(row_items(spec, option, by_time ? RowUnits::Either : RowUnits::Rows));
 }
 
 std::vector<Eigen::Index> selected_rows(const std::string& spec, const std::string& option, std::uint64_t rows,
                                         const std::string& source) {
-  const std::vector<RowItem> items = row_items(spec, option);
+  const std::vector<RowItem> items = row_items(spec, option, RowUnits::Rows);
   std::vector<bool> kept(rows, false);
   for (const RowItem& item : items) {
-    const std::uint64_t first = item.has_first ? item.first : 1;
-    const std::uint64_t last = item.has_last ? item.last : rows;
+    const auto first = item.has_first ? static_cast<std::uint64_t>(item.first) : std::uint64_t{1};
+    const auto last = item.has_last ? static_cast<std::uint64_t>(item.last) : rows;
     if (std::max(first, last) > rows) {
       throw DataError(source, 0, 0,
                       "`" + option + "` '" + spec + "': row " + std::to_string(std::max(first, last)) +
@@ -315,6 +335,29 @@ std::vector<Eigen::Index> selected_rows(const std::string& spec, const std::stri
   std::vector<Eigen::Index> out;
   for (std::uint64_t r = 0; r < rows; ++r) {
     if (kept[r]) out.push_back(static_cast<Eigen::Index>(r));
+  }
+  return out;
+}
+
+std::vector<Eigen::Index> selected_times(const std::string& spec, const std::string& option,
+                                         const Eigen::Ref<const Eigen::VectorXd>& time, const std::string& source) {
+  const std::vector<RowItem> items = row_items(spec, option, RowUnits::Times);
+  std::vector<Eigen::Index> out;
+  for (Eigen::Index r = 0; r < time.size(); ++r) {
+    const double t = time(r);
+    for (const RowItem& item : items) {
+      if ((!item.has_first || t >= item.first) && (!item.has_last || t <= item.last)) {
+        out.push_back(r);
+        break;
+      }
+    }
+  }
+  if (out.empty() && time.size() > 0) {
+    throw DataError(source, 0, 0,
+                    "`" + option + "` '" + spec + "': no row's time (`time_col`, from " +
+                        format_number(time.minCoeff()) + " to " + format_number(time.maxCoeff()) +
+                        ") is in these ranges",
+                    Code::DataShape);
   }
   return out;
 }

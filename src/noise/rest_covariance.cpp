@@ -131,9 +131,13 @@ NoiseModel NoiseModel::from_rest_files(const std::string& rest_a_path, const std
   if (block_rows < 1) throw OptionError("`block_rows` must be at least 1", Code::OptionValue, "block_rows");
   io::ReadOptions finite = read;
   finite.allow_nonfinite = false;  // a covariance of NaN is no noise model
-  auto stream = [&](const std::string& path, const char* option) {
+  // One log's selections: A's columns of the rest rows of A, B's of those of B.
+  const bool split = read.columns.size() == 2;
+  auto stream = [&](const std::string& path, const char* option, std::size_t selection) {
     detail::RowMoments moments;
-    io::RowReader reader(path, finite);
+    io::ReadOptions side = finite;
+    if (split) side.columns = {read.columns[selection]};
+    io::RowReader reader(path, side);
     MatrixXd block;
     while (reader.read(block_rows, &block) > 0) moments.add(block);
     if (moments.rows() < 2) {
@@ -144,8 +148,8 @@ NoiseModel NoiseModel::from_rest_files(const std::string& rest_a_path, const std
     }
     return moments;
   };
-  const detail::RowMoments a = stream(rest_a_path, "`rest_a`");
-  const detail::RowMoments b = stream(rest_b_path, "`rest_b`");
+  const detail::RowMoments a = stream(rest_a_path, "`rest_a`", 0);
+  const detail::RowMoments b = stream(rest_b_path, "`rest_b`", 1);
   if (a.rows() != b.rows()) {
     throw io::DataError(rest_b_path, 0, 0,
                         "the rest rows of B (`rest_b`) are " + std::to_string(b.rows()) + " but those of A (" +

@@ -50,7 +50,7 @@ std::vector<Spec> make_table() {
   // The fit options that every method shares: the noise (its ratio, or a noise model), and A's and
   // B's columns in one file.
   std::vector<std::string_view> shared = noise_option_names();
-  shared.insert(shared.end(), {"a_cols", "b_cols", "scale_a", "scale_b", "rows", "offsets"});
+  shared.insert(shared.end(), {"a_cols", "b_cols", "scale_a", "scale_b", "rows", "time_col", "offsets"});
   for (Spec& spec : lifted_options(fit_option_table(), &CompareRequest::fit, shared)) table.push_back(std::move(spec));
   for (Spec& spec : output_options(&CompareRequest::output, {"json", "output"}, {"Print every result as JSON"})) {
     table.push_back(std::move(spec));
@@ -85,8 +85,9 @@ CompareRun run_compare(const CompareRequest& request) {
   }
   // One log: the rows fitted and the rest segment (a noise model) from the data themselves.
   FitOptions options = request.fit.resolved_options(A.cols(), B.cols());
+  detail::RowNumbers numbers;
   const std::vector<Warning> found =
-      detail::apply_log_rows(request.fit, A, B, request.a.from_file() ? request.a.path : "A", options);
+      detail::apply_log_rows(request.fit, A, B, request.a.from_file() ? request.a.path : "A", options, &numbers);
   out.warnings.insert(out.warnings.end(), found.begin(), found.end());
   std::optional<Eigen::MatrixXd> truth;
   if (request.truth) {
@@ -103,9 +104,14 @@ CompareRun run_compare(const CompareRequest& request) {
       throw InputError(problem, Code::DataShape, "truth");
     }
   }
-  if (std::optional<Warning> w = detail::sentinel_warning(A, B)) out.warnings.push_back(std::move(*w));
+  if (std::optional<Warning> w = detail::sentinel_warning(A, B, numbers)) out.warnings.push_back(std::move(*w));
   // Offsets a fit without them would take for signal: said once for every estimator.
   for (Warning& w : detail::offset_warnings_as_given(A, B, options)) out.warnings.push_back(std::move(w));
+  // Rows that dominate the fit: said once, as auto's fit finds them (least squares' for a non-square X).
+  const Method judge = A.cols() == B.cols() ? Method::Auto : Method::LeastSquares;
+  if (std::optional<Warning> w = detail::dominant_rows_check(A, B, judge, options, numbers)) {
+    out.warnings.push_back(std::move(*w));
+  }
   out.comparison = compare(A, B, options, truth);
   for (const FitResult& r : out.comparison.results) {
     for (const Warning& w : r.warnings) {

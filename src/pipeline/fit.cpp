@@ -5,10 +5,12 @@
 #include <string>
 #include <vector>
 #include <optional>
+#include <stdexcept>
 
 #include "factor/reduce.hpp"
 #include "estimators/kernels.hpp"
 #include "estimators/noise_weights.hpp"
+#include "pipeline/log_rows.hpp"
 #include "pipeline/offsets.hpp"
 #include "pipeline/row_scores.hpp"
 #include "robust/m_estimator.hpp"
@@ -105,16 +107,18 @@ FitResult fit(const Reduction& data, Method method) {
   return spde(data);  // unreachable: every enumerator is handled above
 }
 
-FitResult fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Method method,
-              const FitOptions& options) {
+namespace detail {
+
+FitResult fit_numbered(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Method method,
+                       const FitOptions& options, const RowNumbers& numbers) {
   if (const std::optional<detail::Units> units = detail::units_of(options, A.cols(), B.cols())) {
     MatrixXd A_units = A, B_units = B;
     detail::apply_units(*units, A_units, B_units);
-    return fit(A_units, B_units, method, detail::options_in_units(options, *units));
+    return fit_numbered(A_units, B_units, method, detail::options_in_units(options, *units), numbers);
   }
   if (options.offsets == Offsets::Rest) {  // tared: the rest rows' means subtracted, then as given
     const detail::TaredData tared = detail::tared_data(A, B, options);
-    FitResult result = fit(tared.A, tared.B, method, detail::options_after_tare(options));
+    FitResult result = fit_numbered(tared.A, tared.B, method, detail::options_after_tare(options), numbers);
     result.offsets = tared.tare.offsets();
     return result;
   }
@@ -123,6 +127,9 @@ FitResult fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Matrix
     detail::RobustFit robust = detail::robust_fit(A, B, method, options);
     result = std::move(robust.result);
     if (robust.factor) result.offsets = detail::offsets_of(result, *robust.factor, options, nullptr);
+    if (result.robust) {
+      for (std::uint64_t& row : result.robust->rows_downweighted) row = file_row(numbers, static_cast<Eigen::Index>(row - 1));
+    }
   } else {
     const TriangularFactor factor = TriangularFactor::from_data(A, B, options.offsets == Offsets::Estimate);
     const Reduction data = detail::reduce_for(factor, options, method);
@@ -130,15 +137,49 @@ FitResult fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Matrix
     if (options.bootstrap > 0 && result.ok()) detail::bootstrap_in_memory(result, A, B, data);
     result.offsets = detail::offsets_of(result, factor, options, nullptr);
     for (Warning& w : detail::offset_warnings(A, B, &factor, options)) result.warnings.push_back(std::move(w));
-    if (std::optional<Warning> w = detail::dominant_rows_warning(A, B, result, factor, options)) {
+    if (std::optional<Warning> w = detail::dominant_rows_warning(A, B, result, factor, options, numbers)) {
       result.warnings.push_back(std::move(*w));
     }
   }
-  if (std::optional<Warning> w = detail::sentinel_warning(A, B)) {
+  if (std::optional<Warning> w = detail::sentinel_warning(A, B, numbers)) {
     result.warnings.insert(result.warnings.begin(), std::move(*w));
     if (!result.ok()) result.message += detail::sentinel_failure_note();
   }
   return result;
+}
+
+std::optional<Warning> dominant_rows_check(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
+                                           Method method, const FitOptions& options, const RowNumbers& numbers) {
+  if (const std::optional<detail::Units> units = detail::units_of(options, A.cols(), B.cols())) {
+    MatrixXd A_units = A, B_units = B;
+    detail::apply_units(*units, A_units, B_units);
+    return dominant_rows_check(A_units, B_units, method, detail::options_in_units(options, *units), numbers);
+  }
+  if (options.offsets == Offsets::Rest) {
+    const detail::TaredData tared = detail::tared_data(A, B, options);
+    return dominant_rows_check(tared.A, tared.B, method, detail::options_after_tare(options), numbers);
+  }
+  FitOptions plain = options;
+  plain.bootstrap = 0;
+  plain.robust = RobustLoss::None;
+  plain.robust_tuning.reset();
+  const TriangularFactor factor = TriangularFactor::from_data(A, B, plain.offsets == Offsets::Estimate);
+  FitResult result;
+  try {
+    result = fit(detail::reduce_for(factor, plain, method), method);
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;  // data the method refuses: the commands' own fits say why
+  }
+  if (!result.ok()) return std::nullopt;
+  result.offsets = detail::offsets_of(result, factor, plain, nullptr);
+  return detail::dominant_rows_warning(A, B, result, factor, plain, numbers);
+}
+
+}  // namespace detail
+
+FitResult fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Method method,
+              const FitOptions& options) {
+  return detail::fit_numbered(A, B, method, options, {});
 }
 
 namespace {

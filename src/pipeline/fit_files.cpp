@@ -153,11 +153,11 @@ DataPair read_pair(const std::string& a_path, const std::string& b_path, const i
 namespace detail {
 
 FitResult fit_pair_in_memory(DataPair data, const std::string& a_path, const std::string& b_path, Method method,
-                             const FitOptions& options) {
+                             const FitOptions& options, const RowNumbers& numbers) {
   check_method_fits(method, b_path.empty() ? a_path : b_path, data.A.cols(), data.B.cols());
   if (options.noise) static_cast<void>(options.noise->resolved(data.A.cols(), data.B.cols()));
   check_enough_rows_for(method, a_path, data.A.rows(), data.A.cols(), data.B.cols());
-  FitResult result = fit(data.A, data.B, method, options);
+  FitResult result = fit_numbered(data.A, data.B, method, options, numbers);
   attach_read_info(result, {std::move(data.warnings), std::move(data.a_names), std::move(data.b_names),
                             std::move(data.a_columns), std::move(data.b_columns)});
   return result;

@@ -2,6 +2,7 @@
 #include "spdfit/fit_request.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <utility>
@@ -192,7 +193,8 @@ std::vector<Spec> make_table() {
     spec.help = help;
     spec.excludes = {"stream"};
     spec.set = [member, name](FitRequest& r, const OptionValue& v) {
-      io::detail::check_row_selection(std::get<std::string>(v), std::string(name));
+      // Row numbers or, with `time_col` (given in any order), times: checked as such when applied.
+      io::detail::check_row_selection(std::get<std::string>(v), std::string(name), true);
       r.*member = std::get<std::string>(v);
     };
     spec.get = [member](const FitRequest& r) -> std::optional<OptionValue> {
@@ -217,6 +219,20 @@ std::vector<Spec> make_table() {
   rest_rows.excludes = noise_excludes("rest_rows", "rest_rows");
   rest_rows.excludes.push_back("stream");
   table.push_back(rest_rows);
+  Spec time_col;
+  time_col.name = "time_col";
+  time_col.cli = "--time-col";
+  time_col.python = "time_col";
+  time_col.type = OptionType::Columns;
+  time_col.value_name = "COL";
+  time_col.help = "The log's time column (a header name or 1-based position, in the file of `a_cols` and `b_cols`): "
+                  "`rows` and `rest_rows` are then ranges of its values (12.5:60, :0.995), in its units";
+  time_col.needs = {"a_cols"};
+  time_col.needs_message = "`time_col` is a column of the one log that `a_cols` and `b_cols` choose A and B from";
+  time_col.excludes = {"stream"};
+  time_col.set = [](FitRequest& r, const OptionValue& v) { r.time_col = text(v); };
+  time_col.get = [](const FitRequest& r) { return text_value(r.time_col); };
+  table.push_back(time_col);
 
   // Units: each column multiplied as the data are read (the noise model, in the files' units,
   // scaled with them: FitOptions::scale_a, scale_b).
@@ -477,16 +493,66 @@ std::vector<Spec> make_table() {
 
 namespace detail {
 
+Eigen::VectorXd log_time_column(const FitRequest& request, const std::string& path, Eigen::Index rows) {
+  if (request.a_cols.empty() || request.b_cols.empty()) {
+    throw OptionError("`time_col` is a column of the one log that `a_cols` and `b_cols` choose A and B from: give "
+                      "them too",
+                      Code::OptionConflict, "time_col");
+  }
+  if (path == "-") {
+    throw OptionError("`time_col` reads the log's time column from its file: give the log as a file, not on standard "
+                      "input",
+                      Code::OptionConflict, "time_col");
+  }
+  const io::ColumnSelection selection{request.time_col, "time_col"};
+  io::check_column_selection(selection);
+  io::ReadOptions read = request.read;
+  read.columns = {selection};
+  const io::Table table = io::read_table(path, read);
+  if (table.values.cols() != 1) {
+    throw io::ColumnSelectionError("`time_col` '" + request.time_col + "' selects " +
+                                   std::to_string(table.values.cols()) + " columns of " + path + ": give one");
+  }
+  if (table.values.rows() != rows) {
+    throw io::DataError(path, 0, 0,
+                        "the time column (`time_col` '" + request.time_col + "') has " +
+                            std::to_string(table.values.rows()) + " rows, the data " + std::to_string(rows),
+                        Code::DataShape);
+  }
+  for (Eigen::Index r = 0; r < rows; ++r) {
+    if (!std::isfinite(table.values(r, 0))) {
+      throw io::DataError(path, 0, 0,
+                          "the time column (`time_col` '" + request.time_col + "') is not a number in data row " +
+                              std::to_string(r + 1),
+                          Code::DataValue);
+    }
+  }
+  return table.values.col(0);
+}
+
 std::vector<Warning> apply_log_rows(const FitRequest& request, Eigen::MatrixXd& A, Eigen::MatrixXd& B,
-                                    const std::string& source, FitOptions& options) {
+                                    const std::string& source, FitOptions& options, RowNumbers* kept) {
   std::vector<Warning> out;
-  if (request.rows.empty() && request.rest_rows.empty()) return out;
+  if (request.rows.empty() && request.rest_rows.empty()) {
+    if (!request.time_col.empty()) {
+      throw OptionError("`time_col` gives `rows` and `rest_rows` in its units: give one of them", Code::OptionConflict,
+                        "time_col");
+    }
+    return out;
+  }
   const auto m = static_cast<std::uint64_t>(A.rows());
+  // With a time column, the selections are ranges of its values, read from the same file.
+  Eigen::VectorXd time;
+  if (!request.time_col.empty()) time = log_time_column(request, source, A.rows());
+  const auto select = [&](const std::string& spec, const char* option) {
+    return time.size() > 0 ? io::detail::selected_times(spec, option, time, source)
+                           : io::detail::selected_rows(spec, option, m, source);
+  };
   std::vector<Eigen::Index> rest;
-  if (!request.rest_rows.empty()) rest = io::detail::selected_rows(request.rest_rows, "rest_rows", m, source);
+  if (!request.rest_rows.empty()) rest = select(request.rest_rows, "rest_rows");
   std::vector<Eigen::Index> fitted;
   if (!request.rows.empty()) {
-    fitted = io::detail::selected_rows(request.rows, "rows", m, source);
+    fitted = select(request.rows, "rows");
     std::size_t shared = 0;
     for (Eigen::Index r : fitted) shared += std::binary_search(rest.begin(), rest.end(), r) ? 1 : 0;
     if (shared > 0) {
@@ -516,6 +582,7 @@ std::vector<Warning> apply_log_rows(const FitRequest& request, Eigen::MatrixXd& 
   }
   A = Eigen::MatrixXd(A(fitted, Eigen::all));
   B = Eigen::MatrixXd(B(fitted, Eigen::all));
+  if (kept != nullptr) *kept = std::move(fitted);
   return out;
 }
 
@@ -548,10 +615,18 @@ FitOptions FitRequest::resolved_options() const {
     if (!in.rest_a.given() || !in.rest_b.given()) {
       throw OptionError("`rest_a` and `rest_b` come together", Code::OptionConflict, "rest_a");
     }
+    // One log's column selections choose the rest files' columns too: A's of rest_a, B's of rest_b.
+    const io::ReadOptions rest_read = detail::log_columns_read(*this);
+    const auto rest_values = [&](const MatrixInput& m, std::size_t side) {
+      if (!m.from_file() || rest_read.columns.empty()) return values(m);
+      io::ReadOptions one = rest_read;
+      one.columns = {rest_read.columns[side]};
+      return io::read_matrix(m.path, one);
+    };
     if (in.rest_a.from_file() && in.rest_b.from_file()) {
-      out.noise = NoiseModel::from_rest_files(in.rest_a.path, in.rest_b.path, read, block_rows);
+      out.noise = NoiseModel::from_rest_files(in.rest_a.path, in.rest_b.path, rest_read, block_rows);
     } else {
-      const Eigen::MatrixXd rest_a = values(in.rest_a), rest_b = values(in.rest_b);
+      const Eigen::MatrixXd rest_a = rest_values(in.rest_a, 0), rest_b = rest_values(in.rest_b, 1);
       out.noise = detail::naming_noise_files(in, [&] { return NoiseModel::from_rest(rest_a, rest_b); });
     }
   } else if (!in.std_a.empty() || !in.std_b.empty()) {
@@ -602,7 +677,9 @@ void check_fit_request(const FitRequest& request, const std::vector<std::string_
   check_option_combination(fit_option_table(), given);
 }
 
-io::ReadOptions data_read_options(const FitRequest& request, const std::string& b_path) {
+namespace detail {
+
+io::ReadOptions log_columns_read(const FitRequest& request) {
   io::ReadOptions read = request.read;
   if (request.a_cols.empty() && request.b_cols.empty()) return read;
   if (request.a_cols.empty() || request.b_cols.empty()) {
@@ -611,11 +688,18 @@ io::ReadOptions data_read_options(const FitRequest& request, const std::string& 
   const io::ColumnSelection a{request.a_cols, "a_cols"}, b{request.b_cols, "b_cols"};
   io::check_column_selection(a);
   io::check_column_selection(b);
-  if (!b_path.empty()) {
+  read.columns = {a, b};
+  return read;
+}
+
+}  // namespace detail
+
+io::ReadOptions data_read_options(const FitRequest& request, const std::string& b_path) {
+  io::ReadOptions read = detail::log_columns_read(request);
+  if (!read.columns.empty() && !b_path.empty()) {
     throw OptionError("`a_cols` and `b_cols` choose A and B from one file, but two files were given (" + b_path +
                       " as B's)");
   }
-  read.columns = {a, b};
   return read;
 }
 
@@ -624,7 +708,7 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, const 
   std::optional<StreamOptions> stream;
   if (request.stream) stream = request.stream_options();
   const FitOptions options = request.resolved_options();
-  if (!request.rows.empty() || !request.rest_rows.empty()) {
+  if (!request.rows.empty() || !request.rest_rows.empty() || !request.time_col.empty()) {
     if (request.stream) {
       throw OptionError("`rows` and `rest_rows` choose rows of a log fitted in memory, not streamed: leave out "
                         "`stream` (and mpirun), or cut the files first",
@@ -633,9 +717,10 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, const 
     // The fit refuses a noise model its method cannot use (data_of), as for rest files.
     DataPair data = read_pair(a_path, b_path, read);
     FitOptions log_options = options;
-    const std::vector<Warning> found = detail::apply_log_rows(request, data.A, data.B, a_path, log_options);
+    detail::RowNumbers numbers;
+    const std::vector<Warning> found = detail::apply_log_rows(request, data.A, data.B, a_path, log_options, &numbers);
     data.warnings.insert(data.warnings.end(), found.begin(), found.end());
-    return detail::fit_pair_in_memory(std::move(data), a_path, b_path, request.method, log_options);
+    return detail::fit_pair_in_memory(std::move(data), a_path, b_path, request.method, log_options, numbers);
   }
   return detail::naming_noise_files(request.noise_inputs, [&] {
     return fit_files(a_path, b_path, request.method, options, stream, read);

@@ -122,7 +122,7 @@ VectorXd row_scores(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const 
 
 std::optional<Warning> dominant_rows_warning(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
                                              const FitResult& result, const TriangularFactor& factor,
-                                             const FitOptions& options) {
+                                             const FitOptions& options, const RowNumbers& numbers) {
   if (!options.diagnostics) return std::nullopt;
   const double flops = static_cast<double>(A.rows()) * static_cast<double>(A.cols()) *
                        static_cast<double>(A.cols() + B.cols());
@@ -153,7 +153,7 @@ std::optional<Warning> dominant_rows_warning(const Eigen::Ref<const MatrixXd>& A
   std::string named;
   for (std::size_t k = 0; k < by_score.size() && k < kNamedDominantRows; ++k) {
     const Index i = by_score[k];
-    named += (k == 0 ? "" : ", ") + std::to_string(i + 1) + " (z = " + format_number(z(i)) + ")";
+    named += (k == 0 ? "" : ", ") + std::to_string(file_row(numbers, i)) + " (z = " + format_number(z(i)) + ")";
   }
   const bool one = flagged.size() == 1;
   std::string text = (one ? "row " : "rows ") + named;

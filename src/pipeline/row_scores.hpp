@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "pipeline/row_numbers.hpp"
 #include "spdfit/fit_options.hpp"
 #include "spdfit/fit_result.hpp"
 #include "spdfit/method.hpp"
@@ -45,13 +46,14 @@ double median(std::vector<double> values);
 /// Robust z-scores (x - median) / (1.4826 MAD); all 0 when the MAD is 0 or there are fewer than 3.
 Eigen::VectorXd robust_z_scores(const Eigen::VectorXd& x);
 
-/// The warning (code outliers) naming up to five rows (1-based, as the data's) whose row_scores'
+/// The warning (code outliers) naming up to five rows (numbered as in their files by `numbers`) whose row_scores'
 /// robust z-score is above kDominantZScore, with their z-scores; rows holding a value of magnitude
 /// 1e30 or more (the sentinel warning's) are not named again. Nothing when none is, or when
 /// options.diagnostics is off or the check would cost more than the fit's factorization left
 /// unread (options.reported_diagnostics off and m n (n + d) above 1e8).
 std::optional<Warning> dominant_rows_warning(const Eigen::Ref<const Eigen::MatrixXd>& A,
                                              const Eigen::Ref<const Eigen::MatrixXd>& B, const FitResult& result,
-                                             const TriangularFactor& factor, const FitOptions& options);
+                                             const TriangularFactor& factor, const FitOptions& options,
+                                             const RowNumbers& numbers = {});
 
 }  // namespace spdfit::detail

@@ -25,22 +25,30 @@ std::string number(double value) {
   return text;
 }
 
-// The rows to keep, as ranges of 1-based row numbers ("1-16 and 18-50"), when short.
-std::string kept_rows(Eigen::Index m, const std::vector<Eigen::Index>& left_out) {
+// The rows to keep, as ranges of 1-based row numbers in the file ("1-16, 18-50"), when short:
+// runs of consecutive numbers among the rows of A and B that are not left out.
+std::string kept_rows(Eigen::Index m, const std::vector<Eigen::Index>& left_out, const RowNumbers& numbers) {
   std::string out;
-  std::size_t ranges = 0;
-  Eigen::Index start = 0;  // 0-based start of the current run of kept rows
-  const auto close = [&](Eigen::Index end) {  // [start, end) kept
-    if (end <= start) return;
-    out += (ranges == 0 ? "" : ", ") + std::to_string(start + 1) +
-           (end - start > 1 ? "-" + std::to_string(end) : std::string());
+  std::size_t ranges = 0, next = 0;
+  std::uint64_t first = 0, last = 0;  // the current run, 1-based; first == 0: none
+  const auto close = [&] {
+    if (first == 0) return;
+    out += (ranges == 0 ? "" : ", ") + std::to_string(first) + (last > first ? "-" + std::to_string(last) : std::string());
     ++ranges;
+    first = 0;
   };
-  for (Eigen::Index row : left_out) {
-    close(row);
-    start = row + 1;
+  for (Eigen::Index i = 0; i < m; ++i) {
+    if (next < left_out.size() && left_out[next] == i) {
+      ++next;
+      close();
+      continue;
+    }
+    const std::uint64_t row = file_row(numbers, i);
+    if (first != 0 && row != last + 1) close();
+    if (first == 0) first = row;
+    last = row;
   }
-  close(m);
+  close();
   if (ranges == 0 || ranges > 6) return std::string();
   return out;
 }
@@ -48,7 +56,7 @@ std::string kept_rows(Eigen::Index m, const std::vector<Eigen::Index>& left_out)
 }  // namespace
 
 std::optional<Warning> sentinel_warning(const Eigen::Ref<const Eigen::MatrixXd>& A,
-                                        const Eigen::Ref<const Eigen::MatrixXd>& B) {
+                                        const Eigen::Ref<const Eigen::MatrixXd>& B, const RowNumbers& numbers) {
   std::vector<Sentinel> found;
   std::vector<Eigen::Index> rows;
   const Eigen::Index m = A.rows();
@@ -70,7 +78,7 @@ std::optional<Warning> sentinel_warning(const Eigen::Ref<const Eigen::MatrixXd>&
   std::string named;
   for (std::size_t k = 0; k < found.size(); ++k) {
     const Sentinel& s = found[k];
-    named += (k == 0 ? "" : ", ") + std::to_string(s.row + 1) + " (" + number(s.value) + " in " +
+    named += (k == 0 ? "" : ", ") + std::to_string(file_row(numbers, s.row)) + " (" + number(s.value) + " in " +
              (s.in_a ? "A" : "B") + "'s column " + std::to_string(s.column + 1) + ")";
   }
   const bool one = rows.size() == 1;
@@ -81,7 +89,7 @@ std::optional<Warning> sentinel_warning(const Eigen::Ref<const Eigen::MatrixXd>&
           std::string(one ? "it dominates" : "they dominate") +
           " the fit (and A's and B's singular values, ranks and condition numbers); leave " +
           (one ? "it" : "them") + " out of A and B";
-  const std::string kept = kept_rows(m, rows);
+  const std::string kept = kept_rows(m, rows, numbers);
   if (!kept.empty()) text += " (fit rows " + kept + ")";
   return Warning(Code::Outliers, text, "rows");
 }

@@ -2,11 +2,11 @@
 // one of them decides a fit, its singular values and its ranks, so the rows holding them are named.
 #pragma once
 
+#include <Eigen/Core>
 #include <optional>
 #include <string>
 
-#include <Eigen/Core>
-
+#include "pipeline/row_numbers.hpp"
 #include "spdfit/outcome.hpp"
 
 namespace spdfit::detail {
@@ -15,11 +15,11 @@ namespace spdfit::detail {
 /// user logs reaches it in any unit, and loggers' "invalid" codes (9.9e37, FLT_MAX) are above it.
 constexpr double kSentinelMagnitude = 1e30;
 
-/// The warning about the rows of A and B (m rows each, numbered 1..m as in their files) holding a
-/// value of magnitude kSentinelMagnitude or more, naming up to five with their values and column,
-/// and the rows to keep; nothing when there is none. Cost O(m (n + d)).
+/// The warning about the rows of A and B (m rows each, numbered as in their files by `numbers`)
+/// holding a value of magnitude kSentinelMagnitude or more, naming up to five with their values and
+/// column, and the rows to keep; nothing when there is none. Cost O(m (n + d)).
 std::optional<Warning> sentinel_warning(const Eigen::Ref<const Eigen::MatrixXd>& A,
-                                        const Eigen::Ref<const Eigen::MatrixXd>& B);
+                                        const Eigen::Ref<const Eigen::MatrixXd>& B, const RowNumbers& numbers = {});
 
 /// What a failed fit's message gains when the data hold such values: they, not the data, decided it.
 inline const std::string& sentinel_failure_note() {

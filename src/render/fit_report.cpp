@@ -6,11 +6,22 @@
 #include <string>
 #include <vector>
 
+#include "render/fit_result_json.hpp"
 #include "render/labels.hpp"
 #include "spdfit/format.hpp"
 #include "spdfit/render.hpp"
 
 namespace spdfit {
+
+std::string detail::robust_line(const RobustReport& r) {
+  std::ostringstream out;
+  out << "robust: " << to_string(r.method) << " (k = " << format_number(r.tuning, Precision::Medium) << "), "
+      << r.rows_downweighted_count << (r.rows_downweighted_count == 1 ? " row" : " rows")
+      << " down-weighted below 0.5 (smallest weight " << format_number(r.weights_min, Precision::Medium)
+      << "), residual scale " << format_number(r.scale, Precision::Medium) << ", " << r.iterations
+      << (r.iterations == 1 ? " iteration" : " iterations") << (r.converged ? "" : " (not settled)") << "\n";
+  return out.str();
+}
 
 namespace {
 
@@ -157,13 +168,7 @@ std::string report(const FitResult& result, const ReportHints& hints) {
         << " in every entry of A (times the noise ratio in B)\n";
   }
   out << noise_model_line(d, result);
-  if (const auto& r = result.robust) {
-    out << "robust: " << to_string(r->method) << " (k = " << format_number(r->tuning, Precision::Medium) << "), "
-        << r->rows_downweighted_count << (r->rows_downweighted_count == 1 ? " row" : " rows")
-        << " down-weighted below 0.5 (smallest weight " << format_number(r->weights_min, Precision::Medium)
-        << "), residual scale " << format_number(r->scale, Precision::Medium) << ", " << r->iterations
-        << (r->iterations == 1 ? " iteration" : " iterations") << (r->converged ? "" : " (not settled)") << "\n";
-  }
+  if (const auto& r = result.robust) out << detail::robust_line(*r);
   if (const auto& o = result.offsets) {
     if (o->mode == Offsets::Estimate) {
       out << "offsets: estimated with X (A X + 1 c^T ~= B), c = [" << format_numbers(o->c, Precision::Full) << "]\n";

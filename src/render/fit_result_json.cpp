@@ -233,6 +233,17 @@ SpectrumUncertainty spectrum_from(const Json& object, const std::string& type) {
   return s;
 }
 
+Json robust_json(const RobustReport& r, JsonStyle style) {
+  return Json{{"method", to_string(r.method)},
+              {"tuning", number_json(r.tuning, style)},
+              {"scale", number_json(r.scale, style)},
+              {"rows_downweighted", r.rows_downweighted},
+              {"rows_downweighted_count", r.rows_downweighted_count},
+              {"weights_min", number_json(r.weights_min, style)},
+              {"iterations", r.iterations},
+              {"converged", r.converged}};
+}
+
 Json fit_result_json(const FitResult& result, JsonStyle style) {
   Json out;
   out["method"] = std::string(to_string(result.method));
@@ -256,16 +267,7 @@ Json fit_result_json(const FitResult& result, JsonStyle style) {
     }
     out["offsets"] = std::move(offsets);
   }
-  if (const auto& r = result.robust) {
-    out["robust"] = Json{{"method", to_string(r->method)},
-                         {"tuning", number_json(r->tuning, style)},
-                         {"scale", number_json(r->scale, style)},
-                         {"rows_downweighted", r->rows_downweighted},
-                         {"rows_downweighted_count", r->rows_downweighted_count},
-                         {"weights_min", number_json(r->weights_min, style)},
-                         {"iterations", r->iterations},
-                         {"converged", r->converged}};
-  }
+  if (const auto& r = result.robust) out["robust"] = robust_json(*r, style);
   out["diagnostics"] = diagnostics_json(result.diagnostics, style);
   put_warnings(out, result.warnings);
   // Exact keeps a message that a successful result should not have, too.

@@ -18,6 +18,12 @@ FitResult fit_result_from(const Json& object, const std::string& type);
 /// (standard deviations), rest_rows, rest_mean_a and rest_mean_b, rest_a_path and rest_b_path (rest
 /// rows), warnings; each when it has a value (render/noise_model_json.cpp).
 Json noise_model_json(const NoiseModel& model, JsonStyle style);
+
+/// A robust fit's report (FitResult::robust, PhysicalEstimate::robust): method, tuning, scale,
+/// rows_downweighted (1-based), rows_downweighted_count, weights_min, iterations, converged.
+Json robust_json(const RobustReport& report, JsonStyle style);
+/// The same for people: "robust: huber (k = 1.869), 19 rows down-weighted below 0.5 (...)\n".
+std::string robust_line(const RobustReport& report);
 NoiseModel noise_model_from(const Json& object, const std::string& type);
 
 /// estimate, standard_errors, lower, upper, clusters (lists of 0-based indices), failed.

@@ -345,7 +345,8 @@ def test_estimate_with_m_equal_n_is_a_data_error(spdfit, files, how):
     assert "offsets" in r.stderr, r.stderr
 
 
-def test_estimate_is_not_available_with_the_physical_fit(spdfit, tmp_path):
+def test_estimate_with_the_physical_fit_reports_its_constants(spdfit, tmp_path):
+    # (Its numbers against the fit of the centred data: tests/hexapod/test_logged_hexapod.py.)
     g = tmp_path / "g.json"
     assert spdfit("hexapod", "model", "--write-geometry", g).returncode == 0
     sim = spdfit("hexapod", "simulate", "--geometry", g, "--samples", 60, "--noise-var", 0.5, "--seed", 4, "--out",
@@ -354,6 +355,9 @@ def test_estimate_is_not_available_with_the_physical_fit(spdfit, tmp_path):
     data = [tmp_path / "run" / "A.csv", tmp_path / "run" / "B.csv"]
     ok = spdfit("hexapod", "identify", "--physical", "--geometry", g, *data)
     assert ok.returncode == 0, ok.stderr
-    r = spdfit("hexapod", "identify", "--physical", "--geometry", g, "--offsets", "estimate", *data)
-    assert r.returncode == 2, r.stderr
-    assert "--offsets" in r.stderr and "--physical" in r.stderr, r.stderr
+    r = spdfit("hexapod", "identify", "--physical", "--geometry", g, "--offsets", "estimate", "--json", *data)
+    assert r.returncode == 0, r.stderr
+    physical = json.loads(r.stdout)["physical"]
+    assert physical["offsets"]["mode"] == "estimate" and len(physical["offsets"]["c"]) == 6
+    report = spdfit("hexapod", "identify", "--physical", "--geometry", g, "--offsets", "estimate", *data)
+    assert "offsets: estimated with the payload" in report.stdout, report.stdout

@@ -372,3 +372,34 @@ def test_urdf_errors_name_the_source_line_and_link():
         ph.inertia_repair_urdf('<robot>\n<link name="a"><inertial><mass value="1"/>\n'
                                '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="nan"/></inertial></link></robot>',
                                source="r.urdf")
+
+
+def test_offsets_estimate_recovers_the_payload_and_the_constants_exactly():
+    # Noise-free data with a constant in every force: B = A M_p + 1 c^T. The physical model with an
+    # intercept recovers both (the closed form: mean(B) - M_p^T mean(A) is c).
+    g = as_dict(hx.cubic_geometry())
+    truth = mass_matrix(g, **PAYLOAD)
+    A = np.random.default_rng(5).uniform(-5, 5, (40, 6))
+    c = np.array([21.0, 20.0, 22.0, 21.5, 20.5, 21.0])
+    est = ph.identify(A, A @ truth + c, g, offsets="estimate")
+    assert est["mass"] == pytest.approx(PAYLOAD["mass"], rel=RECOVERY)
+    np.testing.assert_allclose(est["M_p"], truth, rtol=0, atol=RECOVERY * np.abs(truth).max())
+    assert est["offsets"]["mode"] == "estimate"
+    np.testing.assert_allclose(est["offsets"]["c"], c, rtol=RECOVERY)
+    with pytest.raises(ValueError, match="offsets"):
+        ph.identify(A, A @ truth + c, g, offsets="sideways")
+
+
+def test_robust_physical_fit_names_the_row_it_down_weights():
+    g = as_dict(hx.cubic_geometry())
+    A, B, _ = simulate(g, PAYLOAD["mass"], PAYLOAD["com"], PAYLOAD["inertia"], 200, 7)
+    B = np.array(B)
+    B[17, 3] += 100.0 * np.sqrt(NOISE_VAR)
+    clean = ph.identify(np.delete(A, 17, 0), np.delete(B, 17, 0), g)
+    plain = ph.identify(A, B, g)
+    for loss in ("huber", "tukey"):
+        est = ph.identify(A, B, g, robust=loss)
+        assert est["robust"]["method"] == loss and 18 in est["robust"]["rows_downweighted"]
+        assert abs(est["mass"] - clean["mass"]) < 0.5 * abs(plain["mass"] - clean["mass"]), loss
+    with pytest.raises(ValueError, match="bootstrap"):
+        ph.identify(A, B, g, robust="huber", bootstrap=5)

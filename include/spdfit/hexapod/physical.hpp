@@ -80,6 +80,17 @@ struct PhysicalOptions {
   /// Subtract the rest rows' means (rest_mean_a, rest_mean_b) from A and B before fitting: data
   /// logged untared, a static load in the forces (option `offsets` rest).
   bool tare = false;
+  /// Fit constant offsets with the payload (option `offsets` estimate): B ~= A M_p(theta) + 1 c^T,
+  /// the data centred by their column means (the factor of [1 A B]); c is reported
+  /// (PhysicalEstimate::offsets_c). For logs without a rest segment. Not with `tare`.
+  bool intercept = false;
+  /// A robust fit (option `robust`): the rows reweighted by their residual under the physical
+  /// model, whitened by the noise covariances, as FitOptions::robust reweights them for the
+  /// generic estimators (Huber from the plain physical fit, Tukey from least trimmed squares);
+  /// each reweighting a physical fit of the weighted rows. Not with `bootstrap`.
+  RobustLoss robust = RobustLoss::None;
+  /// The robust loss's constant (FitOptions::robust_tuning); nothing: 95% efficiency.
+  std::optional<double> robust_tuning;
   /// The rest rows' means and their count, from a noise model made of rest rows (apply_fit_options
   /// copies them): for `tare`, and for the warning about data that look untared. Empty: none.
   Eigen::VectorXd rest_mean_a, rest_mean_b;
@@ -178,6 +189,11 @@ struct PhysicalEstimate {
   std::optional<PhysicalBootstrap> bootstrap;
   /// With PhysicalOptions::tare: the rest rows' means subtracted from A and from B (empty without).
   Eigen::VectorXd tare_a, tare_b;
+  /// With PhysicalOptions::intercept: the offsets c = mean(B) - M_p^T mean(A) (6; the weighted
+  /// means with `robust`), in B's units; empty without.
+  Eigen::VectorXd offsets_c;
+  /// With PhysicalOptions::robust: what the reweighting did to the rows.
+  std::optional<RobustReport> robust;
 
   bool ok() const { return status == Status::Success; }
 };
