@@ -28,7 +28,8 @@ FitResult fit(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const
 /// Runs every method in kAllMethods (not auto, which runs one of them) on the same data: one QR
 /// and reduction for all, and one SVD of [A B] for tls, tls-sym and tls-psd. The results are
 /// those of `fit` for each method. For a non-square X (d != n) only the methods that fit one:
-/// ls and tls, in that order.
+/// ls and tls, in that order. With options.robust (the overload on A and B; the one on a reduction
+/// refuses it, as reduce does), every method but spde is its own robust fit, as `fit` gives it.
 std::vector<FitResult> fit_all(const Reduction& data);
 std::vector<FitResult> fit_all(const Eigen::Ref<const Eigen::MatrixXd>& A,
                                const Eigen::Ref<const Eigen::MatrixXd>& B, const FitOptions& options = {});

@@ -49,7 +49,7 @@ const std::vector<Entry>& entries() {
       // fit_files streams: rows, rest_rows and time_col choose rows of a fit in memory (slice in Python), and
       // robust reweighs rows in memory (spdfit.fit on the arrays).
       {"fit_files", "fit", {"stream"}, {"rows", "rest_rows", "time_col", "robust", "robust_tuning"}},
-      {"fit_all", "fit", {}, {"stream", "bootstrap", "a_cols", "b_cols", "rows", "rest_rows", "time_col", "robust", "robust_tuning"}},
+      {"fit_all", "fit", {}, {"stream", "bootstrap", "a_cols", "b_cols", "rows", "rest_rows", "time_col"}},
       // A factor holds the data in their units already (no scale_a, scale_b), of [A B] (no offsets),
       // and no rows to reweigh (no robust).
       {"Factor.fit", "fit", {}, {"stream", "bootstrap", "a_cols", "b_cols", "scale_a", "scale_b", "rows", "rest_rows", "time_col",

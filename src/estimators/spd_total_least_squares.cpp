@@ -72,8 +72,9 @@ FitResult spd_total_least_squares(const Reduction& reduction) {
         "spd-tls: no positive definite starting point: " +
             (data.rank_a < n ? "A is rank-deficient (rank " + std::to_string(data.rank_a) + " < n = " +
                                    std::to_string(n) + "), so SPDE is undefined, "
-                             : std::string("SPDE is singular (B has rank ") + std::to_string(data.rank_b) +
-                                   " < n = " + std::to_string(n) + "), ") +
+             : data.rank_b < n ? std::string("SPDE is singular (B has rank ") + std::to_string(data.rank_b) +
+                                     " < n = " + std::to_string(n) + "), "
+                               : std::string("SPDE is not positive definite, ")) +
             "and the symmetric part of the TLS estimate is not positive definite (or TLS has no solution): "
             "collect data that excite every direction of A and B");
   }

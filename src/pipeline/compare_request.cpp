@@ -50,7 +50,8 @@ std::vector<Spec> make_table() {
   // The fit options that every method shares: the noise (its ratio, or a noise model), and A's and
   // B's columns in one file.
   std::vector<std::string_view> shared = noise_option_names();
-  shared.insert(shared.end(), {"a_cols", "b_cols", "scale_a", "scale_b", "rows", "time_col", "offsets"});
+  shared.insert(shared.end(), {"a_cols", "b_cols", "scale_a", "scale_b", "rows", "time_col", "offsets", "robust",
+                               "robust_tuning"});
   for (Spec& spec : lifted_options(fit_option_table(), &CompareRequest::fit, shared)) table.push_back(std::move(spec));
   for (Spec& spec : output_options(&CompareRequest::output, {"json", "output"}, {"Print every result as JSON"})) {
     table.push_back(std::move(spec));

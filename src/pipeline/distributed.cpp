@@ -13,6 +13,7 @@
 
 #include "factor/basic_reduction.hpp"
 #include "io/split_file.hpp"
+#include "pipeline/sentinels.hpp"
 #include "pipeline/noise_files.hpp"
 #include "pipeline/pair_checks.hpp"
 #include "spdfit/options.hpp"
@@ -315,6 +316,9 @@ DistributedFit fit_files_distributed(const std::string& a_path, const std::strin
 
   merge_tree(channel, part);
   if (rank != 0) return out;
+  if (std::optional<Warning> w = detail::streamed_sentinel_warning(part.factors.total)) {
+    part.factors.info.warnings.push_back(std::move(*w));
+  }
   out.result = bootstrap ? detail::fit_streamed_bootstrap(method, options, part.factors, a_path)
                          : detail::fit_streamed(method, options, part.factors.total, part.factors.info, a_path);
   return out;

@@ -247,8 +247,20 @@ std::vector<FitResult> fit_all(const Eigen::Ref<const MatrixXd>& A, const Eigen:
     return results;
   }
   const TriangularFactor factor = TriangularFactor::from_data(A, B, options.offsets == Offsets::Estimate);
-  std::vector<FitResult> results = fit_all(reduce(factor, options));
-  for (FitResult& r : results) r.offsets = detail::offsets_of(r, factor, options, nullptr);
+  FitOptions plain = options;  // with `robust`, the methods that weigh rows are refitted below
+  plain.robust = RobustLoss::None;
+  plain.robust_tuning.reset();
+  std::vector<FitResult> results = fit_all(reduce(factor, plain));
+  for (FitResult& r : results) {
+    if (options.robust != RobustLoss::None && detail::robust_applies(r.method)) {
+      // Rows reweighted by this method's residuals: its own robust fit (spde, without rows, as it is).
+      detail::RobustFit robust = detail::robust_fit(A, B, r.method, options);
+      r = std::move(robust.result);
+      if (robust.factor) r.offsets = detail::offsets_of(r, *robust.factor, options, nullptr);
+    } else {
+      r.offsets = detail::offsets_of(r, factor, options, nullptr);
+    }
+  }
   return results;
 }
 

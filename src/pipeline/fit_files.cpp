@@ -10,6 +10,7 @@
 #include "io/kept_text.hpp"
 #include "io/parse.hpp"
 #include "pipeline/log_rows.hpp"
+#include "pipeline/sentinels.hpp"
 #include "pipeline/offsets.hpp"
 #include "pipeline/units.hpp"
 #include "pipeline/pair_checks.hpp"
@@ -213,6 +214,9 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
     detail::ResampledFactors factors =
         detail::stream_resampled_factors(method, readers(), *streamed, options.bootstrap, options.seed);
     if (factors.groups >= static_cast<std::uint64_t>(detail::kBootstrapMinGroups)) {
+      if (std::optional<Warning> w = detail::streamed_sentinel_warning(factors.total)) {
+        factors.info.warnings.push_back(std::move(*w));
+      }
       return detail::fit_streamed_bootstrap(method, options, factors, a_path);
     }
     // Too few groups for the Poisson scheme: the rows resampled one at a time in memory, when
@@ -251,6 +255,7 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
     if (streamed->block_rows < 1) throw std::invalid_argument("block_rows must be at least 1");
     detail::PairInfo info;
     const TriangularFactor factor = detail::stream_factor_for(method, readers(), *streamed, &info);
+    if (std::optional<Warning> w = detail::streamed_sentinel_warning(factor)) info.warnings.push_back(std::move(*w));
     return detail::fit_streamed(method, options, factor, info, a_path);
   }
   return in_memory();

@@ -60,10 +60,6 @@ MatrixXd residual_covariance(const MatrixXd& X, Method method, const FitOptions&
 
 VectorXd whitened_residuals(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, const MatrixXd& X,
                             const VectorXd& c, const MatrixXd& covariance) {
-  MatrixXd residual;
-  multiply(A, false, X, false, residual);
-  residual -= B;
-  if (c.size() == B.cols()) residual.rowwise() += c.transpose();
   MatrixXd S = 0.5 * (covariance + covariance.transpose());
   const double top = S.size() ? S.diagonal().cwiseAbs().maxCoeff() : 0.0;
   Eigen::LLT<MatrixXd> llt(S);
@@ -71,7 +67,32 @@ VectorXd whitened_residuals(const Eigen::Ref<const MatrixXd>& A, const Eigen::Re
     S.diagonal().array() += std::max(top, 1.0) * 1e-12;
     llt.compute(S);
   }
-  return llt.matrixL().solve(residual.transpose()).colwise().norm().transpose();
+  // A block of rows at a time (no matrix of m rows: its fresh pages would cost more than the
+  // arithmetic at these widths): residuals, then whitened by L^-1.
+  // For the narrow matrices of a fit (n, d up to a few dozen) the products are coefficient-wise
+  // (Eigen's lazyProduct): a blocked GEMM's packing costs more than its arithmetic there.
+  constexpr Index kBlockRows = 2048, kNarrow = 16;
+  const Index m = A.rows(), n = A.cols(), d = B.cols();
+  const MatrixXd Linv_t = MatrixXd(llt.matrixL().solve(MatrixXd::Identity(d, d))).transpose();
+  VectorXd out(m);
+  MatrixXd residual, whitened;
+  for (Index i0 = 0; i0 < m; i0 += kBlockRows) {
+    const Index r = std::min(kBlockRows, m - i0);
+    if (n <= kNarrow) {
+      residual.noalias() = A.middleRows(i0, r).lazyProduct(X);
+    } else {
+      residual.noalias() = A.middleRows(i0, r) * X;
+    }
+    residual -= B.middleRows(i0, r);
+    if (c.size() == d) residual.rowwise() += c.transpose();
+    if (d <= kNarrow) {
+      whitened.noalias() = residual.lazyProduct(Linv_t);
+    } else {
+      whitened.noalias() = residual * Linv_t;
+    }
+    out.segment(i0, r) = whitened.rowwise().norm();
+  }
+  return out;
 }
 
 VectorXd robust_z_scores(const VectorXd& x) {

@@ -94,4 +94,18 @@ std::optional<Warning> sentinel_warning(const Eigen::Ref<const Eigen::MatrixXd>&
   return Warning(Code::Outliers, text, "rows");
 }
 
+std::optional<Warning> streamed_sentinel_warning(const TriangularFactor& factor) {
+  // |x| < 2^e for every entry: a sentinel of 1e30 or more makes e at least 100.
+  constexpr int kSentinelExponent = 100;
+  const bool in_a = factor.exponent_a() >= kSentinelExponent, in_b = factor.exponent_b() >= kSentinelExponent;
+  if (!in_a && !in_b) return std::nullopt;
+  const std::string where = in_a && in_b ? "A and B hold" : in_a ? "A holds" : "B holds";
+  return Warning(Code::Outliers,
+                 where + " a value of magnitude about 1e30 or more: a logger's code for an invalid reading, not a "
+                         "measurement, and it dominates the fit (and A's and B's singular values, ranks and condition "
+                         "numbers); the streamed fit keeps no rows to name: fit in memory (without `stream`) to have "
+                         "its rows named, and leave them out of A and B",
+                 "rows");
+}
+
 }  // namespace spdfit::detail

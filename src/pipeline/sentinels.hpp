@@ -8,6 +8,7 @@
 
 #include "pipeline/row_numbers.hpp"
 #include "spdfit/outcome.hpp"
+#include "spdfit/triangular_factor.hpp"
 
 namespace spdfit::detail {
 
@@ -20,6 +21,11 @@ constexpr double kSentinelMagnitude = 1e30;
 /// column, and the rows to keep; nothing when there is none. Cost O(m (n + d)).
 std::optional<Warning> sentinel_warning(const Eigen::Ref<const Eigen::MatrixXd>& A,
                                         const Eigen::Ref<const Eigen::MatrixXd>& B, const RowNumbers& numbers = {});
+
+/// The streamed fit's form of sentinel_warning (no rows kept to name): the warning when the factor
+/// of the pass (its scale exponents: a magnitude of 2^99, 6e29, or more) holds such a value, naming
+/// the in-memory fit that names the rows. Nothing otherwise. O(1).
+std::optional<Warning> streamed_sentinel_warning(const TriangularFactor& factor);
 
 /// What a failed fit's message gains when the data hold such values: they, not the data, decided it.
 inline const std::string& sentinel_failure_note() {

@@ -141,37 +141,69 @@ double robust_weight(RobustLoss loss, double u, double k) {
 
 namespace {
 
+// Rows at which least_squares_on accumulates the normal equations instead of factoring the rows:
+// the concentration steps on all the rows fit half of them, where copying them costs more than the
+// fit, and a start needs no more accuracy than the Gram matrix gives.
+constexpr Index kNormalEquationRows = 256;
+
 // The least-squares fit of B on [1 A] (intercept) or A over the rows `rows`: X, and c (empty without).
 bool least_squares_on(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
                       const std::vector<Index>& rows, bool intercept, MatrixXd& X, VectorXd& c) {
   const Index n = A.cols(), d = B.cols(), k = static_cast<Index>(rows.size());
   const Index p = n + (intercept ? 1 : 0);
-  MatrixXd Z(k, p), Y(k, d);
-  for (Index r = 0; r < k; ++r) {
-    const Index i = rows[static_cast<std::size_t>(r)];
-    if (intercept) Z(r, 0) = 1.0;
-    Z.row(r).tail(n) = A.row(i);
-    Y.row(r) = B.row(i);
+  const auto gather = [&](Index first, Index count, MatrixXd& Z, MatrixXd& Y) {
+    Z.resize(count, p);
+    Y.resize(count, d);
+    for (Index r = 0; r < count; ++r) {
+      const Index i = rows[static_cast<std::size_t>(first + r)];
+      if (intercept) Z(r, 0) = 1.0;
+      Z.row(r).tail(n) = A.row(i);
+      Y.row(r) = B.row(i);
+    }
+  };
+  MatrixXd coef;
+  if (k < kNormalEquationRows) {
+    MatrixXd Z, Y;
+    gather(0, k, Z, Y);
+    const Eigen::ColPivHouseholderQR<MatrixXd> qr(Z);
+    if (qr.rank() < p) return false;
+    coef = qr.solve(Y);
+  } else {
+    // The normal equations, a block of rows at a time.
+    MatrixXd G = MatrixXd::Zero(p, p), H = MatrixXd::Zero(p, d), Z, Y;
+    for (Index first = 0; first < k; first += kNormalEquationRows) {
+      gather(first, std::min(kNormalEquationRows, k - first), Z, Y);
+      G.noalias() += Z.transpose().lazyProduct(Z);  // p, d small: coefficient-wise beats a GEMM
+      H.noalias() += Z.transpose().lazyProduct(Y);
+    }
+    const Eigen::ColPivHouseholderQR<MatrixXd> qr(G);
+    if (qr.rank() < p) return false;
+    coef = qr.solve(H);
   }
-  const Eigen::ColPivHouseholderQR<MatrixXd> qr(Z);
-  if (qr.rank() < p) return false;
-  const MatrixXd coef = qr.solve(Y);
   if (!coef.allFinite()) return false;
   X = coef.bottomRows(n);
   c = intercept ? VectorXd(coef.row(0).transpose()) : VectorXd();
   return true;
 }
 
-// The h rows of least whitened residual, their sum of squares.
+// The h rows of least whitened residual (ascending row order; ties at the h-th value broken by
+// row), their sum of squares.
 double trimmed(const VectorXd& u, Index h, std::vector<Index>& rows) {
-  std::vector<Index> order(static_cast<std::size_t>(u.size()));
-  std::iota(order.begin(), order.end(), Index{0});
-  std::nth_element(order.begin(), order.begin() + (h - 1), order.end(),
-                   [&u](Index a, Index b) { return u(a) < u(b); });
-  rows.assign(order.begin(), order.begin() + h);
-  std::sort(rows.begin(), rows.end());
+  std::vector<double> values(u.data(), u.data() + u.size());
+  std::nth_element(values.begin(), values.begin() + (h - 1), values.end());
+  const double cut = values[static_cast<std::size_t>(h - 1)];
+  Index below = 0;
+  for (Index i = 0; i < u.size(); ++i) below += u(i) < cut;
+  Index ties = h - below;  // rows at exactly `cut` to take, the first ones
+  rows.clear();
+  rows.reserve(static_cast<std::size_t>(h));
   double sum = 0.0;
-  for (Index i : rows) sum += u(i) * u(i);
+  for (Index i = 0; i < u.size(); ++i) {
+    if (u(i) < cut || (u(i) == cut && ties-- > 0)) {
+      rows.push_back(i);
+      sum += u(i) * u(i);
+    }
+  }
   return sum;
 }
 
@@ -293,9 +325,13 @@ namespace {
 // symmetric rank-k product on the BLAS). The Gram matrix squares the condition number, so the
 // converged weights are fitted once more by the QR (TriangularFactor::append), and a Cholesky that
 // breaks down (A ill-conditioned beyond about 1e7) gives nothing: the caller uses the QR.
+// Rows per block of gram_factor's passes: the blocks' copies stay in cache, and no pass allocates
+// a matrix of m rows (whose fresh pages cost more than the arithmetic at these widths).
+constexpr Index kGramBlockRows = 2048;
+
 std::optional<TriangularFactor> gram_factor(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
-                                            const VectorXd& w, bool intercept) {
-  const Index m = A.rows(), n = A.cols(), d = B.cols();
+                                            const VectorXd& w, bool intercept, int ea, int eb) {
+  const Index m = A.rows(), n = A.cols(), d = B.cols(), p = n + d;
   Index rows = 0;
   double mass = 0.0;
   for (Index i = 0; i < m; ++i) {
@@ -303,25 +339,47 @@ std::optional<TriangularFactor> gram_factor(const Eigen::Ref<const MatrixXd>& A,
     mass += w(i);
   }
   if (rows <= n + d || !(mass > 0.0)) return std::nullopt;
-  const int ea = scale_exponent(A).value_or(0), eb = scale_exponent(B).value_or(0);
-  MatrixXd Z(m, n + d);
-  Z.leftCols(n) = times_power_of_two(MatrixXd(A), -ea);
-  Z.rightCols(d) = times_power_of_two(MatrixXd(B), -eb);
+  // The block [A B] 2^-[ea eb] of rows i0.. (exact scaling), less `shift` (a row vector).
+  MatrixXd Z(std::min(kGramBlockRows, m), p);
+  const auto block = [&](Index i0, Index r, const Eigen::RowVectorXd& shift) {
+    Z.resize(r, p);
+    Z.leftCols(n) = A.middleRows(i0, r);
+    Z.rightCols(d) = B.middleRows(i0, r);
+    auto left = Z.leftCols(n);
+    auto right = Z.rightCols(d);
+    multiply_by_power_of_two(left, -ea);
+    multiply_by_power_of_two(right, -eb);
+    if (shift.size() == p) Z.rowwise() -= shift;
+  };
+  // sum_i w_i (z_i - shift), over the blocks.
+  const auto weighted_sum = [&](const Eigen::RowVectorXd& shift) {
+    Eigen::RowVectorXd sum = Eigen::RowVectorXd::Zero(p);
+    for (Index i0 = 0; i0 < m; i0 += kGramBlockRows) {
+      const Index r = std::min(kGramBlockRows, m - i0);
+      block(i0, r, shift);
+      sum.noalias() += w.segment(i0, r).transpose() * Z;
+    }
+    return sum;
+  };
+  Eigen::RowVectorXd mu;
   VectorXd means;
   if (intercept) {
-    Eigen::RowVectorXd mu = (w.transpose() * Z) / mass;
-    Z.rowwise() -= mu;
-    const Eigen::RowVectorXd again = (w.transpose() * Z) / mass;  // what rounding left of the mean
-    Z.rowwise() -= again;
-    mu += again;
+    // The weighted means in two passes: the second takes what rounding left of the first.
+    mu = weighted_sum(Eigen::RowVectorXd()) / mass;
+    mu += weighted_sum(mu) / mass;
     means = mu.transpose();
     means.head(n) = times_power_of_two(VectorXd(means.head(n)), ea);
     means.tail(d) = times_power_of_two(VectorXd(means.tail(d)), eb);
   }
-  Z.array().colwise() *= w.array().sqrt();
-  MatrixXd G;
-  multiply(Z, true, Z, false, G);
-  const Eigen::LLT<MatrixXd> llt(0.5 * (G + G.transpose()));
+  MatrixXd G = MatrixXd::Zero(p, p);
+  for (Index i0 = 0; i0 < m; i0 += kGramBlockRows) {
+    const Index r = std::min(kGramBlockRows, m - i0);
+    block(i0, r, mu);
+    Z.array().colwise() *= w.segment(i0, r).array().sqrt();
+    G.selfadjointView<Eigen::Lower>().rankUpdate(Z.transpose());
+  }
+  G = G.selfadjointView<Eigen::Lower>();
+  const Eigen::LLT<MatrixXd> llt(G);
   if (llt.info() != Eigen::Success) return std::nullopt;
   const MatrixXd R = llt.matrixU();
   if (!R.allFinite()) return std::nullopt;
@@ -347,6 +405,8 @@ Iterated iterate(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Mat
   Iterated out;
   const Index m = A.rows(), d = B.cols();
   const double median_chi = chi_median(d);
+  // The data's scale, for the Gram matrices of every iteration (TriangularFactor's own rule).
+  const int ea = scale_exponent(A).value_or(0), eb = scale_exponent(B).value_or(0);
   for (int it = 1; it <= max_iterations; ++it) {
     const VectorXd u = whitened_residuals(A, B, X, c, residual_covariance(X, method, inner));
     if (loss == RobustLoss::Huber) {
@@ -365,7 +425,7 @@ Iterated iterate(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Mat
     // The weighted fit: from the Gram matrix while the weights settle, by the QR for the last.
     const auto weighted_fit = [&](bool by_gram, std::optional<TriangularFactor>& factor, Reduction& data) {
       factor.reset();
-      if (by_gram) factor = gram_factor(A, B, w, intercept);
+      if (by_gram) factor = gram_factor(A, B, w, intercept, ea, eb);
       if (!factor) {
         factor.emplace(A.cols(), B.cols(), intercept);
         factor->append(A, B, w);

@@ -72,6 +72,24 @@ def test_a_sentinel_in_b_is_named_too(spdfit, tmp_path):
     assert "rows 4 (-9.9e+37 in B's column 3), 10 (-9.9e+37 in B's column 3) hold" in err
 
 
+def test_a_streamed_fit_says_a_sentinel_is_there(spdfit, tmp_path):
+    # Streamed (and under the streaming bootstrap) no rows are kept to name: the warning says a code
+    # is there and names the in-memory route; a fit the code breaks says why, not "B has rank 3 < 3".
+    A, B = problem(m=200, seed=4)
+    A[50, 1] = 9.9e37
+    a, b = write_csv(tmp_path / "A.csv", A), write_csv(tmp_path / "B.csv", B)
+    r = spdfit("fit", "--method", "ls", "--stream", "--block-rows", "16", a, b)
+    assert r.returncode == 0, r.stderr
+    assert "A holds a value of magnitude about 1e30 or more" in r.stderr and "without --stream" in r.stderr
+    # (With a bootstrap of so few rows they are resampled in memory, and the row is named.)
+    r = spdfit("fit", "--method", "ls", "--stream", "--bootstrap", "20", a, b)
+    assert r.returncode == 0 and "row 51 (9.9e+37 in A's column 2)" in r.stderr, r.stderr
+    r = spdfit("fit", "--method", "spd-tls", "--stream", a, b)
+    assert "1e30" in r.stderr and "B has rank 3 < n = 3" not in r.stderr, r.stderr
+    clean = write_csv(tmp_path / "A_clean.csv", problem(m=200, seed=4)[0])
+    assert "1e30" not in spdfit("fit", "--method", "ls", "--stream", clean, b).stderr
+
+
 def test_clean_data_have_no_sentinel_warning(spdfit, tmp_path):
     A, B = problem(seed=3)
     A[7] *= 1e6  # a large row (leverage), not a code

@@ -190,3 +190,15 @@ def test_compare_and_identify_name_dominant_rows_once(spdfit, log, spiked):
         assert r.stderr.count("dominates the fit") == 1 and "row 750 (z = " in r.stderr, (command, r.stderr)
         r = spdfit(*command, "--rest-rows", ":600", *COLS, log["log"])
         assert "dominate" not in r.stderr, (command, r.stderr)
+
+
+@pytest.mark.parametrize("loss", ["huber", "tukey"])
+def test_compare_robust_is_each_methods_robust_fit(spdfit, log, spiked, loss):
+    # compare --robust: every method but spde as `fit --method M --robust` fits it, spde as it is.
+    got = run_json(spdfit, "compare", "--robust", loss, "--rest-rows", ":600", *COLS, spiked["spike"])
+    for r in got["results"]:
+        # (spde takes no noise model: compare runs it on the rows fitted without one.)
+        how = ["--robust", loss, "--rest-rows", ":600"] if r["method"] != "spde" else ["--rows", "601:"]
+        want = run_json(spdfit, "fit", "--method", r["method"], *how, *COLS, spiked["spike"])
+        assert r["X"] == want["X"], r["method"]
+        assert ("robust" in r) == (r["method"] != "spde")
