@@ -138,3 +138,20 @@ def test_refusals_name_the_option():
         spdfit.fit(A, B, "ls", robust="bisquare")
     with pytest.raises(ValueError, match="robust_tuning"):
         spdfit.fit(A, B, "ls", robust="huber", robust_tuning=-1.0)
+
+
+def test_fit_all_robust_is_each_methods_robust_fit():
+    rng = np.random.default_rng(21)
+    A0 = rng.standard_normal((120, 3))
+    A = A0 + SIGMA * rng.standard_normal(A0.shape)
+    B = A0 @ X_TRUE + SIGMA * rng.standard_normal(A0.shape)
+    B[[5, 60]] += 50 * SIGMA
+    results = quiet(spdfit.fit_all, A, B, robust="tukey")  # {method: FitResult}
+    assert list(results) == list(quiet(spdfit.fit_all, A, B))
+    for method, r in results.items():
+        if method == "spde":  # no rows to reweigh: as it is
+            assert r.robust is None
+            np.testing.assert_array_equal(r.X, quiet(spdfit.fit, A, B, "spde").X)
+        else:
+            np.testing.assert_array_equal(r.X, quiet(spdfit.fit, A, B, method, robust="tukey").X)
+            assert {6, 61} <= set(r.robust["rows_downweighted"])
