@@ -4,8 +4,9 @@
 
 Conventions in the pages: lines after a `$` command are expected output lines (each must be
 printed, stdout or stderr, in any order); `...` elides lines; `[exit status N]` gives the
-expected exit status (0 otherwise). Commands run in a scratch directory in which `examples`
-is the repository's examples folder. No example may print a warning that contradicts the method
+expected exit status (0 otherwise). Commands run in a scratch directory, one per page, in
+which `examples` is the repository's examples folder: a page's examples run in order, and may read
+what an earlier one wrote. No example may print a warning that contradicts the method
 the run chose or the noise model it was given (spdfit_testing.contradicting_warnings).
 (docs/hexapod.md and docs/linkage.md have their own tests in tests/hexapod and tests/linkage.)"""
 import doctest
@@ -23,7 +24,7 @@ sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "support"))
 from spdfit_testing import command_context, contradicting_warnings  # noqa: E402
 
 ROOT = pathlib.Path(os.environ.get("SPDFIT_SOURCE_DIR", pathlib.Path(__file__).resolve().parents[2]))
-PAGES = ["README.md", "docs/guide.md", "docs/cli.md", "docs/python.md", "docs/accuracy.md"]
+PAGES = ["README.md", "docs/guide.md", "docs/cli.md", "docs/python.md", "docs/accuracy.md", "docs/payload.md"]
 EXIT = re.compile(r"^\[exit status (\d+)\]$")
 # The README's command lines include full-size experiments and the demo, which the plain build
 # runs; under the sanitizers (SPDFIT_SANITIZED=1) they took minutes of CI for no new coverage.
@@ -47,10 +48,21 @@ def console_examples(page):
 ALL = [(page, *example) for page in PAGES for example in console_examples(page)]
 
 
+@pytest.fixture(scope="module")
+def page_dirs():
+    return {}
+
+
 @pytest.fixture
-def workdir(tmp_path):
-    (tmp_path / "examples").symlink_to(ROOT / "examples")
-    return tmp_path
+def workdir(request, tmp_path_factory, page_dirs):
+    """One directory per page, holding `examples`: a page's examples run in order in it, so that
+    one may read what an earlier one wrote (docs/payload.md's estimate.json)."""
+    page = request.node.callspec.params.get("page", "") if hasattr(request.node, "callspec") else ""
+    if page not in page_dirs:
+        path = tmp_path_factory.mktemp("page")
+        (path / "examples").symlink_to(ROOT / "examples")
+        page_dirs[page] = path
+    return page_dirs[page]
 
 
 def test_pages_have_examples():
@@ -85,7 +97,7 @@ def test_readme_command_lines_run(cli, workdir):
         assert result.returncode == 0, f"README: {command}\n{result.stderr}"
 
 
-@pytest.mark.parametrize("page", ["README.md", "docs/python.md", "docs/accuracy.md", "docs/guide.md"])
+@pytest.mark.parametrize("page", ["README.md", "docs/python.md", "docs/accuracy.md", "docs/guide.md", "docs/payload.md"])
 def test_python_examples(workdir, page, monkeypatch):
     blocks = re.findall(r"```python\n(.*?)```", (ROOT / page).read_text(), flags=re.S)
     if not blocks:
