@@ -114,6 +114,15 @@ double robust_tuning(RobustLoss loss, Index d, double target) {
 }
 
 double chi_median(Index d) {
+  // Computed once per d (60 bisection steps of a quadrature: milliseconds, against a robust
+  // fit's few dozen at m = 1e5), as robust_tuning's constants are.
+  static std::mutex mutex;
+  static std::map<Index, double> known;
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    const auto it = known.find(d);
+    if (it != known.end()) return it->second;
+  }
   const double dd = static_cast<double>(std::max<Index>(d, 1));
   double lo = 0.0, hi = upper_end(dd);
   for (int i = 0; i < 60; ++i) {
@@ -121,7 +130,10 @@ double chi_median(Index d) {
     const double cdf = expectation([](double) { return 1.0; }, 0.0, mid, dd);
     (cdf < 0.5 ? lo : hi) = mid;
   }
-  return 0.5 * (lo + hi);
+  const double median = 0.5 * (lo + hi);
+  const std::lock_guard<std::mutex> lock(mutex);
+  known[d] = median;
+  return median;
 }
 
 double robust_weight(RobustLoss loss, double u, double k) {
@@ -319,15 +331,43 @@ TrimmedStart least_trimmed_squares(const Eigen::Ref<const MatrixXd>& A, const Ei
 
 namespace {
 
+// Rows per block of gram_factor's passes: the blocks' copies stay in cache, and no pass allocates
+// a matrix of m rows (whose fresh pages cost more than the arithmetic at these widths).
+constexpr Index kGramBlockRows = 2048;
+
 // The factor of the rows of [A B] weighted by w (with an intercept, about their weighted means) from
 // the weighted Gram matrix and its Cholesky factor: for the reweighting's inner iterations, which
 // need X only to the accuracy at which the weights settle, at a fraction of a QR's cost (one
 // symmetric rank-k product on the BLAS). The Gram matrix squares the condition number, so the
 // converged weights are fitted once more by the QR (TriangularFactor::append), and a Cholesky that
 // breaks down (A ill-conditioned beyond about 1e7) gives nothing: the caller uses the QR.
-// Rows per block of gram_factor's passes: the blocks' copies stay in cache, and no pass allocates
-// a matrix of m rows (whose fresh pages cost more than the arithmetic at these widths).
-constexpr Index kGramBlockRows = 2048;
+// The factor of a Gram matrix G (the full p x p, symmetric) of rows scaled by 2^-[ea eb]: its
+// Cholesky factor, or nothing where that breaks down (the caller uses the QR).
+std::optional<TriangularFactor> factor_of_gram(const MatrixXd& G, Index n, Index rows, int ea, int eb, bool intercept,
+                                               const VectorXd& means, double mass) {
+  const Eigen::LLT<MatrixXd> llt(G);
+  if (llt.info() != Eigen::Success) return std::nullopt;
+  const MatrixXd R = llt.matrixU();
+  if (!R.allFinite()) return std::nullopt;
+  return ChunkAppender::from_triangle(R, n, rows, ea, eb, intercept, means, mass);
+}
+
+// sum_i w_i z_i^T z_i over the rows z_i of [A B] 2^-[ea eb], a block of rows at a time (the lower
+// triangle filled, and mirrored).
+MatrixXd weighted_gram(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, const VectorXd& w,
+                       int ea, int eb) {
+  const Index m = A.rows(), n = A.cols(), d = B.cols(), p = n + d;
+  MatrixXd G = MatrixXd::Zero(p, p), Z;
+  for (Index i0 = 0; i0 < m; i0 += kGramBlockRows) {
+    const Index r = std::min(kGramBlockRows, m - i0);
+    Z.resize(r, p);
+    Z.leftCols(n) = A.middleRows(i0, r) * std::ldexp(1.0, -ea);
+    Z.rightCols(d) = B.middleRows(i0, r) * std::ldexp(1.0, -eb);
+    Z.array().colwise() *= w.segment(i0, r).array().sqrt();
+    G.selfadjointView<Eigen::Lower>().rankUpdate(Z.transpose());
+  }
+  return G.selfadjointView<Eigen::Lower>();
+}
 
 std::optional<TriangularFactor> gram_factor(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
                                             const VectorXd& w, bool intercept, int ea, int eb) {
@@ -379,11 +419,82 @@ std::optional<TriangularFactor> gram_factor(const Eigen::Ref<const MatrixXd>& A,
     G.selfadjointView<Eigen::Lower>().rankUpdate(Z.transpose());
   }
   G = G.selfadjointView<Eigen::Lower>();
-  const Eigen::LLT<MatrixXd> llt(G);
-  if (llt.info() != Eigen::Success) return std::nullopt;
-  const MatrixXd R = llt.matrixU();
-  if (!R.allFinite()) return std::nullopt;
-  return ChunkAppender::from_triangle(R, n, rows, ea, eb, intercept, means, mass);
+  return factor_of_gram(G, n, rows, ea, eb, intercept, means, mass);
+}
+
+// Huber's weights are 1 but for the rows of large residual: the weighted Gram matrix (without an
+// intercept) is the unweighted one less sum (1 - w_i) z_i z_i^T over those rows, which costs a
+// pass over them only. A row far larger than the others (a logger's 1e30, which Huber
+// down-weights to nearly 0) would leave only rounding of itself in that difference: such rows stay
+// out of the unweighted matrix and are added with their weight instead.
+struct GramBase {
+  MatrixXd G;                // of the rows not in `large`, scaled by 2^-[ea eb]
+  std::vector<Index> large;  // rows of squared norm above kLargeRowRatio times the median's
+};
+constexpr double kLargeRowRatio = 1e6;
+
+// The scaled row i of [A B].
+Eigen::RowVectorXd scaled_row(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Index i,
+                              int ea, int eb) {
+  Eigen::RowVectorXd z(A.cols() + B.cols());
+  z.head(A.cols()) = A.row(i) * std::ldexp(1.0, -ea);
+  z.tail(B.cols()) = B.row(i) * std::ldexp(1.0, -eb);
+  return z;
+}
+
+GramBase gram_base(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, int ea, int eb) {
+  const Index m = A.rows();
+  VectorXd norms(m);
+  for (Index i = 0; i < m; ++i) {
+    norms(i) = scaled_row(A, B, i, ea, eb).squaredNorm();
+  }
+  const double typical = median(std::vector<double>(norms.data(), norms.data() + m));
+  VectorXd w = VectorXd::Ones(m);
+  GramBase base;
+  for (Index i = 0; i < m; ++i) {
+    if (!(norms(i) <= kLargeRowRatio * typical)) {
+      base.large.push_back(i);
+      w(i) = 0.0;
+    }
+  }
+  base.G = weighted_gram(A, B, w, ea, eb);
+  return base;
+}
+
+// gram_factor without an intercept from `base`: the rows of weight below 1 taken out.
+std::optional<TriangularFactor> downdated_gram_factor(const Eigen::Ref<const MatrixXd>& A,
+                                                      const Eigen::Ref<const MatrixXd>& B, const VectorXd& w,
+                                                      const GramBase& base, int ea, int eb) {
+  const Index m = A.rows(), n = A.cols(), d = B.cols(), p = n + d;
+  Index rows = 0;
+  double mass = 0.0;
+  for (Index i = 0; i < m; ++i) {
+    rows += w(i) > 0.0;
+    mass += w(i);
+  }
+  if (rows <= n + d || !(mass > 0.0)) return std::nullopt;
+  MatrixXd G = base.G;
+  std::vector<char> large(static_cast<std::size_t>(m), 0);
+  for (Index i : base.large) {
+    large[static_cast<std::size_t>(i)] = 1;
+    const Eigen::RowVectorXd z = scaled_row(A, B, i, ea, eb);
+    G.noalias() += w(i) * (z.transpose() * z);
+  }
+  MatrixXd D(kGramBlockRows, p);
+  Index k = 0;
+  const auto flush = [&] {
+    if (k == 0) return;
+    G.selfadjointView<Eigen::Lower>().rankUpdate(D.topRows(k).transpose(), -1.0);
+    k = 0;
+  };
+  for (Index i = 0; i < m; ++i) {
+    if (w(i) >= 1.0 || large[static_cast<std::size_t>(i)]) continue;
+    D.row(k++) = std::sqrt(1.0 - w(i)) * scaled_row(A, B, i, ea, eb);
+    if (k == kGramBlockRows) flush();
+  }
+  flush();
+  G = G.selfadjointView<Eigen::Lower>();
+  return factor_of_gram(G, n, rows, ea, eb, false, VectorXd(), mass);
 }
 
 // One robust fit's iterations, from X (and c) with the scale `scale` (Huber: re-estimated each
@@ -407,6 +518,12 @@ Iterated iterate(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Mat
   const double median_chi = chi_median(d);
   // The data's scale, for the Gram matrices of every iteration (TriangularFactor's own rule).
   const int ea = scale_exponent(A).value_or(0), eb = scale_exponent(B).value_or(0);
+  // Huber without an intercept or counts: the unweighted Gram matrix once, downdated each iteration.
+  std::optional<GramBase> base;
+  // (2^-e a normal double: data of any normal magnitude.)
+  if (loss == RobustLoss::Huber && !intercept && counts.size() == 0 && std::abs(ea) <= 1000 && std::abs(eb) <= 1000) {
+    base = gram_base(A, B, ea, eb);
+  }
   for (int it = 1; it <= max_iterations; ++it) {
     const VectorXd u = whitened_residuals(A, B, X, c, residual_covariance(X, method, inner));
     if (loss == RobustLoss::Huber) {
@@ -425,7 +542,7 @@ Iterated iterate(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Mat
     // The weighted fit: from the Gram matrix while the weights settle, by the QR for the last.
     const auto weighted_fit = [&](bool by_gram, std::optional<TriangularFactor>& factor, Reduction& data) {
       factor.reset();
-      if (by_gram) factor = gram_factor(A, B, w, intercept, ea, eb);
+      if (by_gram) factor = base ? downdated_gram_factor(A, B, w, *base, ea, eb) : gram_factor(A, B, w, intercept, ea, eb);
       if (!factor) {
         factor.emplace(A.cols(), B.cols(), intercept);
         factor->append(A, B, w);
@@ -507,9 +624,16 @@ RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const
     if (method == Method::Auto && plain.diagnostics.chosen_method == Method::Spde) {
       plain = fit(reduce_for(plain_factor, quiet, Method::SpdTotalLeastSquares), Method::SpdTotalLeastSquares);
     }
-    if (!plain.ok()) return RobustFit{fit(reduce_for(plain_factor, inner, method), method), plain_factor};
-    X = plain.X;
-    c = intercept_offsets(plain_factor, X);
+    if (plain.ok()) {
+      X = plain.X;
+      c = intercept_offsets(plain_factor, X);
+    } else {
+      // The plain fit fails where a few rows decide it (a logger's 1e30 in B, which spd-tls's
+      // start cannot survive): Huber then starts, as Tukey does, from least trimmed squares.
+      const TrimmedStart start = least_trimmed_squares(A, B, intercept, method, inner);
+      X = start.X;
+      c = start.c;
+    }
   }
   const int max_iterations = std::max(options.max_iterations, 1);
   Iterated fitted = iterate(A, B, method, inner, intercept, loss, k, X, c, scale, VectorXd(), max_iterations);

@@ -50,7 +50,8 @@ TrimmedStart least_trimmed_squares(const Eigen::Ref<const Eigen::MatrixXd>& A,
 /// factor of the weighted Gram matrix while the weights settle, the QR factor of the weighted
 /// rows, TriangularFactor::append with weights, for the last), the residuals whitened by the noise
 /// model and scaled by their robust scale (median over chi_median: re-estimated each iteration for
-/// Huber, fixed at the start's for Tukey). Huber starts from the plain fit; Tukey from least
+/// Huber, fixed at the start's for Tukey). Huber starts from the plain fit (from least trimmed
+/// squares where the plain fit fails); Tukey from least
 /// trimmed squares on the rows (FAST-LTS: elemental starts and concentration steps, a fixed seed),
 /// so that rows whose A is wrong cannot capture the start. Stops when X moves by less than 1e-8 of
 /// itself, or after options.max_iterations (converged false, a warning). With options.bootstrap,
