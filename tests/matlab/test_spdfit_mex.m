@@ -281,6 +281,23 @@ assert(isempty(strfind(dynamic, 'libstdc++')), 'the MEX links libstdc++ dynamica
 % The contradiction check can fail: it flags the warning auto's psd-ls printed before issue 45.
 assert(numel(contradicting_lines({'warning: psd-ls models noise in B only (weighted by RestB)'}, true, true)) == 1);
 assert(isempty(contradicting_lines({'warning: auto: spde ran without the noise model'}, true, true)));
+% spdfit.payload.identify on the example log's static poses (t from 1 to 3.39 s, the rows the
+% command line takes with --time-col t --rows 1:3.39) against `spdfit payload identify --json`.
+log = fullfile(getenv('SPDFIT_SOURCE_DIR'), 'examples', 'payload', 'log.csv');
+data = dlmread(log, ',', 1, 0);
+static = data(:, 1) >= 1 & data(:, 1) <= 3.39;
+payload = spdfit.payload.identify(data(static, 2:7), 'Quaternion', data(static, 8:11));
+ref = cli_json(cli, ['payload identify "' log '" --wrench-cols fx:tz --quat-cols qx:qw --time-col t ' ...
+                     '--rows 1:3.39 --json']);
+assert(payload.samples == ref.samples && payload.samples == 240, 'payload samples');
+assert_close(payload.mass, ref.mass, 1e-10, 'payload mass');
+assert_close(payload.center_of_mass(:), ref.center_of_mass(:), 1e-10, 'payload centre of mass');
+assert_close(payload.force_bias(:), ref.force_bias(:), 1e-10, 'payload force bias');
+assert_close(payload.torque_bias(:), ref.torque_bias(:), 1e-10, 'payload torque bias');
+assert(abs(payload.mass - 1.2) < 0.01, 'payload mass against the truth (1.2 kg)');
+expect_error(@() spdfit.payload.identify(data(static, 2:6), 'Quaternion', data(static, 8:11)), ...
+             'spdfit:DataError', 'must give 6 columns');
+
 % docs/matlab.md's examples run as written, with no warning against the method chosen.
 run_doc_examples(fullfile(getenv('SPDFIT_SOURCE_DIR'), 'docs', 'matlab.md'));
 run_doc_examples(fullfile(getenv('SPDFIT_SOURCE_DIR'), 'README.md'));
