@@ -12,8 +12,8 @@
 #include "spdfit/hexapod/model.hpp"
 #include "factor/basic_reduction.hpp"
 #include "numerics/parallel.hpp"
+#include "pipeline/log_rows.hpp"
 #include "pipeline/offsets.hpp"
-#include "robust/m_estimator.hpp"
 #include "uncertainty/bootstrap.hpp"
 
 namespace spdfit::hexapod {
@@ -105,16 +105,13 @@ std::vector<MethodIdentification> identify(const Eigen::MatrixXd& A, const Eigen
                         "one method with `fit` (`robust` and `bootstrap`), or leave one of them out",
                         Code::OptionConflict, "robust");
     }
-    const FitOptions each = detail::options_after_tare(options.fit);
-    for (FitResult& r : results) {
-      if (detail::robust_applies(r.method)) r = fit(Ad, Bd, r.method, each);
-    }
+    detail::refit_robustly(Ad, Bd, detail::options_after_tare(options.fit), results, {});
   }
   for (FitResult& result : results) {
     MethodIdentification m;
     m.result = std::move(result);
     FitResult& r = m.result;
-    // (A robust fit's offsets are its weighted rows', set by fit.)
+    // (A robust fit's offsets are its weighted rows', set by refit_robustly.)
     if (!r.robust || tared) r.offsets = detail::offsets_of(r, factor, options.fit, tared ? &tared->tare : nullptr);
     if (r.ok()) {
       if (options.truth) m.error_vs_truth = error_vs_truth(r, *options.truth);

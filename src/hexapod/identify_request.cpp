@@ -374,6 +374,9 @@ Identification run_identify(const IdentifyRequest& request) {
     out.warnings.push_back(std::move(*w));
   }
   out.methods = identify(A, B, out.options);
+  for (MethodIdentification& m : out.methods) {  // robust fits' rows numbered as in the file
+    if (m.result.robust) spdfit::detail::number_rows(*m.result.robust, numbers);
+  }
   if (out.geometry) {
     if (std::optional<Warning> w = units_warning(out.methods, joint_space_mass_matrix(*out.geometry))) {
       out.warnings.push_back(std::move(*w));
@@ -386,11 +389,7 @@ Identification run_identify(const IdentifyRequest& request) {
   PhysicalOptions physical_options = request.physical_options;
   apply_fit_options(out.options.fit, {}, physical_options);
   out.physical = identify_physical(A, B, *out.geometry, physical_options);
-  if (out.physical->robust) {  // rows numbered as in the file
-    for (std::uint64_t& row : out.physical->robust->rows_downweighted) {
-      row = spdfit::detail::file_row(numbers, static_cast<Eigen::Index>(row - 1));
-    }
-  }
+  if (out.physical->robust) spdfit::detail::number_rows(*out.physical->robust, numbers);  // as in the file
   for (const Warning& w : out.physical->warnings) out.warnings.emplace_back(w.code, "physical: " + w.text, w.subject);
   return out;
 }

@@ -465,10 +465,6 @@ PhysicalEstimate robust_physical(const Eigen::MatrixXd& A, const Eigen::MatrixXd
   const double k = options.robust_tuning.value_or(spdfit::detail::robust_tuning(loss, 6));
   PhysicalOptions plain = options;
   plain.robust = RobustLoss::None;
-  const auto offsets_of = [&](const TriangularFactor& f, const Matrix6d& M) {
-    if (!options.intercept || f.means().size() != 12) return Eigen::VectorXd();
-    return Eigen::VectorXd(f.means().tail(6) - M.transpose() * f.means().head(6));
-  };
   Matrix6d M;
   Eigen::VectorXd c;
   double scale = 0.0;
@@ -493,14 +489,12 @@ PhysicalEstimate robust_physical(const Eigen::MatrixXd& A, const Eigen::MatrixXd
     out = identify_from_factor(*factor, geometry, plain, model);
     if (!out.ok()) return out;
     M = out.M_p;
-    c = offsets_of(*factor, M);
+    c = spdfit::detail::intercept_offsets(*factor, M);
   }
   const double median_chi = spdfit::detail::chi_median(6);
   Eigen::VectorXd w(m);
-  RobustReport report;
-  report.method = loss;
-  report.tuning = k;
-  report.converged = false;
+  int iterations = 0;
+  bool converged = false;
   for (int it = 1; it <= kPhysicalReweightings; ++it) {
     const Eigen::VectorXd u =
         spdfit::detail::whitened_residuals(A, B, M, c, physical_residual_covariance(M, options));
@@ -509,37 +503,27 @@ PhysicalEstimate robust_physical(const Eigen::MatrixXd& A, const Eigen::MatrixXd
     factor.emplace(6, 6, options.intercept);
     factor->append(A, B, w);
     PhysicalEstimate next = identify_from_factor(*factor, geometry, plain, model);
-    report.iterations = it;
+    iterations = it;
     if (!next.ok()) {
       out = std::move(next);
       break;
     }
     const double change = (next.M_p - M).norm(), size = std::max(next.M_p.norm(), std::numeric_limits<double>::min());
     M = next.M_p;
-    c = offsets_of(*factor, M);
+    c = spdfit::detail::intercept_offsets(*factor, M);
     out = std::move(next);
     if (change <= kPhysicalSettled * size || scale == 0.0) {
-      report.converged = true;
+      converged = true;
       break;
     }
   }
-  report.scale = scale;
-  report.weights_min = m > 0 ? w.minCoeff() : 1.0;
-  constexpr double kDownweighted = 0.5;
-  constexpr std::size_t kListedRows = 1000;
-  for (Eigen::Index i = 0; i < m; ++i) {
-    if (w(i) < kDownweighted) {
-      ++report.rows_downweighted_count;
-      if (report.rows_downweighted.size() < kListedRows) report.rows_downweighted.push_back(static_cast<std::uint64_t>(i) + 1);
-    }
-  }
-  if (out.ok() && !report.converged) {
+  if (out.ok() && !converged) {
     out.warnings.emplace_back(Code::NotConverged,
-                              "the robust physical fit's weights had not settled after " +
-                                  std::to_string(report.iterations) + " reweightings: the last fit is returned",
+                              "the robust physical fit's weights had not settled after " + std::to_string(iterations) +
+                                  " reweightings: the last fit is returned",
                               "robust");
   }
-  out.robust = std::move(report);
+  out.robust = spdfit::detail::robust_report(loss, k, w, scale, iterations, converged);
   return out;
 }
 
@@ -586,9 +570,7 @@ PhysicalEstimate identify_physical(const Eigen::MatrixXd& A, const Eigen::Matrix
     factor.emplace(TriangularFactor::from_data(Ad, Bd, options.intercept));
     out = identify_from_factor(*factor, geometry, options, model);
   }
-  if (options.intercept && out.ok() && factor && factor->means().size() == 12) {
-    out.offsets_c = factor->means().tail(6) - out.M_p.transpose() * factor->means().head(6);
-  }
+  if (options.intercept && out.ok() && factor) out.offsets_c = spdfit::detail::intercept_offsets(*factor, out.M_p);
   if (options.tare) {
     out.tare_a = options.rest_mean_a;
     out.tare_b = options.rest_mean_b;

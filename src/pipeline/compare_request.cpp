@@ -114,6 +114,9 @@ CompareRun run_compare(const CompareRequest& request) {
     out.warnings.push_back(std::move(*w));
   }
   out.comparison = compare(A, B, options, truth);
+  for (FitResult& r : out.comparison.results) {  // robust fits' rows numbered as in the file
+    if (r.robust) detail::number_rows(*r.robust, numbers);
+  }
   for (const FitResult& r : out.comparison.results) {
     for (const Warning& w : r.warnings) {
       out.warnings.emplace_back(w.code, std::string(to_string(r.method)) + ": " + w.text, w.subject);

@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 #include <optional>
 #include <stdexcept>
@@ -107,72 +108,91 @@ FitResult fit(const Reduction& data, Method method) {
   return spde(data);  // unreachable: every enumerator is handled above
 }
 
-namespace detail {
+namespace {
 
-FitResult fit_numbered(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Method method,
-                       const FitOptions& options, const RowNumbers& numbers) {
-  if (const std::optional<detail::Units> units = detail::units_of(options, A.cols(), B.cols())) {
-    MatrixXd A_units = A, B_units = B;
-    detail::apply_units(*units, A_units, B_units);
-    return fit_numbered(A_units, B_units, method, detail::options_in_units(options, *units), numbers);
-  }
-  if (options.offsets == Offsets::Rest) {  // tared: the rest rows' means subtracted, then as given
+// `body(A, B, options, tare)` on the data as fitted: in the units asked (scale_a, scale_b) and,
+// with offsets rest, tared (the rest rows' means subtracted; `tare` then the one subtracted, else
+// null), with the options that remain. The one home of that order for the fits of A and B.
+template <typename Body>
+auto as_fitted(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, const FitOptions& options,
+               Body&& body) {
+  const std::optional<detail::Units> units = detail::units_of(options, A.cols(), B.cols());
+  if (!units) {
+    if (options.offsets != Offsets::Rest) return body(A, B, options, static_cast<const detail::Tare*>(nullptr));
     const detail::TaredData tared = detail::tared_data(A, B, options);
-    FitResult result = fit_numbered(tared.A, tared.B, method, detail::options_after_tare(options), numbers);
-    result.offsets = tared.tare.offsets();
-    return result;
+    return body(tared.A, tared.B, detail::options_after_tare(options), &tared.tare);
   }
-  FitResult result;
-  if (options.robust != RobustLoss::None) {  // rows reweighted: the M-estimator's own iterations
-    detail::RobustFit robust = detail::robust_fit(A, B, method, options);
-    result = std::move(robust.result);
-    if (robust.factor) result.offsets = detail::offsets_of(result, *robust.factor, options, nullptr);
-    if (result.robust) {
-      for (std::uint64_t& row : result.robust->rows_downweighted) row = file_row(numbers, static_cast<Eigen::Index>(row - 1));
-    }
-  } else {
-    const TriangularFactor factor = TriangularFactor::from_data(A, B, options.offsets == Offsets::Estimate);
-    const Reduction data = detail::reduce_for(factor, options, method);
-    result = fit(data, method);
-    if (options.bootstrap > 0 && result.ok()) detail::bootstrap_in_memory(result, A, B, data);
-    result.offsets = detail::offsets_of(result, factor, options, nullptr);
-    for (Warning& w : detail::offset_warnings(A, B, &factor, options)) result.warnings.push_back(std::move(w));
-    if (std::optional<Warning> w = detail::dominant_rows_warning(A, B, result, factor, options, numbers)) {
-      result.warnings.push_back(std::move(*w));
-    }
-  }
-  if (std::optional<Warning> w = detail::sentinel_warning(A, B, numbers)) {
-    result.warnings.insert(result.warnings.begin(), std::move(*w));
-    if (!result.ok()) result.message += detail::sentinel_failure_note();
-  }
-  return result;
+  MatrixXd A_units = A, B_units = B;
+  detail::apply_units(*units, A_units, B_units);
+  return as_fitted(A_units, B_units, detail::options_in_units(options, *units), std::forward<Body>(body));
 }
 
-std::optional<Warning> dominant_rows_check(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
-                                           Method method, const FitOptions& options, const RowNumbers& numbers) {
-  if (const std::optional<detail::Units> units = detail::units_of(options, A.cols(), B.cols())) {
-    MatrixXd A_units = A, B_units = B;
-    detail::apply_units(*units, A_units, B_units);
-    return dominant_rows_check(A_units, B_units, method, detail::options_in_units(options, *units), numbers);
+}  // namespace
+
+namespace detail {
+
+FitResult fit_numbered(const Eigen::Ref<const MatrixXd>& A_given, const Eigen::Ref<const MatrixXd>& B_given,
+                       Method method, const FitOptions& options_given, const RowNumbers& numbers) {
+  return as_fitted(A_given, B_given, options_given, [&](const auto& A, const auto& B, const FitOptions& options,
+                                                        const Tare* tare) {
+    FitResult result;
+    if (options.robust != RobustLoss::None) {  // rows reweighted: the M-estimator's own iterations
+      detail::RobustFit robust = detail::robust_fit(A, B, method, options);
+      result = std::move(robust.result);
+      if (robust.factor) result.offsets = detail::offsets_of(result, *robust.factor, options, nullptr);
+      if (result.robust) number_rows(*result.robust, numbers);
+    } else {
+      const TriangularFactor factor = TriangularFactor::from_data(A, B, options.offsets == Offsets::Estimate);
+      const Reduction data = detail::reduce_for(factor, options, method);
+      result = fit(data, method);
+      if (options.bootstrap > 0 && result.ok()) detail::bootstrap_in_memory(result, A, B, data);
+      result.offsets = detail::offsets_of(result, factor, options, nullptr);
+      for (Warning& w : detail::offset_warnings(A, B, &factor, options)) result.warnings.push_back(std::move(w));
+      if (std::optional<Warning> w = detail::dominant_rows_warning(A, B, result, factor, options, numbers)) {
+        result.warnings.push_back(std::move(*w));
+      }
+    }
+    if (tare) result.offsets = tare->offsets();
+    if (std::optional<Warning> w = detail::sentinel_warning(A, B, numbers)) {
+      result.warnings.insert(result.warnings.begin(), std::move(*w));
+      if (!result.ok()) result.message += detail::sentinel_failure_note();
+    }
+    return result;
+  });
+}
+
+std::optional<Warning> dominant_rows_check(const Eigen::Ref<const MatrixXd>& A_given,
+                                           const Eigen::Ref<const MatrixXd>& B_given, Method method,
+                                           const FitOptions& options, const RowNumbers& numbers) {
+  return as_fitted(A_given, B_given, options, [&](const auto& A, const auto& B, const FitOptions& fitted,
+                                                  const Tare*) -> std::optional<Warning> {
+    FitOptions plain = fitted;
+    plain.bootstrap = 0;
+    plain.robust = RobustLoss::None;
+    plain.robust_tuning.reset();
+    const TriangularFactor factor = TriangularFactor::from_data(A, B, plain.offsets == Offsets::Estimate);
+    FitResult result;
+    try {
+      result = fit(detail::reduce_for(factor, plain, method), method);
+    } catch (const std::invalid_argument&) {
+      return std::nullopt;  // data the method refuses: the commands' own fits say why
+    }
+    if (!result.ok()) return std::nullopt;
+    result.offsets = detail::offsets_of(result, factor, plain, nullptr);
+    return detail::dominant_rows_warning(A, B, result, factor, plain, numbers);
+  });
+}
+
+void refit_robustly(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, const FitOptions& options,
+                    std::vector<FitResult>& results, const RowNumbers& numbers) {
+  if (options.robust == RobustLoss::None) return;
+  for (FitResult& r : results) {
+    if (!detail::robust_applies(r.method)) continue;  // spde, without rows, as it is
+    detail::RobustFit robust = detail::robust_fit(A, B, r.method, options);
+    r = std::move(robust.result);
+    if (robust.factor) r.offsets = detail::offsets_of(r, *robust.factor, options, nullptr);
+    if (r.robust) number_rows(*r.robust, numbers);
   }
-  if (options.offsets == Offsets::Rest) {
-    const detail::TaredData tared = detail::tared_data(A, B, options);
-    return dominant_rows_check(tared.A, tared.B, method, detail::options_after_tare(options), numbers);
-  }
-  FitOptions plain = options;
-  plain.bootstrap = 0;
-  plain.robust = RobustLoss::None;
-  plain.robust_tuning.reset();
-  const TriangularFactor factor = TriangularFactor::from_data(A, B, plain.offsets == Offsets::Estimate);
-  FitResult result;
-  try {
-    result = fit(detail::reduce_for(factor, plain, method), method);
-  } catch (const std::invalid_argument&) {
-    return std::nullopt;  // data the method refuses: the commands' own fits say why
-  }
-  if (!result.ok()) return std::nullopt;
-  result.offsets = detail::offsets_of(result, factor, plain, nullptr);
-  return detail::dominant_rows_warning(A, B, result, factor, plain, numbers);
 }
 
 }  // namespace detail
@@ -233,35 +253,22 @@ std::vector<FitResult> fit_all(const Reduction& data) {
   return results;
 }
 
-std::vector<FitResult> fit_all(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
-                               const FitOptions& options) {
-  if (const std::optional<detail::Units> units = detail::units_of(options, A.cols(), B.cols())) {
-    MatrixXd A_units = A, B_units = B;
-    detail::apply_units(*units, A_units, B_units);
-    return fit_all(A_units, B_units, detail::options_in_units(options, *units));
-  }
-  if (options.offsets == Offsets::Rest) {
-    const detail::TaredData tared = detail::tared_data(A, B, options);
-    std::vector<FitResult> results = fit_all(tared.A, tared.B, detail::options_after_tare(options));
-    for (FitResult& r : results) r.offsets = tared.tare.offsets();
-    return results;
-  }
-  const TriangularFactor factor = TriangularFactor::from_data(A, B, options.offsets == Offsets::Estimate);
-  FitOptions plain = options;  // with `robust`, the methods that weigh rows are refitted below
-  plain.robust = RobustLoss::None;
-  plain.robust_tuning.reset();
-  std::vector<FitResult> results = fit_all(reduce(factor, plain));
-  for (FitResult& r : results) {
-    if (options.robust != RobustLoss::None && detail::robust_applies(r.method)) {
-      // Rows reweighted by this method's residuals: its own robust fit (spde, without rows, as it is).
-      detail::RobustFit robust = detail::robust_fit(A, B, r.method, options);
-      r = std::move(robust.result);
-      if (robust.factor) r.offsets = detail::offsets_of(r, *robust.factor, options, nullptr);
-    } else {
-      r.offsets = detail::offsets_of(r, factor, options, nullptr);
+std::vector<FitResult> fit_all(const Eigen::Ref<const MatrixXd>& A_given, const Eigen::Ref<const MatrixXd>& B_given,
+                               const FitOptions& options_given) {
+  return as_fitted(A_given, B_given, options_given, [](const auto& A, const auto& B, const FitOptions& options,
+                                                       const detail::Tare* tare) {
+    const TriangularFactor factor = TriangularFactor::from_data(A, B, options.offsets == Offsets::Estimate);
+    FitOptions plain = options;  // with `robust`, the methods that weigh rows are refitted below
+    plain.robust = RobustLoss::None;
+    plain.robust_tuning.reset();
+    std::vector<FitResult> results = fit_all(reduce(factor, plain));
+    for (FitResult& r : results) r.offsets = detail::offsets_of(r, factor, options, nullptr);
+    detail::refit_robustly(A, B, options, results, {});
+    if (tare) {
+      for (FitResult& r : results) r.offsets = tare->offsets();
     }
-  }
-  return results;
+    return results;
+  });
 }
 
 }  // namespace spdfit

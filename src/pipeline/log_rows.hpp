@@ -45,6 +45,12 @@ io::ReadOptions log_columns_read(const FitRequest& request);
 FitResult fit_numbered(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
                        Method method, const FitOptions& options, const RowNumbers& numbers);
 
+/// With options.robust, each result in `results` of a method that weighs rows (all but spde)
+/// replaced by its own robust fit of A and B (robust_fit, its offsets those of its weighted rows),
+/// rows named as `numbers` numbers them: compare's and hexapod identify's robust estimators.
+void refit_robustly(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
+                    const FitOptions& options, std::vector<FitResult>& results, const RowNumbers& numbers);
+
 /// The warning of rows that dominate the fit of `method` (dominant_rows_warning), as fit would
 /// give it, for the commands that fit several methods at once (compare, hexapod identify): said
 /// once, judged by one method's residuals (auto's). Nothing where that fit fails.

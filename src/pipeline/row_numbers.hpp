@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "spdfit/fit_result.hpp"
+
 namespace spdfit::detail {
 
 /// 0-based data rows of the file, one per row of A and B, ascending; empty: row i is the file's i.
@@ -16,6 +18,11 @@ using RowNumbers = std::vector<Eigen::Index>;
 inline std::uint64_t file_row(const RowNumbers& numbers, Eigen::Index i) {
   const Eigen::Index row = numbers.empty() ? i : numbers[static_cast<std::size_t>(i)];
   return static_cast<std::uint64_t>(row) + 1;
+}
+
+/// A robust fit's rows_downweighted (1-based rows of A and B) numbered as in the file.
+inline void number_rows(RobustReport& report, const RowNumbers& numbers) {
+  for (std::uint64_t& row : report.rows_downweighted) row = file_row(numbers, static_cast<Eigen::Index>(row - 1));
 }
 
 }  // namespace spdfit::detail

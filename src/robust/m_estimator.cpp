@@ -335,12 +335,32 @@ namespace {
 // a matrix of m rows (whose fresh pages cost more than the arithmetic at these widths).
 constexpr Index kGramBlockRows = 2048;
 
-// The factor of the rows of [A B] weighted by w (with an intercept, about their weighted means) from
-// the weighted Gram matrix and its Cholesky factor: for the reweighting's inner iterations, which
-// need X only to the accuracy at which the weights settle, at a fraction of a QR's cost (one
-// symmetric rank-k product on the BLAS). The Gram matrix squares the condition number, so the
-// converged weights are fitted once more by the QR (TriangularFactor::append), and a Cholesky that
-// breaks down (A ill-conditioned beyond about 1e7) gives nothing: the caller uses the QR.
+// Rows [i0, i0 + r) of [A B] scaled exactly by 2^-[ea eb], into Z, less `shift` when it is given.
+void scaled_rows(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Index i0, Index r, int ea,
+                 int eb, const Eigen::RowVectorXd& shift, MatrixXd& Z) {
+  const Index n = A.cols(), d = B.cols();
+  Z.resize(r, n + d);
+  Z.leftCols(n) = A.middleRows(i0, r);
+  Z.rightCols(d) = B.middleRows(i0, r);
+  auto left = Z.leftCols(n);
+  auto right = Z.rightCols(d);
+  multiply_by_power_of_two(left, -ea);
+  multiply_by_power_of_two(right, -eb);
+  if (shift.size() == n + d) Z.rowwise() -= shift;
+}
+
+// The rows of positive weight and the weights' sum; false when too few rows (at most n + d) or no
+// mass remain for a factor.
+bool weight_totals(const VectorXd& w, Index columns, Index& rows, double& mass) {
+  rows = 0;
+  mass = 0.0;
+  for (Index i = 0; i < w.size(); ++i) {
+    rows += w(i) > 0.0;
+    mass += w(i);
+  }
+  return rows > columns && mass > 0.0;
+}
+
 // The factor of a Gram matrix G (the full p x p, symmetric) of rows scaled by 2^-[ea eb]: its
 // Cholesky factor, or nothing where that breaks down (the caller uses the QR).
 std::optional<TriangularFactor> factor_of_gram(const MatrixXd& G, Index n, Index rows, int ea, int eb, bool intercept,
@@ -352,74 +372,54 @@ std::optional<TriangularFactor> factor_of_gram(const MatrixXd& G, Index n, Index
   return ChunkAppender::from_triangle(R, n, rows, ea, eb, intercept, means, mass);
 }
 
-// sum_i w_i z_i^T z_i over the rows z_i of [A B] 2^-[ea eb], a block of rows at a time (the lower
-// triangle filled, and mirrored).
+// sum_i w_i (z_i - shift)^T (z_i - shift) over the rows z_i of [A B] 2^-[ea eb], a block of rows at
+// a time (the full symmetric matrix).
 MatrixXd weighted_gram(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, const VectorXd& w,
-                       int ea, int eb) {
-  const Index m = A.rows(), n = A.cols(), d = B.cols(), p = n + d;
+                       int ea, int eb, const Eigen::RowVectorXd& shift = {}) {
+  const Index m = A.rows(), p = A.cols() + B.cols();
   MatrixXd G = MatrixXd::Zero(p, p), Z;
   for (Index i0 = 0; i0 < m; i0 += kGramBlockRows) {
     const Index r = std::min(kGramBlockRows, m - i0);
-    Z.resize(r, p);
-    Z.leftCols(n) = A.middleRows(i0, r) * std::ldexp(1.0, -ea);
-    Z.rightCols(d) = B.middleRows(i0, r) * std::ldexp(1.0, -eb);
+    scaled_rows(A, B, i0, r, ea, eb, shift, Z);
     Z.array().colwise() *= w.segment(i0, r).array().sqrt();
     G.selfadjointView<Eigen::Lower>().rankUpdate(Z.transpose());
   }
   return G.selfadjointView<Eigen::Lower>();
 }
 
+// The factor of the rows of [A B] weighted by w (with an intercept, about their weighted means) from
+// the weighted Gram matrix and its Cholesky factor: for the reweighting's inner iterations, which
+// need X only to the accuracy at which the weights settle, at a fraction of a QR's cost (one
+// symmetric rank-k product on the BLAS). The Gram matrix squares the condition number, so the
+// converged weights are fitted once more by the QR (TriangularFactor::append), and a Cholesky that
+// breaks down (A ill-conditioned beyond about 1e7) gives nothing: the caller uses the QR.
 std::optional<TriangularFactor> gram_factor(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
                                             const VectorXd& w, bool intercept, int ea, int eb) {
   const Index m = A.rows(), n = A.cols(), d = B.cols(), p = n + d;
   Index rows = 0;
   double mass = 0.0;
-  for (Index i = 0; i < m; ++i) {
-    rows += w(i) > 0.0;
-    mass += w(i);
-  }
-  if (rows <= n + d || !(mass > 0.0)) return std::nullopt;
-  // The block [A B] 2^-[ea eb] of rows i0.. (exact scaling), less `shift` (a row vector).
-  MatrixXd Z(std::min(kGramBlockRows, m), p);
-  const auto block = [&](Index i0, Index r, const Eigen::RowVectorXd& shift) {
-    Z.resize(r, p);
-    Z.leftCols(n) = A.middleRows(i0, r);
-    Z.rightCols(d) = B.middleRows(i0, r);
-    auto left = Z.leftCols(n);
-    auto right = Z.rightCols(d);
-    multiply_by_power_of_two(left, -ea);
-    multiply_by_power_of_two(right, -eb);
-    if (shift.size() == p) Z.rowwise() -= shift;
-  };
-  // sum_i w_i (z_i - shift), over the blocks.
-  const auto weighted_sum = [&](const Eigen::RowVectorXd& shift) {
-    Eigen::RowVectorXd sum = Eigen::RowVectorXd::Zero(p);
-    for (Index i0 = 0; i0 < m; i0 += kGramBlockRows) {
-      const Index r = std::min(kGramBlockRows, m - i0);
-      block(i0, r, shift);
-      sum.noalias() += w.segment(i0, r).transpose() * Z;
-    }
-    return sum;
-  };
+  if (!weight_totals(w, p, rows, mass)) return std::nullopt;
   Eigen::RowVectorXd mu;
   VectorXd means;
   if (intercept) {
     // The weighted means in two passes: the second takes what rounding left of the first.
+    MatrixXd Z;
+    const auto weighted_sum = [&](const Eigen::RowVectorXd& shift) {
+      Eigen::RowVectorXd sum = Eigen::RowVectorXd::Zero(p);
+      for (Index i0 = 0; i0 < m; i0 += kGramBlockRows) {
+        const Index r = std::min(kGramBlockRows, m - i0);
+        scaled_rows(A, B, i0, r, ea, eb, shift, Z);
+        sum.noalias() += w.segment(i0, r).transpose() * Z;
+      }
+      return sum;
+    };
     mu = weighted_sum(Eigen::RowVectorXd()) / mass;
     mu += weighted_sum(mu) / mass;
     means = mu.transpose();
     means.head(n) = times_power_of_two(VectorXd(means.head(n)), ea);
     means.tail(d) = times_power_of_two(VectorXd(means.tail(d)), eb);
   }
-  MatrixXd G = MatrixXd::Zero(p, p);
-  for (Index i0 = 0; i0 < m; i0 += kGramBlockRows) {
-    const Index r = std::min(kGramBlockRows, m - i0);
-    block(i0, r, mu);
-    Z.array().colwise() *= w.segment(i0, r).array().sqrt();
-    G.selfadjointView<Eigen::Lower>().rankUpdate(Z.transpose());
-  }
-  G = G.selfadjointView<Eigen::Lower>();
-  return factor_of_gram(G, n, rows, ea, eb, intercept, means, mass);
+  return factor_of_gram(weighted_gram(A, B, w, ea, eb, mu), n, rows, ea, eb, intercept, means, mass);
 }
 
 // Huber's weights are 1 but for the rows of large residual: the weighted Gram matrix (without an
@@ -428,32 +428,27 @@ std::optional<TriangularFactor> gram_factor(const Eigen::Ref<const MatrixXd>& A,
 // down-weights to nearly 0) would leave only rounding of itself in that difference: such rows stay
 // out of the unweighted matrix and are added with their weight instead.
 struct GramBase {
-  MatrixXd G;                // of the rows not in `large`, scaled by 2^-[ea eb]
-  std::vector<Index> large;  // rows of squared norm above kLargeRowRatio times the median's
+  MatrixXd G;              // of the rows not `large`, scaled by 2^-[ea eb]
+  std::vector<char> large;  // per row: squared norm above kLargeRowRatio times the median's
 };
 constexpr double kLargeRowRatio = 1e6;
-
-// The scaled row i of [A B].
-Eigen::RowVectorXd scaled_row(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Index i,
-                              int ea, int eb) {
-  Eigen::RowVectorXd z(A.cols() + B.cols());
-  z.head(A.cols()) = A.row(i) * std::ldexp(1.0, -ea);
-  z.tail(B.cols()) = B.row(i) * std::ldexp(1.0, -eb);
-  return z;
-}
 
 GramBase gram_base(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, int ea, int eb) {
   const Index m = A.rows();
   VectorXd norms(m);
-  for (Index i = 0; i < m; ++i) {
-    norms(i) = scaled_row(A, B, i, ea, eb).squaredNorm();
+  MatrixXd Z;
+  for (Index i0 = 0; i0 < m; i0 += kGramBlockRows) {
+    const Index r = std::min(kGramBlockRows, m - i0);
+    scaled_rows(A, B, i0, r, ea, eb, {}, Z);
+    norms.segment(i0, r) = Z.rowwise().squaredNorm();
   }
   const double typical = median(std::vector<double>(norms.data(), norms.data() + m));
   VectorXd w = VectorXd::Ones(m);
   GramBase base;
+  base.large.assign(static_cast<std::size_t>(m), 0);
   for (Index i = 0; i < m; ++i) {
     if (!(norms(i) <= kLargeRowRatio * typical)) {
-      base.large.push_back(i);
+      base.large[static_cast<std::size_t>(i)] = 1;
       w(i) = 0.0;
     }
   }
@@ -461,38 +456,34 @@ GramBase gram_base(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const M
   return base;
 }
 
-// gram_factor without an intercept from `base`: the rows of weight below 1 taken out.
+// gram_factor without an intercept from `base`: the rows of weight below 1 taken out (the large
+// ones added with their weight), a block of them at a time.
 std::optional<TriangularFactor> downdated_gram_factor(const Eigen::Ref<const MatrixXd>& A,
                                                       const Eigen::Ref<const MatrixXd>& B, const VectorXd& w,
                                                       const GramBase& base, int ea, int eb) {
-  const Index m = A.rows(), n = A.cols(), d = B.cols(), p = n + d;
+  const Index m = A.rows(), n = A.cols(), p = n + B.cols();
   Index rows = 0;
   double mass = 0.0;
-  for (Index i = 0; i < m; ++i) {
-    rows += w(i) > 0.0;
-    mass += w(i);
-  }
-  if (rows <= n + d || !(mass > 0.0)) return std::nullopt;
-  MatrixXd G = base.G;
-  std::vector<char> large(static_cast<std::size_t>(m), 0);
-  for (Index i : base.large) {
-    large[static_cast<std::size_t>(i)] = 1;
-    const Eigen::RowVectorXd z = scaled_row(A, B, i, ea, eb);
-    G.noalias() += w(i) * (z.transpose() * z);
-  }
-  MatrixXd D(kGramBlockRows, p);
-  Index k = 0;
-  const auto flush = [&] {
-    if (k == 0) return;
-    G.selfadjointView<Eigen::Lower>().rankUpdate(D.topRows(k).transpose(), -1.0);
-    k = 0;
+  if (!weight_totals(w, p, rows, mass)) return std::nullopt;
+  MatrixXd G = base.G, D(kGramBlockRows, p), z;
+  Index k[2] = {0, 0};  // rows gathered: taken out (0), added (1)
+  MatrixXd E(kGramBlockRows, p);
+  const auto flush = [&](int which) {
+    if (k[which] == 0) return;
+    MatrixXd& rows_of = which == 0 ? D : E;
+    G.selfadjointView<Eigen::Lower>().rankUpdate(rows_of.topRows(k[which]).transpose(), which == 0 ? -1.0 : 1.0);
+    k[which] = 0;
   };
   for (Index i = 0; i < m; ++i) {
-    if (w(i) >= 1.0 || large[static_cast<std::size_t>(i)]) continue;
-    D.row(k++) = std::sqrt(1.0 - w(i)) * scaled_row(A, B, i, ea, eb);
-    if (k == kGramBlockRows) flush();
+    const bool large = base.large[static_cast<std::size_t>(i)] != 0;
+    if (!large && w(i) >= 1.0) continue;
+    scaled_rows(A, B, i, 1, ea, eb, {}, z);
+    const int which = large ? 1 : 0;
+    (which == 0 ? D : E).row(k[which]++) = std::sqrt(large ? w(i) : 1.0 - w(i)) * z.row(0);
+    if (k[which] == kGramBlockRows) flush(which);
   }
-  flush();
+  flush(0);
+  flush(1);
   G = G.selfadjointView<Eigen::Lower>();
   return factor_of_gram(G, n, rows, ea, eb, false, VectorXd(), mass);
 }
@@ -520,10 +511,7 @@ Iterated iterate(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Mat
   const int ea = scale_exponent(A).value_or(0), eb = scale_exponent(B).value_or(0);
   // Huber without an intercept or counts: the unweighted Gram matrix once, downdated each iteration.
   std::optional<GramBase> base;
-  // (2^-e a normal double: data of any normal magnitude.)
-  if (loss == RobustLoss::Huber && !intercept && counts.size() == 0 && std::abs(ea) <= 1000 && std::abs(eb) <= 1000) {
-    base = gram_base(A, B, ea, eb);
-  }
+  if (loss == RobustLoss::Huber && !intercept && counts.size() == 0) base = gram_base(A, B, ea, eb);
   for (int it = 1; it <= max_iterations; ++it) {
     const VectorXd u = whitened_residuals(A, B, X, c, residual_covariance(X, method, inner));
     if (loss == RobustLoss::Huber) {
@@ -592,6 +580,26 @@ Iterated iterate(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Mat
 
 }  // namespace
 
+RobustReport robust_report(RobustLoss loss, double k, const VectorXd& weights, double scale, int iterations,
+                           bool converged) {
+  constexpr double kDownweighted = 0.5;
+  constexpr std::size_t kListedRows = 1000;
+  RobustReport report;
+  report.method = loss;
+  report.tuning = k;
+  report.iterations = iterations;
+  report.converged = converged;
+  report.scale = scale;
+  report.weights_min = weights.size() ? weights.minCoeff() : 1.0;
+  for (Index i = 0; i < weights.size(); ++i) {
+    if (weights(i) < kDownweighted) {
+      ++report.rows_downweighted_count;
+      if (report.rows_downweighted.size() < kListedRows) report.rows_downweighted.push_back(static_cast<std::uint64_t>(i) + 1);
+    }
+  }
+  return report;
+}
+
 RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Method method,
                      const FitOptions& options) {
   if (!robust_applies(method)) {
@@ -638,23 +646,7 @@ RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const
   const int max_iterations = std::max(options.max_iterations, 1);
   Iterated fitted = iterate(A, B, method, inner, intercept, loss, k, X, c, scale, VectorXd(), max_iterations);
   FitResult result = std::move(fitted.result);
-  RobustReport report;
-  report.method = loss;
-  report.tuning = k;
-  report.iterations = fitted.iterations;
-  report.converged = fitted.converged;
-  report.scale = fitted.scale;
-  report.weights_min = fitted.weights.size() ? fitted.weights.minCoeff() : 1.0;
-  constexpr double kDownweighted = 0.5;
-  constexpr std::size_t kListedRows = 1000;
-  for (Index i = 0; i < fitted.weights.size(); ++i) {
-    if (fitted.weights(i) < kDownweighted) {
-      ++report.rows_downweighted_count;
-      if (report.rows_downweighted.size() < kListedRows) {
-        report.rows_downweighted.push_back(static_cast<std::uint64_t>(i) + 1);
-      }
-    }
-  }
+  RobustReport report = robust_report(loss, k, fitted.weights, fitted.scale, fitted.iterations, fitted.converged);
   if (!fitted.converged && result.ok()) {
     result.warnings.emplace_back(Code::NotConverged,
                                  "the robust fit's weights had not settled after " +

@@ -44,6 +44,11 @@ TrimmedStart least_trimmed_squares(const Eigen::Ref<const Eigen::MatrixXd>& A,
                                    const Eigen::Ref<const Eigen::MatrixXd>& B, bool intercept, Method method,
                                    const FitOptions& options);
 
+/// What a robust fit did to the rows (FitResult::robust, PhysicalEstimate::robust), from its final
+/// weights: the rows below 0.5 (1-based, at most 1000 listed, all counted) and the smallest.
+RobustReport robust_report(RobustLoss loss, double k, const Eigen::VectorXd& weights, double scale, int iterations,
+                           bool converged);
+
 /// The robust fit of A, B (in the units fitted; options.offsets None or Estimate) by `method`
 /// (robust_applies; auto chooses on the plain fit, spd-tls where it would choose spde), with
 /// options.robust's loss: each iteration the method's own fit of the weighted rows (a Cholesky

@@ -202,3 +202,5 @@ def test_compare_robust_is_each_methods_robust_fit(spdfit, log, spiked, loss):
         want = run_json(spdfit, "fit", "--method", r["method"], *how, *COLS, spiked["spike"])
         assert r["X"] == want["X"], r["method"]
         assert ("robust" in r) == (r["method"] != "spde")
+        if "robust" in r:  # rows numbered as in the file, as fit numbers them
+            assert r["robust"]["rows_downweighted"] == want["robust"]["rows_downweighted"], r["method"]
