@@ -3,7 +3,7 @@
 # built-in data, and what they show), then draw the source documents' figures into ./figures.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup.sh
+scripts/setup.sh runtime
 echo
 build/apps/spdfit demo
 echo

@@ -5,7 +5,7 @@
 # each fuzz target for half a minute (docs/errors.md says what they check).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup.sh
+scripts/setup.sh test
 ctest --test-dir build --output-on-failure --parallel "$(nproc 2>/dev/null || echo 2)"
 scripts/sanitize.sh
 FUZZ_SECONDS=${FUZZ_SECONDS:-30} scripts/fuzz.sh

@@ -5,7 +5,7 @@ a MATLAB_class attribute): a writer independent of libmatio. The reference is th
 .npy, streamed through the .npy reader."""
 import json
 
-import h5py  # python3-h5py, in scripts/debian-packages.txt
+import h5py  # python3-h5py, in scripts/packages-test.txt
 import numpy as np
 import pytest
 
