@@ -29,8 +29,14 @@ OPTIONAL_PROGRAMS = {"Rscript"}
 # CMake cache entries of tools used when present (CMakeLists.txt: ccache).
 OPTIONAL_CACHE_ENTRIES = {"SPDFIT_CCACHE"}
 
-# Build-tree directories whose targets the main job builds (scripts/demo.sh).
+# Build-tree directories whose targets the main job builds (scripts/demo.sh), and the targets there
+# that are built only when their packages are present (apps/CMakeLists.txt: mpirun support when
+# Open MPI is found), whose packages are on the test list.
 RUNTIME_DIRECTORIES = ("src", "apps", "python")
+OPTIONAL_TARGETS = ("spdfit_mpi", "spdfit-mpi")
+# Modules the Python package imports only when a caller's argument needs them: pandas, for a
+# DataFrame given (repair.py). Tested with the test list's python3-pandas.
+OPTIONAL_RUNTIME_MODULES = {"pandas"}
 
 APT_DEPENDS = ["apt-cache", "depends", "--recurse", "--installed", "--no-recommends", "--no-suggests",
                "--no-conflicts", "--no-breaks", "--no-replaces", "--no-enhances"]
@@ -89,6 +95,13 @@ def owners(paths):
     return found, unowned
 
 
+def role_of(path, build_dir):
+    """'runtime' for the files of the targets the main job builds, 'test' for the others."""
+    parts = os.path.relpath(path, build_dir).split(os.sep)
+    optional = any(target in part for part in parts for target in OPTIONAL_TARGETS)
+    return "runtime" if parts[0] in RUNTIME_DIRECTORIES and not optional else "test"
+
+
 def is_system_path(path, source_dir, build_dir):
     path = os.path.abspath(path)
     return path.startswith("/") and not path.startswith((source_dir + os.sep, build_dir + os.sep)) \
@@ -99,8 +112,7 @@ def compiled_headers(build_dir, source_dir):
     """{'runtime'|'test': set of system files} from the compiler's dependency files."""
     used = {"runtime": set(), "test": set()}
     for depfile in glob.glob(os.path.join(build_dir, "**", "*.o.d"), recursive=True):
-        relative = os.path.relpath(depfile, build_dir)
-        role = "runtime" if relative.split(os.sep)[0] in RUNTIME_DIRECTORIES else "test"
+        role = role_of(depfile, build_dir)
         with open(depfile, encoding="utf-8", errors="replace") as handle:
             text = handle.read().replace("\\\n", " ")
         for token in text.split():
@@ -116,8 +128,7 @@ def linked_files(build_dir, source_dir):
     modules built load (ldd)."""
     used = {"runtime": set(), "test": set()}
     for link in glob.glob(os.path.join(build_dir, "**", "link.txt"), recursive=True):
-        relative = os.path.relpath(link, build_dir)
-        role = "runtime" if relative.split(os.sep)[0] in RUNTIME_DIRECTORIES else "test"
+        role = role_of(link, build_dir)
         with open(link, encoding="utf-8") as handle:
             for token in handle.read().split():
                 if token.startswith("/") and re.search(r"\.(so(\.\d+)*|a)$", token) \
@@ -131,8 +142,7 @@ def linked_files(build_dir, source_dir):
         with open(path, "rb") as handle:
             if handle.read(4) != b"\x7fELF":
                 continue
-        relative = os.path.relpath(path, build_dir)
-        role = "runtime" if relative.split(os.sep)[0] in RUNTIME_DIRECTORIES else "test"
+        role = role_of(path, build_dir)
         out = subprocess.run(["ldd", path], capture_output=True, text=True).stdout
         for match in re.finditer(r"=> (/\S+)", out):
             if is_system_path(match.group(1), source_dir, build_dir):
@@ -178,31 +188,27 @@ def imported_modules(files):
                 elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
                     modules.add(node.module)
         modules.update(re.findall(r"importorskip\([\"']([A-Za-z0-9_.]+)", text))
-        modules.update(re.findall(r"-m[\"', ]+([A-Za-z_][A-Za-z0-9_.]*)", text))
+        # `python3 -m X` in a script, [sys.executable, "-m", "X"] in Python (the spdfit command's
+        # own -m is its --method)
+        for line in text.splitlines():
+            if "python" in line or "executable" in line:
+                modules.update(re.findall(r"(?<![A-Za-z-])-m[\"', ]+([A-Za-z_][A-Za-z0-9_.]*)", line))
     return modules
 
 
 def module_files(modules, local_names):
-    """{module: file} for the installed modules, and the list of modules that are not installed.
-    Built-in modules (part of the interpreter) have no file and are not listed."""
+    """{module: file} for the installed top-level modules (found without importing anything), and
+    the list of those that are not installed. Built-in modules (part of the interpreter) have no
+    file and are not listed."""
     files, missing = {}, []
-    for module in sorted(modules):
-        top = module.split(".")[0]
-        if top in local_names:
-            continue
-        try:
-            spec = importlib.util.find_spec(module)
-        except (ImportError, ValueError):
-            spec = None
+    for top in sorted({module.split(".")[0] for module in modules} - set(local_names)):
+        spec = importlib.util.find_spec(top)
         if spec is None:
-            try:
-                spec = importlib.util.find_spec(top)
-            except (ImportError, ValueError):
-                spec = None
-        if spec is None:
-            missing.append(module)
+            missing.append(top)
         elif spec.origin and spec.origin.startswith("/"):
-            files[module] = spec.origin
+            files[top] = spec.origin
+        elif spec.submodule_search_locations:
+            files[top] = os.path.join(list(spec.submodule_search_locations)[0], "__init__.py")
     return files, missing
 
 
@@ -236,14 +242,22 @@ def main(source_dir, build_dir):
     python_files = {
         "runtime": glob.glob(os.path.join(source_dir, "python", "spdfit", "**", "*.py"), recursive=True)
                    + [os.path.join(source_dir, "scripts", "demo.sh")],
-        "test": glob.glob(os.path.join(source_dir, "tests", "**", "*.py"), recursive=True)
+        "test": [path for path in glob.glob(os.path.join(source_dir, "tests", "**", "*.py"), recursive=True)
+                 if os.path.basename(path) != os.path.basename(__file__)]
                 + glob.glob(os.path.join(source_dir, "tests", "**", "*.sh"), recursive=True)
                 + glob.glob(os.path.join(source_dir, "bench", "**", "*.py"), recursive=True)
                 + glob.glob(os.path.join(source_dir, "scripts", "*.sh"), recursive=True)
                 + [os.path.join(source_dir, "setup.py")],
     }
     for role, files in python_files.items():
-        found, missing = module_files(imported_modules(files), local_names)
+        modules = imported_modules(files)
+        if role == "runtime":
+            optional = {m for m in modules if m.split(".")[0] in OPTIONAL_RUNTIME_MODULES}
+            modules -= optional
+            found, _ = module_files(optional, local_names)
+            for module, path in found.items():
+                add("test", path, f"the Python module {module} (optional at run time)")
+        found, missing = module_files(modules, local_names)
         for module in missing:
             problems.append(f"Python module {module}: imported ({role}) but not installed")
         for module, path in found.items():
@@ -268,8 +282,9 @@ def main(source_dir, build_dir):
             if package in covered[role] or package in reported:
                 continue
             reported.add(package)
-            where = "scripts/packages-runtime.txt" if role == "runtime" else "scripts/packages-test.txt"
-            problems.append(f"{package}: used ({uses[role][path]}: {path}) but not in {where} "
+            where = ("scripts/packages-runtime.txt, which the main job installs" if role == "runtime"
+                     else "scripts/packages-runtime.txt or scripts/packages-test.txt")
+            problems.append(f"{package}: used ({uses[role][path]}: {path}) but not on {where}, "
                             f"nor a dependency of a package listed there")
     for problem in problems:
         print(problem)
