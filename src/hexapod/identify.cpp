@@ -32,13 +32,20 @@ std::optional<Eigen::VectorXd> replicate_modes(const Eigen::MatrixXd& X, const E
   return std::nullopt;
 }
 
-// Every estimator on each of N resamples (one factor and reduction per resample, shared).
+// Every estimator on each of N resamples (one factor and reduction per resample, shared). A robust
+// estimator's own bootstrap (`robust`: every resample refitted robustly, attached by
+// refit_robustly) is in `robust`, by method index: only its modes are derived here.
 void bootstrap(std::vector<MethodIdentification>& methods, const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
-               const IdentifyOptions& options, const Reduction& data) {
+               const IdentifyOptions& options, const Reduction& data,
+               const std::vector<std::vector<detail::Replicate>>& robust) {
   const FitOptions& fit_options = options.fit;
   const auto replicates = static_cast<std::size_t>(fit_options.bootstrap);
   std::vector<std::vector<detail::Replicate>> per_method(methods.size(), std::vector<detail::Replicate>(replicates));
-  const FitOptions quiet = detail::replicate_options(detail::options_after_tare(fit_options));
+  // The plain estimators' resamples (a robust estimator's are its own, below).
+  FitOptions plain = detail::options_after_tare(fit_options);
+  plain.robust = RobustLoss::None;
+  plain.robust_tuning.reset();
+  const FitOptions quiet = detail::replicate_options(plain);
   const bool intercept = detail::data_of(data).centred;
   detail::parallel_for(replicates, fit_options.threads, [&](std::size_t r) {
     const TriangularFactor factor = detail::resample_rows(A, B, fit_options.seed, r, intercept);
@@ -56,7 +63,11 @@ void bootstrap(std::vector<MethodIdentification>& methods, const Eigen::MatrixXd
   for (std::size_t k = 0; k < methods.size(); ++k) {
     MethodIdentification& m = methods[k];
     if (!m.result.ok()) continue;
-    detail::attach_bootstrap(m.result, per_method[k], fit_options, data);
+    if (k < robust.size() && m.result.robust) {
+      per_method[k] = robust[k];
+    } else {
+      detail::attach_bootstrap(m.result, per_method[k], fit_options, data);
+    }
     if (options.stiffness && m.modes_hz) {
       std::vector<std::optional<Eigen::VectorXd>> modes(replicates);
       for (std::size_t r = 0; r < replicates; ++r) modes[r] = replicate_modes(per_method[k][r].X, *options.stiffness);
@@ -97,15 +108,11 @@ std::vector<MethodIdentification> identify(const Eigen::MatrixXd& A, const Eigen
   plain.robust_tuning.reset();
   const Reduction data = reduce(factor, plain);
   std::vector<FitResult> results = fit_all(data);
+  std::vector<std::vector<detail::Replicate>> robust_replicates;
   if (options.fit.robust != RobustLoss::None) {
     // Robust: every estimator that weighs rows refitted on reweighted rows (its own iterations);
-    // spde, which has none, as it is.
-    if (options.fit.bootstrap > 0) {
-      throw OptionError("`bootstrap` with `robust` refits every resample robustly, which identify does not yet: fit "
-                        "one method with `fit` (`robust` and `bootstrap`), or leave one of them out",
-                        Code::OptionConflict, "robust");
-    }
-    detail::refit_robustly(Ad, Bd, detail::options_after_tare(options.fit), results, {});
+    // spde, which has none, as it is. With `bootstrap`, each resample refitted robustly too.
+    detail::refit_robustly(Ad, Bd, detail::options_after_tare(options.fit), results, {}, &robust_replicates);
   }
   for (FitResult& result : results) {
     MethodIdentification m;
@@ -130,7 +137,7 @@ std::vector<MethodIdentification> identify(const Eigen::MatrixXd& A, const Eigen
     }
     out.push_back(std::move(m));
   }
-  if (options.fit.bootstrap > 0) bootstrap(out, Ad, Bd, options, data);
+  if (options.fit.bootstrap > 0) bootstrap(out, Ad, Bd, options, data, robust_replicates);
   return out;
 }
 

@@ -232,7 +232,7 @@ std::vector<Spec> make_table() {
     } else if (spec.name == "robust") {
       spec.help = "A robust fit: rows reweighted by their residual, whitened by the noise model (an M-estimator), "
                   "for every estimator but spde and for `physical`: huber for gross errors in B, tukey (from least "
-                  "trimmed squares) also for wrong values in A";
+                  "trimmed squares) also for wrong values in A; with `bootstrap`, each resample refitted robustly";
       spec.set = [set = spec.set](IdentifyRequest& r, const OptionValue& v) {
         set(r, v);
         r.physical_options.robust = r.fit.options.robust;

@@ -21,6 +21,7 @@
 #include "spdfit/format.hpp"
 #include "spdfit/hexapod/model.hpp"
 #include "spdfit/rank.hpp"
+#include "uncertainty/bootstrap.hpp"
 
 namespace spdfit::hexapod {
 
@@ -187,9 +188,6 @@ bool PhysicalOptions::is_valid(std::string* error) const {
     return fail("`robust_tuning` must be a finite number > 0");
   }
   if (robust_tuning && robust == RobustLoss::None) return fail("`robust_tuning` needs `robust`");
-  if (robust != RobustLoss::None && bootstrap > 0) {
-    return fail("`bootstrap` of the robust physical fit is not available yet: give one of `robust` and `bootstrap`");
-  }
   if (!(confidence > 0.0 && confidence < 1.0)) {
     return fail("`confidence` must be a fraction strictly between 0 and 1 (0.95 for 95%)");
   }
@@ -453,6 +451,67 @@ Eigen::MatrixXd physical_residual_covariance(const Matrix6d& M, const PhysicalOp
   return M.transpose() * Sa * M + Sb;
 }
 
+// The reweightings of the robust physical fit from M and c with the scale `scale` (Huber:
+// re-estimated each time), at most kPhysicalReweightings: each the physical fit of the rows
+// weighted by their residuals (TriangularFactor::append with weights), `counts` (empty: 1)
+// multiplying the weights (a bootstrap resample). `factor` receives the last weighted factor.
+struct Reweighted {
+  PhysicalEstimate estimate;
+  Eigen::VectorXd weights, c;
+  double scale = 0.0;
+  int iterations = 0;
+  bool converged = false;
+};
+
+Reweighted reweight(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Geometry& geometry,
+                    const PhysicalOptions& options, double k, Matrix6d M, Eigen::VectorXd c, double scale,
+                    const Eigen::VectorXd& counts, detail::PhysicalModel& model,
+                    std::optional<TriangularFactor>& factor) {
+  const Eigen::Index m = A.rows();
+  const RobustLoss loss = options.robust;
+  PhysicalOptions plain = options;
+  plain.robust = RobustLoss::None;
+  plain.robust_tuning.reset();
+  plain.bootstrap = 0;
+  const double median_chi = spdfit::detail::chi_median(6);
+  Reweighted out;
+  out.weights.resize(m);
+  for (int it = 1; it <= kPhysicalReweightings; ++it) {
+    const Eigen::VectorXd u =
+        spdfit::detail::whitened_residuals(A, B, M, c, physical_residual_covariance(M, options));
+    if (loss == RobustLoss::Huber) {  // the scale of the rows drawn (as the generic robust fit's)
+      std::vector<double> values;
+      values.reserve(static_cast<std::size_t>(m));
+      for (Eigen::Index i = 0; i < m; ++i) {
+        if (counts.size() == 0 || counts(i) > 0) values.push_back(u(i));
+      }
+      if (!values.empty()) scale = spdfit::detail::median(values) / median_chi;
+    }
+    for (Eigen::Index i = 0; i < m; ++i) {
+      out.weights(i) = spdfit::detail::robust_weight(loss, scale > 0.0 ? u(i) / scale : 0.0, k);
+    }
+    factor.emplace(6, 6, options.intercept);
+    factor->append(A, B, counts.size() ? Eigen::VectorXd(out.weights.cwiseProduct(counts)) : out.weights);
+    PhysicalEstimate next = identify_from_factor(*factor, geometry, plain, model);
+    out.iterations = it;
+    if (!next.ok()) {
+      out.estimate = std::move(next);
+      break;
+    }
+    const double change = (next.M_p - M).norm(), size = std::max(next.M_p.norm(), std::numeric_limits<double>::min());
+    M = next.M_p;
+    c = spdfit::detail::intercept_offsets(*factor, M);
+    out.estimate = std::move(next);
+    if (change <= kPhysicalSettled * size || scale == 0.0) {
+      out.converged = true;
+      break;
+    }
+  }
+  out.c = std::move(c);
+  out.scale = scale;
+  return out;
+}
+
 // The robust physical fit (PhysicalOptions::robust): weights from the residuals of the current
 // M_p (and offsets), each step the physical fit of the weighted rows (TriangularFactor::append with
 // weights), as spdfit::detail::robust_fit does for the generic estimators. `factor` receives the
@@ -465,6 +524,7 @@ PhysicalEstimate robust_physical(const Eigen::MatrixXd& A, const Eigen::MatrixXd
   const double k = options.robust_tuning.value_or(spdfit::detail::robust_tuning(loss, 6));
   PhysicalOptions plain = options;
   plain.robust = RobustLoss::None;
+  plain.robust_tuning.reset();
   Matrix6d M;
   Eigen::VectorXd c;
   double scale = 0.0;
@@ -491,39 +551,33 @@ PhysicalEstimate robust_physical(const Eigen::MatrixXd& A, const Eigen::MatrixXd
     M = out.M_p;
     c = spdfit::detail::intercept_offsets(*factor, M);
   }
-  const double median_chi = spdfit::detail::chi_median(6);
-  Eigen::VectorXd w(m);
-  int iterations = 0;
-  bool converged = false;
-  for (int it = 1; it <= kPhysicalReweightings; ++it) {
-    const Eigen::VectorXd u =
-        spdfit::detail::whitened_residuals(A, B, M, c, physical_residual_covariance(M, options));
-    if (loss == RobustLoss::Huber) scale = spdfit::detail::median(std::vector<double>(u.data(), u.data() + m)) / median_chi;
-    for (Eigen::Index i = 0; i < m; ++i) w(i) = spdfit::detail::robust_weight(loss, scale > 0.0 ? u(i) / scale : 0.0, k);
-    factor.emplace(6, 6, options.intercept);
-    factor->append(A, B, w);
-    PhysicalEstimate next = identify_from_factor(*factor, geometry, plain, model);
-    iterations = it;
-    if (!next.ok()) {
-      out = std::move(next);
-      break;
-    }
-    const double change = (next.M_p - M).norm(), size = std::max(next.M_p.norm(), std::numeric_limits<double>::min());
-    M = next.M_p;
-    c = spdfit::detail::intercept_offsets(*factor, M);
-    out = std::move(next);
-    if (change <= kPhysicalSettled * size || scale == 0.0) {
-      converged = true;
-      break;
-    }
-  }
-  if (out.ok() && !converged) {
+  Reweighted fitted = reweight(A, B, geometry, options, k, M, c, scale, Eigen::VectorXd(), model, factor);
+  out = std::move(fitted.estimate);
+  if (out.ok() && !fitted.converged) {
     out.warnings.emplace_back(Code::NotConverged,
-                              "the robust physical fit's weights had not settled after " + std::to_string(iterations) +
-                                  " reweightings: the last fit is returned",
+                              "the robust physical fit's weights had not settled after " +
+                                  std::to_string(fitted.iterations) + " reweightings: the last fit is returned",
                               "robust");
   }
-  out.robust = spdfit::detail::robust_report(loss, k, w, scale, iterations, converged);
+  if (out.ok() && options.bootstrap > 0) {
+    // Each replicate: the rows resampled (their counts multiply the weights), reweighted from this
+    // estimate with its scale, as the generic robust fit's bootstrap.
+    PhysicalOptions quiet = options;
+    quiet.bootstrap = 0;
+    quiet.plausibility_check = false;  // a resample is judged by the intervals, not refused
+    const Matrix6d M_full = out.M_p;
+    const Eigen::VectorXd c_full = fitted.c;
+    const double scale_full = fitted.scale;
+    detail::bootstrap_physical(out, geometry, options, [&](std::size_t r) -> std::optional<PhysicalEstimate> {
+      detail::PhysicalModel replicate_model;
+      std::optional<TriangularFactor> replicate_factor;
+      Reweighted again = reweight(A, B, geometry, quiet, k, M_full, c_full, scale_full,
+                                  spdfit::detail::resample_weights(m, options.seed, r), replicate_model,
+                                  replicate_factor);
+      return std::move(again.estimate);
+    });
+  }
+  out.robust = spdfit::detail::robust_report(loss, k, fitted.weights, fitted.scale, fitted.iterations, fitted.converged);
   return out;
 }
 
@@ -583,7 +637,7 @@ PhysicalEstimate identify_physical(const Eigen::MatrixXd& A, const Eigen::Matrix
     check_plausible_mass(out.payload.mass, geometry,
                          "the physical fit's payload mass is " + format_number(out.payload.mass) + " kg");
   }
-  if (options.bootstrap > 0 && out.ok()) {
+  if (options.bootstrap > 0 && out.ok() && options.robust == RobustLoss::None) {  // robust_physical has its own
     PhysicalOptions replicates = options;
     replicates.plausibility_check = false;  // a resample is judged by the intervals, not refused
     detail::bootstrap_physical(out, Ad, Bd, model, geometry, replicates);

@@ -49,18 +49,26 @@ void flatten(const PhysicalEstimate& e, Values& out) {
 
 void bootstrap_physical(PhysicalEstimate& estimate, const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
                         const PhysicalModel& model, const Geometry& geometry, const PhysicalOptions& options) {
+  PhysicalOptions quiet = options;
+  quiet.bootstrap = 0;
+  bootstrap_physical(estimate, geometry, options, [&](std::size_t r) -> std::optional<PhysicalEstimate> {
+    const TriangularFactor factor = spdfit::detail::resample_rows(A, B, options.seed, r, options.intercept);
+    return fit_physical(factor, model, geometry, quiet, false);
+  });
+}
+
+void bootstrap_physical(PhysicalEstimate& estimate, const Geometry& geometry, const PhysicalOptions& options,
+                        const PhysicalReplicate& replicate) {
   const auto replicates = static_cast<std::size_t>(options.bootstrap);
   std::vector<Values> values(replicates);
   std::vector<std::optional<Eigen::VectorXd>> eigenvalues(replicates), modes(replicates);
   const bool with_modes = estimate.modes_hz.has_value();
   const Eigen::MatrixXd stiffness = geometry.strut_stiffness.asDiagonal();
-  PhysicalOptions quiet = options;
-  quiet.bootstrap = 0;
   spdfit::detail::parallel_for(replicates, options.threads, [&](std::size_t r) {
     try {
-      const TriangularFactor factor = spdfit::detail::resample_rows(A, B, options.seed, r, options.intercept);
-      const PhysicalEstimate e = fit_physical(factor, model, geometry, quiet, false);
-      if (!e.ok()) return;
+      const std::optional<PhysicalEstimate> fitted = replicate(r);
+      if (!fitted || !fitted->ok()) return;
+      const PhysicalEstimate& e = *fitted;
       Values v;
       flatten(e, v);
       if (!std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); })) return;

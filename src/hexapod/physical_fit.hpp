@@ -2,6 +2,8 @@
 // public entry points and the bootstrap's replicates (physical_bootstrap.cpp).
 #pragma once
 
+#include <functional>
+#include <optional>
 #include <Eigen/Core>
 
 #include "hexapod/physical_model.hpp"
@@ -17,8 +19,14 @@ namespace spdfit::hexapod::detail {
 PhysicalEstimate fit_physical(const TriangularFactor& factor, const PhysicalModel& model, const Geometry& geometry,
                               const PhysicalOptions& options, bool reported = true);
 
-/// Fills estimate.bootstrap: options.bootstrap multinomial resamples of the rows of A and B, each
-/// refitted by fit_physical on options.threads threads.
+/// Fills estimate.bootstrap from options.bootstrap replicates on options.threads threads: replicate
+/// r's estimate is `replicate(r)` (empty, not ok, or a std::invalid_argument thrown: a failed
+/// replicate).
+using PhysicalReplicate = std::function<std::optional<PhysicalEstimate>(std::size_t)>;
+void bootstrap_physical(PhysicalEstimate& estimate, const Geometry& geometry, const PhysicalOptions& options,
+                        const PhysicalReplicate& replicate);
+
+/// The same, each replicate a multinomial resample of the rows of A and B refitted by fit_physical.
 void bootstrap_physical(PhysicalEstimate& estimate, const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
                         const PhysicalModel& model, const Geometry& geometry, const PhysicalOptions& options);
 

@@ -135,7 +135,7 @@ std::vector<Spec> make_table() {
   Spec robust = like_fit_option("robust");
   robust.help = "A robust physical fit: rows reweighted by their residual under the physical model, whitened by the "
                 "noise covariances (an M-estimator); huber for gross errors in B, tukey (from least trimmed squares) "
-                "also for wrong values in A. Not with `bootstrap`";
+                "also for wrong values in A. With `bootstrap`, each resample is reweighted from the estimate";
   robust.set = [](PhysicalOptions& o, const OptionValue& v) {
     o.robust = robust_loss_named(std::get<std::string>(v)).value_or(RobustLoss::None);  // a choice: named
   };

@@ -184,11 +184,15 @@ std::optional<Warning> dominant_rows_check(const Eigen::Ref<const MatrixXd>& A_g
 }
 
 void refit_robustly(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, const FitOptions& options,
-                    std::vector<FitResult>& results, const RowNumbers& numbers) {
+                    std::vector<FitResult>& results, const RowNumbers& numbers,
+                    std::vector<std::vector<Replicate>>* replicates) {
+  if (replicates) replicates->assign(results.size(), {});
   if (options.robust == RobustLoss::None) return;
-  for (FitResult& r : results) {
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    FitResult& r = results[k];
     if (!detail::robust_applies(r.method)) continue;  // spde, without rows, as it is
     detail::RobustFit robust = detail::robust_fit(A, B, r.method, options);
+    if (replicates) (*replicates)[k] = std::move(robust.replicates);
     r = std::move(robust.result);
     if (robust.factor) r.offsets = detail::offsets_of(r, *robust.factor, options, nullptr);
     if (r.robust) number_rows(*r.robust, numbers);

@@ -13,6 +13,8 @@
 
 namespace spdfit::detail {
 
+struct Replicate;  // uncertainty/bootstrap.hpp
+
 /// Keeps the rows of A and B (read whole from `source`, a_cols and b_cols applied) that
 /// request.rows chooses, or without it those that request.rest_rows does not; with rest_rows,
 /// `options`' noise model becomes that of those rows (NoiseModel::from_rest: Sigma_A and Sigma_B
@@ -47,9 +49,12 @@ FitResult fit_numbered(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::
 
 /// With options.robust, each result in `results` of a method that weighs rows (all but spde)
 /// replaced by its own robust fit of A and B (robust_fit, its offsets those of its weighted rows),
-/// rows named as `numbers` numbers them: compare's and hexapod identify's robust estimators.
+/// rows named as `numbers` numbers them: compare's and hexapod identify's robust estimators. With
+/// options.bootstrap each robust fit has its own (robust_fit's: every resample refitted robustly);
+/// `replicates`, when given, receives each result's replicates (empty for a result not refitted).
 void refit_robustly(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
-                    const FitOptions& options, std::vector<FitResult>& results, const RowNumbers& numbers);
+                    const FitOptions& options, std::vector<FitResult>& results, const RowNumbers& numbers,
+                    std::vector<std::vector<Replicate>>* replicates = nullptr);
 
 /// The warning of rows that dominate the fit of `method` (dominant_rows_warning), as fit would
 /// give it, for the commands that fit several methods at once (compare, hexapod identify): said

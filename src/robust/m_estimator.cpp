@@ -662,13 +662,9 @@ RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const
     const MatrixXd X_full = result.X;
     const VectorXd c_full = fitted.c;
     const double scale_full = fitted.scale;
-    const auto replicates = run_replicates(
+    std::vector<Replicate> replicates = run_replicates(
         static_cast<std::size_t>(options.bootstrap), options, [&](std::size_t r) -> Replicate {
-          VectorXd counts = VectorXd::Zero(m);
-          Random random(trial_seed(options.seed, r));
-          for (Index draw = 0; draw < m; ++draw) {
-            counts(std::min(static_cast<Index>(random.uniform() * static_cast<double>(m)), m - 1)) += 1.0;
-          }
+          const VectorXd counts = resample_weights(m, options.seed, r);
           FitOptions rep = replicate_options(inner);
           try {
             Iterated again =
@@ -679,9 +675,11 @@ RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const
           }
         });
     attach_bootstrap(result, replicates, boot, fitted.data);
+    result.robust = std::move(report);
+    return RobustFit{std::move(result), std::move(fitted.factor), std::move(replicates)};
   }
   result.robust = std::move(report);
-  return RobustFit{std::move(result), std::move(fitted.factor)};
+  return RobustFit{std::move(result), std::move(fitted.factor), {}};
 }
 
 }  // namespace spdfit::detail

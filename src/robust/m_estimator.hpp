@@ -9,6 +9,7 @@
 #include "spdfit/fit_result.hpp"
 #include "spdfit/method.hpp"
 #include "spdfit/triangular_factor.hpp"
+#include "uncertainty/bootstrap.hpp"
 
 namespace spdfit::detail {
 
@@ -65,6 +66,9 @@ RobustReport robust_report(RobustLoss loss, double k, const Eigen::VectorXd& wei
 struct RobustFit {
   FitResult result;
   std::optional<TriangularFactor> factor;
+  /// With options.bootstrap: each replicate's estimate (result.bootstrap summarizes them), for
+  /// what a caller derives from them (hexapod identify's modes).
+  std::vector<Replicate> replicates;
 };
 RobustFit robust_fit(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
                      Method method, const FitOptions& options);

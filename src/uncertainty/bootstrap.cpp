@@ -27,9 +27,7 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
-TriangularFactor resample_rows(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
-                               std::uint64_t seed, std::size_t replicate, bool intercept) {
-  const Index m = A.rows();
+std::vector<std::uint32_t> resample_counts(Index m, std::uint64_t seed, std::size_t replicate) {
   std::vector<std::uint32_t> counts(static_cast<std::size_t>(m), 0);
   Random random(trial_seed(seed, replicate));
   const double rows = static_cast<double>(m);
@@ -37,8 +35,20 @@ TriangularFactor resample_rows(const Eigen::Ref<const MatrixXd>& A, const Eigen:
     const auto row = std::min(static_cast<Index>(random.uniform() * rows), m - 1);
     ++counts[static_cast<std::size_t>(row)];
   }
+  return counts;
+}
+
+Eigen::VectorXd resample_weights(Index m, std::uint64_t seed, std::size_t replicate) {
+  const std::vector<std::uint32_t> counts = resample_counts(m, seed, replicate);
+  Eigen::VectorXd weights(m);
+  for (Index i = 0; i < m; ++i) weights(i) = counts[static_cast<std::size_t>(i)];
+  return weights;
+}
+
+TriangularFactor resample_rows(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
+                               std::uint64_t seed, std::size_t replicate, bool intercept) {
   TriangularFactor factor(A.cols(), B.cols(), intercept);
-  factor.append(A, B, counts);
+  factor.append(A, B, resample_counts(A.rows(), seed, replicate));
   return factor;
 }
 

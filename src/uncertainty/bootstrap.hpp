@@ -33,6 +33,11 @@ constexpr double kSameReplicateRelative = 1e-12;
 /// what the caller cannot do and what the user can.
 std::string too_few_groups(std::uint64_t rows, const std::string& instead);
 
+/// Replicate r's multinomial resample of m rows: how often each row was drawn, m draws with
+/// replacement by a generator keyed by (seed, r). resample_weights: the same counts as weights.
+std::vector<std::uint32_t> resample_counts(Eigen::Index m, std::uint64_t seed, std::size_t replicate);
+Eigen::VectorXd resample_weights(Eigen::Index m, std::uint64_t seed, std::size_t replicate);
+
 /// The factor of replicate r's multinomial resample of the rows of A, B: m rows drawn with
 /// replacement by a generator keyed by (seed, r), each row counted as often as it was drawn
 /// (TriangularFactor::append with counts); with `intercept`, of [1 A B] (FitOptions::offsets

@@ -144,8 +144,44 @@ def test_robust_physical_fit_down_weights_a_spike(cli, tmp_path):
         X = read_csv_json(cli, "fit", "--method", "spd-tls", "--robust", loss, *rest, "--offsets", "rest",
                           str(tmp_path / "A.csv"), str(tmp_path / "Bs.csv"))
         assert robust["methods"]["spd-tls"]["X"] == X
-    # Not with the bootstrap (yet): a usage error.
-    cli("hexapod", "identify", "--physical", *files, "--robust", "huber", "--bootstrap", 10, expect=2)
+
+
+def test_robust_bootstrap_refits_each_resample_robustly(cli, tmp_path):
+    # With the bootstrap, every resample is reweighted from the robust estimate. A tuning constant so
+    # large that every row weighs 1 makes the robust fit the plain one, resample by resample (the
+    # same multinomial draws of the same seed): its standard errors are the plain bootstrap's, for
+    # the physical fit and for each generic estimator, modes included. With Huber's usual constant on
+    # a log with a spike they are finite, positive, and differ from the plain ones.
+    g = geometry(cli, tmp_path)
+    A, B, rest_A, rest_B = untared_log(cli, tmp_path, g)
+    rest = ["--rest-a", write(tmp_path / "rA.csv", rest_A), "--rest-b", write(tmp_path / "rB.csv", rest_B)]
+    spiked = B.copy()
+    spiked[149, 1] += 60.0
+    files = [write(tmp_path / "A.csv", A), write(tmp_path / "Bs.csv", spiked), "--geometry", g, *rest,
+             "--offsets", "rest"]
+    boot = ["--bootstrap", 12, "--seed", 5]
+    plain, _ = physical(cli, *files, *boot)
+    flat, _ = physical(cli, *files, *boot, "--robust", "huber", "--robust-tuning", "1e9")
+    huber, err = physical(cli, *files, *boot, "--robust", "huber")
+    for key in ("mass", "center_of_mass", "inertia", "M_p"):
+        p = np.array(plain["physical"]["standard_errors"][key], dtype=float)
+        f = np.array(flat["physical"]["standard_errors"][key], dtype=float)
+        assert np.allclose(f, p, rtol=1e-6, atol=1e-9 * np.abs(p).max()), key
+    assert flat["physical"]["bootstrap"]["replicates"] == 12 and flat["physical"]["robust"]["method"] == "huber"
+    assert "modes_hz" in plain["methods"]["spd-tls"]["bootstrap"]
+    for method in ("ls", "procrustes", "spd-tls"):
+        p, f = plain["methods"][method], flat["methods"][method]
+        assert np.allclose(f["standard_errors"], p["standard_errors"], rtol=1e-6), method
+        if "modes_hz" in p["bootstrap"]:  # the symmetric estimates'
+            assert np.allclose(f["bootstrap"]["modes_hz"]["standard_errors"],
+                               p["bootstrap"]["modes_hz"]["standard_errors"], rtol=1e-6), method
+    se = np.array(huber["physical"]["standard_errors"]["M_p"], dtype=float)
+    assert np.all(np.isfinite(se)) and np.all(se >= 0) and se.max() > 0, err
+    assert huber["physical"]["bootstrap"]["failed"] == 0
+    assert not np.allclose(se, np.array(plain["physical"]["standard_errors"]["M_p"], dtype=float), rtol=1e-3)
+    assert huber["methods"]["ls"]["robust"]["method"] == "huber" and "standard_errors" in huber["methods"]["ls"]
+    # spde is not refitted robustly: its bootstrap is the plain one's, resample by resample.
+    assert huber["methods"]["spde"]["standard_errors"] == plain["methods"]["spde"]["standard_errors"]
 
 
 def read_csv_json(cli, *args):

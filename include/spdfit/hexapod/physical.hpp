@@ -87,7 +87,8 @@ struct PhysicalOptions {
   /// A robust fit (option `robust`): the rows reweighted by their residual under the physical
   /// model, whitened by the noise covariances, as FitOptions::robust reweights them for the
   /// generic estimators (Huber from the plain physical fit, Tukey from least trimmed squares);
-  /// each reweighting a physical fit of the weighted rows. Not with `bootstrap`.
+  /// each reweighting a physical fit of the weighted rows. With `bootstrap`, each resample's
+  /// counts multiply the weights, reweighted from the estimate.
   RobustLoss robust = RobustLoss::None;
   /// The robust loss's constant (FitOptions::robust_tuning); nothing: 95% efficiency.
   std::optional<double> robust_tuning;
