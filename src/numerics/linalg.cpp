@@ -131,7 +131,9 @@ bool symmetric_eigen_large(const Eigen::Ref<const MatrixXd>& M, VectorXd& w, Mat
 bool symmetric_eigen_in_place(MatrixXd& M, VectorXd& w, bool vectors) {
   const Index n = M.rows();
 #ifdef SPDFIT_HAVE_LAPACK
-  if (n > 0) {
+  // From 64 rows on, as every LAPACK path here: below, Eigen's solver, whose bits are the same on
+  // every CPU (OpenBLAS's dsyevd kernels differ by CPU, and with them the last bits of a repair).
+  if (n >= 64) {
     w.resize(n);
     const lapack_int info = LAPACKE_dsyevd(LAPACK_COL_MAJOR, vectors ? 'V' : 'N', 'L', static_cast<lapack_int>(n),
                                            M.data(), static_cast<lapack_int>(n), w.data());

@@ -224,7 +224,8 @@ bool has_cholesky(const Eigen::Ref<const MatrixXd>& X);
 /// w ascending, V's columns the eigenvectors (when V is given). False when it fails.
 bool symmetric_eigen_large(const Eigen::Ref<const MatrixXd>& M, VectorXd& w, MatrixXd* V);
 
-/// symmetric_eigen_large in place, for large n where memory counts: M (its lower triangle) is
+/// symmetric_eigen_large in place (Eigen's solver below 64 rows, as symmetric_eigen), for large n
+/// where memory counts: M (its lower triangle) is
 /// overwritten by the eigenvectors (with `vectors`; without, its contents are lost), w gets the
 /// eigenvalues ascending. With LAPACK, dsyevd's workspace (2 n^2 + 6 n + 1 doubles with vectors,
 /// 2 n + 1 without) is the only other allocation. False when it fails.
