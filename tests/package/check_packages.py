@@ -26,8 +26,11 @@ import sys
 # answers are stored in tests/data/r_matrix, and the tests that run it skip without it.
 PROGRAMS = {"octave-cli": "test", "mpirun": "test", "clang++-14": "test", "cmake": "runtime"}
 OPTIONAL_PROGRAMS = {"Rscript"}
-# CMake cache entries of tools used when present (CMakeLists.txt: ccache).
+# CMake cache entries of tools used when present (CMakeLists.txt: ccache). CMake's own toolchain
+# entries (CMAKE_AR, CMAKE_LINKER, ...) are left out too: CMake picks whichever archiver and
+# binary tools are installed (with clang, LLVM's when llvm-14 is there; else binutils').
 OPTIONAL_CACHE_ENTRIES = {"SPDFIT_CCACHE"}
+OPTIONAL_CACHE_PREFIX = "CMAKE_"
 
 # Build-tree directories whose targets the main job builds (scripts/demo.sh), and the targets there
 # that are built only when their packages are present (apps/CMakeLists.txt: mpirun support when
@@ -95,8 +98,28 @@ def owners(paths):
     return found, unowned
 
 
+def main_job_configuration(build_dir):
+    """Whether BUILD_DIR is configured as the main job builds (scripts/setup.sh: Release, not the
+    sanitizer build, whose clang and its runtime are on the test list)."""
+    cache = {}
+    with open(os.path.join(build_dir, "CMakeCache.txt"), encoding="utf-8") as handle:
+        for line in handle:
+            match = re.match(r"([A-Za-z0-9_]+):[A-Z]+=(.*)$", line.strip())
+            if match:
+                cache[match.group(1)] = match.group(2)
+    return cache.get("CMAKE_BUILD_TYPE") == "Release" and cache.get("SPDFIT_SANITIZE", "OFF").upper() in ("OFF", "0", "FALSE", "")
+
+
+MAIN_JOB = {}  # build_dir -> main_job_configuration(build_dir)
+
+
 def role_of(path, build_dir):
-    """'runtime' for the files of the targets the main job builds, 'test' for the others."""
+    """'runtime' for the files of the targets the main job builds, 'test' for the others (and for
+    every file of a build configured otherwise)."""
+    if build_dir not in MAIN_JOB:
+        MAIN_JOB[build_dir] = main_job_configuration(build_dir)
+    if not MAIN_JOB[build_dir]:
+        return "test"
     parts = os.path.relpath(path, build_dir).split(os.sep)
     optional = any(target in part for part in parts for target in OPTIONAL_TARGETS)
     return "runtime" if parts[0] in RUNTIME_DIRECTORIES and not optional else "test"
@@ -156,7 +179,7 @@ def cmake_tools(build_dir, source_dir):
     with open(os.path.join(build_dir, "CMakeCache.txt"), encoding="utf-8") as handle:
         for line in handle:
             match = re.match(r"([A-Za-z0-9_]+):FILEPATH=(/\S+)$", line.strip())
-            if not match or match.group(1) in OPTIONAL_CACHE_ENTRIES:
+            if not match or match.group(1) in OPTIONAL_CACHE_ENTRIES or match.group(1).startswith(OPTIONAL_CACHE_PREFIX):
                 continue
             path = match.group(2)
             if os.path.exists(path) and is_system_path(path, source_dir, build_dir):
