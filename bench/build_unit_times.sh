@@ -4,7 +4,8 @@
 #
 #   bench/build_unit_times.sh [BUILD_DIR] [extra cmake arguments...]
 #
-# A compiler launcher records each unit's wall seconds; ccache is off so that every unit compiles.
+# A compiler launcher records each unit's wall time (milliseconds, in bash's arithmetic); ccache is
+# off so that every unit compiles.
 # Prints the units sorted by time and their sum (one core's seconds), then the wall time of
 # `cmake --build` with every core (nproc). bench/results/build-times-*.md has measurements.
 set -euo pipefail
@@ -15,11 +16,11 @@ log=$(mktemp)
 launcher=$(mktemp)
 cat > "$launcher" <<LAUNCHER
 #!/usr/bin/env bash
-start=\$(date +%s.%N)
+start=\$(date +%s%N)
 "\$@"; status=\$?
 out=""; previous=""
 for argument in "\$@"; do [ "\$previous" = "-o" ] && out=\$argument; previous=\$argument; done
-echo "\$(echo "\$(date +%s.%N) - \$start" | bc) \$out" >> "$log"
+echo "\$(( (\$(date +%s%N) - start) / 1000000 )) \$out" >> "$log"
 exit \$status
 LAUNCHER
 chmod +x "$launcher"
@@ -29,6 +30,6 @@ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DSPDFIT_BUILD_TESTS=OFF -DSPD
 start=$(date +%s)
 CCACHE_DISABLE=1 cmake --build "$build" --parallel "$(nproc)" >/dev/null
 wall=$(( $(date +%s) - start ))
-sort -rn "$log" | awk '{printf "%8.1f s  %s\n", $1, $2; total += $1} END {printf "%8.1f s  in all (%d units)\n", total, NR}'
+sort -rn "$log" | awk '{printf "%8.1f s  %s\n", $1 / 1000, $2; total += $1 / 1000} END {printf "%8.1f s  in all (%d units)\n", total, NR}'
 echo "cmake --build with $(nproc) jobs: $wall s of wall time"
 rm -f "$log" "$launcher"

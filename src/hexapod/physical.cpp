@@ -4,6 +4,7 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -452,8 +453,8 @@ Eigen::MatrixXd physical_residual_covariance(const Matrix6d& M, const PhysicalOp
 }
 
 // The reweightings of the robust physical fit from M and c with the scale `scale` (Huber:
-// re-estimated each time), at most kPhysicalReweightings: each the physical fit of the rows
-// weighted by their residuals (TriangularFactor::append with weights), `counts` (empty: 1)
+// re-estimated each time), at most kPhysicalReweightings: each `fit_weighted` of the factor of the
+// rows weighted by their residuals (TriangularFactor::append with weights), `counts` (empty: 1)
 // multiplying the weights (a bootstrap resample). `factor` receives the last weighted factor.
 struct Reweighted {
   PhysicalEstimate estimate;
@@ -463,16 +464,13 @@ struct Reweighted {
   bool converged = false;
 };
 
-Reweighted reweight(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Geometry& geometry,
-                    const PhysicalOptions& options, double k, Matrix6d M, Eigen::VectorXd c, double scale,
-                    const Eigen::VectorXd& counts, detail::PhysicalModel& model,
-                    std::optional<TriangularFactor>& factor) {
+using WeightedFit = std::function<PhysicalEstimate(const TriangularFactor&)>;
+
+Reweighted reweight(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const PhysicalOptions& options, double k,
+                    Matrix6d M, Eigen::VectorXd c, double scale, const Eigen::VectorXd& counts,
+                    const WeightedFit& fit_weighted, std::optional<TriangularFactor>& factor) {
   const Eigen::Index m = A.rows();
   const RobustLoss loss = options.robust;
-  PhysicalOptions plain = options;
-  plain.robust = RobustLoss::None;
-  plain.robust_tuning.reset();
-  plain.bootstrap = 0;
   const double median_chi = spdfit::detail::chi_median(6);
   Reweighted out;
   out.weights.resize(m);
@@ -492,7 +490,7 @@ Reweighted reweight(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Ge
     }
     factor.emplace(6, 6, options.intercept);
     factor->append(A, B, counts.size() ? Eigen::VectorXd(out.weights.cwiseProduct(counts)) : out.weights);
-    PhysicalEstimate next = identify_from_factor(*factor, geometry, plain, model);
+    PhysicalEstimate next = fit_weighted(*factor);
     out.iterations = it;
     if (!next.ok()) {
       out.estimate = std::move(next);
@@ -522,9 +520,10 @@ PhysicalEstimate robust_physical(const Eigen::MatrixXd& A, const Eigen::MatrixXd
   const Eigen::Index m = A.rows();
   const RobustLoss loss = options.robust;
   const double k = options.robust_tuning.value_or(spdfit::detail::robust_tuning(loss, 6));
-  PhysicalOptions plain = options;
+  PhysicalOptions plain = options;  // each reweighting's fit: of the weighted rows, as they are
   plain.robust = RobustLoss::None;
   plain.robust_tuning.reset();
+  plain.bootstrap = 0;
   Matrix6d M;
   Eigen::VectorXd c;
   double scale = 0.0;
@@ -551,7 +550,9 @@ PhysicalEstimate robust_physical(const Eigen::MatrixXd& A, const Eigen::MatrixXd
     M = out.M_p;
     c = spdfit::detail::intercept_offsets(*factor, M);
   }
-  Reweighted fitted = reweight(A, B, geometry, options, k, M, c, scale, Eigen::VectorXd(), model, factor);
+  Reweighted fitted = reweight(A, B, options, k, M, c, scale, Eigen::VectorXd(),
+                               [&](const TriangularFactor& f) { return identify_from_factor(f, geometry, plain, model); },
+                               factor);
   out = std::move(fitted.estimate);
   if (out.ok() && !fitted.converged) {
     out.warnings.emplace_back(Code::NotConverged,
@@ -562,18 +563,18 @@ PhysicalEstimate robust_physical(const Eigen::MatrixXd& A, const Eigen::MatrixXd
   if (out.ok() && options.bootstrap > 0) {
     // Each replicate: the rows resampled (their counts multiply the weights), reweighted from this
     // estimate with its scale, as the generic robust fit's bootstrap.
-    PhysicalOptions quiet = options;
-    quiet.bootstrap = 0;
-    quiet.plausibility_check = false;  // a resample is judged by the intervals, not refused
+    // Each reweighting of a replicate: fit_physical without what only a report needs, the model of
+    // the estimate's fits shared.
+    const PhysicalOptions quiet = detail::replicate_options(plain);
     const Matrix6d M_full = out.M_p;
     const Eigen::VectorXd c_full = fitted.c;
     const double scale_full = fitted.scale;
     detail::bootstrap_physical(out, geometry, options, [&](std::size_t r) -> std::optional<PhysicalEstimate> {
-      detail::PhysicalModel replicate_model;
       std::optional<TriangularFactor> replicate_factor;
-      Reweighted again = reweight(A, B, geometry, quiet, k, M_full, c_full, scale_full,
-                                  spdfit::detail::resample_weights(m, options.seed, r), replicate_model,
-                                  replicate_factor);
+      Reweighted again = reweight(
+          A, B, options, k, M_full, c_full, scale_full, spdfit::detail::resample_weights(m, options.seed, r),
+          [&](const TriangularFactor& f) { return detail::fit_physical(f, model, geometry, quiet, false); },
+          replicate_factor);
       return std::move(again.estimate);
     });
   }
@@ -638,9 +639,7 @@ PhysicalEstimate identify_physical(const Eigen::MatrixXd& A, const Eigen::Matrix
                          "the physical fit's payload mass is " + format_number(out.payload.mass) + " kg");
   }
   if (options.bootstrap > 0 && out.ok() && options.robust == RobustLoss::None) {  // robust_physical has its own
-    PhysicalOptions replicates = options;
-    replicates.plausibility_check = false;  // a resample is judged by the intervals, not refused
-    detail::bootstrap_physical(out, Ad, Bd, model, geometry, replicates);
+    detail::bootstrap_physical(out, Ad, Bd, model, geometry, options);
   }
   return out;
 }

@@ -47,10 +47,15 @@ void flatten(const PhysicalEstimate& e, Values& out) {
 
 }  // namespace
 
+PhysicalOptions replicate_options(PhysicalOptions options) {
+  options.bootstrap = 0;
+  options.plausibility_check = false;  // a resample is judged by the intervals, not refused
+  return options;
+}
+
 void bootstrap_physical(PhysicalEstimate& estimate, const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
                         const PhysicalModel& model, const Geometry& geometry, const PhysicalOptions& options) {
-  PhysicalOptions quiet = options;
-  quiet.bootstrap = 0;
+  const PhysicalOptions quiet = replicate_options(options);
   bootstrap_physical(estimate, geometry, options, [&](std::size_t r) -> std::optional<PhysicalEstimate> {
     const TriangularFactor factor = spdfit::detail::resample_rows(A, B, options.seed, r, options.intercept);
     return fit_physical(factor, model, geometry, quiet, false);

@@ -19,6 +19,9 @@ namespace spdfit::hexapod::detail {
 PhysicalEstimate fit_physical(const TriangularFactor& factor, const PhysicalModel& model, const Geometry& geometry,
                               const PhysicalOptions& options, bool reported = true);
 
+/// The options of a bootstrap replicate's fit: no bootstrap of its own, no plausibility check.
+PhysicalOptions replicate_options(PhysicalOptions options);
+
 /// Fills estimate.bootstrap from options.bootstrap replicates on options.threads threads: replicate
 /// r's estimate is `replicate(r)` (empty, not ok, or a std::invalid_argument thrown: a failed
 /// replicate).

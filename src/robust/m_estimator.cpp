@@ -654,6 +654,7 @@ RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const
                                      " iterations (`max_iterations`): the last iterate is returned",
                                  "robust");
   }
+  std::vector<Replicate> replicates;
   if (result.ok() && options.bootstrap > 0) {
     // Each replicate: the rows resampled (their counts multiply the weights), refitted robustly from
     // this estimate with its scale.
@@ -662,7 +663,7 @@ RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const
     const MatrixXd X_full = result.X;
     const VectorXd c_full = fitted.c;
     const double scale_full = fitted.scale;
-    std::vector<Replicate> replicates = run_replicates(
+    replicates = run_replicates(
         static_cast<std::size_t>(options.bootstrap), options, [&](std::size_t r) -> Replicate {
           const VectorXd counts = resample_weights(m, options.seed, r);
           FitOptions rep = replicate_options(inner);
@@ -675,11 +676,9 @@ RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const
           }
         });
     attach_bootstrap(result, replicates, boot, fitted.data);
-    result.robust = std::move(report);
-    return RobustFit{std::move(result), std::move(fitted.factor), std::move(replicates)};
   }
   result.robust = std::move(report);
-  return RobustFit{std::move(result), std::move(fitted.factor), {}};
+  return RobustFit{std::move(result), std::move(fitted.factor), std::move(replicates)};
 }
 
 }  // namespace spdfit::detail

@@ -118,17 +118,24 @@ def test_offsets_estimate_with_the_physical_fit_is_the_fit_of_the_centred_data(c
     assert abs(p["mass"] - truth) < 0.05 * truth
 
 
-def test_robust_physical_fit_down_weights_a_spike(cli, tmp_path):
-    # The untared log tared, with one reading of strut 2 off by 60 N (about 85 of its noise's
-    # standard deviations): the plain physical fit moves, Huber's and Tukey's hardly.
+def spiked_log(cli, tmp_path):
+    """The untared log with one reading of strut 2 (row 150) off by 60 N, about 85 of its noise's
+    standard deviations: the arguments of the clean and of the spiked log (tared by the rest rows)
+    and the rest rows' arguments."""
     g = geometry(cli, tmp_path)
     A, B, rest_A, rest_B = untared_log(cli, tmp_path, g)
     rest = ["--rest-a", write(tmp_path / "rA.csv", rest_A), "--rest-b", write(tmp_path / "rB.csv", rest_B)]
     spiked = B.copy()
     spiked[149, 1] += 60.0
-    clean_files = [write(tmp_path / "A.csv", A), write(tmp_path / "B.csv", B), "--geometry", g, *rest, "--offsets", "rest"]
-    files = [write(tmp_path / "A.csv", A), write(tmp_path / "Bs.csv", spiked), "--geometry", g, *rest,
-             "--offsets", "rest"]
+    a = write(tmp_path / "A.csv", A)
+    clean = [a, write(tmp_path / "B.csv", B), "--geometry", g, *rest, "--offsets", "rest"]
+    files = [a, write(tmp_path / "Bs.csv", spiked), "--geometry", g, *rest, "--offsets", "rest"]
+    return clean, files, rest
+
+
+def test_robust_physical_fit_down_weights_a_spike(cli, tmp_path):
+    # The untared log tared, with a spike: the plain physical fit moves, Huber's and Tukey's hardly.
+    clean_files, files, rest = spiked_log(cli, tmp_path)
     clean, _ = physical(cli, *clean_files)
     plain, _ = physical(cli, *files)
     ref = np.array(clean["physical"]["M_p"])
@@ -152,13 +159,7 @@ def test_robust_bootstrap_refits_each_resample_robustly(cli, tmp_path):
     # same multinomial draws of the same seed): its standard errors are the plain bootstrap's, for
     # the physical fit and for each generic estimator, modes included. With Huber's usual constant on
     # a log with a spike they are finite, positive, and differ from the plain ones.
-    g = geometry(cli, tmp_path)
-    A, B, rest_A, rest_B = untared_log(cli, tmp_path, g)
-    rest = ["--rest-a", write(tmp_path / "rA.csv", rest_A), "--rest-b", write(tmp_path / "rB.csv", rest_B)]
-    spiked = B.copy()
-    spiked[149, 1] += 60.0
-    files = [write(tmp_path / "A.csv", A), write(tmp_path / "Bs.csv", spiked), "--geometry", g, *rest,
-             "--offsets", "rest"]
+    _, files, _ = spiked_log(cli, tmp_path)
     boot = ["--bootstrap", 12, "--seed", 5]
     plain, _ = physical(cli, *files, *boot)
     flat, _ = physical(cli, *files, *boot, "--robust", "huber", "--robust-tuning", "1e9")
