@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <stdexcept>
 
 #include "numerics/parallel.hpp"
 
@@ -15,9 +16,8 @@ namespace {
 // result does not depend on the threads.
 constexpr Eigen::Index kChunk = 2048;
 
-using RowMatrix = Eigen::Matrix<double, 6, Eigen::Dynamic, Eigen::ColMajor, 6, 16>;
-using SquareMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 16, 16>;
 using ParamVector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 16, 1>;
+using SquareMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 16, 16>;
 
 struct Partial {
   double f = 0.0;
@@ -26,6 +26,72 @@ struct Partial {
   bool ok = true;
 };
 
+// The sums of samples [begin, end) with the layout's sizes fixed at compile time (P parameters, Q
+// of them inertial): each sample's work is a few small dense products, which fixed sizes unroll.
+template <int P, int Q>
+void accumulate(const Kinematics& kin, const ParameterLayout& layout, const Eigen::VectorXd& phi_in,
+                const Eigen::Matrix<double, 6, 6>& noise_w, const std::array<Eigen::Matrix3d, 3>& noise_x,
+                const std::vector<double>& counts, int order, bool scores, Eigen::Index begin, Eigen::Index end,
+                Partial& out) {
+  using Regressor = Eigen::Matrix<double, 6, P>;
+  using Vector = Eigen::Matrix<double, P, 1>;
+  using Square = Eigen::Matrix<double, P, P>;
+  const Vector phi = phi_in;
+  Vector g = Vector::Zero();
+  Square H = Square::Zero(), S = Square::Zero();
+  double f = 0.0;
+  Regressor X, V, LV;
+  Eigen::Matrix<double, 9, 10> Jt_u;
+  Eigen::Matrix<double, 6, 10> J_v;
+  for (Eigen::Index k = begin; k < end; ++k) {
+    const double weight = counts.empty() ? 1.0 : counts[static_cast<std::size_t>(k)];
+    if (weight == 0.0) continue;
+    sample_regressor(kin, k, layout, X);
+    const Matrix69 J = model_jacobian(kin, k, layout, phi_in);
+    Matrix69 JS;  // J Sigma_x, Sigma_x block diagonal
+    for (int b = 0; b < 3; ++b) JS.middleCols<3>(3 * b) = J.middleCols<3>(3 * b).lazyProduct(noise_x[b]);
+    const Eigen::Matrix<double, 6, 1> r = X * phi - kin.wrench.col(k);
+    Eigen::Matrix<double, 6, 6> C = noise_w;
+    C += JS.lazyProduct(J.transpose());
+    const Eigen::LLT<Eigen::Matrix<double, 6, 6>> llt(C);
+    if (llt.info() != Eigen::Success || !(llt.matrixLLT().diagonal().minCoeff() > 0.0)) {
+      out.ok = false;
+      return;
+    }
+    const Eigen::Matrix<double, 6, 1> u = llt.solve(r);
+    f += weight * r.dot(u);
+    if (order < 1 && !scores) continue;
+    const Eigen::Matrix<double, 9, 1> v = JS.transpose() * u;  // Sigma_x J^T u
+    jacobian_products(kin, k, layout, u, v, Jt_u, J_v);
+    Vector gk = X.transpose() * u;  // half the gradient of r^T C^-1 r along the columns of X
+    gk.template head<Q>().noalias() -= Jt_u.template leftCols<Q>().transpose() * v;
+    g += (2.0 * weight) * gk;
+    if (scores) S.noalias() += weight * gk * gk.transpose();
+    if (order < 2) continue;
+    V = X;
+    V.template leftCols<Q>() -= J_v.template leftCols<Q>();
+    V.template leftCols<Q>() -= JS.lazyProduct(Jt_u.template leftCols<Q>());
+    // L^-1 V by forward substitution, row by row (each row a vector of length P).
+    const auto& L = llt.matrixLLT();
+    for (int i = 0; i < 6; ++i) {
+      auto row = LV.row(i);
+      row = V.row(i);
+      for (int j = 0; j < i; ++j) row -= L(i, j) * LV.row(j);
+      row /= L(i, i);
+    }
+    H += (2.0 * weight) * LV.transpose().lazyProduct(LV);
+    Eigen::Matrix<double, 9, Q> SK;  // Sigma_x dJ^T u
+    for (int b = 0; b < 3; ++b) {
+      SK.template middleRows<3>(3 * b) = noise_x[b].lazyProduct(Jt_u.template block<3, Q>(3 * b, 0));
+    }
+    H.template topLeftCorner<Q, Q>() -= (2.0 * weight) * Jt_u.template leftCols<Q>().transpose().lazyProduct(SK);
+  }
+  out.f = f;
+  out.g = g;
+  if (order >= 2) out.H = H;
+  if (scores) out.S = S;
+}
+
 }  // namespace
 
 EivCriterion::EivCriterion(const Kinematics& kin, const ParameterLayout& layout, Eigen::MatrixXd M,
@@ -33,59 +99,31 @@ EivCriterion::EivCriterion(const Kinematics& kin, const ParameterLayout& layout,
                            std::vector<double> counts)
     : kin_(kin), layout_(layout), M_(std::move(M)), threads_(threads), counts_(std::move(counts)) {
   noise_w_ = noise_w.size() ? Eigen::Matrix<double, 6, 6>(noise_w) : Eigen::Matrix<double, 6, 6>::Zero();
-  noise_x_ = noise_x.size() ? Eigen::Matrix<double, 9, 9>(noise_x) : Eigen::Matrix<double, 9, 9>::Zero();
+  const Eigen::Matrix<double, 9, 9> full = noise_x.size() ? Eigen::Matrix<double, 9, 9>(noise_x) : Eigen::Matrix<double, 9, 9>::Zero();
+  Eigen::Matrix<double, 9, 9> off = full;
+  for (int b = 0; b < 3; ++b) {
+    noise_x_[static_cast<std::size_t>(b)] = full.block<3, 3>(3 * b, 3 * b);
+    off.block<3, 3>(3 * b, 3 * b).setZero();
+  }
+  if (off.cwiseAbs().maxCoeff() != 0.0) {
+    throw std::invalid_argument("EivCriterion: Sigma_x must be block diagonal in (s, omega, alpha)");
+  }
 }
 
 bool EivCriterion::evaluate_phi(const Eigen::VectorXd& phi, int order, double& f, Eigen::VectorXd* g,
                                 Eigen::MatrixXd* H, Eigen::MatrixXd* scores) const {
-  const int p = layout_.size(), q = layout_.inertial();
+  const int p = layout_.size();
   const Eigen::Index m = kin_.samples();
   const Eigen::Index chunks = (m + kChunk - 1) / kChunk;
   std::vector<Partial> partial(static_cast<std::size_t>(chunks));
   spdfit::detail::parallel_for(static_cast<std::size_t>(chunks), threads_, [&](std::size_t c) {
-    Partial& out = partial[c];
-    out.g.setZero(p);
-    if (order >= 2) out.H.setZero(p, p);
-    if (scores) out.S.setZero(p, p);
-    RowMatrix X(6, p), V(6, p);
-    Matrix69 J[10];
-    Eigen::Matrix<double, 9, Eigen::Dynamic, Eigen::ColMajor, 9, 10> K(9, q);
-    Eigen::Matrix<double, 6, 10> CU;
     const Eigen::Index begin = static_cast<Eigen::Index>(c) * kChunk, end = std::min(m, begin + kChunk);
-    for (Eigen::Index k = begin; k < end; ++k) {
-      const double weight = counts_.empty() ? 1.0 : counts_[static_cast<std::size_t>(k)];
-      if (weight == 0.0) continue;
-      sample_regressor(kin_, k, layout_, X);
-      jacobian_basis(kin_, k, layout_, J);
-      Matrix69 Jk = Matrix69::Zero();
-      for (int a = 0; a < q; ++a) Jk += phi(a) * J[a];
-      const Eigen::Matrix<double, 6, 1> r = X * phi - kin_.wrench.col(k);
-      Eigen::Matrix<double, 6, 6> C = Jk * noise_x_ * Jk.transpose() + noise_w_;
-      C = 0.5 * (C + C.transpose()).eval();
-      const Eigen::LLT<Eigen::Matrix<double, 6, 6>> llt(C);
-      if (llt.info() != Eigen::Success || !(llt.matrixLLT().diagonal().minCoeff() > 0.0)) {
-        out.ok = false;
-        return;
-      }
-      const Eigen::Matrix<double, 6, 1> u = llt.solve(r);
-      out.f += weight * r.dot(u);
-      if (order < 1 && !scores) continue;
-      const Eigen::Matrix<double, 9, 1> v = noise_x_ * (Jk.transpose() * u);
-      ParamVector gk(p);
-      gk = X.transpose() * u;  // half the gradient of r^T C^-1 r along the columns of X
-      for (int a = 0; a < q; ++a) {
-        K.col(a) = J[a].transpose() * u;
-        gk(a) -= K.col(a).dot(v);
-      }
-      out.g += (2.0 * weight) * gk;
-      if (scores) out.S.noalias() += weight * gk * gk.transpose();
-      if (order < 2) continue;
-      for (int a = 0; a < q; ++a) CU.col(a) = J[a] * v + Jk * (noise_x_ * K.col(a));
-      V = X;
-      V.leftCols(q) -= CU.leftCols(q);
-      const RowMatrix LV = llt.matrixL().solve(V);
-      out.H.noalias() += (2.0 * weight) * (LV.transpose() * LV);
-      out.H.topLeftCorner(q, q).noalias() -= (2.0 * weight) * (K.transpose() * noise_x_ * K);
+    if (layout_.moving) {
+      accumulate<16, 10>(kin_, layout_, phi, noise_w_, noise_x_, counts_, order, scores != nullptr, begin, end,
+                         partial[c]);
+    } else {
+      accumulate<10, 4>(kin_, layout_, phi, noise_w_, noise_x_, counts_, order, scores != nullptr, begin, end,
+                        partial[c]);
     }
   });
   f = 0.0;

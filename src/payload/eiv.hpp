@@ -10,6 +10,7 @@
 // constant the biases absorb). As a Criterion of the solver's coordinates theta = M^-1 phi.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include <Eigen/Core>
@@ -22,7 +23,8 @@ namespace spdfit::payload::detail {
 
 class EivCriterion : public physical::detail::Criterion {
  public:
-  /// `M` maps theta to phi (p x p); Sigma_w 6 x 6 and Sigma_x 9 x 9 (positive semidefinite, C_k
+  /// `M` maps theta to phi (p x p); Sigma_w 6 x 6 and Sigma_x 9 x 9 (positive semidefinite and block
+  /// diagonal in (s, omega, alpha), as noise_covariances makes it, else std::invalid_argument; C_k
   /// positive definite at the phi evaluated); `counts` (empty: 1 each) weighs the samples (the
   /// bootstrap's resamples).
   EivCriterion(const Kinematics& kin, const ParameterLayout& layout, Eigen::MatrixXd M, const Eigen::MatrixXd& noise_w,
@@ -45,7 +47,7 @@ class EivCriterion : public physical::detail::Criterion {
   ParameterLayout layout_;
   Eigen::MatrixXd M_;
   Eigen::Matrix<double, 6, 6> noise_w_;
-  Eigen::Matrix<double, 9, 9> noise_x_;
+  std::array<Eigen::Matrix3d, 3> noise_x_;  ///< Sigma_x's diagonal blocks (s, omega, alpha)
   unsigned threads_;
   std::vector<double> counts_;
   double f0_ = 1.0;

@@ -28,9 +28,22 @@ struct ParameterLayout {
 /// inertial columns; the identity on the biases').
 void sample_regressor(const Kinematics& kin, Eigen::Index k, const ParameterLayout& layout,
                       Eigen::Ref<Eigen::MatrixXd> X);
+/// The same into a matrix of fixed size: P = layout.size() (10 static, 16 moving).
+template <int P>
+void sample_regressor(const Kinematics& kin, Eigen::Index k, const ParameterLayout& layout,
+                      Eigen::Matrix<double, 6, P>& X);
 
-/// J_a (a < layout.inertial()): the derivative of the model wrench's Jacobian in x = (s, omega,
-/// alpha) along parameter a; the Jacobian is sum_a phi_a J_a (linear in phi).
-void jacobian_basis(const Kinematics& kin, Eigen::Index k, const ParameterLayout& layout, Matrix69* J);
+/// The model wrench's Jacobian in x = (s, omega, alpha) at sample k and parameters phi (only the
+/// inertial ones are read): J(phi) = sum_a phi_a J_a, linear in phi, assembled from m, h and I.
+Matrix69 model_jacobian(const Kinematics& kin, Eigen::Index k, const ParameterLayout& layout,
+                        const Eigen::Ref<const Eigen::VectorXd>& phi);
+
+/// The products of a wrench-space u (6) and a signal-space v (9) with each J_a = dJ/dphi_a
+/// (a < layout.inertial()): column a of `Jt_u` is J_a^T u, of `J_v` J_a v (the columns from
+/// layout.inertial() on are left as they are). Formed from u, v and the sample's omega without
+/// the J_a themselves.
+void jacobian_products(const Kinematics& kin, Eigen::Index k, const ParameterLayout& layout,
+                       const Eigen::Matrix<double, 6, 1>& u, const Eigen::Matrix<double, 9, 1>& v,
+                       Eigen::Matrix<double, 9, 10>& Jt_u, Eigen::Matrix<double, 6, 10>& J_v);
 
 }  // namespace spdfit::payload::detail

@@ -125,7 +125,7 @@ enum class StageEnd { Converged, Budget, Failed };
 // (no step can decrease it measurably), Budget after the iteration budget, Failed when the merit
 // cannot be evaluated at theta or the iterates run off to infinity.
 StageEnd newton(const Criterion& f, const ConeLayout* layout, double mu, double tolerance, int max_iterations,
-                int& iterations, Eigen::VectorXd& theta) {
+                int& iterations, Eigen::VectorXd& theta, double* value = nullptr) {
   const Eigen::Index p = theta.size();
   Merit cur, trial;
   const double start_norm = std::max(theta.norm(), std::numeric_limits<double>::min());
@@ -133,6 +133,7 @@ StageEnd newton(const Criterion& f, const ConeLayout* layout, double mu, double 
   int at_rounding = 0;  // consecutive steps whose predicted decrease was below the merit's rounding
   for (;;) {
     if (!merit(f, layout, theta, mu, 2, cur)) return StageEnd::Failed;
+    if (value) *value = cur.value;
     // Levenberg-Marquardt: the smallest shift in {0, 1e-12, 1e-11, ...} times the Hessian's
     // diagonal scale that makes it positive definite (a descent direction far from a minimum).
     const double scale = std::max(cur.H.diagonal().cwiseAbs().maxCoeff(), std::numeric_limits<double>::min());
@@ -287,7 +288,8 @@ SolveResult solve_constrained(const Criterion& f, const ConeLayout& layout, cons
 SolveResult solve_unconstrained(const Criterion& f, const Eigen::VectorXd& theta0, int max_iterations) {
   SolveResult out;
   out.theta = theta0;
-  const StageEnd end = newton(f, nullptr, 0.0, kFinalDecrement, max_iterations, out.iterations, out.theta);
+  double value = std::numeric_limits<double>::quiet_NaN();
+  const StageEnd end = newton(f, nullptr, 0.0, kFinalDecrement, max_iterations, out.iterations, out.theta, &value);
   out.converged = end == StageEnd::Converged;
   if (end == StageEnd::Failed) {
     out.message = "Newton's method found no minimum (the criterion could not be evaluated, or decreases without "
@@ -295,8 +297,12 @@ SolveResult solve_unconstrained(const Criterion& f, const Eigen::VectorXd& theta
   } else if (end == StageEnd::Budget) {
     out.message = "stopped after `max_iterations` = " + std::to_string(max_iterations) + " Newton steps";
   }
+  // The merit without a barrier is f: its value at the last iterate when Newton's method ended
+  // there after evaluating it.
   Evaluation ev;
-  out.f = f.evaluate(out.theta, 0, ev) ? ev.f : std::numeric_limits<double>::quiet_NaN();
+  out.f = end != StageEnd::Failed && std::isfinite(value) ? value
+          : f.evaluate(out.theta, 0, ev)                    ? ev.f
+                                                            : std::numeric_limits<double>::quiet_NaN();
   return out;
 }
 

@@ -138,3 +138,29 @@ def write_log(path, columns):
     data = np.hstack(blocks)
     np.savetxt(path, data, delimiter=",", header=",".join(names), comments="", fmt="%.17g")
     return path
+
+
+def model_readings(phi, s, omega, alpha, sign=-1.0):
+    """The readings (n x 6) the wrench model predicts, vectorized over samples: sign (f, tau) + b
+    with phi = (m, m c, I_S xx xy xz yy yz zz, b_f, b_tau)."""
+    m, h, (xx, xy, xz, yy, yz, zz), b = phi[0], phi[1:4], phi[4:10], phi[10:16]
+    I = np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])
+    f = m * s + np.cross(alpha, h) + np.cross(omega, np.cross(omega, h))
+    tau = alpha @ I + np.cross(omega, omega @ I) + np.cross(h, s)
+    return sign * np.hstack([f, tau]) + b
+
+
+def eiv_criterion(phi, readings, s, omega, alpha, noise_w, noise_x, sign=-1.0):
+    """sum_k r_k^T C_k^-1 r_k with C_k = J_k Sigma_x J_k^T + Sigma_w, J_k the model's Jacobian in
+    the signals (s, omega, alpha) by central differences (exact: the model is quadratic in them)."""
+    x = np.hstack([s, omega, alpha])
+    J = np.empty((len(x), 6, 9))
+    for c in range(9):
+        step = np.zeros(9)
+        step[c] = 1e-3
+        plus, minus = x + step, x - step
+        J[:, :, c] = (model_readings(phi, plus[:, :3], plus[:, 3:6], plus[:, 6:], sign)
+                      - model_readings(phi, minus[:, :3], minus[:, 3:6], minus[:, 6:], sign)) / 2e-3
+    C = J @ noise_x @ J.transpose(0, 2, 1) + noise_w
+    r = readings - model_readings(phi, s, omega, alpha, sign)
+    return float(np.einsum("ki,ki->", r, np.linalg.solve(C, r[:, :, None])[:, :, 0]))

@@ -157,6 +157,59 @@ TEST(PayloadEiv, ExactDerivativesAndLeastSquaresWithoutPoseNoise) {
   EXPECT_NEAR(f, expected, 1e-12 * expected);
 }
 
+// The wrench model's Jacobian in the signals x = (s, omega, alpha) against central differences of
+// the regressor's wrench X(x) phi (a polynomial of degree two in x: the differences are exact up
+// to rounding), and the products with dJ/dphi_a against J at the unit vectors (J is linear in phi).
+TEST(PayloadEiv, StructuredJacobianAndProductsMatchTheirDefinitions) {
+  std::mt19937_64 rng(7);
+  for (const bool moving : {false, true}) {
+    for (const double sign : {-1.0, 1.0}) {
+      payload::detail::Kinematics kin;
+      kin.moving = moving;
+      kin.sign = sign;
+      kin.wrench = Eigen::MatrixXd::Zero(6, 1);
+      kin.specific_force = random_vector(rng, 3, 5.0);
+      kin.omega = moving ? random_vector(rng, 3) : Eigen::VectorXd::Zero(3);
+      kin.alpha = moving ? random_vector(rng, 3) : Eigen::VectorXd::Zero(3);
+      payload::detail::ParameterLayout layout;
+      layout.moving = moving;
+      const int p = layout.size(), q = layout.inertial();
+      const Eigen::VectorXd phi = random_vector(rng, p);
+      const payload::detail::Matrix69 J = payload::detail::model_jacobian(kin, 0, layout, phi);
+      Eigen::MatrixXd X(6, p);
+      const double h = 1e-3;
+      for (int c = 0; c < 9; ++c) {
+        if (!moving && c >= 3) {
+          EXPECT_EQ(J.col(c).norm(), 0.0);
+          continue;
+        }
+        Eigen::Matrix<double, 3, Eigen::Dynamic>& signal = c < 3 ? kin.specific_force : c < 6 ? kin.omega : kin.alpha;
+        const double saved = signal(c % 3, 0);
+        signal(c % 3, 0) = saved + h;
+        payload::detail::sample_regressor(kin, 0, layout, X);
+        const Eigen::VectorXd plus = X * phi;
+        signal(c % 3, 0) = saved - h;
+        payload::detail::sample_regressor(kin, 0, layout, X);
+        const Eigen::VectorXd minus = X * phi;
+        signal(c % 3, 0) = saved;
+        EXPECT_LT((J.col(c) - (plus - minus) / (2 * h)).norm(), 1e-9 * (1.0 + J.col(c).norm()))
+            << "moving " << moving << " sign " << sign << " column " << c;
+      }
+      const Eigen::Matrix<double, 6, 1> u = random_vector(rng, 6);
+      const Eigen::Matrix<double, 9, 1> v = random_vector(rng, 9);
+      Eigen::Matrix<double, 9, 10> Jt_u;
+      Eigen::Matrix<double, 6, 10> J_v;
+      payload::detail::jacobian_products(kin, 0, layout, u, v, Jt_u, J_v);
+      for (int a = 0; a < q; ++a) {
+        const payload::detail::Matrix69 Ja =
+            payload::detail::model_jacobian(kin, 0, layout, Eigen::VectorXd::Unit(p, a));
+        EXPECT_LT((Jt_u.col(a) - Ja.transpose() * u).norm(), 1e-13 * (1.0 + Jt_u.col(a).norm())) << a;
+        EXPECT_LT((J_v.col(a) - Ja * v).norm(), 1e-13 * (1.0 + J_v.col(a).norm())) << a;
+      }
+    }
+  }
+}
+
 // The inertia metric's QP solved independently: projected gradient on min ||A d||^2, d >= lo.
 Eigen::Vector3d projected_gradient(const Eigen::Vector3d& lo) {
   const Eigen::Matrix3d A = Eigen::Matrix3d::Ones() - Eigen::Matrix3d::Identity();
