@@ -145,12 +145,17 @@ bool estimate_bounded(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<cons
 bool estimate_small(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
                     const std::vector<Method>& methods, std::vector<MatrixXd>& X) {
   const Index n = A.cols();
+#ifdef SPDFIT_NO_SMALL_PROBLEM_KERNELS
+  (void)n, (void)B, (void)methods, (void)X;
+  return false;  // built without them (SPDFIT_SMALL_PROBLEM_KERNELS=OFF): the general path
+#else
   if (n > kSmallProblemMaxN) return false;
   if (n < 1) throw std::invalid_argument("the data must have at least one column");
   check_data(A, B, n, n);  // the experiments' X is square
   if (A.rows() < n) throw std::invalid_argument(too_few_rows(A.rows(), n));
   if (n <= 2) return estimate_bounded<2>(A, B, methods, X);
   return estimate_bounded<kSmallProblemMaxN>(A, B, methods, X);
+#endif
 }
 
 }  // namespace spdfit::detail

@@ -20,7 +20,8 @@ namespace spdfit::detail {
 /// FitOptions: X[i] becomes method i's estimate in the data's units, or an empty matrix where
 /// it has none (a numerical failure: SPDE with A rank-deficient, TLS with V22 singular, an
 /// estimate that overflows). X's storage is reused from call to call. Returns false, writing
-/// nothing, when n > kSmallProblemMaxN. Throws std::invalid_argument for different shapes,
+/// nothing, when n > kSmallProblemMaxN, and always in a build without the small-problem kernels
+/// (CMake's SPDFIT_SMALL_PROBLEM_KERNELS=OFF). Throws std::invalid_argument for different shapes,
 /// m < n, or NaN or Inf in the data.
 bool estimate_small(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
                     const std::vector<Method>& methods, std::vector<Eigen::MatrixXd>& X);

@@ -35,9 +35,14 @@ constexpr int kSmallProblemMaxN = 8;
 
 /// The compile-time bounds on n the kernels are instantiated for: Eigen::Dynamic, and the small
 /// bounds 2 and kSmallProblemMaxN. Each kernel's file instantiates it with
-/// SPDFIT_FOR_EACH_MAX_N(ITS_INSTANTIATION_MACRO).
+/// SPDFIT_FOR_EACH_MAX_N(ITS_INSTANTIATION_MACRO). A build without the small-problem kernels
+/// (CMake's SPDFIT_SMALL_PROBLEM_KERNELS=OFF) instantiates Eigen::Dynamic only.
+#ifdef SPDFIT_NO_SMALL_PROBLEM_KERNELS
+#define SPDFIT_FOR_EACH_MAX_N(INSTANTIATE) INSTANTIATE(Eigen::Dynamic)
+#else
 #define SPDFIT_FOR_EACH_MAX_N(INSTANTIATE) \
   INSTANTIATE(Eigen::Dynamic) INSTANTIATE(2) INSTANTIATE(::spdfit::detail::kSmallProblemMaxN)
+#endif
 
 /// A reduction made by reduce (spdfit::Reduction) is owned by a shared_ptr: a result whose noise
 /// estimate is read later (LazyOptional) keeps it alive through shared_from_this.

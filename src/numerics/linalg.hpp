@@ -305,11 +305,16 @@ using BoundedVector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 
   INSTANTIATE void product_into<BoundedMatrix<Max>>(const BoundedMatrix<Max>&, bool, const BoundedMatrix<Max>&, bool, \
                                                     BoundedMatrix<Max>&);
 /// Every instantiation compiled in linalg_instances.cpp, as INSTANTIATE(kind, bound).
+#ifdef SPDFIT_NO_SMALL_PROBLEM_KERNELS
+#define SPDFIT_LINALG_INSTANCES(INSTANTIATE) \
+  SPDFIT_LINALG_SVD(INSTANTIATE, Eigen::Dynamic) SPDFIT_LINALG_EIGEN(INSTANTIATE, Eigen::Dynamic)
+#else
 #define SPDFIT_LINALG_INSTANCES(INSTANTIATE)                                                          \
   SPDFIT_LINALG_SVD(INSTANTIATE, Eigen::Dynamic) SPDFIT_LINALG_SVD(INSTANTIATE, 2)                     \
   SPDFIT_LINALG_SVD(INSTANTIATE, 4) SPDFIT_LINALG_SVD(INSTANTIATE, 8) SPDFIT_LINALG_SVD(INSTANTIATE, 16) \
   SPDFIT_LINALG_EIGEN(INSTANTIATE, Eigen::Dynamic) SPDFIT_LINALG_EIGEN(INSTANTIATE, 2)                 \
   SPDFIT_LINALG_EIGEN(INSTANTIATE, 8) SPDFIT_LINALG_PRODUCT(INSTANTIATE, 2) SPDFIT_LINALG_PRODUCT(INSTANTIATE, 8)
+#endif
 
 #define SPDFIT_LINALG_DECLARE extern template
 SPDFIT_LINALG_INSTANCES(SPDFIT_LINALG_DECLARE)

@@ -16,6 +16,16 @@ def test_script_writes_every_figure(tmp_path):
     assert (tmp_path / "hexapod_model.svg").read_text().lstrip().startswith("<?xml")
 
 
+def test_figures_outside_the_source_tree_skip_the_example_log(tmp_path, monkeypatch, capsys):
+    """An installed module run elsewhere: the one figure drawn from a file of the source tree is
+    skipped with a note naming it (an error when asked for by name), the others are drawn."""
+    monkeypatch.setenv("SPDFIT_SOURCE_DIR", str(tmp_path / "nowhere"))
+    assert figures.main(["--out", str(tmp_path), "--only", "payload_residuals", "--only", "hexapod_model"]) == 1
+    assert "payload_residuals: skipped" in capsys.readouterr().err
+    assert (tmp_path / "hexapod_model.png").stat().st_size > 10_000
+    assert not (tmp_path / "payload_residuals.png").exists()
+
+
 def test_thesis_figure_plots_the_experiment_means():
     data = figures.thesis_data(trials=40, seed=3)
     for v, result in data.items():
