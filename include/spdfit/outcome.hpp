@@ -66,6 +66,7 @@ enum class Code : std::uint16_t {
   PhysicalNotice,       ///< the physical fit's notices (a parameter at its bound, a nominal far off)
   LinkageNotice,        ///< a linkage's design or synthesis notices
   Outliers,             ///< rows that dominate a fit: a logger's codes for invalid readings, gross errors
+  DiagonalChanged,      ///< a repair changed the diagonal (variances raised to min_diag, a unit diagonal)
 };
 
 /// A code's forms and meaning.

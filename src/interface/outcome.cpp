@@ -58,6 +58,9 @@ std::vector<CodeInfo> make_codes() {
       {Code::Outliers, "outliers", Tier::Warning,
        "rows that dominate a fit: values of magnitude 1e30 or more (a logger's codes for invalid readings), rows "
        "whose studentized residual is far out among all rows' (gross errors, wrong values in A)"},
+      {Code::DiagonalChanged, "diagonal_changed", Tier::Warning,
+       "a repair changed the diagonal: variances below `min_diag` raised to it, or a covariance repaired to a unit "
+       "diagonal"},
   };
 }
 

@@ -104,7 +104,7 @@ Eigen::MatrixXd raise_variances(const Eigen::Ref<const MatrixXd>& C, double min_
   }
   if (count > 10) listed += ", ... (" + std::to_string(count) + " in all)";
   if (count > 0) {
-    warnings.push_back(Warning(Code::Warning,
+    warnings.push_back(Warning(Code::DiagonalChanged,
                                std::string(count == 1 ? "diagonal entry " : "diagonal entries ") + listed + " " +
                                    (count == 1 ? "was" : "were") + " below `min_diag` and raised to " +
                                    format_number(min_diag) + " before the repair",

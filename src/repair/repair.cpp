@@ -96,7 +96,7 @@ void check_variances(const Eigen::VectorXd& d, bool zero_allowed, const char* wh
 std::optional<Warning> unit_diagonal_warning(const Eigen::Ref<const Eigen::MatrixXd>& S) {
   const double off = (S.diagonal().array() - 1.0).abs().maxCoeff();
   if (!(off > 1e-6)) return std::nullopt;
-  return Warning(Code::Warning,
+  return Warning(Code::DiagonalChanged,
                  "the diagonal is not 1 (it ranges from " + format_number(S.diagonal().minCoeff()) + " to " +
                      format_number(S.diagonal().maxCoeff()) +
                      "): it was repaired to a correlation matrix (unit diagonal); to keep a covariance's variances "

@@ -489,7 +489,8 @@ std::optional<TriangularFactor> downdated_gram_factor(const Eigen::Ref<const Mat
 }
 
 // One robust fit's iterations, from X (and c) with the scale `scale` (Huber: re-estimated each
-// iteration). `counts` (empty: 1) multiply the weights (a bootstrap resample).
+// iteration). `counts` (empty: 1) multiply the weights (a bootstrap resample). `base` (Huber
+// without an intercept or counts; else null): the unweighted Gram matrix the inner fits downdate.
 struct Iterated {
   FitResult result;
   VectorXd weights;
@@ -503,30 +504,33 @@ struct Iterated {
 
 Iterated iterate(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Method method,
                  const FitOptions& inner, bool intercept, RobustLoss loss, double k, MatrixXd X, VectorXd c,
-                 double scale, const VectorXd& counts, int max_iterations) {
+                 double scale, const VectorXd& counts, int max_iterations, const GramBase* base = nullptr) {
   Iterated out;
   const Index m = A.rows(), d = B.cols();
   const double median_chi = chi_median(d);
   // The data's scale, for the Gram matrices of every iteration (TriangularFactor's own rule).
   const int ea = scale_exponent(A).value_or(0), eb = scale_exponent(B).value_or(0);
-  // Huber without an intercept or counts: the unweighted Gram matrix once, downdated each iteration.
-  std::optional<GramBase> base;
-  if (loss == RobustLoss::Huber && !intercept && counts.size() == 0) base = gram_base(A, B, ea, eb);
+  // The rows' vectors, allocated once for every iteration.
+  VectorXd u, w(m);
+  std::vector<double> values;
+  values.reserve(static_cast<std::size_t>(m));
   for (int it = 1; it <= max_iterations; ++it) {
-    const VectorXd u = whitened_residuals(A, B, X, c, residual_covariance(X, method, inner));
+    whitened_residuals(A, B, X, c, residual_covariance(X, method, inner), u);
     if (loss == RobustLoss::Huber) {
-      std::vector<double> values;
-      values.reserve(static_cast<std::size_t>(m));
+      values.clear();
       for (Index i = 0; i < m; ++i) {
         if (counts.size() == 0 || counts(i) > 0) values.push_back(u(i));
       }
-      if (!values.empty()) scale = median(values) / median_chi;
+      if (!values.empty()) scale = median_in_place(values) / median_chi;
     }
-    VectorXd w(m);
-    for (Index i = 0; i < m; ++i) {
-      w(i) = robust_weight(loss, scale > 0.0 ? u(i) / scale : 0.0, k);
-      if (counts.size()) w(i) *= counts(i);
+    if (loss == RobustLoss::Huber && scale > 0.0) {
+      // robust_weight's Huber branch, vectorized: 1 up to k, then k / t, t = u / scale.
+      const auto t = u.array() / scale;
+      w = (t <= k).select(1.0, k / t);
+    } else {
+      for (Index i = 0; i < m; ++i) w(i) = robust_weight(loss, scale > 0.0 ? u(i) / scale : 0.0, k);
     }
+    if (counts.size()) w.array() *= counts.array();
     // The weighted fit: from the Gram matrix while the weights settle, by the QR for the last.
     const auto weighted_fit = [&](bool by_gram, std::optional<TriangularFactor>& factor, Reduction& data) {
       factor.reset();
@@ -556,7 +560,7 @@ Iterated iterate(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Mat
     const bool last = !fitted.ok() || step_change <= kSettledGram * step_size || scale == 0.0 || it == max_iterations;
     if (last) fitted = weighted_fit(false, factor, data);
     out.iterations = it;
-    out.weights = std::move(w);
+    out.weights = w;
     out.scale = scale;
     if (!fitted.ok() || !fitted.X.allFinite()) {
       out.result = std::move(fitted);
@@ -618,14 +622,27 @@ RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const
   MatrixXd X;
   VectorXd c;
   double scale = 0.0;
+  // Huber without an intercept: the unweighted Gram matrix once, for the start and for every
+  // iteration's fit (downdated by the rows weighted below 1).
+  std::optional<GramBase> base;
+  if (loss == RobustLoss::Huber && !intercept) {
+    base = gram_base(A, B, scale_exponent(A).value_or(0), scale_exponent(B).value_or(0));
+  }
   if (loss == RobustLoss::Tukey) {
     const TrimmedStart start = least_trimmed_squares(A, B, intercept, method, inner);
     X = start.X;
     c = start.c;
     scale = start.scale;
   } else {
-    // Huber starts from the plain fit (auto's choice; spd-tls where that is spde, which has no rows).
-    const TriangularFactor plain_factor = TriangularFactor::from_data(A, B, intercept);
+    // Huber starts from the plain fit (auto's choice; spd-tls where that is spde, which has no rows):
+    // from the Gram matrix's Cholesky factor when there is one (the start need not be more accurate
+    // than the iterations' fits), else from the QR.
+    std::optional<TriangularFactor> from_gram;
+    if (base) {
+      from_gram = downdated_gram_factor(A, B, VectorXd::Ones(m), *base, scale_exponent(A).value_or(0),
+                                        scale_exponent(B).value_or(0));
+    }
+    const TriangularFactor plain_factor = from_gram ? std::move(*from_gram) : TriangularFactor::from_data(A, B, intercept);
     FitOptions quiet = inner;
     quiet.diagnostics = false;
     FitResult plain = fit(reduce_for(plain_factor, quiet, method), method);
@@ -644,7 +661,8 @@ RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const
     }
   }
   const int max_iterations = std::max(options.max_iterations, 1);
-  Iterated fitted = iterate(A, B, method, inner, intercept, loss, k, X, c, scale, VectorXd(), max_iterations);
+  Iterated fitted =
+      iterate(A, B, method, inner, intercept, loss, k, X, c, scale, VectorXd(), max_iterations, base ? &*base : nullptr);
   FitResult result = std::move(fitted.result);
   RobustReport report = robust_report(loss, k, fitted.weights, fitted.scale, fitted.iterations, fitted.converged);
   if (!fitted.converged && result.ok()) {

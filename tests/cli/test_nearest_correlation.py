@@ -33,6 +33,7 @@ def test_json_report(spdfit, higham):
     assert j["converged"] and j["cholesky"] and j["alpha"] == 0.05
     # Higham's example has 2 on the diagonal: repairing it as a correlation says so.
     assert len(j["warnings"]) == 1 and "the diagonal is not 1" in j["warnings"][0]
+    assert j["warning_codes"] == ["diagonal_changed"]
     assert np.linalg.eigvalsh(np.array(j["X"]))[0] >= 0.05 - 1e-12
 
 

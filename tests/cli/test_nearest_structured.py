@@ -115,7 +115,7 @@ def test_min_diag_names_the_entries(spdfit, tmp_path):
     out = json_of(spdfit("nearest", "--keep-diag", "--min-diag", "1e-3", "--json", path))
     assert len(out["warning_codes"]) == len(out["warnings"])
     assert out["warning_codes"][out["warnings"].index(next(w for w in out["warnings"] if "min_diag" in w
-                                                          or "--min-diag" in w))] == "warning"
+                                                          or "--min-diag" in w))] == "diagonal_changed"
 
 
 @pytest.mark.parametrize("args, both", [

@@ -235,6 +235,7 @@ state = warning();
 restore = onCleanup(@() warning(state));
 expect_warning(@() spdfit.fit(Ar, B, 'ls'), 'spdfit:rankDeficient');
 expect_warning(@() spdfit.nearest([1 2; 2 1]), 'spdfit:eigenvaluesRaised');
+expect_warning(@() spdfit.nearest([4 1; 1 0], 'KeepDiag', true, 'MinDiag', 1e-3), 'spdfit:diagonalChanged');
 % Method names in any case, as option names (issue 45).
 assert_close(spdfit.fit(A, B, 'SPD-TLS'), spdfit.fit(A, B, 'spd-tls'), 0, 'SPD-TLS');
 assert_close(spdfit.fit(A, B, 'Ls'), spdfit.fit(A, B, 'ls'), 0, 'Ls');

@@ -144,7 +144,7 @@ def test_r_matrix_symw_converges_and_is_optimal():
     backward error, n eps ||C||_2)."""
     from spdfit_testing import SOURCE_DIR
     C = np.loadtxt(SOURCE_DIR / "tests" / "data" / "r_matrix" / "symW.csv", delimiter=",")
-    with pytest.warns(spdfit.SpdfitWarning, match="the diagonal is not 1"):
+    with pytest.warns(spdfit.DiagonalChangedWarning, match="the diagonal is not 1"):
         r = spdfit.nearest_correlation(C, min_eig=0, full_output=True)
     assert r.converged and r.iterations < 200
     X = r.X

@@ -239,7 +239,7 @@ def test_min_diag_raises_bad_variances_and_names_them():
         spdfit.nearest_covariance(S)
     with pytest.raises(spdfit.DataError, match="min_diag"):
         spdfit.nearest_spd(S, via_corr=True)
-    with pytest.warns(spdfit.SpdfitWarning, match=r"diagonal entries 2 \(0\), 3 \(-0\.001\) were below min_diag"):
+    with pytest.warns(spdfit.DiagonalChangedWarning, match=r"diagonal entries 2 \(0\), 3 \(-0\.001\) were below min_diag"):
         X = spdfit.nearest_covariance(S, min_diag=1e-4)
     np.testing.assert_array_equal(np.diag(X), [4.0, 1e-4, 1e-4])
     assert np.linalg.eigvalsh(X)[0] > 0

@@ -259,7 +259,7 @@ TEST(RaiseVariances, RaisesAndNamesThem) {
   const MatrixXd raised = raise_variances(C, 0.5, warnings);
   EXPECT_EQ(raised.diagonal(), (VectorXd(3) << 1.0, 0.5, 0.5).finished());
   ASSERT_EQ(warnings.size(), 1u);
-  EXPECT_EQ(warnings[0].code, Code::Warning);
+  EXPECT_EQ(warnings[0].code, Code::DiagonalChanged);
   EXPECT_EQ(warnings[0].subject, "min_diag");
   EXPECT_NE(warnings[0].text.find("diagonal entries 2 (0), 3 (-1) were below `min_diag`"), std::string::npos)
       << warnings[0].text;
