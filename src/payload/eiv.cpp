@@ -31,8 +31,8 @@ struct Partial {
 template <int P, int Q>
 void accumulate(const Kinematics& kin, const ParameterLayout& layout, const Eigen::VectorXd& phi_in,
                 const Eigen::Matrix<double, 6, 6>& noise_w, const std::array<Eigen::Matrix3d, 3>& noise_x,
-                const std::vector<double>& counts, int order, bool scores, Eigen::Index begin, Eigen::Index end,
-                Partial& out) {
+                const std::vector<double>& counts, int order, bool scores, Eigen::Index begin,
+                Eigen::Index end, Partial& out) {
   using Regressor = Eigen::Matrix<double, 6, P>;
   using Vector = Eigen::Matrix<double, P, 1>;
   using Square = Eigen::Matrix<double, P, P>;
@@ -84,7 +84,8 @@ void accumulate(const Kinematics& kin, const ParameterLayout& layout, const Eige
     for (int b = 0; b < 3; ++b) {
       SK.template middleRows<3>(3 * b) = noise_x[b].lazyProduct(Jt_u.template block<3, Q>(3 * b, 0));
     }
-    H.template topLeftCorner<Q, Q>() -= (2.0 * weight) * Jt_u.template leftCols<Q>().transpose().lazyProduct(SK);
+    H.template topLeftCorner<Q, Q>() -=
+        (2.0 * weight) * Jt_u.template leftCols<Q>().transpose().lazyProduct(SK);
   }
   out.f = f;
   out.g = g;
@@ -99,7 +100,8 @@ EivCriterion::EivCriterion(const Kinematics& kin, const ParameterLayout& layout,
                            std::vector<double> counts)
     : kin_(kin), layout_(layout), M_(std::move(M)), threads_(threads), counts_(std::move(counts)) {
   noise_w_ = noise_w.size() ? Eigen::Matrix<double, 6, 6>(noise_w) : Eigen::Matrix<double, 6, 6>::Zero();
-  const Eigen::Matrix<double, 9, 9> full = noise_x.size() ? Eigen::Matrix<double, 9, 9>(noise_x) : Eigen::Matrix<double, 9, 9>::Zero();
+  const Eigen::Matrix<double, 9, 9> full =
+      noise_x.size() ? Eigen::Matrix<double, 9, 9>(noise_x) : Eigen::Matrix<double, 9, 9>::Zero();
   Eigen::Matrix<double, 9, 9> off = full;
   for (int b = 0; b < 3; ++b) {
     noise_x_[static_cast<std::size_t>(b)] = full.block<3, 3>(3 * b, 3 * b);
@@ -119,8 +121,8 @@ bool EivCriterion::evaluate_phi(const Eigen::VectorXd& phi, int order, double& f
   spdfit::detail::parallel_for(static_cast<std::size_t>(chunks), threads_, [&](std::size_t c) {
     const Eigen::Index begin = static_cast<Eigen::Index>(c) * kChunk, end = std::min(m, begin + kChunk);
     if (layout_.moving) {
-      accumulate<16, 10>(kin_, layout_, phi, noise_w_, noise_x_, counts_, order, scores != nullptr, begin, end,
-                         partial[c]);
+      accumulate<16, 10>(kin_, layout_, phi, noise_w_, noise_x_, counts_, order, scores != nullptr, begin,
+                         end, partial[c]);
     } else {
       accumulate<10, 4>(kin_, layout_, phi, noise_w_, noise_x_, counts_, order, scores != nullptr, begin, end,
                         partial[c]);

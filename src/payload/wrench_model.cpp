@@ -79,12 +79,13 @@ Matrix69 model_jacobian(const Kinematics& kin, Eigen::Index k, const ParameterLa
   Matrix69 J = Matrix69::Zero();
   const Eigen::Vector3d h = phi.segment<3>(1);
   J.block<3, 3>(0, 0).diagonal().setConstant(sign * phi(0));  // df/ds = m 1
-  J.block<3, 3>(3, 0) = sign * skew(h);                        // dtau/ds = [h]x
+  J.block<3, 3>(3, 0) = sign * skew(h);                       // dtau/ds = [h]x
   if (!layout.moving) return J;
   const Eigen::Vector3d w = kin.omega.col(k);
   const Eigen::Matrix3d I = inertia_matrix(phi.segment<6>(4));
   // df/domega = (omega . h) 1 + omega h^T - 2 h omega^T; df/dalpha = -[h]x.
-  J.block<3, 3>(0, 3) = sign * (w.dot(h) * Eigen::Matrix3d::Identity() + w * h.transpose() - 2.0 * h * w.transpose());
+  J.block<3, 3>(0, 3) =
+      sign * (w.dot(h) * Eigen::Matrix3d::Identity() + w * h.transpose() - 2.0 * h * w.transpose());
   J.block<3, 3>(0, 6) = -sign * skew(h);
   // dtau/domega = [omega]x I - [I omega]x; dtau/dalpha = I.
   J.block<3, 3>(3, 3) = sign * (skew(w) * I - skew(I * w));
@@ -111,9 +112,11 @@ void jacobian_products(const Kinematics& kin, Eigen::Index k, const ParameterLay
   if (!layout.moving) return;
   const Eigen::Vector3d w = kin.omega.col(k);
   const Eigen::Matrix3d W = skew(w);
-  Jt_u.block<3, 3>(3, 1) = sign * (u_f * w.transpose() + w.dot(u_f) * Eigen::Matrix3d::Identity() - 2.0 * w * u_f.transpose());
+  Jt_u.block<3, 3>(3, 1) =
+      sign * (u_f * w.transpose() + w.dot(u_f) * Eigen::Matrix3d::Identity() - 2.0 * w * u_f.transpose());
   Jt_u.block<3, 3>(6, 1) = -sign * skew(u_f);
-  J_v.block<3, 3>(0, 1) = sign * (skew(v_a) + v_w * w.transpose() + w * v_w.transpose() - 2.0 * w.dot(v_w) * Eigen::Matrix3d::Identity());
+  J_v.block<3, 3>(0, 1) = sign * (skew(v_a) + v_w * w.transpose() + w * v_w.transpose() -
+                                  2.0 * w.dot(v_w) * Eigen::Matrix3d::Identity());
   // I (URDF order): tau = I alpha + omega x (I omega), I x = L(x) (xx, xy, xz, yy, yz, zz).
   const Eigen::Matrix<double, 3, 6> Lw = inertia_map(w);
   Jt_u.block<3, 6>(3, 4) = -sign * (inertia_map(w.cross(u_t)) + skew(u_t) * Lw);

@@ -289,7 +289,8 @@ SolveResult solve_unconstrained(const Criterion& f, const Eigen::VectorXd& theta
   SolveResult out;
   out.theta = theta0;
   double value = std::numeric_limits<double>::quiet_NaN();
-  const StageEnd end = newton(f, nullptr, 0.0, kFinalDecrement, max_iterations, out.iterations, out.theta, &value);
+  const StageEnd end =
+      newton(f, nullptr, 0.0, kFinalDecrement, max_iterations, out.iterations, out.theta, &value);
   out.converged = end == StageEnd::Converged;
   if (end == StageEnd::Failed) {
     out.message = "Newton's method found no minimum (the criterion could not be evaluated, or decreases without "
@@ -301,8 +302,8 @@ SolveResult solve_unconstrained(const Criterion& f, const Eigen::VectorXd& theta
   // there after evaluating it.
   Evaluation ev;
   out.f = end != StageEnd::Failed && std::isfinite(value) ? value
-          : f.evaluate(out.theta, 0, ev)                    ? ev.f
-                                                            : std::numeric_limits<double>::quiet_NaN();
+          : f.evaluate(out.theta, 0, ev)                  ? ev.f
+                                                          : std::numeric_limits<double>::quiet_NaN();
   return out;
 }
 

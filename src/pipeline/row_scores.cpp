@@ -67,8 +67,8 @@ VectorXd whitened_residuals(const Eigen::Ref<const MatrixXd>& A, const Eigen::Re
   return out;
 }
 
-void whitened_residuals(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, const MatrixXd& X,
-                        const VectorXd& c, const MatrixXd& covariance, VectorXd& out) {
+void whitened_residuals(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
+                        const MatrixXd& X, const VectorXd& c, const MatrixXd& covariance, VectorXd& out) {
   MatrixXd S = 0.5 * (covariance + covariance.transpose());
   const double top = S.size() ? S.diagonal().cwiseAbs().maxCoeff() : 0.0;
   Eigen::LLT<MatrixXd> llt(S);

@@ -41,9 +41,9 @@ Eigen::VectorXd whitened_residuals(const Eigen::Ref<const Eigen::MatrixXd>& A, c
                                    const Eigen::MatrixXd& X, const Eigen::VectorXd& c, const Eigen::MatrixXd& covariance);
 /// The same into `out` (its storage reused when it has m entries: an iteration's fresh pages
 /// cost more than the arithmetic at these widths).
-void whitened_residuals(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
-                        const Eigen::MatrixXd& X, const Eigen::VectorXd& c, const Eigen::MatrixXd& covariance,
-                        Eigen::VectorXd& out);
+void whitened_residuals(const Eigen::Ref<const Eigen::MatrixXd>& A,
+                        const Eigen::Ref<const Eigen::MatrixXd>& B, const Eigen::MatrixXd& X,
+                        const Eigen::VectorXd& c, const Eigen::MatrixXd& covariance, Eigen::VectorXd& out);
 
 /// The median of `values` (not empty).
 double median(std::vector<double> values);

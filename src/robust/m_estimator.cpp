@@ -642,7 +642,8 @@ RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const
       from_gram = downdated_gram_factor(A, B, VectorXd::Ones(m), *base, scale_exponent(A).value_or(0),
                                         scale_exponent(B).value_or(0));
     }
-    const TriangularFactor plain_factor = from_gram ? std::move(*from_gram) : TriangularFactor::from_data(A, B, intercept);
+    const TriangularFactor plain_factor =
+        from_gram ? std::move(*from_gram) : TriangularFactor::from_data(A, B, intercept);
     FitOptions quiet = inner;
     quiet.diagnostics = false;
     FitResult plain = fit(reduce_for(plain_factor, quiet, method), method);
@@ -661,8 +662,8 @@ RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const
     }
   }
   const int max_iterations = std::max(options.max_iterations, 1);
-  Iterated fitted =
-      iterate(A, B, method, inner, intercept, loss, k, X, c, scale, VectorXd(), max_iterations, base ? &*base : nullptr);
+  Iterated fitted = iterate(A, B, method, inner, intercept, loss, k, X, c, scale, VectorXd(), max_iterations,
+                            base ? &*base : nullptr);
   FitResult result = std::move(fitted.result);
   RobustReport report = robust_report(loss, k, fitted.weights, fitted.scale, fitted.iterations, fitted.converged);
   if (!fitted.converged && result.ok()) {

@@ -183,7 +183,9 @@ TEST(PayloadEiv, StructuredJacobianAndProductsMatchTheirDefinitions) {
           EXPECT_EQ(J.col(c).norm(), 0.0);
           continue;
         }
-        Eigen::Matrix<double, 3, Eigen::Dynamic>& signal = c < 3 ? kin.specific_force : c < 6 ? kin.omega : kin.alpha;
+        Eigen::Matrix<double, 3, Eigen::Dynamic>& signal = c < 3   ? kin.specific_force
+                                                           : c < 6 ? kin.omega
+                                                                   : kin.alpha;
         const double saved = signal(c % 3, 0);
         signal(c % 3, 0) = saved + h;
         payload::detail::sample_regressor(kin, 0, layout, X);
