@@ -10,6 +10,7 @@
 #include "numerics/parallel.hpp"
 #include "payload/fit.hpp"
 #include "payload/kinematics.hpp"
+#include "physical/cone.hpp"
 #include "physical/replicates.hpp"
 #include "spdfit/format.hpp"
 #include "spdfit/inertia_repair.hpp"
@@ -72,8 +73,7 @@ Derived derive(const Eigen::VectorXd& phi, bool moving) {
     d.D(1 + j, 1 + j) = 1.0 / m;
   }
   if (!moving) return d;
-  Eigen::Matrix3d I_o;
-  I_o << phi(4), phi(5), phi(6), phi(5), phi(7), phi(8), phi(6), phi(8), phi(9);
+  const Eigen::Matrix3d I_o = physical::detail::inertia_of_urdf(phi);
   d.I_o = I_o;
   // I_c = I_o + (h h^T - |h|^2 1) / m.
   const Eigen::Matrix3d shift = (h * h.transpose() - h.squaredNorm() * Eigen::Matrix3d::Identity()) / m;

@@ -1,5 +1,7 @@
 #include "payload/wrench_model.hpp"
 
+#include "physical/cone.hpp"
+
 namespace spdfit::payload::detail {
 
 namespace {
@@ -17,15 +19,6 @@ Eigen::Matrix<double, 3, 6> inertia_map(const Eigen::Vector3d& v) {
       0.0, v.x(), 0.0, v.y(), v.z(), 0.0,   //
       0.0, 0.0, v.x(), 0.0, v.y(), v.z();
   return L;
-}
-
-// The inertia about S's origin from its URDF entries (xx, xy, xz, yy, yz, zz).
-Eigen::Matrix3d inertia_matrix(const Eigen::Ref<const Eigen::VectorXd>& entries) {
-  Eigen::Matrix3d I;
-  I << entries(0), entries(1), entries(2),  //
-      entries(1), entries(3), entries(4),   //
-      entries(2), entries(4), entries(5);
-  return I;
 }
 
 // The regressor into any 6 x p matrix expression (dynamic, or fixed for the per-sample kernels).
@@ -82,7 +75,7 @@ Matrix69 model_jacobian(const Kinematics& kin, Eigen::Index k, const ParameterLa
   J.block<3, 3>(3, 0) = sign * skew(h);                       // dtau/ds = [h]x
   if (!layout.moving) return J;
   const Eigen::Vector3d w = kin.omega.col(k);
-  const Eigen::Matrix3d I = inertia_matrix(phi.segment<6>(4));
+  const Eigen::Matrix3d I = physical::detail::inertia_of_urdf(phi);
   // df/domega = (omega . h) 1 + omega h^T - 2 h omega^T; df/dalpha = -[h]x.
   J.block<3, 3>(0, 3) =
       sign * (w.dot(h) * Eigen::Matrix3d::Identity() + w * h.transpose() - 2.0 * h * w.transpose());

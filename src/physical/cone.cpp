@@ -74,8 +74,7 @@ Eigen::Matrix<double, 10, 10> coordinates_from_urdf(double length) {
   for (int a = 0; a < kBodyCoordinates; ++a) {
     Eigen::Matrix<double, 10, 1> phi = Eigen::Matrix<double, 10, 1>::Zero();
     phi(a) = 1.0;
-    Eigen::Matrix3d I;
-    I << phi(4), phi(5), phi(6), phi(5), phi(7), phi(8), phi(6), phi(8), phi(9);
+    const Eigen::Matrix3d I = inertia_of_urdf(phi);
     const Eigen::Matrix3d sigma = 0.5 * I.trace() * Eigen::Matrix3d::Identity() - I;
     Eigen::Matrix4d P;
     P.topLeftCorner<3, 3>() = sigma / (length * length);

@@ -39,6 +39,14 @@ struct ConeLayout {
   double barrier_parameter() const { return 4.0 * bodies + nonnegative; }
 };
 
+/// The inertia about the body's origin from a body's parameters in URDF order (m, m c, xx, xy, xz,
+/// yy, yz, zz): its entries 4..9 as the symmetric 3 x 3 matrix.
+inline Eigen::Matrix3d inertia_of_urdf(const Eigen::Ref<const Eigen::VectorXd>& phi) {
+  Eigen::Matrix3d I;
+  I << phi(4), phi(5), phi(6), phi(5), phi(7), phi(8), phi(6), phi(8), phi(9);
+  return I;
+}
+
 /// The basis matrix E_a, and <S, E_a> for a symmetric S (a coordinate of S).
 Eigen::Matrix4d basis_matrix(int a);
 double coordinate(const Eigen::Matrix4d& S, int a);

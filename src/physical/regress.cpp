@@ -60,8 +60,7 @@ RigidBodyInertia body_of(const Eigen::Matrix<double, 10, 1>& u) {
     return body;
   }
   body.center_of_mass = u.segment<3>(1) / u(0);
-  Eigen::Matrix3d I_o;
-  I_o << u(4), u(5), u(6), u(5), u(7), u(8), u(6), u(8), u(9);
+  const Eigen::Matrix3d I_o = detail::inertia_of_urdf(u);
   const Eigen::Vector3d& c = body.center_of_mass;
   // I_o = I_c + m (|c|^2 1 - c c^T).
   body.inertia = I_o - u(0) * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());

@@ -36,9 +36,7 @@ constexpr double kRowScoreUnreadFlops = 1e8;
 
 }  // namespace
 
-double median(std::vector<double> values) { return median_in_place(values); }
-
-double median_in_place(std::vector<double>& values) {
+double median(std::vector<double> values) {
   const std::size_t k = values.size() / 2;
   std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
   const double upper = values[k];
@@ -62,13 +60,6 @@ MatrixXd residual_covariance(const MatrixXd& X, Method method, const FitOptions&
 
 VectorXd whitened_residuals(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, const MatrixXd& X,
                             const VectorXd& c, const MatrixXd& covariance) {
-  VectorXd out;
-  whitened_residuals(A, B, X, c, covariance, out);
-  return out;
-}
-
-void whitened_residuals(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
-                        const MatrixXd& X, const VectorXd& c, const MatrixXd& covariance, VectorXd& out) {
   MatrixXd S = 0.5 * (covariance + covariance.transpose());
   const double top = S.size() ? S.diagonal().cwiseAbs().maxCoeff() : 0.0;
   Eigen::LLT<MatrixXd> llt(S);
@@ -83,7 +74,7 @@ void whitened_residuals(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<co
   constexpr Index kBlockRows = 2048, kNarrow = 16;
   const Index m = A.rows(), n = A.cols(), d = B.cols();
   const MatrixXd Linv_t = MatrixXd(llt.matrixL().solve(MatrixXd::Identity(d, d))).transpose();
-  out.resize(m);
+  VectorXd out(m);
   MatrixXd residual, whitened;
   for (Index i0 = 0; i0 < m; i0 += kBlockRows) {
     const Index r = std::min(kBlockRows, m - i0);
@@ -101,6 +92,7 @@ void whitened_residuals(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<co
     }
     out.segment(i0, r) = whitened.rowwise().norm();
   }
+  return out;
 }
 
 VectorXd robust_z_scores(const VectorXd& x) {

@@ -39,16 +39,9 @@ Eigen::MatrixXd residual_covariance(const Eigen::MatrixXd& X, Method method, con
 /// 1e-12 of its largest diagonal entry where singular); c empty: no offsets. O(m n d + m d^2).
 Eigen::VectorXd whitened_residuals(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
                                    const Eigen::MatrixXd& X, const Eigen::VectorXd& c, const Eigen::MatrixXd& covariance);
-/// The same into `out` (its storage reused when it has m entries: an iteration's fresh pages
-/// cost more than the arithmetic at these widths).
-void whitened_residuals(const Eigen::Ref<const Eigen::MatrixXd>& A,
-                        const Eigen::Ref<const Eigen::MatrixXd>& B, const Eigen::MatrixXd& X,
-                        const Eigen::VectorXd& c, const Eigen::MatrixXd& covariance, Eigen::VectorXd& out);
 
 /// The median of `values` (not empty).
 double median(std::vector<double> values);
-/// The same, reordering `values` in place (no copy).
-double median_in_place(std::vector<double>& values);
 
 /// Robust z-scores (x - median) / (1.4826 MAD); all 0 when the MAD is 0 or there are fewer than 3.
 Eigen::VectorXd robust_z_scores(const Eigen::VectorXd& x);

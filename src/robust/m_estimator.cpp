@@ -510,27 +510,21 @@ Iterated iterate(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Mat
   const double median_chi = chi_median(d);
   // The data's scale, for the Gram matrices of every iteration (TriangularFactor's own rule).
   const int ea = scale_exponent(A).value_or(0), eb = scale_exponent(B).value_or(0);
-  // The rows' vectors, allocated once for every iteration.
-  VectorXd u, w(m);
-  std::vector<double> values;
-  values.reserve(static_cast<std::size_t>(m));
   for (int it = 1; it <= max_iterations; ++it) {
-    whitened_residuals(A, B, X, c, residual_covariance(X, method, inner), u);
+    const VectorXd u = whitened_residuals(A, B, X, c, residual_covariance(X, method, inner));
     if (loss == RobustLoss::Huber) {
-      values.clear();
+      std::vector<double> values;
+      values.reserve(static_cast<std::size_t>(m));
       for (Index i = 0; i < m; ++i) {
         if (counts.size() == 0 || counts(i) > 0) values.push_back(u(i));
       }
-      if (!values.empty()) scale = median_in_place(values) / median_chi;
+      if (!values.empty()) scale = median(values) / median_chi;
     }
-    if (loss == RobustLoss::Huber && scale > 0.0) {
-      // robust_weight's Huber branch, vectorized: 1 up to k, then k / t, t = u / scale.
-      const auto t = u.array() / scale;
-      w = (t <= k).select(1.0, k / t);
-    } else {
-      for (Index i = 0; i < m; ++i) w(i) = robust_weight(loss, scale > 0.0 ? u(i) / scale : 0.0, k);
+    VectorXd w(m);
+    for (Index i = 0; i < m; ++i) {
+      w(i) = robust_weight(loss, scale > 0.0 ? u(i) / scale : 0.0, k);
+      if (counts.size()) w(i) *= counts(i);
     }
-    if (counts.size()) w.array() *= counts.array();
     // The weighted fit: from the Gram matrix while the weights settle, by the QR for the last.
     const auto weighted_fit = [&](bool by_gram, std::optional<TriangularFactor>& factor, Reduction& data) {
       factor.reset();
@@ -560,7 +554,7 @@ Iterated iterate(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Mat
     const bool last = !fitted.ok() || step_change <= kSettledGram * step_size || scale == 0.0 || it == max_iterations;
     if (last) fitted = weighted_fit(false, factor, data);
     out.iterations = it;
-    out.weights = w;
+    out.weights = std::move(w);
     out.scale = scale;
     if (!fitted.ok() || !fitted.X.allFinite()) {
       out.result = std::move(fitted);
@@ -623,11 +617,10 @@ RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const
   VectorXd c;
   double scale = 0.0;
   // Huber without an intercept: the unweighted Gram matrix once, for the start and for every
-  // iteration's fit (downdated by the rows weighted below 1).
+  // iteration's fit (downdated by the rows weighted below 1), in the data's scale.
+  const int ea = scale_exponent(A).value_or(0), eb = scale_exponent(B).value_or(0);
   std::optional<GramBase> base;
-  if (loss == RobustLoss::Huber && !intercept) {
-    base = gram_base(A, B, scale_exponent(A).value_or(0), scale_exponent(B).value_or(0));
-  }
+  if (loss == RobustLoss::Huber && !intercept) base = gram_base(A, B, ea, eb);
   if (loss == RobustLoss::Tukey) {
     const TrimmedStart start = least_trimmed_squares(A, B, intercept, method, inner);
     X = start.X;
@@ -639,8 +632,7 @@ RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const
     // than the iterations' fits), else from the QR.
     std::optional<TriangularFactor> from_gram;
     if (base) {
-      from_gram = downdated_gram_factor(A, B, VectorXd::Ones(m), *base, scale_exponent(A).value_or(0),
-                                        scale_exponent(B).value_or(0));
+      from_gram = downdated_gram_factor(A, B, VectorXd::Ones(m), *base, ea, eb);
     }
     const TriangularFactor plain_factor =
         from_gram ? std::move(*from_gram) : TriangularFactor::from_data(A, B, intercept);

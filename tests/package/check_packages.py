@@ -98,16 +98,23 @@ def owners(paths):
     return found, unowned
 
 
-def main_job_configuration(build_dir):
-    """Whether BUILD_DIR is configured as the main job builds (scripts/setup.sh: Release, not the
-    sanitizer build, whose clang and its runtime are on the test list)."""
+def cmake_cache(build_dir):
+    """BUILD_DIR's CMakeCache.txt entries: name -> (type, value)."""
     cache = {}
     with open(os.path.join(build_dir, "CMakeCache.txt"), encoding="utf-8") as handle:
         for line in handle:
-            match = re.match(r"([A-Za-z0-9_]+):[A-Z]+=(.*)$", line.strip())
+            match = re.match(r"([A-Za-z0-9_]+):([A-Z]+)=(.*)$", line.strip())
             if match:
-                cache[match.group(1)] = match.group(2)
-    return cache.get("CMAKE_BUILD_TYPE") == "Release" and cache.get("SPDFIT_SANITIZE", "OFF").upper() in ("OFF", "0", "FALSE", "")
+                cache[match.group(1)] = (match.group(2), match.group(3))
+    return cache
+
+
+def main_job_configuration(build_dir):
+    """Whether BUILD_DIR is configured as the main job builds (scripts/setup.sh: Release, not the
+    sanitizer build, whose clang and its runtime are on the test list)."""
+    cache = cmake_cache(build_dir)
+    value = lambda name, default: cache.get(name, ("", default))[1]  # noqa: E731
+    return value("CMAKE_BUILD_TYPE", "") == "Release" and value("SPDFIT_SANITIZE", "OFF").upper() in ("OFF", "0", "FALSE", "")
 
 
 MAIN_JOB = {}  # build_dir -> main_job_configuration(build_dir)
@@ -176,14 +183,13 @@ def linked_files(build_dir, source_dir):
 def cmake_tools(build_dir, source_dir):
     """System files CMake found (FILEPATH entries: compilers, mkoctfile, libraries)."""
     used = set()
-    with open(os.path.join(build_dir, "CMakeCache.txt"), encoding="utf-8") as handle:
-        for line in handle:
-            match = re.match(r"([A-Za-z0-9_]+):FILEPATH=(/\S+)$", line.strip())
-            if not match or match.group(1) in OPTIONAL_CACHE_ENTRIES or match.group(1).startswith(OPTIONAL_CACHE_PREFIX):
-                continue
-            path = match.group(2)
-            if os.path.exists(path) and is_system_path(path, source_dir, build_dir):
-                used.add(path)
+    for name, (kind, path) in cmake_cache(build_dir).items():
+        if kind != "FILEPATH" or not path.startswith("/") or " " in path:
+            continue
+        if name in OPTIONAL_CACHE_ENTRIES or name.startswith(OPTIONAL_CACHE_PREFIX):
+            continue
+        if os.path.exists(path) and is_system_path(path, source_dir, build_dir):
+            used.add(path)
     return used
 
 

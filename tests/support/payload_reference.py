@@ -52,9 +52,14 @@ def wrench(mass, com, inertia_com, s, omega=None, alpha=None):
     n = len(s)
     omega = np.zeros((n, 3)) if omega is None else np.atleast_2d(omega)
     alpha = np.zeros((n, 3)) if alpha is None else np.atleast_2d(alpha)
-    h = mass * np.asarray(com, dtype=float)
-    I = inertia_about_origin(mass, com, inertia_com)
-    f = mass * s + np.cross(alpha, h) + np.cross(omega, np.cross(omega, h))
+    return body_wrench(mass, mass * np.asarray(com, dtype=float), inertia_about_origin(mass, com, inertia_com),
+                       s, omega, alpha)
+
+
+def body_wrench(m, h, I, s, omega, alpha):
+    """(f, tau) (n x 6) from the mass m, first moment h = m c and inertia I about S's origin:
+    f = m s + alpha x h + omega x (omega x h), tau = I alpha + omega x (I omega) + h x s."""
+    f = m * s + np.cross(alpha, h) + np.cross(omega, np.cross(omega, h))
     tau = alpha @ I.T + np.cross(omega, omega @ I.T) + np.cross(h, s)
     return np.hstack([f, tau])
 
@@ -143,11 +148,9 @@ def write_log(path, columns):
 def model_readings(phi, s, omega, alpha, sign=-1.0):
     """The readings (n x 6) the wrench model predicts, vectorized over samples: sign (f, tau) + b
     with phi = (m, m c, I_S xx xy xz yy yz zz, b_f, b_tau)."""
-    m, h, (xx, xy, xz, yy, yz, zz), b = phi[0], phi[1:4], phi[4:10], phi[10:16]
+    xx, xy, xz, yy, yz, zz = phi[4:10]
     I = np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])
-    f = m * s + np.cross(alpha, h) + np.cross(omega, np.cross(omega, h))
-    tau = alpha @ I + np.cross(omega, omega @ I) + np.cross(h, s)
-    return sign * np.hstack([f, tau]) + b
+    return sign * body_wrench(phi[0], phi[1:4], I, s, omega, alpha) + phi[10:16]
 
 
 def eiv_criterion(phi, readings, s, omega, alpha, noise_w, noise_x, sign=-1.0):
