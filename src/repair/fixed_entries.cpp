@@ -23,16 +23,6 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 std::string entry_text(Index i, Index j) { return "(" + std::to_string(i + 1) + ", " + std::to_string(j + 1) + ")"; }
 
-// "1, 2, 5" for 0-based indices, at most `shown` of them then ", ..." (a block can be large).
-std::string index_list(const std::vector<Index>& indices, std::size_t shown = 12) {
-  std::string out;
-  for (std::size_t k = 0; k < indices.size() && k < shown; ++k) {
-    out += (k == 0 ? "" : ", ") + std::to_string(indices[k] + 1);
-  }
-  if (indices.size() > shown) out += ", ... (" + std::to_string(indices.size()) + " in all)";
-  return out;
-}
-
 // The mask's lower triangle (diagonal included), checked.
 Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> mask_of(const MatrixXd& fixed, int base, Index n) {
   Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> mask = Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic>::Zero(n, n);
@@ -208,6 +198,15 @@ void check_fixed_feasible(const MatrixXd& B, const FixedPattern& pattern, const 
                                   "or keep fewer entries)", Code::DataValue, "fixed");
     }
   }
+}
+
+std::string index_list(const std::vector<Index>& indices, std::size_t shown) {
+  std::string out;
+  for (std::size_t k = 0; k < indices.size() && k < shown; ++k) {
+    out += (k == 0 ? "" : ", ") + std::to_string(indices[k] + 1);
+  }
+  if (indices.size() > shown) out += ", ... (" + std::to_string(indices.size()) + " in all)";
+  return out;
 }
 
 }  // namespace spdfit::detail

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
 #include "spdfit/nearest_structured.hpp"
@@ -36,5 +37,8 @@ void check_h_weights(const Eigen::MatrixXd& H, const FixedPattern& pattern);
 /// message names the entry or the block (1-based) and, when the floor is what fails, `option`.
 void check_fixed_feasible(const Eigen::MatrixXd& B, const FixedPattern& pattern, const Eigen::VectorXd& f,
                           const char* option);
+
+/// "1, 2, 5" for 0-based indices, at most `shown` of them then ", ... (k in all)".
+std::string index_list(const std::vector<Eigen::Index>& indices, std::size_t shown = 12);
 
 }  // namespace spdfit::detail

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <vector>
 
 #include "numerics/linalg.hpp"
 #include "repair/fixed_entries.hpp"
@@ -228,6 +229,7 @@ NearestResult nearest_structured(const Eigen::Ref<const MatrixXd>& C, DiagonalRu
 
   MatrixXd X;
   double residual = 0.0, dual_value = std::numeric_limits<double>::quiet_NaN();
+  std::vector<Index> singular_rows;
   try {
     if (alm) {
       const MatrixXd H = structure.h_weights / h_max;
@@ -270,16 +272,27 @@ NearestResult nearest_structured(const Eigen::Ref<const MatrixXd>& C, DiagonalRu
       out.clipped = s.clipped;
       residual = s.residual;
       dual_value = s.dual_value;
+      singular_rows = std::move(s.singular_rows);
     }
   } catch (const std::runtime_error& failure) {
     throw std::runtime_error(std::string("repairing the matrix: ") + failure.what());
   }
   out.gradient_norm = std::ldexp(residual, e);
   if (!out.converged) {
+    std::string why;
+    if (!singular_rows.empty()) {
+      why = ". The multipliers grow without bound: every positive semidefinite matrix with these kept "
+            "entries seems to be singular (a kept block that is itself singular does that; the null "
+            "direction is largest in rows " +
+            detail::index_list(singular_rows) +
+            "), and the dual then has no minimizer, where Newton's method converges slowly. Keep a "
+            "positive definite block (repair it first with an eigenvalue floor, e.g. `min_eig` 1e-3), "
+            "or keep fewer entries";
+    }
     out.warnings.push_back(Warning(Code::NotConverged, "not converged within " + std::to_string(options.max_iterations) +
                            " iterations (" + (alm ? "KKT residual " + format_number(out.optimality_residual)
                                                   : "||A(X) - b|| = " + format_number(out.gradient_norm)) +
-                           "): the last iterate, with the kept entries set"));
+                           "): the last iterate, with the kept entries set" + why));
   }
 
   // Back to the input's units: the scaling undone, the weights removed, the floor added, and the

@@ -23,6 +23,9 @@ constexpr double kGradientRounding = 2.0;
 // Above this share of the n^2 entries fixed, the Jacobian's sparse products are done densely
 // (BLAS on an n x n matrix), which is then faster than the entry-by-entry loops.
 constexpr double kDenseShare = 1.0 / 16.0;
+// How far the most negative eigenvalue of G + A^* y must exceed the largest positive one, after the
+// iterations ran out, to call the multipliers divergent (converged problems measured: below 1).
+constexpr double kDivergence = 10.0;
 
 Index positive_count(const VectorXd& lambda) {
   const Index n = lambda.size();
@@ -274,6 +277,17 @@ PatternNewtonResult pattern_newton(MatrixXd G, const FixedPattern& pattern, cons
 
   G = MatrixXd();
   const Index r = positive_count(lambda);
+  // Not converged with the multipliers grown far past the data (G's eigenvalues, in these units, are
+  // of the order of its largest positive ones): y diverges while theta converges, the signature of a
+  // dual with no minimizer, which is what kept entries admitting only singular completions give (the
+  // iterate's most negative eigenvector spans a direction that every admissible X must annihilate).
+  if (!out.converged && !out.infeasible && r > 0 && r < n && -lambda(0) > kDivergence * lambda(n - 1)) {
+    const VectorXd v = P.col(0).cwiseAbs();
+    const double largest = v.maxCoeff();
+    for (Index i = 0; i < n; ++i) {
+      if (v(i) >= 0.5 * largest) out.singular_rows.push_back(i);
+    }
+  }
   out.clipped = n - r;
   if (multiplier) {
     // Z = -(G + A^* y)_- = P2 diag(-lambda_-) P2^T, before P's positive columns are scaled.

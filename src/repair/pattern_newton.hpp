@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <limits>
+#include <vector>
 
 #include "repair/fixed_entries.hpp"
 
@@ -18,6 +19,9 @@ struct PatternNewtonResult {
   bool infeasible = false;     ///< the dual value passed `infeasible_above`: no admissible X exists
   Eigen::Index clipped = 0;    ///< eigenvalues of G + A^* y at or below 0
   double dual_value = 0.0;     ///< b^T y - ||(G + A^* y)_+||^2 / 2 + ||G||^2 / 2 <= ||X - G||^2 / 2 for every admissible X
+  /// Not converged because the multipliers diverge (the kept entries seem to admit only singular
+  /// completions): the rows where the direction every admissible X must annihilate is largest.
+  std::vector<Eigen::Index> singular_rows;
 };
 
 /// min ||X - G||_F^2 / 2 over symmetric X >= 0 with X_ij = B_ij on the pattern (each lower-triangle

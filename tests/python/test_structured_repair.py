@@ -4,7 +4,6 @@ the convex problems (tests/support/repair_reference.py), local methods written h
 Groenen's majorization, L-BFGS) for the rank, statsmodels' corr_nearest_factor on its own test
 matrices, and NAG's published examples (g02aj, g02ak, g02ae). Small sizes only: the 50-problem
 comparison and the timings are bench/structured_repair.py's."""
-import os
 import warnings
 
 import numpy as np
@@ -327,15 +326,11 @@ def test_matrix_options_take_a_files_path(tmp_path):
         spdfit.nearest_correlation(C, h_weights=str(tmp_path / "bad.csv"))
 
 
-@pytest.mark.skipif(os.environ.get("SPDFIT_SANITIZED") == "1",
-                    reason="the defect hangs on rounding (min_eig=1e-14 converges): the plain build pins it")
-@pytest.mark.xfail(strict=True, reason="known defect (bench/results/structured-repair-epyc-2026-11-30.md): with "
-                   "min_eig=0 exactly, fixed entries and H weights with zeros on free entries, the augmented "
-                   "Lagrangian stalls at an infeasible X (smallest eigenvalue -9.5e-4, not_converged); "
-                   "min_eig=1e-14 converges")
 def test_fixed_with_h_weights_and_a_zero_floor_reaches_the_cvxopt_optimum():
-    """Problem 35 of bench/structured_repair.py's seed: the reference objective is CVXOPT's cone QP
-    with the same constraints (unit diagonal, entries (1,1), (1,6), (6,6) kept, X >= 0)."""
+    """Problem 35 of bench/structured_repair.py's seed, where the augmented Lagrangian used to stall at
+    an infeasible X (its iterate drifted off symmetric on the entries of weight 0): the reference
+    objective is CVXOPT's cone QP with the same constraints (unit diagonal, entries (1,1), (1,6), (6,6)
+    kept, X >= 0)."""
     C = np.array([
         [1.0, 0.45422663917015604, -1.1241310520739984, -0.19428481139400772, -0.22699088221709335, 0.9779762941801782],
         [0.45422663917015604, 1.0, -0.4296781540738028, -0.2528361214765371, -0.19119619959361817, 0.790805770082689],
@@ -358,3 +353,64 @@ def test_fixed_with_h_weights_and_a_zero_floor_reaches_the_cvxopt_optimum():
         X = spdfit.nearest_correlation(C, min_eig=0, fixed=fixed, h_weights=H)
     assert np.linalg.eigvalsh(X)[0] >= -1e-8  # the solver's tolerance, after the kept entries are set exactly
     assert np.linalg.norm(H * (X - C)) <= 0.31763513263019827 * (1 + 1e-6)
+
+
+def _kept_block_problem(floor):
+    """A 60 x 60 indefinite correlation-like matrix whose first 20 rows form a kept block, repaired
+    with eigenvalue floor `floor` (0: singular, as nearest_correlation leaves it), and 5 % of the
+    other pairs kept too."""
+    rng = np.random.default_rng(2)
+    n, k = 60, 20
+    C = np.corrcoef(rng.standard_normal((n, n // 2)))
+    A = rng.standard_normal((n, n))
+    C = (C + C.T) / 2 + 0.2 * (A + A.T) / 2
+    np.fill_diagonal(C, 1.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        C[:k, :k] = spdfit.nearest_correlation(C[:k, :k], min_eig=floor)
+    fixed = np.zeros((n, n))
+    fixed[:k, :k] = 1.0
+    extra = rng.uniform(size=(n, n)) < 0.05
+    fixed[extra | extra.T] = 1.0
+    return C, fixed, k
+
+
+def test_a_singular_kept_block_is_named_when_newton_stalls():
+    """A kept block with zero eigenvalues makes every completion singular: the dual has no minimizer
+    and the multipliers diverge. The warning says so and names rows of the block."""
+    C, fixed, k = _kept_block_problem(0.0)
+    assert np.linalg.eigvalsh(C[:k, :k])[0] < 1e-12
+    with pytest.warns(spdfit.NotConvergedWarning, match="singular") as caught:
+        X = spdfit.nearest_correlation(C, fixed=fixed, min_eig=0, max_iter=60)
+    message = str(caught[-1].message)
+    rows = [int(r) for r in message.split("largest in rows ")[1].split(")")[0].replace(" ", "").split(",")]
+    assert rows and all(1 <= r <= k for r in rows), message
+    assert np.all(X[fixed > 0] == C[fixed > 0])
+
+
+def test_a_positive_definite_kept_block_converges_to_a_kkt_point():
+    """The same problem with the block repaired with a floor converges, to a KKT point of
+    min ||X - C||_F^2 / 2 over X >= 0 with the kept entries: X - C = Z on the free entries for a
+    multiplier Z = N S N^T >= 0 (N: X's null space, S >= 0), fitted by least squares. (CVXOPT's
+    answer to the same problem is 7e-6 from it, and its residual in this test 7.7e-6.)"""
+    C, fixed, k = _kept_block_problem(1e-3)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", spdfit.NotConvergedWarning)
+        X = spdfit.nearest_correlation(C, fixed=fixed, min_eig=0)
+    assert np.all(X[fixed > 0] == C[fixed > 0])
+    w, V = np.linalg.eigh(X)
+    assert w[0] >= -1e-8
+    N = V[:, w < 1e-7 * w[-1]]
+    z = N.shape[1]
+    assert z > 0  # the input is indefinite: the answer is on the boundary
+    free = np.tril(fixed == 0, -1)  # the diagonal is kept too
+    pairs = [(a, b) for a in range(z) for b in range(a, z)]
+    basis = np.array([((np.outer(N[:, a], N[:, b]) + np.outer(N[:, b], N[:, a])) / (2.0 if a == b else 1.0))[free]
+                      for a, b in pairs]).T
+    target = (X - C)[free]
+    coefficients, *_ = np.linalg.lstsq(basis, target, rcond=None)
+    assert np.linalg.norm(basis @ coefficients - target) <= 1e-7 * np.linalg.norm(target)  # measured 1.8e-10
+    S = np.zeros((z, z))
+    for (a, b), c in zip(pairs, coefficients):
+        S[a, b] = S[b, a] = c
+    assert np.linalg.eigvalsh(S)[0] >= -1e-6 * np.abs(S).max()
