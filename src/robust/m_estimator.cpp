@@ -32,23 +32,24 @@ using Eigen::VectorXd;
 
 namespace {
 
-// The chi distribution's density with d degrees of freedom at u, and a quadrature of E[f(u)].
-double chi_density(double u, double d) {
+// The chi distribution's density with d degrees of freedom at u, less its log normalizer
+// (0.5 d - 1) log 2 + log Gamma(d / 2), which the caller computes once; and a quadrature of E[f(u)].
+double chi_density(double u, double d, double log_normalizer) {
   if (u <= 0.0) return d == 1.0 ? std::sqrt(2.0 / 3.14159265358979323846) : 0.0;
-  const double log_f = (d - 1.0) * std::log(u) - 0.5 * u * u - (0.5 * d - 1.0) * std::log(2.0) - std::lgamma(0.5 * d);
-  return std::exp(log_f);
+  return std::exp((d - 1.0) * std::log(u) - 0.5 * u * u - log_normalizer);
 }
 
 // Simpson's rule on [a, b] with `steps` (even) intervals of f(u) chi_density(u).
 template <typename F>
 double expectation(F f, double a, double b, double d, int steps = 2000) {
   if (!(b > a)) return 0.0;
+  const double log_normalizer = (0.5 * d - 1.0) * std::log(2.0) + std::lgamma(0.5 * d);
   const double h = (b - a) / steps;
   double sum = 0.0;
   for (int i = 0; i <= steps; ++i) {
     const double u = a + i * h;
     const double weight = (i == 0 || i == steps) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
-    sum += weight * f(u) * chi_density(u, d);
+    sum += weight * f(u) * chi_density(u, d, log_normalizer);
   }
   return sum * h / 3.0;
 }
@@ -329,6 +330,45 @@ TrimmedStart least_trimmed_squares(const Eigen::Ref<const MatrixXd>& A, const Ei
   return out;
 }
 
+// A pass counts the values below the bracket and gathers those in it; the selection is among those
+// only when the middle ranks fall in the bracket, else among all values (median()).
+double median_near(const VectorXd& u, const VectorXd& counts, double guess, std::vector<double>& bracket) {
+  const Index m = u.size();
+  const auto counted = [&counts](Index i) { return counts.size() == 0 || counts(i) > 0; };
+  if (guess > 0.0 && std::isfinite(guess)) {
+    const double lo = 0.9 * guess, hi = 1.1 * guess;
+    Index below = 0, total = 0, size = 0;
+    // Without branches on the values (about a third of them fall on either side of a bound, which
+    // no branch predictor guesses): every value is written, and kept by the count's increment.
+    if (bracket.size() < static_cast<std::size_t>(m)) bracket.resize(static_cast<std::size_t>(m));
+    for (Index i = 0; i < m; ++i) {
+      const double v = u(i);
+      const Index take = counted(i) ? 1 : 0;
+      total += take;
+      below += take & static_cast<Index>(v < lo);
+      bracket[static_cast<std::size_t>(size)] = v;
+      size += take & static_cast<Index>(v >= lo && v <= hi);
+    }
+    // 0-based ranks k (and k - 1 for an even count) must fall in the bracket.
+    const Index k = total / 2, first = total % 2 == 1 ? k : k - 1;
+    if (total > 0 && first >= below && k < below + size) {
+      const auto begin = bracket.begin(), end = begin + static_cast<std::ptrdiff_t>(size);
+      const auto at = begin + static_cast<std::ptrdiff_t>(k - below);
+      std::nth_element(begin, at, end);
+      const double upper = *at;
+      if (total % 2 == 1) return upper;
+      return 0.5 * (upper + *std::max_element(begin, at));
+    }
+  }
+  std::vector<double> values;
+  values.reserve(static_cast<std::size_t>(m));
+  for (Index i = 0; i < m; ++i) {
+    if (counted(i)) values.push_back(u(i));
+  }
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  return median(std::move(values));
+}
+
 namespace {
 
 // Rows per block of gram_factor's passes: the blocks' copies stay in cache, and no pass allocates
@@ -474,13 +514,26 @@ std::optional<TriangularFactor> downdated_gram_factor(const Eigen::Ref<const Mat
     G.selfadjointView<Eigen::Lower>().rankUpdate(rows_of.topRows(k[which]).transpose(), which == 0 ? -1.0 : 1.0);
     k[which] = 0;
   };
+  // Each row scaled by 2^-[ea eb] times its root weight in one product: exactly scaled_rows' value
+  // (a power of two commutes with rounding) while root 2^-e stays a normal double, without its
+  // per-row copies (a pass over every down-weighted row at each iteration).
+  const bool normal = std::abs(ea) <= 1000 && std::abs(eb) <= 1000;
+  const double sa = normal ? std::ldexp(1.0, -ea) : 0.0, sb = normal ? std::ldexp(1.0, -eb) : 0.0;
+  const Index d = B.cols();
   for (Index i = 0; i < m; ++i) {
     const bool large = base.large[static_cast<std::size_t>(i)] != 0;
     if (!large && w(i) >= 1.0) continue;
-    scaled_rows(A, B, i, 1, ea, eb, {}, z);
     const int which = large ? 1 : 0;
-    (which == 0 ? D : E).row(k[which]++) = std::sqrt(large ? w(i) : 1.0 - w(i)) * z.row(0);
-    if (k[which] == kGramBlockRows) flush(which);
+    MatrixXd& target = which == 0 ? D : E;
+    const double root = std::sqrt(large ? w(i) : 1.0 - w(i));  // >= 1e-8 for the rows not large
+    if (normal && !large) {
+      target.row(k[which]).head(n) = (root * sa) * A.row(i);
+      target.row(k[which]).tail(d) = (root * sb) * B.row(i);
+    } else {
+      scaled_rows(A, B, i, 1, ea, eb, {}, z);
+      target.row(k[which]) = root * z.row(0);
+    }
+    if (++k[which] == kGramBlockRows) flush(which);
   }
   flush(0);
   flush(1);
@@ -510,15 +563,12 @@ Iterated iterate(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Mat
   const double median_chi = chi_median(d);
   // The data's scale, for the Gram matrices of every iteration (TriangularFactor's own rule).
   const int ea = scale_exponent(A).value_or(0), eb = scale_exponent(B).value_or(0);
+  std::vector<double> bracket;
   for (int it = 1; it <= max_iterations; ++it) {
     const VectorXd u = whitened_residuals(A, B, X, c, residual_covariance(X, method, inner));
     if (loss == RobustLoss::Huber) {
-      std::vector<double> values;
-      values.reserve(static_cast<std::size_t>(m));
-      for (Index i = 0; i < m; ++i) {
-        if (counts.size() == 0 || counts(i) > 0) values.push_back(u(i));
-      }
-      if (!values.empty()) scale = median(values) / median_chi;
+      const double next = median_near(u, counts, scale * median_chi, bracket);
+      if (next == next) scale = next / median_chi;  // NaN: no rows
     }
     VectorXd w(m);
     for (Index i = 0; i < m; ++i) {

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <optional>
+#include <vector>
 
 #include "spdfit/fit_options.hpp"
 #include "spdfit/fit_result.hpp"
@@ -27,6 +28,12 @@ double robust_tuning(RobustLoss loss, Eigen::Index d, double efficiency = 0.95);
 /// The median of the chi distribution with d degrees of freedom: whitened residual norms' median
 /// over it estimates the noise's scale.
 double chi_median(Eigen::Index d);
+
+/// The median of u over the rows of positive count (`counts` empty: all rows), NaN when there are
+/// none: median()'s value, to the bit. Huber's reweighting moves it little from one iteration to
+/// the next, so with `guess` (the last one; anything not positive: none) only the values within 10 %
+/// of it are selected among when the middle ranks are there. `bracket` is its scratch buffer.
+double median_near(const Eigen::VectorXd& u, const Eigen::VectorXd& counts, double guess, std::vector<double>& bracket);
 
 /// A row's weight for its scaled residual norm u >= 0: Huber min(1, k / u), Tukey (1 - (u / k)^2)^2
 /// below k and 0 beyond.

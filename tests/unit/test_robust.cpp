@@ -28,6 +28,35 @@ TEST(Robust, TuningConstantsAreTheTextbooksForOneColumn) {
   EXPECT_GT(detail::robust_tuning(RobustLoss::Tukey, 6), detail::robust_tuning(RobustLoss::Tukey, 3));
 }
 
+TEST(Robust, MedianNearAGuessIsTheMedianToTheBit) {
+  // Odd and even counts, with and without counts of 0, guesses inside the middle (the bracketed
+  // selection), beside it (the middle ranks outside the bracket: the full selection), and none.
+  Generator gen(11);
+  std::vector<double> buffer;
+  for (const Eigen::Index m : {1, 2, 3, 10, 1001, 1000, 20000}) {
+    Eigen::VectorXd u(m);
+    for (Eigen::Index i = 0; i < m; ++i) u(i) = std::abs(gen.normal()) + std::abs(gen.normal());
+    Eigen::VectorXd counts(m);
+    for (Eigen::Index i = 0; i < m; ++i) counts(i) = i % 3 == 0 ? 0.0 : 1.0 + (i % 2);
+    for (const bool with_counts : {false, true}) {
+      std::vector<double> kept;
+      for (Eigen::Index i = 0; i < m; ++i) {
+        if (!with_counts || counts(i) > 0) kept.push_back(u(i));
+      }
+      const Eigen::VectorXd none;
+      const Eigen::VectorXd& c = with_counts ? counts : none;
+      if (kept.empty()) {
+        EXPECT_TRUE(std::isnan(detail::median_near(u, c, 1.0, buffer)));
+        continue;
+      }
+      const double exact = detail::median(kept);
+      for (const double guess : {exact, exact * 1.03, exact * 0.95, exact * 3.0, exact / 3.0, 0.0, -1.0}) {
+        EXPECT_EQ(detail::median_near(u, c, guess, buffer), exact) << "m = " << m << ", guess " << guess;
+      }
+    }
+  }
+}
+
 TEST(Robust, WeightsFollowTheirLosses) {
   EXPECT_EQ(detail::robust_weight(RobustLoss::Huber, 1.0, 1.345), 1.0);
   EXPECT_DOUBLE_EQ(detail::robust_weight(RobustLoss::Huber, 2.69, 1.345), 0.5);
