@@ -68,28 +68,35 @@ VectorXd whitened_residuals(const Eigen::Ref<const MatrixXd>& A, const Eigen::Re
     llt.compute(S);
   }
   // A block of rows at a time (no matrix of m rows: its fresh pages would cost more than the
-  // arithmetic at these widths): residuals, then whitened by L^-1.
-  // For the narrow matrices of a fit (n, d up to a few dozen) the products are coefficient-wise
-  // (Eigen's lazyProduct): a blocked GEMM's packing costs more than its arithmetic there.
+  // arithmetic at these widths): residuals, then whitened by L^-1. For the narrow matrices of a fit
+  // (n, d up to 16) a blocked GEMM's packing costs more than its arithmetic: see below.
   constexpr Index kBlockRows = 2048, kNarrow = 16;
   const Index m = A.rows(), n = A.cols(), d = B.cols();
   const MatrixXd Linv_t = MatrixXd(llt.matrixL().solve(MatrixXd::Identity(d, d))).transpose();
   VectorXd out(m);
   MatrixXd residual, whitened;
+  VectorXd squares;
   for (Index i0 = 0; i0 < m; i0 += kBlockRows) {
     const Index r = std::min(kBlockRows, m - i0);
-    if (n <= kNarrow) {
-      residual.noalias() = A.middleRows(i0, r).lazyProduct(X);
-    } else {
-      residual.noalias() = A.middleRows(i0, r) * X;
+    if (n <= kNarrow && d <= kNarrow) {
+      // Column by column (rank-one updates along the block's rows, which vectorize), and the
+      // squared norms summed over columns: no pass reads a row across columns.
+      residual = -B.middleRows(i0, r);
+      if (c.size() == d) residual.rowwise() += c.transpose();
+      for (Index k = 0; k < n; ++k) residual.noalias() += A.col(k).segment(i0, r) * X.row(k);
+      squares.setZero(r);
+      for (Index j = 0; j < d; ++j) {
+        // Column j of residual L^-T: L^-T is upper triangular, so rows k <= j of Linv_t.
+        whitened.noalias() = residual.leftCols(j + 1) * Linv_t.col(j).head(j + 1);
+        squares += whitened.col(0).cwiseAbs2();
+      }
+      out.segment(i0, r) = squares.cwiseSqrt();
+      continue;
     }
+    residual.noalias() = A.middleRows(i0, r) * X;
     residual -= B.middleRows(i0, r);
     if (c.size() == d) residual.rowwise() += c.transpose();
-    if (d <= kNarrow) {
-      whitened.noalias() = residual.lazyProduct(Linv_t);
-    } else {
-      whitened.noalias() = residual * Linv_t;
-    }
+    whitened.noalias() = residual * Linv_t;
     out.segment(i0, r) = whitened.rowwise().norm();
   }
   return out;

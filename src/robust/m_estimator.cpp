@@ -392,12 +392,10 @@ void scaled_rows(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Mat
 // The rows of positive weight and the weights' sum; false when too few rows (at most n + d) or no
 // mass remain for a factor.
 bool weight_totals(const VectorXd& w, Index columns, Index& rows, double& mass) {
-  rows = 0;
-  mass = 0.0;
-  for (Index i = 0; i < w.size(); ++i) {
-    rows += w(i) > 0.0;
-    mass += w(i);
-  }
+  // Eigen's reductions (vectorized, several partial sums): a loop's one chain of dependent
+  // additions took a quarter of the downdate's time.
+  rows = (w.array() > 0.0).count();
+  mass = w.sum();
   return rows > columns && mass > 0.0;
 }
 
