@@ -22,6 +22,7 @@
 #include "read_file.hpp"
 #include "spdfit/io.hpp"
 #include "spdfit/labels.hpp"
+#include "spdfit/row_reader.hpp"
 #include "text_scan.hpp"
 
 namespace spdfit::io {
@@ -139,10 +140,52 @@ Table parse_bytes(std::string_view bytes, const std::string& source, const ReadO
   return detail::parse_delimited_labelled(bytes, source, options, row_names);
 }
 
+// Whether the regular file `path` starts with .npy's magic bytes (false when it cannot be read:
+// the whole-file reader then says why).
+bool starts_as_npy(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) return false;
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!file) return false;
+  char first[8] = {};
+  const std::size_t got = std::fread(first, 1, detail::kNpyMagic.size(), file.get());
+  return std::string_view(first, got) == detail::kNpyMagic;
+}
+
+// A whole .npy file (no column selection) decoded a block of rows at a time into the matrix: the
+// file's bytes are never held whole beside it, so a large matrix (nearest's n x n) costs its own
+// size once. The values and every error are read_table's (RowReader's promise).
+Table read_npy_by_blocks(const std::string& path, const ReadOptions& options) {
+  RowReader reader(path, options);
+  Table table;
+  const std::uint64_t declared = reader.rows_declared().value_or(0);
+  constexpr std::size_t kBlockBytes = std::size_t{1} << 22;
+  Eigen::MatrixXd block;
+  Eigen::Index at = 0;
+  for (;;) {
+    // The first read is one row: the column count is known after it.
+    const Eigen::Index columns = reader.rows_read() == 0 ? 0 : std::max<Eigen::Index>(reader.columns(), 1);
+    const Eigen::Index rows =
+        columns == 0 ? 1 : std::max<Eigen::Index>(static_cast<Eigen::Index>(kBlockBytes / sizeof(double)) / columns, 1);
+    const Eigen::Index got = reader.read(rows, &block);
+    if (got == 0) break;
+    if (at == 0) table.values.resize(std::max(static_cast<Eigen::Index>(declared), got), block.cols());
+    if (at + got > table.values.rows()) table.values.conservativeResize(at + got, block.cols());
+    table.values.middleRows(at, got) = block;
+    at += got;
+  }
+  table.values.conservativeResize(at, table.values.cols());
+  table.warnings = reader.warnings();
+  return table;
+}
+
 // read_table, with the labels of a dropped first column of text in `row_names` when given.
 Table read_bytes(const std::string& path, const ReadOptions& options, std::vector<std::string>* row_names) {
   if (path == "-") return parse_bytes(detail::read_standard_input(), detail::kStdinName, options, row_names);
   const detail::FileSpec spec = detail::split_spec(path);
+  if (spec.variable.empty() && options.columns.empty() && starts_as_npy(spec.file)) {
+    return read_npy_by_blocks(spec.file, options);
+  }
   // The content decides, not the name: .mat and .npz files hold named arrays, and their
   // libraries read them from the file.
   if (std::optional<Table> named = detail::read_named_arrays(spec, options)) {

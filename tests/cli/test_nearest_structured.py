@@ -4,9 +4,13 @@ from its file, the combinations that work and the ones that are usage errors nam
 df.cov().to_csv()'s output: no warning, labels with quotes and commas kept."""
 import io
 import json
+import os
+import subprocess
+import sys
 
 import numpy as np
 import pytest
+from spdfit_testing import cli_path
 
 G = np.array([[2.0, -1, 0, 0], [-1, 2, -1, 0], [0, -1, 2, -1], [0, 0, -1, 2]])  # Higham's, NAG's example
 C5 = np.array([[1.0, 0.9, 0.7, 0.1, 0.2], [0.9, 1.0, 0.95, 0.3, 0.1], [0.7, 0.95, 1.0, -0.2, 0.4],
@@ -218,3 +222,30 @@ def test_labelled_masks_and_weights_are_aligned_to_xs_names(spdfit, tmp_path):
     H.rename(columns={"f": "z"}, index={"f": "z"}).to_csv(tmp_path / "H_other.csv")
     c = spdfit("nearest", "--corr", "--h-weights", str(tmp_path / "H_other.csv"), str(tmp_path / "C.csv"))
     assert c.returncode == 1 and "H_other.csv" in c.stderr and "are not the matrix's" in c.stderr
+
+
+@pytest.mark.skipif(os.environ.get("SPDFIT_SANITIZED") == "1", reason="the sanitizers' own memory")
+def test_factors_only_holds_c_once(tmp_path):
+    """--factors-only from a .npy keeps no n x n matrix beside C: the file is decoded a block of rows
+    at a time (before, its bytes were held whole beside the matrix: twice C). Peak resident set of
+    the command less that of the same command on a 3 x 3 matrix, against C's size."""
+    n = 3000
+    rng = np.random.default_rng(4)
+    F = rng.standard_normal((n, 4)) * 0.4
+    C = F @ F.T + 0.05 * np.eye(n)
+    d = np.sqrt(np.diag(C))
+    C = C / d[:, None] / d[None, :]
+    big, small = tmp_path / "C.npy", tmp_path / "small.npy"
+    np.save(big, C)
+    np.save(small, np.eye(3))
+    cli = cli_path()
+
+    def peak(path):
+        probe = ("import resource, subprocess, sys; subprocess.run(sys.argv[1:], check=True, capture_output=True); "
+                 "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss * 1024)")
+        args = [cli, "nearest", "--corr", "--factors", "2", "--factors-only", "-o", str(tmp_path / "F.npy"), str(path)]
+        return int(subprocess.run([sys.executable, "-c", probe, *args], capture_output=True, text=True,
+                                  check=True).stdout)
+
+    extra = peak(big) - peak(small)
+    assert extra < 1.4 * C.nbytes, f"{extra / C.nbytes:.2f} times C's {C.nbytes} bytes"
