@@ -72,6 +72,23 @@ def error_ratios(method, m, trials, seed):
     return {k: float(np.mean(v)) for k, v in e.items()}
 
 
+def gross_b_ratios(method, m, trials, seed):
+    """Huber's and Tukey's mean errors on gross errors in B over the clean rows' (the data of
+    error_ratios with the same seed: the same draws, so its Huber column is reproduced)."""
+    rng = np.random.default_rng(seed)
+    e = {k: [] for k in ("clean", "huber_b", "tukey_b")}
+    for _ in range(trials):
+        A, B = draw(rng, m)
+        err = lambda r: np.linalg.norm(r[0].X - X_TRUE)  # noqa: E731
+        e["clean"].append(err(quiet(A, B, method)))
+        Ab, Bb = gross_b(rng, A, B)
+        e["huber_b"].append(err(quiet(Ab, Bb, method, robust="huber")))
+        e["tukey_b"].append(err(quiet(Ab, Bb, method, robust="tukey")))
+        wrong_a(rng, A, B)  # error_ratios' draws, in its order
+    clean = float(np.mean(e["clean"]))
+    return {k: float(np.mean(v)) / clean for k, v in e.items() if k != "clean"}
+
+
 def efficiency(trials, seed):
     rng = np.random.default_rng(seed)
     p, h = [], []
@@ -117,7 +134,20 @@ def main():
     parser.add_argument("--trials", type=int, default=200)
     parser.add_argument("--speed-only", action="store_true",
                         help="only the speed table, in CPU time, 41 alternating runs of each")
+    parser.add_argument("--gross-b-only", action="store_true",
+                        help="only Huber and Tukey on gross errors in B, over the clean rows' error")
     args = parser.parse_args()
+    if args.gross_b_only:
+        print(f"`PYTHONPATH=build/python /usr/bin/python3 bench/robust.py --gross-b-only --trials {args.trials}`; "
+              f"{cpu_model()}; {datetime.date.today()}\n")
+        print("| method | m | trials | huber / clean | tukey / clean |")
+        print("|---|---|---|---|---|")
+        for method in ("ls", "spd-tls"):
+            for m in (500, 10000):
+                trials = args.trials if m == 500 else max(args.trials // 4, 20)
+                e = gross_b_ratios(method, m, trials, 1)
+                print(f"| {method} | {m} | {trials} | {e['huber_b']:.3f} | {e['tukey_b']:.3f} |")
+        return
     if args.speed_only:
         print(f"`PYTHONPATH=build/python /usr/bin/python3 bench/robust.py --speed-only`; {cpu_model()}; "
               f"{datetime.date.today()}; CPU time (process_time), median of 41 alternating runs\n")

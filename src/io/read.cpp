@@ -157,24 +157,17 @@ bool starts_as_npy(const std::string& path) {
 // size once. The values and every error are read_table's (RowReader's promise).
 Table read_npy_by_blocks(const std::string& path, const ReadOptions& options) {
   RowReader reader(path, options);
-  Table table;
-  const std::uint64_t declared = reader.rows_declared().value_or(0);
+  // A .npy header declares its rows (checked against the file's size when it was opened).
+  const auto rows = static_cast<Eigen::Index>(reader.rows_declared().value_or(0));
   constexpr std::size_t kBlockBytes = std::size_t{1} << 22;
+  Table table;
   Eigen::MatrixXd block;
-  Eigen::Index at = 0;
-  for (;;) {
-    // The first read is one row: the column count is known after it.
-    const Eigen::Index columns = reader.rows_read() == 0 ? 0 : std::max<Eigen::Index>(reader.columns(), 1);
-    const Eigen::Index rows =
-        columns == 0 ? 1 : std::max<Eigen::Index>(static_cast<Eigen::Index>(kBlockBytes / sizeof(double)) / columns, 1);
-    const Eigen::Index got = reader.read(rows, &block);
-    if (got == 0) break;
-    if (at == 0) table.values.resize(std::max(static_cast<Eigen::Index>(declared), got), block.cols());
-    if (at + got > table.values.rows()) table.values.conservativeResize(at + got, block.cols());
+  // The first read is one row: the column count is known after it.
+  for (Eigen::Index at = 0, next = 1, got; (got = reader.read(next, &block)) > 0; at += got) {
+    if (at == 0) table.values.resize(rows, block.cols());
     table.values.middleRows(at, got) = block;
-    at += got;
+    next = std::max<Eigen::Index>(static_cast<Eigen::Index>(kBlockBytes / sizeof(double)) / block.cols(), 1);
   }
-  table.values.conservativeResize(at, table.values.cols());
   table.warnings = reader.warnings();
   return table;
 }

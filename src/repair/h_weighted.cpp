@@ -114,15 +114,16 @@ HWeightedResult h_weighted_alm(const MatrixXd& G, const MatrixXd& H, const Fixed
   Mask fixed = Mask::Zero(n, n);
   for (Index p = 0; p < pattern.size(); ++p) fixed(pattern.row[p], pattern.col[p]) = fixed(pattern.col[p], pattern.row[p]) = true;
   const MatrixXd free = (!fixed.array()).cast<double>().matrix();
-  const MatrixXd H2 = 0.5 * (H.cwiseAbs2() + H.cwiseAbs2().transpose());  // H is symmetric to 1e-10
+  const MatrixXd H2 = H.cwiseAbs2();
   const MatrixXd H2free = H2.cwiseProduct(free);
   // The preconditioner's scalar stand-in for H o H: its mean over the free entries.
   const double free_count = free.sum();
   const double h_mean = std::max(free_count > 0.0 ? H2free.sum() / free_count : 1.0, 1e-8);
-  // X stays exactly symmetric: the penalty's eigendecomposition reads one triangle, so it does not
-  // see an antisymmetric part, which then grows from step to step on the entries of weight 0 until
-  // the gradient no longer predicts the function and the line search stalls at an infeasible X (a
-  // start D X0 D one rounding off symmetric did that on a 6 x 6 problem).
+  // X stays exactly symmetric (with H, G and B symmetric, every step is): the penalty's
+  // eigendecomposition reads one triangle, so it does not see an antisymmetric part, which would
+  // grow from step to step on the entries of weight 0 until the gradient no longer predicts the
+  // function and the line search stalls at an infeasible X (a start D X0 D one rounding off
+  // symmetric did that on a 6 x 6 problem).
   MatrixXd X = X0 ? MatrixXd(0.5 * (*X0 + X0->transpose())) : G;
   for (Index p = 0; p < pattern.size(); ++p) {
     const Index i = pattern.row[p], j = pattern.col[p];
@@ -192,8 +193,6 @@ HWeightedResult h_weighted_alm(const MatrixXd& G, const MatrixXd& H, const Fixed
         p = z + (rz_next / rz) * p;
         rz = rz_next;
       }
-      // Kept exactly symmetric (see X's start above).
-      D = 0.5 * (D + D.transpose()).eval();
       const double slope = grad.cwiseProduct(D).sum();
       const double rounding = 16.0 * std::numeric_limits<double>::epsilon() * (std::abs(phi) + 1.0);
       // Armijo backtracking; the full step (usually taken) is decomposed with eigenvectors for the

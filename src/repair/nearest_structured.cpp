@@ -129,6 +129,8 @@ NearestResult nearest_structured(const Eigen::Ref<const MatrixXd>& C, DiagonalRu
   }
   const detail::FixedPattern pattern = detail::fixed_pattern(structure.fixed, structure.index_base, n, rule);
   if (weighted) detail::check_h_weights(structure.h_weights, pattern);
+  // Accepted when symmetric to rounding; the solvers take it exactly symmetric.
+  const MatrixXd h_weights = weighted ? detail::symmetric_part(structure.h_weights) : MatrixXd();
 
   NearestResult out;
   MatrixXd S = detail::symmetric_part(C);
@@ -186,11 +188,11 @@ NearestResult nearest_structured(const Eigen::Ref<const MatrixXd>& C, DiagonalRu
   bool alm = weighted;
   double h_max = 1.0;
   if (weighted) {
-    if (auto h = rank_one_root(structure.h_weights)) {
+    if (auto h = rank_one_root(h_weights)) {
       w = h->cwiseAbs2();
       alm = false;
     } else {
-      h_max = structure.h_weights.maxCoeff();
+      h_max = h_weights.maxCoeff();
     }
   }
   // With no entry kept off the diagonal and the diagonal fixed, this is the diagonal repair.
@@ -232,7 +234,7 @@ NearestResult nearest_structured(const Eigen::Ref<const MatrixXd>& C, DiagonalRu
   std::vector<Index> singular_rows;
   try {
     if (alm) {
-      const MatrixXd H = structure.h_weights / h_max;
+      const MatrixXd H = h_weights / h_max;
       // The start: the problem with H replaced by its rank-one fit h h^T (h_i = sqrt(H_ii) would
       // miss weights whose diagonal does not matter, so the Perron vector), solved by the dual
       // Newton method in X~ = D_h X D_h, and its multiplier, mapped back.
@@ -310,7 +312,7 @@ NearestResult nearest_structured(const Eigen::Ref<const MatrixXd>& C, DiagonalRu
 
   // The distance, in the weighted norm, and the dual's lower bound on it (C's antisymmetric part
   // is orthogonal to every symmetric change, so it adds in quadrature).
-  const MatrixXd Hfull = alm ? MatrixXd(structure.h_weights) : MatrixXd(root * root.transpose());
+  const MatrixXd Hfull = alm ? h_weights : MatrixXd(root * root.transpose());
   out.distance = Hfull.cwiseProduct(X - C).norm();
   const double asymmetric = Hfull.cwiseProduct(S - C).norm();
   if (!std::isnan(dual_value)) {

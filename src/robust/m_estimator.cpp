@@ -540,8 +540,10 @@ std::optional<TriangularFactor> downdated_gram_factor(const Eigen::Ref<const Mat
 }
 
 // One robust fit's iterations, from X (and c) with the scale `scale` (Huber: re-estimated each
-// iteration). `counts` (empty: 1) multiply the weights (a bootstrap resample). `base` (Huber
-// without an intercept or counts; else null): the unweighted Gram matrix the inner fits downdate.
+// iteration). [ea eb]: the data's scale exponents (TriangularFactor's own rule), for the Gram
+// matrices of every iteration. `counts` (empty: 1) multiply the weights (a bootstrap resample).
+// `base` (Huber without an intercept or counts; else null): the unweighted Gram matrix the inner
+// fits downdate.
 struct Iterated {
   FitResult result;
   VectorXd weights;
@@ -555,18 +557,17 @@ struct Iterated {
 
 Iterated iterate(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, Method method,
                  const FitOptions& inner, bool intercept, RobustLoss loss, double k, MatrixXd X, VectorXd c,
-                 double scale, const VectorXd& counts, int max_iterations, const GramBase* base = nullptr) {
+                 double scale, int ea, int eb, const VectorXd& counts, int max_iterations,
+                 const GramBase* base = nullptr) {
   Iterated out;
   const Index m = A.rows(), d = B.cols();
   const double median_chi = chi_median(d);
-  // The data's scale, for the Gram matrices of every iteration (TriangularFactor's own rule).
-  const int ea = scale_exponent(A).value_or(0), eb = scale_exponent(B).value_or(0);
   std::vector<double> bracket;
   for (int it = 1; it <= max_iterations; ++it) {
     const VectorXd u = whitened_residuals(A, B, X, c, residual_covariance(X, method, inner));
     if (loss == RobustLoss::Huber) {
       const double next = median_near(u, counts, scale * median_chi, bracket);
-      if (next == next) scale = next / median_chi;  // NaN: no rows
+      if (!std::isnan(next)) scale = next / median_chi;  // NaN: no rows
     }
     VectorXd w(m);
     for (Index i = 0; i < m; ++i) {
@@ -664,8 +665,9 @@ RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const
   MatrixXd X;
   VectorXd c;
   double scale = 0.0;
-  // Huber without an intercept: the unweighted Gram matrix once, for the start and for every
-  // iteration's fit (downdated by the rows weighted below 1), in the data's scale.
+  // The data's scale exponents, for every Gram matrix; Huber without an intercept: the unweighted
+  // Gram matrix once, for the start and for every iteration's fit (downdated by the rows weighted
+  // below 1).
   const int ea = scale_exponent(A).value_or(0), eb = scale_exponent(B).value_or(0);
   std::optional<GramBase> base;
   if (loss == RobustLoss::Huber && !intercept) base = gram_base(A, B, ea, eb);
@@ -702,8 +704,8 @@ RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const
     }
   }
   const int max_iterations = std::max(options.max_iterations, 1);
-  Iterated fitted = iterate(A, B, method, inner, intercept, loss, k, X, c, scale, VectorXd(), max_iterations,
-                            base ? &*base : nullptr);
+  Iterated fitted = iterate(A, B, method, inner, intercept, loss, k, X, c, scale, ea, eb, VectorXd(),
+                            max_iterations, base ? &*base : nullptr);
   FitResult result = std::move(fitted.result);
   RobustReport report = robust_report(loss, k, fitted.weights, fitted.scale, fitted.iterations, fitted.converged);
   if (!fitted.converged && result.ok()) {
@@ -728,7 +730,8 @@ RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const
           FitOptions rep = replicate_options(inner);
           try {
             Iterated again =
-                iterate(A, B, method, rep, intercept, loss, k, X_full, c_full, scale_full, counts, max_iterations);
+                iterate(A, B, method, rep, intercept, loss, k, X_full, c_full, scale_full, ea, eb, counts,
+                        max_iterations);
             return replicate_of(std::move(again.result));
           } catch (const std::invalid_argument& e) {
             return Replicate{{}, e.what()};
