@@ -8,7 +8,8 @@ set): the remedy is the user's, before Python starts. The rule is the library's
 SpdfitWarning is defined."""
 import warnings as _warnings
 
-from . import SpdfitWarning, _spdfit
+from . import _spdfit
+from ._errors import SpdfitWarning
 
 _check = _spdfit.blas_core()
 if _check["suggested"]:

@@ -74,3 +74,29 @@ def warn(message, code="warning"):
         frame = frame.f_back
         level += 1
     _warnings.warn(message, warning_class(code), stacklevel=level)
+
+
+def outcome_codes():
+    """Every code of spdfit's errors and warnings (docs/errors.md prints the same table).
+
+    An exception raised by the library carries its code's name in ``e.code``; a result's
+    ``warning_codes`` lists its warnings' codes, and each warning is issued with its code's class.
+
+    Returns
+    -------
+    list of tuple
+        (name, tier, Python class, MATLAB identifier, meaning); tier is "usage", "data",
+        "numerical", "internal" or "warning".
+
+    Examples
+    --------
+    >>> import spdfit
+    >>> [row for row in spdfit.outcome_codes() if row[0] == "rank_deficient"][0][:4]
+    ('rank_deficient', 'warning', 'RankDeficientWarning', 'spdfit:rankDeficient')
+    >>> try:
+    ...     spdfit.fit([[1.0], [2.0]], [[1.0]], "ls")
+    ... except spdfit.DataError as e:
+    ...     print(e.code)
+    data_shape
+    """
+    return [tuple(row) for row in _spdfit.outcome_codes()]

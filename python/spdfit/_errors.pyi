@@ -1,5 +1,5 @@
 """Type stubs for spdfit._errors (see _errors.py for the documentation)."""
-from typing import Dict, Optional, Type
+from typing import Dict, List, Optional, Tuple, Type
 
 class DataError(ValueError):
     code: str
@@ -17,3 +17,4 @@ WARNING_CLASSES: Dict[str, Type[SpdfitWarning]]
 
 def warning_class(code: str) -> Type[SpdfitWarning]: ...
 def warn(message: str, code: str = ...) -> None: ...
+def outcome_codes() -> List[Tuple[str, str, str, str, str]]: ...

@@ -7,7 +7,7 @@ a given seed gives the same numbers whatever the number of threads.
     paper_2x2_sweep()          the same for std_a = 0, 0.1, ..., 1.9
     physical()                 physical identification of the payload against the generic methods
 """
-from . import _as_matrix
+from ._common import _as_matrix
 from ._spdfit import experiment as _core
 
 # The result classes (the library's), under the names the type stubs give them.

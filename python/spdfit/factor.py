@@ -10,7 +10,8 @@ validated bytes (to_bytes), which is what Dask, multiprocessing and Spark send b
 import numbers
 import os as _os
 
-from . import _checked, _data, _options, _shared_doc, _spdfit, _takes_options
+from . import _spdfit
+from ._common import _checked, _data, _options, _shared_doc, _takes_options
 from ._errors import warn as _warn
 
 # The streaming defaults are the library's (StreamOptions), not retyped here.

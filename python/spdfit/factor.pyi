@@ -3,7 +3,7 @@ from typing import Any, Optional, Union
 
 import numpy.typing as npt
 
-from . import _Method, _PathLike
+from .fitting import _Method, _PathLike
 from ._spdfit import FitResult, NoiseModel
 
 class Factor:

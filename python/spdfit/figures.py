@@ -37,7 +37,9 @@ matplotlib.use("Agg")  # non-interactive: files only
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from . import METHODS, SpdfitWarning, experiment, hexapod, linkage  # noqa: E402
+from . import experiment, hexapod, linkage  # noqa: E402
+from ._errors import SpdfitWarning  # noqa: E402
+from ._spdfit import METHODS  # noqa: E402
 
 COLORS = {"ls": "#7f7f7f", "procrustes": "#1f77b4", "tls": "#d62728", "tls-sym": "#ff7f0e",
           "tls-psd": "#e377c2", "spde": "#2ca02c", "spd-tls": "#9467bd", "psd-ls": "#17becf",

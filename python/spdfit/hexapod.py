@@ -14,7 +14,8 @@ from collections import namedtuple as _namedtuple
 
 import numpy as _np
 
-from . import _as_matrix, _data, _spdfit, _takes_options
+from . import _spdfit
+from ._common import _as_matrix, _data, _physical_arrays, _takes_options
 from ._errors import NumericalError, warn as _warn
 from ._spdfit import hexapod as _core
 
@@ -330,8 +331,7 @@ def identify(A, B=None, *, a_cols=None, b_cols=None, truth=None, stiffness=None,
         _warn(_spdfit.spell_options(w.text), w.code)
     out = {r.result.method: r for r in results}
     if physical_text is not None:
-        from .physical import _arrays
-        estimate = _arrays(_json.loads(physical_text))
+        estimate = _physical_arrays(_json.loads(physical_text))
         if estimate["status"] != "success":
             raise NumericalError("the physical fit failed: " + estimate.get("error", ""), estimate)
         out["physical"] = estimate

@@ -21,7 +21,7 @@ import os as _os
 
 import numpy as _np
 
-from . import _takes_options
+from ._common import _takes_options
 from ._errors import NumericalError, warn as _warn
 from ._spdfit import payload as _core
 

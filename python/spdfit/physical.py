@@ -15,42 +15,14 @@ import os as _os
 
 import numpy as _np
 
-from . import _as_matrix, _data, _takes_options
+from . import hexapod
+from ._common import _as_matrix, _data, _physical_arrays as _arrays, _takes_options
 from ._errors import NumericalError, warn as _warn
 from ._spdfit import physical as _core
 
 __all__ = ["design", "identify", "inertia_repair", "inertia_repair_urdf", "mass_matrix", "regress"]
 
-# The keys of the estimate that are vectors or matrices, returned as NumPy arrays.
-_ARRAY_KEYS = ("center_of_mass", "inertia", "principal_moments", "principal_axes", "M_p", "M_p_eigenvalues",
-               "modes_hz")
-_SPECTRUM_KEYS = ("estimate", "standard_errors", "lower", "upper")
-
-
-def _arrays(result):
-    """The JSON object with its vectors and matrices as float64 arrays (null as NaN)."""
-    def convert(value):
-        return _np.array(value, dtype=_np.float64) if isinstance(value, list) else value
-
-    for key in _ARRAY_KEYS + ("strut_mass",):
-        if key in result:
-            result[key] = convert(result[key])
-    for group in ("standard_errors",):
-        if group in result:
-            result[group] = {k: convert(v) for k, v in result[group].items()}
-    if "interval" in result:
-        for side in ("lower", "upper"):
-            result["interval"][side] = {k: convert(v) for k, v in result["interval"][side].items()}
-    if "bootstrap" in result:
-        for name in ("M_p_eigenvalues", "modes_hz"):
-            if name in result["bootstrap"]:
-                for k in _SPECTRUM_KEYS:
-                    result["bootstrap"][name][k] = convert(result["bootstrap"][name][k])
-    return result
-
-
 def _geometry(geometry):
-    from . import hexapod
     return hexapod.geometry(geometry)
 
 

@@ -1,5 +1,5 @@
-"""Covariance and correlation repair with pandas in and out: the one path of nearest_spd,
-nearest_correlation and nearest_covariance, and nearest_covariance itself.
+"""Covariance and correlation repair with pandas in and out: nearest_spd, nearest_correlation and
+nearest_covariance (`spdfit nearest`), through one path.
 
 A pandas DataFrame given for the matrix (df.corr(), df.cov()) comes back as a DataFrame with the
 same labels and dtype; a NumPy array comes back as NumPy. A mask of kept entries (``fixed``) or
@@ -9,10 +9,11 @@ elementwise weights (``h_weights``) given as DataFrames are aligned to the matri
 import numpy as _np
 
 from . import _spdfit
-from . import _as_matrix, _takes_options, _warn
+from ._common import _as_matrix, _takes_options
+from ._errors import warn as _warn
 from ._errors import DataError
 
-__all__ = ["nearest_covariance"]
+__all__ = ["REPAIR_FLOOR_DEFAULT", "nearest_covariance", "nearest_correlation", "nearest_spd"]
 
 
 def _is_frame(value):
@@ -137,4 +138,129 @@ def nearest_covariance(S, *, full_output=False, **options):
     (2.0, 2.0)
     """
     result, frame = _repair("nearest_covariance", S, options)
+    return _answer(result, frame, full_output, options)
+
+
+# The relative eigenvalue floor the repairs use when none is given (the library's, as the
+# `nearest` command's): 1e-8 times the largest eigenvalue, as R's nearPD's posd.tol.
+REPAIR_FLOOR_DEFAULT = _spdfit.REPAIR_FLOOR_DEFAULT
+
+
+@_takes_options("nearest_spd", given=("min_eig",))
+def nearest_spd(X, min_eig=None, *, full_output=False, **options):
+    """Repair a covariance: the nearest symmetric matrix to X with every eigenvalue >= a floor.
+
+    The nearest in the Frobenius norm (`spdfit nearest`). Without a diagonal constraint this is
+    Higham's (1988) eigenvalue clip of (X + X^T)/2 (thesis section 3.3). keep_diag=True keeps X's
+    diagonal (trusted variances): the nearest matrix with that diagonal and the floor, by Qi and
+    Sun's Newton method (as nearest_correlation). via_corr=True is statsmodels' cov_nearest route:
+    scale to a correlation, repair it (the floor applies to the correlation), scale back.
+
+    Parameters
+    ----------
+    X : array_like or pandas.DataFrame
+        The square matrix to repair (a DataFrame comes back as one, with its labels).
+    min_eig : float, optional
+        An absolute floor; min_eig=0 is the plain positive semidefinite projection.
+    full_output : bool, default False
+        Return a NearestResult instead of the matrix.
+    {options}
+
+    Returns
+    -------
+    numpy.ndarray, pandas.DataFrame or NearestResult
+        The matrix, or with full_output=True a NearestResult (X, distance, clipped,
+        min_eigenvalue_before, min_eig, iterations, gradient_norm, converged, cholesky_ok, warnings).
+
+    Raises
+    ------
+    ValueError
+        X is not a non-empty square matrix or has NaN/Inf; keep_diag and via_corr both given; weights,
+        max_iter or tol without keep_diag or via_corr.
+    TypeError
+        An option of the wrong type.
+
+    Warns
+    -----
+    SpdfitWarning
+        A non-symmetric X, eigenvalues raised to the floor (how many), a floor that moved X more than the
+        repair itself, no convergence.
+
+    Examples
+    --------
+    >>> import numpy as np, spdfit, warnings
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     X = spdfit.nearest_spd([[1., 2.], [2., 1.]], min_eig=0)
+    >>> X.round(12)
+    array([[1.5, 1.5],
+           [1.5, 1.5]])
+    >>> print(caught[0].message)  # what the repair changed, as `spdfit nearest` says it
+    nearest_spd: 1 eigenvalue(s) of the symmetric part were below 0 and were raised to it
+    >>> S = np.array([[4., 2., 2.1], [2., 3., 2.9], [2.1, 2.9, 2.]])
+    >>> r = spdfit.nearest_spd(S, keep_diag=True, full_output=True)
+    >>> np.diag(r.X), r.clipped, r.cholesky_ok
+    (array([4., 3., 2.]), 1, True)
+    """
+    if min_eig is not None:
+        options["min_eig"] = min_eig
+    result, frame = _repair("nearest_spd", X, options)
+    return _answer(result, frame, full_output, options)
+
+
+@_takes_options("nearest_correlation")
+def nearest_correlation(C, *, full_output=False, **options):
+    """The nearest correlation matrix to C (`spdfit nearest --corr`).
+
+    Minimizes ||W^1/2 (X - C) W^1/2||_F over symmetric X with unit diagonal and every eigenvalue >=
+    a floor (Higham 2002), W = diag(weights), by Qi and Sun's quadratically convergent Newton method
+    on the dual (with Borsdorf and Higham's preconditioned conjugate gradients), not alternating
+    projections. The floor is an exact constraint. The diagonal of X is exactly 1. ``fixed`` keeps
+    entries exactly (a mask, 0-based index pairs, or label pairs of a DataFrame), ``h_weights``
+    weights each entry (||H o (X - C)||_F), ``rank`` limits the rank, ``factors`` fits
+    X = diag(1 - ||f_i||^2) + F F^T (``factors_only``: F alone). A pandas DataFrame (``df.corr()``)
+    comes back as a DataFrame with its labels.
+
+    Parameters
+    ----------
+    C : array_like or pandas.DataFrame
+        The square matrix to repair.
+    full_output : bool, default False
+        Return a NearestResult instead of the matrix.
+    {options}
+
+    Returns
+    -------
+    numpy.ndarray, pandas.DataFrame or NearestResult
+        The matrix (F with factors_only; a DataFrame when C is one), or with full_output=True a
+        NearestResult (X, distance, iterations, gradient_norm, converged, clipped, min_eig,
+        cholesky_ok, warnings, method, lower_bound, optimality_residual, F, starts, fixed_entries).
+
+    Raises
+    ------
+    ValueError
+        C is not a non-empty square matrix or has NaN/Inf, or the floor cannot be met with a unit
+        diagonal.
+    TypeError
+        An option of the wrong type.
+
+    Warns
+    -----
+    SpdfitWarning
+        Not converging (X is then the best iterate), or a diagonal that is not 1 (C is repaired to a
+        correlation matrix all the same).
+
+    Examples
+    --------
+    >>> import numpy as np, spdfit
+    >>> C = np.array([[1., 1., 0.], [1., 1., 1.], [0., 1., 1.]])
+    >>> spdfit.nearest_correlation(C, min_eig=0).round(4)
+    array([[1.    , 0.7607, 0.1573],
+           [0.7607, 1.    , 0.7607],
+           [0.1573, 0.7607, 1.    ]])
+    >>> r = spdfit.nearest_correlation(C, full_output=True)
+    >>> r.converged, r.cholesky_ok
+    (True, True)
+    """
+    result, frame = _repair("nearest_correlation", C, options)
     return _answer(result, frame, full_output, options)

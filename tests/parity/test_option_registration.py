@@ -35,15 +35,15 @@ CLI_BY_HAND = {
 # **options; the keywords below are the reader's and structural ones (full_output, a_cols) and
 # those of the commands not yet converted.
 PYTHON_BY_HAND = {
-    ("__init__.py", "read_matrix"): {"allow_nonfinite", "index_col", "header"},
-    ("__init__.py", "read_table"): {"allow_nonfinite", "index_col", "header"},
+    ("io.py", "read_matrix"): {"allow_nonfinite", "index_col", "header"},
+    ("io.py", "read_table"): {"allow_nonfinite", "index_col", "header"},
     # a_cols and b_cols of a DataFrame (labels, slices, positions: Python's own forms), as fit takes them.
-    ("__init__.py", "fit"): {"a_cols", "b_cols"},
-    ("__init__.py", "fit_all"): {"a_cols", "b_cols"},
+    ("fitting.py", "fit"): {"a_cols", "b_cols"},
+    ("fitting.py", "fit_all"): {"a_cols", "b_cols"},
     ("factor.py", "from_data"): {"a_cols", "b_cols"},
-    ("__init__.py", "nearest_spd"): {"full_output"},
-    ("__init__.py", "nearest_correlation"): {"full_output"},
-    ("__init__.py", "solve"): {"threshold"},
+    ("repair.py", "nearest_spd"): {"full_output"},
+    ("repair.py", "nearest_correlation"): {"full_output"},
+    ("linear_system.py", "solve"): {"threshold"},
     ("experiment.py", "thesis"): {"samples", "trials", "seed", "threads", "force_noise_var", "signal_var",
                                   "distribution", "truth", "methods"},
     ("experiment.py", "paper_hexapod"): {"noise_var", "samples", "trials", "seed", "threads", "methods"},

@@ -1,8 +1,8 @@
-"""Every public function of the package (the functions in the __all__ of spdfit, spdfit.hexapod, spdfit.physical,
-spdfit.linkage and spdfit.experiment, and the classes there written in Python, such as
-spdfit.Factor, with their public methods) has a docstring in the NumPy format, parsed with numpydoc
-(Debian's python3-numpydoc): a summary, Parameters naming exactly the function's parameters (a
-function without parameters has none to name), Returns, Raises naming exception classes that
+"""Every public function of the package (the functions in the __all__ of spdfit and of its modules,
+and the classes there written in Python, such as spdfit.Factor, with their public methods) has a
+docstring in the NumPy format, parsed with numpydoc (Debian's python3-numpydoc): a summary,
+Parameters naming exactly the function's parameters (a function without parameters has none to
+name), Returns, Raises naming exception classes that
 exist (a function without parameters has no input to refuse), and Examples that run as doctests
 and check at least one printed value. A docstring that is not NumPy's format, or a doctest that
 prints something else, fails. The modules' own docstrings' examples run too."""
@@ -15,14 +15,19 @@ import pytest
 
 import spdfit
 import spdfit.experiment
+import spdfit.fitting
 import spdfit.hexapod
+import spdfit.io
+import spdfit.linear_system
 import spdfit.linkage
 import spdfit.payload
 import spdfit.physical
+import spdfit.repair
 
 docscrape = pytest.importorskip("numpydoc.docscrape", reason="numpydoc is not installed (Debian: python3-numpydoc)")
 
-MODULES = [spdfit, spdfit.hexapod, spdfit.linkage, spdfit.experiment, spdfit.physical, spdfit.payload]
+MODULES = [spdfit, spdfit.fitting, spdfit.io, spdfit.linear_system, spdfit.repair, spdfit.hexapod, spdfit.linkage,
+           spdfit.experiment, spdfit.physical, spdfit.payload]
 
 
 def is_python_class(value):

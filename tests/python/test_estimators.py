@@ -186,7 +186,8 @@ def test_type_stubs_ship_with_the_package_and_name_real_functions():
     import pathlib
     package = pathlib.Path(spdfit.__file__).parent
     assert (package / "py.typed").exists()
-    for stub, module in (("__init__.pyi", spdfit), ("hexapod.pyi", spdfit.hexapod),
+    for stub, module in (("fitting.pyi", spdfit.fitting), ("io.pyi", spdfit.io), ("repair.pyi", spdfit.repair),
+                         ("linear_system.pyi", spdfit.linear_system), ("hexapod.pyi", spdfit.hexapod),
                          ("experiment.pyi", spdfit.experiment), ("linkage.pyi", spdfit.linkage)):
         tree = ast.parse((package / stub).read_text())
         functions = [node.name for node in tree.body if isinstance(node, ast.FunctionDef)]
