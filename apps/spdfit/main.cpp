@@ -150,9 +150,15 @@ int main(int argc, char** argv) {
     std::cerr << "spdfit: error: " << spdfit::spell_options(e.what(), spdfit::Frontend::Cli) << '\n';
     const bool command_line_usage = dynamic_cast<const UsageError*>(&e) != nullptr;
     if (command_line_usage || (spdfit::tier(code) == spdfit::Tier::Usage && code != spdfit::Code::ColumnSelection)) {
+      // The command typed, down to its nested subcommand ("physical regress"), as for parse errors.
       std::string command;
       for (const Command& c : commands) {
-        if (c.app->parsed()) command = c.app->get_name() + " ";
+        if (!c.app->parsed()) continue;
+        for (const CLI::App* app = c.app; app != nullptr;) {
+          command += app->get_name() + " ";
+          const std::vector<CLI::App*> chosen = app->get_subcommands();
+          app = chosen.empty() ? nullptr : chosen.front();
+        }
       }
       std::cerr << "Run 'spdfit " << command << "--help' for usage.\n";
     }

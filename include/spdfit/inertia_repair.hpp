@@ -9,7 +9,9 @@
 #include <string_view>
 #include <vector>
 
+#include "spdfit/options.hpp"
 #include "spdfit/outcome.hpp"
+#include "spdfit/output_request.hpp"
 #include "spdfit/rigid_body.hpp"
 
 namespace spdfit {
@@ -166,5 +168,30 @@ std::string urdf_link(const RigidBodyInertia& body, const std::string& name, int
 
 /// repair_urdf on the file at `path` (at most 64 MiB).
 UrdfRepairResult repair_urdf_file(const std::string& path, const InertiaRepairOptions& options = {});
+
+/// `spdfit inertia repair`'s request: the file (a JSON body, or a URDF file: .urdf or .xml in any
+/// case), the repair's options and where the result goes.
+struct InertiaRepairRequest {
+  std::string input;
+  InertiaRepairOptions options;
+  OutputRequest output;  ///< `output` only (the JSON body, or the URDF; a URDF's report is separate)
+};
+
+/// The options of `inertia repair` (and of Python's spdfit.physical.inertia_repair and
+/// inertia_repair_urdf): the file, min_eig_rel, metric, output.
+const std::vector<OptionSpec<InertiaRepairRequest>>& inertia_repair_option_table();
+
+/// Whether `path` names a URDF file (.urdf or .xml, any case); anything else is a JSON body.
+bool is_urdf_path(std::string_view path);
+
+/// What `inertia repair` returns: one body's repair, or every link of a URDF file.
+struct InertiaRepairRun {
+  std::optional<InertiaRepairResult> body;
+  std::optional<UrdfRepairResult> urdf;
+};
+
+/// The workflow of `inertia repair`: the request's file read and repaired (io::DataError naming
+/// the file for one that is not a body or a URDF document).
+InertiaRepairRun run_inertia_repair(const InertiaRepairRequest& request);
 
 }  // namespace spdfit

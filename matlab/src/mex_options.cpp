@@ -27,8 +27,8 @@ const std::vector<MatlabFunction>& matlab_functions() {
   // What each function cannot take: the stream's options and the columns of one file (MATLAB
   // passes arrays), Python's NoiseModel object (MATLAB gives the model's numbers and matrices),
   // the positional arguments, the rows of a log (MATLAB indexes its arrays: A(601:end, :)), the
-  // command line's presentation, and the command line's spelling of
-  // a setting MATLAB has under its own name (--unconstrained is 'Consistent', false).
+  // command line's presentation, and hexapod identify's --unconstrained, which MATLAB (as Python)
+  // spells 'Consistent', false; payload identify and physical regress take 'Unconstrained'.
   static const std::vector<MatlabFunction> functions = {
       {"fit", "fit", {"stream", "block_rows", "noise", "a_cols", "b_cols", "rows", "rest_rows", "time_col"}},
       {"nearest", "nearest", {}},
@@ -41,10 +41,9 @@ const std::vector<MatlabFunction>& matlab_functions() {
       {"payload.identify",
        "payload",
        {"wrench_cols", "quat_cols", "rotation_cols", "gravity_cols", "accel_cols", "specific_force_cols",
-        "omega_cols", "alpha_cols", "time_col", "urdf", "link_name", "precision", "unconstrained", "json",
-        "output"}},
+        "omega_cols", "alpha_cols", "time_col", "urdf", "link_name", "precision", "json", "output"}},
       // 'NoiseCov' is a matrix (the command line's is a file).
-      {"physical.regress", "regress", {"noise_cov", "unconstrained", "json", "output"}},
+      {"physical.regress", "regress", {"noise_cov", "json", "output"}},
   };
   return functions;
 }

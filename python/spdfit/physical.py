@@ -157,7 +157,8 @@ def mass_matrix(geometry=None, *, mass, center_of_mass, inertia):
                              _np.asarray(inertia, dtype=_np.float64))
 
 
-def inertia_repair(mass, center_of_mass, inertia, *, min_eig_rel=None, metric="inertia"):
+@_takes_options("physical.inertia_repair")
+def inertia_repair(mass, center_of_mass, inertia, **options):
     """The nearest physically consistent inertia, mass and centre of mass kept.
 
     The second moment about the centre of mass, (1/2) tr(I) 1 - I, must have eigenvalues at least
@@ -173,11 +174,7 @@ def inertia_repair(mass, center_of_mass, inertia, *, min_eig_rel=None, metric="i
         3 numbers (m).
     inertia : array_like
         3 x 3 symmetric, about the centre of mass (kg m^2).
-    min_eig_rel : float, optional
-        The floor as a fraction of the largest second moment (default 1e-6; 0: the plain
-        projection).
-    metric : {'inertia', 'second-moment'}, optional
-        The distance minimized (default 'inertia').
+    {options}
 
     Returns
     -------
@@ -199,7 +196,7 @@ def inertia_repair(mass, center_of_mass, inertia, *, min_eig_rel=None, metric="i
     (True, True)
     """
     text = _core.repair_inertia(float(mass), _np.asarray(center_of_mass, dtype=_np.float64),
-                                _np.asarray(inertia, dtype=_np.float64), min_eig_rel, str(metric))
+                                _np.asarray(inertia, dtype=_np.float64), options)
     result = _json.loads(text)
     for key in ("center_of_mass", "inertia", "principal_moments", "principal_moments_before",
                 "second_moments_before"):
@@ -207,19 +204,17 @@ def inertia_repair(mass, center_of_mass, inertia, *, min_eig_rel=None, metric="i
     return result
 
 
-def inertia_repair_urdf(text, *, min_eig_rel=None, source="<urdf>", metric="inertia"):
+@_takes_options("physical.inertia_repair_urdf")
+def inertia_repair_urdf(text, *, source="<urdf>", **options):
     """Every link's inertia of a URDF document checked, the inconsistent ones repaired in place.
 
     Parameters
     ----------
     text : str
         The URDF document.
-    min_eig_rel : float, optional
-        As for inertia_repair.
     source : str, optional
         The name errors give the document (a file name).
-    metric : {'inertia', 'second-moment'}, optional
-        As for inertia_repair.
+    {options}
 
     Returns
     -------
@@ -249,7 +244,7 @@ def inertia_repair_urdf(text, *, min_eig_rel=None, source="<urdf>", metric="iner
     if not isinstance(text, str):
         hint = "decode the bytes first" if isinstance(text, (bytes, bytearray)) else "pass the file's text, open(path).read()"
         raise TypeError(f"text is the URDF's text (a str), not {type(text).__name__}: {hint}")
-    return _core.repair_urdf(text, str(source), min_eig_rel, str(metric))
+    return _core.repair_urdf(text, str(source), options)
 
 
 def _prior_bodies(prior):

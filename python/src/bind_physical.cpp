@@ -32,15 +32,10 @@ RigidBodyInertia body_of(double mass, const Eigen::Vector3d& center_of_mass, con
   return body;
 }
 
-InertiaRepairOptions repair_options(std::optional<double> min_eig_rel, const std::string& metric) {
-  InertiaRepairOptions options;
-  if (min_eig_rel) options.min_eig_rel = *min_eig_rel;
-  const std::optional<InertiaMetric> parsed = parse_inertia_metric(metric);
-  if (!parsed) {
-    throw OptionError("metric must be 'inertia' or 'second-moment', got '" + metric + "'", Code::OptionValue, "metric");
-  }
-  options.metric = *parsed;
-  return options;
+/// The repair's options from a Python call's keywords, through `inertia repair`'s table.
+InertiaRepairOptions repair_options(std::string_view entry, const py::dict& options) {
+  std::vector<std::string_view> given;
+  return inertia_repair_request(entry, options, given).options;
 }
 
 }  // namespace
@@ -98,18 +93,16 @@ void bind_physical(py::module_& parent) {
 
   m.def(
       "repair_inertia",
-      [](double mass, const Eigen::Vector3d& center_of_mass, const Eigen::Matrix3d& inertia,
-         std::optional<double> min_eig_rel, const std::string& metric) {
-        return inertia_repair_json(
-            repair_inertia(body_of(mass, center_of_mass, inertia), repair_options(min_eig_rel, metric)));
+      [](double mass, const Eigen::Vector3d& center_of_mass, const Eigen::Matrix3d& inertia, const py::dict& options) {
+        return inertia_repair_json(repair_inertia(body_of(mass, center_of_mass, inertia),
+                                                  repair_options("physical.inertia_repair", options)));
       },
-      py::arg("mass"), py::arg("center_of_mass"), py::arg("inertia"), py::arg("min_eig_rel"), py::arg("metric"));
+      py::arg("mass"), py::arg("center_of_mass"), py::arg("inertia"), py::arg("options"));
 
   m.def(
       "repair_urdf",
-      [](const std::string& text, const std::string& source, std::optional<double> min_eig_rel,
-         const std::string& metric) {
-        const UrdfRepairResult r = repair_urdf(text, source, repair_options(min_eig_rel, metric));
+      [](const std::string& text, const std::string& source, const py::dict& options) {
+        const UrdfRepairResult r = repair_urdf(text, source, repair_options("physical.inertia_repair_urdf", options));
         py::list links;
         for (const UrdfLinkRepair& l : r.links) {
           py::dict link;
@@ -125,7 +118,7 @@ void bind_physical(py::module_& parent) {
         }
         return py::make_tuple(r.text, urdf_repair_report(r), links);
       },
-      py::arg("text"), py::arg("source"), py::arg("min_eig_rel"), py::arg("metric"));
+      py::arg("text"), py::arg("source"), py::arg("options"));
 }
 
 }  // namespace spdfit::python

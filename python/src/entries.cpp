@@ -5,6 +5,7 @@
 #include "spdfit/fit_request.hpp"
 #include "spdfit/hexapod/identify_request.hpp"
 #include "spdfit/hexapod/physical_request.hpp"
+#include "spdfit/inertia_repair.hpp"
 #include "spdfit/nearest_request.hpp"
 #include "spdfit/payload/design.hpp"
 #include "spdfit/payload/identify.hpp"
@@ -64,6 +65,9 @@ const std::vector<Entry>& entries() {
       {"payload.identify", "payload", {}, {}},
       {"payload.design", "payload_design", {}, {}},
       {"physical.regress", "regress", {}, {}},
+      // The body and the URDF's text are arguments; the result is returned, not written.
+      {"physical.inertia_repair", "inertia_repair", {}, {"output"}},
+      {"physical.inertia_repair_urdf", "inertia_repair", {}, {"output"}},
   };
   return list;
 }
@@ -85,6 +89,9 @@ std::vector<Keyword> keywords(const Entry& entry, std::optional<Method> method) 
   }
   if (entry.table == "regress") {
     return keywords_of(physical::regress_option_table(), entry, static_cast<physical::RegressRequest*>(nullptr));
+  }
+  if (entry.table == "inertia_repair") {
+    return keywords_of(inertia_repair_option_table(), entry, static_cast<InertiaRepairRequest*>(nullptr));
   }
   if (entry.table == "physical") {
     return keywords_of(hexapod::physical_option_table(), entry,

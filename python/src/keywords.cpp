@@ -191,6 +191,11 @@ physical::RegressRequest regress_request(std::string_view entry_name, const py::
   return request_from(physical::regress_option_table(), entry(entry_name), kwargs, physical::RegressRequest{}, given);
 }
 
+InertiaRepairRequest inertia_repair_request(std::string_view entry_name, const py::dict& kwargs,
+                                            std::vector<std::string_view>& given) {
+  return request_from(inertia_repair_option_table(), entry(entry_name), kwargs, InertiaRepairRequest{}, given);
+}
+
 Method method_from(const py::handle& method) {
   std::string known;
   for (Method m : kSelectableMethods) known += (known.empty() ? "" : ", ") + std::string(to_string(m));

@@ -219,3 +219,8 @@ def test_usage_errors(spdfit, tmp_path):
     assert spdfit("inertia").returncode == 2
     missing = spdfit("inertia", "repair", tmp_path / "nope.json")
     assert missing.returncode == 1 and "no such file" in missing.stderr
+    # A value the option table refuses after parsing names the nested command's help, as a parse error does.
+    metric = spdfit("inertia", "repair", "--metric", "clip", path)
+    assert metric.returncode == 2
+    assert metric.stderr == ("spdfit: error: --metric must be one of 'inertia' or 'second-moment', got 'clip'\n"
+                             "Run 'spdfit inertia repair --help' for usage.\n")

@@ -25,7 +25,6 @@ CLI_BY_HAND = {
     # 10: --preload (issue 42 item 1) joined the simulator's hand-registered options; they move to a
     # library table with the simulator's request (issue 41).
     "apps/spdfit/command_hexapod_simulate.cpp": 10,
-    "apps/spdfit/command_inertia.cpp": 4,
     "apps/spdfit/command_linkage.cpp": 25,
     "apps/spdfit/payload_options.cpp": 3,
     "apps/spdfit/simulation_noise_options.cpp": 4,
@@ -60,8 +59,7 @@ PYTHON_BY_HAND = {
     ("linkage.py", "analyze"): {"psi_range", "points", "radians"},
     ("physical.py", "identify"): {"a_cols", "b_cols", "strut_masses"},
     ("physical.py", "mass_matrix"): {"mass", "center_of_mass", "inertia"},
-    ("physical.py", "inertia_repair"): {"min_eig_rel", "metric"},
-    ("physical.py", "inertia_repair_urdf"): {"min_eig_rel", "source", "metric"},
+    ("physical.py", "inertia_repair_urdf"): {"source"},
     ("physical.py", "regress"): {"noise_cov", "prior"},
     ("repair.py", "nearest_covariance"): {"full_output"},
     # The payload's signals are data (as A and B are), given by name: not options.

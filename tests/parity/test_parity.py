@@ -20,6 +20,8 @@ import pytest
 
 import spdfit
 import spdfit.hexapod as hexapod
+import spdfit.payload as payload
+import spdfit.physical as physical
 
 SOURCE = Path(os.environ.get("SPDFIT_SOURCE_DIR", Path(__file__).resolve().parents[2]))
 CLI = os.environ.get("SPDFIT_CLI")
@@ -141,6 +143,40 @@ CASES = [
          ["hexapod", "identify", "--truth", "{I3}", "{Ah}", "{Bh}"],
          lambda d: hexapod.identify(d["Ah"], d["Bh"], truth=d["I3"]),
          "r = spdfit.hexapod.identify(Ah, Bh, 'Truth', I3);"),
+    # physical regress
+    Case("physical regress", "ok", ["physical", "regress", "--json", "{Y}", "{tau}"],
+         lambda d: physical.regress(d["Y"], d["tau"])["parameters"],
+         "r = spdfit.physical.regress(Y, tau); v = r.parameters;", ("parameters",), octave_rtol=1e-12),
+    Case("physical regress --unconstrained", "ok", ["physical", "regress", "--unconstrained", "--json", "{Y}", "{tau}"],
+         lambda d: physical.regress(d["Y"], d["tau"], unconstrained=True)["parameters"],
+         "r = spdfit.physical.regress(Y, tau, 'Unconstrained', true); v = r.parameters;", ("parameters",),
+         octave_rtol=1e-12),
+    Case("physical regress: more bodies than Y's columns hold", "data", ["physical", "regress", "--bodies", "2", "{Y}", "{tau}"],
+         lambda d: physical.regress(d["Y"], d["tau"], bodies=2),
+         "r = spdfit.physical.regress(Y, tau, 'Bodies', 2);", code="data_shape"),
+    Case("physical regress: a prior weight without a prior", "usage",
+         ["physical", "regress", "--prior-weight", "2", "{Y}", "{tau}"],
+         lambda d: physical.regress(d["Y"], d["tau"], prior_weight=2.0),
+         "r = spdfit.physical.regress(Y, tau, 'PriorWeight', 2);", code="option_conflict"),
+    # payload identify (static poses: gravity alone)
+    Case("payload identify", "ok", ["payload", "identify", "--wrench-cols", "1:6", "--quat-cols", "7:10", "--json", "{W}"],
+         lambda d: payload.identify(wrench=d["W"][:, :6], quaternion=d["W"][:, 6:10])["parameters"],
+         "r = spdfit.payload.identify(W(:, 1:6), 'Quaternion', W(:, 7:10)); v = r.parameters;", ("parameters",),
+         rtol=1e-12, octave_rtol=1e-12),
+    Case("payload identify: quaternions and rotations both", "usage",
+         ["payload", "identify", "--wrench-cols", "1:6", "--quat-cols", "7:10", "--rotation-cols", "1:9", "{W}"],
+         lambda d: payload.identify(wrench=d["W"][:, :6], quaternion=d["W"][:, 6:10], rotation=np.tile(np.eye(3).ravel(), (len(d["W"]), 1))),
+         None),
+    # inertia repair (no MATLAB function)
+    Case("inertia repair", "ok", ["inertia", "repair", "{body}"],
+         lambda d: physical.inertia_repair(2.0, [0.01, 0.0, -0.02], np.diag([0.1, 0.2, 0.5]))["inertia"], None,
+         ("inertia",)),
+    Case("inertia repair --metric second-moment", "ok", ["inertia", "repair", "--metric", "second-moment", "{body}"],
+         lambda d: physical.inertia_repair(2.0, [0.01, 0.0, -0.02], np.diag([0.1, 0.2, 0.5]),
+                                           metric="second-moment")["inertia"], None, ("inertia",)),
+    Case("inertia repair: a floor of 1", "usage", ["inertia", "repair", "--min-eig-rel", "1", "{body}"],
+         lambda d: physical.inertia_repair(2.0, [0.01, 0.0, -0.02], np.diag([0.1, 0.2, 0.5]), min_eig_rel=1.0),
+         None, code="option_value"),
     # compare (no MATLAB function: the command line against Python's fit_all)
     Case("compare", "ok", ["compare", "--json", "{A}", "{B}"],
          lambda d: spdfit.fit_all(d["A"], d["B"])["spd-tls"].X, None,
@@ -164,6 +200,25 @@ def data(tmp_path_factory):
         "Cbad": np.array([[1.0, 2.0, 0.0], [2.0, 1.0, 0.0], [0.0, 0.0, 1.0]]),
         "I3": np.eye(3),
     }
+    # physical regress: one body's 10 parameters (physically consistent) and a random regressor.
+    phi = np.array([2.0, 0.02, -0.04, 0.06, 0.1, 0.001, 0.002, 0.12, 0.003, 0.09])
+    d["Y"] = rng.standard_normal((60, 10))
+    d["tau"] = (d["Y"] @ phi + 0.01 * rng.standard_normal(60))[:, None]
+    # payload identify: a 1.5 kg payload at rest in 8 orientations; the sensor reads the load on it
+    # (gravity's reaction) plus a bias and noise; columns fx..tz, qx, qy, qz, qw.
+    mass, com = 1.5, np.array([0.01, -0.02, 0.05])
+    q = rng.standard_normal((8, 4))
+    q /= np.linalg.norm(q, axis=1, keepdims=True)
+    rows = []
+    for x, y, z, w in q:
+        R = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                      [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                      [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+        g = R.T @ np.array([0.0, 0.0, -9.80665])
+        f = mass * g
+        wrench = np.concatenate([f, np.cross(com, f)]) + np.array([0.3, -0.2, 0.1, 0.01, 0.02, -0.01])
+        rows.append(np.concatenate([wrench + 1e-3 * rng.standard_normal(6), [x, y, z, w]]))
+    d["W"] = np.array(rows)
     d["Ah"] = spdfit.read_matrix(SOURCE / "examples" / "hexapod" / "A.csv")
     d["Bh"] = spdfit.read_matrix(SOURCE / "examples" / "hexapod" / "B.csv")
     files = {}
@@ -172,6 +227,10 @@ def data(tmp_path_factory):
         np.savetxt(files[name], np.atleast_2d(value), delimiter=",", fmt="%.17g")
         np.asarray(value, dtype="<f8").T.tofile(work / f"{name}.bin")  # column-major, as Octave reads
         (work / f"{name}.shape").write_text(" ".join(str(s) for s in np.atleast_2d(value).shape))
+    body = work / "body.json"
+    body.write_text(json.dumps({"mass": 2.0, "center_of_mass": [0.01, 0.0, -0.02],
+                                "inertia": np.diag([0.1, 0.2, 0.5]).tolist()}))
+    files["body"] = body
     geometry = work / "G.json"
     subprocess.run([CLI, "hexapod", "model", "--write-geometry", str(geometry)], check=True, capture_output=True)
     d["G"] = str(geometry)
@@ -293,7 +352,8 @@ def test_every_command_has_a_row():
     # The commands with a library workflow (issue 41); each has at least one case and, for those
     # with options, an error case.
     commands = {" ".join(a for a in c.cli[:2] if not a.startswith("-") and "{" not in a) for c in CASES if c.cli}
-    for command in ("fit", "nearest", "solve", "hexapod identify", "compare"):
+    for command in ("fit", "nearest", "solve", "hexapod identify", "compare", "physical regress", "payload identify",
+                    "inertia repair"):
         assert command in commands, command
         assert any(c.outcome != "ok" for c in CASES if c.cli and " ".join(c.cli[:2]).startswith(command)) or \
             command == "compare", f"{command}: no error case"
