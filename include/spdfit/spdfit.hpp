@@ -23,6 +23,7 @@
 #include "spdfit/hexapod/identify.hpp"
 #include "spdfit/hexapod/identify_request.hpp"
 #include "spdfit/hexapod/model.hpp"
+#include "spdfit/hexapod/model_request.hpp"
 #include "spdfit/hexapod/physical.hpp"
 #include "spdfit/hexapod/physical_request.hpp"
 #include "spdfit/hexapod/render.hpp"

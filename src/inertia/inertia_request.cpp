@@ -11,24 +11,24 @@ namespace spdfit {
 
 namespace {
 
-using Spec = OptionSpec<InertiaRepairRequest>;
+using InertiaSpec = OptionSpec<InertiaRepairRequest>;
 
-std::vector<Spec> make_table() {
-  std::vector<Spec> table;
-  Spec file = physical::detail::text_option<InertiaRepairRequest>("input", "FILE", "", "", "A JSON body or a URDF file", "");
+std::vector<InertiaSpec> make_inertia_table() {
+  std::vector<InertiaSpec> table;
+  InertiaSpec file = physical::detail::text_option<InertiaRepairRequest>("input", "FILE", "", "", "A JSON body or a URDF file", "");
   file.type = OptionType::File;
   file.positional = true;
   file.required = true;
   file.set = [](InertiaRepairRequest& r, const OptionValue& v) { r.input = std::get<std::string>(v); };
   table.push_back(file);
 
-  for (Spec& spec : output_options(&InertiaRepairRequest::output, {"output"},
+  for (InertiaSpec& spec : output_options(&InertiaRepairRequest::output, {"output"},
                                    {"Write the repaired JSON or URDF to FILE instead of stdout (a URDF's report goes "
                                     "to stderr)"})) {
     table.push_back(std::move(spec));
   }
 
-  Spec floor;
+  InertiaSpec floor;
   floor.name = "min_eig_rel";
   floor.cli = "--min-eig-rel";
   floor.python = "min_eig_rel";
@@ -42,7 +42,7 @@ std::vector<Spec> make_table() {
   floor.get = [](const InertiaRepairRequest& r) -> std::optional<OptionValue> { return r.options.min_eig_rel; };
   table.push_back(floor);
 
-  Spec metric = physical::detail::choice_option<InertiaRepairRequest>(
+  InertiaSpec metric = physical::detail::choice_option<InertiaRepairRequest>(
       "metric", "--metric", "metric", {"inertia", "second-moment"},
       "The distance minimized: inertia (||I' - I||_F, the distance reported) or second-moment (the eigenvalue "
       "clip of the second moment about the centre of mass)",
@@ -61,7 +61,7 @@ std::vector<Spec> make_table() {
 }  // namespace
 
 const std::vector<OptionSpec<InertiaRepairRequest>>& inertia_repair_option_table() {
-  static const std::vector<OptionSpec<InertiaRepairRequest>> table = make_table();
+  static const std::vector<OptionSpec<InertiaRepairRequest>> table = make_inertia_table();
   return table;
 }
 

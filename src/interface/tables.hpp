@@ -7,6 +7,7 @@
 #include "spdfit/fit_request.hpp"
 #include "spdfit/hexapod/physical_request.hpp"
 #include "spdfit/hexapod/identify_request.hpp"
+#include "spdfit/hexapod/model_request.hpp"
 #include "spdfit/inertia_repair.hpp"
 #include "spdfit/nearest_request.hpp"
 #include "spdfit/output_request.hpp"
@@ -34,6 +35,7 @@ void for_each_option_table(Visit&& visit) {
   visit(payload::design_option_table());
   visit(physical::regress_option_table());
   visit(inertia_repair_option_table());
+  visit(hexapod::model_option_table());
 }
 
 }  // namespace spdfit::detail

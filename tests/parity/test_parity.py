@@ -143,6 +143,13 @@ CASES = [
          ["hexapod", "identify", "--truth", "{I3}", "{Ah}", "{Bh}"],
          lambda d: hexapod.identify(d["Ah"], d["Bh"], truth=d["I3"]),
          "r = spdfit.hexapod.identify(Ah, Bh, 'Truth', I3);"),
+    # hexapod model (no MATLAB function)
+    Case("hexapod model", "ok", ["hexapod", "model", "--json"], lambda d: hexapod.model().mass_matrix, None,
+         ("mass_matrix",)),
+    Case("hexapod model --geometry", "ok", ["hexapod", "model", "--geometry", "{G}", "--json"],
+         lambda d: hexapod.model(d["G"]).modes_hz, None, ("modes_hz",)),
+    Case("hexapod model: no such geometry file", "data", ["hexapod", "model", "--geometry", "{G}.missing"],
+         lambda d: hexapod.model(d["G"] + ".missing"), None),
     # physical regress
     Case("physical regress", "ok", ["physical", "regress", "--json", "{Y}", "{tau}"],
          lambda d: physical.regress(d["Y"], d["tau"])["parameters"],
@@ -352,8 +359,8 @@ def test_every_command_has_a_row():
     # The commands with a library workflow (issue 41); each has at least one case and, for those
     # with options, an error case.
     commands = {" ".join(a for a in c.cli[:2] if not a.startswith("-") and "{" not in a) for c in CASES if c.cli}
-    for command in ("fit", "nearest", "solve", "hexapod identify", "compare", "physical regress", "payload identify",
-                    "inertia repair"):
+    for command in ("fit", "nearest", "solve", "hexapod identify", "hexapod model", "compare", "physical regress",
+                    "payload identify", "inertia repair"):
         assert command in commands, command
         assert any(c.outcome != "ok" for c in CASES if c.cli and " ".join(c.cli[:2]).startswith(command)) or \
             command == "compare", f"{command}: no error case"

@@ -1,0 +1,111 @@
+// `hexapod model`'s option table, workflow and renderings.
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "render/json_values.hpp"
+#include "spdfit/format.hpp"
+#include "spdfit/hexapod/model_request.hpp"
+
+namespace spdfit::hexapod {
+
+namespace {
+
+using ModelSpec = OptionSpec<ModelRequest>;
+
+constexpr const char* kBuiltInHexapod = "built-in cubic-configuration hexapod (docs/hexapod.md)";
+
+std::vector<ModelSpec> make_model_table() {
+  std::vector<ModelSpec> table;
+  ModelSpec geometry;
+  geometry.name = "geometry";
+  geometry.cli = "--geometry";
+  geometry.type = OptionType::Geometry;
+  geometry.value_name = "FILE";
+  geometry.help = "Geometry file (JSON, SI units; see docs/hexapod.md)";
+  geometry.default_text = "the built-in cubic hexapod";
+  geometry.set = [](ModelRequest& r, const OptionValue& v) { r.geometry = std::get<GeometryInput>(v); };
+  table.push_back(geometry);
+  for (ModelSpec& spec : output_options(&ModelRequest::output, {"json", "output"},
+                                   {"Print everything as JSON, the geometry included (a template for a file)",
+                                    "Write to FILE instead of stdout"})) {
+    table.push_back(std::move(spec));
+  }
+  ModelSpec write;
+  write.name = "write_geometry";
+  write.cli = "--write-geometry";
+  write.type = OptionType::File;
+  write.value_name = "FILE";
+  write.help = "Also write the geometry to FILE in the geometry-file format (a template to edit)";
+  write.set = [](ModelRequest& r, const OptionValue& v) { r.write_geometry = std::get<std::string>(v); };
+  table.push_back(write);
+  return table;
+}
+
+// The entries of v with `digits` decimals, two spaces apart.
+std::string model_vector_text(const Eigen::VectorXd& v, int digits) {
+  std::string out;
+  for (Eigen::Index i = 0; i < v.size(); ++i) out += (i ? "  " : "") + format_fixed(v(i), digits);
+  return out;
+}
+
+}  // namespace
+
+const std::vector<OptionSpec<ModelRequest>>& model_option_table() {
+  static const std::vector<OptionSpec<ModelRequest>> table = make_model_table();
+  return table;
+}
+
+ModelResult run_model(const ModelRequest& request) {
+  ModelResult result;
+  if (request.geometry.value) {
+    result.geometry = *request.geometry.value;
+    result.geometry_source = request.geometry.path.empty() ? "the geometry given" : request.geometry.path;
+  } else if (!request.geometry.path.empty()) {
+    result.geometry = read_geometry(request.geometry.path);
+    result.geometry_source = request.geometry.path;
+  } else {
+    result.geometry = cubic_geometry();
+    result.geometry_source = kBuiltInHexapod;
+  }
+  result.model = describe(result.geometry);
+  return result;
+}
+
+std::string to_json(const ModelResult& result) {
+  using spdfit::detail::matrix_json;
+  using spdfit::detail::vector_json;
+  constexpr JsonStyle style = JsonStyle::Contract;
+  const ModelDescription& model = result.model;
+  nlohmann::json out;
+  out["geometry_source"] = result.geometry_source;
+  out["jacobian"] = matrix_json(model.jacobian, style);
+  out["mass_matrix"] = matrix_json(model.mass_matrix, style);
+  out["modes_hz"] = vector_json(model.modes_hz, style);
+  out["mass_matrix_eigenvalues"] = vector_json(model.mass_matrix_eigenvalues, style);
+  out["jacobian_condition"] = spdfit::detail::number_json(model.jacobian_condition, style);
+  out["payload_mass_matrix"] = matrix_json(model.payload_mass_matrix, style);
+  out["strut_lengths"] = vector_json(model.strut_lengths, style);
+  out["strut_directions"] = matrix_json(model.strut_directions.transpose(), style);
+  out["geometry"] = nlohmann::json::parse(geometry_json(result.geometry));
+  return spdfit::detail::dump(out, style);
+}
+
+std::string report(const ModelResult& result) {
+  const ModelDescription& model = result.model;
+  std::ostringstream out;
+  out << "Hexapod: " << result.geometry_source << "\n"
+      << "payload " << format_fixed(result.geometry.payload_mass, 3)
+      << " kg; strut lengths (m): " << model_vector_text(model.strut_lengths, 4) << "\n\n"
+      << "Jacobian J, l_dot = J [v; w] (rows: struts; v, w of the payload's centre of mass in {B} axes); "
+      << "cond(J) = " << format_fixed(model.jacobian_condition, 2) << "\n"
+      << format_side_by_side({"J"}, {Eigen::MatrixXd(model.jacobian)})
+      << "Joint-space mass-inertia matrix (thesis eq. 2.12), kg\n"
+      << format_side_by_side({"M_p"}, {Eigen::MatrixXd(model.mass_matrix)})
+      << "eigenvalues of M_p (kg): " << model_vector_text(model.mass_matrix_eigenvalues, 4)
+      << "\nmodes sqrt(eig(M_p^-1 K)) / 2 pi (Hz), K = diag(strut_stiffness): " << model_vector_text(model.modes_hz, 2)
+      << "\n";
+  return out.str();
+}
+
+}  // namespace spdfit::hexapod
