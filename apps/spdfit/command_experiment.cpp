@@ -408,7 +408,7 @@ Command add_physical(CLI::App& parent, const GlobalOptions& global) {
       ->check(CLI::IsMember({"uniform", "gaussian"}))
       ->capture_default_str();
   sub->add_option("--geometry", cli->geometry, "Hexapod geometry file (default: the built-in cubic hexapod)");
-  add_payload_options(sub, cli->payload, "The true payload's");
+  add_payload_options(sub, cli->payload);
   add_common(sub, cli->common, 200);
   std::string variants, generic;
   for (const std::string& v : experiment::physical_variant_names())

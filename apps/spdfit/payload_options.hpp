@@ -1,37 +1,32 @@
-// The true payload of a simulation when it differs from the geometry's nominal one:
-// --payload-mass, --payload-com and --payload-inertia, shared by `hexapod simulate` and
-// `experiment physical`.
+// The true payload of `experiment physical` when it differs from the geometry's nominal one:
+// --payload-mass, --payload-com and --payload-inertia, registered from `hexapod simulate`'s
+// option table (hexapod/simulate_request.hpp), which declares them once.
 #pragma once
 
+#include <memory>
+
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
-#include <string>
 
 #include "spdfit/hexapod/geometry.hpp"
+#include "spdfit/hexapod/simulate_request.hpp"
 #include "spdfit/rigid_body.hpp"
+#include "table_options.hpp"
 
 namespace spdfit::cli {
 
-/// The options as given.
+/// The three options, as registered on a command.
 struct PayloadCli {
-  std::string mass, com, inertia;
-  CLI::Option *mass_option = nullptr, *com_option = nullptr, *inertia_option = nullptr;
+  std::unique_ptr<TableOptions<hexapod::SimulateRequest>> options;
 
   /// Whether any of the three was given.
-  bool given() const { return mass_option->count() + com_option->count() + inertia_option->count() > 0; }
+  bool given() const { return options && !options->given().empty(); }
 };
 
-/// Adds the three options to `sub`, each help text starting with `whose` ("With --geometry: the
-/// true payload's").
-void add_payload_options(CLI::App* sub, PayloadCli& payload, const std::string& whose);
+/// Adds the three options of the simulate table to `sub`.
+void add_payload_options(CLI::App* sub, PayloadCli& payload);
 
-/// The geometry's nominal payload (hexapod::nominal_payload) with the options' changes: the mass,
-/// the centre of mass x,y,z, the inertia about it as 3 numbers (the diagonal), 6 (ixx, ixy, ixz,
-/// iyy, iyz, izz: URDF's order) or 9 (row by row). A UsageError naming the option for a count
-/// or a text that is not numbers, and for a payload that is not well formed (is_well_formed).
+/// The geometry's nominal payload with the options' changes (hexapod::payload_with): a
+/// UsageError naming the option for a count or a body that does not fit.
 RigidBodyInertia payload_of(const PayloadCli& payload, const hexapod::Geometry& geometry);
-
-/// {"mass", "center_of_mass" [3], "inertia" [3x3]}.
-nlohmann::json payload_json(const RigidBodyInertia& body);
 
 }  // namespace spdfit::cli

@@ -4,43 +4,43 @@
 #include "table_options.hpp"
 #include "validators.hpp"
 
+#include <algorithm>
+#include <iterator>
+#include <string_view>
+#include <vector>
+
 namespace spdfit::cli {
 
+namespace {
+
+constexpr std::string_view kNoiseOptions[] = {"noise_std_a", "noise_std_b", "rest_samples", "scale_b"};
+
+}  // namespace
+
 void add_simulation_noise_options(CLI::App& sub, SimulationNoiseCli& cli, CLI::Option* noise_var) {
-  cli.std_a_option = sub.add_option("--noise-std-a", cli.std_a,
-                                    "Standard deviation of the noise in A: one for every column, or one per column "
-                                    "(comma-separated); 0: exact. Instead of --noise-var")
-                         ->type_name("S");
-  cli.std_b_option = sub.add_option("--noise-std-b", cli.std_b,
-                                    "Standard deviation of the noise in B, as --noise-std-a (in B's units before "
-                                    "--scale-b)")
-                         ->type_name("S");
-  cli.std_a_option->needs(cli.std_b_option);
-  cli.std_b_option->needs(cli.std_a_option);
-  if (noise_var != nullptr) cli.std_a_option->excludes(noise_var);
-  sub.add_option("--rest-samples", cli.rest_samples,
-                 "Also N rows recorded at rest (accelerations zero, forces constant) with the same noise")
-      ->check(CLI::Range(Eigen::Index{0}, Eigen::Index{100000000}))
-      ->type_name("N");
-  sub.add_option("--scale-b", cli.scale_b,
-                 "Multiply B (and the rest rows of B) by F after drawing: 0.001 gives forces in kN, the true X "
-                 "then M_p / 1000")
-      ->check(positive())
-      ->type_name("F");
+  std::vector<std::string_view> others;
+  for (const auto& spec : hexapod::simulate_option_table()) {
+    if (std::find(std::begin(kNoiseOptions), std::end(kNoiseOptions), spec.name) == std::end(kNoiseOptions)) {
+      others.push_back(spec.name);
+    }
+  }
+  cli.options = std::make_unique<TableOptions<hexapod::SimulateRequest>>(sub, hexapod::simulate_option_table(), others);
+  if (noise_var != nullptr) cli.options->option("noise_std_a")->excludes(noise_var);
 }
 
-bool gives_noise_std(const SimulationNoiseCli& cli) { return cli.std_a_option && cli.std_a_option->count() > 0; }
+bool gives_noise_std(const SimulationNoiseCli& cli) { return cli.options && cli.options->was_given("noise_std_a"); }
 
 void apply_simulation_noise_options(const SimulationNoiseCli& cli, hexapod::SimulationOptions& options) {
-  const auto vector = [](const std::vector<double>& v) {
-    return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(v.data(), Eigen::Index(v.size())));
-  };
-  if (gives_noise_std(cli)) {
-    options.noise_std_a = vector(std::get<std::vector<double>>(parse_option_text(OptionType::RealList, "--noise-std-a", cli.std_a)));
-    options.noise_std_b = vector(std::get<std::vector<double>>(parse_option_text(OptionType::RealList, "--noise-std-b", cli.std_b)));
-  }
-  options.rest_samples = cli.rest_samples;
-  options.scale_b = cli.scale_b;
+  const auto& table = hexapod::simulate_option_table();
+  hexapod::SimulateRequest request;
+  request.options = options;
+  cli.options->apply(request);
+  // The table's rules among these four (the deviations of A and B come together).
+  run_spelled(table, [&] { check_option_combination(table, cli.options->given()); });
+  options.noise_std_a = request.options.noise_std_a;
+  options.noise_std_b = request.options.noise_std_b;
+  options.rest_samples = request.options.rest_samples;
+  options.scale_b = request.options.scale_b;
   std::string error;
   if (!options.is_valid(&error)) {
     // The generator names its fields; the command line's options are the same words with hyphens.

@@ -1,22 +1,20 @@
 // The hexapod generator's options for noise of its own per sensor and a rest segment
-// (--noise-std-a, --noise-std-b, --rest-samples, --scale-b), which `hexapod simulate` and the
-// experiments share.
+// (--noise-std-a, --noise-std-b, --rest-samples, --scale-b), which the experiments share with
+// `hexapod simulate`: registered from its option table (hexapod/simulate_request.hpp).
 #pragma once
+
+#include <memory>
 
 #include <CLI/CLI.hpp>
 
-#include <string>
-
 #include "spdfit/hexapod/simulate.hpp"
+#include "spdfit/hexapod/simulate_request.hpp"
+#include "table_options.hpp"
 
 namespace spdfit::cli {
 
 struct SimulationNoiseCli {
-  std::string std_a, std_b;
-  Eigen::Index rest_samples = 0;
-  double scale_b = 1.0;
-  CLI::Option* std_a_option = nullptr;
-  CLI::Option* std_b_option = nullptr;
+  std::unique_ptr<TableOptions<hexapod::SimulateRequest>> options;
 };
 
 /// Adds --noise-std-a, --noise-std-b (each needing the other), --rest-samples and --scale-b to

@@ -28,6 +28,7 @@
 #include "spdfit/hexapod/physical_request.hpp"
 #include "spdfit/hexapod/render.hpp"
 #include "spdfit/hexapod/simulate.hpp"
+#include "spdfit/hexapod/simulate_request.hpp"
 #include "spdfit/hexapod/simulation_warnings.hpp"
 #include "spdfit/inertia_repair.hpp"
 #include "spdfit/io.hpp"

@@ -34,8 +34,27 @@ Model.__doc__ = ("The hexapod model (hexapod::describe): J, M_p (eq. 2.12), the 
 # experiment 2 noise (0.86) is the documented default of `spdfit hexapod simulate` examples.
 _SIMULATION = _core.SimulationOptions()
 
-Simulation = _namedtuple("Simulation", "A B truth A_true B_true")
-Simulation.__doc__ = "Simulated measurements A (accelerations), B (forces) and the true M_p."
+_SimulationFields = _namedtuple("Simulation", "A B truth A_true B_true")
+
+
+class Simulation(_SimulationFields):
+    """Simulated measurements A (accelerations), B (forces), the true X of the data (M_p times
+    scale_b) and the noise-free data; rest_A and rest_B are the rows recorded at rest (0 rows
+    without rest_samples)."""
+
+    rest_A = None
+    rest_B = None
+
+
+class _DefaultNoise(float):
+    """noise_var's default (the thesis' 0.86), told apart from the same number given: the
+    per-sensor deviations (noise_std_a, noise_std_b) replace the default, not a noise_var given."""
+
+    def __repr__(self):
+        return "0.86"
+
+
+_DEFAULT_NOISE = _DefaultNoise(0.86)
 
 
 # The compiled module's functions, wrapped in Python functions that carry NumPy-format docstrings
@@ -172,37 +191,45 @@ def model(geometry_source=None):
                  d.mass_matrix_eigenvalues, d.jacobian_condition, d.strut_directions)
 
 
-def simulate(samples=_SIMULATION.samples, noise_var=0.86, *, seed=1, truth="thesis",
-             signal_var=_SIMULATION.signal_var, distribution=_SIMULATION.distribution, force_noise_var=None):
+@_takes_options("hexapod.simulate", given=("samples", "noise_var", "seed", "signal_var", "distribution",
+                                           "force_noise_var"))
+def simulate(samples=_SIMULATION.samples, noise_var=_DEFAULT_NOISE, *, seed=1, truth="thesis",
+             signal_var=_SIMULATION.signal_var, distribution=_SIMULATION.distribution, force_noise_var=None,
+             **options):
     """Measurements as the thesis' appendix-B generator makes them.
 
     True accelerations uniform with variance signal_var (on [-5, 5] by default), true forces
     B_true = A_true M_p, and independent noise of variance noise_var (force_noise_var for B, if
-    given) in every entry of A and B. The same seed gives the same data as
-    `spdfit hexapod simulate --seed`.
+    given) in every entry of A and B, or of standard deviations noise_std_a and noise_std_b per
+    column; optionally rows at rest (rest_samples), an untared static load (preload), forces in
+    other units (scale_b) and a payload that differs from the geometry's. The options are
+    `spdfit hexapod simulate`'s, and the same seed and options give the same data.
 
     Parameters
     ----------
     samples : int, optional
         The number of samples m (rows); the library's default.
     noise_var : float, default 0.86
-        The noise variance V in every entry (the thesis' experiment 2).
+        The noise variance V in every entry (the thesis' experiment 2); not with noise_std_a.
     seed : int, default 1
         The random seed.
     truth : "thesis", array_like, Geometry, str, os.PathLike or dict, default "thesis"
-        "thesis" (eq. 6.1), an n x n array, or a geometry (see `geometry`) whose M_p is the truth.
+        "thesis" (eq. 6.1), an n x n array, or a geometry (see `geometry`) whose M_p is the truth
+        (as the keyword geometry, which the payload options change).
     signal_var : float, optional
         The variance of the true accelerations (the library's default: uniform on [-5, 5]).
     distribution : str, optional
         The noise: "uniform" (half-width sqrt(3 V), the thesis') or "gaussian".
     force_noise_var : float, optional
         The noise variance in B, when it differs from noise_var.
+    {options}
 
     Returns
     -------
     Simulation
         A named tuple (A, B, truth, A_true, B_true): the measured accelerations and forces (m x n),
-        the true M_p and the noise-free data.
+        the true X (M_p times scale_b) and the noise-free data; its rest_A and rest_B attributes
+        hold the rows at rest.
 
     Raises
     ------
@@ -210,7 +237,7 @@ def simulate(samples=_SIMULATION.samples, noise_var=0.86, *, seed=1, truth="thes
         samples or seed not an int (12.9), as `spdfit hexapod simulate --samples 12.9` refuses it.
     ValueError
         Bad options (a negative variance, samples < 1, an unknown distribution, a truth that is not
-        square).
+        square, payload options without a geometry, noise_std_a without noise_std_b).
     DataError
         A bad geometry file or dict given as the truth (a ValueError).
 
@@ -228,23 +255,31 @@ def simulate(samples=_SIMULATION.samples, noise_var=0.86, *, seed=1, truth="thes
     ((12, 6), (12, 6))
     >>> bool(np.allclose(data.B_true, data.A_true @ data.truth))
     True
+    >>> logged = hx.simulate(samples=200, noise_std_a=0.01, noise_std_b=0.1, rest_samples=50, preload=21.0)
+    >>> logged.rest_B.shape, bool(abs(logged.rest_B.mean() - 21.0) < 0.1)
+    ((50, 6), True)
     """
     # Whole numbers only, as the command line's --samples and --seed: int(12.9) would quietly be 12.
     for name, value in (("samples", samples), ("seed", seed)):
         if isinstance(value, bool) or not isinstance(value, _numbers.Integral):
             raise TypeError(f"{name} must be an int, got {type(value).__name__}")
-    if isinstance(truth, str) and truth == "thesis":
-        M = _core.thesis_mass_matrix()
-    elif isinstance(truth, (dict, Geometry)) or (isinstance(truth, (str, _os.PathLike)) and truth != "thesis"):
-        M = _core.joint_space_mass_matrix(geometry(truth))
-    else:
+    keywords = dict(options, samples=samples, seed=seed, signal_var=signal_var, distribution=distribution,
+                    force_noise_var=force_noise_var)
+    if noise_var is not _DEFAULT_NOISE or options.get("noise_std_a") is None:
+        keywords["noise_var"] = float(noise_var)
+    M = None
+    if isinstance(truth, (dict, Geometry)) or (isinstance(truth, (str, _os.PathLike)) and truth != "thesis"):
+        if options.get("geometry") is not None:
+            raise ValueError("truth and geometry both name the hexapod: give one")
+        keywords["geometry"] = geometry(truth)
+    elif not (isinstance(truth, str) and truth == "thesis"):
         M = _as_matrix("truth", truth)
-    A, B, A_true, B_true, warnings = _core.simulate(M, int(samples), float(noise_var),
-                                                    None if force_noise_var is None else float(force_noise_var),
-                                                    float(signal_var), distribution, int(seed))
+    A, B, X, A_true, B_true, rest_A, rest_B, warnings = _core.simulate(M, keywords)
     for w in warnings:  # as `spdfit hexapod simulate` warns (too few samples to fit)
-        _warn(w.text, w.code)
-    return Simulation(A, B, M, A_true, B_true)
+        _warn(_spdfit.spell_options(w.text), w.code)
+    out = Simulation(A, B, X, A_true, B_true)
+    out.rest_A, out.rest_B = rest_A, rest_B
+    return out
 
 
 @_takes_options("hexapod.identify", given=("truth", "stiffness", "geometry", "physical"))

@@ -53,12 +53,16 @@ class Model(NamedTuple):
     jacobian_condition: float
     strut_directions: _Array
 
-class Simulation(NamedTuple):
+class _SimulationFields(NamedTuple):
     A: _Array
     B: _Array
     truth: _Array
     A_true: _Array
     B_true: _Array
+
+class Simulation(_SimulationFields):
+    rest_A: Optional[_Array]
+    rest_B: Optional[_Array]
 
 _GeometrySource = Union[None, Geometry, str, os.PathLike, Dict[str, Any]]
 
@@ -66,7 +70,5 @@ def cubic_geometry() -> Geometry: ...
 def thesis_mass_matrix() -> _Array: ...
 def geometry(source: _GeometrySource = ...) -> Geometry: ...
 def model(geometry_source: _GeometrySource = ...) -> Model: ...
-def simulate(samples: int = ..., noise_var: float = ..., *, seed: int = ...,
-             truth: Union[str, npt.ArrayLike, _GeometrySource] = ..., signal_var: float = ...,
-             distribution: str = ..., force_noise_var: Optional[float] = ...) -> Simulation: ...
+def simulate(samples: int = ..., noise_var: float = ..., *, seed: int = ..., truth: Union[str, npt.ArrayLike, _GeometrySource] = ..., signal_var: float = ..., distribution: str = ..., force_noise_var: Optional[float] = ..., **options: Any) -> Simulation: ...  # options: hexapod.simulate
 def identify(A: Any, B: Optional[npt.ArrayLike] = ..., *, a_cols: Any = ..., b_cols: Any = ..., truth: Optional[npt.ArrayLike] = ..., stiffness: Union[None, float, npt.ArrayLike] = ..., geometry: _GeometrySource = ..., physical: bool = ..., **options: Any) -> Dict[str, Any]: ...  # options: hexapod.identify

@@ -14,6 +14,7 @@
 #include "spdfit/hexapod/physical.hpp"
 #include "spdfit/hexapod/render.hpp"
 #include "spdfit/hexapod/simulate.hpp"
+#include "spdfit/hexapod/simulate_request.hpp"
 #include "spdfit/hexapod/simulation_warnings.hpp"
 #include "spdfit/random.hpp"
 
@@ -105,23 +106,19 @@ void bind_hexapod(py::module_& parent) {
 
   m.def(
       "simulate",
-      [](const Eigen::MatrixXd& truth, Eigen::Index samples, double noise_var, std::optional<double> force_noise_var,
-         double signal_var, const std::string& distribution, std::uint64_t seed) {
-        SimulationOptions options;
-        options.samples = samples;
-        options.noise_var = noise_var;
-        options.force_noise_var = force_noise_var;
-        options.signal_var = signal_var;
-        const auto parsed = parse_noise_distribution(distribution);
-        if (!parsed) throw std::invalid_argument("distribution must be 'uniform' or 'gaussian', got '" + distribution + "'");
-        options.distribution = *parsed;
-        std::string error;
-        if (!options.is_valid(&error)) throw std::invalid_argument(error);
-        const Measurements data = simulate(truth, options, seed);  // as `spdfit hexapod simulate --seed`
-        return py::make_tuple(data.A, data.B, data.A_true, data.B_true, simulation_warnings(truth, options));
+      [](std::optional<Eigen::MatrixXd> truth, const py::dict& options) {
+        std::vector<std::string_view> given;
+        SimulateRequest request = simulate_request("hexapod.simulate", options, given);
+        if (truth) {
+          request.truth.values = *truth;
+          given.push_back("truth");
+        }
+        check_simulate_request(request, given);
+        const SimulateResult r = run_simulate(request);  // as `spdfit hexapod simulate`
+        return py::make_tuple(r.data.A, r.data.B, Eigen::MatrixXd(r.truth * r.options.scale_b), r.data.A_true,
+                              r.data.B_true, r.data.rest_A, r.data.rest_B, r.warnings);
       },
-      py::arg("truth"), py::arg("samples"), py::arg("noise_var"), py::arg("force_noise_var"),
-      py::arg("signal_var"), py::arg("distribution"), py::arg("seed"));
+      py::arg("truth"), py::arg("options"));
 
   py::class_<MethodIdentification>(m, "MethodIdentification")
       .def_property_readonly("result", copied(&MethodIdentification::result))

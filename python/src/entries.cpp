@@ -5,6 +5,7 @@
 #include "spdfit/fit_request.hpp"
 #include "spdfit/hexapod/identify_request.hpp"
 #include "spdfit/hexapod/physical_request.hpp"
+#include "spdfit/hexapod/simulate_request.hpp"
 #include "spdfit/inertia_repair.hpp"
 #include "spdfit/nearest_request.hpp"
 #include "spdfit/payload/design.hpp"
@@ -58,6 +59,8 @@ const std::vector<Entry>& entries() {
       // A and B are positional; a_cols and b_cols (columns of a DataFrame) are spelled out in Python.
       {"hexapod.identify", "identify", {}, {"a", "b", "a_cols", "b_cols", "rows", "rest_rows", "time_col"}},
       {"physical.identify", "physical_fit", {}, {}},
+      // The truth is an array or a geometry (Python's own forms); the command line's directory.
+      {"hexapod.simulate", "simulate", {}, {"truth", "out"}},
       {"nearest_spd", "nearest", {}, {"corr", "factors", "factors_only"}},
       {"nearest_correlation", "nearest", {"corr"}, {"keep_diag", "via_corr"}},
       // The covariance repair keeps the variances; the correlation route (via_corr) is nearest_spd's.
@@ -89,6 +92,9 @@ std::vector<Keyword> keywords(const Entry& entry, std::optional<Method> method) 
   }
   if (entry.table == "regress") {
     return keywords_of(physical::regress_option_table(), entry, static_cast<physical::RegressRequest*>(nullptr));
+  }
+  if (entry.table == "simulate") {
+    return keywords_of(hexapod::simulate_option_table(), entry, static_cast<hexapod::SimulateRequest*>(nullptr));
   }
   if (entry.table == "inertia_repair") {
     return keywords_of(inertia_repair_option_table(), entry, static_cast<InertiaRepairRequest*>(nullptr));

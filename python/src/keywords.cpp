@@ -191,6 +191,11 @@ physical::RegressRequest regress_request(std::string_view entry_name, const py::
   return request_from(physical::regress_option_table(), entry(entry_name), kwargs, physical::RegressRequest{}, given);
 }
 
+hexapod::SimulateRequest simulate_request(std::string_view entry_name, const py::dict& kwargs,
+                                          std::vector<std::string_view>& given) {
+  return request_from(hexapod::simulate_option_table(), entry(entry_name), kwargs, hexapod::SimulateRequest{}, given);
+}
+
 InertiaRepairRequest inertia_repair_request(std::string_view entry_name, const py::dict& kwargs,
                                             std::vector<std::string_view>& given) {
   return request_from(inertia_repair_option_table(), entry(entry_name), kwargs, InertiaRepairRequest{}, given);

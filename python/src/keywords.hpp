@@ -10,6 +10,7 @@
 #include "entries.hpp"
 #include "spdfit/fit_request.hpp"
 #include "spdfit/hexapod/physical_request.hpp"
+#include "spdfit/hexapod/simulate_request.hpp"
 #include "spdfit/inertia_repair.hpp"
 #include "spdfit/method.hpp"
 #include "spdfit/nearest_request.hpp"
@@ -71,6 +72,8 @@ payload::DesignRequest design_request(std::string_view entry, const pybind11::di
                                       std::vector<std::string_view>& given);
 physical::RegressRequest regress_request(std::string_view entry, const pybind11::dict& kwargs,
                                          std::vector<std::string_view>& given);
+hexapod::SimulateRequest simulate_request(std::string_view entry, const pybind11::dict& kwargs,
+                                          std::vector<std::string_view>& given);
 InertiaRepairRequest inertia_repair_request(std::string_view entry, const pybind11::dict& kwargs,
                                             std::vector<std::string_view>& given);
 

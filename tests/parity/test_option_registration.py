@@ -21,12 +21,7 @@ CLI_BY_HAND = {
     "apps/spdfit/main.cpp": 5,  # global options: --quiet, --verbose, --index-col, --no-index-col, --version
     "apps/spdfit/command_demo.cpp": 7,
     "apps/spdfit/command_experiment.cpp": 22,
-    # 10: --preload (issue 42 item 1) joined the simulator's hand-registered options; they move to a
-    # library table with the simulator's request (issue 41).
-    "apps/spdfit/command_hexapod_simulate.cpp": 10,
     "apps/spdfit/command_linkage.cpp": 25,
-    "apps/spdfit/payload_options.cpp": 3,
-    "apps/spdfit/simulation_noise_options.cpp": 4,
 }
 
 # python/spdfit/: keyword-only parameters of public functions. Options from a table arrive in

@@ -364,3 +364,57 @@ def test_every_command_has_a_row():
         assert command in commands, command
         assert any(c.outcome != "ok" for c in CASES if c.cli and " ".join(c.cli[:2]).startswith(command)) or \
             command == "compare", f"{command}: no error case"
+
+
+# hexapod simulate writes files, not JSON: Python's spdfit.hexapod.simulate against the files the
+# command line writes (CSV with 17 significant digits: exact), for the generator's options of
+# data as logged (per-sensor noise, rows at rest, a preload, forces in kN) and a changed payload.
+SIMULATIONS = [
+    (["--noise-var", "0.86"], dict(noise_var=0.86)),
+    (["--samples", "40", "--noise-std-a", "0.01,0.02,0.03,0.01,0.01,0.01", "--noise-std-b", "0.1",
+      "--rest-samples", "20", "--scale-b", "0.001", "--preload", "21", "--seed", "7", "--distribution", "gaussian"],
+     dict(samples=40, noise_std_a=[0.01, 0.02, 0.03, 0.01, 0.01, 0.01], noise_std_b=0.1, rest_samples=20,
+          scale_b=0.001, preload=21.0, seed=7, distribution="gaussian")),
+    (["--noise-var", "0.1", "--geometry", "{G}", "--payload-mass", "12.5", "--payload-com", "0.01,0,-0.02",
+      "--payload-inertia", "0.1,0.12,0.09"],
+     dict(noise_var=0.1, geometry="{G}", payload_mass=12.5, payload_com=[0.01, 0.0, -0.02],
+          payload_inertia=[0.1, 0.12, 0.09])),
+]
+
+
+@pytest.mark.skipif(not CLI, reason="SPDFIT_CLI is not set")
+@pytest.mark.parametrize("cli_args,keywords", SIMULATIONS, ids=["thesis", "as logged", "payload"])
+def test_simulate_python_writes_what_the_cli_writes(cli_args, keywords, data, tmp_path):
+    geometry = str(data["files"]["G"])
+    args = [a.replace("{G}", geometry) for a in cli_args]
+    run = subprocess.run([CLI, "hexapod", "simulate", *args, "--out", str(tmp_path)], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    keywords = {k: (geometry if v == "{G}" else v) for k, v in keywords.items()}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sim = hexapod.simulate(**keywords)
+    read = lambda name: np.loadtxt(tmp_path / name, delimiter=",", ndmin=2)
+    assert np.array_equal(sim.A, read("A.csv")) and np.array_equal(sim.B, read("B.csv"))
+    assert np.array_equal(sim.truth, read("truth.csv"))
+    if "rest_samples" in keywords:
+        assert np.array_equal(sim.rest_A, read("rest_A.csv")) and np.array_equal(sim.rest_B, read("rest_B.csv"))
+    else:
+        assert sim.rest_A.shape[0] == 0
+
+
+@pytest.mark.skipif(not CLI, reason="SPDFIT_CLI is not set")
+@pytest.mark.parametrize("cli_args,keywords,code", [
+    (["--noise-var", "1", "--payload-mass", "3"], dict(noise_var=1.0, payload_mass=3.0), "option_conflict"),
+    (["--noise-std-a", "1"], dict(noise_std_a=1.0), "option_conflict"),
+    (["--noise-var", "1", "--preload", "1,2"], dict(noise_var=1.0, preload=[1.0, 2.0]), "option_value"),
+    (["--noise-var", "1", "--geometry", "{G}", "--payload-mass", "-1"],
+     dict(noise_var=1.0, geometry="{G}", payload_mass=-1.0), "option_value"),
+], ids=["payload without geometry", "std of A alone", "preload count", "negative mass"])
+def test_simulate_refuses_alike(cli_args, keywords, code, data, tmp_path):
+    geometry = str(data["files"]["G"])
+    run = subprocess.run([CLI, "hexapod", "simulate", *[a.replace("{G}", geometry) for a in cli_args], "--out",
+                          str(tmp_path)], capture_output=True, text=True)
+    assert run.returncode == 2, run.stderr
+    with pytest.raises(ValueError) as error:
+        hexapod.simulate(**{k: (geometry if v == "{G}" else v) for k, v in keywords.items()})
+    assert getattr(error.value, "code", None) == code, error.value
