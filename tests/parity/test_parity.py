@@ -19,7 +19,9 @@ import numpy as np
 import pytest
 
 import spdfit
+import spdfit.experiment as experiment
 import spdfit.hexapod as hexapod
+import spdfit.linkage as linkage
 import spdfit.payload as payload
 import spdfit.physical as physical
 
@@ -184,6 +186,26 @@ CASES = [
     Case("inertia repair: a floor of 1", "usage", ["inertia", "repair", "--min-eig-rel", "1", "{body}"],
          lambda d: physical.inertia_repair(2.0, [0.01, 0.0, -0.02], np.diag([0.1, 0.2, 0.5]), min_eig_rel=1.0),
          None, code="option_value"),
+    # linkage (no MATLAB function)
+    Case("linkage synthesize --steering", "ok", ["linkage", "synthesize", "--steering", "--rho", "0.5", "--json"],
+         lambda d: linkage.synthesize(steering=0.5).structural.k, None, ("structural", "k")),
+    Case("linkage synthesize --function", "ok",
+         ["linkage", "synthesize", "--function", "log10", "--x-range", "1:10", "--psi-range", "0:60", "--phi-range",
+          "0:60", "--alpha", "90", "--beta", "90", "--json"],
+         lambda d: linkage.synthesize(function="log10", x_range=(1, 10), psi_range=(0, 60), phi_range=(0, 60), alpha=90,
+                                      beta=90).structural.k,
+         None, ("structural", "k")),
+    Case("linkage synthesize --pairs", "ok", ["linkage", "synthesize", "--pairs", "{pairs}", "--json"],
+         lambda d: linkage.synthesize(d["pairs"][:, 0], d["pairs"][:, 1]).design.k, None, ("design", "k")),
+    Case("linkage synthesize: no prescription", "usage", ["linkage", "synthesize"],
+         lambda d: linkage.synthesize(), None),
+    Case("linkage analyze", "ok", ["linkage", "analyze", "--lengths", "1,0.6,0.7,0.6", "--json"],
+         lambda d: linkage.analyze([1, 0.6, 0.7, 0.6]).k, None, ("k",)),
+    # experiment thesis (no MATLAB function)
+    Case("experiment thesis", "ok",
+         ["experiment", "thesis", "--noise-var", "0.86", "--trials", "5", "--samples", "20", "--seed", "3", "--json"],
+         lambda d: next(m.summary.mean for m in experiment.thesis(0.86, trials=5, samples=20, seed=3).methods
+                        if m.method == "spde"), None, ("methods", "spde", "mean")),
     # compare (no MATLAB function: the command line against Python's fit_all)
     Case("compare", "ok", ["compare", "--json", "{A}", "{B}"],
          lambda d: spdfit.fit_all(d["A"], d["B"])["spd-tls"].X, None,
@@ -207,6 +229,8 @@ def data(tmp_path_factory):
         "Cbad": np.array([[1.0, 2.0, 0.0], [2.0, 1.0, 0.0], [0.0, 0.0, 1.0]]),
         "I3": np.eye(3),
     }
+    # linkage synthesize --pairs: the exact pairs (degrees) of a crank-rocker.
+    d["pairs"] = spdfit.read_matrix(SOURCE / "examples" / "linkage" / "crank_rocker_pairs.csv")
     # physical regress: one body's 10 parameters (physically consistent) and a random regressor.
     phi = np.array([2.0, 0.02, -0.04, 0.06, 0.1, 0.001, 0.002, 0.12, 0.003, 0.09])
     d["Y"] = rng.standard_normal((60, 10))
@@ -360,10 +384,10 @@ def test_every_command_has_a_row():
     # with options, an error case.
     commands = {" ".join(a for a in c.cli[:2] if not a.startswith("-") and "{" not in a) for c in CASES if c.cli}
     for command in ("fit", "nearest", "solve", "hexapod identify", "hexapod model", "compare", "physical regress",
-                    "payload identify", "inertia repair"):
+                    "payload identify", "inertia repair", "linkage synthesize", "linkage analyze", "experiment thesis"):
         assert command in commands, command
         assert any(c.outcome != "ok" for c in CASES if c.cli and " ".join(c.cli[:2]).startswith(command)) or \
-            command == "compare", f"{command}: no error case"
+            command in ("compare", "linkage analyze", "experiment thesis"), f"{command}: no error case"
 
 
 # hexapod simulate writes files, not JSON: Python's spdfit.hexapod.simulate against the files the
