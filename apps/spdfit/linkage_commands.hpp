@@ -1,4 +1,4 @@
-// The two halves of `spdfit linkage`: their options and actions (CLI internal).
+// `spdfit linkage analyze`: its options and action, and the number formats of its report (CLI internal).
 #pragma once
 
 #include <cmath>
@@ -15,26 +15,12 @@
 
 namespace spdfit::cli {
 
-/// The options of `spdfit linkage synthesize` as parsed.
-struct SynthesizeOptionsCli {
-  std::string pairs, weights, output;
-  bool radians = false, steering = false, fit_dial_zeros = false, json = false, positions = false;
-  std::optional<double> rho, alpha, beta;
-  std::string function, x_range, psi_range, phi_range, spacing = "uniform";
-  int points = 21;
-  double tolerance = 1e-10, threshold = -1.0;
-  int max_iterations = 100;
-};
-
 /// The options of `spdfit linkage analyze` as parsed.
 struct AnalyzeOptionsCli {
   std::string lengths, psi_range = "0:360", output;
   int points = 37;
   bool json = false;
 };
-
-/// Parse the prescribed positions, call linkage::synthesize, print the result.
-void run_synthesize(const SynthesizeOptionsCli& options, const GlobalOptions& global);
 
 /// Call linkage::analyze on the lengths and print the table.
 void run_analyze(const AnalyzeOptionsCli& options);

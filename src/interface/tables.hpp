@@ -8,7 +8,9 @@
 #include "spdfit/hexapod/physical_request.hpp"
 #include "spdfit/hexapod/identify_request.hpp"
 #include "spdfit/hexapod/model_request.hpp"
+#include "spdfit/hexapod/simulate_request.hpp"
 #include "spdfit/inertia_repair.hpp"
+#include "spdfit/linkage/synthesize_request.hpp"
 #include "spdfit/nearest_request.hpp"
 #include "spdfit/output_request.hpp"
 #include "spdfit/payload/design.hpp"
@@ -36,6 +38,8 @@ void for_each_option_table(Visit&& visit) {
   visit(physical::regress_option_table());
   visit(inertia_repair_option_table());
   visit(hexapod::model_option_table());
+  visit(hexapod::simulate_option_table());
+  visit(linkage::synthesize_option_table());
 }
 
 }  // namespace spdfit::detail

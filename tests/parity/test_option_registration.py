@@ -21,7 +21,7 @@ CLI_BY_HAND = {
     "apps/spdfit/main.cpp": 5,  # global options: --quiet, --verbose, --index-col, --no-index-col, --version
     "apps/spdfit/command_demo.cpp": 7,
     "apps/spdfit/command_experiment.cpp": 22,
-    "apps/spdfit/command_linkage.cpp": 25,
+    "apps/spdfit/command_linkage.cpp": 5,  # linkage analyze
 }
 
 # python/spdfit/: keyword-only parameters of public functions. Options from a table arrive in

@@ -1,0 +1,401 @@
+// `linkage synthesize`'s option table, workflow and renderings.
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+#include <nlohmann/json.hpp>
+
+#include "spdfit/format.hpp"
+#include "spdfit/linkage/pairs_file.hpp"
+#include "spdfit/linkage/synthesize_request.hpp"
+
+namespace spdfit::linkage {
+
+namespace {
+
+using SynthesizeSpec = OptionSpec<SynthesizeRequest>;
+
+constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180.0;
+double in_degrees(double radians) { return radians / kRadiansPerDegree; }
+double in_radians(double degrees) { return degrees * kRadiansPerDegree; }
+
+// Numbers for people: 6 significant digits, or 4 decimals; "-" for NaN.
+std::string full_g(double value) { return std::isnan(value) ? "-" : format_number(value, Precision::Full); }
+std::string four_decimals(double value) {
+  if (std::isnan(value)) return "-";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4f", value);
+  return buffer;
+}
+
+// JSON numbers: finite as themselves, NaN and infinities as null.
+nlohmann::json value_json(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr); }
+nlohmann::json numbers_json(const Eigen::VectorXd& v) {
+  nlohmann::json out = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < v.size(); ++i) out.push_back(value_json(v(i)));
+  return out;
+}
+nlohmann::json span_json(const AngleRange& range) {
+  return {{"min", in_degrees(range.min)}, {"max", in_degrees(range.max)}};
+}
+
+SynthesizeSpec synthesize_option(std::string_view name, std::string_view cli, OptionType type,
+                                 std::string_view value_name, std::string_view help,
+                                 std::string_view default_text = {}) {
+  SynthesizeSpec spec;
+  spec.name = name;
+  spec.cli = cli;
+  spec.type = type;
+  spec.value_name = value_name;
+  spec.help = help;
+  spec.default_text = default_text;
+  if (type == OptionType::Flag) spec.nullable = false;
+  return spec;
+}
+
+std::vector<std::string_view> function_choices() {
+  std::vector<std::string_view> out;
+  for (const std::string& name : function_names()) out.push_back(name);
+  return out;
+}
+
+std::vector<SynthesizeSpec> make_synthesize_table() {
+  std::vector<SynthesizeSpec> table;
+  const auto text = [](std::string SynthesizeRequest::*field) {
+    return [field](SynthesizeRequest& r, const OptionValue& v) { r.*field = std::get<std::string>(v); };
+  };
+  const auto flag = [](bool SynthesizeRequest::*field) {
+    return [field](SynthesizeRequest& r, const OptionValue& v) { r.*field = std::get<bool>(v); };
+  };
+  SynthesizeSpec pairs = synthesize_option("pairs", "--pairs", OptionType::File, "FILE",
+                                           "File of input-output pairs: columns psi, phi (degrees; a header row "
+                                           "allowed)");
+  pairs.set = text(&SynthesizeRequest::pairs);
+  table.push_back(pairs);
+  SynthesizeSpec weights = synthesize_option("weights", "--weights", OptionType::File, "FILE",
+                                             "File of one positive weight per pair (W in 1/2 d^T W d)");
+  weights.set = text(&SynthesizeRequest::weights);
+  table.push_back(weights);
+  SynthesizeSpec radians = synthesize_option("radians", "--radians", OptionType::Flag, "",
+                                             "The `pairs` angles are in radians");
+  radians.set = flag(&SynthesizeRequest::radians);
+  table.push_back(radians);
+  SynthesizeSpec steering = synthesize_option("steering", "--steering", OptionType::Flag, "",
+                                              "Prescribe the steering condition (eq. 3.5); needs `rho`");
+  steering.set = flag(&SynthesizeRequest::steering);
+  table.push_back(steering);
+  SynthesizeSpec rho = synthesize_option("rho", "--rho", OptionType::Real, "RHO",
+                                         "Steering: track / wheelbase (e.g. 0.5)");
+  rho.set = [](SynthesizeRequest& r, const OptionValue& v) { r.rho = std::get<double>(v); };
+  table.push_back(rho);
+  SynthesizeSpec function = synthesize_option("function", "--function", OptionType::Choice, "NAME",
+                                              "Prescribe y = f(x): linear, square, cube, sqrt, reciprocal, exp, ln, "
+                                              "log10, sin, cos, tan");
+  function.choices = function_choices();
+  function.set = text(&SynthesizeRequest::function);
+  table.push_back(function);
+  SynthesizeSpec x_range = synthesize_option("x_range", "--x-range", OptionType::Text, "LO:HI",
+                                             "`function`: the x range LO:HI");
+  x_range.set = text(&SynthesizeRequest::x_range);
+  table.push_back(x_range);
+  SynthesizeSpec psi_range = synthesize_option("psi_range", "--psi-range", OptionType::Text, "LO:HI",
+                                               "Input angle changes LO:HI (degrees) from the dial zero (`steering` "
+                                               "default -30:30)");
+  psi_range.set = text(&SynthesizeRequest::psi_range);
+  table.push_back(psi_range);
+  SynthesizeSpec phi_range = synthesize_option("phi_range", "--phi-range", OptionType::Text, "LO:HI",
+                                               "`function`: output angle changes LO:HI (degrees)");
+  phi_range.set = text(&SynthesizeRequest::phi_range);
+  table.push_back(phi_range);
+  SynthesizeSpec points = synthesize_option("points", "--points", OptionType::Integer, "N",
+                                            "Number of prescribed positions", "21");
+  points.range = {1.0, double(std::numeric_limits<int>::max())};
+  points.nullable = false;
+  points.set = [](SynthesizeRequest& r, const OptionValue& v) { r.points = int(std::get<std::int64_t>(v)); };
+  points.get = [](const SynthesizeRequest& r) -> std::optional<OptionValue> { return std::int64_t{r.points}; };
+  table.push_back(points);
+  SynthesizeSpec spacing = synthesize_option("spacing", "--spacing", OptionType::Choice, "",
+                                             "Input spacing: uniform or chebyshev", "uniform");
+  spacing.choices = {"uniform", "chebyshev"};
+  spacing.nullable = false;
+  spacing.set = [](SynthesizeRequest& r, const OptionValue& v) {
+    r.spacing = std::get<std::string>(v) == "chebyshev" ? Spacing::Chebyshev : Spacing::Uniform;
+  };
+  spacing.get = [](const SynthesizeRequest& r) -> std::optional<OptionValue> {
+    return std::string(r.spacing == Spacing::Chebyshev ? "chebyshev" : "uniform");
+  };
+  table.push_back(spacing);
+  SynthesizeSpec alpha = synthesize_option("alpha", "--alpha", OptionType::Real, "DEG",
+                                           "Input dial zero (degrees): psi = alpha + delta psi (default 0; "
+                                           "`steering`: 90 - atan(rho/2))");
+  alpha.set = [](SynthesizeRequest& r, const OptionValue& v) { r.alpha = std::get<double>(v); };
+  table.push_back(alpha);
+  SynthesizeSpec beta = synthesize_option("beta", "--beta", OptionType::Real, "DEG",
+                                          "Output dial zero (degrees): phi = beta + delta phi (default 0; "
+                                          "`steering`: 90 + atan(rho/2))");
+  beta.set = [](SynthesizeRequest& r, const OptionValue& v) { r.beta = std::get<double>(v); };
+  table.push_back(beta);
+  SynthesizeSpec fit = synthesize_option("fit_dial_zeros", "--fit-dial-zeros", OptionType::Flag, "",
+                                         "Also solve for alpha and beta (eq. 3.7); `alpha`/`beta` are then the start");
+  fit.set = flag(&SynthesizeRequest::fit_dial_zeros);
+  table.push_back(fit);
+  SynthesizeSpec tolerance = synthesize_option("tolerance", "--tolerance", OptionType::Real, "",
+                                               "Gauss-Newton stops when ||Delta k|| < this", "1e-10");
+  tolerance.range = {0.0, std::numeric_limits<double>::infinity(), true, false};
+  tolerance.nullable = false;
+  tolerance.set = [](SynthesizeRequest& r, const OptionValue& v) { r.tolerance = std::get<double>(v); };
+  tolerance.get = [](const SynthesizeRequest& r) -> std::optional<OptionValue> { return r.tolerance; };
+  table.push_back(tolerance);
+  SynthesizeSpec iterations = synthesize_option("max_iterations", "--max-iterations", OptionType::Integer, "",
+                                                "Gauss-Newton iteration limit", "100");
+  iterations.range = {1.0, double(std::numeric_limits<int>::max())};
+  iterations.nullable = false;
+  iterations.set = [](SynthesizeRequest& r, const OptionValue& v) { r.max_iterations = int(std::get<std::int64_t>(v)); };
+  iterations.get = [](const SynthesizeRequest& r) -> std::optional<OptionValue> { return std::int64_t{r.max_iterations}; };
+  table.push_back(iterations);
+  SynthesizeSpec threshold = synthesize_option("threshold", "--threshold", OptionType::Real, "",
+                                               "Relative singular-value cut-off for S", "max(m,3)*eps, notes 3.8");
+  threshold.range = {0.0, 1.0, false, true};
+  threshold.set = [](SynthesizeRequest& r, const OptionValue& v) { r.threshold = std::get<double>(v); };
+  table.push_back(threshold);
+  SynthesizeSpec positions = synthesize_option("positions", "--positions", OptionType::Flag, "",
+                                               "Also print every position: prescribed and generated phi");
+  positions.set = flag(&SynthesizeRequest::positions);
+  table.push_back(positions);
+  for (SynthesizeSpec& spec : output_options(&SynthesizeRequest::output, {"json", "output"},
+                                             {"Print the result as JSON", "Write to FILE instead of stdout"})) {
+    table.push_back(std::move(spec));
+  }
+  return table;
+}
+
+bool named(const std::vector<std::string_view>& given, std::string_view name) {
+  for (std::string_view g : given) {
+    if (g == name) return true;
+  }
+  return false;
+}
+
+// "a:b" as two finite numbers: OptionError naming `option` otherwise.
+std::pair<double, double> angle_span(const std::string& text, const char* option) {
+  const auto number = [](const std::string& t, double& value) {
+    std::size_t used = 0;
+    try {
+      value = std::stod(t, &used);
+    } catch (const std::exception&) {
+      return false;
+    }
+    return used == t.size() && std::isfinite(value);
+  };
+  const std::size_t colon = text.find(':');
+  double lo = 0.0, hi = 0.0;
+  if (colon == std::string::npos || !number(text.substr(0, colon), lo) || !number(text.substr(colon + 1), hi)) {
+    throw OptionError("`" + std::string(option) + "` '" + text + "' is not a range LO:HI of two numbers",
+                      Code::OptionValue, option);
+  }
+  return {lo, hi};
+}
+
+nlohmann::json degrees_json(const Eigen::VectorXd& v) { return numbers_json(Eigen::VectorXd(v / kRadiansPerDegree)); }
+
+nlohmann::json solution_json(const LinkageSolution& s, bool with_iterations) {
+  nlohmann::json out;
+  out["k"] = numbers_json(s.k);
+  if (s.lengths) {
+    out["lengths"] = {{"a1", s.lengths->a1}, {"a2", s.lengths->a2}, {"a3", s.lengths->a3}, {"a4", s.lengths->a4}};
+  } else {
+    out["lengths"] = nullptr;
+  }
+  out["design_error_norm"] = value_json(s.design_error_norm);
+  out["structural_error_rms_deg"] = value_json(in_degrees(s.structural_error_rms));
+  out["structural_error_max_deg"] = value_json(in_degrees(s.structural_error_max));
+  if (with_iterations) {
+    out["iterations"] = s.iterations;
+    out["final_step_norm"] = s.final_step_norm;
+  }
+  out["dial_zeros_deg"] = {{"alpha", in_degrees(s.dial_zeros.alpha)}, {"beta", in_degrees(s.dial_zeros.beta)}};
+  out["phi_generated_deg"] = degrees_json(s.phi_generated);
+  if (s.check) {
+    out["grashof"] = to_string(s.check->grashof);
+    out["transmission_angle_deg"] = span_json(s.check->transmission);
+    out["branch_defect"] = s.check->branch_defect;
+    out["branch_defect_reason"] = s.check->branch_defect_reason;
+    out["dead_points_deg"] = numbers_json(Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(
+                                             s.check->dead_points.data(), Eigen::Index(s.check->dead_points.size())) /
+                                         kRadiansPerDegree));
+  }
+  return out;
+}
+
+nlohmann::json synthesis_json(const SynthesisResult& r, const SynthesisRun& p) {
+  nlohmann::json out;
+  out["design"] = solution_json(r.design, false);
+  out["structural"] = solution_json(r.structural, true);
+  out["condition_number"] = value_json(r.condition_number);
+  out["scaled_condition_number"] = value_json(r.scaled_condition_number);
+  out["rank_decided_on"] = "column-scaled";
+  const MotionCheck& check = *r.structural.check;
+  out["grashof"] = to_string(check.grashof);
+  out["transmission_angle_deg"] = span_json(check.transmission);
+  out["branch_defect"] = check.branch_defect;
+  out["m"] = r.positions;
+  out["source"] = p.source;
+  out["precision_point"] = r.precision_point;
+  out["dial_zeros_fitted"] = r.dial_zeros_fitted;
+  out["rank"] = r.rank;
+  out["used_svd"] = r.used_svd;
+  out["branch"] = r.branch;
+  out["pairs"] = {{"psi_deg", degrees_json(r.psi)}, {"phi_deg", degrees_json(r.phi)}};
+  out["weights"] = p.weights.size() ? numbers_json(p.weights) : nlohmann::json(nullptr);
+  out["warnings"] = texts(r.warnings);
+  return out;
+}
+
+std::string synthesis_text(const SynthesisResult& r, const SynthesisRun& p, bool positions) {
+  std::ostringstream out;
+  const LinkageSolution& d = r.design;
+  const LinkageSolution& s = r.structural;
+  out << "Four-bar function generator, " << r.positions << " prescribed positions: " << p.source
+      << (p.weights.size() ? ", weighted" : "") << "\n";
+  out << "synthesis matrix S: condition number " << full_g(r.condition_number) << ", rank " << r.rank
+      << (r.used_svd ? " (edited SVD, minimum norm)" : "") << " (column-scaled: condition number "
+      << full_g(r.scaled_condition_number) << ")" << (r.precision_point ? "; precision points: exact" : "")
+      << "\nassembly branch followed: " << (r.branch > 0 ? "+1" : "-1") << "\n\n";
+  char line[200];
+  const std::string structural_title =
+      r.precision_point ? "structural (= design)"
+                        : "structural (Gauss-Newton, " + std::to_string(s.iterations) + " it.)";
+  std::snprintf(line, sizeof line, "%-26s %-20s %s\n", "", "design error", structural_title.c_str());
+  out << line;
+  auto row = [&](const char* name, const std::string& a, const std::string& b) {
+    std::snprintf(line, sizeof line, "%-26s %-20s %s\n", name, a.c_str(), b.c_str());
+    out << line;
+  };
+  for (int i = 0; i < 3; ++i) row(i == 0 ? "k1" : (i == 1 ? "k2" : "k3"), full_g(d.k(i)), full_g(s.k(i)));
+  auto length = [](const LinkageSolution& x, int i) {
+    if (!x.lengths) return std::string("-");
+    const double a[4] = {x.lengths->a1, x.lengths->a2, x.lengths->a3, x.lengths->a4};
+    return full_g(a[i]);
+  };
+  const char* names[4] = {"a1 (ground)", "a2 (input)", "a3 (coupler)", "a4 (output)"};
+  for (int i = 0; i < 4; ++i) row(names[i], length(d, i), length(s, i));
+  row("alpha, beta (deg)", four_decimals(in_degrees(d.dial_zeros.alpha)) + ", " + four_decimals(in_degrees(d.dial_zeros.beta)),
+      four_decimals(in_degrees(s.dial_zeros.alpha)) + ", " + four_decimals(in_degrees(s.dial_zeros.beta)));
+  row("design error norm", full_g(d.design_error_norm), full_g(s.design_error_norm));
+  row("structural RMS (deg)", four_decimals(in_degrees(d.structural_error_rms)), four_decimals(in_degrees(s.structural_error_rms)));
+  row("structural max (deg)", four_decimals(in_degrees(d.structural_error_max)), four_decimals(in_degrees(s.structural_error_max)));
+  auto grashof = [](const LinkageSolution& x) { return x.check ? std::string(to_string(x.check->grashof)) : "-"; };
+  row("Grashof type", grashof(d), grashof(s));
+  auto transmission = [](const LinkageSolution& x) {
+    return x.check ? four_decimals(in_degrees(x.check->transmission.min)) + " .. " + four_decimals(in_degrees(x.check->transmission.max)) : "-";
+  };
+  row("transmission angle (deg)", transmission(d), transmission(s));
+  auto defect = [](const LinkageSolution& x) {
+    return x.check ? std::string(x.check->branch_defect ? "YES" : "no") : "-";
+  };
+  row("branch defect", defect(d), defect(s));
+  if (s.check && s.check->branch_defect) out << "branch defect: " << s.check->branch_defect_reason << "\n";
+  if (positions) {
+    // Angle changes from each solution's own dial zeros, so that fitted zeros compare directly.
+    out << "\n";
+    std::snprintf(line, sizeof line, "%14s %14s %18s %18s %14s %14s\n", "dpsi (deg)", "dphi (deg)",
+                  "dphi design", "dphi structural", "s design", "s structural");
+    out << line;
+    auto error = [&](const LinkageSolution& x, Eigen::Index i) -> double {
+      if (x.phi_generated.size() == 0) return std::nan("");
+      return in_degrees(wrap_angle(p.pairs.delta_phi(i) - (x.phi_generated(i) - x.dial_zeros.beta)));
+    };
+    for (Eigen::Index i = 0; i < p.pairs.delta_psi.size(); ++i) {
+      const double dphi = in_degrees(p.pairs.delta_phi(i)), sd = error(d, i), ss = error(s, i);
+      std::snprintf(line, sizeof line, "%14.4f %14.4f %18.4f %18.4f %14.6f %14.6f\n", in_degrees(p.pairs.delta_psi(i)),
+                    dphi, dphi - sd, dphi - ss, sd, ss);
+      out << line;
+    }
+  }
+  return out.str();
+}
+
+}  // namespace
+
+const std::vector<OptionSpec<SynthesizeRequest>>& synthesize_option_table() {
+  static const std::vector<OptionSpec<SynthesizeRequest>> table = make_synthesize_table();
+  return table;
+}
+
+SynthesisRun run_synthesize(const SynthesizeRequest& o, const std::vector<std::string_view>& given) {
+  const auto usage = [](const std::string& message, const char* option = "") {
+    return OptionError(message, Code::OptionConflict, option);
+  };
+  const int sources = !o.pairs.empty() + o.steering + !o.function.empty();
+  if (sources != 1) throw usage("give exactly one of `pairs` FILE, `steering` or `function` NAME");
+  const bool generated = o.pairs.empty();
+  if (!generated && (named(given, "points") || named(given, "spacing") || named(given, "psi_range") ||
+                     named(given, "phi_range") || named(given, "x_range"))) {
+    throw usage("`points`, `spacing`, `x_range`, `psi_range` and `phi_range` describe a prescribed function; "
+                "they do not apply to `pairs`");
+  }
+  if (o.radians && generated) throw usage("`radians` applies to the angles of a `pairs` file", "radians");
+  if (o.rho && !o.steering) throw usage("`rho` applies to `steering`", "rho");
+
+  SynthesisOptions options;
+  options.fit_dial_zeros = o.fit_dial_zeros;
+  options.gauss_newton.tolerance = o.tolerance;
+  options.gauss_newton.max_iterations = o.max_iterations;
+  if (o.threshold) {
+    options.rank_tolerance = *o.threshold;
+    options.gauss_newton.rank_tolerance = *o.threshold;
+  }
+  options.alpha = o.alpha ? std::optional<double>(in_radians(*o.alpha)) : std::nullopt;
+  options.beta = o.beta ? std::optional<double>(in_radians(*o.beta)) : std::nullopt;
+
+  SynthesisRun run;
+  if (!generated) {
+    PairsFileOptions file;
+    file.radians = o.radians;
+    file.min_pairs = o.fit_dial_zeros ? 5 : 3;
+    run.pairs = read_pairs(o.pairs, file);
+    run.source = o.pairs;
+  } else if (o.steering) {
+    if (!o.rho) throw usage("`steering` needs `rho` (track / wheelbase, e.g. 0.5)", "steering");
+    if (!o.phi_range.empty() || !o.x_range.empty()) {
+      throw usage("`steering` takes `psi_range` only: the output follows from the steering condition", "steering");
+    }
+    const auto [lo, hi] = o.psi_range.empty() ? std::make_pair(-30.0, 30.0) : angle_span(o.psi_range, "psi_range");
+    if (!(lo < hi)) throw OptionError("`psi_range` must have LO < HI", Code::OptionValue, "psi_range");
+    run.pairs = steering_pairs(*o.rho, in_radians(lo), in_radians(hi), o.points, o.spacing);
+    if (!o.fit_dial_zeros && !o.alpha && !o.beta) {
+      const DialZeros zeros = trapezoid_dial_zeros(*o.rho);
+      options.alpha = zeros.alpha;
+      options.beta = zeros.beta;
+    }
+    run.source = "steering condition (eq. 3.5), rho = " + full_g(*o.rho);
+  } else {
+    if (o.x_range.empty() || o.psi_range.empty() || o.phi_range.empty()) {
+      throw usage("`function` needs `x_range`, `psi_range` and `phi_range`", "function");
+    }
+    const auto [x_lo, x_hi] = angle_span(o.x_range, "x_range");
+    const auto [psi_lo, psi_hi] = angle_span(o.psi_range, "psi_range");
+    const auto [phi_lo, phi_hi] = angle_span(o.phi_range, "phi_range");
+    if (!(x_lo < x_hi)) throw OptionError("`x_range` must have LO < HI", Code::OptionValue, "x_range");
+    try {
+      run.pairs = function_pairs(o.function, x_lo, x_hi, in_radians(psi_lo), in_radians(psi_hi), in_radians(phi_lo),
+                                 in_radians(phi_hi), o.points, o.spacing);
+    } catch (const std::invalid_argument& e) {
+      throw OptionError(std::string("`function`: ") + e.what(), Code::OptionValue, "function");
+    }
+    run.source = "y = " + o.function + "(x), x in [" + full_g(x_lo) + ", " + full_g(x_hi) + "]";
+  }
+  if (!o.weights.empty()) run.weights = read_weights(o.weights, run.pairs.delta_psi.size());
+  run.result = synthesize(run.pairs.delta_psi, run.pairs.delta_phi, run.weights, options);
+  return run;
+}
+
+std::string to_json(const SynthesisRun& run) { return synthesis_json(run.result, run).dump(2) + "\n"; }
+
+std::string report(const SynthesisRun& run, bool positions) { return synthesis_text(run.result, run, positions); }
+
+}  // namespace spdfit::linkage
