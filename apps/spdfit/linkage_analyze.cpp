@@ -30,7 +30,7 @@ void run_analyze(const AnalyzeOptionsCli& o) {
     if (!(x > 0.0)) throw UsageError("--lengths must all be positive");
   }
   const FourBar bar{a[0], a[1], a[2], a[3]};
-  const auto [lo, hi] = parse_range(o.psi_range, "--psi-range");
+  const auto [lo, hi] = parse_range(o.psi_range, "psi_range");
   if (!(lo < hi)) throw UsageError("--psi-range must have LO < HI");
   if (o.points < 2) throw UsageError("--points must be at least 2");
   const Analysis r = analyze(bar, spaced_points(radians(lo), radians(hi), o.points, Spacing::Uniform));

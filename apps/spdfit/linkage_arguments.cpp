@@ -4,6 +4,8 @@
 #include <sstream>
 
 #include "cli.hpp"
+#include "spdfit/linkage/synthesize_request.hpp"
+#include "spdfit/spelling.hpp"
 
 namespace spdfit::cli {
 
@@ -22,13 +24,11 @@ bool parse_number(const std::string& text, double& value) {
 }  // namespace
 
 std::pair<double, double> parse_range(const std::string& text, const std::string& option) {
-  const std::size_t colon = text.find(':');
-  double lo = 0.0, hi = 0.0;
-  if (colon == std::string::npos || !parse_number(text.substr(0, colon), lo) ||
-      !parse_number(text.substr(colon + 1), hi)) {
-    throw UsageError(option + " '" + text + "' is not a range LO:HI of two numbers");
+  try {
+    return linkage::parse_angle_range(text, option);
+  } catch (const OptionError& e) {
+    throw UsageError(spell_options(e.what(), Frontend::Cli), e.code());
   }
-  return {lo, hi};
 }
 
 std::vector<double> parse_list(const std::string& text, std::size_t count, const std::string& option) {

@@ -7,7 +7,8 @@
 
 namespace spdfit::cli {
 
-/// "a:b" as two finite numbers; throws UsageError naming `option` otherwise.
+/// "a:b" as two finite numbers (linkage::parse_angle_range); throws UsageError naming the option
+/// (`option`: its library name, "psi_range") otherwise.
 std::pair<double, double> parse_range(const std::string& text, const std::string& option);
 
 /// "x1,x2,...,xn" as exactly `count` finite numbers; throws UsageError naming `option` otherwise.

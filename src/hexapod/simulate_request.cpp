@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "interface/option_builders.hpp"
 #include "spdfit/hexapod/model.hpp"
 #include "spdfit/hexapod/simulate_request.hpp"
 #include "spdfit/hexapod/simulation_warnings.hpp"
@@ -17,15 +18,7 @@ using SimulateSpec = OptionSpec<SimulateRequest>;
 
 SimulateSpec simulate_option(std::string_view name, std::string_view cli, OptionType type, std::string_view value_name,
                              std::string_view help, std::string_view default_text = {}) {
-  SimulateSpec spec;
-  spec.name = name;
-  spec.cli = cli;
-  spec.python = name;
-  spec.type = type;
-  spec.value_name = value_name;
-  spec.help = help;
-  spec.default_text = default_text;
-  return spec;
+  return spdfit::detail::option_entry<SimulateRequest>(name, cli, name, type, value_name, help, default_text);
 }
 
 Eigen::VectorXd vector_of(const OptionValue& v) {

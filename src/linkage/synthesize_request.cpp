@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "interface/option_builders.hpp"
 #include "spdfit/format.hpp"
 #include "spdfit/linkage/pairs_file.hpp"
 #include "spdfit/linkage/synthesize_request.hpp"
@@ -46,15 +47,7 @@ nlohmann::json span_json(const AngleRange& range) {
 SynthesizeSpec synthesize_option(std::string_view name, std::string_view cli, OptionType type,
                                  std::string_view value_name, std::string_view help,
                                  std::string_view default_text = {}) {
-  SynthesizeSpec spec;
-  spec.name = name;
-  spec.cli = cli;
-  spec.type = type;
-  spec.value_name = value_name;
-  spec.help = help;
-  spec.default_text = default_text;
-  if (type == OptionType::Flag) spec.nullable = false;
-  return spec;
+  return spdfit::detail::option_entry<SynthesizeRequest>(name, cli, "", type, value_name, help, default_text);
 }
 
 std::vector<std::string_view> function_choices() {
@@ -178,26 +171,6 @@ bool named(const std::vector<std::string_view>& given, std::string_view name) {
     if (g == name) return true;
   }
   return false;
-}
-
-// "a:b" as two finite numbers: OptionError naming `option` otherwise.
-std::pair<double, double> angle_span(const std::string& text, const char* option) {
-  const auto number = [](const std::string& t, double& value) {
-    std::size_t used = 0;
-    try {
-      value = std::stod(t, &used);
-    } catch (const std::exception&) {
-      return false;
-    }
-    return used == t.size() && std::isfinite(value);
-  };
-  const std::size_t colon = text.find(':');
-  double lo = 0.0, hi = 0.0;
-  if (colon == std::string::npos || !number(text.substr(0, colon), lo) || !number(text.substr(colon + 1), hi)) {
-    throw OptionError("`" + std::string(option) + "` '" + text + "' is not a range LO:HI of two numbers",
-                      Code::OptionValue, option);
-  }
-  return {lo, hi};
 }
 
 nlohmann::json degrees_json(const Eigen::VectorXd& v) { return numbers_json(Eigen::VectorXd(v / kRadiansPerDegree)); }
@@ -326,6 +299,24 @@ const std::vector<OptionSpec<SynthesizeRequest>>& synthesize_option_table() {
   return table;
 }
 
+std::pair<double, double> parse_angle_range(const std::string& text, const std::string& option) {
+  const auto number = [](const std::string& t, double& value) {
+    std::size_t used = 0;
+    try {
+      value = std::stod(t, &used);
+    } catch (const std::exception&) {
+      return false;
+    }
+    return used == t.size() && std::isfinite(value);
+  };
+  const std::size_t colon = text.find(':');
+  double lo = 0.0, hi = 0.0;
+  if (colon == std::string::npos || !number(text.substr(0, colon), lo) || !number(text.substr(colon + 1), hi)) {
+    throw OptionError("`" + option + "` '" + text + "' is not a range LO:HI of two numbers", Code::OptionValue, option);
+  }
+  return {lo, hi};
+}
+
 SynthesisRun run_synthesize(const SynthesizeRequest& o, const std::vector<std::string_view>& given) {
   const auto usage = [](const std::string& message, const char* option = "") {
     return OptionError(message, Code::OptionConflict, option);
@@ -364,7 +355,7 @@ SynthesisRun run_synthesize(const SynthesizeRequest& o, const std::vector<std::s
     if (!o.phi_range.empty() || !o.x_range.empty()) {
       throw usage("`steering` takes `psi_range` only: the output follows from the steering condition", "steering");
     }
-    const auto [lo, hi] = o.psi_range.empty() ? std::make_pair(-30.0, 30.0) : angle_span(o.psi_range, "psi_range");
+    const auto [lo, hi] = o.psi_range.empty() ? std::make_pair(-30.0, 30.0) : parse_angle_range(o.psi_range, "psi_range");
     if (!(lo < hi)) throw OptionError("`psi_range` must have LO < HI", Code::OptionValue, "psi_range");
     run.pairs = steering_pairs(*o.rho, in_radians(lo), in_radians(hi), o.points, o.spacing);
     if (!o.fit_dial_zeros && !o.alpha && !o.beta) {
@@ -377,9 +368,9 @@ SynthesisRun run_synthesize(const SynthesizeRequest& o, const std::vector<std::s
     if (o.x_range.empty() || o.psi_range.empty() || o.phi_range.empty()) {
       throw usage("`function` needs `x_range`, `psi_range` and `phi_range`", "function");
     }
-    const auto [x_lo, x_hi] = angle_span(o.x_range, "x_range");
-    const auto [psi_lo, psi_hi] = angle_span(o.psi_range, "psi_range");
-    const auto [phi_lo, phi_hi] = angle_span(o.phi_range, "phi_range");
+    const auto [x_lo, x_hi] = parse_angle_range(o.x_range, "x_range");
+    const auto [psi_lo, psi_hi] = parse_angle_range(o.psi_range, "psi_range");
+    const auto [phi_lo, phi_hi] = parse_angle_range(o.phi_range, "phi_range");
     if (!(x_lo < x_hi)) throw OptionError("`x_range` must have LO < HI", Code::OptionValue, "x_range");
     try {
       run.pairs = function_pairs(o.function, x_lo, x_hi, in_radians(psi_lo), in_radians(psi_hi), in_radians(phi_lo),

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -40,6 +41,10 @@ struct SynthesizeRequest {
 
 /// The options of `linkage synthesize`.
 const std::vector<OptionSpec<SynthesizeRequest>>& synthesize_option_table();
+
+/// "LO:HI" as two finite numbers; OptionError naming `option` (a library name: `psi_range`)
+/// otherwise. No order is required.
+std::pair<double, double> parse_angle_range(const std::string& text, const std::string& option);
 
 /// The prescribed positions and what came of them.
 struct SynthesisRun {
