@@ -26,9 +26,7 @@ Command add_hexapod_simulate(CLI::App& parent, const GlobalOptions& global) {
     options->apply(request);
     run_spelled(table, [&] { hexapod::check_simulate_request(request, options->given()); });
     const hexapod::SimulateResult result = run_spelled(table, [&] { return hexapod::run_simulate(request, global.read); });
-    for (const Warning& w : result.warnings) {
-      warn(global, Warning(w.code, spell_options_with(w.text, Frontend::Cli, table), w.subject));
-    }
+    for (const Warning& w : result.warnings) warn_spelled(global, w, table);
     emit(hexapod::write_simulation(result, request.out, request.geometry.path), "");
   };
   return {sub, run};

@@ -38,9 +38,7 @@ Command add_linkage_command(CLI::App& app, const GlobalOptions& global) {
       linkage::SynthesizeRequest request;
       so->apply(request);
       const linkage::SynthesisRun run = run_spelled(table, [&] { return linkage::run_synthesize(request, so->given()); });
-      for (const Warning& w : run.result.warnings) {
-        warn(global, Warning(w.code, spell_options_with(w.text, Frontend::Cli, table), w.subject));
-      }
+      for (const Warning& w : run.result.warnings) warn_spelled(global, w, table);
       if (!run.result.ok()) throw DataFailure(run.result.message);
       emit(request.output.json ? linkage::to_json(run) : linkage::report(run, request.positions), request.output.output);
     }

@@ -20,12 +20,6 @@ namespace spdfit::cli {
 
 namespace {
 
-// A warning's text spelled with the command's own table first.
-template <typename Request>
-void warn_spelled(const GlobalOptions& global, const Warning& w, const std::vector<OptionSpec<Request>>& table) {
-  warn(global, Warning(w.code, spell_options_with(w.text, Frontend::Cli, table), w.subject));
-}
-
 Command add_payload_identify(CLI::App& parent, const GlobalOptions& global) {
   using payload::IdentifyRequest;
   auto options = std::make_shared<std::unique_ptr<TableOptions<IdentifyRequest>>>();

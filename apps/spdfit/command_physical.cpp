@@ -32,9 +32,7 @@ Command add_physical_command(CLI::App& app, const GlobalOptions& global) {
     (*options)->apply(request);
     run_spelled(table, [&] { physical::check_regress_request(request, (*options)->given()); });
     const physical::RegressResult result = run_spelled(table, [&] { return physical::run_regress(request, global.read); });
-    for (const Warning& w : result.warnings) {
-      warn(global, Warning(w.code, spell_options_with(w.text, Frontend::Cli, table), w.subject));
-    }
+    for (const Warning& w : result.warnings) warn_spelled(global, w, table);
     emit(request.output.json ? physical::to_json(result) : physical::report(result), request.output.output);
     if (!result.ok()) throw DataFailure("the regression failed: " + result.message);
   };

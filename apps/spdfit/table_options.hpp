@@ -66,6 +66,13 @@ auto run_spelled(const std::vector<OptionSpec<Request>>& table, Fn&& fn) -> decl
   }
 }
 
+/// A library warning printed with its option names spelled from the command's own table first
+/// (their names may be another table's too).
+template <typename Request>
+void warn_spelled(const GlobalOptions& global, const Warning& w, const std::vector<OptionSpec<Request>>& table) {
+  warn(global, Warning(w.code, spell_options_with(w.text, Frontend::Cli, table), w.subject));
+}
+
 /// The options of `table` that the command line offers, added to a subcommand; after parsing,
 /// which were given and their values.
 template <typename Request>

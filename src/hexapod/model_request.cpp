@@ -3,6 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "interface/option_builders.hpp"
 #include "render/json_values.hpp"
 #include "spdfit/format.hpp"
 #include "spdfit/hexapod/model_request.hpp"
@@ -17,13 +18,9 @@ constexpr const char* kBuiltInHexapod = "built-in cubic-configuration hexapod (d
 
 std::vector<ModelSpec> make_model_table() {
   std::vector<ModelSpec> table;
-  ModelSpec geometry;
-  geometry.name = "geometry";
-  geometry.cli = "--geometry";
-  geometry.type = OptionType::Geometry;
-  geometry.value_name = "FILE";
-  geometry.help = "Geometry file (JSON, SI units; see docs/hexapod.md)";
-  geometry.default_text = "the built-in cubic hexapod";
+  ModelSpec geometry = spdfit::detail::option_entry<ModelRequest>(
+      "geometry", "--geometry", "", OptionType::Geometry, "FILE", "Geometry file (JSON, SI units; see docs/hexapod.md)",
+      "the built-in cubic hexapod");
   geometry.set = [](ModelRequest& r, const OptionValue& v) { r.geometry = std::get<GeometryInput>(v); };
   table.push_back(geometry);
   for (ModelSpec& spec : output_options(&ModelRequest::output, {"json", "output"},
@@ -31,12 +28,9 @@ std::vector<ModelSpec> make_model_table() {
                                     "Write to FILE instead of stdout"})) {
     table.push_back(std::move(spec));
   }
-  ModelSpec write;
-  write.name = "write_geometry";
-  write.cli = "--write-geometry";
-  write.type = OptionType::File;
-  write.value_name = "FILE";
-  write.help = "Also write the geometry to FILE in the geometry-file format (a template to edit)";
+  ModelSpec write = spdfit::detail::option_entry<ModelRequest>(
+      "write_geometry", "--write-geometry", "", OptionType::File, "FILE",
+      "Also write the geometry to FILE in the geometry-file format (a template to edit)");
   write.set = [](ModelRequest& r, const OptionValue& v) { r.write_geometry = std::get<std::string>(v); };
   table.push_back(write);
   return table;

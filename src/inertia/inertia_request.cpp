@@ -4,6 +4,7 @@
 #include <limits>
 #include <string>
 
+#include "interface/option_builders.hpp"
 #include "physical/common_options.hpp"
 #include "spdfit/inertia_repair.hpp"
 
@@ -28,15 +29,11 @@ std::vector<InertiaSpec> make_inertia_table() {
     table.push_back(std::move(spec));
   }
 
-  InertiaSpec floor;
-  floor.name = "min_eig_rel";
-  floor.cli = "--min-eig-rel";
-  floor.python = "min_eig_rel";
-  floor.type = OptionType::Real;
-  floor.value_name = "NUMBER";
-  floor.help = "Floor of the second moments as a fraction of the largest: each principal moment stays below the sum "
-               "of the other two by twice that (kept through 7 printed digits; 0: the plain projection)";
-  floor.default_text = "1e-6";
+  InertiaSpec floor = spdfit::detail::option_entry<InertiaRepairRequest>(
+      "min_eig_rel", "--min-eig-rel", "min_eig_rel", OptionType::Real, "NUMBER",
+      "Floor of the second moments as a fraction of the largest: each principal moment stays below the sum of the "
+      "other two by twice that (kept through 7 printed digits; 0: the plain projection)",
+      "1e-6");
   floor.range = {0.0, 1.0, false, true};
   floor.set = [](InertiaRepairRequest& r, const OptionValue& v) { r.options.min_eig_rel = std::get<double>(v); };
   floor.get = [](const InertiaRepairRequest& r) -> std::optional<OptionValue> { return r.options.min_eig_rel; };

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "interface/option_builders.hpp"
+#include "render/json_values.hpp"
 #include "spdfit/format.hpp"
 #include "spdfit/linkage/pairs_file.hpp"
 #include "spdfit/linkage/synthesize_request.hpp"
@@ -33,13 +34,9 @@ std::string four_decimals(double value) {
   return buffer;
 }
 
-// JSON numbers: finite as themselves, NaN and infinities as null.
-nlohmann::json value_json(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr); }
-nlohmann::json numbers_json(const Eigen::VectorXd& v) {
-  nlohmann::json out = nlohmann::json::array();
-  for (Eigen::Index i = 0; i < v.size(); ++i) out.push_back(value_json(v(i)));
-  return out;
-}
+// JSON numbers as every rendering writes them (null for NaN and infinities).
+nlohmann::json value_json(double value) { return spdfit::detail::number_json(value, JsonStyle::Contract); }
+nlohmann::json numbers_json(const Eigen::VectorXd& v) { return spdfit::detail::vector_json(v, JsonStyle::Contract); }
 nlohmann::json span_json(const AngleRange& range) {
   return {{"min", in_degrees(range.min)}, {"max", in_degrees(range.max)}};
 }
