@@ -4,6 +4,7 @@
 #pragma once
 
 #include "spdfit/compare.hpp"
+#include "spdfit/experiment/experiment_request.hpp"
 #include "spdfit/fit_request.hpp"
 #include "spdfit/hexapod/physical_request.hpp"
 #include "spdfit/hexapod/identify_request.hpp"
@@ -40,6 +41,10 @@ void for_each_option_table(Visit&& visit) {
   visit(hexapod::model_option_table());
   visit(hexapod::simulate_option_table());
   visit(linkage::synthesize_option_table());
+  for (experiment::ExperimentKind kind : {experiment::ExperimentKind::Thesis, experiment::ExperimentKind::PaperHexapod,
+                                          experiment::ExperimentKind::Paper2x2, experiment::ExperimentKind::Physical}) {
+    visit(experiment::experiment_option_table(kind));
+  }
 }
 
 }  // namespace spdfit::detail

@@ -4,12 +4,13 @@
 #include <vector>
 
 #include "io/parse.hpp"
+#include "linkage/angles.hpp"
 
 namespace spdfit::linkage {
 
 namespace {
 
-constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180.0;
+using detail::kRadiansPerDegree;
 
 // A first line "0,1" is pandas' header of an unnamed two-column frame to the general reader, but
 // in a pairs file it is as likely the first pair (psi = 0, phi = 1), and the pairs are read without

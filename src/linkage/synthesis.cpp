@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "dial_zeros.hpp"
+#include "linkage/angles.hpp"
 #include "linkage_format.hpp"
 #include "linkage_inputs.hpp"
 #include "spdfit/linkage/design_error.hpp"
@@ -18,7 +19,7 @@ using Eigen::VectorXd;
 
 namespace {
 
-constexpr double kDegree = 3.14159265358979323846 / 180.0;
+constexpr double kDegree = detail::kRadiansPerDegree;
 // Designers keep the transmission angle within about 40..140 degrees (beyond, the coupler pushes
 // the output link mostly along its length and friction takes over): outside it, a warning.
 constexpr double kTransmissionLow = 40.0 * kDegree;

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "linkage/angles.hpp"
 #include "interface/option_builders.hpp"
 #include "render/json_values.hpp"
 #include "spdfit/format.hpp"
@@ -21,7 +22,7 @@ namespace {
 
 using SynthesizeSpec = OptionSpec<SynthesizeRequest>;
 
-constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180.0;
+using detail::kRadiansPerDegree;
 double in_degrees(double radians) { return radians / kRadiansPerDegree; }
 double in_radians(double degrees) { return degrees * kRadiansPerDegree; }
 

@@ -142,11 +142,17 @@ TEST(Outcome, EveryTableIsWellFormed) {
     std::set<std::string_view> names, cli, python;
     for (const auto& spec : table) {
       EXPECT_TRUE(names.insert(spec.name).second) << spec.name;
-      if (!spec.cli.empty()) EXPECT_TRUE(cli.insert(spec.cli).second) << spec.cli;
-      if (!spec.python.empty() && !spec.positional) EXPECT_TRUE(python.insert(spec.python).second) << spec.python;
+      if (!spec.cli.empty()) {
+        EXPECT_TRUE(cli.insert(spec.cli).second) << spec.cli;
+      }
+      if (!spec.python.empty() && !spec.positional) {
+        EXPECT_TRUE(python.insert(spec.python).second) << spec.python;
+      }
       EXPECT_TRUE(static_cast<bool>(spec.set)) << spec.name;
       EXPECT_FALSE(spec.help.empty()) << spec.name;
-      if (spec.type == OptionType::Choice) EXPECT_FALSE(spec.choices.empty()) << spec.name;
+      if (spec.type == OptionType::Choice) {
+        EXPECT_FALSE(spec.choices.empty()) << spec.name;
+      }
       for (std::string_view other : spec.excludes) EXPECT_TRUE(find_option(table, other) != nullptr) << other;
       for (std::string_view other : spec.needs) EXPECT_TRUE(find_option(table, other) != nullptr) << other;
     }
