@@ -1,14 +1,13 @@
 // spdfit linkage synthesize ... / spdfit linkage analyze ...: four-bar function generators.
-// synthesize is the library's workflow (linkage/synthesize_request.hpp: its option table,
-// run_synthesize, the renderings); analyze's options are registered here, its action is in
-// linkage_analyze.cpp.
+// Both are the library's workflows (linkage/synthesize_request.hpp, linkage/analyze_request.hpp:
+// their option tables, run_synthesize and run_analyze, the renderings).
 #include <memory>
 
 #include <CLI/CLI.hpp>
 
 #include "cli.hpp"
-#include "linkage_commands.hpp"
 #include "output.hpp"
+#include "spdfit/linkage/analyze_request.hpp"
 #include "spdfit/linkage/synthesize_request.hpp"
 #include "spdfit/option_spelling.hpp"
 #include "table_options.hpp"
@@ -23,14 +22,9 @@ Command add_linkage_command(CLI::App& app, const GlobalOptions& global) {
       "synthesize", "Synthesize a four-bar function generator (Freudenstein): design error, then structural error");
   auto so = std::make_shared<TableOptions<linkage::SynthesizeRequest>>(*syn, linkage::synthesize_option_table());
 
-  auto ao = std::make_shared<AnalyzeOptionsCli>();
   CLI::App* ana = group->add_subcommand(
       "analyze", "Output angle on both assembly branches, transmission angle and dead points of a four-bar");
-  ana->add_option("--lengths", ao->lengths, "a1,a2,a3,a4: ground, input, coupler, output")->required();
-  ana->add_option("--psi-range", ao->psi_range, "Input angles LO:HI in degrees (default 0:360)");
-  ana->add_option("--points", ao->points, "Number of input angles (default 37)");
-  ana->add_flag("--json", ao->json, "Print the analysis as JSON");
-  ana->add_option("-o,--output", ao->output, "Write to FILE instead of stdout");
+  auto ao = std::make_shared<TableOptions<linkage::AnalyzeRequest>>(*ana, linkage::analyze_option_table());
 
   auto run = [so, ao, syn, ana, &global]() {
     if (syn->parsed()) {
@@ -42,7 +36,13 @@ Command add_linkage_command(CLI::App& app, const GlobalOptions& global) {
       if (!run.result.ok()) throw DataFailure(run.result.message);
       emit(request.output.json ? linkage::to_json(run) : linkage::report(run, request.positions), request.output.output);
     }
-    if (ana->parsed()) run_analyze(*ao);
+    if (ana->parsed()) {
+      linkage::AnalyzeRequest request;
+      ao->apply(request);
+      const linkage::Analysis analysis =
+          run_spelled(linkage::analyze_option_table(), [&] { return linkage::run_analyze(request); });
+      emit(request.output.json ? linkage::to_json(analysis) : linkage::report(analysis), request.output.output);
+    }
   };
   return {group, run};
 }

@@ -46,6 +46,7 @@
 #include "spdfit/linkage/status.hpp"
 #include "spdfit/linkage/structural_error.hpp"
 #include "spdfit/linkage/synthesis.hpp"
+#include "spdfit/linkage/analyze_request.hpp"
 #include "spdfit/linkage/synthesize_request.hpp"
 #include "spdfit/method.hpp"
 #include "spdfit/named_arrays.hpp"

@@ -11,6 +11,7 @@
 #include "spdfit/hexapod/model_request.hpp"
 #include "spdfit/hexapod/simulate_request.hpp"
 #include "spdfit/inertia_repair.hpp"
+#include "spdfit/linkage/analyze_request.hpp"
 #include "spdfit/linkage/synthesize_request.hpp"
 #include "spdfit/nearest_request.hpp"
 #include "spdfit/output_request.hpp"
@@ -41,6 +42,7 @@ void for_each_option_table(Visit&& visit) {
   visit(hexapod::model_option_table());
   visit(hexapod::simulate_option_table());
   visit(linkage::synthesize_option_table());
+  visit(linkage::analyze_option_table());
   for (experiment::ExperimentKind kind : {experiment::ExperimentKind::Thesis, experiment::ExperimentKind::PaperHexapod,
                                           experiment::ExperimentKind::Paper2x2, experiment::ExperimentKind::Physical}) {
     visit(experiment::experiment_option_table(kind));

@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "linkage/angles.hpp"
+#include "linkage/linkage_render.hpp"
 #include "interface/option_builders.hpp"
 #include "render/json_values.hpp"
 #include "spdfit/format.hpp"
@@ -22,25 +22,14 @@ namespace {
 
 using SynthesizeSpec = OptionSpec<SynthesizeRequest>;
 
+using detail::four_decimals;
+using detail::full_g;
+using detail::in_degrees;
+using detail::in_radians;
 using detail::kRadiansPerDegree;
-double in_degrees(double radians) { return radians / kRadiansPerDegree; }
-double in_radians(double degrees) { return degrees * kRadiansPerDegree; }
-
-// Numbers for people: 6 significant digits, or 4 decimals; "-" for NaN.
-std::string full_g(double value) { return std::isnan(value) ? "-" : format_number(value, Precision::Full); }
-std::string four_decimals(double value) {
-  if (std::isnan(value)) return "-";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.4f", value);
-  return buffer;
-}
-
-// JSON numbers as every rendering writes them (null for NaN and infinities).
-nlohmann::json value_json(double value) { return spdfit::detail::number_json(value, JsonStyle::Contract); }
-nlohmann::json numbers_json(const Eigen::VectorXd& v) { return spdfit::detail::vector_json(v, JsonStyle::Contract); }
-nlohmann::json span_json(const AngleRange& range) {
-  return {{"min", in_degrees(range.min)}, {"max", in_degrees(range.max)}};
-}
+using detail::numbers_json;
+using detail::span_json;
+using detail::value_json;
 
 SynthesizeSpec synthesize_option(std::string_view name, std::string_view cli, OptionType type,
                                  std::string_view value_name, std::string_view help,
