@@ -1,5 +1,8 @@
 #include "progress_line.hpp"
 
+#include <memory>
+#include <optional>
+
 #include <unistd.h>
 
 #include <cmath>
@@ -68,6 +71,21 @@ void ProgressLine::update(double fraction) {
   if (fraction > 0.0 && fraction < 1.0) line += ", " + duration_text(elapsed * (1.0 - fraction) / fraction) + " left";
   std::fprintf(stderr, "\r\033[K%s", line.c_str());
   std::fflush(stderr);
+}
+
+std::function<void(std::size_t, std::size_t)> trials_progress(const GlobalOptions& global, const std::string& label) {
+  auto line = std::make_shared<std::optional<ProgressLine>>();
+  line->emplace(global, label);
+  ProgressCallback update = (*line)->callback();
+  if (!update) return {};
+  return [line, update](std::size_t done, std::size_t total) {
+    if (!line->has_value()) return;
+    if (done < total) {
+      update(static_cast<double>(done) / static_cast<double>(total));
+    } else {
+      line->reset();  // cleared before the results are printed
+    }
+  };
 }
 
 }  // namespace spdfit::cli

@@ -3,7 +3,9 @@
 #pragma once
 
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "cli.hpp"
@@ -33,5 +35,9 @@ class ProgressLine {
   std::chrono::steady_clock::time_point start_, last_;
   bool shown_ = false;
 };
+
+/// A progress callback for Monte Carlo trials (MonteCarloOptions::progress) that shows `label`
+/// on the progress line and clears it when the trials end; empty when the line is off.
+std::function<void(std::size_t, std::size_t)> trials_progress(const GlobalOptions& global, const std::string& label);
 
 }  // namespace spdfit::cli

@@ -8,6 +8,7 @@
 #include "spdfit/blas.hpp"
 #include "spdfit/compare.hpp"
 #include "spdfit/distributed.hpp"
+#include "spdfit/experiment/demo.hpp"
 #include "spdfit/experiment/experiment_request.hpp"
 #include "spdfit/experiment/monte_carlo.hpp"
 #include "spdfit/experiment/paper.hpp"

@@ -443,4 +443,38 @@ PhysicalExperimentOptions physical_options(const ExperimentRequest& request) {
   return options;
 }
 
+ExperimentRun run_experiment(const ExperimentRequest& request, const std::vector<std::string_view>& given,
+                             const std::function<void(std::size_t, std::size_t)>& progress) {
+  check_experiment_request(request, given);
+  MonteCarloOptions monte_carlo = monte_carlo_options(request);
+  monte_carlo.progress = progress;
+  ExperimentRun run;
+  run.kind = request.kind;
+  run.trials = request.trials;
+  run.seed = request.seed;
+  switch (request.kind) {
+    case ExperimentKind::Thesis:
+      run.thesis = run_thesis_experiment(thesis_options(request), monte_carlo);
+      break;
+    case ExperimentKind::PaperHexapod:
+      run.paper_hexapod = paper_hexapod_options(request);
+      run.entries.push_back(run_paper_hexapod(run.paper_hexapod, monte_carlo));
+      break;
+    case ExperimentKind::Paper2x2:
+      run.paper_2x2 = paper_2x2_options(request);
+      run.sweep = request.sweep;
+      if (run.sweep) {
+        run.levels = paper_2x2_sweep_levels();
+        run.entries = run_paper_2x2_sweep(run.paper_2x2, run.levels, monte_carlo);
+      } else {
+        run.entries.push_back(run_paper_2x2(run.paper_2x2, monte_carlo));
+      }
+      break;
+    case ExperimentKind::Physical:
+      run.physical = run_physical_experiment(physical_options(request), monte_carlo);
+      break;
+  }
+  return run;
+}
+
 }  // namespace spdfit::experiment

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "spdfit/compare.hpp"
+#include "spdfit/experiment/demo.hpp"
 #include "spdfit/experiment/experiment_request.hpp"
 #include "spdfit/fit_request.hpp"
 #include "spdfit/hexapod/physical_request.hpp"
@@ -43,6 +44,7 @@ void for_each_option_table(Visit&& visit) {
   visit(hexapod::simulate_option_table());
   visit(linkage::synthesize_option_table());
   visit(linkage::analyze_option_table());
+  visit(experiment::demo_option_table());
   for (experiment::ExperimentKind kind : {experiment::ExperimentKind::Thesis, experiment::ExperimentKind::PaperHexapod,
                                           experiment::ExperimentKind::Paper2x2, experiment::ExperimentKind::Physical}) {
     visit(experiment::experiment_option_table(kind));

@@ -19,7 +19,6 @@ SOURCE = Path(os.environ.get("SPDFIT_SOURCE_DIR", Path(__file__).resolve().paren
 CLI_BY_HAND = {
     "apps/spdfit/table_options.hpp": 2,  # the table's entries: add_flag / add_option per spec
     "apps/spdfit/main.cpp": 5,  # global options: --quiet, --verbose, --index-col, --no-index-col, --version
-    "apps/spdfit/command_demo.cpp": 7,
 }
 
 # python/spdfit/: keyword-only parameters of public functions. Options from a table arrive in

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -71,5 +72,36 @@ ThesisExperimentOptions thesis_options(const ExperimentRequest& request);
 PaperHexapodOptions paper_hexapod_options(const ExperimentRequest& request);
 Paper2x2Options paper_2x2_options(const ExperimentRequest& request);
 PhysicalExperimentOptions physical_options(const ExperimentRequest& request);
+
+/// An experiment's results with the options it ran with, for its renderings.
+struct ExperimentRun {
+  ExperimentKind kind = ExperimentKind::Thesis;
+  std::size_t trials = 0;
+  std::uint64_t seed = 1;
+  std::optional<ThesisExperimentResult> thesis;
+  PaperHexapodOptions paper_hexapod;
+  Paper2x2Options paper_2x2;
+  bool sweep = false;
+  std::vector<double> levels;                  ///< the sweep's std_a
+  std::vector<EntryExperimentResult> entries;  ///< paper-hexapod, paper-2x2: one; the sweep: one per level
+  std::optional<PhysicalExperimentResult> physical;
+};
+
+/// The workflow of `spdfit experiment KIND`: the request checked (check_experiment_request with
+/// the options `given`), the experiment's options built, its trials run (`progress` as
+/// MonteCarloOptions::progress). OptionError for the request; what the experiment throws.
+ExperimentRun run_experiment(const ExperimentRequest& request, const std::vector<std::string_view>& given,
+                             const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+/// The run as the command line's JSON document.
+std::string to_json(const ExperimentRun& run);
+
+/// The run for people. The 2x2 sweep prints its CSV table (to_csv) unless `csv_path` says where
+/// the table was written; then a readable table that names the file.
+std::string report(const ExperimentRun& run, const std::string& csv_path = {});
+
+/// The run's CSV table (the thesis: one row per trial; the entries: method,entry,true,mae,std,bias;
+/// the sweep: one row per level and method); empty for the physical experiment, which has none.
+std::string to_csv(const ExperimentRun& run);
 
 }  // namespace spdfit::experiment

@@ -8,12 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "output.hpp"
 #include "spdfit/experiment/paper.hpp"
 #include "spdfit/experiment/physical.hpp"
 #include "spdfit/experiment/thesis.hpp"
 
-namespace spdfit::cli::demo {
+namespace spdfit::experiment::demo {
 
 /// What the demo runs.
 struct Results {
@@ -64,4 +63,4 @@ std::string wrap(const std::string& text, const std::string& first = "", const s
 std::string bullet(const std::string& text);
 std::string percent(double fraction);
 
-}  // namespace spdfit::cli::demo
+}  // namespace spdfit::experiment::demo

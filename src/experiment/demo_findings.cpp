@@ -5,11 +5,11 @@
 #include <limits>
 #include <sstream>
 
-#include "demo_report.hpp"
-#include "experiment_output.hpp"
+#include "experiment/demo_report.hpp"
+#include "render/experiment_render.hpp"
 #include "spdfit/format.hpp"
 
-namespace spdfit::cli::demo {
+namespace spdfit::experiment::demo {
 
 namespace {
 
@@ -344,4 +344,4 @@ std::string findings(const Results& results) {
   return out;
 }
 
-}  // namespace spdfit::cli::demo
+}  // namespace spdfit::experiment::demo

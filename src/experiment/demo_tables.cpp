@@ -3,16 +3,15 @@
 #include <cstdio>
 #include <sstream>
 
-#include "demo_report.hpp"
-#include "experiment_output.hpp"
-#include "output.hpp"
+#include "experiment/demo_report.hpp"
+#include "render/experiment_render.hpp"
 #include "spdfit/format.hpp"
 #include "spdfit/hexapod/geometry.hpp"
 #include "spdfit/hexapod/identify.hpp"
 #include "spdfit/hexapod/model.hpp"
 #include "spdfit/hexapod/simulate.hpp"
 
-namespace spdfit::cli::demo {
+namespace spdfit::experiment::demo {
 
 using experiment::EntryExperimentResult;
 using experiment::PairedComparison;
@@ -177,7 +176,7 @@ std::string section_2x2(const std::vector<EntryExperimentResult>& results) {
   out << "== 3. The paper's 2x2 example (001, Fig. 3): X = [3 1; 1 1] from (A0 + Va) X ~= A0 X + Vb,\n"
       << "Gaussian noise of std_a in A and std_b = 1 in B; " << results.front().trials
       << " trials per level\n\n"
-      << sweep_table(levels_2x2(), results) << '\n';
+      << detail::sweep_table(levels_2x2(), results) << '\n';
   return out.str();
 }
 
@@ -309,4 +308,4 @@ std::string tables(const Results& results) {
          section_physical(results.physical) + section_units(results.units);
 }
 
-}  // namespace spdfit::cli::demo
+}  // namespace spdfit::experiment::demo
