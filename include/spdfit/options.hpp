@@ -41,6 +41,10 @@ enum class OptionType {
   /// it gives a model's sources as options of their own (files and numbers).
   Noise,
   Choice,   ///< one of the spec's `choices` (matched without regard to case; stored as the table spells it)
+  /// Names, as comma-separated text (the command line's "spde,procrustes"); Python also takes a
+  /// sequence of str and MATLAB a cell array of char. Stored as the comma-separated text; the
+  /// workflow checks the names.
+  Names,
   File,     ///< a file's path (the command line and MATLAB: text; Python: str or os.PathLike)
   /// A matrix: a file on the command line (any format a data file takes), an array in Python and
   /// MATLAB (or a path as text). The value is a MatrixInput; the workflow reads the file.

@@ -186,6 +186,14 @@ std::optional<OptionValue> read_value(OptionType type, const std::string& name, 
       return OptionValue{static_cast<std::int64_t>(v)};
     }
     case OptionType::Real: return OptionValue{scalar(value, name, "a real number")};
+    case OptionType::Names: {
+      if (!mxIsCell(value)) return OptionValue{read_text(value, "'" + name + "'")};
+      std::string names;
+      for (std::size_t k = 0; k < mxGetNumberOfElements(value); ++k) {
+        names += (k == 0 ? "" : ",") + read_text(mxGetCell(value, k), "each name of '" + name + "'");
+      }
+      return OptionValue{names};
+    }
     case OptionType::Text:
     case OptionType::Choice:
     case OptionType::File:

@@ -86,6 +86,7 @@ std::string type_name(OptionType type, const std::vector<std::string_view>& choi
     case OptionType::Boolean: return "logical";
     case OptionType::Integer: return "integer";
     case OptionType::Real: return "real";
+    case OptionType::Names: return "text or cell array of text";
     case OptionType::Text:
     case OptionType::Columns:
     case OptionType::Rows: return "text";

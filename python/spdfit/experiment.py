@@ -7,7 +7,7 @@ a given seed gives the same numbers whatever the number of threads.
     paper_2x2_sweep()          the same for std_a = 0, 0.1, ..., 1.9
     physical()                 physical identification of the payload against the generic methods
 """
-from ._common import _as_matrix
+from ._common import _as_matrix, _takes_options
 from ._spdfit import experiment as _core
 
 # The result classes (the library's), under the names the type stubs give them.
@@ -30,62 +30,40 @@ THESIS_NOISE_VARIANCES = tuple(run[1] for run in _core.THESIS_REPORTED_RUNS)
 # library's table (experiment::kThesisReportedRuns).
 THESIS_REPORTED = {run[0]: tuple(run[1:]) for run in _core.THESIS_REPORTED_RUNS}
 
-# The library's defaults (the thesis' chapter-6 set-up, the paper's), not retyped here.
-_DEFAULTS = _core.DEFAULTS
-
 __all__ = ["EntryExperimentResult", "EntryStatistics", "MethodErrors", "PairedComparison", "SIGNIFICANCE", "Summary",
            "THESIS_NOISE_VARIANCES", "THESIS_REPORTED", "ThesisExperimentResult", "paper_2x2", "paper_2x2_sweep",
            "paper_hexapod", "physical", "thesis"]
 
 
-def _names(methods):
-    """None, or the method names as a list of str (a single name is accepted too)."""
-    if methods is None:
-        return None
-    return [methods] if isinstance(methods, str) else [str(m) for m in methods]
-
-
-def thesis(noise_var, *, samples=_DEFAULTS["samples"], trials=1000, seed=1, threads=0, force_noise_var=None,
-           signal_var=_DEFAULTS["signal_var"], distribution=_DEFAULTS["distribution"], truth=None, methods=None):
+@_takes_options("experiment.thesis", given=("noise_var",))
+def thesis(noise_var=None, *, truth=None, **options):
     """The thesis' experiment (M_p of eq. 6.1, appendix-B generator) repeated `trials` times.
 
-    Same numbers as `spdfit experiment thesis --noise-var V --trials N --seed S`.
+    The options are `spdfit experiment thesis`'s, and the same options give the same numbers.
 
     Parameters
     ----------
-    noise_var : float
+    noise_var : float, optional
         The noise variance V in every entry of A and B (the thesis' experiments 1-3:
-        THESIS_NOISE_VARIANCES).
-    samples : int, optional
-        The samples per trial (the library's default, the thesis' 12).
-    trials : int, default 1000
-        The number of Monte Carlo trials.
-    seed : int, default 1
-        The random seed: the same seed gives the same numbers.
-    threads : int, default 0
-        Threads for the trials (0: one per core); the numbers do not depend on it.
-    force_noise_var : float, optional
-        The noise variance in B, when it differs from noise_var.
-    signal_var : float, optional
-        The variance of the true accelerations (the library's default).
-    distribution : str, optional
-        The noise: "uniform" (the thesis') or "gaussian".
+        THESIS_NOISE_VARIANCES); or the per-column deviations noise_std_a and noise_std_b.
     truth : array_like, optional
         The true matrix (default M_p of eq. 6.1).
-    methods : str or list of str, optional
-        The method names to run (default: all six), as `--methods`.
+    {options}
 
     Returns
     -------
     ThesisExperimentResult
-        .methods is a list (one per method, in spdfit.METHODS order) with .method, .errors
-        (||M_p - M_hat||_F per trial, NaN where the method failed) and .summary (mean, std, median,
-        max, standard_error).
+        .methods is a list (one per method and noise model, in the order asked) with .method,
+        .errors (||M_p - M_hat||_F per trial, NaN where the method failed) and .summary (mean,
+        std, median, max, standard_error).
 
     Raises
     ------
     ValueError
-        Bad options: a negative variance, trials < 1, an unknown distribution or method, no methods.
+        Bad options: no noise, a negative variance, trials < 1, an unknown distribution or method,
+        a method listed twice, fit_noise "rest" without rest_samples.
+    TypeError
+        An option the experiment does not take, or a value of the wrong type.
 
     Examples
     --------
@@ -96,32 +74,22 @@ def thesis(noise_var, *, samples=_DEFAULTS["samples"], trials=1000, seed=1, thre
     >>> r.methods[1].summary.count
     20
     """
-    return _core.thesis(float(noise_var), int(samples), int(trials), int(seed), int(threads),
-                        None if force_noise_var is None else float(force_noise_var), float(signal_var),
-                        distribution, None if truth is None else _as_matrix("truth", truth), _names(methods))
+    if noise_var is not None:
+        options["noise_var"] = noise_var
+    return _core.run("experiment.thesis", options, None if truth is None else _as_matrix("truth", truth))
 
 
-def paper_hexapod(*, noise_var=_DEFAULTS["paper_hexapod_noise_var"], samples=_DEFAULTS["paper_hexapod_samples"],
-                  trials=100, seed=1, threads=0, methods=None):
+@_takes_options("experiment.paper_hexapod")
+def paper_hexapod(**options):
     """The paper's Figure 2 on simulated data.
 
     For the 21 independent entries of M_p, the mean (bias), mean absolute value and standard
-    deviation of the estimation error over the trials, Procrustes against SPDE.
+    deviation of the estimation error over the trials, Procrustes against SPDE. The options are
+    `spdfit experiment paper-hexapod`'s.
 
     Parameters
     ----------
-    noise_var : float, optional
-        The noise variance (the library's default, the paper's).
-    samples : int, optional
-        The samples per trial (the library's default, the paper's).
-    trials : int, default 100
-        The number of Monte Carlo trials.
-    seed : int, default 1
-        The random seed: the same seed gives the same numbers.
-    threads : int, default 0
-        Threads for the trials (0: one per core); the numbers do not depend on it.
-    methods : str or list of str, optional
-        The method names to run (default: procrustes and spde).
+    {options}
 
     Returns
     -------
@@ -132,7 +100,7 @@ def paper_hexapod(*, noise_var=_DEFAULTS["paper_hexapod_noise_var"], samples=_DE
     Raises
     ------
     ValueError
-        Bad options: a negative variance, trials < 1, an unknown method, no methods.
+        Bad options: a negative variance, trials < 1, an unknown method, a method listed twice.
 
     Examples
     --------
@@ -141,30 +109,22 @@ def paper_hexapod(*, noise_var=_DEFAULTS["paper_hexapod_noise_var"], samples=_DE
     >>> [s.method for s in r.methods], len(r.entries), r.methods[0].mae.shape
     (['procrustes', 'spde'], 21, (21,))
     """
-    return _core.paper_hexapod(float(noise_var), int(samples), int(trials), int(seed), int(threads), _names(methods))
+    return _core.run("experiment.paper_hexapod", options)
 
 
-def paper_2x2(std_a, *, std_b=_DEFAULTS["paper_2x2_std_b"], trials=10000, seed=1, threads=0, methods=None):
+@_takes_options("experiment.paper_2x2", given=("std_a",))
+def paper_2x2(std_a, **options):
     """The paper's second example at one noise level.
 
     X = [3 1; 1 1], A = A0 + N(0, std_a^2), B = A0 X + N(0, std_b^2); per method (procrustes, tls,
     spde) the mean absolute error (.mae), its standard deviation (.std) and the bias of x11, x12,
-    x22.
+    x22. The options are `spdfit experiment paper-2x2`'s.
 
     Parameters
     ----------
     std_a : float
         The noise standard deviation in A.
-    std_b : float, optional
-        The noise standard deviation in B (the library's default, the paper's).
-    trials : int, default 10000
-        The number of Monte Carlo trials.
-    seed : int, default 1
-        The random seed: the same seed gives the same numbers.
-    threads : int, default 0
-        Threads for the trials (0: one per core); the numbers do not depend on it.
-    methods : str or list of str, optional
-        The method names to run (default: procrustes, tls and spde).
+    {options}
 
     Returns
     -------
@@ -174,8 +134,7 @@ def paper_2x2(std_a, *, std_b=_DEFAULTS["paper_2x2_std_b"], trials=10000, seed=1
     Raises
     ------
     ValueError
-        Bad options: a negative or non-finite standard deviation, trials < 1, an unknown method, no
-        methods.
+        Bad options: a negative or non-finite standard deviation, trials < 1, an unknown method.
 
     Examples
     --------
@@ -184,27 +143,22 @@ def paper_2x2(std_a, *, std_b=_DEFAULTS["paper_2x2_std_b"], trials=10000, seed=1
     >>> [s.method for s in r.methods], r.entries
     (['procrustes', 'tls', 'spde'], [(0, 0), (0, 1), (1, 1)])
     """
-    return _core.paper_2x2(float(std_a), float(std_b), int(trials), int(seed), int(threads), _names(methods))
+    options["std_a"] = std_a
+    return _core.run("experiment.paper_2x2", options)
 
 
-def paper_2x2_sweep(levels=None, *, std_b=_DEFAULTS["paper_2x2_std_b"], trials=10000, seed=1, threads=0,
-                    methods=None):
+@_takes_options("experiment.paper_2x2_sweep")
+def paper_2x2_sweep(levels=None, **options):
     """paper_2x2 at each std_a in `levels`: the paper's Figure 3.
+
+    Trial k draws the same standard normal numbers at every level (common random numbers), as
+    `spdfit experiment paper-2x2 --sweep`.
 
     Parameters
     ----------
     levels : iterable of float, optional
         The values of std_a (default 0, 0.1, ..., 1.9: the paper's Figure 3).
-    std_b : float, optional
-        As in paper_2x2.
-    trials : int, default 10000
-        The number of Monte Carlo trials.
-    seed : int, default 1
-        The random seed: the same seed gives the same numbers.
-    threads : int, default 0
-        Threads for the trials (0: one per core); the numbers do not depend on it.
-    methods : str or list of str, optional
-        As in paper_2x2.
+    {options}
 
     Returns
     -------
@@ -224,33 +178,22 @@ def paper_2x2_sweep(levels=None, *, std_b=_DEFAULTS["paper_2x2_std_b"], trials=1
     [(0.0, ['procrustes', 'tls', 'spde']), (0.5, ['procrustes', 'tls', 'spde'])]
     """
     levels = list(_core.paper_2x2_sweep_levels() if levels is None else map(float, levels))
-    return list(zip(levels, _core.paper_2x2_sweep(levels, float(std_b), int(trials), int(seed), int(threads),
-                                                  _names(methods))))
+    return list(zip(levels, _core.run("experiment.paper_2x2_sweep", options, None, levels)))
 
 
-def physical(*, samples=None, noise_var=None, trials=200, seed=1, threads=0, methods=None):
+@_takes_options("experiment.physical")
+def physical(**options):
     """Physical identification of the hexapod's payload against the generic estimators.
 
     The error ||M_hat - M_p||_F of M_p over m on the thesis' set-up (the built-in hexapod and its
-    nominal payload, uniform noise), for generic methods and the physical variants ("physical":
-    errors in variables, physically consistent; "physical-ls"; "grey-box-tls" and "grey-box-ls",
-    the same model unconstrained). Same numbers as `spdfit experiment physical --json`.
+    nominal payload, uniform noise, unless geometry and the payload options say otherwise), for
+    generic methods and the physical variants ("physical": errors in variables, physically
+    consistent; "physical-ls"; "grey-box-tls" and "grey-box-ls", the same model unconstrained).
+    The options are `spdfit experiment physical`'s, and the same options give the same numbers.
 
     Parameters
     ----------
-    samples : list of int, optional
-        The numbers of samples m (default 12, 30, 100, 1000).
-    noise_var : float, optional
-        The noise variance in every entry of A and B (default 3.2^2 / 12: uniform of width 3.2).
-    trials : int, default 200
-        Monte Carlo trials per m.
-    seed : int, default 1
-        The random seed.
-    threads : int, default 0
-        Threads for the trials (0: one per core); the numbers do not depend on it.
-    methods : list of str, optional
-        Generic method names and physical variants, as `--methods` (default spde, spd-tls,
-        physical, grey-box-ls, grey-box-tls).
+    {options}
 
     Returns
     -------
@@ -262,7 +205,7 @@ def physical(*, samples=None, noise_var=None, trials=200, seed=1, threads=0, met
     Raises
     ------
     ValueError
-        An unknown method or variant, m < 6, bad noise or trials.
+        An unknown method or variant, m < 6, bad noise or trials, a payload that is not a body.
 
     Examples
     --------
@@ -274,7 +217,4 @@ def physical(*, samples=None, noise_var=None, trials=200, seed=1, threads=0, met
     """
     import json
 
-    text = _core.physical(None if samples is None else [int(m) for m in samples],
-                          None if noise_var is None else float(noise_var), int(trials), int(seed), int(threads),
-                          _names(methods))
-    return json.loads(text)
+    return json.loads(_core.run("experiment.physical", options))

@@ -1,10 +1,12 @@
 """Type stubs for spdfit.experiment (see experiment.py for the documentation)."""
-from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple
+import os
+from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
 
 from ._spdfit import _Pybind11Type
+from .hexapod import Geometry
 
 _Array = npt.NDArray[np.float64]
 
@@ -48,6 +50,8 @@ class MethodErrors(metaclass=_Pybind11Type):
     def errors(self) -> _Array: ...
     @property
     def summary(self) -> Summary: ...
+    @property
+    def noise(self) -> str: ...
 
 class ThesisExperimentResult(metaclass=_Pybind11Type):
     @property
@@ -91,15 +95,8 @@ class EntryExperimentResult(metaclass=_Pybind11Type):
     def compare(self, a: str, b: str) -> List[PairedComparison]: ...
     def wins(self, a: str, b: str) -> Dict[str, int]: ...
 
-def thesis(noise_var: float, *, samples: int = ..., trials: int = ..., seed: int = ..., threads: int = ...,
-           force_noise_var: Optional[float] = ..., signal_var: float = ..., distribution: str = ...,
-           truth: Optional[npt.ArrayLike] = ..., methods: Optional[Sequence[str]] = ...) -> ThesisExperimentResult: ...
-def paper_hexapod(*, noise_var: float = ..., samples: int = ..., trials: int = ..., seed: int = ...,
-                  threads: int = ..., methods: Optional[Sequence[str]] = ...) -> EntryExperimentResult: ...
-def paper_2x2(std_a: float, *, std_b: float = ..., trials: int = ..., seed: int = ...,
-              threads: int = ..., methods: Optional[Sequence[str]] = ...) -> EntryExperimentResult: ...
-def paper_2x2_sweep(levels: Optional[Iterable[float]] = ..., *, std_b: float = ..., trials: int = ...,
-                    seed: int = ..., threads: int = ...,
-                    methods: Optional[Sequence[str]] = ...) -> List[Tuple[float, EntryExperimentResult]]: ...
-def physical(*, samples: Optional[Sequence[int]] = ..., noise_var: Optional[float] = ..., trials: int = ...,
-             seed: int = ..., threads: int = ..., methods: Optional[Sequence[str]] = ...) -> Dict[str, Any]: ...
+def thesis(noise_var: Optional[float] = ..., *, truth: Optional[npt.ArrayLike] = ..., **options: Any) -> ThesisExperimentResult: ...  # options: experiment.thesis
+def paper_hexapod(**options: Any) -> EntryExperimentResult: ...  # options: experiment.paper_hexapod
+def paper_2x2(std_a: float, **options: Any) -> EntryExperimentResult: ...  # options: experiment.paper_2x2
+def paper_2x2_sweep(levels: Optional[Iterable[float]] = ..., **options: Any) -> List[Tuple[float, EntryExperimentResult]]: ...  # options: experiment.paper_2x2_sweep
+def physical(**options: Any) -> Dict[str, Any]: ...  # options: experiment.physical

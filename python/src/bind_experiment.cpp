@@ -1,5 +1,7 @@
 // spdfit.experiment: the Monte Carlo experiments of the thesis (ch. 6) and the paper (sec. IV).
 // Trials run on threads with the GIL released; results do not depend on the thread count.
+#include <array>
+
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -7,6 +9,7 @@
 #include "bindings.hpp"
 #include "keywords.hpp"
 #include "pickle.hpp"
+#include "spdfit/experiment/experiment_request.hpp"
 #include "spdfit/experiment/monte_carlo.hpp"
 #include "spdfit/experiment/paper.hpp"
 #include "spdfit/experiment/physical.hpp"
@@ -23,48 +26,12 @@ using namespace spdfit::experiment;
 
 namespace {
 
-MonteCarloOptions monte_carlo(std::size_t trials, std::uint64_t seed, unsigned threads) {
-  MonteCarloOptions options;
-  options.trials = trials;
-  options.seed = seed;
-  options.threads = threads;
-  std::string error;
-  if (!options.is_valid(&error)) throw std::invalid_argument(error);
-  return options;
-}
-
-hexapod::SimulationOptions simulation(Eigen::Index samples, double noise_var, std::optional<double> force_noise_var,
-                                      double signal_var, const std::string& distribution) {
-  hexapod::SimulationOptions options;
-  options.samples = samples;
-  options.signal_var = signal_var;
-  options.noise_var = noise_var;
-  options.force_noise_var = force_noise_var;
-  const auto parsed = hexapod::parse_noise_distribution(distribution);
-  if (!parsed) throw std::invalid_argument("distribution must be 'uniform' or 'gaussian', got '" + distribution + "'");
-  options.distribution = *parsed;
-  std::string error;
-  if (!options.is_valid(&error)) throw std::invalid_argument(error);
-  return options;
-}
-
 std::string method_name(Method m) { return std::string(to_string(m)); }
+
+constexpr std::array<FitNoise, 3> kFitNoises = {FitNoise::None, FitNoise::True, FitNoise::Rest};
 
 // The method a comparison names (keywords.hpp's method_from: a ValueError listing the methods).
 Method named(const std::string& name) { return method_from(py::str(name)); }
-
-// The methods named (ValueError for an unknown name), or `defaults` when none are given; the
-// library refuses an empty list or a repeat (experiment::check_methods).
-std::vector<Method> methods_from(const std::optional<std::vector<std::string>>& names, std::vector<Method> defaults) {
-  if (!names) return defaults;
-  std::vector<Method> methods;
-  for (const std::string& name : *names) {
-    const auto method = parse_method(name);
-    if (!method) throw std::invalid_argument("unknown method '" + name + "'");
-    methods.push_back(*method);
-  }
-  return methods;
-}
 
 // ThesisExperimentResult's options (not a Python class of their own) in its state: the simulation
 // options (pickled as SimulationOptions), the truth and the methods' names.
@@ -98,16 +65,6 @@ void bind_experiment(py::module_& parent) {
     reported.append(py::make_tuple(run.experiment, run.noise_var, run.procrustes, run.tls_sym, run.spde));
   }
   m.attr("THESIS_REPORTED_RUNS") = reported;
-  const hexapod::SimulationOptions thesis_simulation;
-  const hexapod::SimulationOptions paper_simulation = PaperHexapodOptions::default_simulation();
-  py::dict defaults;
-  defaults["samples"] = thesis_simulation.samples;
-  defaults["signal_var"] = thesis_simulation.signal_var;
-  defaults["distribution"] = std::string(hexapod::to_string(thesis_simulation.distribution));
-  defaults["paper_hexapod_noise_var"] = paper_simulation.noise_var;
-  defaults["paper_hexapod_samples"] = paper_simulation.samples;
-  defaults["paper_2x2_std_b"] = Paper2x2Options{}.std_b;
-  m.attr("DEFAULTS") = defaults;
 
   m.attr("SIGNIFICANCE") = kSignificance;
   py::class_<PairedComparison>(m, "PairedComparison",
@@ -154,9 +111,13 @@ void bind_experiment(py::module_& parent) {
         return Eigen::Map<const Eigen::VectorXd>(e.errors.data(), static_cast<Eigen::Index>(e.errors.size())).eval();
       })
       .def_property_readonly("summary", copied(&MethodErrors::summary))
+      .def_property_readonly(
+          "noise", [](const MethodErrors& e) { return std::string(to_string(e.noise)); },
+          "the noise model the method was fitted with: none, true or rest (the option fit_noise)")
       .def(pickle_fields<MethodErrors>(
           "MethodErrors", enum_field(&MethodErrors::method, kSelectableMethods, "MethodErrors", "method"),
-          state_field(&MethodErrors::errors), state_field(&MethodErrors::summary)));
+          state_field(&MethodErrors::errors), state_field(&MethodErrors::summary),
+          enum_field(&MethodErrors::noise, kFitNoises, "MethodErrors", "noise")));
 
   py::class_<ThesisExperimentResult>(m, "ThesisExperimentResult")
       .def_property_readonly("trials", copied(&ThesisExperimentResult::trials))
@@ -226,91 +187,44 @@ void bind_experiment(py::module_& parent) {
           state_field(&EntryExperimentResult::seed), state_field(&EntryExperimentResult::truth),
           state_field(&EntryExperimentResult::entries), state_field(&EntryExperimentResult::methods)));
 
-  m.def(
-      "thesis",
-      [](double noise_var, Eigen::Index samples, std::size_t trials, std::uint64_t seed, unsigned threads,
-         std::optional<double> force_noise_var, double signal_var, const std::string& distribution,
-         std::optional<Eigen::MatrixXd> truth, std::optional<std::vector<std::string>> methods) {
-        ThesisExperimentOptions options;
-        options.simulation = simulation(samples, noise_var, force_noise_var, signal_var, distribution);
-        if (truth) options.truth = *truth;
-        options.methods = methods_from(methods, options.methods);
-        const MonteCarloOptions mc = monte_carlo(trials, seed, threads);
-        py::gil_scoped_release release;
-        return run_thesis_experiment(options, mc);
-      },
-      py::arg("noise_var"), py::arg("samples"), py::arg("trials"), py::arg("seed"), py::arg("threads"),
-      py::arg("force_noise_var"), py::arg("signal_var"), py::arg("distribution"), py::arg("truth"),
-      py::arg("methods") = py::none());
+
+
 
   m.def(
-      "paper_hexapod",
-      [](double noise_var, Eigen::Index samples, std::size_t trials, std::uint64_t seed, unsigned threads,
-         std::optional<std::vector<std::string>> methods) {
-        PaperHexapodOptions options;
-        options.simulation.samples = samples;
-        options.simulation.noise_var = noise_var;
-        options.methods = methods_from(methods, options.methods);
-        const MonteCarloOptions mc = monte_carlo(trials, seed, threads);
-        py::gil_scoped_release release;
-        return run_paper_hexapod(options, mc);
+      "run",
+      [](const std::string& entry_name, const py::dict& options, std::optional<Eigen::MatrixXd> truth,
+         std::vector<double> levels) -> py::object {
+        ExperimentKind kind = ExperimentKind::Thesis;
+        if (entry_name == "experiment.paper_hexapod") kind = ExperimentKind::PaperHexapod;
+        if (entry_name == "experiment.paper_2x2" || entry_name == "experiment.paper_2x2_sweep") {
+          kind = ExperimentKind::Paper2x2;
+        }
+        if (entry_name == "experiment.physical") kind = ExperimentKind::Physical;
+        std::vector<std::string_view> given;
+        ExperimentRequest request = experiment_request_from(entry_name, kind, options, given);
+        if (truth) request.simulation.truth.values = *truth;
+        request.levels = std::move(levels);
+        ExperimentRun run;
+        {
+          py::gil_scoped_release release;
+          run = run_experiment(request, given);  // as `spdfit experiment`
+        }
+        switch (kind) {
+          case ExperimentKind::Thesis:
+            return py::cast(*run.thesis);
+          case ExperimentKind::PaperHexapod:
+            return py::cast(run.entries.front());
+          case ExperimentKind::Paper2x2:
+            return run.sweep ? py::cast(run.entries) : py::cast(run.entries.front());
+          case ExperimentKind::Physical:
+            break;
+        }
+        return py::cast(to_json(*run.physical));
       },
-      py::arg("noise_var"), py::arg("samples"), py::arg("trials"), py::arg("seed"), py::arg("threads"),
-      py::arg("methods") = py::none());
-
-  m.def(
-      "paper_2x2",
-      [](double std_a, double std_b, std::size_t trials, std::uint64_t seed, unsigned threads,
-         std::optional<std::vector<std::string>> methods) {
-        Paper2x2Options options;
-        options.std_a = std_a;
-        options.std_b = std_b;
-        options.methods = methods_from(methods, options.methods);
-        const MonteCarloOptions mc = monte_carlo(trials, seed, threads);
-        py::gil_scoped_release release;
-        return run_paper_2x2(options, mc);
-      },
-      py::arg("std_a"), py::arg("std_b"), py::arg("trials"), py::arg("seed"), py::arg("threads"),
-      py::arg("methods") = py::none());
-
-  m.def(
-      "paper_2x2_sweep",
-      [](std::vector<double> levels, double std_b, std::size_t trials, std::uint64_t seed, unsigned threads,
-         std::optional<std::vector<std::string>> methods) {
-        Paper2x2Options options;
-        options.std_b = std_b;
-        options.methods = methods_from(methods, options.methods);
-        if (levels.empty()) levels = paper_2x2_sweep_levels();
-        const MonteCarloOptions mc = monte_carlo(trials, seed, threads);
-        py::gil_scoped_release release;
-        return run_paper_2x2_sweep(options, levels, mc);
-      },
-      py::arg("levels"), py::arg("std_b"), py::arg("trials"), py::arg("seed"), py::arg("threads"),
-      py::arg("methods") = py::none());
+      py::arg("entry"), py::arg("options"), py::arg("truth") = py::none(), py::arg("levels") = std::vector<double>{});
   m.def("paper_2x2_sweep_levels", &paper_2x2_sweep_levels);
   m.def("paper_2x2_truth", &paper_2x2_truth);
   m.def("paper_2x2_design", &paper_2x2_design);
-  m.def(
-      "physical",
-      [](std::optional<std::vector<Eigen::Index>> samples, std::optional<double> noise_var,
-         std::size_t trials, std::uint64_t seed, unsigned threads,
-         std::optional<std::vector<std::string>> methods) {
-        PhysicalExperimentOptions options;
-        if (samples) options.samples = *samples;
-        if (noise_var) options.simulation.noise_var = *noise_var;
-        if (methods) set_estimators(options, *methods);
-        std::string error;
-        if (!options.is_valid(&error)) throw std::invalid_argument(error);
-        const MonteCarloOptions mc = monte_carlo(trials, seed, threads);
-        std::string text;
-        {
-          py::gil_scoped_release release;
-          text = to_json(run_physical_experiment(options, mc));
-        }
-        return text;
-      },
-      py::arg("samples"), py::arg("noise_var"), py::arg("trials"), py::arg("seed"), py::arg("threads"),
-      py::arg("methods"));
 }
 
 }  // namespace spdfit::python

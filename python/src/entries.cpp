@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "spdfit/experiment/experiment_request.hpp"
 #include "spdfit/fit_request.hpp"
 #include "spdfit/hexapod/identify_request.hpp"
 #include "spdfit/hexapod/physical_request.hpp"
@@ -25,7 +26,7 @@ bool contains(const std::vector<std::string_view>& names, std::string_view name)
 
 template <typename Request>
 std::vector<Keyword> keywords_of(const std::vector<OptionSpec<Request>>& table, const Entry& entry,
-                                 const Request* applies_to) {
+                                 const Request* applies_to, const Request& defaults = Request{}) {
   std::vector<Keyword> out;
   for (const OptionSpec<Request>& spec : table) {
     if (spec.python.empty() || spec.positional || contains(entry.unavailable, spec.name) || contains(entry.implied, spec.name)) continue;
@@ -34,7 +35,7 @@ std::vector<Keyword> keywords_of(const std::vector<OptionSpec<Request>>& table, 
     for (std::string_view need : spec.needs) reachable = reachable || !contains(entry.unavailable, need);
     if (!reachable) continue;
     std::optional<OptionValue> default_value;
-    if (!spec.nullable && spec.get) default_value = spec.get(Request{});
+    if (!spec.nullable && spec.get) default_value = spec.get(defaults);
     out.push_back({spec.name, spec.python, spec.type, spell_options(spec.help, Frontend::Python), spec.default_text,
                    std::move(default_value), spec.nullable});
   }
@@ -71,6 +72,12 @@ const std::vector<Entry>& entries() {
       // The body and the URDF's text are arguments; the result is returned, not written.
       {"physical.inertia_repair", "inertia_repair", {}, {"output"}},
       {"physical.inertia_repair_urdf", "inertia_repair", {}, {"output"}},
+      // The experiments: the truth (thesis) and the sweep's levels are Python's own arguments.
+      {"experiment.thesis", "experiment:thesis", {}, {}},
+      {"experiment.paper_hexapod", "experiment:paper-hexapod", {}, {}},
+      {"experiment.paper_2x2", "experiment:paper-2x2", {}, {"sweep"}},
+      {"experiment.paper_2x2_sweep", "experiment:paper-2x2", {"sweep"}, {"std_a"}},
+      {"experiment.physical", "experiment:physical", {}, {}},
   };
   return list;
 }
@@ -95,6 +102,14 @@ std::vector<Keyword> keywords(const Entry& entry, std::optional<Method> method) 
   }
   if (entry.table == "simulate") {
     return keywords_of(hexapod::simulate_option_table(), entry, static_cast<hexapod::SimulateRequest*>(nullptr));
+  }
+  for (experiment::ExperimentKind kind :
+       {experiment::ExperimentKind::Thesis, experiment::ExperimentKind::PaperHexapod,
+        experiment::ExperimentKind::Paper2x2, experiment::ExperimentKind::Physical}) {
+    if (entry.table == "experiment:" + std::string(experiment::to_string(kind))) {
+      return keywords_of(experiment::experiment_option_table(kind), entry,
+                         static_cast<experiment::ExperimentRequest*>(nullptr), experiment::experiment_request(kind));
+    }
   }
   if (entry.table == "inertia_repair") {
     return keywords_of(inertia_repair_option_table(), entry, static_cast<InertiaRepairRequest*>(nullptr));
@@ -139,6 +154,9 @@ std::string annotation(const Keyword& keyword) {
       break;
     case OptionType::Text:
       type = "str";
+      break;
+    case OptionType::Names:
+      type = "Union[str, Sequence[str]]";
       break;
     case OptionType::RealList:
       type = "Union[float, Sequence[float]]";

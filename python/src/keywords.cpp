@@ -40,6 +40,8 @@ const char* type_text(OptionType type) {
       return "float";
     case OptionType::Text:
       return "str";
+    case OptionType::Names:
+      return "str or list of str";
     case OptionType::RealList:
       return "float or sequence of float";
     case OptionType::Vector:
@@ -125,6 +127,16 @@ OptionValue keyword_value(const Keyword& keyword, const py::handle& value) {
     case OptionType::Text:
       if (!py::isinstance<py::str>(value)) wrong_type(keyword, "a str", value);
       return value.cast<std::string>();
+    case OptionType::Names: {
+      if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+      if (!py::isinstance<py::sequence>(value)) wrong_type(keyword, "a str or a list of str", value);
+      std::string names;
+      for (const py::handle item : py::reinterpret_borrow<py::sequence>(value)) {
+        if (!py::isinstance<py::str>(item)) wrong_type(keyword, "a str or a list of str", value);
+        names += (names.empty() ? "" : ",") + item.cast<std::string>();
+      }
+      return names;
+    }
     case OptionType::RealList:
       if (is_instance(value, "Real") && !py::isinstance<py::bool_>(value)) {
         return std::vector<double>{py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>()};
@@ -199,6 +211,12 @@ hexapod::SimulateRequest simulate_request(std::string_view entry_name, const py:
 InertiaRepairRequest inertia_repair_request(std::string_view entry_name, const py::dict& kwargs,
                                             std::vector<std::string_view>& given) {
   return request_from(inertia_repair_option_table(), entry(entry_name), kwargs, InertiaRepairRequest{}, given);
+}
+
+experiment::ExperimentRequest experiment_request_from(std::string_view entry_name, experiment::ExperimentKind kind,
+                                                      const py::dict& kwargs, std::vector<std::string_view>& given) {
+  return request_from(experiment::experiment_option_table(kind), entry(entry_name), kwargs,
+                      experiment::experiment_request(kind), given);
 }
 
 Method method_from(const py::handle& method) {

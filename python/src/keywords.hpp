@@ -10,6 +10,7 @@
 #include "entries.hpp"
 #include "spdfit/fit_request.hpp"
 #include "spdfit/hexapod/physical_request.hpp"
+#include "spdfit/experiment/experiment_request.hpp"
 #include "spdfit/hexapod/simulate_request.hpp"
 #include "spdfit/inertia_repair.hpp"
 #include "spdfit/method.hpp"
@@ -76,6 +77,10 @@ hexapod::SimulateRequest simulate_request(std::string_view entry, const pybind11
                                           std::vector<std::string_view>& given);
 InertiaRepairRequest inertia_repair_request(std::string_view entry, const pybind11::dict& kwargs,
                                             std::vector<std::string_view>& given);
+/// An experiment's request from `kwargs`, starting from the experiment's defaults.
+experiment::ExperimentRequest experiment_request_from(std::string_view entry, experiment::ExperimentKind kind,
+                                                      const pybind11::dict& kwargs,
+                                                      std::vector<std::string_view>& given);
 
 /// The method a Python call names; an OptionError (a ValueError) listing the methods for a name
 /// that is none of them, a TypeError for a value that is not a str.

@@ -194,7 +194,7 @@ void add_common(std::vector<ExperimentSpec>& table, std::string_view default_tri
   }
   for (ExperimentSpec& spec : output_options(&ExperimentRequest::output, {"output"})) table.push_back(std::move(spec));
 
-  ExperimentSpec methods = experiment_entry("methods", "--methods", OptionType::Text, "M,M,...", methods_help);
+  ExperimentSpec methods = experiment_entry("methods", "--methods", OptionType::Names, "M,M,...", methods_help);
   methods.set = [](ExperimentRequest& r, const OptionValue& v) { r.methods = std::get<std::string>(v); };
   table.push_back(methods);
 }
@@ -211,7 +211,7 @@ std::vector<ExperimentSpec> make_thesis_table() {
   add_common(table, "1000", methods_help(ThesisExperimentOptions{}.methods),
              "Also write each trial's error ||M_p - M_hat||_F per method to FILE (one row per trial)");
   ExperimentSpec noise = experiment_entry(
-      "fit_noise", "--fit-noise", OptionType::Text, "MODEL,...",
+      "fit_noise", "--fit-noise", OptionType::Names, "MODEL,...",
       "Comma-separated noise models to fit every method with, each in turn: none (equal noise assumed), true "
       "(the generator's covariances), rest (the covariances of the trial's `rest_samples` rows); spde runs with "
       "none only",
@@ -401,6 +401,7 @@ ThesisExperimentOptions thesis_options(const ExperimentRequest& request) {
   options.simulation = simulation_of(request);
   options.methods = listed_methods(request.methods, options.methods);
   options.noise_models = listed_noise_models(request.fit_noise);
+  if (request.simulation.truth.values.size() > 0) options.truth = request.simulation.truth.values;
   return options;
 }
 
@@ -464,7 +465,7 @@ ExperimentRun run_experiment(const ExperimentRequest& request, const std::vector
       run.paper_2x2 = paper_2x2_options(request);
       run.sweep = request.sweep;
       if (run.sweep) {
-        run.levels = paper_2x2_sweep_levels();
+        run.levels = request.levels.empty() ? paper_2x2_sweep_levels() : request.levels;
         run.entries = run_paper_2x2_sweep(run.paper_2x2, run.levels, monte_carlo);
       } else {
         run.entries.push_back(run_paper_2x2(run.paper_2x2, monte_carlo));

@@ -119,6 +119,10 @@ OptionValue checked_option_value(std::string_view name, OptionType type, const N
     case OptionType::File:
       if (!std::holds_alternative<std::string>(value)) wrong_type(type == OptionType::File ? "a file name" : "text");
       break;
+    case OptionType::Names:
+      if (!std::holds_alternative<std::string>(value)) wrong_type("names");
+      if (std::get<std::string>(value).find_first_not_of(" ,\t") == std::string::npos) out_of_range("one name or more");
+      break;
     case OptionType::Columns:
     case OptionType::Rows:
       if (!std::holds_alternative<std::string>(value)) wrong_type("a selection as text");

@@ -206,6 +206,28 @@ CASES = [
          ["experiment", "thesis", "--noise-var", "0.86", "--trials", "5", "--samples", "20", "--seed", "3", "--json"],
          lambda d: next(m.summary.mean for m in experiment.thesis(0.86, trials=5, samples=20, seed=3).methods
                         if m.method == "spde"), None, ("methods", "spde", "mean")),
+    Case("experiment thesis: per-sensor noise, rest rows", "ok",
+         ["experiment", "thesis", "--noise-std-a", "0.5", "--noise-std-b", "1,2,3,4,5,6", "--rest-samples", "10",
+          "--fit-noise", "none,rest", "--methods", "spd-tls", "--trials", "5", "--json"],
+         lambda d: next(m.summary.mean for m in experiment.thesis(
+             noise_std_a=0.5, noise_std_b=[1, 2, 3, 4, 5, 6], rest_samples=10, fit_noise=["none", "rest"],
+             methods=["spd-tls"], trials=5).methods if m.noise == "rest"), None, ("methods", "spd-tls/rest", "mean")),
+    Case("experiment thesis: no noise", "usage", ["experiment", "thesis", "--trials", "5"],
+         lambda d: experiment.thesis(trials=5), None),
+    Case("experiment thesis: a method twice", "usage",
+         ["experiment", "thesis", "--noise-var", "1", "--methods", "spde,spde"],
+         lambda d: experiment.thesis(1.0, methods=["spde", "spde"]), None),
+    Case("experiment paper-2x2", "ok", ["experiment", "paper-2x2", "--std-a", "0.5", "--trials", "50", "--json"],
+         lambda d: experiment.paper_2x2(0.5, trials=50).methods[2].mae, None, ("methods", "spde", "mae")),
+    Case("experiment physical", "ok",
+         ["experiment", "physical", "--samples", "12", "--trials", "3", "--methods", "spde,physical",
+          "--payload-mass", "15", "--json"],
+         lambda d: experiment.physical(samples=[12], trials=3, methods=["spde", "physical"],
+                                       payload_mass=15.0)["rows"][0]["methods"]["physical"]["mean"],
+         None, ("rows", 0, "methods", "physical", "mean")),
+    Case("experiment physical: a payload that is not a body", "usage",
+         ["experiment", "physical", "--samples", "12", "--trials", "3", "--payload-mass", "-3"],
+         lambda d: experiment.physical(samples=[12], trials=3, payload_mass=-3.0), None),
     # compare (no MATLAB function: the command line against Python's fit_all)
     Case("compare", "ok", ["compare", "--json", "{A}", "{B}"],
          lambda d: spdfit.fit_all(d["A"], d["B"])["spd-tls"].X, None,
@@ -384,10 +406,11 @@ def test_every_command_has_a_row():
     # with options, an error case.
     commands = {" ".join(a for a in c.cli[:2] if not a.startswith("-") and "{" not in a) for c in CASES if c.cli}
     for command in ("fit", "nearest", "solve", "hexapod identify", "hexapod model", "compare", "physical regress",
-                    "payload identify", "inertia repair", "linkage synthesize", "linkage analyze", "experiment thesis"):
+                    "payload identify", "inertia repair", "linkage synthesize", "linkage analyze", "experiment thesis",
+                    "experiment paper-2x2", "experiment physical"):
         assert command in commands, command
         assert any(c.outcome != "ok" for c in CASES if c.cli and " ".join(c.cli[:2]).startswith(command)) or \
-            command in ("compare", "linkage analyze", "experiment thesis"), f"{command}: no error case"
+            command in ("compare", "linkage analyze", "experiment paper-2x2"), f"{command}: no error case"
 
 
 # hexapod simulate writes files, not JSON: Python's spdfit.hexapod.simulate against the files the

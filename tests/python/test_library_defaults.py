@@ -41,8 +41,18 @@ def test_hexapod_and_experiment_defaults_are_the_librarys():
     assert default(spdfit.hexapod.simulate, "samples") == options.samples == 12
     assert default(spdfit.hexapod.simulate, "signal_var") == options.signal_var == 25.0 / 3.0
     assert default(spdfit.hexapod.simulate, "distribution") == options.distribution == "uniform"
-    assert default(spdfit.experiment.thesis, "signal_var") == options.signal_var
-    assert default(spdfit.experiment.paper_hexapod, "noise_var") == 0.86
+    # The experiments take their options from the library's tables: None stands for the library's
+    # default, which the docstring names, and gives the numbers of that value.
+    assert default(spdfit.experiment.thesis, "signal_var") is None
+    def doc(function):
+        return " ".join(function.__doc__.split())
+
+    assert "(default 25/3" in doc(spdfit.experiment.thesis)
+    same = [spdfit.experiment.thesis(0.86, trials=5, methods="spde", **extra).methods[0].errors.tolist()
+            for extra in ({}, {"signal_var": options.signal_var})]
+    assert same[0] == same[1]
+    assert default(spdfit.experiment.paper_hexapod, "noise_var") is None
+    assert "(default 0.86)" in doc(spdfit.experiment.paper_hexapod)
     assert default(spdfit.experiment.paper_2x2, "std_b") == 1.0
     # The thesis' reported runs (eq. 6.6-6.22) come from the library's table.
     assert spdfit.experiment.THESIS_REPORTED[2] == (0.86, 2.3610, 2.3007, 1.9689)

@@ -45,6 +45,7 @@ struct ExperimentRequest {
   std::optional<double> std_a;         ///< paper-2x2: the noise in A (or `sweep`)
   double std_b = Paper2x2Options{}.std_b;
   bool sweep = false;                  ///< paper-2x2: every level of Figure 3
+  std::vector<double> levels;          ///< the sweep's std_a; empty: Figure 3's (paper_2x2_sweep_levels)
   std::vector<Eigen::Index> samples;   ///< physical: the numbers of samples; empty: its own
   std::string csv;                     ///< also write a CSV table to this file (not physical)
   OutputRequest output;                ///< `json` and `output`
