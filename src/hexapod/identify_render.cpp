@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "render/fit_result_json.hpp"
+#include "render/text_values.hpp"
 #include "spdfit/compare.hpp"
 #include "spdfit/format.hpp"
 #include "spdfit/hexapod/render.hpp"
@@ -21,13 +22,6 @@ Json method_json(const MethodIdentification& m, JsonStyle style) {
   if (m.error_vs_truth) j["error_vs_truth"] = detail::number_json(*m.error_vs_truth, style);
   if (m.modes_uncertainty) j["bootstrap"]["modes_hz"] = detail::spectrum_json(*m.modes_uncertainty, style);
   return j;
-}
-
-// The entries of v with `digits` decimals, two spaces apart.
-std::string vector_text(const Eigen::VectorXd& v, int digits) {
-  std::string out;
-  for (Eigen::Index i = 0; i < v.size(); ++i) out += (i ? "  " : "") + format_fixed(v(i), digits);
-  return out;
 }
 
 // Each symmetric estimate's eigenvalues and modes with their bootstrap intervals.
@@ -133,10 +127,10 @@ std::string methods_report(const std::vector<MethodIdentification>& methods, con
       out << line << "not symmetric, so not a mass matrix: no eigenvalues or modes shown\n";
       continue;
     }
-    out << line << vector_text(*m.eigenvalues, 4) << '\n';
+    out << line << spdfit::detail::fixed_values(*m.eigenvalues, 4) << '\n';
     if (options.stiffness) {
       out << std::string(12, ' ')
-          << (m.modes_hz ? vector_text(*m.modes_hz, 2) + " Hz" : "not positive definite: no modes") << '\n';
+          << (m.modes_hz ? spdfit::detail::fixed_values(*m.modes_hz, 2) + " Hz" : "not positive definite: no modes") << '\n';
     }
   }
   if (options.fit.bootstrap > 0) out << bootstrap_report(methods, options);

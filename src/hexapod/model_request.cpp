@@ -5,6 +5,7 @@
 
 #include "interface/option_builders.hpp"
 #include "render/json_values.hpp"
+#include "render/text_values.hpp"
 #include "spdfit/format.hpp"
 #include "spdfit/hexapod/model_request.hpp"
 
@@ -34,13 +35,6 @@ std::vector<ModelSpec> make_model_table() {
   write.set = [](ModelRequest& r, const OptionValue& v) { r.write_geometry = std::get<std::string>(v); };
   table.push_back(write);
   return table;
-}
-
-// The entries of v with `digits` decimals, two spaces apart.
-std::string model_vector_text(const Eigen::VectorXd& v, int digits) {
-  std::string out;
-  for (Eigen::Index i = 0; i < v.size(); ++i) out += (i ? "  " : "") + format_fixed(v(i), digits);
-  return out;
 }
 
 }  // namespace
@@ -90,14 +84,14 @@ std::string report(const ModelResult& result) {
   std::ostringstream out;
   out << "Hexapod: " << result.geometry_source << "\n"
       << "payload " << format_fixed(result.geometry.payload_mass, 3)
-      << " kg; strut lengths (m): " << model_vector_text(model.strut_lengths, 4) << "\n\n"
+      << " kg; strut lengths (m): " << spdfit::detail::fixed_values(model.strut_lengths, 4) << "\n\n"
       << "Jacobian J, l_dot = J [v; w] (rows: struts; v, w of the payload's centre of mass in {B} axes); "
       << "cond(J) = " << format_fixed(model.jacobian_condition, 2) << "\n"
       << format_side_by_side({"J"}, {Eigen::MatrixXd(model.jacobian)})
       << "Joint-space mass-inertia matrix (thesis eq. 2.12), kg\n"
       << format_side_by_side({"M_p"}, {Eigen::MatrixXd(model.mass_matrix)})
-      << "eigenvalues of M_p (kg): " << model_vector_text(model.mass_matrix_eigenvalues, 4)
-      << "\nmodes sqrt(eig(M_p^-1 K)) / 2 pi (Hz), K = diag(strut_stiffness): " << model_vector_text(model.modes_hz, 2)
+      << "eigenvalues of M_p (kg): " << spdfit::detail::fixed_values(model.mass_matrix_eigenvalues, 4)
+      << "\nmodes sqrt(eig(M_p^-1 K)) / 2 pi (Hz), K = diag(strut_stiffness): " << spdfit::detail::fixed_values(model.modes_hz, 2)
       << "\n";
   return out.str();
 }

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "render/fit_result_json.hpp"
+#include "render/text_values.hpp"
 #include "spdfit/format.hpp"
 #include "spdfit/hexapod/render.hpp"
 
@@ -63,12 +64,6 @@ void add_rows(std::vector<Row>& rows, const std::vector<std::string>& names, con
     }
     rows.push_back(r);
   }
-}
-
-std::string vector_text(const Eigen::VectorXd& v, int digits) {
-  std::string out;
-  for (Eigen::Index i = 0; i < v.size(); ++i) out += (i ? "  " : "") + format_fixed(v(i), digits);
-  return out;
 }
 
 }  // namespace
@@ -140,7 +135,7 @@ std::string report(const PhysicalEstimate& e, const Geometry& geometry, const Id
   }
   for (const Row& r : rows) out << row_text(r, boot);
   if (e.strut_masses == StrutMasses::Geometry) {
-    out << "  strut masses (kg), from the geometry, not estimated: " << vector_text(geometry.strut_mass, 4)
+    out << "  strut masses (kg), from the geometry, not estimated: " << spdfit::detail::fixed_values(geometry.strut_mass, 4)
         << "\n";
   }
   out << "  principal axes (columns)\n";
@@ -165,8 +160,8 @@ std::string report(const PhysicalEstimate& e, const Geometry& geometry, const Id
         << report(b->M_p_eigenvalues, "  ");
     if (b->modes_hz) out << "modes (Hz)\n" << report(*b->modes_hz, "  ");
   } else {
-    out << "eigenvalues (kg)   " << vector_text(e.M_p_eigenvalues, 4) << "\n";
-    if (e.modes_hz) out << "modes (Hz)         " << vector_text(*e.modes_hz, 2) << "\n";
+    out << "eigenvalues (kg)   " << spdfit::detail::fixed_values(e.M_p_eigenvalues, 4) << "\n";
+    if (e.modes_hz) out << "modes (Hz)         " << spdfit::detail::fixed_values(*e.modes_hz, 2) << "\n";
   }
   out << "pseudo-inertia min eig " << format_number(e.pseudo_inertia_min_eig) << " kg ("
       << (e.physically_consistent ? "physically consistent" : "NOT physically consistent") << ")\n"
