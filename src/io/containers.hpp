@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "spdfit/io.hpp"
 
@@ -23,6 +24,21 @@ inline constexpr const char* kStdinName = "<stdin>";
 /// Standard input after `bytes` (what was read from it already), up to `at_most` bytes in all.
 /// Throws DataError naming kStdinName on a read error or when it is empty.
 std::string read_standard_input(std::string bytes = {}, std::size_t at_most = static_cast<std::size_t>(-1));
+
+/// Up to `count` first bytes of the file ("" when it cannot be read: its reader then says why).
+std::string first_bytes(const std::string& path, std::size_t count);
+
+/// The file's size in bytes (0 when it cannot be read).
+std::uint64_t file_size(const std::string& path);
+
+/// Names for a message, comma-separated, the first 20 and how many in all.
+std::string listed_names(const std::vector<std::string>& names);
+
+/// Whether these first bytes of a file are a MATLAB .mat file's header (level 5 or 7.3).
+bool is_mat(std::string_view first);
+
+/// Whether the ZIP archive `path` holds .npy entries (a NumPy .npz, not an .xlsx workbook).
+bool holds_npy(const std::string& path);
 
 /// Whether these first bytes of a file are a level-5 MATLAB .mat file (not 7.3, whose body
 /// libhdf5 parses): the files whose structure read_mat checks before libmatio reads them.
