@@ -187,21 +187,12 @@ void bind_experiment(py::module_& parent) {
           state_field(&EntryExperimentResult::seed), state_field(&EntryExperimentResult::truth),
           state_field(&EntryExperimentResult::entries), state_field(&EntryExperimentResult::methods)));
 
-
-
-
   m.def(
       "run",
       [](const std::string& entry_name, const py::dict& options, std::optional<Eigen::MatrixXd> truth,
          std::vector<double> levels) -> py::object {
-        ExperimentKind kind = ExperimentKind::Thesis;
-        if (entry_name == "experiment.paper_hexapod") kind = ExperimentKind::PaperHexapod;
-        if (entry_name == "experiment.paper_2x2" || entry_name == "experiment.paper_2x2_sweep") {
-          kind = ExperimentKind::Paper2x2;
-        }
-        if (entry_name == "experiment.physical") kind = ExperimentKind::Physical;
         std::vector<std::string_view> given;
-        ExperimentRequest request = experiment_request_from(entry_name, kind, options, given);
+        ExperimentRequest request = experiment_request_from(entry_name, options, given);
         if (truth) request.simulation.truth.values = *truth;
         request.levels = std::move(levels);
         ExperimentRun run;
@@ -209,7 +200,7 @@ void bind_experiment(py::module_& parent) {
           py::gil_scoped_release release;
           run = run_experiment(request, given);  // as `spdfit experiment`
         }
-        switch (kind) {
+        switch (run.kind) {
           case ExperimentKind::Thesis:
             return py::cast(*run.thesis);
           case ExperimentKind::PaperHexapod:

@@ -82,6 +82,13 @@ const std::vector<Entry>& entries() {
   return list;
 }
 
+std::optional<experiment::ExperimentKind> experiment_kind(const Entry& entry) {
+  for (experiment::ExperimentKind kind : experiment::kExperimentKinds) {
+    if (entry.table == "experiment:" + std::string(experiment::to_string(kind))) return kind;
+  }
+  return std::nullopt;
+}
+
 const Entry& entry(std::string_view name) {
   for (const Entry& e : entries()) {
     if (e.name == name) return e;
@@ -103,13 +110,9 @@ std::vector<Keyword> keywords(const Entry& entry, std::optional<Method> method) 
   if (entry.table == "simulate") {
     return keywords_of(hexapod::simulate_option_table(), entry, static_cast<hexapod::SimulateRequest*>(nullptr));
   }
-  for (experiment::ExperimentKind kind :
-       {experiment::ExperimentKind::Thesis, experiment::ExperimentKind::PaperHexapod,
-        experiment::ExperimentKind::Paper2x2, experiment::ExperimentKind::Physical}) {
-    if (entry.table == "experiment:" + std::string(experiment::to_string(kind))) {
-      return keywords_of(experiment::experiment_option_table(kind), entry,
-                         static_cast<experiment::ExperimentRequest*>(nullptr), experiment::experiment_request(kind));
-    }
+  if (const std::optional<experiment::ExperimentKind> kind = experiment_kind(entry)) {
+    return keywords_of(experiment::experiment_option_table(*kind), entry,
+                       static_cast<experiment::ExperimentRequest*>(nullptr), experiment::experiment_request(*kind));
   }
   if (entry.table == "inertia_repair") {
     return keywords_of(inertia_repair_option_table(), entry, static_cast<InertiaRepairRequest*>(nullptr));

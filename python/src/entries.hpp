@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "spdfit/experiment/experiment_request.hpp"
 #include "spdfit/method.hpp"
 #include "spdfit/options.hpp"
 
@@ -43,6 +44,9 @@ const std::vector<Entry>& entries();
 
 /// The entry named `name`; std::invalid_argument when there is none.
 const Entry& entry(std::string_view name);
+
+/// The experiment whose table an entry takes ("experiment:paper-2x2"), or nothing.
+std::optional<experiment::ExperimentKind> experiment_kind(const Entry& entry);
 
 /// The keywords `entry` takes, in the table's order: every option with a Python spelling that is
 /// not unavailable, not implied, and whose `needs` (if any) can be met there. With a `method`

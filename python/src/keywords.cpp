@@ -213,10 +213,13 @@ InertiaRepairRequest inertia_repair_request(std::string_view entry_name, const p
   return request_from(inertia_repair_option_table(), entry(entry_name), kwargs, InertiaRepairRequest{}, given);
 }
 
-experiment::ExperimentRequest experiment_request_from(std::string_view entry_name, experiment::ExperimentKind kind,
-                                                      const py::dict& kwargs, std::vector<std::string_view>& given) {
-  return request_from(experiment::experiment_option_table(kind), entry(entry_name), kwargs,
-                      experiment::experiment_request(kind), given);
+experiment::ExperimentRequest experiment_request_from(std::string_view entry_name, const py::dict& kwargs,
+                                                      std::vector<std::string_view>& given) {
+  const Entry& e = entry(entry_name);
+  const std::optional<experiment::ExperimentKind> kind = experiment_kind(e);
+  if (!kind) throw std::invalid_argument("'" + std::string(entry_name) + "' is not an experiment's entry");
+  return request_from(experiment::experiment_option_table(*kind), e, kwargs, experiment::experiment_request(*kind),
+                      given);
 }
 
 Method method_from(const py::handle& method) {

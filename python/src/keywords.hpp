@@ -78,8 +78,8 @@ hexapod::SimulateRequest simulate_request(std::string_view entry, const pybind11
 InertiaRepairRequest inertia_repair_request(std::string_view entry, const pybind11::dict& kwargs,
                                             std::vector<std::string_view>& given);
 /// An experiment's request from `kwargs`, starting from the experiment's defaults.
-experiment::ExperimentRequest experiment_request_from(std::string_view entry, experiment::ExperimentKind kind,
-                                                      const pybind11::dict& kwargs,
+/// (its kind is the entry's table's, experiment_kind).
+experiment::ExperimentRequest experiment_request_from(std::string_view entry, const pybind11::dict& kwargs,
                                                       std::vector<std::string_view>& given);
 
 /// The method a Python call names; an OptionError (a ValueError) listing the methods for a name

@@ -17,14 +17,10 @@ namespace {
 
 using DemoSpec = OptionSpec<DemoRequest>;
 
+// A count of trials: at least 1.
 DemoSpec trials_entry(std::string_view name, std::string_view cli, std::string_view help, std::string_view default_text,
                       std::size_t DemoRequest::*member) {
-  DemoSpec spec = spdfit::detail::option_entry<DemoRequest>(name, cli, "", OptionType::Integer, "N", help, default_text);
-  spec.range = {1.0, 1e7};
-  spec.nullable = false;
-  spec.set = [member](DemoRequest& r, const OptionValue& v) { r.*member = std::size_t(std::get<std::int64_t>(v)); };
-  spec.get = [member](const DemoRequest& r) -> std::optional<OptionValue> { return std::int64_t(r.*member); };
-  return spec;
+  return spdfit::detail::integer_entry<DemoRequest>(name, cli, "", help, default_text, {1.0, 1e7}, member);
 }
 
 std::vector<DemoSpec> make_demo_table() {
@@ -43,20 +39,11 @@ std::vector<DemoSpec> make_demo_table() {
   table.push_back(trials_entry("trials_physical", "--trials-physical",
                                "Monte Carlo trials at each m of section 6 (physical identification of the payload)",
                                "100", &DemoRequest::trials_physical));
-  DemoSpec seed = spdfit::detail::option_entry<DemoRequest>("seed", "--seed", "", OptionType::Integer, "N",
-                                                            "Seed of every experiment", "1");
-  seed.range = {0.0, double(std::numeric_limits<std::int64_t>::max())};
-  seed.nullable = false;
-  seed.set = [](DemoRequest& r, const OptionValue& v) { r.seed = std::uint64_t(std::get<std::int64_t>(v)); };
-  seed.get = [](const DemoRequest& r) -> std::optional<OptionValue> { return std::int64_t(r.seed); };
-  table.push_back(seed);
-  DemoSpec threads = spdfit::detail::option_entry<DemoRequest>("threads", "--threads", "", OptionType::Integer, "N",
-                                                               "Worker threads (0: one per core)", "0");
-  threads.range = {0.0, 1024.0};
-  threads.nullable = false;
-  threads.set = [](DemoRequest& r, const OptionValue& v) { r.threads = unsigned(std::get<std::int64_t>(v)); };
-  threads.get = [](const DemoRequest& r) -> std::optional<OptionValue> { return std::int64_t{r.threads}; };
-  table.push_back(threads);
+  table.push_back(spdfit::detail::integer_entry<DemoRequest>(
+      "seed", "--seed", "", "Seed of every experiment", "1", {0.0, double(std::numeric_limits<std::int64_t>::max())},
+      &DemoRequest::seed));
+  table.push_back(spdfit::detail::integer_entry<DemoRequest>("threads", "--threads", "", "Worker threads (0: one per core)",
+                                                             "0", {0.0, 1024.0}, &DemoRequest::threads));
   return table;
 }
 

@@ -72,10 +72,8 @@ std::vector<Method> listed_methods(const std::string& text, const std::vector<Me
   if (text.empty()) return defaults;
   std::vector<Method> methods;
   for (const std::string& name : list_items(text)) {
-    const std::optional<Method> method = parse_method(name);
-    bool selectable = false;
-    for (Method m : kSelectableMethods) selectable = selectable || (method && *method == m);
-    if (!selectable) {
+    const std::optional<Method> method = parse_method(name);  // the selectable methods only
+    if (!method) {
       throw OptionError("`methods`: " + name + " is not one of " + joined(method_names(
                             {kSelectableMethods.begin(), kSelectableMethods.end()}), ", "),
                         Code::OptionValue, "methods");
@@ -158,29 +156,15 @@ void add_generator(std::vector<ExperimentSpec>& table, ExperimentKind kind) {
 // trials, seed, threads, json, csv (unless `csv_help` is empty), output and methods.
 void add_common(std::vector<ExperimentSpec>& table, std::string_view default_trials, std::string_view methods_help,
                 std::string_view csv_help) {
-  ExperimentSpec trials = experiment_entry("trials", "--trials", OptionType::Integer, "N",
-                                           "Number of Monte Carlo trials", default_trials);
-  trials.range = {1.0, 1e8};
-  trials.nullable = false;
-  trials.set = [](ExperimentRequest& r, const OptionValue& v) { r.trials = std::size_t(std::get<std::int64_t>(v)); };
-  trials.get = [](const ExperimentRequest& r) -> std::optional<OptionValue> { return std::int64_t(r.trials); };
-  table.push_back(trials);
-
-  ExperimentSpec seed = experiment_entry("seed", "--seed", OptionType::Integer, "N",
-                                         "Seed: the same seed gives the same numbers on any number of threads", "1");
-  seed.range = {0.0, double(std::numeric_limits<std::int64_t>::max())};
-  seed.nullable = false;
-  seed.set = [](ExperimentRequest& r, const OptionValue& v) { r.seed = std::uint64_t(std::get<std::int64_t>(v)); };
-  seed.get = [](const ExperimentRequest& r) -> std::optional<OptionValue> { return std::int64_t(r.seed); };
-  table.push_back(seed);
-
-  ExperimentSpec threads = experiment_entry("threads", "--threads", OptionType::Integer, "N",
-                                            "Worker threads (0: one per core); the numbers do not depend on it", "0");
-  threads.range = {0.0, 1024.0};
-  threads.nullable = false;
-  threads.set = [](ExperimentRequest& r, const OptionValue& v) { r.threads = unsigned(std::get<std::int64_t>(v)); };
-  threads.get = [](const ExperimentRequest& r) -> std::optional<OptionValue> { return std::int64_t{r.threads}; };
-  table.push_back(threads);
+  using spdfit::detail::integer_entry;
+  table.push_back(integer_entry("trials", "--trials", "trials", "Number of Monte Carlo trials", default_trials,
+                                {1.0, 1e8}, &ExperimentRequest::trials));
+  table.push_back(integer_entry("seed", "--seed", "seed",
+                                "Seed: the same seed gives the same numbers on any number of threads", "1",
+                                {0.0, double(std::numeric_limits<std::int64_t>::max())}, &ExperimentRequest::seed));
+  table.push_back(integer_entry("threads", "--threads", "threads",
+                                "Worker threads (0: one per core); the numbers do not depend on it", "0",
+                                {0.0, 1024.0}, &ExperimentRequest::threads));
 
   for (ExperimentSpec& spec :
        output_options(&ExperimentRequest::output, {"json"}, {"Print the results as JSON"})) {

@@ -28,10 +28,8 @@ void set_estimators(PhysicalExperimentOptions& options, const std::vector<std::s
   options.methods.clear();
   options.variants.clear();
   for (const std::string& name : names) {
-    const std::optional<Method> method = parse_method(name);
-    bool selectable = false;
-    for (Method m : kSelectableMethods) selectable = selectable || (method && m == *method);
-    if (selectable) {
+    const std::optional<Method> method = parse_method(name);  // the selectable methods only
+    if (method) {
       options.methods.push_back(*method);
     } else if (physical_variant(name)) {
       options.variants.push_back(name);

@@ -1,7 +1,10 @@
 // Internal: an option-table entry with its common fields, for the request files' tables.
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <string_view>
+#include <variant>
 
 #include "spdfit/options.hpp"
 
@@ -23,6 +26,22 @@ OptionSpec<Request> option_entry(std::string_view name, std::string_view cli, st
   spec.help = help;
   spec.default_text = default_text;
   if (type == OptionType::Flag) spec.nullable = false;
+  return spec;
+}
+
+/// An integer entry stored in `member` (a count, a seed, a number of threads), with its default
+/// shown; a front end's "no value" is refused rather than taken for the default (nullable false).
+template <typename Request, typename T>
+OptionSpec<Request> integer_entry(std::string_view name, std::string_view cli, std::string_view python,
+                                  std::string_view help, std::string_view default_text, NumberRange range,
+                                  T Request::*member) {
+  OptionSpec<Request> spec = option_entry<Request>(name, cli, python, OptionType::Integer, "N", help, default_text);
+  spec.range = range;
+  spec.nullable = false;
+  spec.set = [member](Request& r, const OptionValue& v) { r.*member = static_cast<T>(std::get<std::int64_t>(v)); };
+  spec.get = [member](const Request& r) -> std::optional<OptionValue> {
+    return static_cast<std::int64_t>(r.*member);
+  };
   return spec;
 }
 

@@ -45,10 +45,7 @@ void for_each_option_table(Visit&& visit) {
   visit(linkage::synthesize_option_table());
   visit(linkage::analyze_option_table());
   visit(experiment::demo_option_table());
-  for (experiment::ExperimentKind kind : {experiment::ExperimentKind::Thesis, experiment::ExperimentKind::PaperHexapod,
-                                          experiment::ExperimentKind::Paper2x2, experiment::ExperimentKind::Physical}) {
-    visit(experiment::experiment_option_table(kind));
-  }
+  for (experiment::ExperimentKind kind : experiment::kExperimentKinds) visit(experiment::experiment_option_table(kind));
 }
 
 }  // namespace spdfit::detail

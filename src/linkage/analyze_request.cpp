@@ -30,13 +30,8 @@ std::vector<AnalyzeSpec> make_analyze_table() {
   range.set = [](AnalyzeRequest& r, const OptionValue& v) { r.psi_range = std::get<std::string>(v); };
   table.push_back(range);
 
-  AnalyzeSpec points = spdfit::detail::option_entry<AnalyzeRequest>("points", "--points", "", OptionType::Integer, "N",
-                                                                      "Number of input angles", "37");
-  points.range = {2.0, 1e7};
-  points.nullable = false;
-  points.set = [](AnalyzeRequest& r, const OptionValue& v) { r.points = int(std::get<std::int64_t>(v)); };
-  points.get = [](const AnalyzeRequest& r) -> std::optional<OptionValue> { return std::int64_t{r.points}; };
-  table.push_back(points);
+  table.push_back(spdfit::detail::integer_entry<AnalyzeRequest>("points", "--points", "", "Number of input angles",
+                                                                 "37", {2.0, 1e7}, &AnalyzeRequest::points));
 
   for (AnalyzeSpec& spec : output_options(&AnalyzeRequest::output, {"json", "output"}, {"Print the analysis as JSON"})) {
     table.push_back(std::move(spec));
@@ -76,7 +71,7 @@ std::string to_json(const Analysis& r) {
   using detail::in_degrees;
   nlohmann::json out;
   out["lengths"] = {{"a1", r.bar.a1}, {"a2", r.bar.a2}, {"a3", r.bar.a3}, {"a4", r.bar.a4}};
-  out["k"] = detail::numbers_json(r.k);
+  out["k"] = spdfit::detail::vector_json(r.k);
   out["grashof"] = to_string(r.grashof);
   out["input_fully_rotates"] = r.input_fully_rotates;
   nlohmann::json dead = nlohmann::json::array();

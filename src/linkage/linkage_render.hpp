@@ -27,11 +27,6 @@ inline std::string four_decimals(double value) {
   return buffer;
 }
 
-/// JSON numbers as every rendering writes them (null for NaN and infinities).
-inline nlohmann::json value_json(double value) { return spdfit::detail::number_json(value, JsonStyle::Contract); }
-inline nlohmann::json numbers_json(const Eigen::VectorXd& v) {
-  return spdfit::detail::vector_json(v, JsonStyle::Contract);
-}
 
 /// {"min", "max"} in degrees.
 inline nlohmann::json span_json(const AngleRange& range) {

@@ -27,9 +27,7 @@ using detail::full_g;
 using detail::in_degrees;
 using detail::in_radians;
 using detail::kRadiansPerDegree;
-using detail::numbers_json;
 using detail::span_json;
-using detail::value_json;
 
 SynthesizeSpec synthesize_option(std::string_view name, std::string_view cli, OptionType type,
                                  std::string_view value_name, std::string_view help,
@@ -160,19 +158,19 @@ bool named(const std::vector<std::string_view>& given, std::string_view name) {
   return false;
 }
 
-nlohmann::json degrees_json(const Eigen::VectorXd& v) { return numbers_json(Eigen::VectorXd(v / kRadiansPerDegree)); }
+nlohmann::json degrees_json(const Eigen::VectorXd& v) { return spdfit::detail::vector_json(Eigen::VectorXd(v / kRadiansPerDegree)); }
 
 nlohmann::json solution_json(const LinkageSolution& s, bool with_iterations) {
   nlohmann::json out;
-  out["k"] = numbers_json(s.k);
+  out["k"] = spdfit::detail::vector_json(s.k);
   if (s.lengths) {
     out["lengths"] = {{"a1", s.lengths->a1}, {"a2", s.lengths->a2}, {"a3", s.lengths->a3}, {"a4", s.lengths->a4}};
   } else {
     out["lengths"] = nullptr;
   }
-  out["design_error_norm"] = value_json(s.design_error_norm);
-  out["structural_error_rms_deg"] = value_json(in_degrees(s.structural_error_rms));
-  out["structural_error_max_deg"] = value_json(in_degrees(s.structural_error_max));
+  out["design_error_norm"] = spdfit::detail::number_json(s.design_error_norm);
+  out["structural_error_rms_deg"] = spdfit::detail::number_json(in_degrees(s.structural_error_rms));
+  out["structural_error_max_deg"] = spdfit::detail::number_json(in_degrees(s.structural_error_max));
   if (with_iterations) {
     out["iterations"] = s.iterations;
     out["final_step_norm"] = s.final_step_norm;
@@ -184,7 +182,7 @@ nlohmann::json solution_json(const LinkageSolution& s, bool with_iterations) {
     out["transmission_angle_deg"] = span_json(s.check->transmission);
     out["branch_defect"] = s.check->branch_defect;
     out["branch_defect_reason"] = s.check->branch_defect_reason;
-    out["dead_points_deg"] = numbers_json(Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(
+    out["dead_points_deg"] = spdfit::detail::vector_json(Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(
                                              s.check->dead_points.data(), Eigen::Index(s.check->dead_points.size())) /
                                          kRadiansPerDegree));
   }
@@ -195,8 +193,8 @@ nlohmann::json synthesis_json(const SynthesisResult& r, const SynthesisRun& p) {
   nlohmann::json out;
   out["design"] = solution_json(r.design, false);
   out["structural"] = solution_json(r.structural, true);
-  out["condition_number"] = value_json(r.condition_number);
-  out["scaled_condition_number"] = value_json(r.scaled_condition_number);
+  out["condition_number"] = spdfit::detail::number_json(r.condition_number);
+  out["scaled_condition_number"] = spdfit::detail::number_json(r.scaled_condition_number);
   out["rank_decided_on"] = "column-scaled";
   const MotionCheck& check = *r.structural.check;
   out["grashof"] = to_string(check.grashof);
@@ -210,7 +208,7 @@ nlohmann::json synthesis_json(const SynthesisResult& r, const SynthesisRun& p) {
   out["used_svd"] = r.used_svd;
   out["branch"] = r.branch;
   out["pairs"] = {{"psi_deg", degrees_json(r.psi)}, {"phi_deg", degrees_json(r.phi)}};
-  out["weights"] = p.weights.size() ? numbers_json(p.weights) : nlohmann::json(nullptr);
+  out["weights"] = p.weights.size() ? spdfit::detail::vector_json(p.weights) : nlohmann::json(nullptr);
   out["warnings"] = texts(r.warnings);
   return out;
 }

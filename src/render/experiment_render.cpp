@@ -16,16 +16,16 @@ namespace spdfit::experiment::detail {
 
 using nlohmann::json;
 
-json contract_number(double value) { return spdfit::detail::number_json(value, JsonStyle::Contract); }
-json contract_vector(const Eigen::VectorXd& v) { return spdfit::detail::vector_json(v, JsonStyle::Contract); }
+using spdfit::detail::number_json;
+using spdfit::detail::vector_json;
 
 json summary_json(const Summary& s) {
-  return {{"mean", contract_number(s.mean)},
-          {"std", contract_number(s.std)},
-          {"median", contract_number(s.median)},
-          {"max", contract_number(s.max)},
-          {"min", contract_number(s.min)},
-          {"standard_error", contract_number(s.standard_error())},
+  return {{"mean", number_json(s.mean)},
+          {"std", number_json(s.std)},
+          {"median", number_json(s.median)},
+          {"max", number_json(s.max)},
+          {"min", number_json(s.min)},
+          {"standard_error", number_json(s.standard_error())},
           {"count", s.count},
           {"failures", s.failures}};
 }
@@ -108,9 +108,9 @@ json entries_json(const EntryExperimentResult& result) {
 json entry_methods_json(const EntryExperimentResult& result) {
   json out = json::object();
   for (const EntryStatistics& s : result.methods) {
-    out[std::string(to_string(s.method))] = {{"mae", contract_vector(s.mae)},
-                                             {"std", contract_vector(s.std)},
-                                             {"bias", contract_vector(s.bias)},
+    out[std::string(to_string(s.method))] = {{"mae", vector_json(s.mae)},
+                                             {"std", vector_json(s.std)},
+                                             {"bias", vector_json(s.bias)},
                                              {"count", s.count},
                                              {"failures", s.failures}};
   }
@@ -319,7 +319,7 @@ nlohmann::json entry_experiment_json(const ExperimentRun& run) {
     out["seed"] = result.seed;
   }
   out["entries"] = detail::entries_json(result);
-  out["truth"] = spdfit::detail::matrix_json(result.truth, JsonStyle::Contract);
+  out["truth"] = spdfit::detail::matrix_json(result.truth);
   out["methods"] = detail::entry_methods_json(result);
   return out;
 }

@@ -18,11 +18,12 @@ namespace spdfit::detail {
 using Json = nlohmann::json;
 
 /// A number: finite as itself; +-inf and NaN as null (Contract: JSON has no literal for them) or
-/// as the strings "inf", "-inf", "nan" (Exact).
-Json number_json(double value, JsonStyle style);
+/// as the strings "inf", "-inf", "nan" (Exact). Contract is what the command line's documents
+/// use, and the default.
+Json number_json(double value, JsonStyle style = JsonStyle::Contract);
 /// A vector as an array of numbers; a matrix as an array of its rows.
-Json vector_json(const Eigen::VectorXd& v, JsonStyle style);
-Json matrix_json(const Eigen::MatrixXd& M, JsonStyle style);
+Json vector_json(const Eigen::VectorXd& v, JsonStyle style = JsonStyle::Contract);
+Json matrix_json(const Eigen::MatrixXd& M, JsonStyle style = JsonStyle::Contract);
 /// The columns of B as an array of vectors (bases: null spaces, ranges).
 Json columns_json(const Eigen::MatrixXd& B, JsonStyle style);
 

@@ -3,6 +3,7 @@
 // own options built from it, so that the command line's options come from the library.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -26,6 +27,10 @@ namespace spdfit::experiment {
 
 /// The experiments of `spdfit experiment`.
 enum class ExperimentKind { Thesis, PaperHexapod, Paper2x2, Physical };
+
+/// Every experiment, in the order `spdfit experiment --help` lists them.
+inline constexpr std::array<ExperimentKind, 4> kExperimentKinds = {
+    ExperimentKind::Thesis, ExperimentKind::PaperHexapod, ExperimentKind::Paper2x2, ExperimentKind::Physical};
 
 /// The command line's name of an experiment ("paper-2x2").
 std::string_view to_string(ExperimentKind kind);
