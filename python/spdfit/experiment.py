@@ -8,6 +8,7 @@ a given seed gives the same numbers whatever the number of threads.
     physical()                 physical identification of the payload against the generic methods
 """
 from ._common import _as_matrix, _takes_options
+from ._records import PhysicalExperiment, record as _record
 from ._spdfit import experiment as _core
 
 # The result classes (the library's), under the names the type stubs give them.
@@ -30,7 +31,8 @@ THESIS_NOISE_VARIANCES = tuple(run[1] for run in _core.THESIS_REPORTED_RUNS)
 # library's table (experiment::kThesisReportedRuns).
 THESIS_REPORTED = {run[0]: tuple(run[1:]) for run in _core.THESIS_REPORTED_RUNS}
 
-__all__ = ["EntryExperimentResult", "EntryStatistics", "MethodErrors", "PairedComparison", "SIGNIFICANCE", "Summary",
+__all__ = ["EntryExperimentResult", "EntryStatistics", "MethodErrors", "PairedComparison", "PhysicalExperiment",
+           "SIGNIFICANCE", "Summary",
            "THESIS_NOISE_VARIANCES", "THESIS_REPORTED", "ThesisExperimentResult", "paper_2x2", "paper_2x2_sweep",
            "paper_hexapod", "physical", "thesis"]
 
@@ -197,7 +199,7 @@ def physical(**options):
 
     Returns
     -------
-    dict
+    PhysicalExperiment
         The JSON of `spdfit experiment physical --json`: "rows", one per m, each with "samples",
         "methods" ({name: {"mean", "standard_error", ..., "inconsistent"}}), "best_generic" and
         "physical_ratio" (physical's mean error over the best generic method's).
@@ -217,4 +219,4 @@ def physical(**options):
     """
     import json
 
-    return json.loads(_core.run("experiment.physical", options))
+    return _record(PhysicalExperiment, json.loads(_core.run("experiment.physical", options)))

@@ -5,6 +5,7 @@ from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 import numpy as np
 import numpy.typing as npt
 
+from ._records import PhysicalExperiment as PhysicalExperiment
 from ._spdfit import _Pybind11Type
 from .hexapod import Geometry
 
@@ -99,4 +100,4 @@ def thesis(noise_var: Optional[float] = ..., *, truth: Optional[npt.ArrayLike] =
 def paper_hexapod(**options: Any) -> EntryExperimentResult: ...  # options: experiment.paper_hexapod
 def paper_2x2(std_a: float, **options: Any) -> EntryExperimentResult: ...  # options: experiment.paper_2x2
 def paper_2x2_sweep(levels: Optional[Iterable[float]] = ..., **options: Any) -> List[Tuple[float, EntryExperimentResult]]: ...  # options: experiment.paper_2x2_sweep
-def physical(**options: Any) -> Dict[str, Any]: ...  # options: experiment.physical
+def physical(**options: Any) -> PhysicalExperiment: ...  # options: experiment.physical

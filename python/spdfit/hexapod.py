@@ -17,6 +17,7 @@ import numpy as _np
 from . import _spdfit
 from ._common import _as_matrix, _data, _physical_arrays, _takes_options
 from ._errors import NumericalError, warn as _warn
+from ._records import PhysicalEstimate, record as _record
 from ._spdfit import hexapod as _core
 
 Geometry = _core.Geometry
@@ -323,8 +324,8 @@ def identify(A, B=None, *, a_cols=None, b_cols=None, truth=None, stiffness=None,
     -------
     dict
         {method: MethodIdentification} with the FitResult, the eigenvalues, the modes and the error
-        against the truth; with physical=True also "physical": a dict (vectors and matrices as
-        NumPy arrays).
+        against the truth; with physical=True also "physical": a spdfit.physical.PhysicalEstimate (vectors and
+        matrices as NumPy arrays).
 
     Raises
     ------
@@ -369,5 +370,5 @@ def identify(A, B=None, *, a_cols=None, b_cols=None, truth=None, stiffness=None,
         estimate = _physical_arrays(_json.loads(physical_text))
         if estimate["status"] != "success":
             raise NumericalError("the physical fit failed: " + estimate.get("error", ""), estimate)
-        out["physical"] = estimate
+        out["physical"] = _record(PhysicalEstimate, estimate)
     return out

@@ -23,9 +23,10 @@ import numpy as _np
 
 from ._common import _takes_options
 from ._errors import NumericalError, warn as _warn
+from ._records import PayloadDesign, PayloadEstimate, record as _record
 from ._spdfit import payload as _core
 
-__all__ = ["design", "identify", "urdf_link"]
+__all__ = ["PayloadDesign", "PayloadEstimate", "design", "identify", "urdf_link"]
 
 # The signals' keyword arguments and the column options that choose them from a table.
 _SIGNALS = ("wrench", "quaternion", "rotation", "gravity_in_sensor", "accel", "specific_force", "omega", "alpha",
@@ -114,7 +115,7 @@ def identify(log=None, *, wrench=None, quaternion=None, rotation=None, gravity_i
 
     Returns
     -------
-    dict
+    PayloadEstimate
         The keys of ``spdfit payload identify --json`` (mass, center_of_mass, inertia,
         principal_moments, principal_axes, force_bias, torque_bias, standard_errors, residual_rms,
         condition, undetermined, certificate, ... ; vectors and matrices as float64 arrays, null
@@ -154,7 +155,7 @@ def identify(log=None, *, wrench=None, quaternion=None, rotation=None, gravity_i
         _warn(message, code)
     result["residuals"] = _np.asarray(residuals)
     result["report"] = report
-    return result
+    return _record(PayloadEstimate, result)
 
 
 def urdf_link(estimate, name="payload", precision=9):
@@ -220,7 +221,7 @@ def design(candidates=None, *, quaternion=None, rotation=None, gravity_in_sensor
 
     Returns
     -------
-    dict
+    PayloadDesign
         The keys of ``spdfit payload design --json``: chosen (1-based rows), log_det, condition,
         se_mass, se_center_of_mass, random (the random choices' percentiles) ..., and "report".
 
@@ -256,4 +257,4 @@ def design(candidates=None, *, quaternion=None, rotation=None, gravity_in_sensor
     for message, code in zip(result["warnings"], result["warning_codes"]):
         _warn(message, code)
     result["report"] = report
-    return result
+    return _record(PayloadDesign, result)

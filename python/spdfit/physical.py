@@ -18,9 +18,12 @@ import numpy as _np
 from . import hexapod
 from ._common import _as_matrix, _data, _physical_arrays as _arrays, _takes_options
 from ._errors import NumericalError, warn as _warn
+from ._records import (InertiaRepair, PhysicalDesign, PhysicalEstimate, RegressFit, UrdfLinkRepair,
+                       record as _record)
 from ._spdfit import physical as _core
 
-__all__ = ["design", "identify", "inertia_repair", "inertia_repair_urdf", "mass_matrix", "regress"]
+__all__ = ["InertiaRepair", "PhysicalDesign", "PhysicalEstimate", "RegressFit", "UrdfLinkRepair", "design", "identify",
+           "inertia_repair", "inertia_repair_urdf", "mass_matrix", "regress"]
 
 def _geometry(geometry):
     return hexapod.geometry(geometry)
@@ -52,7 +55,7 @@ def identify(A, B=None, geometry=None, *, a_cols=None, b_cols=None, strut_masses
 
     Returns
     -------
-    dict
+    PhysicalEstimate
         The keys of ``spdfit hexapod identify --json``'s ``physical`` object: mass,
         center_of_mass, inertia, principal_moments, principal_axes, strut_mass, M_p,
         M_p_eigenvalues, modes_hz, pseudo_inertia_min_eig, physically_consistent, certificate,
@@ -86,7 +89,7 @@ def identify(A, B=None, geometry=None, *, a_cols=None, b_cols=None, strut_masses
         raise NumericalError(result.get("error", "physical identification failed"), result)
     for message, code in zip(result["warnings"], result.get("warning_codes", ["warning"] * len(result["warnings"]))):
         _warn(f"physical: {message}", code)
-    return result
+    return _record(PhysicalEstimate, result)
 
 
 def design(geometry=None, strut_masses="geometry"):
@@ -101,7 +104,7 @@ def design(geometry=None, strut_masses="geometry"):
 
     Returns
     -------
-    dict
+    PhysicalDesign
         parameters, rank and condition of the 21 x parameters design of theta -> M_p(theta),
         length_scale (m), null_space (a basis, parameters x nullity) and confounded (the
         confounded combination in words, empty when there is none).
@@ -118,7 +121,7 @@ def design(geometry=None, strut_masses="geometry"):
     >>> d["parameters"], d["rank"]
     (11, 10)
     """
-    return _core.design(_geometry(geometry), strut_masses)
+    return _record(PhysicalDesign, _core.design(_geometry(geometry), strut_masses))
 
 
 def mass_matrix(geometry=None, *, mass, center_of_mass, inertia):
@@ -178,7 +181,7 @@ def inertia_repair(mass, center_of_mass, inertia, **options):
 
     Returns
     -------
-    dict
+    InertiaRepair
         mass, center_of_mass, inertia (arrays), changed, distance, certificate, min_eig,
         principal_moments, principal_moments_before, second_moments_before, metric, warnings.
 
@@ -201,7 +204,7 @@ def inertia_repair(mass, center_of_mass, inertia, **options):
     for key in ("center_of_mass", "inertia", "principal_moments", "principal_moments_before",
                 "second_moments_before"):
         result[key] = _np.array(result[key], dtype=_np.float64)
-    return result
+    return _record(InertiaRepair, result)
 
 
 @_takes_options("physical.inertia_repair_urdf")
@@ -219,8 +222,8 @@ def inertia_repair_urdf(text, *, source="<urdf>", **options):
     Returns
     -------
     tuple
-        (the repaired document, every other byte unchanged; the report for people; a list with a
-        dict per link with an <inertial>: link, line, changed, distance, mass, center_of_mass,
+        (the repaired document, every other byte unchanged; the report for people; a list with an
+        UrdfLinkRepair per link with an <inertial>: link, line, changed, distance, mass, center_of_mass,
         inertia_before, inertia).
 
     Raises
@@ -244,7 +247,8 @@ def inertia_repair_urdf(text, *, source="<urdf>", **options):
     if not isinstance(text, str):
         hint = "decode the bytes first" if isinstance(text, (bytes, bytearray)) else "pass the file's text, open(path).read()"
         raise TypeError(f"text is the URDF's text (a str), not {type(text).__name__}: {hint}")
-    return _core.repair_urdf(text, str(source), options)
+    repaired, report, links = _core.repair_urdf(text, str(source), options)
+    return repaired, report, [_record(UrdfLinkRepair, link) for link in links]
 
 
 def _prior_bodies(prior):
@@ -294,7 +298,7 @@ def regress(Y, tau, *, noise_cov=None, prior=None, **options):
 
     Returns
     -------
-    dict
+    RegressFit
         The keys of ``spdfit physical regress --json`` (parameters, body, base_parameters,
         undetermined, criterion, certificate, ...; vectors and matrices as arrays, null as NaN)
         and "report".
@@ -344,4 +348,4 @@ def regress(Y, tau, *, noise_cov=None, prior=None, **options):
     for message, code in zip(result["warnings"], result["warning_codes"]):
         _warn(message, code)
     result["report"] = report
-    return result
+    return _record(RegressFit, result)

@@ -156,4 +156,49 @@ PhysicalExperimentResult run_physical_experiment(const PhysicalExperimentOptions
   return result;
 }
 
+namespace {
+
+// Whether the row's k-th estimator is a generic method (they come first).
+bool generic(const PhysicalExperimentResult& result, std::size_t k) {
+  return k < result.options.methods.size();
+}
+
+}  // namespace
+
+void set_estimators(PhysicalExperimentOptions& options, const std::vector<std::string>& names) {
+  options.methods.clear();
+  options.variants.clear();
+  for (const std::string& name : names) {
+    const std::optional<Method> method = parse_method(name);  // the selectable methods only
+    if (method) {
+      options.methods.push_back(*method);
+    } else if (physical_variant(name)) {
+      options.variants.push_back(name);
+    } else {
+      std::string known;
+      for (Method m : kSelectableMethods) known += (known.empty() ? "" : ", ") + std::string(to_string(m));
+      for (const std::string& v : physical_variant_names()) known += ", " + v;
+      throw std::invalid_argument("unknown method '" + name + "' (the methods are " + known +
+                                  "; a physical variant with :common or :each estimates the strut masses)");
+    }
+  }
+}
+
+std::optional<PhysicalComparison> compare_to_generic(const PhysicalExperimentResult& result,
+                                                     const PhysicalExperimentRow& row) {
+  const PhysicalMethodErrors* physical = nullptr;
+  const PhysicalMethodErrors* best = nullptr;
+  for (std::size_t k = 0; k < row.methods.size(); ++k) {
+    const PhysicalMethodErrors& m = row.methods[k];
+    if (m.summary.count == 0) continue;
+    if (generic(result, k)) {
+      if (best == nullptr || m.summary.mean < best->summary.mean) best = &m;
+    } else if (m.name == "physical") {
+      physical = &m;
+    }
+  }
+  if (physical == nullptr || best == nullptr || !(best->summary.mean > 0.0)) return std::nullopt;
+  return PhysicalComparison{best->name, physical->summary.mean / best->summary.mean};
+}
+
 }  // namespace spdfit::experiment

@@ -288,33 +288,6 @@ UrdfRepairResult repair_urdf(const std::string& text, const std::string& source,
   return out;
 }
 
-std::string urdf_repair_report(const UrdfRepairResult& result) {
-  auto g = [](double value) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.6g", value);
-    return std::string(buffer);
-  };
-  auto moments = [&g](const Eigen::Vector3d& I) { return g(I(0)) + ", " + g(I(1)) + ", " + g(I(2)); };
-  std::string out;
-  for (const UrdfLinkRepair& l : result.links) {
-    const InertiaRepairResult& r = l.result;
-    out += "link \"" + l.link + "\" (line " + std::to_string(l.line) + "): ";
-    if (!r.changed) {
-      out += "consistent (principal moments " + moments(r.principal_moments) + " kg m^2)\n";
-      for (const Warning& w : r.warnings) out += "  warning: " + w.text + "\n";
-      continue;
-    }
-    const Eigen::Vector3d& I = r.principal_moments_before;
-    out += "repaired: principal moments " + moments(I) + " kg m^2 ";
-    out += I(2) > I(0) + I(1) ? "break the triangle inequality (" + g(I(2)) + " > " + g(I(0)) + " + " + g(I(1)) + ")"
-                              : "meet the triangle inequality with less than the margin " + g(2 * r.floor);
-    out += "; now " + moments(r.principal_moments) + " kg m^2, moved by " + g(r.distance) + " kg m^2\n";
-    for (const Warning& w : r.warnings) out += "  warning: " + w.text + "\n";
-  }
-  out += std::to_string(result.changed()) + " of " + std::to_string(result.links.size()) + " links repaired\n";
-  return out;
-}
-
 UrdfRepairResult repair_urdf_file(const std::string& path, const InertiaRepairOptions& options) {
   return repair_urdf(io::detail::read_file(path, kMaxUrdfBytes, "a URDF file"), path, options);
 }

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "interface/option_builders.hpp"
-#include "linkage/linkage_render.hpp"
+#include "render/linkage_render.hpp"
 #include "spdfit/linkage/prescribed_function.hpp"
 #include "spdfit/linkage/synthesize_request.hpp"
 

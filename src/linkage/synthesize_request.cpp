@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "linkage/linkage_render.hpp"
+#include "render/linkage_render.hpp"
 #include "interface/option_builders.hpp"
 #include "render/json_values.hpp"
 #include "spdfit/format.hpp"

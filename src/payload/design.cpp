@@ -13,7 +13,6 @@
 
 #include "payload/kinematics.hpp"
 #include "physical/common_options.hpp"
-#include "physical/json_numbers.hpp"
 #include "spdfit/format.hpp"
 #include "spdfit/random.hpp"
 
@@ -480,55 +479,6 @@ std::string chosen_rows_csv(const DesignResult& result) {
     out << "\n";
   }
   io::write_csv(out, result.chosen_rows);
-  return out.str();
-}
-
-std::string to_json(const DesignResult& r) {
-  using physical::detail::number_json;
-  using physical::detail::vector_json;
-  physical::detail::OrderedJson out;
-  out["criterion"] = std::string(to_string(r.criterion));
-  out["poses"] = r.poses;
-  out["candidates"] = r.candidates;
-  std::vector<Eigen::Index> one_based;
-  for (Eigen::Index i : r.chosen) one_based.push_back(i + 1);
-  out["chosen"] = one_based;
-  out["log_det"] = number_json(r.score.log_det);
-  out["condition"] = number_json(r.score.condition);
-  out["se_mass"] = number_json(r.score.se_mass);
-  out["se_center_of_mass"] = vector_json(r.score.se_center_of_mass);
-  out["se_center_of_mass_norm"] = number_json(r.score.se_center_of_mass_norm);
-  out["random"] = {{"choices", r.random},
-                   {"log_det", vector_json(r.random_log_det)},
-                   {"se_mass", vector_json(r.random_se_mass)},
-                   {"se_center_of_mass_norm", vector_json(r.random_se_center_of_mass)},
-                   {"condition", vector_json(r.random_condition)},
-                   {"beats", r.beats_random}};
-  out["distinct_candidates"] = r.distinct_candidates;
-  spdfit::detail::put_warnings(out, r.warnings);
-  return out.dump(2) + "\n";
-}
-
-std::string report(const DesignResult& r) {
-  std::ostringstream out;
-  out << "payload design: " << r.poses << " of " << r.candidates << " candidate poses (" << r.distinct_candidates
-      << " distinct gravity directions), " << to_string(r.criterion) << "-optimal\n";
-  out << "  chosen rows (1-based):";
-  for (Eigen::Index i : r.chosen) out << " " << i + 1;
-  out << "\n";
-  out << "  log det F " << format_number(r.score.log_det) << ", condition " << format_number(r.score.condition)
-      << ", predicted standard error of m " << format_number(r.score.se_mass) << " kg, of c "
-      << format_number(r.score.se_center_of_mass_norm) << " m\n";
-  if (r.random > 0) {
-    out << "  " << r.random << " random choices of " << r.poses
-        << " poses (10th / 50th / 90th percentiles): standard error of m " << format_number(r.random_se_mass(0)) << " / "
-        << format_number(r.random_se_mass(1)) << " / " << format_number(r.random_se_mass(2)) << " kg, of c "
-        << format_number(r.random_se_center_of_mass(0)) << " / " << format_number(r.random_se_center_of_mass(1)) << " / "
-        << format_number(r.random_se_center_of_mass(2)) << " m, log det " << format_number(r.random_log_det(0)) << " / "
-        << format_number(r.random_log_det(1)) << " / " << format_number(r.random_log_det(2)) << "\n";
-    out << "  the chosen design's standard error of m is at most that of " << format_number(100.0 * r.beats_random)
-        << "% of the random choices\n";
-  }
   return out.str();
 }
 

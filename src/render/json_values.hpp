@@ -1,6 +1,6 @@
 // Internal: numbers, vectors and matrices to and from nlohmann::json in either JsonStyle, and
 // reading a document's fields with errors that name what is missing. The renderers of each
-// result type (render/*.cpp, hexapod/identify_render.cpp) are built from these.
+// result type (render/*.cpp) are built from these.
 #pragma once
 
 #include <optional>
@@ -16,6 +16,8 @@
 namespace spdfit::detail {
 
 using Json = nlohmann::json;
+/// The documents whose keys keep the order written (the physical fits, the payload, inertias).
+using OrderedJson = nlohmann::ordered_json;
 
 /// A number: finite as itself; +-inf and NaN as null (Contract: JSON has no literal for them) or
 /// as the strings "inf", "-inf", "nan" (Exact). Contract is what the command line's documents

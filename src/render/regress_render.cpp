@@ -4,7 +4,6 @@
 #include <sstream>
 #include <string>
 
-#include "physical/json_numbers.hpp"
 #include "render/json_values.hpp"
 #include "spdfit/format.hpp"
 #include "spdfit/physical/regress.hpp"
@@ -13,10 +12,10 @@ namespace spdfit::physical {
 
 namespace {
 
-using detail::matrix_json;
-using detail::number_json;
-using detail::OrderedJson;
-using detail::vector_json;
+using spdfit::detail::matrix_json;
+using spdfit::detail::number_json;
+using spdfit::detail::OrderedJson;
+using spdfit::detail::vector_json;
 
 OrderedJson certificate_json(const Certificate& c) {
   return {{"stationarity", number_json(c.stationarity)},

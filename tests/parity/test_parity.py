@@ -465,3 +465,79 @@ def test_simulate_refuses_alike(cli_args, keywords, code, data, tmp_path):
     with pytest.raises(ValueError) as error:
         hexapod.simulate(**{k: (geometry if v == "{G}" else v) for k, v in keywords.items()})
     assert getattr(error.value, "code", None) == code, error.value
+
+
+# The results Python returns as records (spdfit._records: a class per result, its keys also its
+# attributes) hold the command line's whole JSON document, key for key and number for number:
+# (name, CLI arguments, Python, the document's place in the CLI's JSON, the keys only Python adds,
+# rtol). Pickling gives the same class with the same items.
+RECORDS = [
+    ("hexapod identify --physical", ["hexapod", "identify", "--physical", "--geometry", "{G}", "--json", "{Ah}", "{Bh}"],
+     lambda d: hexapod.identify(d["Ah"], d["Bh"], physical=True, geometry=d["G"])["physical"], ("physical",), (), 0.0,
+     physical.PhysicalEstimate),
+    ("physical regress", ["physical", "regress", "--json", "{Y}", "{tau}"],
+     lambda d: physical.regress(d["Y"], d["tau"]), (), ("report",), 0.0, physical.RegressFit),
+    ("inertia repair", ["inertia", "repair", "{body}"],
+     lambda d: physical.inertia_repair(2.0, [0.01, 0.0, -0.02], np.diag([0.1, 0.2, 0.5])), (), (), 0.0,
+     physical.InertiaRepair),
+    ("payload identify", ["payload", "identify", "--wrench-cols", "1:6", "--quat-cols", "7:10", "--json", "{W}"],
+     lambda d: payload.identify(wrench=d["W"][:, :6], quaternion=d["W"][:, 6:10]), (), ("residuals", "report"), 1e-12,
+     payload.PayloadEstimate),
+    ("payload design", ["payload", "design", "--quat-cols", "7:10", "--poses", "4", "--random", "30", "--json", "{W}"],
+     lambda d: payload.design(quaternion=d["W"][:, 6:10], poses=4, random=30), (), ("report",), 1e-12,
+     payload.PayloadDesign),
+    ("experiment physical", ["experiment", "physical", "--samples", "12", "--trials", "3", "--methods", "spde,physical",
+                             "--json"],
+     lambda d: experiment.physical(samples=[12], trials=3, methods=["spde", "physical"]), (), (), 0.0,
+     experiment.PhysicalExperiment),
+]
+
+
+def same_document(python, cli, rtol, where="document"):
+    """Whether two JSON values agree: the same keys (in any order: hexapod identify's document
+    sorts them), lists of the same length, numbers equal (or within rtol), null for null."""
+    if isinstance(cli, dict):
+        assert isinstance(python, dict) and sorted(python) == sorted(cli), f"{where}: keys {list(python)} and {list(cli)}"
+        for key in cli:
+            same_document(python[key], cli[key], rtol, f"{where}.{key}")
+    elif isinstance(cli, list):
+        assert isinstance(python, list) and len(python) == len(cli), f"{where}: {python} and {cli}"
+        for k, (p, c) in enumerate(zip(python, cli)):
+            same_document(p, c, rtol, f"{where}[{k}]")
+    elif isinstance(cli, (int, float)) and not isinstance(cli, bool) and not isinstance(python, bool):
+        assert isinstance(python, (int, float)), f"{where}: {python!r} and {cli!r}"
+        assert python == cli or (rtol > 0 and abs(python - cli) <= rtol * abs(cli)), f"{where}: {python!r} and {cli!r}"
+    else:
+        assert python == cli, f"{where}: {python!r} and {cli!r}"
+
+
+@pytest.mark.skipif(not CLI, reason="SPDFIT_CLI is not set")
+@pytest.mark.parametrize("name,cli_args,python,path,python_keys,rtol,cls", RECORDS, ids=[r[0] for r in RECORDS])
+def test_records_hold_the_cli_document(name, cli_args, python, path, python_keys, rtol, cls, data):
+    import copy
+    import pickle
+
+    args = [a.format(**{k: str(v) for k, v in data["files"].items()}) for a in cli_args]
+    run = subprocess.run([CLI, *args], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    document = json.loads(run.stdout)
+    for key in path:
+        document = document[key]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        result = python(data["values"])
+    assert type(result) is cls
+    plain = result.to_dict()
+    for key in python_keys:
+        assert key in plain, key
+        del plain[key]
+    same_document(plain, document, rtol)
+    assert json.loads(result.to_json()) == result.to_dict()
+    for key in result:  # the keys are attributes, read-only
+        if key.isidentifier():
+            assert getattr(result, key) is result[key]
+    with pytest.raises(AttributeError, match="read-only"):
+        result.status = "changed"
+    for twin in (pickle.loads(pickle.dumps(result)), copy.deepcopy(result), copy.copy(result)):
+        assert type(twin) is cls
+        assert twin.to_json() == result.to_json()

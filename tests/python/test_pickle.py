@@ -591,3 +591,23 @@ def test_infinities_and_nan_survive_exactly():
     back = pickle.loads(pickle.dumps(edited))
     assert np.array_equal(back.X.view(np.uint64), edited.X.view(np.uint64))
     assert math.copysign(1.0, back.X[0, 0]) == -1.0
+
+
+def test_records_pickle_with_a_format():
+    # The physical results are records (spdfit._records): dicts whose keys are attributes. They
+    # pickle as (class name, format, items); another format is refused with a message.
+    import spdfit.physical as ph
+    from spdfit import _records
+
+    r = ph.inertia_repair(2.0, [0.0, 0.0, 0.0], np.diag([0.1, 0.2, 0.5]))
+    for protocol in range(pickle.HIGHEST_PROTOCOL + 1):
+        twin = pickle.loads(pickle.dumps(r, protocol=protocol))
+        assert type(twin) is ph.InertiaRepair and twin.keys() == r.keys()
+        assert np.array_equal(twin.inertia, r.inertia) and twin.changed is True
+    function, (name, number, items) = r.__reduce__()
+    with pytest.raises(pickle.UnpicklingError, match="another version of spdfit"):
+        function(name, number + 1, items)
+    with pytest.raises(AttributeError, match="no attribute 'nonsense'; its keys: mass, center_of_mass"):
+        r.nonsense
+    assert isinstance(r, dict) and json.loads(r.to_json())["changed"] is True
+    assert _records.record(_records.Record, {"a": {"b": 1}}).a.b == 1

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "render/json_values.hpp"
 #include "spdfit/experiment/physical.hpp"
 #include "spdfit/format.hpp"
 
@@ -13,52 +14,10 @@ namespace spdfit::experiment {
 
 namespace {
 
-using json = nlohmann::ordered_json;
-
-json number(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
-
-// Whether the row's k-th estimator is a generic method (they come first).
-bool generic(const PhysicalExperimentResult& result, std::size_t k) {
-  return k < result.options.methods.size();
-}
+using json = spdfit::detail::OrderedJson;
+using spdfit::detail::number_json;
 
 }  // namespace
-
-void set_estimators(PhysicalExperimentOptions& options, const std::vector<std::string>& names) {
-  options.methods.clear();
-  options.variants.clear();
-  for (const std::string& name : names) {
-    const std::optional<Method> method = parse_method(name);  // the selectable methods only
-    if (method) {
-      options.methods.push_back(*method);
-    } else if (physical_variant(name)) {
-      options.variants.push_back(name);
-    } else {
-      std::string known;
-      for (Method m : kSelectableMethods) known += (known.empty() ? "" : ", ") + std::string(to_string(m));
-      for (const std::string& v : physical_variant_names()) known += ", " + v;
-      throw std::invalid_argument("unknown method '" + name + "' (the methods are " + known +
-                                  "; a physical variant with :common or :each estimates the strut masses)");
-    }
-  }
-}
-
-std::optional<PhysicalComparison> compare_to_generic(const PhysicalExperimentResult& result,
-                                                     const PhysicalExperimentRow& row) {
-  const PhysicalMethodErrors* physical = nullptr;
-  const PhysicalMethodErrors* best = nullptr;
-  for (std::size_t k = 0; k < row.methods.size(); ++k) {
-    const PhysicalMethodErrors& m = row.methods[k];
-    if (m.summary.count == 0) continue;
-    if (generic(result, k)) {
-      if (best == nullptr || m.summary.mean < best->summary.mean) best = &m;
-    } else if (m.name == "physical") {
-      physical = &m;
-    }
-  }
-  if (physical == nullptr || best == nullptr || !(best->summary.mean > 0.0)) return std::nullopt;
-  return PhysicalComparison{best->name, physical->summary.mean / best->summary.mean};
-}
 
 std::string to_json(const PhysicalExperimentResult& result) {
   const hexapod::SimulationOptions& s = result.options.simulation;
@@ -73,17 +32,17 @@ std::string to_json(const PhysicalExperimentResult& result) {
   if (const std::optional<RigidBodyInertia>& p = result.options.payload) {
     json inertia = json::array();
     for (int i = 0; i < 3; ++i)
-      inertia.push_back({number(p->inertia(i, 0)), number(p->inertia(i, 1)), number(p->inertia(i, 2))});
+      inertia.push_back({number_json(p->inertia(i, 0)), number_json(p->inertia(i, 1)), number_json(p->inertia(i, 2))});
     out["payload"] = {
-        {"mass", number(p->mass)},
+        {"mass", number_json(p->mass)},
         {"center_of_mass",
-         {number(p->center_of_mass(0)), number(p->center_of_mass(1)), number(p->center_of_mass(2))}},
+         {number_json(p->center_of_mass(0)), number_json(p->center_of_mass(1)), number_json(p->center_of_mass(2))}},
         {"inertia", inertia}};
   }
   json truth = json::array();
   for (Eigen::Index i = 0; i < result.truth.rows(); ++i) {
     json row = json::array();
-    for (Eigen::Index j = 0; j < result.truth.cols(); ++j) row.push_back(number(result.truth(i, j)));
+    for (Eigen::Index j = 0; j < result.truth.cols(); ++j) row.push_back(json(number_json(result.truth(i, j))));
     truth.push_back(row);
   }
   out["truth"] = truth;
@@ -99,14 +58,14 @@ std::string to_json(const PhysicalExperimentResult& result) {
     for (const PhysicalMethodErrors& m : row.methods) {
       const Summary& x = m.summary;
       methods[m.name] = {
-          {"mean", number(x.mean)}, {"std", number(x.std)},   {"median", number(x.median)},
-          {"max", number(x.max)},   {"min", number(x.min)},   {"standard_error", number(x.standard_error())},
+          {"mean", number_json(x.mean)}, {"std", number_json(x.std)},   {"median", number_json(x.median)},
+          {"max", number_json(x.max)},   {"min", number_json(x.min)},   {"standard_error", number_json(x.standard_error())},
           {"count", x.count},       {"failures", x.failures}, {"inconsistent", m.inconsistent}};
     }
     r["methods"] = methods;
     const std::optional<PhysicalComparison> c = compare_to_generic(result, row);
     r["best_generic"] = c ? json(c->best_generic) : json(nullptr);
-    r["physical_ratio"] = c ? number(c->ratio) : json(nullptr);
+    r["physical_ratio"] = c ? json(number_json(c->ratio)) : json(nullptr);
     rows.push_back(r);
   }
   out["rows"] = rows;

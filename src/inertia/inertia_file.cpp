@@ -1,10 +1,10 @@
-// Rigid-body inertia files (JSON) in and repair results out. Every error names the file and the key.
+// Rigid-body inertia files (JSON) in: one body or a list of bodies. Every error names the file and
+// the key. The repair's JSON out is render/inertia_render.cpp's.
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "io/json_document.hpp"
-#include "render/json_values.hpp"
 #include "io/read_file.hpp"
 #include "spdfit/inertia_repair.hpp"
 #include "spdfit/io.hpp"
@@ -20,7 +20,7 @@ constexpr std::size_t kMaxInertiaBytes = std::size_t{1} << 20;
 
 constexpr const char* kKeyList = "mass, center_of_mass, inertia";
 
-// The keys inertia_repair_json adds: its output reads back as input (and is repaired again,
+// The keys inertia_repair_json (render/inertia_render.cpp) adds: its output reads back as input (and is repaired again,
 // unchanged), so they are accepted and ignored.
 bool is_repair_key(const std::string& key) {
   for (const char* k : {"changed", "distance", "certificate", "min_eig", "principal_moments",
@@ -51,14 +51,6 @@ const json& require(const json& root, const char* key, const char* what, const s
   const auto it = root.find(key);
   if (it == root.end()) fail(source, std::string("missing key \"") + key + "\" (" + what + ")");
   return *it;
-}
-
-nlohmann::ordered_json vector_json(const Eigen::Vector3d& v) { return {v(0), v(1), v(2)}; }
-
-nlohmann::ordered_json matrix_json(const Eigen::Matrix3d& M) {
-  nlohmann::ordered_json out = nlohmann::ordered_json::array();
-  for (int i = 0; i < 3; ++i) out.push_back(vector_json(M.row(i).transpose()));
-  return out;
 }
 
 }  // namespace
@@ -151,25 +143,6 @@ std::vector<RigidBodyInertia> read_rigid_bodies(const std::string& path) {
 
 RigidBodyInertia read_rigid_body(const std::string& path) {
   return parse_rigid_body(io::detail::read_file(path, kMaxInertiaBytes, "an inertia file"), path);
-}
-
-std::string inertia_repair_json(const InertiaRepairResult& result) {
-  nlohmann::ordered_json out;
-  out["mass"] = result.repaired.mass;
-  out["center_of_mass"] = vector_json(result.repaired.center_of_mass);
-  out["inertia"] = matrix_json(result.repaired.inertia);
-  out["changed"] = result.changed;
-  out["distance"] = result.distance;
-  out["certificate"] = {{"primal_min_eig", result.certificate.primal_min_eig},
-                        {"dual_min_eig", result.certificate.dual_min_eig},
-                        {"complementarity", result.certificate.complementarity}};
-  out["min_eig"] = result.floor;
-  out["principal_moments"] = vector_json(result.principal_moments);
-  out["principal_moments_before"] = vector_json(result.principal_moments_before);
-  out["second_moments_before"] = vector_json(result.second_moments_before);
-  out["metric"] = std::string(to_string(result.metric));
-  spdfit::detail::put_warnings(out, result.warnings);
-  return out.dump(2) + "\n";
 }
 
 }  // namespace spdfit

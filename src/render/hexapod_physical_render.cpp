@@ -1,4 +1,5 @@
-// The physical estimate in `spdfit hexapod identify --physical`: its JSON object and its report
+// The physical estimate in `spdfit hexapod identify --physical`: its JSON object (the "physical"
+// object of `hexapod identify --json`, and Python's spdfit.physical.PhysicalEstimate) and its report
 // for people, each parameter beside the geometry's nominal (CAD) value.
 #include <cmath>
 #include <cstdio>
@@ -7,6 +8,7 @@
 #include <string>
 
 #include "render/fit_result_json.hpp"
+#include "render/json_values.hpp"
 #include "render/text_values.hpp"
 #include "spdfit/format.hpp"
 #include "spdfit/hexapod/render.hpp"
@@ -14,6 +16,93 @@
 namespace spdfit::hexapod {
 
 namespace {
+
+using json = spdfit::detail::OrderedJson;
+using spdfit::detail::matrix_json;
+using spdfit::detail::number_json;
+using spdfit::detail::vector_json;
+
+// A strut-mass value: one number for a common mass, else the list.
+json struts(const Eigen::MatrixXd& values, StrutMasses kind) {
+  return kind == StrutMasses::Common && values.size() == 1 ? number_json(values(0, 0)) : vector_json(values.reshaped());
+}
+
+json spectrum(const SpectrumUncertainty& s) {
+  json clusters = json::array();
+  for (const std::vector<Eigen::Index>& c : s.clusters) clusters.push_back(c);
+  return {{"estimate", vector_json(s.estimate)}, {"standard_errors", vector_json(s.standard_errors)},
+          {"lower", vector_json(s.lower)},       {"upper", vector_json(s.upper)},
+          {"clusters", clusters},           {"failed", s.failed}};
+}
+
+// The keys with bootstrap uncertainty, each from one member of EntryUncertainty.
+json entries(const PhysicalBootstrap& b, Eigen::MatrixXd EntryUncertainty::*member, StrutMasses kind) {
+  return {{"mass", number_json((b.mass.*member)(0, 0))},
+          {"center_of_mass", vector_json(b.center_of_mass.*member)},
+          {"inertia", matrix_json(b.inertia.*member)},
+          {"principal_moments", vector_json(b.principal_moments.*member)},
+          {"strut_mass", struts(b.strut_mass.*member, kind)},
+          {"M_p", matrix_json(b.M_p.*member)}};
+}
+
+json physical_object(const PhysicalEstimate& e) {
+  json out;
+  out["status"] = to_string(e.status);
+  if (!e.ok()) {
+    out["error"] = e.message;
+    spdfit::detail::put_warnings(out, e.warnings);
+    return out;
+  }
+  out["mass"] = number_json(e.payload.mass);
+  out["center_of_mass"] = vector_json(e.payload.center_of_mass);
+  out["inertia"] = matrix_json(e.payload.inertia);
+  out["principal_moments"] = vector_json(e.principal.moments);
+  out["principal_axes"] = matrix_json(e.principal.axes);
+  out["strut_mass"] = struts(e.strut_mass, e.strut_masses);
+  out["strut_masses"] = std::string(to_string(e.strut_masses));
+  out["M_p"] = matrix_json(e.M_p);
+  out["M_p_eigenvalues"] = vector_json(e.M_p_eigenvalues);
+  if (e.modes_hz) out["modes_hz"] = vector_json(*e.modes_hz);
+  out["pseudo_inertia_min_eig"] = number_json(e.pseudo_inertia_min_eig);
+  out["physically_consistent"] = e.physically_consistent;
+  out["certificate"] = {{"stationarity", number_json(e.certificate.stationarity)},
+                        {"primal_min_eig", number_json(e.certificate.primal_min_eig)},
+                        {"dual_min_eig", number_json(e.certificate.dual_min_eig)},
+                        {"complementarity", number_json(e.certificate.complementarity)}};
+  out["start_certificate"] = {{"primal_min_eig", number_json(e.start_certificate.primal_min_eig)},
+                              {"dual_min_eig", number_json(e.start_certificate.dual_min_eig)},
+                              {"complementarity", number_json(e.start_certificate.complementarity)},
+                              {"duality_gap", number_json(e.start_certificate.duality_gap)}};
+  out["criterion"] = number_json(e.criterion);
+  out["criterion_kind"] = std::string(to_string(e.criterion_kind));
+  out["consistent"] = e.consistent_requested;
+  out["iterations"] = e.iterations;
+  out["converged"] = e.converged;
+  out["design"] = {{"parameters", e.design.parameters},
+                   {"rank", e.design.rank},
+                   {"condition", number_json(e.design.condition)},
+                   {"length_scale", number_json(e.design.length_scale)},
+                   {"confounded", e.design.confounded}};
+  out["m"] = e.m;
+  out["rank_a"] = e.rank_a;
+  out["offsets"] = e.tare_b.size()      ? json{{"mode", "rest"}, {"a", vector_json(e.tare_a)}, {"b", vector_json(e.tare_b)}}
+                   : e.offsets_c.size() ? json{{"mode", "estimate"}, {"c", vector_json(e.offsets_c)}}
+                                        : json{{"mode", "none"}};
+  // The robust report as the fit's (render/fit_result_json.cpp), in this document's key order.
+  if (e.robust) out["robust"] = json(spdfit::detail::robust_json(*e.robust, spdfit::JsonStyle::Contract));
+  spdfit::detail::put_warnings(out, e.warnings);
+  if (const auto& b = e.bootstrap) {
+    out["standard_errors"] = entries(*b, &EntryUncertainty::standard_errors, e.strut_masses);
+    out["interval"] = {{"level", b->level},
+                       {"lower", entries(*b, &EntryUncertainty::lower, e.strut_masses)},
+                       {"upper", entries(*b, &EntryUncertainty::upper, e.strut_masses)}};
+    json boot = {{"replicates", b->replicates}, {"failed", b->failed}, {"seed", b->seed},
+                 {"M_p_eigenvalues", spectrum(b->M_p_eigenvalues)}};
+    if (b->modes_hz) boot["modes_hz"] = spectrum(*b->modes_hz);
+    out["bootstrap"] = std::move(boot);
+  }
+  return out;
+}
 
 // The truth, when options give a 6 x 6 one.
 const Eigen::MatrixXd* truth_of(const IdentifyOptions& options) {
@@ -68,12 +157,13 @@ void add_rows(std::vector<Row>& rows, const std::vector<std::string>& names, con
 
 }  // namespace
 
+std::string physical_json(const PhysicalEstimate& estimate) { return physical_object(estimate).dump(2) + "\n"; }
+
 std::string to_json(const PhysicalEstimate& estimate, const IdentifyOptions& options) {
-  nlohmann::ordered_json out = nlohmann::ordered_json::parse(physical_json(estimate));
+  json out = physical_object(estimate);
   if (const Eigen::MatrixXd* truth = truth_of(options); truth && estimate.ok()) {
     const double error = (estimate.M_p - *truth).norm();
-    out["error_vs_truth"] =
-        std::isfinite(error) ? nlohmann::ordered_json(error) : nlohmann::ordered_json(nullptr);
+    out["error_vs_truth"] = number_json(error);
   }
   return out.dump(2) + "\n";
 }
