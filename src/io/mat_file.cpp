@@ -18,7 +18,8 @@
 
 namespace spdfit::io::detail {
 
-namespace {
+// Named, not anonymous: MatRowBlocks::State (declared in a header) holds a MatMatrix.
+namespace mat_file {
 
 struct MatCloser {
   void operator()(mat_t* mat) const { loaded_matio().Mat_Close(mat); }
@@ -180,7 +181,9 @@ void widen_class(matio_classes type, const void* data, Eigen::MatrixXd& out) {
   }
 }
 
-}  // namespace
+}  // namespace mat_file
+
+using namespace mat_file;
 
 Table read_mat(const std::string& file, const std::string& variable, const ReadOptions& options) {
   const MatMatrix matrix = open_matrix(file, variable);
