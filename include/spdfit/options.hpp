@@ -54,6 +54,10 @@ enum class OptionType {
   Columns,
   /// Rows of a table: 1-based inclusive ranges and lists ("601:", "1:5000,7001:").
   Rows,
+  /// An interval of two numbers, stored as the text "LO:HI" (the command line's form; the
+  /// workflow parses and checks it). Python also takes a pair of numbers (lo, hi), MATLAB [lo hi];
+  /// both are written with 17 significant digits, so the numbers arrive exactly.
+  Range,
   /// A hexapod geometry (hexapod/geometry.hpp): a file on the command line and in MATLAB, an
   /// spdfit.hexapod.Geometry (or a path) in Python. The value is a GeometryInput.
   Geometry,
@@ -143,6 +147,12 @@ std::optional<std::vector<double>> comma_separated_numbers(std::string_view text
 
 /// The text of an option value for messages ("0", "2.5", "yes").
 std::string value_text(const OptionValue& value);
+
+/// A Range option's value "LO:HI" as two finite numbers; OptionError (Code::OptionValue) naming
+/// `option` (a library name: `psi_range`) otherwise. No order is required: the workflow says which.
+std::pair<double, double> parse_range(const std::string& text, std::string_view option);
+/// The text of a Range value: "LO:HI" with 17 significant digits (exact for doubles).
+std::string range_text(double lo, double hi);
 
 /// The entry of `table` named `name` (the library's name), or nullptr.
 template <typename Request>

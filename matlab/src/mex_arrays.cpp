@@ -194,6 +194,13 @@ std::optional<OptionValue> read_value(OptionType type, const std::string& name, 
       }
       return OptionValue{names};
     }
+    case OptionType::Range: {
+      // [lo hi], or the command line's text 'LO:HI'.
+      if (mxIsChar(value)) return OptionValue{read_text(value, "'" + name + "'")};
+      const Eigen::MatrixXd v = read_matrix(value, "'" + name + "'");
+      if (v.size() != 2) throw UsageError("'" + name + "' must be [lo hi] (two numbers) or text 'LO:HI'");
+      return OptionValue{range_text(v(0), v(1))};
+    }
     case OptionType::Text:
     case OptionType::Choice:
     case OptionType::File:

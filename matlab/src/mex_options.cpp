@@ -87,6 +87,7 @@ std::string type_name(OptionType type, const std::vector<std::string_view>& choi
     case OptionType::Integer: return "integer";
     case OptionType::Real: return "real";
     case OptionType::Names: return "text or cell array of text";
+    case OptionType::Range: return "[lo hi] or text LO:HI";
     case OptionType::Text:
     case OptionType::Columns:
     case OptionType::Rows: return "text";

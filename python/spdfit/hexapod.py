@@ -192,11 +192,8 @@ def model(geometry_source=None):
                  d.mass_matrix_eigenvalues, d.jacobian_condition, d.strut_directions)
 
 
-@_takes_options("hexapod.simulate", given=("samples", "noise_var", "seed", "signal_var", "distribution",
-                                           "force_noise_var"))
-def simulate(samples=_SIMULATION.samples, noise_var=_DEFAULT_NOISE, *, seed=1, truth="thesis",
-             signal_var=_SIMULATION.signal_var, distribution=_SIMULATION.distribution, force_noise_var=None,
-             **options):
+@_takes_options("hexapod.simulate", given=("samples", "noise_var"))
+def simulate(samples=_SIMULATION.samples, noise_var=_DEFAULT_NOISE, *, truth="thesis", **options):
     """Measurements as the thesis' appendix-B generator makes them.
 
     True accelerations uniform with variance signal_var (on [-5, 5] by default), true forces
@@ -212,17 +209,9 @@ def simulate(samples=_SIMULATION.samples, noise_var=_DEFAULT_NOISE, *, seed=1, t
         The number of samples m (rows); the library's default.
     noise_var : float, default 0.86
         The noise variance V in every entry (the thesis' experiment 2); not with noise_std_a.
-    seed : int, default 1
-        The random seed.
     truth : "thesis", array_like, Geometry, str, os.PathLike or dict, default "thesis"
         "thesis" (eq. 6.1), an n x n array, or a geometry (see `geometry`) whose M_p is the truth
         (as the keyword geometry, which the payload options change).
-    signal_var : float, optional
-        The variance of the true accelerations (the library's default: uniform on [-5, 5]).
-    distribution : str, optional
-        The noise: "uniform" (half-width sqrt(3 V), the thesis') or "gaussian".
-    force_noise_var : float, optional
-        The noise variance in B, when it differs from noise_var.
     {options}
 
     Returns
@@ -260,12 +249,11 @@ def simulate(samples=_SIMULATION.samples, noise_var=_DEFAULT_NOISE, *, seed=1, t
     >>> logged.rest_B.shape, bool(abs(logged.rest_B.mean() - 21.0) < 0.1)
     ((50, 6), True)
     """
-    # Whole numbers only, as the command line's --samples and --seed: int(12.9) would quietly be 12.
-    for name, value in (("samples", samples), ("seed", seed)):
-        if isinstance(value, bool) or not isinstance(value, _numbers.Integral):
-            raise TypeError(f"{name} must be an int, got {type(value).__name__}")
-    keywords = dict(options, samples=samples, seed=seed, signal_var=signal_var, distribution=distribution,
-                    force_noise_var=force_noise_var)
+    # Whole numbers only, as the command line's --samples: int(12.9) would quietly be 12 (the table
+    # checks seed and the other options).
+    if isinstance(samples, bool) or not isinstance(samples, _numbers.Integral):
+        raise TypeError(f"samples must be an int, got {type(samples).__name__}")
+    keywords = dict(options, samples=samples)
     if noise_var is not _DEFAULT_NOISE or options.get("noise_std_a") is None:
         keywords["noise_var"] = float(noise_var)
     M = None

@@ -11,6 +11,7 @@ import math as _math
 import numpy as _np
 
 from . import _spdfit
+from ._common import _takes_options
 from ._errors import NumericalError, warn as _warn
 from ._spdfit import linkage as _core
 
@@ -26,9 +27,6 @@ MotionCheck = _core.MotionCheck
 __all__ = ["Analysis", "AnalysisSample", "AngleRange", "DialZeros", "FourBar", "LinkageSolution", "MotionCheck",
            "SynthesisResult", "analyze", "freudenstein_parameters", "function_names", "grashof_type", "link_lengths",
            "synthesize"]
-
-# Gauss-Newton's defaults are the library's (GaussNewtonOptions), not retyped here.
-_GAUSS_NEWTON = _core.GaussNewtonOptions()
 
 # The command line's default input range for --steering (degrees).
 STEERING_PSI_RANGE = (-30.0, 30.0)
@@ -173,14 +171,13 @@ def grashof_type(bar):
     return _core.grashof_type(bar)
 
 
-def synthesize(psi=None, phi=None, *, weights=None, steering=None, function=None, x_range=None,
-               psi_range=None, phi_range=None, points=21, spacing="uniform", alpha=None, beta=None,
-               fit_dial_zeros=False, refine=True, tolerance=_GAUSS_NEWTON.tolerance,
-               max_iterations=_GAUSS_NEWTON.max_iterations, radians=False):
+@_takes_options("linkage.synthesize", given=("radians",))
+def synthesize(psi=None, phi=None, *, radians=False, **options):
     """Synthesize a 4R function generator k1 + k2 cos(phi) - k3 cos(psi) = cos(psi - phi) (eq. 3.3).
 
-    Give exactly one of: psi and phi, prescribed input/output angles; steering=rho, the steering
-    condition; function=name, y = f(x). The design-error solution (section 3.4, Householder QR or the
+    Give exactly one of: psi and phi, prescribed input/output angles (or pairs=, a file or an
+    m x 2 array of them); steering=rho, the steering condition; function=name, y = f(x). This is
+    `spdfit linkage synthesize`: the same options (its table), rules and numbers. The design-error solution (section 3.4, Householder QR or the
     edited SVD) is refined by Gauss-Newton on the structural error (section 3.6, eq. 3.18) unless
     refine=False; with exactly three pairs the synthesis is exact (3.3.3); fit_dial_zeros also
     solves for alpha, beta (eq. 3.7). Angles are in degrees unless radians=True.
@@ -190,29 +187,9 @@ def synthesize(psi=None, phi=None, *, weights=None, steering=None, function=None
     psi, phi : array_like, optional
         Prescribed input/output angles: changes from the dial zeros alpha, beta when those are given,
         absolute angles otherwise.
-    weights : array_like, optional
-        A weight per psi/phi pair.
-    steering : float, optional
-        rho of the steering condition (eq. 3.5) over psi_range (default -30..30 deg), with the
-        trapezoid dial zeros unless alpha/beta or fit_dial_zeros.
-    function : str, optional
-        y = f(x) (see function_names()) over x_range mapped onto psi_range and phi_range.
-    x_range, psi_range, phi_range : tuple of float, optional
-        The ranges of function= (all three needed); psi_range is steering='s too.
-    points : int, default 21
-        The number of pairs for steering= and function=.
-    spacing : str, default "uniform"
-        The pairs' spacing: "uniform" or "chebyshev".
-    alpha, beta : float, optional
-        The dial zeros of the input and the output.
-    fit_dial_zeros : bool, default False
-        Also solve for alpha and beta (eq. 3.7).
-    refine : bool, default True
-        Refine by Gauss-Newton on the structural error.
-    tolerance, max_iterations : optional
-        Gauss-Newton's stopping rule (the library's defaults, GaussNewtonOptions).
     radians : bool, default False
-        Angles in radians instead of degrees.
+        Every angle (psi, phi, the ranges, alpha, beta) in radians instead of degrees.
+    {options}
 
     Returns
     -------
@@ -226,7 +203,10 @@ def synthesize(psi=None, phi=None, *, weights=None, steering=None, function=None
         `result`.
     ValueError
         Bad input: not exactly one of psi/phi, steering and function, psi without phi, function= without
-        its ranges, an unknown spacing or function, NaN or Inf, fewer than three pairs.
+        its ranges, an unknown spacing or function, a range with LO >= HI, points= with pairs.
+    DataError
+        Pairs or weights that cannot be used: NaN or Inf, fewer than three pairs (five with
+        fit_dial_zeros), a weight that is not positive; the message names them.
 
     Warns
     -----
@@ -255,34 +235,29 @@ def synthesize(psi=None, phi=None, *, weights=None, steering=None, function=None
     >>> print(caught[0].message)
     the design linkage's transmission angle ranges over ... outside the usual 40..140 deg: ...
     """
-    to_rad = (lambda x: x) if radians else _math.radians
-    sources = (psi is not None) + (steering is not None) + (function is not None)
-    if sources != 1:
-        raise ValueError("give exactly one of psi/phi pairs, steering=rho or function=name")
-    if spacing not in ("uniform", "chebyshev"):
-        raise ValueError(f"spacing must be 'uniform' or 'chebyshev', got {spacing!r}")
-    a = None if alpha is None else to_rad(alpha)
-    b = None if beta is None else to_rad(beta)
-    if psi is not None:
-        if phi is None:
-            raise ValueError("psi needs phi")
-        dpsi = _vector("psi", psi) if radians else _np.radians(_vector("psi", psi))
-        dphi = _vector("phi", phi) if radians else _np.radians(_vector("phi", phi))
-    elif steering is not None:
-        lo, hi = psi_range if psi_range is not None else STEERING_PSI_RANGE
-        dpsi, dphi = _core.steering_pairs(float(steering), to_rad(lo), to_rad(hi), int(points), spacing)
-        if not fit_dial_zeros and a is None and b is None:
-            zeros = _core.trapezoid_dial_zeros(float(steering))
-            a, b = zeros.alpha, zeros.beta
-    else:
-        if x_range is None or psi_range is None or phi_range is None:
-            raise ValueError("function= needs x_range, psi_range and phi_range")
-        dpsi, dphi = _core.function_pairs(function, x_range[0], x_range[1], to_rad(psi_range[0]),
-                                          to_rad(psi_range[1]), to_rad(phi_range[0]), to_rad(phi_range[1]),
-                                          int(points), spacing)
-    w = _np.empty(0) if weights is None else _vector("weights", weights)
-    result = _core.synthesize(dpsi, dphi, w, a, b, bool(fit_dial_zeros), bool(refine), float(tolerance),
-                              int(max_iterations))
+    if psi is not None or phi is not None:
+        if psi is None or phi is None:
+            raise ValueError("psi and phi come together: give both (or pairs=)")
+        if "pairs" in options and options["pairs"] is not None:
+            raise ValueError("give psi and phi, or pairs=, not both")
+        psi, phi = _vector("psi", psi), _vector("phi", phi)
+        if psi.shape != phi.shape:
+            raise ValueError(f"psi and phi must have the same length, got {psi.size} and {phi.size}")
+        options["pairs"] = _np.column_stack([psi, phi])
+    if radians:
+        given_pairs = options.get("pairs") is not None
+        # The library reads the pairs in radians (the command line's --radians); the other angles
+        # it takes in degrees.
+        for key in ("alpha", "beta"):
+            if options.get(key) is not None:
+                options[key] = _math.degrees(options[key])
+        for key in ("psi_range", "phi_range"):
+            value = options.get(key)
+            if value is not None and not isinstance(value, str):
+                options[key] = tuple(_math.degrees(float(x)) for x in value)
+        if given_pairs:
+            options["radians"] = True
+    result = _core.run_synthesize(options)
     for message, code in zip(result.warnings, result.warning_codes):
         _warn(_spdfit.spell_options(message), code)
     if not result.ok:
@@ -290,7 +265,8 @@ def synthesize(psi=None, phi=None, *, weights=None, steering=None, function=None
     return result
 
 
-def analyze(lengths, psi=None, *, psi_range=(-180.0, 180.0), points=361, radians=False):
+@_takes_options("linkage.analyze")
+def analyze(lengths, psi=None, *, radians=False, **options):
     """Position analysis of a four-bar over input angles.
 
     The output angle on both assembly branches, the transmission angle and the dead points.
@@ -301,12 +277,9 @@ def analyze(lengths, psi=None, *, psi_range=(-180.0, 180.0), points=361, radians
         (a1, a2, a3, a4): ground, input, coupler, output.
     psi : array_like, optional
         The input angles (default: `points` angles over psi_range).
-    psi_range : tuple of float, default (-180.0, 180.0)
-        The input angles' range when psi is not given.
-    points : int, default 361
-        Their number.
     radians : bool, default False
-        Angles in radians instead of degrees.
+        Angles (psi, psi_range) in radians instead of degrees.
+    {options}
 
     Returns
     -------
@@ -318,18 +291,20 @@ def analyze(lengths, psi=None, *, psi_range=(-180.0, 180.0), points=361, radians
     Raises
     ------
     ValueError
-        A length that is not positive and finite, or NaN or Inf in psi.
+        A length that is not positive and finite, NaN or Inf in psi, psi_range with LO >= HI, or
+        psi with psi_range or points.
 
     Examples
     --------
     >>> import spdfit.linkage as lk
     >>> a = lk.analyze((4, 1, 3.5, 3))
-    >>> a.grashof, a.input_fully_rotates, len(a.samples)
-    ('crank-rocker', True, 361)
+    >>> a.grashof, a.input_fully_rotates, len(a.samples)      # 37 angles over 0..360 deg
+    ('crank-rocker', True, 37)
     """
     bar = lengths if isinstance(lengths, FourBar) else FourBar(*map(float, lengths))
-    if psi is None:
-        lo, hi = psi_range
-        psi = _np.linspace(lo, hi, int(points))
-    psi = _vector("psi", psi)
-    return _core.analyze(bar, psi if radians else _np.radians(psi))
+    if psi is not None:
+        psi = _vector("psi", psi)
+        psi = psi if radians else _np.radians(psi)
+    elif radians and options.get("psi_range") is not None and not isinstance(options["psi_range"], str):
+        options["psi_range"] = tuple(_math.degrees(float(x)) for x in options["psi_range"])
+    return _core.run_analyze([bar.a1, bar.a2, bar.a3, bar.a4], psi, options)

@@ -1,5 +1,5 @@
 """Type stubs for spdfit.linkage (see linkage.py for the documentation)."""
-from typing import List, Optional, Sequence, Tuple, Union
+from typing import Any, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -136,12 +136,5 @@ def function_names() -> List[str]: ...
 def freudenstein_parameters(bar: FourBar) -> _Array: ...
 def link_lengths(k: npt.ArrayLike) -> FourBar: ...
 def grashof_type(bar: FourBar) -> str: ...
-def synthesize(psi: Optional[npt.ArrayLike] = ..., phi: Optional[npt.ArrayLike] = ..., *,
-               weights: Optional[npt.ArrayLike] = ..., steering: Optional[float] = ..., function: Optional[str] = ...,
-               x_range: Optional[Tuple[float, float]] = ..., psi_range: Optional[Tuple[float, float]] = ...,
-               phi_range: Optional[Tuple[float, float]] = ..., points: int = ..., spacing: str = ...,
-               alpha: Optional[float] = ..., beta: Optional[float] = ..., fit_dial_zeros: bool = ...,
-               refine: bool = ..., tolerance: float = ..., max_iterations: int = ...,
-               radians: bool = ...) -> SynthesisResult: ...
-def analyze(lengths: Union[FourBar, Sequence[float]], psi: Optional[npt.ArrayLike] = ..., *,
-            psi_range: Tuple[float, float] = ..., points: int = ..., radians: bool = ...) -> Analysis: ...
+def synthesize(psi: Optional[npt.ArrayLike] = ..., phi: Optional[npt.ArrayLike] = ..., *, radians: bool = ..., **options: Any) -> SynthesisResult: ...  # options: linkage.synthesize
+def analyze(lengths: Union[FourBar, Sequence[float]], psi: Optional[npt.ArrayLike] = ..., *, radians: bool = ..., **options: Any) -> Analysis: ...  # options: linkage.analyze

@@ -7,13 +7,16 @@
 #include <sstream>
 
 #include "bindings.hpp"
+#include "keywords.hpp"
 #include "pickle.hpp"
 #include "spdfit/linkage/analysis.hpp"
+#include "spdfit/linkage/analyze_request.hpp"
 #include "spdfit/linkage/freudenstein.hpp"
 #include "spdfit/linkage/grashof.hpp"
 #include "spdfit/linkage/prescribed_function.hpp"
 #include "spdfit/linkage/status.hpp"
 #include "spdfit/linkage/synthesis.hpp"
+#include "spdfit/linkage/synthesize_request.hpp"
 
 namespace py = pybind11;
 
@@ -141,36 +144,31 @@ void bind_linkage(py::module_& parent) {
             set_gauss_newton_threshold(options, value.cast<double>());
           })));
 
+  // `linkage synthesize` and `linkage analyze`'s workflows (synthesize_request.hpp,
+  // analyze_request.hpp): the request from the keywords through the command's table, its rules and
+  // its run, as the command line runs them.
   m.def(
-      "synthesize",
-      [](const Eigen::VectorXd& delta_psi, const Eigen::VectorXd& delta_phi, const Eigen::VectorXd& weights,
-         std::optional<double> alpha, std::optional<double> beta, bool fit_dial_zeros, bool refine,
-         double tolerance, int max_iterations) {
-        SynthesisOptions options;
-        options.alpha = alpha;
-        options.beta = beta;
-        options.fit_dial_zeros = fit_dial_zeros;
-        options.refine = refine;
-        options.gauss_newton.tolerance = tolerance;
-        options.gauss_newton.max_iterations = max_iterations;
-        std::string error;
-        if (!options.is_valid(&error)) throw std::invalid_argument(error);
+      "run_synthesize",
+      [](const py::dict& options) {
+        std::vector<std::string_view> given;
+        const SynthesizeRequest request =
+            request_from(synthesize_option_table(), entry("linkage.synthesize"), options, SynthesizeRequest{}, given);
         py::gil_scoped_release release;
-        return synthesize(delta_psi, delta_phi, weights, options);
+        return run_synthesize(request, given).result;
       },
-      py::arg("delta_psi"), py::arg("delta_phi"), py::arg("weights"), py::arg("alpha"), py::arg("beta"),
-      py::arg("fit_dial_zeros"), py::arg("refine"), py::arg("tolerance"), py::arg("max_iterations"));
-
-  m.def("steering_pairs", [](double rho, double lo, double hi, int n, const std::string& spacing) {
-    const PrescribedPairs p = steering_pairs(rho, lo, hi, n, spacing == "chebyshev" ? Spacing::Chebyshev : Spacing::Uniform);
-    return py::make_tuple(p.delta_psi, p.delta_phi);
-  });
-  m.def("function_pairs", [](const std::string& name, double x_lo, double x_hi, double psi_lo, double psi_hi,
-                             double phi_lo, double phi_hi, int n, const std::string& spacing) {
-    const PrescribedPairs p = function_pairs(name, x_lo, x_hi, psi_lo, psi_hi, phi_lo, phi_hi, n,
-                                             spacing == "chebyshev" ? Spacing::Chebyshev : Spacing::Uniform);
-    return py::make_tuple(p.delta_psi, p.delta_phi);
-  });
+      py::arg("options"));
+  m.def(
+      "run_analyze",
+      [](const std::vector<double>& lengths, const std::optional<Eigen::VectorXd>& psi, const py::dict& options) {
+        std::vector<std::string_view> given;
+        AnalyzeRequest request;
+        request.lengths = lengths;
+        if (psi) request.psi = *psi;
+        request = request_from(analyze_option_table(), entry("linkage.analyze"), options, std::move(request), given);
+        py::gil_scoped_release release;
+        return run_analyze(request, given);
+      },
+      py::arg("lengths"), py::arg("psi"), py::arg("options"));
   m.def("function_names", &function_names);
   m.def("trapezoid_dial_zeros", &trapezoid_dial_zeros, py::arg("rho"));
   m.def("freudenstein_parameters", &freudenstein_parameters, py::arg("bar"));
@@ -205,7 +203,6 @@ void bind_linkage(py::module_& parent) {
                                    enum_field(&Analysis::grashof, kGrashofTypes, "Analysis", "Grashof type"),
                                    state_field(&Analysis::input_fully_rotates), state_field(&Analysis::dead_points),
                                    state_field(&Analysis::samples), state_field(&Analysis::transmission)));
-  m.def("analyze", &analyze, py::arg("bar"), py::arg("psi"), py::call_guard<py::gil_scoped_release>());
 }
 
 }  // namespace spdfit::python

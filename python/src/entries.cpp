@@ -8,6 +8,8 @@
 #include "spdfit/hexapod/physical_request.hpp"
 #include "spdfit/hexapod/simulate_request.hpp"
 #include "spdfit/inertia_repair.hpp"
+#include "spdfit/linkage/analyze_request.hpp"
+#include "spdfit/linkage/synthesize_request.hpp"
 #include "spdfit/nearest_request.hpp"
 #include "spdfit/payload/design.hpp"
 #include "spdfit/payload/identify.hpp"
@@ -78,6 +80,10 @@ const std::vector<Entry>& entries() {
       {"experiment.paper_2x2", "experiment:paper-2x2", {}, {"sweep"}},
       {"experiment.paper_2x2_sweep", "experiment:paper-2x2", {"sweep"}, {"std_a"}},
       {"experiment.physical", "experiment:physical", {}, {}},
+      // The linkage: psi and phi (the pairs' columns), analyze's lengths and psi, and radians (every
+      // angle, where the command line's --radians is the pairs file's) are Python's own arguments.
+      {"linkage.synthesize", "linkage_synthesize", {}, {}},
+      {"linkage.analyze", "linkage_analyze", {}, {}},
   };
   return list;
 }
@@ -113,6 +119,12 @@ std::vector<Keyword> keywords(const Entry& entry, std::optional<Method> method) 
   if (const std::optional<experiment::ExperimentKind> kind = experiment_kind(entry)) {
     return keywords_of(experiment::experiment_option_table(*kind), entry,
                        static_cast<experiment::ExperimentRequest*>(nullptr), experiment::experiment_request(*kind));
+  }
+  if (entry.table == "linkage_synthesize") {
+    return keywords_of(linkage::synthesize_option_table(), entry, static_cast<linkage::SynthesizeRequest*>(nullptr));
+  }
+  if (entry.table == "linkage_analyze") {
+    return keywords_of(linkage::analyze_option_table(), entry, static_cast<linkage::AnalyzeRequest*>(nullptr));
   }
   if (entry.table == "inertia_repair") {
     return keywords_of(inertia_repair_option_table(), entry, static_cast<InertiaRepairRequest*>(nullptr));
@@ -178,6 +190,9 @@ std::string annotation(const Keyword& keyword) {
       break;
     case OptionType::Matrix:
       type = "npt.ArrayLike";
+      break;
+    case OptionType::Range:
+      type = "Union[str, Tuple[float, float]]";
       break;
     case OptionType::Columns:
     case OptionType::Rows:

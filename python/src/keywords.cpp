@@ -42,6 +42,8 @@ const char* type_text(OptionType type) {
       return "str";
     case OptionType::Names:
       return "str or list of str";
+    case OptionType::Range:
+      return "(float, float) or str";
     case OptionType::RealList:
       return "float or sequence of float";
     case OptionType::Vector:
@@ -136,6 +138,13 @@ OptionValue keyword_value(const Keyword& keyword, const py::handle& value) {
         names += (names.empty() ? "" : ",") + item.cast<std::string>();
       }
       return names;
+    }
+    case OptionType::Range: {
+      // (lo, hi), or the command line's text "LO:HI".
+      if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+      const std::vector<double> ends = real_vector(keyword, value);
+      if (ends.size() != 2) wrong_type(keyword, "a pair of numbers (lo, hi) or a str 'LO:HI'", value);
+      return range_text(ends[0], ends[1]);
     }
     case OptionType::RealList:
       if (is_instance(value, "Real") && !py::isinstance<py::bool_>(value)) {

@@ -40,6 +40,31 @@ std::string NumberRange::describe(bool integer) const {
   return noun;
 }
 
+std::pair<double, double> parse_range(const std::string& text, std::string_view option) {
+  const auto number = [](const std::string& t, double& value) {
+    std::size_t used = 0;
+    try {
+      value = std::stod(t, &used);
+    } catch (const std::exception&) {
+      return false;
+    }
+    return used == t.size() && std::isfinite(value);
+  };
+  const std::size_t colon = text.find(':');
+  double lo = 0.0, hi = 0.0;
+  if (colon == std::string::npos || !number(text.substr(0, colon), lo) || !number(text.substr(colon + 1), hi)) {
+    throw OptionError("`" + std::string(option) + "` '" + text + "' is not a range LO:HI of two numbers", Code::OptionValue,
+                      std::string(option));
+  }
+  return {lo, hi};
+}
+
+std::string range_text(double lo, double hi) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.17g:%.17g", lo, hi);
+  return buffer;
+}
+
 std::string value_text(const OptionValue& value) {
   if (const bool* b = std::get_if<bool>(&value)) return *b ? "true" : "false";
   if (const std::int64_t* i = std::get_if<std::int64_t>(&value)) return std::to_string(*i);
@@ -122,6 +147,10 @@ OptionValue checked_option_value(std::string_view name, OptionType type, const N
     case OptionType::Names:
       if (!std::holds_alternative<std::string>(value)) wrong_type("names");
       if (std::get<std::string>(value).find_first_not_of(" ,\t") == std::string::npos) out_of_range("one name or more");
+      break;
+    case OptionType::Range:
+      if (!std::holds_alternative<std::string>(value)) wrong_type("a range LO:HI");
+      if (std::get<std::string>(value).find(':') == std::string::npos) out_of_range("a range LO:HI of two numbers");
       break;
     case OptionType::Columns:
     case OptionType::Rows:

@@ -1,5 +1,6 @@
 #include "spdfit/linkage/pairs_file.hpp"
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,12 @@ PrescribedPairs pairs_from_table(const io::Table& table, const std::string& sour
                         std::to_string(values.rows()) + " pair(s): at least " + needed + " are needed (" + needed +
                             " give exact precision-point synthesis)");
   }
+  // A file's numbers are finite (the reader refuses the others); values given in memory may not be.
+  for (Eigen::Index i = 0; i < values.rows(); ++i) {
+    if (!std::isfinite(values(i, 0)) || !std::isfinite(values(i, 1))) {
+      throw io::DataError(source, 0, 0, "pair " + std::to_string(i + 1) + " is not finite (NaN or Inf)");
+    }
+  }
   const double scale = options.radians ? 1.0 : kRadiansPerDegree;
   PrescribedPairs pairs;
   pairs.delta_psi = values.col(0) * scale;
@@ -67,10 +74,10 @@ Eigen::VectorXd weights_from_matrix(const Eigen::MatrixXd& W, Eigen::Index pairs
   }
   const Eigen::VectorXd w = Eigen::Map<const Eigen::VectorXd>(W.data(), pairs);
   for (Eigen::Index i = 0; i < pairs; ++i) {
-    if (!(w(i) > 0.0)) {
+    if (!(w(i) > 0.0) || std::isinf(w(i))) {
       throw io::DataError(source, 0, 0,
                           "weight " + std::to_string(i + 1) + " is " + io::format_double(w(i)) +
-                              ": weights must be positive");
+                              (std::isinf(w(i)) ? ": weights must be finite" : ": weights must be positive"));
     }
   }
   return w;

@@ -29,10 +29,16 @@ using detail::in_radians;
 using detail::kRadiansPerDegree;
 using detail::span_json;
 
+// Python spells the options as the library names them, but for `rho` (its `steering=RHO`), and
+// has no `steering` flag (rho implies it) and no `positions` (a report's layout). Its `radians`
+// keyword, spelled out, converts every angle and passes this one for the pairs.
 SynthesizeSpec synthesize_option(std::string_view name, std::string_view cli, OptionType type,
                                  std::string_view value_name, std::string_view help,
                                  std::string_view default_text = {}) {
-  return spdfit::detail::option_entry<SynthesizeRequest>(name, cli, "", type, value_name, help, default_text);
+  std::string_view python = name;
+  if (name == "rho") python = "steering";
+  if (name == "steering" || name == "positions") python = "";
+  return spdfit::detail::option_entry<SynthesizeRequest>(name, cli, python, type, value_name, help, default_text);
 }
 
 std::vector<std::string_view> function_choices() {
@@ -49,14 +55,17 @@ std::vector<SynthesizeSpec> make_synthesize_table() {
   const auto flag = [](bool SynthesizeRequest::*field) {
     return [field](SynthesizeRequest& r, const OptionValue& v) { r.*field = std::get<bool>(v); };
   };
-  SynthesizeSpec pairs = synthesize_option("pairs", "--pairs", OptionType::File, "FILE",
+  const auto matrix = [](MatrixInput SynthesizeRequest::*field) {
+    return [field](SynthesizeRequest& r, const OptionValue& v) { r.*field = std::get<MatrixInput>(v); };
+  };
+  SynthesizeSpec pairs = synthesize_option("pairs", "--pairs", OptionType::Matrix, "FILE",
                                            "File of input-output pairs: columns psi, phi (degrees; a header row "
                                            "allowed)");
-  pairs.set = text(&SynthesizeRequest::pairs);
+  pairs.set = matrix(&SynthesizeRequest::pairs);
   table.push_back(pairs);
-  SynthesizeSpec weights = synthesize_option("weights", "--weights", OptionType::File, "FILE",
+  SynthesizeSpec weights = synthesize_option("weights", "--weights", OptionType::Matrix, "FILE",
                                              "File of one positive weight per pair (W in 1/2 d^T W d)");
-  weights.set = text(&SynthesizeRequest::weights);
+  weights.set = matrix(&SynthesizeRequest::weights);
   table.push_back(weights);
   SynthesizeSpec radians = synthesize_option("radians", "--radians", OptionType::Flag, "",
                                              "The `pairs` angles are in radians");
@@ -67,7 +76,7 @@ std::vector<SynthesizeSpec> make_synthesize_table() {
   steering.set = flag(&SynthesizeRequest::steering);
   table.push_back(steering);
   SynthesizeSpec rho = synthesize_option("rho", "--rho", OptionType::Real, "RHO",
-                                         "Steering: track / wheelbase (e.g. 0.5)");
+                                         "Steering: track / wheelbase (e.g. 0.5); implies `steering`");
   rho.set = [](SynthesizeRequest& r, const OptionValue& v) { r.rho = std::get<double>(v); };
   table.push_back(rho);
   SynthesizeSpec function = synthesize_option("function", "--function", OptionType::Choice, "NAME",
@@ -76,16 +85,16 @@ std::vector<SynthesizeSpec> make_synthesize_table() {
   function.choices = function_choices();
   function.set = text(&SynthesizeRequest::function);
   table.push_back(function);
-  SynthesizeSpec x_range = synthesize_option("x_range", "--x-range", OptionType::Text, "LO:HI",
+  SynthesizeSpec x_range = synthesize_option("x_range", "--x-range", OptionType::Range, "LO:HI",
                                              "`function`: the x range LO:HI");
   x_range.set = text(&SynthesizeRequest::x_range);
   table.push_back(x_range);
-  SynthesizeSpec psi_range = synthesize_option("psi_range", "--psi-range", OptionType::Text, "LO:HI",
+  SynthesizeSpec psi_range = synthesize_option("psi_range", "--psi-range", OptionType::Range, "LO:HI",
                                                "Input angle changes LO:HI (degrees) from the dial zero (`steering` "
                                                "default -30:30)");
   psi_range.set = text(&SynthesizeRequest::psi_range);
   table.push_back(psi_range);
-  SynthesizeSpec phi_range = synthesize_option("phi_range", "--phi-range", OptionType::Text, "LO:HI",
+  SynthesizeSpec phi_range = synthesize_option("phi_range", "--phi-range", OptionType::Range, "LO:HI",
                                                "`function`: output angle changes LO:HI (degrees)");
   phi_range.set = text(&SynthesizeRequest::phi_range);
   table.push_back(phi_range);
@@ -120,7 +129,16 @@ std::vector<SynthesizeSpec> make_synthesize_table() {
   SynthesizeSpec fit = synthesize_option("fit_dial_zeros", "--fit-dial-zeros", OptionType::Flag, "",
                                          "Also solve for alpha and beta (eq. 3.7); `alpha`/`beta` are then the start");
   fit.set = flag(&SynthesizeRequest::fit_dial_zeros);
+  fit.get = [](const SynthesizeRequest& r) -> std::optional<OptionValue> { return r.fit_dial_zeros; };
   table.push_back(fit);
+  // Python's (the command line always refines).
+  SynthesizeSpec refine = synthesize_option("refine", "", OptionType::Boolean, "",
+                                            "Refine the design-error solution by Gauss-Newton on the structural "
+                                            "error (section 3.6)", "true");
+  refine.nullable = false;
+  refine.set = flag(&SynthesizeRequest::refine);
+  refine.get = [](const SynthesizeRequest& r) -> std::optional<OptionValue> { return r.refine; };
+  table.push_back(refine);
   SynthesizeSpec tolerance = synthesize_option("tolerance", "--tolerance", OptionType::Real, "",
                                                "Gauss-Newton stops when ||Delta k|| < this", "1e-10");
   tolerance.range = {0.0, std::numeric_limits<double>::infinity(), true, false};
@@ -284,41 +302,25 @@ const std::vector<OptionSpec<SynthesizeRequest>>& synthesize_option_table() {
   return table;
 }
 
-std::pair<double, double> parse_angle_range(const std::string& text, const std::string& option) {
-  const auto number = [](const std::string& t, double& value) {
-    std::size_t used = 0;
-    try {
-      value = std::stod(t, &used);
-    } catch (const std::exception&) {
-      return false;
-    }
-    return used == t.size() && std::isfinite(value);
-  };
-  const std::size_t colon = text.find(':');
-  double lo = 0.0, hi = 0.0;
-  if (colon == std::string::npos || !number(text.substr(0, colon), lo) || !number(text.substr(colon + 1), hi)) {
-    throw OptionError("`" + option + "` '" + text + "' is not a range LO:HI of two numbers", Code::OptionValue, option);
-  }
-  return {lo, hi};
-}
-
 SynthesisRun run_synthesize(const SynthesizeRequest& o, const std::vector<std::string_view>& given) {
   const auto usage = [](const std::string& message, const char* option = "") {
     return OptionError(message, Code::OptionConflict, option);
   };
-  const int sources = !o.pairs.empty() + o.steering + !o.function.empty();
+  // `rho` implies `steering` (Python's steering=RHO; the command line's --steering --rho RHO).
+  const bool steering = o.steering || o.rho.has_value();
+  const int sources = o.pairs.given() + steering + !o.function.empty();
   if (sources != 1) throw usage("give exactly one of `pairs` FILE, `steering` or `function` NAME");
-  const bool generated = o.pairs.empty();
+  const bool generated = !o.pairs.given();
   if (!generated && (named(given, "points") || named(given, "spacing") || named(given, "psi_range") ||
                      named(given, "phi_range") || named(given, "x_range"))) {
     throw usage("`points`, `spacing`, `x_range`, `psi_range` and `phi_range` describe a prescribed function; "
                 "they do not apply to `pairs`");
   }
   if (o.radians && generated) throw usage("`radians` applies to the angles of a `pairs` file", "radians");
-  if (o.rho && !o.steering) throw usage("`rho` applies to `steering`", "rho");
 
   SynthesisOptions options;
   options.fit_dial_zeros = o.fit_dial_zeros;
+  options.refine = o.refine;
   options.gauss_newton.tolerance = o.tolerance;
   options.gauss_newton.max_iterations = o.max_iterations;
   if (o.threshold) {
@@ -333,14 +335,21 @@ SynthesisRun run_synthesize(const SynthesizeRequest& o, const std::vector<std::s
     PairsFileOptions file;
     file.radians = o.radians;
     file.min_pairs = o.fit_dial_zeros ? 5 : 3;
-    run.pairs = read_pairs(o.pairs, file);
-    run.source = o.pairs;
-  } else if (o.steering) {
+    if (o.pairs.from_file()) {
+      run.pairs = read_pairs(o.pairs.path, file);
+      run.source = o.pairs.path;
+    } else {
+      io::Table table;
+      table.values = o.pairs.values;
+      run.source = "the pairs given";
+      run.pairs = pairs_from_table(table, "pairs", file);
+    }
+  } else if (steering) {
     if (!o.rho) throw usage("`steering` needs `rho` (track / wheelbase, e.g. 0.5)", "steering");
     if (!o.phi_range.empty() || !o.x_range.empty()) {
       throw usage("`steering` takes `psi_range` only: the output follows from the steering condition", "steering");
     }
-    const auto [lo, hi] = o.psi_range.empty() ? std::make_pair(-30.0, 30.0) : parse_angle_range(o.psi_range, "psi_range");
+    const auto [lo, hi] = o.psi_range.empty() ? std::make_pair(-30.0, 30.0) : parse_range(o.psi_range, "psi_range");
     if (!(lo < hi)) throw OptionError("`psi_range` must have LO < HI", Code::OptionValue, "psi_range");
     run.pairs = steering_pairs(*o.rho, in_radians(lo), in_radians(hi), o.points, o.spacing);
     if (!o.fit_dial_zeros && !o.alpha && !o.beta) {
@@ -353,9 +362,9 @@ SynthesisRun run_synthesize(const SynthesizeRequest& o, const std::vector<std::s
     if (o.x_range.empty() || o.psi_range.empty() || o.phi_range.empty()) {
       throw usage("`function` needs `x_range`, `psi_range` and `phi_range`", "function");
     }
-    const auto [x_lo, x_hi] = parse_angle_range(o.x_range, "x_range");
-    const auto [psi_lo, psi_hi] = parse_angle_range(o.psi_range, "psi_range");
-    const auto [phi_lo, phi_hi] = parse_angle_range(o.phi_range, "phi_range");
+    const auto [x_lo, x_hi] = parse_range(o.x_range, "x_range");
+    const auto [psi_lo, psi_hi] = parse_range(o.psi_range, "psi_range");
+    const auto [phi_lo, phi_hi] = parse_range(o.phi_range, "phi_range");
     if (!(x_lo < x_hi)) throw OptionError("`x_range` must have LO < HI", Code::OptionValue, "x_range");
     try {
       run.pairs = function_pairs(o.function, x_lo, x_hi, in_radians(psi_lo), in_radians(psi_hi), in_radians(phi_lo),
@@ -365,7 +374,11 @@ SynthesisRun run_synthesize(const SynthesizeRequest& o, const std::vector<std::s
     }
     run.source = "y = " + o.function + "(x), x in [" + full_g(x_lo) + ", " + full_g(x_hi) + "]";
   }
-  if (!o.weights.empty()) run.weights = read_weights(o.weights, run.pairs.delta_psi.size());
+  if (o.weights.from_file()) {
+    run.weights = read_weights(o.weights.path, run.pairs.delta_psi.size());
+  } else if (o.weights.given()) {
+    run.weights = weights_from_matrix(o.weights.values, run.pairs.delta_psi.size(), "weights");
+  }
   run.result = synthesize(run.pairs.delta_psi, run.pairs.delta_phi, run.weights, options);
   return run;
 }

@@ -97,7 +97,8 @@ def test_readme_command_lines_run(cli, workdir):
         assert result.returncode == 0, f"README: {command}\n{result.stderr}"
 
 
-@pytest.mark.parametrize("page", ["README.md", "docs/python.md", "docs/accuracy.md", "docs/guide.md", "docs/payload.md"])
+@pytest.mark.parametrize("page", ["README.md", "docs/python.md", "docs/accuracy.md", "docs/guide.md", "docs/payload.md",
+                                  "docs/linkage.md"])
 def test_python_examples(workdir, page, monkeypatch):
     blocks = re.findall(r"```python\n(.*?)```", (ROOT / page).read_text(), flags=re.S)
     if not blocks:

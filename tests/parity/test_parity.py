@@ -201,6 +201,33 @@ CASES = [
          lambda d: linkage.synthesize(), None),
     Case("linkage analyze", "ok", ["linkage", "analyze", "--lengths", "1,0.6,0.7,0.6", "--json"],
          lambda d: linkage.analyze([1, 0.6, 0.7, 0.6]).k, None, ("k",)),
+    # Python's linkage takes the commands' tables and workflows: the same defaults (37 angles over
+    # 0..360), ranges as (lo, hi), pairs and weights as arrays, and the same refusals.
+    Case("linkage analyze: the default angles", "ok", ["linkage", "analyze", "--lengths", "4,1,3.5,3", "--json"],
+         lambda d: [s.transmission_angle * 180 / np.pi for s in linkage.analyze([4, 1, 3.5, 3]).samples], None,
+         ("samples", lambda rows: [r["transmission_angle_deg"] for r in rows]), rtol=1e-15),
+    Case("linkage analyze --psi-range --points", "ok",
+         ["linkage", "analyze", "--lengths", "4,1,3.5,3", "--psi-range", "-180:180", "--points", "361", "--json"],
+         lambda d: [s.phi_plus * 180 / np.pi for s in linkage.analyze([4, 1, 3.5, 3], psi_range=(-180, 180),
+                                                                        points=361).samples], None,
+         ("samples", lambda rows: [r["phi_plus_deg"] for r in rows]), rtol=1e-15),
+    Case("linkage analyze: LO >= HI", "usage", ["linkage", "analyze", "--lengths", "4,1,3.5,3", "--psi-range", "90:10"],
+         lambda d: linkage.analyze([4, 1, 3.5, 3], psi_range=(90, 10)), None, code="option_value"),
+    Case("linkage synthesize --pairs --weights", "ok",
+         ["linkage", "synthesize", "--pairs", "{pairs}", "--weights", "{pair_weights}", "--json"],
+         lambda d: linkage.synthesize(d["pairs"][:, 0], d["pairs"][:, 1], weights=d["pair_weights"]).structural.k,
+         None, ("structural", "k")),
+    Case("linkage synthesize --rho (steering implied)", "ok", ["linkage", "synthesize", "--rho", "0.5", "--json"],
+         lambda d: linkage.synthesize(steering=0.5).structural.k, None, ("structural", "k")),
+    Case("linkage synthesize: points with pairs", "usage",
+         ["linkage", "synthesize", "--pairs", "{pairs}", "--points", "9"],
+         lambda d: linkage.synthesize(d["pairs"][:, 0], d["pairs"][:, 1], points=9), None, code="option_conflict"),
+    Case("linkage synthesize: a steering range with LO >= HI", "usage",
+         ["linkage", "synthesize", "--rho", "0.5", "--psi-range", "30:-30"],
+         lambda d: linkage.synthesize(steering=0.5, psi_range=(30, -30)), None, code="option_value"),
+    Case("linkage synthesize: a weight that is not positive", "data",
+         ["linkage", "synthesize", "--pairs", "{pairs}", "--weights", "{bad_weights}"],
+         lambda d: linkage.synthesize(d["pairs"][:, 0], d["pairs"][:, 1], weights=d["bad_weights"]), None),
     # experiment thesis (no MATLAB function)
     Case("experiment thesis", "ok",
          ["experiment", "thesis", "--noise-var", "0.86", "--trials", "5", "--samples", "20", "--seed", "3", "--json"],
@@ -253,6 +280,8 @@ def data(tmp_path_factory):
     }
     # linkage synthesize --pairs: the exact pairs (degrees) of a crank-rocker.
     d["pairs"] = spdfit.read_matrix(SOURCE / "examples" / "linkage" / "crank_rocker_pairs.csv")
+    d["pair_weights"] = np.linspace(1.0, 2.0, len(d["pairs"]))
+    d["bad_weights"] = np.r_[0.0, np.ones(len(d["pairs"]) - 1)]
     # physical regress: one body's 10 parameters (physically consistent) and a random regressor.
     phi = np.array([2.0, 0.02, -0.04, 0.06, 0.1, 0.001, 0.002, 0.12, 0.003, 0.09])
     d["Y"] = rng.standard_normal((60, 10))

@@ -2,6 +2,7 @@
 not retyped: a default changed in C++ changes Python's with it."""
 import inspect
 
+import numpy as np
 import pytest
 
 import spdfit
@@ -39,8 +40,12 @@ def test_hexapod_and_experiment_defaults_are_the_librarys():
 
     options = core_hexapod.SimulationOptions()
     assert default(spdfit.hexapod.simulate, "samples") == options.samples == 12
-    assert default(spdfit.hexapod.simulate, "signal_var") == options.signal_var == 25.0 / 3.0
     assert default(spdfit.hexapod.simulate, "distribution") == options.distribution == "uniform"
+    # simulate's generator options come from the command's table: None stands for the library's
+    # default (25/3, as the docstring says) and gives the same data.
+    assert default(spdfit.hexapod.simulate, "signal_var") is None and options.signal_var == 25.0 / 3.0
+    assert "(default 25/3" in " ".join(spdfit.hexapod.simulate.__doc__.split())
+    assert np.array_equal(spdfit.hexapod.simulate(seed=4).A, spdfit.hexapod.simulate(seed=4, signal_var=25.0 / 3.0).A)
     # The experiments take their options from the library's tables: None stands for the library's
     # default, which the docstring names, and gives the numbers of that value.
     assert default(spdfit.experiment.thesis, "signal_var") is None

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "spdfit/linkage/analysis.hpp"
@@ -17,6 +18,8 @@ struct AnalyzeRequest {
   std::vector<double> lengths;     ///< a1, a2, a3, a4: ground, input, coupler, output
   std::string psi_range = "0:360";  ///< the input angles LO:HI, degrees
   int points = 37;                 ///< the number of input angles, evenly spaced over psi_range
+  /// The input angles themselves (radians), instead of psi_range and points: Python's psi.
+  Eigen::VectorXd psi;
   OutputRequest output;            ///< `json` and `output`
 };
 
@@ -24,8 +27,10 @@ struct AnalyzeRequest {
 const std::vector<OptionSpec<AnalyzeRequest>>& analyze_option_table();
 
 /// The workflow of `linkage analyze`: the request checked (four positive lengths, LO < HI, at
-/// least 2 points: OptionError naming the option) and the four-bar analyzed at the input angles.
-Analysis run_analyze(const AnalyzeRequest& request);
+/// least 2 points, finite input angles, not both the angles and psi_range or points: OptionError
+/// naming the option) and the four-bar analyzed at the input angles. `given`: the library names
+/// of the options given.
+Analysis run_analyze(const AnalyzeRequest& request, const std::vector<std::string_view>& given = {});
 
 /// The analysis as the command line's JSON document (angles in degrees) and its report.
 std::string to_json(const Analysis& analysis);

@@ -21,8 +21,10 @@ namespace spdfit::linkage {
 /// What `linkage synthesize` fits. Angles in degrees, as the command line takes them (the pairs
 /// file's in radians with `radians`).
 struct SynthesizeRequest {
-  std::string pairs;    ///< a file of psi, phi pairs
-  std::string weights;  ///< a file of one weight per pair
+  /// The prescribed pairs: a file of psi, phi columns (the command line) or an m x 2 matrix
+  /// (Python: psi and phi), angle changes in degrees (radians with `radians`).
+  MatrixInput pairs;
+  MatrixInput weights;  ///< one positive weight per pair: a file, or a vector
   bool radians = false;
   bool steering = false;
   std::optional<double> rho;
@@ -32,6 +34,7 @@ struct SynthesizeRequest {
   Spacing spacing = Spacing::Uniform;
   std::optional<double> alpha, beta;
   bool fit_dial_zeros = false;
+  bool refine = true;  ///< refine the design solution by Gauss-Newton on the structural error
   double tolerance = 1e-10;
   int max_iterations = 100;
   std::optional<double> threshold;
@@ -41,10 +44,6 @@ struct SynthesizeRequest {
 
 /// The options of `linkage synthesize`.
 const std::vector<OptionSpec<SynthesizeRequest>>& synthesize_option_table();
-
-/// "LO:HI" as two finite numbers; OptionError naming `option` (a library name: `psi_range`)
-/// otherwise. No order is required.
-std::pair<double, double> parse_angle_range(const std::string& text, const std::string& option);
 
 /// The prescribed positions and what came of them.
 struct SynthesisRun {
