@@ -194,4 +194,10 @@ struct InertiaRepairRun {
 /// the file for one that is not a body or a URDF document).
 InertiaRepairRun run_inertia_repair(const InertiaRepairRequest& request);
 
+/// What inertia_repair_json wrote, read back (spdfit/render.hpp's from_json): every key it writes;
+/// std::invalid_argument naming the class and the key for another document.
+template <typename T>
+T from_json(const std::string& text);
+template <> InertiaRepairResult from_json<InertiaRepairResult>(const std::string& text);
+
 }  // namespace spdfit

@@ -56,7 +56,9 @@ std::string to_json(const NoiseModel& model, JsonStyle style = JsonStyle::Contra
 /// a Contract text loses the sign of an infinity; keys Contract leaves out take their defaults).
 /// Defined for FitResult, Diagnostics, PsdCertificate, BoundaryCertificate, AutoReason, Interval,
 /// SpectrumUncertainty, Bootstrap, NoiseModel, NearestResult, LinearSystemResult,
-/// ColumnClassification and hexapod::MethodIdentification. Throws std::invalid_argument, naming the class and the field,
+/// ColumnClassification and hexapod::MethodIdentification; and (declared beside their to_json)
+/// hexapod::PhysicalEstimate, InertiaRepairResult, physical::RegressResult, payload::PayloadEstimate,
+/// payload::DesignResult and experiment::PhysicalExperimentResult. Throws std::invalid_argument, naming the class and the field,
 /// for text that is not such a document. Cost O(length of the text).
 template <typename T>
 T from_json(const std::string& text);

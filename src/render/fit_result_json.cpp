@@ -221,6 +221,22 @@ Json spectrum_json(const SpectrumUncertainty& s, JsonStyle style) {
           {"clusters", clusters},                       {"failed", s.failed}};
 }
 
+RobustReport robust_from(const Json& o, const std::string& what) {
+  RobustReport report;
+  const std::string loss = value_from<std::string>(o, "method", what);
+  const std::optional<RobustLoss> named = robust_loss_named(loss);
+  if (!named) throw std::invalid_argument(what + ": unknown method '" + loss + "'");
+  report.method = *named;
+  report.tuning = number_from(field(o, "tuning", what), what + " 'tuning'");
+  report.scale = number_from(field(o, "scale", what), what + " 'scale'");
+  report.rows_downweighted = value_from<std::vector<std::uint64_t>>(o, "rows_downweighted", what);
+  report.rows_downweighted_count = value_from<std::uint64_t>(o, "rows_downweighted_count", what);
+  report.weights_min = number_from(field(o, "weights_min", what), what + " 'weights_min'");
+  report.iterations = value_from<int>(o, "iterations", what);
+  report.converged = value_from<bool>(o, "converged", what);
+  return report;
+}
+
 SpectrumUncertainty spectrum_from(const Json& object, const std::string& type) {
   const auto vector = [&](const char* key) { return vector_from(field(object, key, type), type + " '" + key + "'"); };
   SpectrumUncertainty s;
@@ -306,22 +322,7 @@ FitResult fit_result_from(const Json& object, const std::string& type) {
     if (optional_field(*o, "b")) offsets.b = vector_from(field(*o, "b", type), type + " offsets 'b'");
     r.offsets = std::move(offsets);
   }
-  if (const Json* o = optional_field(object, "robust")) {
-    RobustReport report;
-    const std::string what = type + " robust";
-    const std::string loss = value_from<std::string>(*o, "method", what);
-    const std::optional<RobustLoss> named = robust_loss_named(loss);
-    if (!named) throw std::invalid_argument(what + ": unknown method '" + loss + "'");
-    report.method = *named;
-    report.tuning = number_from(field(*o, "tuning", what), what + " 'tuning'");
-    report.scale = number_from(field(*o, "scale", what), what + " 'scale'");
-    report.rows_downweighted = value_from<std::vector<std::uint64_t>>(*o, "rows_downweighted", what);
-    report.rows_downweighted_count = value_from<std::uint64_t>(*o, "rows_downweighted_count", what);
-    report.weights_min = number_from(field(*o, "weights_min", what), what + " 'weights_min'");
-    report.iterations = value_from<int>(*o, "iterations", what);
-    report.converged = value_from<bool>(*o, "converged", what);
-    r.robust = std::move(report);
-  }
+  if (const Json* o = optional_field(object, "robust")) r.robust = robust_from(*o, type + " robust");
   r.warnings = warnings_from(object, type);
   if (optional_field(object, "error")) r.message = value_from<std::string>(object, "error", type);
   // (A hexapod identification's entry may hold only the modes' intervals there.)

@@ -24,6 +24,8 @@ Json noise_model_json(const NoiseModel& model, JsonStyle style);
 Json robust_json(const RobustReport& report, JsonStyle style);
 /// The same for people: "robust: huber (k = 1.869), 19 rows down-weighted below 0.5 (...)\n".
 std::string robust_line(const RobustReport& report);
+/// What robust_json wrote; std::invalid_argument naming `what` and the field.
+RobustReport robust_from(const Json& object, const std::string& what);
 NoiseModel noise_model_from(const Json& object, const std::string& type);
 
 /// estimate, standard_errors, lower, upper, clusters (lists of 0-based indices), failed.

@@ -121,3 +121,13 @@ std::string to_json(const PhysicalExperimentResult& result);
 std::string report(const PhysicalExperimentResult& result);
 
 }  // namespace spdfit::experiment
+
+namespace spdfit {
+
+/// What experiment::to_json wrote, read back (spdfit/render.hpp's from_json): every key it writes;
+/// std::invalid_argument naming the class and the key for another document.
+template <typename T>
+T from_json(const std::string& text);
+template <> experiment::PhysicalExperimentResult from_json<experiment::PhysicalExperimentResult>(const std::string& text);
+
+}  // namespace spdfit

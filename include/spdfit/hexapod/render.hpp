@@ -56,5 +56,7 @@ namespace spdfit {
 
 /// The entry that hexapod::to_json(const MethodIdentification&) wrote (see from_json).
 template <> hexapod::MethodIdentification from_json<hexapod::MethodIdentification>(const std::string& text);
+/// What hexapod::physical_json wrote (the "physical" object of `hexapod identify --json`).
+template <> hexapod::PhysicalEstimate from_json<hexapod::PhysicalEstimate>(const std::string& text);
 
 }  // namespace spdfit

@@ -117,3 +117,13 @@ std::string to_json(const DesignResult& result);
 std::string report(const DesignResult& result);
 
 }  // namespace spdfit::payload
+
+namespace spdfit {
+
+/// What payload::to_json wrote, read back (spdfit/render.hpp's from_json): every key it writes;
+/// std::invalid_argument naming the class and the key for another document.
+template <typename T>
+T from_json(const std::string& text);
+template <> payload::DesignResult from_json<payload::DesignResult>(const std::string& text);
+
+}  // namespace spdfit

@@ -241,3 +241,13 @@ std::string to_json(const PayloadEstimate& estimate);
 std::string report(const PayloadEstimate& estimate);
 
 }  // namespace spdfit::payload
+
+namespace spdfit {
+
+/// What payload::to_json wrote, read back (spdfit/render.hpp's from_json): every key it writes;
+/// std::invalid_argument naming the class and the key for another document.
+template <typename T>
+T from_json(const std::string& text);
+template <> payload::PayloadEstimate from_json<payload::PayloadEstimate>(const std::string& text);
+
+}  // namespace spdfit

@@ -176,3 +176,13 @@ std::string to_json(const RegressResult& result);
 std::string report(const RegressResult& result);
 
 }  // namespace spdfit::physical
+
+namespace spdfit {
+
+/// What physical::to_json wrote, read back (spdfit/render.hpp's from_json): every key it writes;
+/// std::invalid_argument naming the class and the key for another document.
+template <typename T>
+T from_json(const std::string& text);
+template <> physical::RegressResult from_json<physical::RegressResult>(const std::string& text);
+
+}  // namespace spdfit
