@@ -10,6 +10,8 @@
 #include "blas_restart.hpp"
 #include "cli.hpp"
 #include "spdfit/options.hpp"
+#include "spdfit/output_request.hpp"
+#include "table_options.hpp"
 #include "mpi_world.hpp"
 #include "spdfit/blas.hpp"
 #include "spdfit/io.hpp"
@@ -55,28 +57,11 @@ int main(int argc, char** argv) {
 
   GlobalOptions global;
   global.mpi = mpi.get();
-  auto* quiet = app.add_flag("-q,--quiet", global.quiet,
-                             "Do not print warnings on stderr (before or after the command)");
-  app.add_flag("-v,--verbose", global.verbose,
-               "Say on stderr which BLAS kernels run (OpenBLAS's core, and whether spdfit chose it)")
-      ->excludes(quiet);
-  // The global options are accepted after the command too (`spdfit fit -q ...`): the commands,
-  // added below, inherit this and pass an option they do not know on to the top level.
+  // The global options (the library's global_option_table), accepted after the command too
+  // (`spdfit fit -q ...`): the commands, added below, inherit this and pass an option they do not
+  // know on to the top level.
+  TableOptions<spdfit::GlobalRequest> global_options(app, spdfit::global_option_table());
   app.fallthrough();
-  auto* index_col = app.add_flag_callback(
-      "--index-col", [&global] { global.read.index_column = spdfit::io::IndexColumn::Drop; },
-      "The first column of each data file holds row labels (an index, as pandas' to_csv and R's write.csv "
-      "write one): drop it. Without this, a header whose first cell is empty says so, and a first column "
-      "0, 1, 2, ... is refused");
-  auto* no_index_col = app.add_flag_callback(
-      "--no-index-col", [&global] { global.read.index_column = spdfit::io::IndexColumn::Keep; },
-      "The first column of each data file is data, whatever its header or values");
-  index_col->excludes(no_index_col);
-  app.add_flag_callback(
-      "--no-header", [&global] { global.read.header_row = spdfit::io::HeaderRow::Absent; },
-      "The first line of each text data file is data. Without this, a first line with no number in it is a "
-      "header row of column names, and so is 0,1,...,k-1 (pandas' header of a frame without column names), "
-      "with a warning");
 
   const std::vector<Command> commands = {
       add_fit_command(app, global),
@@ -129,6 +114,13 @@ int main(int argc, char** argv) {
     }
     std::cerr << "spdfit: error: " << message << "\nRun '" << help << "' for usage.\n";
     return kExitUsageError;
+  }
+  {
+    spdfit::GlobalRequest request;
+    global_options.apply(request);
+    global.quiet = request.quiet;
+    global.verbose = request.verbose;
+    spdfit::apply_global_options(request, global.read);
   }
   report_blas_core(global);
 

@@ -11,6 +11,29 @@
 
 namespace spdfit {
 
+namespace io {
+struct ReadOptions;
+}
+
+/// The options every command takes (the command line's global options, given before or after the
+/// command): whether warnings are printed and what is said, and how every data file's first column
+/// and first line are read. Python and MATLAB have their own forms (the warnings module;
+/// read_matrix's index_col and header).
+struct GlobalRequest {
+  bool quiet = false;         ///< no warnings on standard error
+  bool verbose = false;       ///< say which BLAS kernels run
+  bool index_col = false;     ///< every data file's first column holds row labels: dropped
+  bool no_index_col = false;  ///< every data file's first column is data
+  bool no_header = false;     ///< every text data file's first line is data
+};
+
+/// The global options: quiet and verbose (each excludes the other), index_col and no_index_col
+/// (likewise), no_header; the command line's only.
+const std::vector<OptionSpec<GlobalRequest>>& global_option_table();
+
+/// The reading rules the global options set (index_column, header_row), in `read`.
+void apply_global_options(const GlobalRequest& request, io::ReadOptions& read);
+
 /// How a command's result is printed: as JSON, a report for people, a labelled CSV table, or its
 /// plain form (X as CSV, a report); to a file or standard output.
 struct OutputRequest {

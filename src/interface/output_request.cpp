@@ -1,6 +1,8 @@
 // The presentation options' table.
 #include "spdfit/output_request.hpp"
 
+#include "spdfit/io.hpp"
+
 namespace spdfit {
 
 namespace {
@@ -39,7 +41,54 @@ std::vector<Spec> make_table() {
   return table;
 }
 
+std::vector<OptionSpec<GlobalRequest>> make_global_table() {
+  using G = OptionSpec<GlobalRequest>;
+  const auto flag = [](std::string_view name, std::string_view cli, std::string_view help,
+                       std::vector<std::string_view> excludes, bool GlobalRequest::*member) {
+    G spec;
+    spec.name = name;
+    spec.cli = cli;
+    spec.type = OptionType::Flag;
+    spec.help = help;
+    spec.nullable = false;
+    spec.excludes = std::move(excludes);
+    spec.set = [member](GlobalRequest& r, const OptionValue& v) { r.*member = std::get<bool>(v); };
+    spec.get = [member](const GlobalRequest& r) -> std::optional<OptionValue> { return r.*member; };
+    return spec;
+  };
+  return {
+      flag("quiet", "-q,--quiet", "Do not print warnings on stderr (before or after the command)", {"verbose"},
+           &GlobalRequest::quiet),
+      flag("verbose", "-v,--verbose",
+           "Say on stderr which BLAS kernels run (OpenBLAS's core, and whether spdfit chose it)", {"quiet"},
+           &GlobalRequest::verbose),
+      flag("index_col", "--index-col",
+           "The first column of each data file holds row labels (an index, as pandas' to_csv and R's write.csv "
+           "write one): drop it. Without this, a header whose first cell is empty says so, and a first column "
+           "0, 1, 2, ... is refused",
+           {"no_index_col"}, &GlobalRequest::index_col),
+      flag("no_index_col", "--no-index-col", "The first column of each data file is data, whatever its header or values",
+           {"index_col"}, &GlobalRequest::no_index_col),
+      flag("no_header", "--no-header",
+           "The first line of each text data file is data. Without this, a first line with no number in it is a "
+           "header row of column names, and so is 0,1,...,k-1 (pandas' header of a frame without column names), "
+           "with a warning",
+           {}, &GlobalRequest::no_header),
+  };
+}
+
 }  // namespace
+
+const std::vector<OptionSpec<GlobalRequest>>& global_option_table() {
+  static const std::vector<OptionSpec<GlobalRequest>> table = make_global_table();
+  return table;
+}
+
+void apply_global_options(const GlobalRequest& request, io::ReadOptions& read) {
+  if (request.index_col) read.index_column = io::IndexColumn::Drop;
+  if (request.no_index_col) read.index_column = io::IndexColumn::Keep;
+  if (request.no_header) read.header_row = io::HeaderRow::Absent;
+}
 
 const std::vector<OptionSpec<OutputRequest>>& output_option_table() {
   static const std::vector<OptionSpec<OutputRequest>> table = make_table();

@@ -36,6 +36,7 @@ void for_each_option_table(Visit&& visit) {
   visit(nearest_command_table());
   visit(compare_option_table());
   visit(output_option_table());
+  visit(global_option_table());
   visit(payload::identify_option_table());
   visit(payload::design_option_table());
   visit(physical::regress_option_table());

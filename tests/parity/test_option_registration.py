@@ -3,8 +3,8 @@ option"): the CLI registers whole tables (apps/spdfit/table_options.hpp), Python
 through the tables (python/src/keywords.cpp), MATLAB reads its name-value pairs through them
 (matlab/src/mex_pairs.hpp). This test fails when a front end registers an option by hand.
 
-What is still registered by hand is listed below (the program's global options; Python's keywords
-that are data or Python's own forms, and those of the functions not yet on tables), so that the
+What is still registered by hand is listed below (Python's keywords that are data or Python's own
+forms: arrays by name, a DataFrame's columns, the readers' options), so that the
 list can only shrink: a new hand-registered option, in any file, fails the test; so does an entry
 of the list that is no longer true (convert a function, then delete its line)."""
 
@@ -16,15 +16,14 @@ from pathlib import Path
 SOURCE = Path(os.environ.get("SPDFIT_SOURCE_DIR", Path(__file__).resolve().parents[2]))
 
 # apps/: CLI11 registrations per file. table_options.hpp is the one place that registers table
-# entries; main.cpp registers the program's global options (no command's).
+# entries, the global options' too (global_option_table); only --version is CLI11's own.
 CLI_BY_HAND = {
     "apps/spdfit/table_options.hpp": 2,  # the table's entries: add_flag / add_option per spec
-    "apps/spdfit/main.cpp": 5,  # global options: --quiet, --verbose, --index-col, --no-index-col, --version
 }
 
 # python/spdfit/: keyword-only parameters of public functions. Options from a table arrive in
-# **options; the keywords below are the reader's and structural ones (full_output, a_cols) and
-# those of the commands not yet converted.
+# **options; the keywords below are the readers' and structural ones (full_output, a_cols) and data
+# given by name.
 PYTHON_BY_HAND = {
     ("io.py", "read_matrix"): {"allow_nonfinite", "index_col", "header"},
     ("io.py", "read_table"): {"allow_nonfinite", "index_col", "header"},
