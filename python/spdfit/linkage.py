@@ -28,15 +28,20 @@ __all__ = ["Analysis", "AnalysisSample", "AngleRange", "DialZeros", "FourBar", "
            "SynthesisResult", "analyze", "freudenstein_parameters", "function_names", "grashof_type", "link_lengths",
            "synthesize"]
 
-# The command line's default input range for --steering (degrees).
-STEERING_PSI_RANGE = (-30.0, 30.0)
+# The default input range of steering= (degrees): the library's (linkage::kSteeringPsiRange).
+STEERING_PSI_RANGE = _core.STEERING_PSI_RANGE
 
 
-def _vector(name, value):
-    array = _np.asarray(value, dtype=_np.float64).reshape(-1)
-    if not _np.all(_np.isfinite(array)):
-        raise ValueError(f"{name} contains NaN or Inf")
-    return array
+def _vector(value):
+    # The library checks the values (finite pairs, finite angles) and names them.
+    return _np.asarray(value, dtype=_np.float64).reshape(-1)
+
+
+def _range_in_degrees(value):
+    """A range given in radians as (lo, hi), in degrees as the library takes it; text as it is."""
+    if value is None or isinstance(value, str):
+        return value
+    return tuple(_math.degrees(float(x)) for x in value)
 
 
 # The compiled module's functions, wrapped in Python functions that carry NumPy-format docstrings
@@ -240,7 +245,7 @@ def synthesize(psi=None, phi=None, *, radians=False, **options):
             raise ValueError("psi and phi come together: give both (or pairs=)")
         if "pairs" in options and options["pairs"] is not None:
             raise ValueError("give psi and phi, or pairs=, not both")
-        psi, phi = _vector("psi", psi), _vector("phi", phi)
+        psi, phi = _vector(psi), _vector(phi)
         if psi.shape != phi.shape:
             raise ValueError(f"psi and phi must have the same length, got {psi.size} and {phi.size}")
         options["pairs"] = _np.column_stack([psi, phi])
@@ -252,9 +257,8 @@ def synthesize(psi=None, phi=None, *, radians=False, **options):
             if options.get(key) is not None:
                 options[key] = _math.degrees(options[key])
         for key in ("psi_range", "phi_range"):
-            value = options.get(key)
-            if value is not None and not isinstance(value, str):
-                options[key] = tuple(_math.degrees(float(x)) for x in value)
+            if options.get(key) is not None:
+                options[key] = _range_in_degrees(options[key])
         if given_pairs:
             options["radians"] = True
     result = _core.run_synthesize(options)
@@ -303,8 +307,7 @@ def analyze(lengths, psi=None, *, radians=False, **options):
     """
     bar = lengths if isinstance(lengths, FourBar) else FourBar(*map(float, lengths))
     if psi is not None:
-        psi = _vector("psi", psi)
-        psi = psi if radians else _np.radians(psi)
-    elif radians and options.get("psi_range") is not None and not isinstance(options["psi_range"], str):
-        options["psi_range"] = tuple(_math.degrees(float(x)) for x in options["psi_range"])
+        psi = _vector(psi) if radians else _np.radians(_vector(psi))
+    elif radians and options.get("psi_range") is not None:
+        options["psi_range"] = _range_in_degrees(options["psi_range"])
     return _core.run_analyze([bar.a1, bar.a2, bar.a3, bar.a4], psi, options)

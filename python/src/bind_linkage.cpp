@@ -147,6 +147,7 @@ void bind_linkage(py::module_& parent) {
   // `linkage synthesize` and `linkage analyze`'s workflows (synthesize_request.hpp,
   // analyze_request.hpp): the request from the keywords through the command's table, its rules and
   // its run, as the command line runs them.
+  m.attr("STEERING_PSI_RANGE") = py::make_tuple(kSteeringPsiRange[0], kSteeringPsiRange[1]);
   m.def(
       "run_synthesize",
       [](const py::dict& options) {

@@ -9,17 +9,19 @@ namespace {
 
 using Spec = OptionSpec<OutputRequest>;
 
-Spec flag(std::string_view name, std::string_view cli, std::string_view help,
-          std::vector<std::string_view> excludes, bool OutputRequest::*member) {
-  Spec spec;
+// A flag stored in `member` (the command line's only: no Python spelling).
+template <typename Request>
+OptionSpec<Request> flag(std::string_view name, std::string_view cli, std::string_view help,
+                         std::vector<std::string_view> excludes, bool Request::*member) {
+  OptionSpec<Request> spec;
   spec.name = name;
   spec.cli = cli;
   spec.type = OptionType::Flag;
   spec.help = help;
   spec.nullable = false;
   spec.excludes = std::move(excludes);
-  spec.set = [member](OutputRequest& r, const OptionValue& v) { r.*member = std::get<bool>(v); };
-  spec.get = [member](const OutputRequest& r) -> std::optional<OptionValue> { return r.*member; };
+  spec.set = [member](Request& r, const OptionValue& v) { r.*member = std::get<bool>(v); };
+  spec.get = [member](const Request& r) -> std::optional<OptionValue> { return r.*member; };
   return spec;
 }
 
@@ -42,20 +44,6 @@ std::vector<Spec> make_table() {
 }
 
 std::vector<OptionSpec<GlobalRequest>> make_global_table() {
-  using G = OptionSpec<GlobalRequest>;
-  const auto flag = [](std::string_view name, std::string_view cli, std::string_view help,
-                       std::vector<std::string_view> excludes, bool GlobalRequest::*member) {
-    G spec;
-    spec.name = name;
-    spec.cli = cli;
-    spec.type = OptionType::Flag;
-    spec.help = help;
-    spec.nullable = false;
-    spec.excludes = std::move(excludes);
-    spec.set = [member](GlobalRequest& r, const OptionValue& v) { r.*member = std::get<bool>(v); };
-    spec.get = [member](const GlobalRequest& r) -> std::optional<OptionValue> { return r.*member; };
-    return spec;
-  };
   return {
       flag("quiet", "-q,--quiet", "Do not print warnings on stderr (before or after the command)", {"verbose"},
            &GlobalRequest::quiet),

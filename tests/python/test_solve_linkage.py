@@ -171,3 +171,13 @@ def test_bad_synthesis_input():
         lk.synthesize([1.0, 2.0], [1.0, 2.0])  # fewer than 3 pairs
     with pytest.raises(ValueError, match="NaN"):
         lk.synthesize([1.0, np.nan, 3.0], [1.0, 2.0, 3.0])
+
+
+def test_non_finite_angles_are_refused_by_the_library():
+    # The library checks the pairs and the input angles (as for the command line's files), naming
+    # them: a NaN pair is a DataError, a NaN input angle of analyze a ValueError naming psi.
+    with pytest.raises(spdfit.DataError, match="pair 2 is not finite"):
+        lk.synthesize([0, np.nan, 80], [10, 20, 30])
+    with pytest.raises(ValueError, match="input angles must be finite"):
+        lk.analyze((4, 1, 3.5, 3), [0, np.inf])
+    assert lk.STEERING_PSI_RANGE == (-30.0, 30.0)

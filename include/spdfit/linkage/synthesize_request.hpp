@@ -18,6 +18,9 @@
 
 namespace spdfit::linkage {
 
+/// The input angle changes of `steering` when `psi_range` is not given (degrees).
+inline constexpr double kSteeringPsiRange[2] = {-30.0, 30.0};
+
 /// What `linkage synthesize` fits. Angles in degrees, as the command line takes them (the pairs
 /// file's in radians with `radians`).
 struct SynthesizeRequest {
