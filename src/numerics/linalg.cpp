@@ -8,6 +8,7 @@
 #include <string>
 
 #include "numerics/block_qr.hpp"
+#include "numerics/cholesky_downdate.hpp"
 
 #ifdef SPDFIT_HAVE_LAPACK
 #include <cblas.h>
@@ -85,6 +86,39 @@ void solve_upper_in_place(const Eigen::Ref<const MatrixXd>& U, MatrixXd& L) {
   }
 #endif
   U.triangularView<Eigen::Upper>().solveInPlace(L);
+}
+
+bool cholesky_downdate(const Eigen::Ref<const MatrixXd>& R, const Eigen::Ref<const Eigen::VectorXd>& x, MatrixXd& Rc) {
+  const Index k = R.rows();
+  if (R.cols() != k || x.size() != k) throw std::logic_error("cholesky_downdate: R must be k x k and x of size k");
+  for (Index i = 0; i < k; ++i) {
+    if (!(std::abs(R(i, i)) > 0.0)) return false;
+  }
+  Rc = R.triangularView<Eigen::Upper>();
+  // R^T a = x; then the rotations that take (a, sqrt(1 - ||a||^2)) to (0, 1), last entry first.
+  Eigen::VectorXd s = x;
+  R.triangularView<Eigen::Upper>().transpose().solveInPlace(s);
+  const double norm2 = s.squaredNorm();
+  if (!(norm2 < 1.0)) return false;
+  double alpha = std::sqrt(1.0 - norm2);
+  Eigen::VectorXd c(k);
+  for (Index i = k - 1; i >= 0; --i) {
+    const double scale = alpha + std::abs(s(i));
+    const double p = alpha / scale, q = s(i) / scale;
+    const double norm = std::sqrt(p * p + q * q);
+    c(i) = p / norm;
+    s(i) = q / norm;
+    alpha = scale * norm;
+  }
+  for (Index j = 0; j < k; ++j) {
+    double carried = 0.0;
+    for (Index i = j; i >= 0; --i) {
+      const double t = c(i) * carried + s(i) * Rc(i, j);
+      Rc(i, j) = c(i) * Rc(i, j) - s(i) * carried;
+      carried = t;
+    }
+  }
+  return Rc.allFinite();
 }
 
 void lower_gram(const Eigen::Ref<const MatrixXd>& L, MatrixXd& X) {

@@ -1,6 +1,5 @@
 #include "pipeline/offsets.hpp"
 
-#include <Eigen/Cholesky>
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -8,6 +7,7 @@
 #include <stdexcept>
 
 #include "factor/chunk_appender.hpp"
+#include "numerics/cholesky_downdate.hpp"
 #include "numerics/linalg.hpp"
 #include "pipeline/units.hpp"
 #include "spdfit/format.hpp"
@@ -31,19 +31,18 @@ MatrixXd in_exponents(const TriangularFactor& f, int ea, int eb) {
 }
 
 // The factor of the centred data in the plain factor's scaled units, for a fit that has only the
-// plain factor: by a downdate of its Gram matrix, R^T R - m mu mu^T, where that loses at most half
-// the digits (offsets up to about 1e4 times the columns' spread; O((n + d)^3), no pass over the
-// rows), else straight from the rows, centred in two passes.
+// plain factor: a rank-one downdate of it, R^T R - m mu mu^T = Rc^T Rc (O((n + d)^2) rotations, no
+// Gram matrix and no pass over the rows), where that loses at most half the digits of every
+// column (offsets up to about 1e4 times the columns' spread), else straight from the rows,
+// centred in two passes.
 MatrixXd centred_factor(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B,
                         const TriangularFactor& plain, const VectorXd& mean_scaled) {
-  const double m = static_cast<double>(plain.rows());
-  const MatrixXd G = plain.R().transpose() * plain.R();
-  MatrixXd Gc = G - m * mean_scaled * mean_scaled.transpose();
-  bool accurate = true;
-  for (Index j = 0; j < G.rows(); ++j) accurate = accurate && Gc(j, j) > 1e-8 * G(j, j);
-  if (accurate) {
-    const Eigen::LLT<MatrixXd> llt(Gc);
-    if (llt.info() == Eigen::Success) return llt.matrixU();
+  const MatrixXd R = plain.R();
+  MatrixXd Rc;
+  if (cholesky_downdate(R, std::sqrt(static_cast<double>(plain.rows())) * mean_scaled, Rc)) {
+    bool accurate = true;
+    for (Index j = 0; j < R.cols(); ++j) accurate = accurate && Rc.col(j).squaredNorm() > 1e-8 * R.col(j).squaredNorm();
+    if (accurate) return Rc;
   }
   const TriangularFactor direct = TriangularFactor::from_data(A, B, true);
   return in_exponents(direct, plain.exponent_a(), plain.exponent_b());
@@ -67,15 +66,14 @@ std::optional<Warning> intercept_warning(const Eigen::Ref<const MatrixXd>& A, co
   const VectorXd diag = Rc11.diagonal().cwiseAbs(), plain_diag = R11.diagonal().cwiseAbs();
   const double tiny = 1e-12 * std::max(diag.maxCoeff(), std::numeric_limits<double>::min());
   if (diag.minCoeff() <= tiny || plain_diag.minCoeff() <= 1e-12 * plain_diag.maxCoeff()) return std::nullopt;
-  const auto Uc = Rc11.triangularView<Eigen::Upper>();
-  const MatrixXd Xc = Uc.solve(MatrixXd(Rc.topRightCorner(n, d)));
-  const MatrixXd Xp = R11.triangularView<Eigen::Upper>().solve(MatrixXd(plain.R12()));
+  // c = mu_B - Xc^T mu_A with Xc = Rc11^-1 Rc12, as Rc12^T w for w = Rc11^-T mu_A (which also
+  // gives the intercept's leverage h = ||w||^2): O(n^2 + n d); X's solves only when c is far
+  // from 0.
+  const VectorXd w = Rc11.triangularView<Eigen::Upper>().transpose().solve(VectorXd(mean_scaled.head(n)));
   const MatrixXd Rc22 = Rc.bottomRightCorner(d, d);
   const VectorXd sigma = (Rc22.colwise().squaredNorm().transpose() / dof).cwiseSqrt();
-  const VectorXd c = mean_scaled.tail(d) - Xc.transpose() * mean_scaled.head(n);
-  const double h = Uc.transpose().solve(VectorXd(mean_scaled.head(n))).squaredNorm();
-  const MatrixXd inverse = Uc.solve(MatrixXd::Identity(n, n));  // Rc11^-1: (A_c^T A_c)^-1 = Rc11^-1 Rc11^-T
-  const VectorXd row_norms = inverse.rowwise().norm();
+  const VectorXd c = mean_scaled.tail(d) - Rc.topRightCorner(n, d).transpose() * w;
+  const double h = w.squaredNorm();
   // Offsets of rounding's size are not offsets: noise-free data fit exactly either way.
   const VectorXd b_rms = (Rc22.colwise().squaredNorm().transpose() / static_cast<double>(m)).cwiseSqrt() +
                          mean_scaled.tail(d).cwiseAbs();
@@ -86,6 +84,12 @@ std::optional<Warning> intercept_warning(const Eigen::Ref<const MatrixXd>& A, co
     z_c = std::max(z_c, se > 0.0 ? std::abs(c(j)) / se : std::numeric_limits<double>::infinity());
   }
   if (!(z_c > kOffsetStandardErrors)) return std::nullopt;
+  MatrixXd Xc = Rc.topRightCorner(n, d), Xp = plain.R12();
+  solve_upper_in_place(Rc11, Xc);
+  solve_upper_in_place(R11, Xp);
+  MatrixXd inverse = MatrixXd::Identity(n, n);  // Rc11^-1: (A_c^T A_c)^-1 = Rc11^-1 Rc11^-T
+  solve_upper_in_place(Rc11, inverse);
+  const VectorXd row_norms = inverse.rowwise().norm();
   const double x_scale = Xc.cwiseAbs().maxCoeff();
   for (Index i = 0; i < n; ++i) {
     for (Index j = 0; j < d; ++j) {

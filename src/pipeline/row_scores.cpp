@@ -31,6 +31,9 @@ constexpr double kRowScoreLeverageFloor = 1e-12;
 constexpr Eigen::Index kRowScoreMinExtraRows = 10;
 // A row whose residual is this small against the row itself is fitted to rounding, whatever its z.
 constexpr double kRowScoreRounding = 1e-8;
+// The leverages come from R11^-1 where A's smallest singular value is this many times the rank
+// cut-off or more (the SVD's rank is then A's column count whatever its rounding).
+constexpr double kRowScoreFullRankMargin = 4.0;
 // Above this many multiply-adds the check is made only when the diagnostics are read.
 constexpr double kRowScoreUnreadFlops = 1e8;
 
@@ -73,6 +76,8 @@ VectorXd whitened_residuals(const Eigen::Ref<const MatrixXd>& A, const Eigen::Re
   constexpr Index kBlockRows = 2048, kNarrow = 16;
   const Index m = A.rows(), n = A.cols(), d = B.cols();
   const MatrixXd Linv_t = MatrixXd(llt.matrixL().solve(MatrixXd::Identity(d, d))).transpose();
+  // The methods without noise in A and without a noise model: residuals as they are.
+  const bool identity = covariance.isIdentity(0.0);
   VectorXd out(m);
   MatrixXd residual, whitened;
   VectorXd squares;
@@ -93,10 +98,14 @@ VectorXd whitened_residuals(const Eigen::Ref<const MatrixXd>& A, const Eigen::Re
       out.segment(i0, r) = squares.cwiseSqrt();
       continue;
     }
-    residual.noalias() = A.middleRows(i0, r) * X;
+    multiply(A.middleRows(i0, r), false, X, false, residual);
     residual -= B.middleRows(i0, r);
     if (c.size() == d) residual.rowwise() += c.transpose();
-    whitened.noalias() = residual * Linv_t;
+    if (identity) {
+      out.segment(i0, r) = residual.rowwise().norm();
+      continue;
+    }
+    multiply(residual, false, Linv_t, false, whitened);
     out.segment(i0, r) = whitened.rowwise().norm();
   }
   return out;
@@ -129,20 +138,29 @@ VectorXd row_scores(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const 
   const VectorXd whitened = whitened_residuals(A, B, X, c, residual_covariance(X, method, options));
   // Leverages h_i = ||a_i V_r S_r^-1||^2 from the SVD of R11 in the data's units (A^T A = R11^T
   // R11; the centred A's with an intercept, plus 1/m), directions below the rank cut-off left out.
+  // Where the fit's singular values of A (the same R11's) put every one well above the cut-off,
+  // V S^-1 spans what R11^-1 does and h_i = ||a_i R11^-1||^2: a triangular inverse instead of
+  // an SVD with vectors.
   const MatrixXd R11 = times_power_of_two(MatrixXd(factor.R11()), factor.exponent_a());
-  const Svd dec = svd(R11, false, true);
-  const double largest = dec.s.size() ? dec.s(0) : 0.0;
-  const double cutoff = options.rank_cutoff(m, n) * largest;
-  Index rank = 0;
-  while (rank < dec.s.size() && dec.s(rank) > cutoff && dec.s(rank) > 0.0) ++rank;
-  const MatrixXd map = dec.V.leftCols(rank) * dec.s.head(rank).cwiseInverse().asDiagonal();
-  MatrixXd projected;
-  if (intercept && factor.means().size() == n + d) {
-    const MatrixXd centred = A.rowwise() - factor.means().head(n).transpose();
-    multiply(centred, false, map, false, projected);
+  MatrixXd centred;
+  if (intercept && factor.means().size() == n + d) centred = A.rowwise() - factor.means().head(n).transpose();
+  const Eigen::Ref<const MatrixXd> rows = centred.size() ? Eigen::Ref<const MatrixXd>(centred) : A;
+  const VectorXd& s = result.diagnostics.singular_values_a;
+  const double cutoff_ratio = options.rank_cutoff(m, n);
+  MatrixXd map;
+  if (n > 0 && s.size() == n && s(n - 1) > kRowScoreFullRankMargin * cutoff_ratio * s(0)) {
+    map.setIdentity(n, n);
+    solve_upper_in_place(R11, map);
   } else {
-    multiply(A, false, map, false, projected);
+    const Svd dec = svd(R11, false, true);
+    const double largest = dec.s.size() ? dec.s(0) : 0.0;
+    const double cutoff = cutoff_ratio * largest;
+    Index rank = 0;
+    while (rank < dec.s.size() && dec.s(rank) > cutoff && dec.s(rank) > 0.0) ++rank;
+    map = dec.V.leftCols(rank) * dec.s.head(rank).cwiseInverse().asDiagonal();
   }
+  MatrixXd projected;
+  multiply(rows, false, map, false, projected);
   VectorXd h = projected.rowwise().squaredNorm();
   if (intercept) h.array() += 1.0 / static_cast<double>(m);
   return (whitened.array() / (1.0 - h.array()).max(kRowScoreLeverageFloor).sqrt()).matrix();

@@ -12,6 +12,8 @@
 #include "spdfit/fit.hpp"
 #include "spdfit/hexapod/model.hpp"
 #include "spdfit/hexapod/simulate.hpp"
+#include "numerics/cholesky_downdate.hpp"
+#include "pipeline/offsets.hpp"
 #include "spdfit/triangular_factor.hpp"
 #include "test_support.hpp"
 
@@ -219,6 +221,59 @@ TEST(InterceptFactor, SimulatedPreloadIsInEveryRowAndRestRemovesIt) {
   bool warned = false;
   for (const Warning& w : untared.warnings) warned = warned || (w.subject == "offsets" && w.code == Code::Bias);
   EXPECT_TRUE(warned);
+}
+
+// The rank-one downdate that gives the centred factor from the plain one (an intercept warning
+// for a fit without an intercept): Rc^T Rc = R^T R - x x^T to rounding, against the Gram matrices
+// formed directly; refused where the difference is not positive definite or R is singular.
+TEST(InterceptFactor, DowndateOfTheTriangularFactorIsTheCentredFactor) {
+  Generator gen(41);
+  const Index m = 400, k = 7;
+  MatrixXd Z = gen.gaussian(m, k);
+  Z.rowwise() += RowVectorXd::LinSpaced(k, -30.0, 50.0);  // offsets of 30-50 spreads
+  const Eigen::HouseholderQR<MatrixXd> qr(Z);
+  const MatrixXd R = qr.matrixQR().topRows(k).triangularView<Eigen::Upper>();
+  const VectorXd mean = Z.colwise().mean().transpose();
+  const VectorXd x = std::sqrt(static_cast<double>(m)) * mean;
+  MatrixXd Rc;
+  ASSERT_TRUE(detail::cholesky_downdate(R, x, Rc));
+  EXPECT_TRUE(MatrixXd(Rc.triangularView<Eigen::StrictlyLower>()).isZero(0.0));
+  const MatrixXd centred = Z.rowwise() - mean.transpose();
+  const MatrixXd expected = centred.transpose() * centred;
+  // Offsets of 50 spreads cost about 50^2 in the relative accuracy of the difference.
+  EXPECT_LT((Rc.transpose() * Rc - expected).norm(), 1e-12 * (R.transpose() * R).norm());
+  // ||R^-T x|| of 1 or more: R^T R - x x^T is singular or indefinite.
+  MatrixXd unused;
+  const VectorXd along = R.transpose() * VectorXd::Unit(k, 2);  // ||R^-T along|| = 1
+  EXPECT_FALSE(detail::cholesky_downdate(R, 1.0000001 * along, unused));
+  EXPECT_TRUE(detail::cholesky_downdate(R, 0.999 * along, unused));
+  MatrixXd singular = R;
+  singular(3, 3) = 0.0;
+  EXPECT_FALSE(detail::cholesky_downdate(singular, x, unused));
+}
+
+// The offset warning from the plain factor (the downdate) says what it says from the factor of
+// [1 A B] made from the rows.
+TEST(InterceptFactor, OffsetWarningFromThePlainFactorAgreesWithTheRows) {
+  Generator gen(43);
+  const Index m = 300, n = 3;
+  const MatrixXd X = gen.spd(n, 10.0);
+  const MatrixXd A = gen.gaussian(m, n).array() + 1.0;
+  MatrixXd B = A * X + 0.05 * gen.gaussian(m, n);
+  B.rowwise() += RowVectorXd::Constant(n, 2.0);
+  const FitOptions options;
+  const TriangularFactor plain = TriangularFactor::from_data(A, B, false);
+  const std::vector<Warning> from_plain = detail::offset_warnings(A, B, &plain, options);
+  const std::vector<Warning> from_rows = detail::offset_warnings(A, B, nullptr, options);
+  ASSERT_EQ(from_plain.size(), 1u);
+  ASSERT_EQ(from_rows.size(), 1u);
+  EXPECT_EQ(from_plain[0].code, Code::Bias);
+  EXPECT_EQ(from_plain[0].text, from_rows[0].text);
+  // No offsets: no warning either way.
+  const MatrixXd B0 = A * X + 0.05 * gen.gaussian(m, n);
+  const TriangularFactor plain0 = TriangularFactor::from_data(A, B0, false);
+  EXPECT_TRUE(detail::offset_warnings(A, B0, &plain0, options).empty());
+  EXPECT_TRUE(detail::offset_warnings(A, B0, nullptr, options).empty());
 }
 
 }  // namespace
