@@ -485,9 +485,7 @@ Reweighted reweight(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Ph
       }
       if (!values.empty()) scale = spdfit::detail::median(values) / median_chi;
     }
-    for (Eigen::Index i = 0; i < m; ++i) {
-      out.weights(i) = spdfit::detail::robust_weight(loss, scale > 0.0 ? u(i) / scale : 0.0, k);
-    }
+    out.weights = spdfit::detail::robust_weights(loss, u, scale, k);
     factor.emplace(6, 6, options.intercept);
     factor->append(A, B, counts.size() ? Eigen::VectorXd(out.weights.cwiseProduct(counts)) : out.weights);
     PhysicalEstimate next = fit_weighted(*factor);

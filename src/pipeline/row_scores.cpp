@@ -90,6 +90,11 @@ VectorXd whitened_residuals(const Eigen::Ref<const MatrixXd>& A, const Eigen::Re
       if (c.size() == d) residual.rowwise() += c.transpose();
       for (Index k = 0; k < n; ++k) residual.noalias() += A.col(k).segment(i0, r) * X.row(k);
       squares.setZero(r);
+      if (identity) {  // the products below with L^-T = I, to the bit
+        for (Index j = 0; j < d; ++j) squares += residual.col(j).cwiseAbs2();
+        out.segment(i0, r) = squares.cwiseSqrt();
+        continue;
+      }
       for (Index j = 0; j < d; ++j) {
         // Column j of residual L^-T: L^-T is upper triangular, so rows k <= j of Linv_t.
         whitened.noalias() = residual.leftCols(j + 1) * Linv_t.col(j).head(j + 1);

@@ -152,6 +152,18 @@ double robust_weight(RobustLoss loss, double u, double k) {
   return 1.0;
 }
 
+VectorXd robust_weights(RobustLoss loss, const VectorXd& u, double scale, double k) {
+  const Index m = u.size();
+  if (loss == RobustLoss::None) return VectorXd::Ones(m);
+  if (!(scale > 0.0)) return VectorXd::Constant(m, robust_weight(loss, 0.0, k));
+  // Both branches for every row, then the one robust_weight takes: the same operations on the
+  // same operands, so the same bits.
+  const Eigen::ArrayXd t = u.array() / scale;
+  if (loss == RobustLoss::Huber) return (t <= k).select(1.0, k / t).matrix();
+  const Eigen::ArrayXd r = t / k;
+  return (t >= k).select(0.0, (1.0 - r * r).square()).matrix();
+}
+
 namespace {
 
 // Rows at which least_squares_on accumulates the normal equations instead of factoring the rows:
@@ -569,11 +581,8 @@ Iterated iterate(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Mat
       const double next = median_near(u, counts, scale * median_chi, bracket);
       if (!std::isnan(next)) scale = next / median_chi;  // NaN: no rows
     }
-    VectorXd w(m);
-    for (Index i = 0; i < m; ++i) {
-      w(i) = robust_weight(loss, scale > 0.0 ? u(i) / scale : 0.0, k);
-      if (counts.size()) w(i) *= counts(i);
-    }
+    VectorXd w = robust_weights(loss, u, scale, k);
+    if (counts.size()) w.array() *= counts.array();
     // The weighted fit: from the Gram matrix while the weights settle, by the QR for the last.
     const auto weighted_fit = [&](bool by_gram, std::optional<TriangularFactor>& factor, Reduction& data) {
       factor.reset();

@@ -39,6 +39,10 @@ double median_near(const Eigen::VectorXd& u, const Eigen::VectorXd& counts, doub
 /// below k and 0 beyond.
 double robust_weight(RobustLoss loss, double u, double k);
 
+/// robust_weight of every u(i) / scale (0 where scale is not positive), to the bit, in vectorized
+/// passes instead of a call per row.
+Eigen::VectorXd robust_weights(RobustLoss loss, const Eigen::VectorXd& u, double scale, double k);
+
 /// Least trimmed squares of B on [1 A] (with `intercept`) or A, whitened by `method`'s noise model:
 /// the X and offsets c (empty without) whose h = (m + p + 1) / 2 smallest whitened residuals (p = n,
 /// or n + 1 with an intercept) have the least sum of squares, approximately (FAST-LTS with a fixed

@@ -5,6 +5,7 @@
 #include <Eigen/LU>
 
 #include <cmath>
+#include <cstring>
 
 #include "pipeline/row_scores.hpp"
 #include "robust/m_estimator.hpp"
@@ -64,6 +65,27 @@ TEST(Robust, WeightsFollowTheirLosses) {
   EXPECT_EQ(detail::robust_weight(RobustLoss::Tukey, 4.685, 4.685), 0.0);
   const double u = 2.0, k = 4.0;
   EXPECT_DOUBLE_EQ(detail::robust_weight(RobustLoss::Tukey, u, k), std::pow(1.0 - 0.25, 2));
+}
+
+// The vectorized weights of a whole iteration are robust_weight's, row by row, to the bit.
+TEST(Robust, WeightsOfAllRowsAreEachRowsToTheBit) {
+  Generator g(23);
+  VectorXd u(2003);
+  for (Index i = 0; i < u.size(); ++i) u(i) = std::abs(g.normal()) * (i % 7 == 0 ? 10.0 : 1.0);
+  u(0) = 0.0;
+  u(1) = 1.345 * 0.8;  // exactly on Huber's corner once scaled by 0.8
+  u(2) = 4.685 * 0.8;  // and Tukey's
+  for (const RobustLoss loss : {RobustLoss::Huber, RobustLoss::Tukey, RobustLoss::None}) {
+    const double k = loss == RobustLoss::Tukey ? 4.685 : 1.345;
+    for (const double scale : {0.8, 0.0}) {
+      const VectorXd w = detail::robust_weights(loss, u, scale, k);
+      ASSERT_EQ(w.size(), u.size());
+      for (Index i = 0; i < u.size(); ++i) {
+        const double one = detail::robust_weight(loss, scale > 0.0 ? u(i) / scale : 0.0, k);
+        ASSERT_EQ(std::memcmp(&one, &w(i), sizeof(double)), 0) << "row " << i << " scale " << scale;
+      }
+    }
+  }
 }
 
 TEST(Robust, OnCleanDataTheRobustFitIsNearThePlainOne) {
