@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
+#include <Eigen/QR>
 
 #include <cmath>
 #include <cstring>
@@ -107,6 +108,32 @@ TEST(Robust, OnCleanDataTheRobustFitIsNearThePlainOne) {
   options.robust = RobustLoss::Huber;
   EXPECT_THROW(fit(A, B, Method::Spde, options), OptionError);
   EXPECT_THROW(reduce(TriangularFactor::from_data(A, B), options), std::invalid_argument);
+}
+
+// The leverages' two routes: R11^-1 where A has full rank (here wide enough, n = 20, for the BLAS
+// products), the SVD's pseudo-inverse where it has not (a column that is the sum of two others);
+// against the hat matrix of the pseudo-inverse formed directly.
+TEST(Robust, RowScoresTakeTheRankOfA) {
+  Generator g(24);
+  for (const Index n : {Index{20}, Index{3}}) {
+    const Index m = 200;
+    MatrixXd A = g.gaussian(m, n);
+    const bool deficient = n == 3;
+    if (deficient) A.col(2) = A.col(0) + A.col(1);
+    const MatrixXd B = A * g.spd(n, 3.0) + 0.1 * g.gaussian(m, n);
+    const FitResult r = fit(A, B, Method::LeastSquares);
+    ASSERT_TRUE(r.ok());
+    EXPECT_EQ(r.diagnostics.rank_a, deficient ? 2 : n);
+    const TriangularFactor factor = TriangularFactor::from_data(A, B);
+    const VectorXd score = detail::row_scores(A, B, r, factor, FitOptions{});
+    ASSERT_EQ(score.size(), m);
+    const Eigen::CompleteOrthogonalDecomposition<MatrixXd> cod(A);
+    const MatrixXd H = A * cod.pseudoInverse();
+    for (Index i = 0; i < m; ++i) {
+      const double expected = (A.row(i) * r.X - B.row(i)).norm() / std::sqrt(1.0 - H(i, i));
+      EXPECT_NEAR(score(i), expected, 1e-9 * expected) << "n = " << n << ", row " << i;
+    }
+  }
 }
 
 TEST(Robust, RowScoresAreStudentizedResidualsForLeastSquares) {
