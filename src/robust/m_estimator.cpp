@@ -572,7 +572,7 @@ Iterated iterate(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Mat
                  double scale, int ea, int eb, const VectorXd& counts, int max_iterations,
                  const GramBase* base = nullptr) {
   Iterated out;
-  const Index m = A.rows(), d = B.cols();
+  const Index d = B.cols();
   const double median_chi = chi_median(d);
   std::vector<double> bracket;
   for (int it = 1; it <= max_iterations; ++it) {
