@@ -257,7 +257,7 @@ def synthesize(psi=None, phi=None, *, radians=False, **options):
             if options.get(key) is not None:
                 options[key] = _math.degrees(options[key])
         for key in ("psi_range", "phi_range"):
-            if options.get(key) is not None:
+            if key in options:
                 options[key] = _range_in_degrees(options[key])
         if given_pairs:
             options["radians"] = True

@@ -473,7 +473,6 @@ Reweighted reweight(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Ph
   const RobustLoss loss = options.robust;
   const double median_chi = spdfit::detail::chi_median(6);
   Reweighted out;
-  out.weights.resize(m);
   for (int it = 1; it <= kPhysicalReweightings; ++it) {
     const Eigen::VectorXd u =
         spdfit::detail::whitened_residuals(A, B, M, c, physical_residual_covariance(M, options));

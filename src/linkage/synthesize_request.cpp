@@ -226,7 +226,8 @@ SynthesisRun run_synthesize(const SynthesizeRequest& o, const std::vector<std::s
     if (!o.phi_range.empty() || !o.x_range.empty()) {
       throw usage("`steering` takes `psi_range` only: the output follows from the steering condition", "steering");
     }
-    const auto [lo, hi] = o.psi_range.empty() ? std::make_pair(kSteeringPsiRange[0], kSteeringPsiRange[1]) : parse_range(o.psi_range, "psi_range");
+    const auto [lo, hi] = o.psi_range.empty() ? std::make_pair(kSteeringPsiRange[0], kSteeringPsiRange[1])
+                                              : parse_range(o.psi_range, "psi_range");
     if (!(lo < hi)) throw OptionError("`psi_range` must have LO < HI", Code::OptionValue, "psi_range");
     run.pairs = steering_pairs(*o.rho, in_radians(lo), in_radians(hi), o.points, o.spacing);
     if (!o.fit_dial_zeros && !o.alpha && !o.beta) {
