@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 #include "numerics/parallel.hpp"
@@ -115,31 +116,61 @@ EivCriterion::EivCriterion(const Kinematics& kin, const ParameterLayout& layout,
 bool EivCriterion::evaluate_phi(const Eigen::VectorXd& phi, int order, double& f, Eigen::VectorXd* g,
                                 Eigen::MatrixXd* H, Eigen::MatrixXd* scores) const {
   const int p = layout_.size();
-  const Eigen::Index m = kin_.samples();
-  const Eigen::Index chunks = (m + kChunk - 1) / kChunk;
-  std::vector<Partial> partial(static_cast<std::size_t>(chunks));
-  spdfit::detail::parallel_for(static_cast<std::size_t>(chunks), threads_, [&](std::size_t c) {
-    const Eigen::Index begin = static_cast<Eigen::Index>(c) * kChunk, end = std::min(m, begin + kChunk);
-    if (layout_.moving) {
-      accumulate<16, 10>(kin_, layout_, phi, noise_w_, noise_x_, counts_, order, scores != nullptr, begin,
-                         end, partial[c]);
-    } else {
-      accumulate<10, 4>(kin_, layout_, phi, noise_w_, noise_x_, counts_, order, scores != nullptr, begin, end,
-                        partial[c]);
+  const std::lock_guard<std::mutex> lock(last_mutex_);
+  const bool same_phi = last_.phi.size() == phi.size() &&
+                        std::memcmp(last_.phi.data(), phi.data(), sizeof(double) * static_cast<std::size_t>(phi.size())) == 0;
+  if (!same_phi || last_.order < order || (scores && !last_.has_scores)) {
+    const bool with_scores = scores != nullptr || (keep_scores_ && order >= 2);
+    const Eigen::Index m = kin_.samples();
+    const Eigen::Index chunks = (m + kChunk - 1) / kChunk;
+    std::vector<Partial> partial(static_cast<std::size_t>(chunks));
+    spdfit::detail::parallel_for(static_cast<std::size_t>(chunks), threads_, [&](std::size_t c) {
+      const Eigen::Index begin = static_cast<Eigen::Index>(c) * kChunk, end = std::min(m, begin + kChunk);
+      if (layout_.moving) {
+        accumulate<16, 10>(kin_, layout_, phi, noise_w_, noise_x_, counts_, order, with_scores, begin, end,
+                           partial[c]);
+      } else {
+        accumulate<10, 4>(kin_, layout_, phi, noise_w_, noise_x_, counts_, order, with_scores, begin, end,
+                          partial[c]);
+      }
+    });
+    last_ = Last();
+    last_.phi = phi;
+    last_.order = order;
+    last_.has_scores = with_scores;
+    last_.g.setZero(p);
+    last_.H.setZero(p, p);
+    if (with_scores) last_.S.setZero(p, p);
+    last_.ok = true;
+    for (const Partial& part : partial) {
+      if (!part.ok) {
+        last_.ok = false;
+        break;
+      }
+      last_.f += part.f;
+      if (order >= 1) last_.g += part.g;
+      if (order >= 2) last_.H += part.H;
+      if (with_scores) last_.S += part.S;
     }
-  });
-  f = 0.0;
-  if (g) g->setZero(p);
-  if (H) H->setZero(p, p);
-  if (scores) scores->setZero(p, p);
-  for (const Partial& part : partial) {
-    if (!part.ok) return false;
-    f += part.f;
-    if (g && order >= 1) *g += part.g;
-    if (H && order >= 2) *H += part.H;
-    if (scores) *scores += part.S;
+    if (last_.ok && order >= 2) last_.H = (0.5 * (last_.H + last_.H.transpose())).eval();
   }
-  if (H && order >= 2) *H = (0.5 * (*H + H->transpose())).eval();
+  if (!last_.ok) return false;
+  f = last_.f;
+  if (g) {
+    if (order >= 1) {
+      *g = last_.g;
+    } else {
+      g->setZero(p);
+    }
+  }
+  if (H) {
+    if (order >= 2) {
+      *H = last_.H;
+    } else {
+      H->setZero(p, p);
+    }
+  }
+  if (scores) *scores = last_.S;
   return std::isfinite(f);
 }
 

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <array>
+#include <mutex>
 #include <vector>
 
 #include <Eigen/Core>
@@ -35,6 +36,11 @@ class EivCriterion : public physical::detail::Criterion {
   double f0() const { return f0_; }
 
   bool evaluate(const Eigen::VectorXd& theta, int order, physical::detail::Evaluation& out) const override;
+  int trial_order() const override { return 2; }
+
+  /// With `keep`, every evaluation of order 2 also sums the scores, so that the sandwich's request
+  /// for them at the minimizer (where Newton's method evaluated last) needs no pass of its own.
+  void set_keep_scores(bool keep) { keep_scores_ = keep; }
 
   /// F, its gradient and Hessian in phi (unnormalized), and with `scores` the sum over samples of
   /// the outer products of each sample's half-gradient (the sandwich's middle). False when some C_k
@@ -51,6 +57,20 @@ class EivCriterion : public physical::detail::Criterion {
   unsigned threads_;
   std::vector<double> counts_;
   double f0_ = 1.0;
+  bool keep_scores_ = false;
+  // The last evaluation: a request at the same phi (to the bit) of no higher order is answered
+  // from it (Newton's method evaluates the accepted trial point again, the KKT certificate and the
+  // sandwich evaluate the minimizer again).
+  struct Last {
+    Eigen::VectorXd phi;
+    int order = -1;
+    bool has_scores = false, ok = false;
+    double f = 0.0;
+    Eigen::VectorXd g;
+    Eigen::MatrixXd H, S;
+  };
+  mutable std::mutex last_mutex_;
+  mutable Last last_;
 };
 
 }  // namespace spdfit::payload::detail

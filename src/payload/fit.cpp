@@ -286,6 +286,7 @@ Fit fit_payload(const Kinematics& kin, const IdentifyRequest& request, const Noi
     // Errors in variables, in physical units, from the least-squares fit (not convex: as the
     // hexapod's physical fit, two starts and the lower local minimum).
     EivCriterion eiv(kin, layout, M, noise.wrench, noise.pose, request.threads, counts);
+    eiv.set_keep_scores(reported);  // the sandwich's scores from the minimizer's last Newton pass
     const Eigen::VectorXd theta_c = Minv * phi;          // the (constrained) least-squares fit
     const Eigen::VectorXd theta_free = Minv * out.phi_ls;  // the unconstrained one
     double f_start = 0.0;

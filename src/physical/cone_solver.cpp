@@ -162,7 +162,8 @@ StageEnd newton(const Criterion& f, const ConeLayout* layout, double mu, double 
     for (double alpha = 1.0; alpha >= kMinStep; alpha *= 0.5) {
       const Eigen::VectorXd next = theta + alpha * step;
       if (layout && !strictly_feasible(*layout, next)) continue;
-      if (!merit(f, layout, next, mu, 0, trial)) continue;
+      // The full step at the criterion's trial order (usually taken); a shorter one by its value.
+      if (!merit(f, layout, next, mu, alpha == 1.0 ? f.trial_order() : 0, trial)) continue;
       const bool decreases = trial.value <= cur.value - kArmijo * alpha * decrement;
       // Below the merit's resolution the decrease cannot be seen: take the step unless the merit
       // rose beyond its rounding, and let the next gradient judge it.

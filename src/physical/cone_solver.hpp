@@ -53,6 +53,11 @@ class Criterion {
  public:
   virtual ~Criterion() = default;
   virtual bool evaluate(const Eigen::VectorXd& theta, int order, Evaluation& out) const = 0;
+  /// The order at which Newton's line search evaluates the full step's trial point: 0, the value
+  /// alone; 2 for a criterion that keeps its last evaluation (payload's EivCriterion), so that an
+  /// accepted point's derivatives, which the next step needs, come from the pass over the data
+  /// that gave its value. Shorter steps are evaluated by their value.
+  virtual int trial_order() const { return 0; }
 };
 
 /// How a minimization ended.
