@@ -70,6 +70,13 @@ MatrixXd residual_covariance(const MatrixXd& X, Method method, const FitOptions&
 
 VectorXd whitened_residuals(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, const MatrixXd& X,
                             const VectorXd& c, const MatrixXd& covariance) {
+  VectorXd out;
+  whitened_residuals_into(A, B, X, c, covariance, out);
+  return out;
+}
+
+void whitened_residuals_into(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, const MatrixXd& X,
+                             const VectorXd& c, const MatrixXd& covariance, VectorXd& out) {
   MatrixXd S = 0.5 * (covariance + covariance.transpose());
   const double top = S.size() ? S.diagonal().cwiseAbs().maxCoeff() : 0.0;
   Eigen::LLT<MatrixXd> llt(S);
@@ -85,7 +92,7 @@ VectorXd whitened_residuals(const Eigen::Ref<const MatrixXd>& A, const Eigen::Re
   const MatrixXd Linv_t = MatrixXd(llt.matrixL().solve(MatrixXd::Identity(d, d))).transpose();
   // The methods without noise in A and without a noise model: residuals as they are.
   const bool identity = covariance.isIdentity(0.0);
-  VectorXd out(m);
+  out.resize(m);
   MatrixXd residual, whitened;
   VectorXd squares;
   for (Index i0 = 0; i0 < m; i0 += kBlockRows) {
@@ -120,7 +127,6 @@ VectorXd whitened_residuals(const Eigen::Ref<const MatrixXd>& A, const Eigen::Re
     multiply(residual, false, Linv_t, false, whitened);
     out.segment(i0, r) = whitened.rowwise().norm();
   }
-  return out;
 }
 
 VectorXd robust_z_scores(const VectorXd& x) {

@@ -40,6 +40,11 @@ Eigen::MatrixXd residual_covariance(const Eigen::MatrixXd& X, Method method, con
 Eigen::VectorXd whitened_residuals(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
                                    const Eigen::MatrixXd& X, const Eigen::VectorXd& c, const Eigen::MatrixXd& covariance);
 
+/// whitened_residuals into `out` (its storage reused when it has m rows: an iteration's).
+void whitened_residuals_into(const Eigen::Ref<const Eigen::MatrixXd>& A, const Eigen::Ref<const Eigen::MatrixXd>& B,
+                             const Eigen::MatrixXd& X, const Eigen::VectorXd& c, const Eigen::MatrixXd& covariance,
+                             Eigen::VectorXd& out);
+
 /// The median of `values` (not empty).
 double median(std::vector<double> values);
 

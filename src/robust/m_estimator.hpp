@@ -43,6 +43,9 @@ double robust_weight(RobustLoss loss, double u, double k);
 /// passes instead of a call per row.
 Eigen::VectorXd robust_weights(RobustLoss loss, const Eigen::VectorXd& u, double scale, double k);
 
+/// robust_weights into `w` (its storage reused when it has as many rows as u).
+void robust_weights_into(RobustLoss loss, const Eigen::VectorXd& u, double scale, double k, Eigen::VectorXd& w);
+
 /// Least trimmed squares of B on [1 A] (with `intercept`) or A, whitened by `method`'s noise model:
 /// the X and offsets c (empty without) whose h = (m + p + 1) / 2 smallest whitened residuals (p = n,
 /// or n + 1 with an intercept) have the least sum of squares, approximately (FAST-LTS with a fixed
