@@ -345,7 +345,7 @@ def plot_payload_frames(data):
     ax.text(*(local([0.3, 1.0]) + [0.05, 0.0]), "robot wrist", fontsize=9, color="#555555")
     ax.add_patch(Polygon([local(p) for p in ([-0.38, 0.0], [0.38, 0.0], [0.38, -0.22], [-0.38, -0.22])], closed=True,
                          color="#ff7f0e", alpha=0.85))
-    ax.text(*(local([-0.45, -0.1]) + [-1.05, -0.05]), "F/T sensor", fontsize=9, color="#ff7f0e")
+    ax.text(*(local([-0.45, -0.1]) + [-1.05, -0.4]), "F/T sensor", fontsize=9, color="#ff7f0e")
     tool = [[-0.3, -0.22], [0.3, -0.22], [0.3, -0.8], [0.75, -1.6], [0.5, -1.65], [0.12, -0.95], [-0.12, -0.95],
             [-0.5, -1.65], [-0.75, -1.6], [-0.3, -0.8]]
     ax.add_patch(Polygon([local(p) for p in tool], closed=True, color="#2ca02c", alpha=0.35))
@@ -364,11 +364,11 @@ def plot_payload_frames(data):
     ax.text(c[0] + 0.12, c[1] + 0.02, "$c$, the centre of mass (in S)", fontsize=10)
     arrow(c, c + np.array([0.0, -0.9]), "#1f77b4")
     ax.text(c[0] + 0.1, c[1] - 0.75, "$m\\,g$", color="#1f77b4", fontsize=11)
-    arrow(local([-0.55, 0.0]), local([-0.55, 0.0]) + np.array([0.0, 0.95]), "#9467bd")
-    ax.text(*(local([-0.55, 0.0]) + [-1.35, 0.6]), "$f$, on the payload\n(the sensor reads $-f$)", color="#9467bd",
-            fontsize=9)
-    arrow(local([0.9, -0.45]), local([1.15, 0.25]), "#8c564b", connectionstyle="arc3,rad=0.5")
-    ax.text(*(local([1.2, -0.2]) + [0.05, 0.0]), "$\\omega$, $\\alpha$, $a$ (in S)", color="#8c564b", fontsize=10)
+    arrow(local([-0.8, 0.0]), local([-0.8, 0.0]) + np.array([0.0, 0.95]), "#9467bd")
+    ax.text(*(local([-0.8, 0.0]) + [-0.12, 0.55]), "$f$, on the payload\n(the sensor reads $-f$)", color="#9467bd",
+            fontsize=9, ha="right")
+    arrow(local([1.35, -0.45]), local([1.6, 0.25]), "#8c564b", connectionstyle="arc3,rad=0.5")
+    ax.text(*(local([1.65, -0.2]) + [0.05, 0.0]), "$\\omega$, $\\alpha$, $a$ (in S)", color="#8c564b", fontsize=10)
     ax.text(4.9, 4.6, r"$f = m\,(a - R^T g) + \alpha \times m c + \omega \times (\omega \times m c)$" + "\n" +
             r"$\tau = I_S\,\alpha + \omega \times (I_S\,\omega) + m c \times (a - R^T g)$" + "\n" +
             r"reading $w = -(f, \tau) + b$  (the load)" + "\n" + r"R: from S to W;  $\tau$ about $O_S$",

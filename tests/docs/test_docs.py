@@ -175,3 +175,19 @@ def test_the_contradiction_check_flags_what_spdfit_printed_before():
     assert contradicting_warnings([spde], chosen_by_auto=True, noise_model=True) == []
     assert command_context(["spdfit", "fit", "--method", "auto", "--rest-a", "r.csv"]) == (True, True)
     assert command_context(["spdfit", "fit", "-m", "psd-ls", "a.csv"]) == (False, False)
+
+
+def test_local_links_and_images_exist():
+    """Every relative link and image of the README and docs/*.md names a file or folder of the
+    repository (docs/payload.md linked two figures that were never committed)."""
+    pages = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+    missing = []
+    for page in pages:
+        text = re.sub(r"```.*?```", "", page.read_text(), flags=re.S)  # not inside code blocks
+        for target in re.findall(r"\]\(([^)\s]+)\)", text):
+            if re.match(r"[a-z]+:", target) or target.startswith("#"):
+                continue  # a URL or an anchor on the same page
+            path = (page.parent / target.split("#")[0]).resolve()
+            if not path.exists():
+                missing.append(f"{page.relative_to(ROOT)}: {target}")
+    assert not missing, "links to files that do not exist:\n" + "\n".join(missing)
