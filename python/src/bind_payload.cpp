@@ -130,6 +130,9 @@ void bind_payload(py::module_& parent) {
         {
           std::vector<std::string_view> given;
           physical::RegressRequest request = regress_request("physical.regress", options, given);
+          // `prior` arrives as bodies beside the options: what needs it (prior_weight) or excludes
+          // it (unconstrained) is checked as on the command line.
+          if (prior) given.push_back("prior");
           physical::check_regress_request(request, given);
           if (noise_cov) request.noise_cov = *noise_cov;
           if (prior) {

@@ -115,3 +115,17 @@ def test_regress_with_a_prior_and_pinocchio_order():
     assert r["parameters"][0] + r["parameters"][10] == pytest.approx(4.0, rel=1e-7)
     with pytest.raises(ValueError, match="prior_weight"):
         ph.regress(Y, Y @ phi, prior_weight=-1.0, prior=[body])
+    # prior_weight with the prior given as bodies (it was refused as if the prior were missing):
+    # on noisy outputs a heavier prior pulls the determined parameters towards its own.
+    tau = Y2 @ phi2 + 0.05 * rng.standard_normal(100)
+    light = {"mass": 1.5, "center_of_mass": [0.2, 0.0, 0.0], "inertia": np.diag([0.03, 0.025, 0.015]).tolist()}
+    fits = {}
+    for weight in (1.0, 1e4):
+        with pytest.warns(spdfit.SpdfitWarning, match="prior sets them"):
+            fits[weight] = ph.regress(Y2, tau, bodies=2, prior=[light, light], prior_weight=weight)
+    far = lambda f: abs(f["parameters"][1] - 1.5 * 0.2)  # noqa: E731 (m c_x against the prior's)
+    assert far(fits[1e4]) < far(fits[1.0])
+    with pytest.raises(ValueError, match="with_prior|prior"):
+        ph.regress(Y, Y @ phi, prior=[body], unconstrained=True)
+    with pytest.raises(ValueError, match="give `prior`|prior"):
+        ph.regress(Y, Y @ phi, prior_weight=2.0)
