@@ -4,10 +4,11 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <sstream>
+#include <cstdint>
 
+#include "io/row_selection.hpp"
 #include "spdfit/format.hpp"
+#include "spdfit/io.hpp"
 
 namespace spdfit::payload::detail {
 
@@ -66,64 +67,14 @@ Eigen::Index distinct_directions(const Eigen::Matrix<double, 3, Eigen::Dynamic>&
 
 std::vector<Eigen::Index> select_rows(const std::string& spec, Eigen::Index m, const Eigen::VectorXd& time,
                                       const std::string& option) {
-  const bool by_time = time.size() == m && m > 0;
-  std::vector<char> chosen(static_cast<std::size_t>(m), 0);
-  std::stringstream in(spec);
-  std::string item;
-  bool any_item = false;
-  const auto bad = [&](const std::string& why) {
-    throw OptionError("`" + option + "` = '" + spec + "': " + why);
-  };
-  const auto parse = [&](const std::string& text, double& value) {
-    std::size_t used = 0;
-    try {
-      value = std::stod(text, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || text.find_first_not_of(" \t", used) != std::string::npos || !std::isfinite(value)) {
-      bad("'" + text + "' is not a " + std::string(by_time ? "time" : "row number"));
-    }
-  };
-  while (std::getline(in, item, ',')) {
-    const auto trim = [](std::string t) {
-      const auto a = t.find_first_not_of(" \t");
-      const auto b = t.find_last_not_of(" \t");
-      return a == std::string::npos ? std::string() : t.substr(a, b - a + 1);
-    };
-    item = trim(item);
-    if (item.empty()) bad("an empty item (two commas in a row, or a comma at an end)");
-    any_item = true;
-    const auto colon = item.find(':');
-    double lo = -INFINITY, hi = INFINITY;
-    if (colon == std::string::npos) {
-      parse(item, lo);
-      hi = lo;
-    } else {
-      const std::string a = trim(item.substr(0, colon)), b = trim(item.substr(colon + 1));
-      if (!a.empty()) parse(a, lo);
-      if (!b.empty()) parse(b, hi);
-    }
-    if (lo > hi) bad("the range '" + item + "' runs backwards");
-    if (!by_time) {
-      if ((std::isfinite(lo) && (lo != std::floor(lo) || lo < 1)) || (std::isfinite(hi) && (hi != std::floor(hi) || hi < 1))) {
-        bad("rows are numbered from 1 (whole numbers; give `time_col` for ranges of time)");
-      }
-      if (std::isfinite(lo) && lo > static_cast<double>(m)) {
-        bad("row " + format_number(lo) + " is beyond the " + std::to_string(m) + " rows read");
-      }
-    }
-    for (Eigen::Index i = 0; i < m; ++i) {
-      const double key = by_time ? time(i) : static_cast<double>(i + 1);
-      if (key >= lo && key <= hi) chosen[static_cast<std::size_t>(i)] = 1;
-    }
+  // fit's row selections (io/row_selection.hpp), so that `rows` and `rest_rows` mean here what they
+  // mean there; a selection beyond the log is the log's error (SignalError: the file route names it).
+  try {
+    if (time.size() == m && m > 0) return io::detail::selected_times(spec, option, time, "the log");
+    return io::detail::selected_rows(spec, option, static_cast<std::uint64_t>(std::max<Eigen::Index>(m, 0)), "the log");
+  } catch (const io::DataError& e) {
+    throw SignalError(e.problem(), e.code());
   }
-  if (!any_item) bad("no rows given");
-  std::vector<Eigen::Index> out;
-  for (Eigen::Index i = 0; i < m; ++i)
-    if (chosen[static_cast<std::size_t>(i)]) out.push_back(i);
-  if (out.empty()) bad(by_time ? "no row's time is in these ranges" : "it selects no row");
-  return out;
 }
 
 Kinematics kinematics(const PayloadSignals& signals, const IdentifyRequest& request,

@@ -52,8 +52,8 @@ NoiseCovariances noise_covariances(const IdentifyRequest& request, const Kinemat
                                    double time_step);
 
 /// The rows of a selection "601:", "1:5000,7001:" (1-based inclusive; in `time`'s units when
-/// given) among m rows, 0-based ascending. OptionError naming `option` for bad syntax or an
-/// empty selection.
+/// given) among m rows, 0-based ascending, as fit's `rows` (io/row_selection.hpp): OptionError
+/// naming `option` for bad syntax; SignalError for rows beyond the m or times that select none.
 std::vector<Eigen::Index> select_rows(const std::string& spec, Eigen::Index m, const Eigen::VectorXd& time,
                                       const std::string& option);
 

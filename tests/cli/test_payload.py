@@ -361,7 +361,7 @@ def test_quaternion_norms(spdfit, tmp_path):
     (("--wrench-cols", "fx:tz", "--gravity-cols", "gx:gz", "--frame", "base"), 2, "--frame base"),
     (("--wrench-cols", "fx:tz", "--quat-cols", "qx:qw", "--gravity", "0,0"), 2, "3 numbers"),
     (("--wrench-cols", "fx:tz", "--quat-cols", "nope:qw"), 2, "nope"),
-    (("--wrench-cols", "fx:tz", "--quat-cols", "qx:qw", "--rows", "50:"), 2, "beyond"),
+    (("--wrench-cols", "fx:tz", "--quat-cols", "qx:qw", "--rows", "50:"), 1, "beyond"),  # the data error fit gives
     (("--wrench-cols", "fx:tz", "--quat-cols", "qx:qw", "--quat-order", "zyx"), 2, "'xyzw' or 'wxyz'"),
 ])
 def test_usage_errors(spdfit, tmp_path, options, status, message):
@@ -394,6 +394,24 @@ def test_rows_rest_rows_bootstrap_and_report(spdfit, tmp_path):
     assert lower < boot["mass"] < upper
     text = spdfit("payload", "identify", str(path), *STATIC)
     assert text.returncode == 0 and "mass" in text.stdout and "+-" in text.stdout
+
+
+def test_rows_beyond_the_log_are_refused_as_fit_refuses_them(spdfit, tmp_path):
+    # `rows` as fit has them: a range reaching past the last row is the file's data error (exit 1,
+    # naming the file), not a silent cut to the rows there are; bad syntax is a usage error.
+    log = static_log(np.random.default_rng(15), 20)
+    path = static_file(tmp_path, log)
+    for rows in ("1:50", "30:50"):
+        result = spdfit("payload", "identify", str(path), *STATIC, "--rows", rows)
+        assert result.returncode == 1, (rows, result.stderr)
+        assert "static.csv" in result.stderr and "row 50 is beyond the 20 data rows" in result.stderr
+    fit = spdfit("fit", "--method", "ls", "--a-cols", "fx:fz", "--b-cols", "tx:tz", "--rows", "1:50", str(path))
+    assert fit.returncode == 1 and "row 50 is beyond the 20 data rows" in fit.stderr
+    for rows in ("0:5", "5:2", "abc"):
+        assert spdfit("payload", "identify", str(path), *STATIC, "--rows", rows).returncode == 2, rows
+    whole, _ = identify(spdfit, path, *STATIC, "--rows", "1:20")
+    plain, _ = identify(spdfit, path, *STATIC)
+    assert whole["parameters"] == plain["parameters"]
 
 
 def test_urdf_export_reads_back_and_static_refuses(spdfit, tmp_path):
