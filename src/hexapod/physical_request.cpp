@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "physical/common_options.hpp"
 #include "spdfit/fit_request.hpp"
 #include "spdfit/io.hpp"
 
@@ -14,26 +15,6 @@ namespace spdfit::hexapod {
 namespace {
 
 using Spec = OptionSpec<PhysicalOptions>;
-
-// The fit table's option `name` (its spelling, type, choices, range, default and rules among the
-// fit's own options), for the physical fit: the caller gives what it sets (and may word its help).
-Spec like_fit_option(std::string_view name) {
-  const OptionSpec<FitRequest>& fit = *find_option(fit_option_table(), name);
-  Spec spec;
-  spec.name = fit.name;
-  spec.cli = fit.cli;
-  spec.python = fit.python;
-  spec.type = fit.type;
-  spec.value_name = fit.value_name;
-  spec.help = fit.help;
-  spec.default_text = fit.default_text;
-  spec.nullable = fit.nullable;
-  spec.range = fit.range;
-  spec.choices = fit.choices;
-  spec.needs = fit.needs;
-  spec.needs_message = fit.needs_message;
-  return spec;
-}
 
 std::vector<Spec> make_table() {
   std::vector<Spec> table;
@@ -132,7 +113,7 @@ std::vector<Spec> make_table() {
   table.push_back(offsets);
 
   // The fit's robust options, spelled and checked as the fit table does, setting the physical fit's.
-  Spec robust = like_fit_option("robust");
+  Spec robust = spdfit::physical::detail::like_fit_option<PhysicalOptions>("robust");
   robust.help = "A robust physical fit: rows reweighted by their residual under the physical model, whitened by the "
                 "noise covariances (an M-estimator); huber for gross errors in B, tukey (from least trimmed squares) "
                 "also for wrong values in A. With `bootstrap`, each resample is reweighted from the estimate";
@@ -141,7 +122,7 @@ std::vector<Spec> make_table() {
   };
   robust.get = [](const PhysicalOptions& o) -> std::optional<OptionValue> { return std::string(to_string(o.robust)); };
   table.push_back(robust);
-  Spec tuning = like_fit_option("robust_tuning");
+  Spec tuning = spdfit::physical::detail::like_fit_option<PhysicalOptions>("robust_tuning");
   tuning.set = [](PhysicalOptions& o, const OptionValue& v) { o.robust_tuning = std::get<double>(v); };
   tuning.get = [](const PhysicalOptions& o) -> std::optional<OptionValue> {
     if (!o.robust_tuning) return std::nullopt;

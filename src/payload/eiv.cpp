@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 
 #include "numerics/parallel.hpp"
@@ -32,7 +33,7 @@ struct Partial {
 template <int P, int Q>
 void accumulate(const Kinematics& kin, const ParameterLayout& layout, const Eigen::VectorXd& phi_in,
                 const Eigen::Matrix<double, 6, 6>& noise_w, const std::array<Eigen::Matrix3d, 3>& noise_x,
-                const std::vector<double>& counts, int order, bool scores, Eigen::Index begin,
+                const std::vector<double>& counts, bool reliability, int order, bool scores, Eigen::Index begin,
                 Eigen::Index end, Partial& out) {
   using Regressor = Eigen::Matrix<double, 6, P>;
   using Vector = Eigen::Matrix<double, P, 1>;
@@ -67,7 +68,7 @@ void accumulate(const Kinematics& kin, const ParameterLayout& layout, const Eige
     Vector gk = X.transpose() * u;  // half the gradient of r^T C^-1 r along the columns of X
     gk.template head<Q>().noalias() -= Jt_u.template leftCols<Q>().transpose() * v;
     g += (2.0 * weight) * gk;
-    if (scores) S.noalias() += weight * gk * gk.transpose();
+    if (scores) S.noalias() += (reliability ? weight * weight : weight) * gk * gk.transpose();
     if (order < 2) continue;
     V = X;
     V.template leftCols<Q>() -= J_v.template leftCols<Q>();
@@ -127,10 +128,10 @@ bool EivCriterion::evaluate_phi(const Eigen::VectorXd& phi, int order, double& f
     spdfit::detail::parallel_for(static_cast<std::size_t>(chunks), threads_, [&](std::size_t c) {
       const Eigen::Index begin = static_cast<Eigen::Index>(c) * kChunk, end = std::min(m, begin + kChunk);
       if (layout_.moving) {
-        accumulate<16, 10>(kin_, layout_, phi, noise_w_, noise_x_, counts_, order, with_scores, begin, end,
+        accumulate<16, 10>(kin_, layout_, phi, noise_w_, noise_x_, counts_, reliability_, order, with_scores, begin, end,
                            partial[c]);
       } else {
-        accumulate<10, 4>(kin_, layout_, phi, noise_w_, noise_x_, counts_, order, with_scores, begin, end,
+        accumulate<10, 4>(kin_, layout_, phi, noise_w_, noise_x_, counts_, reliability_, order, with_scores, begin, end,
                           partial[c]);
       }
     });
@@ -172,6 +173,30 @@ bool EivCriterion::evaluate_phi(const Eigen::VectorXd& phi, int order, double& f
   }
   if (scores) *scores = last_.S;
   return std::isfinite(f);
+}
+
+Eigen::VectorXd EivCriterion::sample_norms(const Eigen::VectorXd& phi) const {
+  const Eigen::Index m = kin_.samples();
+  Eigen::VectorXd u(m);
+  const Eigen::Index chunks = (m + kChunk - 1) / kChunk;
+  spdfit::detail::parallel_for(static_cast<std::size_t>(chunks), threads_, [&](std::size_t c) {
+    const Eigen::Index begin = static_cast<Eigen::Index>(c) * kChunk, end = std::min(m, begin + kChunk);
+    Eigen::MatrixXd X(6, layout_.size());
+    for (Eigen::Index k = begin; k < end; ++k) {
+      sample_regressor(kin_, k, layout_, X);
+      const Matrix69 J = model_jacobian(kin_, k, layout_, phi);
+      Matrix69 JS;
+      for (int b = 0; b < 3; ++b) JS.middleCols<3>(3 * b) = J.middleCols<3>(3 * b).lazyProduct(noise_x_[b]);
+      const Eigen::Matrix<double, 6, 1> r = X * phi - kin_.wrench.col(k);
+      Eigen::Matrix<double, 6, 6> C = noise_w_;
+      C += JS.lazyProduct(J.transpose());
+      const Eigen::LLT<Eigen::Matrix<double, 6, 6>> llt(C);
+      u(k) = llt.info() == Eigen::Success && llt.matrixLLT().diagonal().minCoeff() > 0.0
+                 ? std::sqrt(std::max(r.dot(llt.solve(r)), 0.0))
+                 : std::numeric_limits<double>::quiet_NaN();
+    }
+  });
+  return u;
 }
 
 bool EivCriterion::evaluate(const Eigen::VectorXd& theta, int order, physical::detail::Evaluation& out) const {

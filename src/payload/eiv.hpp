@@ -38,9 +38,15 @@ class EivCriterion : public physical::detail::Criterion {
   bool evaluate(const Eigen::VectorXd& theta, int order, physical::detail::Evaluation& out) const override;
   int trial_order() const override { return 2; }
 
+  /// Each sample's residual norm as the criterion weighs it, sqrt(r_k^T C_k^-1 r_k) at phi (the
+  /// robust fit's); NaN where C_k is not positive definite.
+  Eigen::VectorXd sample_norms(const Eigen::VectorXd& phi) const;
+
   /// With `keep`, every evaluation of order 2 also sums the scores, so that the sandwich's request
   /// for them at the minimizer (where Newton's method evaluated last) needs no pass of its own.
   void set_keep_scores(bool keep) { keep_scores_ = keep; }
+  /// `counts` as reliability weights (a robust fit's): the scores weighed by their squares.
+  void set_reliability_weights(bool reliability) { reliability_ = reliability; }
 
   /// F, its gradient and Hessian in phi (unnormalized), and with `scores` the sum over samples of
   /// the outer products of each sample's half-gradient (the sandwich's middle). False when some C_k
@@ -58,6 +64,7 @@ class EivCriterion : public physical::detail::Criterion {
   std::vector<double> counts_;
   double f0_ = 1.0;
   bool keep_scores_ = false;
+  bool reliability_ = false;
   // The last evaluation: a request at the same phi (to the bit) of no higher order is answered
   // from it (Newton's method evaluates the accepted trial point again, the KKT certificate and the
   // sandwich evaluate the minimizer again).

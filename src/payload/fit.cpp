@@ -8,15 +8,19 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <vector>
 
 #include "payload/eiv.hpp"
 #include "physical/cone.hpp"
 #include "physical/cone_solver.hpp"
 #include "physical/identifiability.hpp"
 #include "physical/linear_criterion.hpp"
+#include "pipeline/row_scores.hpp"
+#include "robust/m_estimator.hpp"
 #include "spdfit/rank.hpp"
 #include "spdfit/triangular_factor.hpp"
 
@@ -91,7 +95,7 @@ Whitening whitening(const NoiseCovariances& noise) {
 }
 
 TriangularFactor least_squares_factor(const Kinematics& kin, const ParameterLayout& layout, const Whitening& white,
-                                      const std::vector<double>& counts) {
+                                      const std::vector<double>& counts, bool frequency) {
   const int p = layout.size();
   const Eigen::Index m = kin.samples();
   TriangularFactor factor(p, 1);
@@ -111,6 +115,10 @@ TriangularFactor least_squares_factor(const Kinematics& kin, const ParameterLayo
     }
     if (counts.empty()) {
       factor.append(X, w);
+    } else if (!frequency) {
+      Eigen::VectorXd row_weights(6 * n);
+      for (Eigen::Index k = 0; k < n; ++k) row_weights.segment<6>(6 * k).setConstant(counts[static_cast<std::size_t>(begin + k)]);
+      factor.append(X, w, row_weights);
     } else {
       row_counts.assign(static_cast<std::size_t>(6 * n), 0);
       for (Eigen::Index k = 0; k < n; ++k)
@@ -193,7 +201,7 @@ Kinematics every_nth(const Kinematics& kin, Eigen::Index stride, const std::vect
 }  // namespace
 
 Fit fit_payload(const Kinematics& kin, const IdentifyRequest& request, const NoiseCovariances& noise,
-                const std::vector<double>& counts, bool reported) {
+                const std::vector<double>& counts, bool reported, bool frequency) {
   Fit out;
   out.layout.moving = kin.moving;
   const ParameterLayout& layout = out.layout;
@@ -202,7 +210,7 @@ Fit fit_payload(const Kinematics& kin, const IdentifyRequest& request, const Noi
   const shared::ConeLayout cone = cone_layout(layout);
   const Whitening white = whitening(noise);
 
-  const TriangularFactor factor = least_squares_factor(kin, layout, white, counts);
+  const TriangularFactor factor = least_squares_factor(kin, layout, white, counts, frequency);
   const double theta_scale = std::ldexp(1.0, factor.exponent_a() - factor.exponent_b());
   const double unscale2 = std::ldexp(1.0, 2 * factor.exponent_b());
   const Eigen::MatrixXd R11 = factor.R11();
@@ -227,8 +235,10 @@ Fit fit_payload(const Kinematics& kin, const IdentifyRequest& request, const Noi
     Eigen::MatrixXd S = Eigen::MatrixXd::Zero(p, p);
     Eigen::MatrixXd X(6, p);
     for (Eigen::Index k = 0; k < kin.samples(); ++k) {
-      const double weight = counts.empty() ? 1.0 : counts[static_cast<std::size_t>(k)];
-      if (weight == 0.0) continue;
+      const double count = counts.empty() ? 1.0 : counts[static_cast<std::size_t>(k)];
+      if (count == 0.0) continue;
+      // A count repeats the sample's score; a reliability weight scales its residual (squared).
+      const double weight = frequency ? count : count * count;
       sample_regressor(kin, k, layout, X);
       Eigen::Matrix<double, 6, 1> r = X * phi_at - kin.wrench.col(k);
       white.apply(X);
@@ -286,6 +296,7 @@ Fit fit_payload(const Kinematics& kin, const IdentifyRequest& request, const Noi
     // Errors in variables, in physical units, from the least-squares fit (not convex: as the
     // hexapod's physical fit, two starts and the lower local minimum).
     EivCriterion eiv(kin, layout, M, noise.wrench, noise.pose, request.threads, counts);
+    eiv.set_reliability_weights(!frequency);
     eiv.set_keep_scores(reported);  // the sandwich's scores from the minimizer's last Newton pass
     const Eigen::VectorXd theta_c = Minv * phi;          // the (constrained) least-squares fit
     const Eigen::VectorXd theta_free = Minv * out.phi_ls;  // the unconstrained one
@@ -383,6 +394,130 @@ Fit fit_payload(const Kinematics& kin, const IdentifyRequest& request, const Noi
       out.residuals.row(k) = (X * phi - kin.wrench.col(k)).transpose();
     }
   }
+  return out;
+}
+
+
+namespace {
+
+// Reweightings of the robust fit at most, and when they stop (as hexapod identify --physical's).
+constexpr int kReweightings = 50;
+constexpr double kSettled = 1e-8;
+
+// Least squares' whitening of a sample's residual wrench for the robust weights: the wrench noise's
+// (as the fit weighs it) or, without one, each axis' robust scale (1.4826 MAD) in the residuals of
+// `phi` over the counted samples, so that forces (N) and torques (N m) count alike.
+Eigen::Matrix<double, 6, 6> residual_whitening(const Kinematics& kin, const ParameterLayout& layout,
+                                               const NoiseCovariances& noise, const Eigen::VectorXd& phi,
+                                               const std::vector<double>& counts) {
+  if (noise.wrench.size()) {
+    const Whitening white = whitening(noise);
+    return white.L.triangularView<Eigen::Lower>().solve(Eigen::Matrix<double, 6, 6>::Identity());
+  }
+  std::array<std::vector<double>, 6> axis;
+  Eigen::MatrixXd X(6, layout.size());
+  for (Eigen::Index k = 0; k < kin.samples(); ++k) {
+    if (!counts.empty() && counts[static_cast<std::size_t>(k)] == 0.0) continue;
+    sample_regressor(kin, k, layout, X);
+    const Eigen::Matrix<double, 6, 1> r = X * phi - kin.wrench.col(k);
+    for (int a = 0; a < 6; ++a) axis[static_cast<std::size_t>(a)].push_back(r(a));
+  }
+  Eigen::Matrix<double, 6, 1> s;
+  for (int a = 0; a < 6; ++a) {
+    std::vector<double>& v = axis[static_cast<std::size_t>(a)];
+    if (v.empty()) {
+      s(a) = 0.0;
+      continue;
+    }
+    const double mid = spdfit::detail::median(v);
+    for (double& x : v) x = std::abs(x - mid);
+    s(a) = 1.4826 * spdfit::detail::median(v);
+  }
+  // An axis without spread (noise-free data, a constant channel) is scaled as the largest one.
+  const double largest = s.maxCoeff();
+  for (int a = 0; a < 6; ++a) s(a) = s(a) > 1e-12 * largest ? s(a) : (largest > 0.0 ? largest : 1.0);
+  return s.cwiseInverse().asDiagonal();
+}
+
+}  // namespace
+
+RobustPayloadFit robust_fit_payload(const Kinematics& kin, const IdentifyRequest& request, const NoiseCovariances& noise,
+                                    const std::vector<double>& counts, bool reported, const Eigen::VectorXd* start,
+                                    double start_scale) {
+  IdentifyRequest plain = request;
+  plain.robust = RobustLoss::None;
+  plain.robust_tuning.reset();
+  const Eigen::Index m = kin.samples();
+  ParameterLayout layout;
+  layout.moving = kin.moving;
+  const int p = layout.size();
+  const double median_chi = spdfit::detail::chi_median(6);
+  RobustPayloadFit out;
+  Eigen::VectorXd phi;
+  if (start) {
+    phi = *start;
+    out.scale = start_scale;
+  } else {
+    phi = fit_payload(kin, plain, noise, counts, false).phi;  // counts: a replicate's (frequencies)
+  }
+  const Eigen::Matrix<double, 6, 6> Linv = residual_whitening(kin, layout, noise, phi, counts);
+  std::optional<EivCriterion> eiv;
+  if (request.criterion == Criterion::ErrorsInVariables) {
+    eiv.emplace(kin, layout, Eigen::MatrixXd::Identity(p, p), noise.wrench, noise.pose, request.threads);
+  }
+  const auto norms = [&](const Eigen::VectorXd& at) {
+    if (eiv) return eiv->sample_norms(at);
+    Eigen::VectorXd u(m);
+    Eigen::MatrixXd X(6, p);
+    for (Eigen::Index k = 0; k < m; ++k) {
+      sample_regressor(kin, k, layout, X);
+      u(k) = (Linv * (X * at - kin.wrench.col(k))).norm();
+    }
+    return u;
+  };
+  std::vector<double> weights(static_cast<std::size_t>(m), 1.0);
+  // One loss's reweightings from phi; Huber re-estimates the scale, Tukey keeps the one it is given.
+  const auto reweight = [&](RobustLoss loss, double k, int& iterations) {
+    bool settled = false;
+    for (int it = 1; it <= kReweightings && !settled; ++it) {
+      const Eigen::VectorXd u = norms(phi);
+      if (!u.allFinite()) {
+        throw SignalError("the errors-in-variables weight of some sample is singular at the robust fit's estimate",
+                          Code::NoiseModel);
+      }
+      if (loss == RobustLoss::Huber) {
+        std::vector<double> counted;
+        counted.reserve(static_cast<std::size_t>(m));
+        for (Eigen::Index i = 0; i < m; ++i) {
+          if (counts.empty() || counts[static_cast<std::size_t>(i)] > 0.0) counted.push_back(u(i));
+        }
+        if (!counted.empty()) out.scale = spdfit::detail::median(counted) / median_chi;
+      }
+      out.weights = spdfit::detail::robust_weights(loss, u, out.scale, k);
+      for (Eigen::Index i = 0; i < m; ++i) {
+        weights[static_cast<std::size_t>(i)] = out.weights(i) * (counts.empty() ? 1.0 : counts[static_cast<std::size_t>(i)]);
+      }
+      const Eigen::VectorXd next = fit_payload(kin, plain, noise, weights, false, false).phi;
+      ++iterations;
+      settled = (next - phi).norm() <= kSettled * std::max(next.norm(), std::numeric_limits<double>::min()) ||
+                out.scale == 0.0;
+      phi = next;
+    }
+    return settled;
+  };
+  const RobustLoss loss = request.robust;
+  const double k = request.robust_tuning.value_or(spdfit::detail::robust_tuning(loss, 6));
+  if (loss == RobustLoss::Tukey && !start) {
+    // Huber's fit and scale first: Tukey's weights from a fit that gross errors still lean on would
+    // give the good samples weight 0.
+    int huber_iterations = 0;
+    reweight(RobustLoss::Huber, spdfit::detail::robust_tuning(RobustLoss::Huber, 6), huber_iterations);
+    out.iterations += huber_iterations;
+  }
+  int iterations = 0;
+  out.converged = reweight(loss, k, iterations);
+  out.iterations += iterations;
+  out.fit = fit_payload(kin, plain, noise, weights, reported, false);
   return out;
 }
 

@@ -12,6 +12,7 @@
 #include "payload/kinematics.hpp"
 #include "physical/cone.hpp"
 #include "physical/replicates.hpp"
+#include "robust/m_estimator.hpp"
 #include "spdfit/format.hpp"
 #include "spdfit/inertia_repair.hpp"
 
@@ -164,7 +165,9 @@ PayloadEstimate identify(const PayloadSignals& signals, const IdentifyRequest& r
     }
   }
 
-  const Fit fit = detail::fit_payload(kin, request, noise, {}, true);
+  std::optional<detail::RobustPayloadFit> robust;
+  if (request.robust != RobustLoss::None) robust = detail::robust_fit_payload(kin, request, noise, {}, true);
+  const Fit fit = robust ? robust->fit : detail::fit_payload(kin, request, noise, {}, true);
   PayloadEstimate out;
   out.moving = kin.moving;
   out.criterion = request.criterion;
@@ -244,6 +247,22 @@ PayloadEstimate identify(const PayloadSignals& signals, const IdentifyRequest& r
     out.residual_rms(i) = std::sqrt(fit.residuals.col(i).squaredNorm() / static_cast<double>(std::max<Eigen::Index>(kin.samples(), 1)));
   }
 
+  if (robust) {
+    const double k = request.robust_tuning.value_or(spdfit::detail::robust_tuning(request.robust, 6));
+    out.robust = spdfit::detail::robust_report(request.robust, k, robust->weights, robust->scale, robust->iterations,
+                                               robust->converged);
+    // The samples' numbers as the log's data rows (`rows` chooses among them).
+    for (std::uint64_t& row : out.robust->rows_downweighted) {
+      if (!rows.empty() && row >= 1 && row <= rows.size()) row = static_cast<std::uint64_t>(rows[row - 1] + 1);
+    }
+    if (!robust->converged) {
+      out.warnings.emplace_back(Code::NotConverged,
+                                "the robust fit's weights had not settled after " + std::to_string(robust->iterations) +
+                                    " reweightings: the last fit is returned",
+                                "robust");
+    }
+  }
+
   // What the user should know.
   if (!fit.converged) {
     out.warnings.push_back(Warning(Code::NotConverged, "the optimizer did not converge" + (fit.failure.empty() ? std::string() : ": " + fit.failure) +
@@ -291,7 +310,9 @@ PayloadEstimate identify(const PayloadSignals& signals, const IdentifyRequest& r
       const std::vector<std::uint32_t> c = physical::detail::resample_counts(kin.samples(), request.seed, r);
       const std::vector<double> counts(c.begin(), c.end());
       try {
-        const Fit f = detail::fit_payload(kin, quiet, noise, counts, false);
+        // A robust estimate's replicates: each resample reweighted from the estimate and its scale.
+        const Fit f = robust ? detail::robust_fit_payload(kin, quiet, noise, counts, false, &fit.phi, robust->scale).fit
+                             : detail::fit_payload(kin, quiet, noise, counts, false);
         Eigen::VectorXd v = derive(f.phi, kin.moving).values();
         for (Eigen::Index i = 0; i < 22; ++i)
           if (!std::isfinite(values(i))) v(i) = kNan;

@@ -210,6 +210,27 @@ std::vector<Spec> make_table() {
           [](IdentifyRequest& r, const OptionValue& v) { r.noise_std_alpha = std::get<std::vector<double>>(v); },
           [](const IdentifyRequest& r) { return list_value(r.noise_std_alpha); }, false);
 
+  // fit's robust options, spelled and checked as fit's table does, setting the payload fit's.
+  Spec robust = physical::detail::like_fit_option<IdentifyRequest>("robust");
+  robust.help = "A robust fit: samples reweighted by their residual wrench, whitened by the criterion's covariance "
+                "(the wrench noise's, or each axis' robust scale without one), each reweighting the criterion's "
+                "fit of the weighted samples (an M-estimator); huber for gross errors in some samples, tukey "
+                "(from huber's fit) to give the worst weight 0. With `bootstrap`, each resample is reweighted";
+  robust.set = [](IdentifyRequest& r, const OptionValue& v) {
+    r.robust = robust_loss_named(std::get<std::string>(v)).value_or(RobustLoss::None);  // a choice: named
+  };
+  robust.get = [](const IdentifyRequest& r) -> std::optional<OptionValue> { return std::string(to_string(r.robust)); };
+  table.push_back(robust);
+  Spec tuning = physical::detail::like_fit_option<IdentifyRequest>("robust_tuning");
+  tuning.help = "The robust loss's constant, in standard deviations of a sample's whitened residual norm (default: "
+                "95% of least squares' efficiency at Gaussian noise on the six axes: Huber 1.869, Tukey 6.356)";
+  tuning.set = [](IdentifyRequest& r, const OptionValue& v) { r.robust_tuning = std::get<double>(v); };
+  tuning.get = [](const IdentifyRequest& r) -> std::optional<OptionValue> {
+    if (!r.robust_tuning) return std::nullopt;
+    return *r.robust_tuning;
+  };
+  table.push_back(tuning);
+
   physical::detail::add_solver_options(table, "500");
   physical::detail::add_bootstrap_options(
       table, "Resample the samples N times for percentile intervals and bootstrap standard errors of the mass, "

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "spdfit/fit_request.hpp"
 #include "spdfit/options.hpp"
 
 namespace spdfit::physical::detail {
@@ -161,6 +162,28 @@ void add_bootstrap_options(std::vector<OptionSpec<Request>>& table, std::string_
   threads.set = [](Request& r, const OptionValue& v) { r.threads = unsigned(std::get<std::int64_t>(v)); };
   threads.get = [](const Request& r) -> std::optional<OptionValue> { return std::int64_t{r.threads}; };
   table.push_back(threads);
+}
+
+/// The fit table's option `name` (its spelling, type, choices, range, default and rules among the
+/// fit's own options) for another request: the caller gives what it sets (and may word its help),
+/// so that `robust` and `robust_tuning` mean and refuse the same everywhere.
+template <typename Request>
+OptionSpec<Request> like_fit_option(std::string_view name) {
+  const OptionSpec<FitRequest>& fit = *find_option(fit_option_table(), name);
+  OptionSpec<Request> spec;
+  spec.name = fit.name;
+  spec.cli = fit.cli;
+  spec.python = fit.python;
+  spec.type = fit.type;
+  spec.value_name = fit.value_name;
+  spec.help = fit.help;
+  spec.default_text = fit.default_text;
+  spec.nullable = fit.nullable;
+  spec.range = fit.range;
+  spec.choices = fit.choices;
+  spec.needs = fit.needs;
+  spec.needs_message = fit.needs_message;
+  return spec;
 }
 
 }  // namespace spdfit::physical::detail

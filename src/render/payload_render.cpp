@@ -5,6 +5,7 @@
 #include <sstream>
 #include <string>
 
+#include "render/fit_result_json.hpp"
 #include "render/json_values.hpp"
 #include "spdfit/format.hpp"
 #include "spdfit/payload/design.hpp"
@@ -119,6 +120,8 @@ std::string to_json(const PayloadEstimate& e) {
   out["converged"] = e.converged;
   out["distinct_orientations"] = e.distinct_orientations;
   spdfit::detail::put_warnings(out, e.warnings);
+  // The robust report as fit's (render/fit_result_json.cpp).
+  if (e.robust) out["robust"] = OrderedJson(spdfit::detail::robust_json(*e.robust, spdfit::JsonStyle::Contract));
   if (e.bootstrap) {
     const PayloadEstimate::Bootstrap& b = *e.bootstrap;
     out["bootstrap"] = {{"replicates", b.replicates}, {"failed", b.failed}, {"seed", b.seed}, {"level", b.level}};
@@ -154,6 +157,7 @@ std::string report(const PayloadEstimate& e) {
   }
   out << "  force bias      " << vector_with_se(e.force_bias, e.force_bias_se) << " N\n";
   out << "  torque bias     " << vector_with_se(e.torque_bias, e.torque_bias_se) << " N m\n";
+  if (e.robust) out << "  " << spdfit::detail::robust_line(*e.robust);
   if (e.bootstrap) {
     const PayloadEstimate::Bootstrap& b = *e.bootstrap;
     out << "  bootstrap (" << b.replicates << " replicates, " << g(100.0 * b.level, 3) << "% intervals): mass "

@@ -233,6 +233,7 @@ payload::PayloadEstimate from_json<payload::PayloadEstimate>(const std::string& 
   out.iterations = r.value<int>("iterations");
   out.converged = r.value<bool>("converged");
   out.distinct_orientations = r.value<Eigen::Index>("distinct_orientations");
+  if (r.find("robust")) out.robust = detail::robust_from(r.at("robust"), r.type() + " robust");
   if (r.find("bootstrap")) {
     const Reader b = r.child("bootstrap");
     payload::PayloadEstimate::Bootstrap boot;

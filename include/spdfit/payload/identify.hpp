@@ -107,6 +107,14 @@ struct IdentifyRequest {
   /// Newton steps at most.
   int max_iterations = 500;
   std::optional<double> rank_tolerance;
+  /// A robust fit (an M-estimator, as fit's `robust`): samples reweighted by their residual
+  /// wrench, whitened by the criterion's covariance (the wrench noise's, or each axis' robust
+  /// scale without one; errors in variables: its per-sample covariance), each reweighting the
+  /// criterion's fit of the weighted samples. Huber re-estimates the scale each time; Tukey starts
+  /// from Huber's fit and scale. `robust_tuning`: the loss's constant (default: 95 % efficiency
+  /// at Gaussian noise for a 6-axis residual).
+  RobustLoss robust = RobustLoss::None;
+  std::optional<double> robust_tuning;
   int bootstrap = 0;
   double confidence = 0.95;
   std::uint64_t seed = 1;
@@ -187,6 +195,10 @@ struct PayloadEstimate {
     Interval mass, center_of_mass, inertia, principal_moments, force_bias, torque_bias;
   };
   std::optional<Bootstrap> bootstrap;
+  /// With IdentifyRequest::robust: the loss, its constant, the scale, the samples down-weighted
+  /// below 0.5 (numbered as the log's data rows), the reweightings. The estimate and its standard
+  /// errors are those of the last weighted fit.
+  std::optional<RobustReport> robust;
 
   bool ok() const { return status == Status::Success; }
 };
