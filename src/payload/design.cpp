@@ -65,10 +65,36 @@ DesignScore score_of(const Matrix10& F, const DesignRequest& request, const Eige
       Eigen::SelfAdjointEigenSolver<Matrix10>(scale.asDiagonal() * F * scale.asDiagonal(), Eigen::EigenvaluesOnly).eigenvalues();
   s.condition = eig(0) > 0.0 ? std::sqrt(eig(9) / eig(0)) : kInf;
   if (llt.info() != Eigen::Success || !(eig(0) > 1e-14 * eig(9))) {
+    // Singular (fewer than 3 gravity directions): no log det, but a function a^T theta of the
+    // parameters the poses determine (a orthogonal to F's null space; in the scaled units F_s = D F D,
+    // D a orthogonal to F_s's) still has the standard error sqrt(a^T F^+ a); the others are infinite.
     s.log_det = -kInf;
-    s.se_mass = kInf;
-    s.se_center_of_mass.setConstant(kInf);
-    s.se_center_of_mass_norm = kInf;
+    const Eigen::SelfAdjointEigenSolver<Matrix10> es(scale.asDiagonal() * F * scale.asDiagonal());
+    const Eigen::Matrix<double, 10, 1> lambda = es.eigenvalues();
+    const double cut = 1e-14 * std::max(lambda(9), 0.0);
+    Matrix10 Cs = Matrix10::Zero();  // F_s^+
+    for (int i = 0; i < 10; ++i) {
+      if (lambda(i) > cut) Cs += es.eigenvectors().col(i) * es.eigenvectors().col(i).transpose() / lambda(i);
+    }
+    const auto se_of = [&](const Eigen::Matrix<double, 10, 1>& a) {
+      const Eigen::Matrix<double, 10, 1> b = scale.cwiseProduct(a);
+      double off = 0.0;
+      for (int i = 0; i < 10; ++i) {
+        if (!(lambda(i) > cut)) off += std::pow(es.eigenvectors().col(i).dot(b), 2);
+      }
+      if (off > 1e-16 * b.squaredNorm()) return kInf;  // the poses do not determine it
+      return std::sqrt(std::max(b.dot(Cs * b), 0.0));
+    };
+    s.se_mass = se_of(Eigen::Matrix<double, 10, 1>::Unit(0));
+    double total = 0.0;
+    for (int j = 0; j < 3; ++j) {
+      Eigen::Matrix<double, 10, 1> a = Eigen::Matrix<double, 10, 1>::Zero();
+      a(0) = -request.center_of_mass(j) / request.mass;  // c_j = h_j / m, linearized
+      a(1 + j) = 1.0 / request.mass;
+      s.se_center_of_mass(j) = se_of(a);
+      total += s.se_center_of_mass(j) * s.se_center_of_mass(j);
+    }
+    s.se_center_of_mass_norm = std::sqrt(total);
     return s;
   }
   s.log_det = 2.0 * llt.matrixLLT().diagonal().array().log().sum();

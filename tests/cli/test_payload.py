@@ -495,3 +495,12 @@ def test_design_beats_random_choices(spdfit, tmp_path):
         r = spdfit("payload", "design", str(path), "--poses", "6", "--quat-cols", "qx:qw", "--criterion", criterion,
                    "--random", "50", "--json")
         assert r.returncode == 0 and len(json.loads(r.stdout)["chosen"]) == 6
+    # Two poses leave the information singular, yet the mass is determined (identify says so): its
+    # predicted standard error is sqrt(e_m^T F^+ e_m) by NumPy's pseudo-inverse, not infinite.
+    two = spdfit("payload", "design", str(path), "--poses", "2", "--quat-cols", "qx:qw", "--random", "50", "--json")
+    assert two.returncode == 0, two.stderr
+    out = json.loads(two.stdout)
+    g = np.array([rotation_from_quaternion(qi).T @ G for qi in q[np.array(out["chosen"]) - 1]])
+    X = regressor(-g)
+    assert np.linalg.matrix_rank(X.T @ X) < 10 and out["log_det"] is None
+    assert out["se_mass"] == pytest.approx(np.sqrt(np.linalg.pinv(X.T @ X)[0, 0]), rel=1e-6)
