@@ -41,6 +41,9 @@ constexpr double kStartInside = 1e-2;
 // fit to all samples then takes the few quadratically convergent steps.
 constexpr Eigen::Index kCoarseSamples = 10000;
 constexpr Eigen::Index kCoarseStride = 4;
+// The errors-in-variables criterion (a sum of 6 whitened squares per sample) at most this many times
+// 6 m at the least-squares fit: noise-free data, its residuals about 1e-8 of the noise model's.
+constexpr double kExactCriterion = 1e-16;
 // The ridge's size relative to the criterion's curvature where the poses leave directions undetermined.
 constexpr double kRidge = 1e-12;
 // An eigenvalue of the pseudo-inertia (or the static mass) below this fraction of the largest (of
@@ -308,68 +311,79 @@ Fit fit_payload(const Kinematics& kin, const IdentifyRequest& request, const Noi
       throw SignalError("the noise model makes the errors-in-variables weight singular: give the wrench's noise "
                         "(`noise_std_wrench` or `rest_rows`)", Code::NoiseModel);
     }
-    eiv.set_normalization(f_start);
-    std::optional<shared::SolveResult> best;
-    auto consider = [&](const shared::SolveResult& r, bool usable) {
-      out.iterations += r.iterations;
-      if (!usable) return;
-      if (!best || (r.converged && !best->converged) || (r.converged == best->converged && r.f < best->f)) best = r;
-    };
-    const auto budget = [&] { return std::max(request.max_iterations - out.iterations, 1); };
-    // The unconstrained fit's start: least squares', or on a long log the errors-in-variables fit
-    // to a subsample from there (its Newton steps are not counted in `iterations`).
-    Eigen::VectorXd free_start = theta_free;
-    if (const Eigen::Index stride = kin.samples() / kCoarseSamples; stride >= kCoarseStride) {
-      std::vector<double> sub_counts;
-      const Kinematics sub = every_nth(kin, stride, counts, sub_counts);
-      EivCriterion coarse(sub, layout, M, noise.wrench, noise.pose, request.threads, sub_counts);
-      double f_coarse = 0.0;
-      if (coarse.evaluate_phi(M * theta_free, 0, f_coarse, nullptr, nullptr)) {
-        coarse.set_normalization(f_coarse);
-        const shared::SolveResult r = shared::solve_unconstrained(coarse, theta_free, request.max_iterations);
-        if (r.converged && r.theta.allFinite()) free_start = r.theta;
+    // Noise-free data: the least-squares fit's residuals are at rounding level against the noise
+    // model, so the criterion is 0 there, its minimum; Newton's method from there would chase the
+    // rounding (the normalization f0 is rounding itself). The estimate is least squares'.
+    if (f_start <= kExactCriterion * static_cast<double>(6 * kin.samples())) {
+      out.criterion = f_start;
+      if (reported) {
+        out.covariance = sandwich(phi);
+        if (request.consistent) out.certificate = certificate_of(shared::kkt_certificate(ls, cone, theta_s), theta_scale, true);
       }
-    }
-    if (!request.consistent) {
-      consider(shared::solve_unconstrained(eiv, free_start, budget()), true);
     } else {
-      const shared::SolveResult free = shared::solve_unconstrained(eiv, free_start, budget());
-      const bool inside = free.converged && shared::strictly_feasible(cone, free.theta);
-      consider(free, inside);
-      if (!inside || !shared::strictly_feasible(cone, theta_free)) {
-        consider(shared::solve_constrained(eiv, cone, start, budget()), true);
-        if (free.converged && !inside && free.theta.allFinite()) {
-          int steps = 0;
-          const std::optional<shared::SolveResult> face = shared::solve_on_face(eiv, cone, free.theta, budget(), &steps);
-          out.iterations += steps;
-          if (face) {
-            consider(*face, true);
-          } else {
-            consider(shared::solve_constrained(eiv, cone, shared::pushed_inside(cone, free.theta, kStartInside), budget()),
-                     true);
+      eiv.set_normalization(f_start);
+      std::optional<shared::SolveResult> best;
+      auto consider = [&](const shared::SolveResult& r, bool usable) {
+        out.iterations += r.iterations;
+        if (!usable) return;
+        if (!best || (r.converged && !best->converged) || (r.converged == best->converged && r.f < best->f)) best = r;
+      };
+      const auto budget = [&] { return std::max(request.max_iterations - out.iterations, 1); };
+      // The unconstrained fit's start: least squares', or on a long log the errors-in-variables fit
+      // to a subsample from there (its Newton steps are not counted in `iterations`).
+      Eigen::VectorXd free_start = theta_free;
+      if (const Eigen::Index stride = kin.samples() / kCoarseSamples; stride >= kCoarseStride) {
+        std::vector<double> sub_counts;
+        const Kinematics sub = every_nth(kin, stride, counts, sub_counts);
+        EivCriterion coarse(sub, layout, M, noise.wrench, noise.pose, request.threads, sub_counts);
+        double f_coarse = 0.0;
+        if (coarse.evaluate_phi(M * theta_free, 0, f_coarse, nullptr, nullptr)) {
+          coarse.set_normalization(f_coarse);
+          const shared::SolveResult r = shared::solve_unconstrained(coarse, theta_free, request.max_iterations);
+          if (r.converged && r.theta.allFinite()) free_start = r.theta;
+        }
+      }
+      if (!request.consistent) {
+        consider(shared::solve_unconstrained(eiv, free_start, budget()), true);
+      } else {
+        const shared::SolveResult free = shared::solve_unconstrained(eiv, free_start, budget());
+        const bool inside = free.converged && shared::strictly_feasible(cone, free.theta);
+        consider(free, inside);
+        if (!inside || !shared::strictly_feasible(cone, theta_free)) {
+          consider(shared::solve_constrained(eiv, cone, start, budget()), true);
+          if (free.converged && !inside && free.theta.allFinite()) {
+            int steps = 0;
+            const std::optional<shared::SolveResult> face = shared::solve_on_face(eiv, cone, free.theta, budget(), &steps);
+            out.iterations += steps;
+            if (face) {
+              consider(*face, true);
+            } else {
+              consider(shared::solve_constrained(eiv, cone, shared::pushed_inside(cone, free.theta, kStartInside), budget()),
+                       true);
+            }
           }
         }
       }
+      phi = M * best->theta;
+      out.converged = best->converged;
+      out.failure = best->message;
+      if (reported && request.consistent) {
+        out.certificate = certificate_of(shared::kkt_certificate(eiv, cone, best->theta), 1.0, false);
+      }
+      // The sandwich of an M-estimator when reported: H^+ S H^+, H half the Hessian, S the sum of
+      // the samples' half-gradient outer products (the same pass gives F).
+      double f = 0.0;
+      Eigen::VectorXd g;
+      Eigen::MatrixXd H, S;
+      if (reported && eiv.evaluate_phi(phi, 2, f, &g, &H, &S)) {
+        const Eigen::MatrixXd Hplus = pseudo_inverse(0.5 * H, rank);
+        const double n = static_cast<double>(kin.samples());
+        out.covariance = Hplus * S * Hplus * (6.0 * n / std::max(6.0 * n - static_cast<double>(rank), 1.0));
+      } else {
+        eiv.evaluate_phi(phi, 0, f, nullptr, nullptr);
+      }
+      out.criterion = f;
     }
-    phi = M * best->theta;
-    out.converged = best->converged;
-    out.failure = best->message;
-    if (reported && request.consistent) {
-      out.certificate = certificate_of(shared::kkt_certificate(eiv, cone, best->theta), 1.0, false);
-    }
-    // The sandwich of an M-estimator when reported: H^+ S H^+, H half the Hessian, S the sum of
-    // the samples' half-gradient outer products (the same pass gives F).
-    double f = 0.0;
-    Eigen::VectorXd g;
-    Eigen::MatrixXd H, S;
-    if (reported && eiv.evaluate_phi(phi, 2, f, &g, &H, &S)) {
-      const Eigen::MatrixXd Hplus = pseudo_inverse(0.5 * H, rank);
-      const double n = static_cast<double>(kin.samples());
-      out.covariance = Hplus * S * Hplus * (6.0 * n / std::max(6.0 * n - static_cast<double>(rank), 1.0));
-    } else {
-      eiv.evaluate_phi(phi, 0, f, nullptr, nullptr);
-    }
-    out.criterion = f;
   } else if (reported) {
     out.covariance = sandwich(phi);
   }

@@ -140,6 +140,13 @@ def test_moving_noise_free_determines_all_16_to_1e_9(spdfit, tmp_path):
     np.testing.assert_allclose(out["force_bias"] + out["torque_bias"], [1.0, 2.0, -3.0, 0.1, 0.05, -0.2],
                                rtol=1e-9, atol=1e-11)
     np.testing.assert_allclose(np.sort(out["principal_moments"]), [0.012, 0.015, 0.02], rtol=1e-9)
+    # Errors in variables on the same exact data: the criterion is 0 at least squares' fit, its
+    # minimum; it used to chase the rounding for 500 Newton steps and warn that it had not converged.
+    eiv, err = identify(spdfit, path, *MOVING, "--criterion", "eiv", "--noise-std-wrench", "0.2,0.01",
+                        "--noise-std-accel", "0.1", "--noise-std-omega", "0.01", "--noise-std-alpha", "0.05")
+    assert eiv["converged"] and "not converge" not in err
+    assert eiv["mass"] == pytest.approx(2.5, rel=1e-9)
+    np.testing.assert_allclose(eiv["inertia"], np.diag([0.012, 0.02, 0.015]), atol=1e-11)
 
 
 def test_alpha_from_omega_by_central_differences(spdfit, tmp_path):
