@@ -152,6 +152,14 @@ std::string report(const PayloadEstimate& e) {
       out << "\n";
     }
     out << "  principal moments " << vector_with_se(e.principal.moments, e.principal_moments_se) << " kg m^2\n";
+    if (e.principal.axes.allFinite()) {
+      out << "  principal axes  ";
+      for (int j = 0; j < 3; ++j) {
+        out << (j ? ", (" : "(") << g(e.principal.axes(0, j), 4) << ", " << g(e.principal.axes(1, j), 4) << ", "
+            << g(e.principal.axes(2, j), 4) << ")";
+      }
+      out << " (one per moment, sensor axes)\n";
+    }
   } else {
     out << "  inertia         not determined by static poses\n";
   }
