@@ -16,6 +16,7 @@ biases from a log over many poses, physically consistent (docs/payload.md), and 
     >>> round(est["mass"], 9), np.round(est["center_of_mass"], 9).tolist() == [0.08, 0.0, 0.03]
     (1.2, True)
 """
+import contextlib as _contextlib
 import json as _json
 import os as _os
 
@@ -44,6 +45,24 @@ def _arrays(value):
         return _np.array([_np.nan if v is None else v for v in value] if not isinstance(value[0], list) else
                          [[_np.nan if x is None else x for x in row] for row in value], dtype=_np.float64)
     return value
+
+
+@_contextlib.contextmanager
+def _keyword_names(path, arrays, options):
+    """Signals given as arrays: an error message names the keyword (quaternion=) where the library
+    names the column option (quat_cols) a file's signals come from, unless that option was given."""
+    try:
+        yield
+    except (ValueError, TypeError) as error:
+        if path is not None or not arrays:
+            raise
+        message = str(error)
+        for keyword, option in _COLUMNS.items():
+            if keyword in arrays and option not in options:
+                message = message.replace("`" + option + "`", "`" + keyword + "=`").replace(option, keyword + "=")
+        if message == str(error):
+            raise
+        raise type(error)(message) from None
 
 
 def _signals(log, signals, options, need_wrench=True):
@@ -147,7 +166,8 @@ def identify(log=None, *, wrench=None, quaternion=None, rotation=None, gravity_i
                                   "gravity_in_sensor": gravity_in_sensor, "accel": accel,
                                   "specific_force": specific_force, "omega": omega, "alpha": alpha, "time": time},
                             options)
-    text, residuals, report = _core.identify(path, arrays, options)
+    with _keyword_names(path, arrays, options):
+        text, residuals, report = _core.identify(path, arrays, options)
     result = _arrays(_json.loads(text))
     if result["status"] != "success":
         raise NumericalError(result.get("error", "payload identification failed"), result)
@@ -248,7 +268,8 @@ def design(candidates=None, *, quaternion=None, rotation=None, gravity_in_sensor
     if path is None and not arrays:
         raise TypeError("design() needs the candidates: a file, a DataFrame, or quaternion=, rotation= or "
                         "gravity_in_sensor=")
-    text, report = _core.design(path, arrays, options)
+    with _keyword_names(path, arrays, options):
+        text, report = _core.design(path, arrays, options)
     result = _json.loads(text)
     for key in ("log_det", "condition", "se_mass", "se_center_of_mass_norm"):
         result[key] = _np.nan if result[key] is None else result[key]

@@ -77,6 +77,11 @@ def test_errors_are_python_exceptions():
         pl.identify(wrench=log["wrench"], quaternion=log["quaternion"], bootstrap=1.5)
     with pytest.raises(ValueError, match="quat_cols"):
         pl.identify(wrench=log["wrench"], quaternion=log["quaternion"], quat_cols="1:4")
+    # Arrays: the messages name the keywords, not the command line's column options.
+    with pytest.raises(spdfit.DataError, match=r"quaternion= must give 4 columns"):
+        pl.identify(wrench=log["wrench"], quaternion=log["quaternion"][:, :3])
+    with pytest.raises(spdfit.DataError, match=r"wrench= must give 6 columns"):
+        pl.identify(wrench=log["wrench"][:, :5], quaternion=log["quaternion"])
     with pytest.raises(spdfit.DataError):
         pl.identify(str(ROOT / "examples" / "payload" / "nope.csv"), wrench_cols="1:6", quat_cols="7:10")
 
