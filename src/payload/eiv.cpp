@@ -28,6 +28,41 @@ struct Partial {
   bool ok = true;
 };
 
+// Sample k's regressor X, residual r = X phi - w_k, J Sigma_x (JS, Sigma_x block diagonal) and the
+// Cholesky factor of the residual's covariance C = Sigma_w + J Sigma_x J^T: what the criterion's
+// terms and the robust fit's norms share. False when C is not positive definite.
+template <int P>
+bool sample_terms(const Kinematics& kin, Eigen::Index k, const ParameterLayout& layout, const Eigen::VectorXd& phi_in,
+                  const Eigen::Matrix<double, P, 1>& phi, const Eigen::Matrix<double, 6, 6>& noise_w,
+                  const std::array<Eigen::Matrix3d, 3>& noise_x, Eigen::Matrix<double, 6, P>& X, Matrix69& JS,
+                  Eigen::Matrix<double, 6, 1>& r, Eigen::LLT<Eigen::Matrix<double, 6, 6>>& llt) {
+  sample_regressor(kin, k, layout, X);
+  const Matrix69 J = model_jacobian(kin, k, layout, phi_in);
+  for (int b = 0; b < 3; ++b) JS.middleCols<3>(3 * b) = J.middleCols<3>(3 * b).lazyProduct(noise_x[b]);
+  r = X * phi - kin.wrench.col(k);
+  Eigen::Matrix<double, 6, 6> C = noise_w;
+  C += JS.lazyProduct(J.transpose());
+  llt.compute(C);
+  return llt.info() == Eigen::Success && llt.matrixLLT().diagonal().minCoeff() > 0.0;
+}
+
+// sqrt(r_k^T C_k^-1 r_k) of samples [begin, end) into u (NaN where C_k is not positive definite).
+template <int P>
+void sample_norms_of(const Kinematics& kin, const ParameterLayout& layout, const Eigen::VectorXd& phi_in,
+                     const Eigen::Matrix<double, 6, 6>& noise_w, const std::array<Eigen::Matrix3d, 3>& noise_x,
+                     Eigen::Index begin, Eigen::Index end, Eigen::VectorXd& u) {
+  const Eigen::Matrix<double, P, 1> phi = phi_in;
+  Eigen::Matrix<double, 6, P> X;
+  Matrix69 JS;
+  Eigen::Matrix<double, 6, 1> r;
+  Eigen::LLT<Eigen::Matrix<double, 6, 6>> llt;
+  for (Eigen::Index k = begin; k < end; ++k) {
+    u(k) = sample_terms<P>(kin, k, layout, phi_in, phi, noise_w, noise_x, X, JS, r, llt)
+               ? std::sqrt(std::max(r.dot(llt.solve(r)), 0.0))
+               : std::numeric_limits<double>::quiet_NaN();
+  }
+}
+
 // The sums of samples [begin, end) with the layout's sizes fixed at compile time (P parameters, Q
 // of them inertial): each sample's work is a few small dense products, which fixed sizes unroll.
 template <int P, int Q>
@@ -43,20 +78,15 @@ void accumulate(const Kinematics& kin, const ParameterLayout& layout, const Eige
   Square H = Square::Zero(), S = Square::Zero();
   double f = 0.0;
   Regressor X, V, LV;
+  Matrix69 JS;  // J Sigma_x
+  Eigen::Matrix<double, 6, 1> r;
+  Eigen::LLT<Eigen::Matrix<double, 6, 6>> llt;
   Eigen::Matrix<double, 9, 10> Jt_u;
   Eigen::Matrix<double, 6, 10> J_v;
   for (Eigen::Index k = begin; k < end; ++k) {
     const double weight = counts.empty() ? 1.0 : counts[static_cast<std::size_t>(k)];
     if (weight == 0.0) continue;
-    sample_regressor(kin, k, layout, X);
-    const Matrix69 J = model_jacobian(kin, k, layout, phi_in);
-    Matrix69 JS;  // J Sigma_x, Sigma_x block diagonal
-    for (int b = 0; b < 3; ++b) JS.middleCols<3>(3 * b) = J.middleCols<3>(3 * b).lazyProduct(noise_x[b]);
-    const Eigen::Matrix<double, 6, 1> r = X * phi - kin.wrench.col(k);
-    Eigen::Matrix<double, 6, 6> C = noise_w;
-    C += JS.lazyProduct(J.transpose());
-    const Eigen::LLT<Eigen::Matrix<double, 6, 6>> llt(C);
-    if (llt.info() != Eigen::Success || !(llt.matrixLLT().diagonal().minCoeff() > 0.0)) {
+    if (!sample_terms<P>(kin, k, layout, phi_in, phi, noise_w, noise_x, X, JS, r, llt)) {
       out.ok = false;
       return;
     }
@@ -181,19 +211,10 @@ Eigen::VectorXd EivCriterion::sample_norms(const Eigen::VectorXd& phi) const {
   const Eigen::Index chunks = (m + kChunk - 1) / kChunk;
   spdfit::detail::parallel_for(static_cast<std::size_t>(chunks), threads_, [&](std::size_t c) {
     const Eigen::Index begin = static_cast<Eigen::Index>(c) * kChunk, end = std::min(m, begin + kChunk);
-    Eigen::MatrixXd X(6, layout_.size());
-    for (Eigen::Index k = begin; k < end; ++k) {
-      sample_regressor(kin_, k, layout_, X);
-      const Matrix69 J = model_jacobian(kin_, k, layout_, phi);
-      Matrix69 JS;
-      for (int b = 0; b < 3; ++b) JS.middleCols<3>(3 * b) = J.middleCols<3>(3 * b).lazyProduct(noise_x_[b]);
-      const Eigen::Matrix<double, 6, 1> r = X * phi - kin_.wrench.col(k);
-      Eigen::Matrix<double, 6, 6> C = noise_w_;
-      C += JS.lazyProduct(J.transpose());
-      const Eigen::LLT<Eigen::Matrix<double, 6, 6>> llt(C);
-      u(k) = llt.info() == Eigen::Success && llt.matrixLLT().diagonal().minCoeff() > 0.0
-                 ? std::sqrt(std::max(r.dot(llt.solve(r)), 0.0))
-                 : std::numeric_limits<double>::quiet_NaN();
+    if (layout_.moving) {
+      sample_norms_of<16>(kin_, layout_, phi, noise_w_, noise_x_, begin, end, u);
+    } else {
+      sample_norms_of<10>(kin_, layout_, phi, noise_w_, noise_x_, begin, end, u);
     }
   });
   return u;

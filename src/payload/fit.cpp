@@ -411,7 +411,6 @@ Fit fit_payload(const Kinematics& kin, const IdentifyRequest& request, const Noi
   return out;
 }
 
-
 namespace {
 
 // Reweightings of the robust fit at most, and when they stop (as hexapod identify --physical's).
@@ -419,7 +418,7 @@ constexpr int kReweightings = 50;
 constexpr double kSettled = 1e-8;
 
 // Least squares' whitening of a sample's residual wrench for the robust weights: the wrench noise's
-// (as the fit weighs it) or, without one, each axis' robust scale (1.4826 MAD) in the residuals of
+// (as the fit weighs it) or, without one, each axis' robust scale (robust_spread) in the residuals of
 // `phi` over the counted samples, so that forces (N) and torques (N m) count alike.
 Eigen::Matrix<double, 6, 6> residual_whitening(const Kinematics& kin, const ParameterLayout& layout,
                                                const NoiseCovariances& noise, const Eigen::VectorXd& phi,
@@ -443,9 +442,7 @@ Eigen::Matrix<double, 6, 6> residual_whitening(const Kinematics& kin, const Para
       s(a) = 0.0;
       continue;
     }
-    const double mid = spdfit::detail::median(v);
-    for (double& x : v) x = std::abs(x - mid);
-    s(a) = 1.4826 * spdfit::detail::median(v);
+    s(a) = spdfit::detail::robust_spread(v);
   }
   // An axis without spread (noise-free data, a constant channel) is scaled as the largest one.
   const double largest = s.maxCoeff();
@@ -490,6 +487,9 @@ RobustPayloadFit robust_fit_payload(const Kinematics& kin, const IdentifyRequest
     return u;
   };
   std::vector<double> weights(static_cast<std::size_t>(m), 1.0);
+  const Eigen::VectorXd counted = counts.empty() ? Eigen::VectorXd() : Eigen::Map<const Eigen::VectorXd>(
+                                                                           counts.data(), static_cast<Eigen::Index>(counts.size()));
+  std::vector<double> bracket;  // median_near's scratch
   // One loss's reweightings from phi; Huber re-estimates the scale, Tukey keeps the one it is given.
   const auto reweight = [&](RobustLoss loss, double k, int& iterations) {
     bool settled = false;
@@ -499,13 +499,9 @@ RobustPayloadFit robust_fit_payload(const Kinematics& kin, const IdentifyRequest
         throw SignalError("the errors-in-variables weight of some sample is singular at the robust fit's estimate",
                           Code::NoiseModel);
       }
-      if (loss == RobustLoss::Huber) {
-        std::vector<double> counted;
-        counted.reserve(static_cast<std::size_t>(m));
-        for (Eigen::Index i = 0; i < m; ++i) {
-          if (counts.empty() || counts[static_cast<std::size_t>(i)] > 0.0) counted.push_back(u(i));
-        }
-        if (!counted.empty()) out.scale = spdfit::detail::median(counted) / median_chi;
+      if (loss == RobustLoss::Huber) {  // the scale of the samples drawn, as the generic robust fit's
+        const double next = spdfit::detail::median_near(u, counted, out.scale * median_chi, bracket);
+        if (!std::isnan(next)) out.scale = next / median_chi;
       }
       out.weights = spdfit::detail::robust_weights(loss, u, out.scale, k);
       for (Eigen::Index i = 0; i < m; ++i) {
@@ -521,6 +517,7 @@ RobustPayloadFit robust_fit_payload(const Kinematics& kin, const IdentifyRequest
   };
   const RobustLoss loss = request.robust;
   const double k = request.robust_tuning.value_or(spdfit::detail::robust_tuning(loss, 6));
+  out.tuning = k;
   if (loss == RobustLoss::Tukey && !start) {
     // Huber's fit and scale first: Tukey's weights from a fit that gross errors still lean on would
     // give the good samples weight 0.

@@ -49,6 +49,7 @@ Fit fit_payload(const Kinematics& kin, const IdentifyRequest& request, const Noi
 struct RobustPayloadFit {
   Fit fit;
   Eigen::VectorXd weights;  ///< each sample's final robust weight (counts not included)
+  double tuning = 0.0;      ///< the loss's constant k used
   double scale = 0.0;
   int iterations = 0;
   bool converged = false;

@@ -248,8 +248,7 @@ PayloadEstimate identify(const PayloadSignals& signals, const IdentifyRequest& r
   }
 
   if (robust) {
-    const double k = request.robust_tuning.value_or(spdfit::detail::robust_tuning(request.robust, 6));
-    out.robust = spdfit::detail::robust_report(request.robust, k, robust->weights, robust->scale, robust->iterations,
+    out.robust = spdfit::detail::robust_report(request.robust, robust->tuning, robust->weights, robust->scale, robust->iterations,
                                                robust->converged);
     // The samples' numbers as the log's data rows (`rows` chooses among them).
     for (std::uint64_t& row : out.robust->rows_downweighted) {

@@ -54,6 +54,13 @@ double median_in_place(std::vector<double>& values) {
 
 double median(std::vector<double> values) { return median_in_place(values); }
 
+double robust_spread(std::vector<double>& values, double* center) {
+  const double mid = median_in_place(values);
+  if (center) *center = mid;
+  for (double& v : values) v = std::abs(v - mid);
+  return kRowScoreMadToSigma * median_in_place(values);
+}
+
 MatrixXd residual_covariance(const MatrixXd& X, Method method, const FitOptions& options) {
   const Index n = X.rows(), d = X.cols();
   if (options.noise) {
@@ -132,12 +139,11 @@ void whitened_residuals_into(const Eigen::Ref<const MatrixXd>& A, const Eigen::R
 VectorXd robust_z_scores(const VectorXd& x) {
   const Index m = x.size();
   if (m < 3) return VectorXd::Zero(m);
-  // One work array for both medians (the values, then their deviations): at m = 1e5 each array of
-  // m fresh values costs more than its median.
+  // One work array for both medians: at m = 1e5 each array of m fresh values costs more than its
+  // median.
   std::vector<double> work(x.data(), x.data() + m);
-  const double mid = median_in_place(work);
-  for (Index i = 0; i < m; ++i) work[static_cast<std::size_t>(i)] = std::abs(x(i) - mid);
-  const double spread = kRowScoreMadToSigma * median_in_place(work);
+  double mid = 0.0;
+  const double spread = robust_spread(work, &mid);
   if (!(spread > 0.0)) return VectorXd::Zero(m);
   return (x.array() - mid) / spread;
 }

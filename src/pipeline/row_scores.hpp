@@ -48,6 +48,10 @@ void whitened_residuals_into(const Eigen::Ref<const Eigen::MatrixXd>& A, const E
 /// The median of `values` (not empty).
 double median(std::vector<double> values);
 
+/// 1.4826 times the median absolute deviation of `values` (not empty) from their median, which
+/// `center` receives: a robust standard deviation. `values` is reordered and overwritten.
+double robust_spread(std::vector<double>& values, double* center = nullptr);
+
 /// Robust z-scores (x - median) / (1.4826 MAD); all 0 when the MAD is 0 or there are fewer than 3.
 Eigen::VectorXd robust_z_scores(const Eigen::VectorXd& x);
 
