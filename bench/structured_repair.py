@@ -15,13 +15,16 @@ references, and their speed:
    plus 1% of the other pairs) and --h-weights (the overlap counts of data with missing values,
    scaled to max 1) on a pairwise-deletion correlation matrix (the realistic input), and on the
    uniform random matrix of bench/nearest_correlation_speed.py (the hard one: half its eigenvalues
-   negative), interleaved, `repeats` runs each, median and spread of wall and CPU time;
+   negative), each with its kept block floored at 1e-3 (nearly singular) and at 0.05, interleaved,
+   `repeats` runs each, median and spread of wall and CPU time (with SPDFIT_BASE_CLI, another
+   build's command beside it);
 6. --factors 10 at n = `factor_n` (default 10000) from .npy: the library's time without the read
    (Python, C already in memory), and the command's peak resident set with --factors-only (C is
    n^2 doubles; nothing else of that size).
 
     PYTHONPATH=build/python /usr/bin/python3 bench/structured_repair.py [problems] [repeats] [speed_n] [factor_n]
 """
+import json
 import os
 import pathlib
 import resource
@@ -210,6 +213,8 @@ def pairwise_correlation(n, rows, rng):
 
 
 def speed(n, repeats, workdir):
+    """Section 5. With SPDFIT_BASE_CLI set (another build's `spdfit`), every run is made with both
+    commands, interleaved, and the table gains the baseline's CPU time."""
     rng = np.random.default_rng(5)
     matrices = {"pairwise deletion": pairwise_correlation(n, n // 2, rng)}
     M = np.random.default_rng(1).uniform(-1, 1, (n, n))
@@ -217,25 +222,20 @@ def speed(n, repeats, workdir):
     np.fill_diagonal(U, 1.0)
     matrices["uniform random"] = (U, matrices["pairwise deletion"][1])
     cli = os.environ.get("SPDFIT_CLI", str(ROOT / "build" / "apps" / "spdfit"))
+    base = os.environ.get("SPDFIT_BASE_CLI")
+    commands = {"": cli, **({"base": base} if base else {})}
     print(f"## 5. Speed at n = {n} (the command line, {repeats} interleaved runs each; median [min, max])\n")
-    print("| matrix | negative eigenvalues | run | wall (s) | CPU (s) | CPU / plain --corr | iterations |")
-    print("|---|---|---|---|---|---|---|")
-    for name, (C, H) in matrices.items():
-        path = os.path.join(workdir, "C.npy")
-        np.save(path, C)
+    print("The kept block (n/10 variables) is the data's own correlation of those variables, repaired with an "
+          "eigenvalue floor where it is not positive definite: a floor of 1e-3 leaves a block whose smallest "
+          "eigenvalues are all 1e-3 (nearly singular: the hard case), a floor of 0.05 a well-conditioned one.\n")
+    header = "| matrix | block floor | negative eigenvalues | run | wall (s) | CPU (s) | CPU / plain --corr | iterations |"
+    if base:
+        header += " baseline CPU (s) | baseline iterations |"
+    print(header)
+    print("|" + "---|" * (header.count("|") - 1))
+    for name, (C0, H) in matrices.items():
         mask = np.zeros((n, n))
         block = rng.choice(n, size=n // 10, replace=False)
-        # The kept block must be semidefinite, and positive definite for Newton's method to converge
-        # fast (a singular kept block makes every completion singular: the dual then has no
-        # minimizer, and the warning says so): the data's own correlation of those variables,
-        # repaired with an eigenvalue floor where it is not.
-        sub = np.linalg.eigvalsh(C[np.ix_(block, block)])
-        if sub[0] < 1e-3:
-            B = C[np.ix_(block, block)]
-            B = quiet(spdfit.nearest_correlation, B, min_eig=1e-3)
-            C = C.copy()
-            C[np.ix_(block, block)] = B
-            np.save(path, C)
         mask[np.ix_(block, block)] = 1
         extra = rng.uniform(size=(n, n)) < 0.005
         if name == "pairwise deletion":
@@ -244,30 +244,49 @@ def speed(n, repeats, workdir):
             mask[extra | extra.T] = 1
         np.save(os.path.join(workdir, "mask.npy"), mask)
         np.save(os.path.join(workdir, "H.npy"), H)
-        runs = {"--corr": ["--corr"], "--corr --fixed": ["--corr", "--fixed", os.path.join(workdir, "mask.npy")],
-                "--corr --h-weights": ["--corr", "--h-weights", os.path.join(workdir, "H.npy")]}
-        times = {k: [] for k in runs}
-        iterations = {}
-        for _ in range(repeats):
-            for label, args in runs.items():
-                before = resource.getrusage(resource.RUSAGE_CHILDREN)
-                started = time.perf_counter()
-                done = subprocess.run([cli, "nearest", *args, "--json", "-q", path], capture_output=True, text=True)
-                wall = time.perf_counter() - started
-                after = resource.getrusage(resource.RUSAGE_CHILDREN)
-                assert done.returncode == 0, done.stderr
-                import json
-                iterations[label] = json.loads(done.stdout)["iterations"]
-                cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-                times[label].append((wall, cpu))
-        plain_cpu = statistics.median(c for _, c in times["--corr"])
-        negative = int(np.sum(np.linalg.eigvalsh(C) < 0))
-        for label, values in times.items():
-            walls = [w for w, _ in values]
-            cpus = [c for _, c in values]
-            print(f"| {name} | {negative} | {label} | {statistics.median(walls):.2f} [{min(walls):.2f}, {max(walls):.2f}] | "
-                  f"{statistics.median(cpus):.2f} [{min(cpus):.2f}, {max(cpus):.2f}] | "
-                  f"{statistics.median(cpus) / plain_cpu:.1f} | {iterations[label]} |")
+        for floor in (1e-3, 0.05):
+            # The kept block must be semidefinite, and positive definite for Newton's method to
+            # converge fast (a singular kept block makes every completion singular: the dual then
+            # has no minimizer, and the warning says so).
+            C = C0.copy()
+            sub = np.linalg.eigvalsh(C[np.ix_(block, block)])
+            if sub[0] < floor:
+                C[np.ix_(block, block)] = quiet(spdfit.nearest_correlation, C[np.ix_(block, block)], min_eig=floor)
+            path = os.path.join(workdir, "C.npy")
+            np.save(path, C)
+            runs = {"--corr": ["--corr"], "--corr --fixed": ["--corr", "--fixed", os.path.join(workdir, "mask.npy")]}
+            if floor == 1e-3:  # the weights do not involve the block
+                runs["--corr --h-weights"] = ["--corr", "--h-weights", os.path.join(workdir, "H.npy")]
+            times = {(k, c): [] for k in runs for c in commands}
+            iterations = {}
+            for _ in range(repeats):
+                for label, args in runs.items():
+                    for which, command in commands.items():
+                        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+                        started = time.perf_counter()
+                        done = subprocess.run([command, "nearest", *args, "--json", "-q", path], capture_output=True,
+                                              text=True)
+                        wall = time.perf_counter() - started
+                        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+                        assert done.returncode == 0, done.stderr
+                        result = json.loads(done.stdout)
+                        assert result["converged"], (label, which)
+                        iterations[label, which] = result["iterations"]
+                        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+                        times[label, which].append((wall, cpu))
+            plain_cpu = statistics.median(c for _, c in times["--corr", ""])
+            negative = int(np.sum(np.linalg.eigvalsh(C) < 0))
+            for label in runs:
+                walls = [w for w, _ in times[label, ""]]
+                cpus = [c for _, c in times[label, ""]]
+                row = (f"| {name} | {floor:g} | {negative} | {label} | {statistics.median(walls):.2f} "
+                       f"[{min(walls):.2f}, {max(walls):.2f}] | {statistics.median(cpus):.2f} [{min(cpus):.2f}, "
+                       f"{max(cpus):.2f}] | {statistics.median(cpus) / plain_cpu:.1f} | {iterations[label, '']} |")
+                if base:
+                    base_cpus = [c for _, c in times[label, "base"]]
+                    row += (f" {statistics.median(base_cpus):.2f} [{min(base_cpus):.2f}, {max(base_cpus):.2f}] | "
+                            f"{iterations[label, 'base']} |")
+                print(row)
     print()
 
 

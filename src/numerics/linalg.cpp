@@ -75,6 +75,29 @@ void multiply(const Eigen::Ref<const MatrixXd>& A, bool transpose_a, const Eigen
   }
 }
 
+void multiply(const Eigen::Ref<const Eigen::MatrixXf>& A, bool transpose_a, const Eigen::Ref<const Eigen::MatrixXf>& B,
+              bool transpose_b, Eigen::MatrixXf& C) {
+  const Index m = transpose_a ? A.cols() : A.rows(), k = transpose_a ? A.rows() : A.cols();
+  const Index n = transpose_b ? B.rows() : B.cols();
+  if ((transpose_b ? B.cols() : B.rows()) != k) throw std::invalid_argument("multiply: the shapes do not match");
+  C.resize(m, n);
+#ifdef SPDFIT_HAVE_LAPACK
+  constexpr double kBlasMinProduct = 64.0 * 64.0 * 64.0;
+  if (static_cast<double>(m) * static_cast<double>(n) * static_cast<double>(k) >= kBlasMinProduct) {
+    cblas_sgemm(CblasColMajor, transpose_a ? CblasTrans : CblasNoTrans, transpose_b ? CblasTrans : CblasNoTrans,
+                static_cast<blasint>(m), static_cast<blasint>(n), static_cast<blasint>(k), 1.0f, A.data(),
+                static_cast<blasint>(A.outerStride()), B.data(), static_cast<blasint>(B.outerStride()), 0.0f, C.data(),
+                static_cast<blasint>(C.outerStride()));
+    return;
+  }
+#endif
+  if (k == 0) {
+    C.setZero();
+  } else {
+    eigen_product(A, transpose_a, B, transpose_b, C);
+  }
+}
+
 void solve_upper_in_place(const Eigen::Ref<const MatrixXd>& U, MatrixXd& L) {
   if (L.size() == 0) return;  // Eigen's solve takes the address of the first entry
 #ifdef SPDFIT_HAVE_LAPACK

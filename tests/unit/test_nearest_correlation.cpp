@@ -284,6 +284,32 @@ TEST(Linalg, MultiplyAgreesWithEigen) {
   EXPECT_THROW(detail::multiply(MatrixXd(3, 4), false, MatrixXd(3, 4), false, C), std::invalid_argument);
 }
 
+// The single-precision product (pattern_newton's conjugate gradients) agrees with the double one to
+// float's rounding, for every transpose and for column blocks.
+TEST(Linalg, SinglePrecisionMultiplyAgreesWithDouble) {
+  Generator g(16);
+  for (Index n : {5, 70, 130}) {
+    const MatrixXd A = g.gaussian(n, n + 7), B = g.gaussian(n + 7, n);
+    const Eigen::MatrixXf Af = A.cast<float>(), Bf = B.cast<float>();
+    Eigen::MatrixXf C;
+    const double bound = 1e-5 * A.norm() * B.norm();  // float eps 6e-8 times the inner dimension's growth
+    detail::multiply(Af, false, Bf, false, C);
+    EXPECT_LT((C.cast<double>() - A * B).norm(), bound);
+    detail::multiply(Bf, true, Bf.leftCols(n - 2), false, C);
+    EXPECT_LT((C.cast<double>() - B.transpose() * B.leftCols(n - 2)).norm(), 1e-5 * B.squaredNorm());
+    detail::multiply(Af.rightCols(n), false, Bf.bottomRows(n), true, C);
+    EXPECT_LT((C.cast<double>() - A.rightCols(n) * B.bottomRows(n).transpose()).norm(), bound);
+    detail::multiply(Bf, true, Af, true, C);
+    EXPECT_LT((C.cast<double>() - B.transpose() * A.transpose()).norm(), bound);
+    // and it is a single-precision product, not a double one rounded at the end: its error is
+    // far above double's (which would be about 1e-16 relative)
+    detail::multiply(Af, false, Bf, false, C);
+    if (n >= 70) EXPECT_GT((C.cast<double>() - Af.cast<double>() * Bf.cast<double>()).norm(), 1e-12 * A.norm() * B.norm());
+  }
+  Eigen::MatrixXf C;
+  EXPECT_THROW(detail::multiply(Eigen::MatrixXf(3, 4), false, Eigen::MatrixXf(3, 4), false, C), std::invalid_argument);
+}
+
 TEST(NearestCorrelation, InputChecks) {
   EXPECT_THROW(nearest_correlation(MatrixXd(2, 3)), std::invalid_argument);
   MatrixXd C = MatrixXd::Identity(3, 3);
