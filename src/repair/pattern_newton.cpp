@@ -26,8 +26,11 @@ constexpr double kDenseShare = 1.0 / 16.0;
 // How far the most negative eigenvalue of G + A^* y must exceed the largest positive one, after the
 // iterations ran out, to call the multipliers divergent (converged problems measured: below 1).
 constexpr double kDivergence = 10.0;
-// The conjugate gradients' relative tolerance and iteration limit per Newton step (pattern_newton).
-constexpr double kForcing = 0.1;
+// The conjugate gradients of one Newton step (pcg): after kCgExpensive iterations (about an
+// eigendecomposition's cost at r = n / 10) they stop at a relative residual of kLooseForcing, and
+// they stop at kCgMaxIterations.
+constexpr double kLooseForcing = 0.1;
+constexpr int kCgExpensive = 20;
 constexpr int kCgMaxIterations = 200;
 
 Index positive_count(const VectorXd& lambda) {
@@ -56,10 +59,11 @@ class PatternJacobian {
       for (Index j = 0; j < a; ++j) omega_(j, i) = li / (li - lambda(j));
     }
     P1t_ = P.rightCols(r).transpose();
-    // The Jacobian's products in single precision: the Newton equations are solved only to a
-    // relative residual of kForcing (0.1), far above float's rounding times the Jacobian's condition
-    // numbers measured (10^4), and sgemm takes about half dgemm's time (n = 1000 --fixed benchmark:
-    // 17.2 s of one core in double, 10.8 s in single, the same Newton steps).
+    // The Jacobian's products in single precision: an inexact Newton method needs its directions
+    // only to the forcing term (1e-2 and less, but 0.1 where the conjugate gradients are
+    // expensive, as they are for ill-conditioned Jacobians), and sgemm takes
+    // about half dgemm's time (n = 1000 --fixed benchmark: 17.2 s of one core in double, 10.8 s in
+    // single, the same Newton steps). The gradient and the stopping test stay in double.
     Pf_ = P.cast<float>();
     omegaf_ = omega_.cast<float>();
     // The diagonal of V (the preconditioner): <E_p, J[E_p]> = T_ij (diagonal) or 2 T_ij + 2 m^T Omega m
@@ -225,9 +229,10 @@ class RecycledPreconditioner {
   std::vector<double> rho_, next_rho_, alpha_;
 };
 
-// Preconditioned conjugate gradients for (V + mu I) d = rhs, to a relative residual `tol`.
+// Preconditioned conjugate gradients for (V + mu I) d = rhs, to a relative residual `tol`, or
+// kLooseForcing once kCgExpensive iterations are spent; `iterations` gets their number.
 VectorXd pcg(PatternJacobian& V, double mu, const VectorXd& rhs, double tol, int max_iterations,
-             RecycledPreconditioner& preconditioner) {
+             RecycledPreconditioner& preconditioner, int& iterations) {
   const Index m = rhs.size();
   VectorXd d = VectorXd::Zero(m);
   VectorXd r = rhs;
@@ -237,7 +242,10 @@ VectorXd pcg(PatternJacobian& V, double mu, const VectorXd& rhs, double tol, int
   VectorXd p = z, w;
   double rz = r.dot(z);
   const double stop = tol * rhs.norm();
-  for (int k = 0; k < max_iterations && r.norm() > stop; ++k) {
+  iterations = 0;
+  const double loose_stop = kLooseForcing * rhs.norm();
+  for (; iterations < max_iterations && r.norm() > stop; ++iterations) {
+    if (iterations >= kCgExpensive && r.norm() <= loose_stop) break;
     V.apply(p, w);
     w += mu * p;
     const double pw = p.dot(w);
@@ -319,6 +327,7 @@ PatternNewtonResult pattern_newton(MatrixXd G, const FixedPattern& pattern, cons
   };
   constexpr double kArmijo = 1e-4;
   RecycledPreconditioner recycled;
+  const double initial_rms = std::max(F.norm() / root_m, std::numeric_limits<double>::min());
   for (; out.iterations < max_iterations; ++out.iterations) {
     if (half_g - theta > infeasible_above) {
       out.infeasible = true;
@@ -330,14 +339,17 @@ PatternNewtonResult pattern_newton(MatrixXd G, const FixedPattern& pattern, cons
     {
       PatternJacobian V(P, lambda, pattern);
       const double mu = std::min(1e-2, gradient) * 1e-6;
-      // The inexact Newton method's forcing term: a constant 0.1 (tighter only where the stopping
-      // test needs it). Near the solution a conjugate-gradient iteration costs about a tenth of an
-      // eigendecomposition, and a kept block with small eigenvalues makes the Jacobian ill
-      // conditioned (condition numbers of 10^4 measured), so one more Newton step is cheaper than
-      // the hundreds of iterations a tighter solve takes (correlation_newton's 1e-2 and less: 33 s
-      // of CPU against 19 s on the n = 1000 benchmark).
-      const double forcing = std::max(kForcing, 0.5 * stop() / gradient);
-      step = pcg(V, mu, -F, std::min(forcing, 0.5), kCgMaxIterations, recycled);
+      // The inexact Newton method's forcing term: correlation_newton's (1e-2, less as the gradient
+      // falls, and no tighter than the stopping test needs), relaxed to 0.1 by pcg once a solve is
+      // expensive. A kept block with small eigenvalues makes the Jacobian ill conditioned
+      // (condition numbers of 10^4 measured, with a cluster of small eigenvalues the diagonal
+      // preconditioner leaves as they are); then one more Newton step is cheaper than the hundreds
+      // of iterations a tighter solve takes (n = 1000 benchmark: 33 s of CPU against 19 s), while
+      // well-conditioned problems keep their few quadratically convergent steps.
+      const double forcing = std::min(1e-2, gradient / initial_rms);
+      int cg_iterations = 0;
+      step = pcg(V, mu, -F, std::min(std::max(forcing, 0.5 * stop() / gradient), 0.5), kCgMaxIterations, recycled,
+                 cg_iterations);
     }
     const double slope = F.dot(step);
     const double theta0 = theta;
