@@ -52,8 +52,26 @@ void svd_large(const Eigen::Ref<const MatrixXd>& A, BasicSvd<MatrixXd>& out, boo
   if (compute_v) out.V = dec.matrixV();
 }
 
-void multiply(const Eigen::Ref<const MatrixXd>& A, bool transpose_a, const Eigen::Ref<const MatrixXd>& B,
-              bool transpose_b, MatrixXd& C) {
+namespace {
+
+#ifdef SPDFIT_HAVE_LAPACK
+// The BLAS's general product, C = op(A) op(B), in either precision.
+void gemm(bool transpose_a, bool transpose_b, blasint m, blasint n, blasint k, const double* A, blasint lda,
+          const double* B, blasint ldb, double* C, blasint ldc) {
+  cblas_dgemm(CblasColMajor, transpose_a ? CblasTrans : CblasNoTrans, transpose_b ? CblasTrans : CblasNoTrans, m, n,
+              k, 1.0, A, lda, B, ldb, 0.0, C, ldc);
+}
+
+void gemm(bool transpose_a, bool transpose_b, blasint m, blasint n, blasint k, const float* A, blasint lda,
+          const float* B, blasint ldb, float* C, blasint ldc) {
+  cblas_sgemm(CblasColMajor, transpose_a ? CblasTrans : CblasNoTrans, transpose_b ? CblasTrans : CblasNoTrans, m, n,
+              k, 1.0f, A, lda, B, ldb, 0.0f, C, ldc);
+}
+#endif
+
+template <typename Matrix>
+void multiply_any(const Eigen::Ref<const Matrix>& A, bool transpose_a, const Eigen::Ref<const Matrix>& B,
+                  bool transpose_b, Matrix& C) {
   const Index m = transpose_a ? A.cols() : A.rows(), k = transpose_a ? A.rows() : A.cols();
   const Index n = transpose_b ? B.rows() : B.cols();
   if ((transpose_b ? B.cols() : B.rows()) != k) throw std::invalid_argument("multiply: the shapes do not match");
@@ -61,10 +79,9 @@ void multiply(const Eigen::Ref<const MatrixXd>& A, bool transpose_a, const Eigen
 #ifdef SPDFIT_HAVE_LAPACK
   constexpr double kBlasMinProduct = 64.0 * 64.0 * 64.0;
   if (static_cast<double>(m) * static_cast<double>(n) * static_cast<double>(k) >= kBlasMinProduct) {
-    cblas_dgemm(CblasColMajor, transpose_a ? CblasTrans : CblasNoTrans, transpose_b ? CblasTrans : CblasNoTrans,
-                static_cast<blasint>(m), static_cast<blasint>(n), static_cast<blasint>(k), 1.0, A.data(),
-                static_cast<blasint>(A.outerStride()), B.data(), static_cast<blasint>(B.outerStride()), 0.0, C.data(),
-                static_cast<blasint>(C.outerStride()));
+    gemm(transpose_a, transpose_b, static_cast<blasint>(m), static_cast<blasint>(n), static_cast<blasint>(k), A.data(),
+         static_cast<blasint>(A.outerStride()), B.data(), static_cast<blasint>(B.outerStride()), C.data(),
+         static_cast<blasint>(C.outerStride()));
     return;
   }
 #endif
@@ -75,27 +92,16 @@ void multiply(const Eigen::Ref<const MatrixXd>& A, bool transpose_a, const Eigen
   }
 }
 
+}  // namespace
+
+void multiply(const Eigen::Ref<const MatrixXd>& A, bool transpose_a, const Eigen::Ref<const MatrixXd>& B,
+              bool transpose_b, MatrixXd& C) {
+  multiply_any<MatrixXd>(A, transpose_a, B, transpose_b, C);
+}
+
 void multiply(const Eigen::Ref<const Eigen::MatrixXf>& A, bool transpose_a, const Eigen::Ref<const Eigen::MatrixXf>& B,
               bool transpose_b, Eigen::MatrixXf& C) {
-  const Index m = transpose_a ? A.cols() : A.rows(), k = transpose_a ? A.rows() : A.cols();
-  const Index n = transpose_b ? B.rows() : B.cols();
-  if ((transpose_b ? B.cols() : B.rows()) != k) throw std::invalid_argument("multiply: the shapes do not match");
-  C.resize(m, n);
-#ifdef SPDFIT_HAVE_LAPACK
-  constexpr double kBlasMinProduct = 64.0 * 64.0 * 64.0;
-  if (static_cast<double>(m) * static_cast<double>(n) * static_cast<double>(k) >= kBlasMinProduct) {
-    cblas_sgemm(CblasColMajor, transpose_a ? CblasTrans : CblasNoTrans, transpose_b ? CblasTrans : CblasNoTrans,
-                static_cast<blasint>(m), static_cast<blasint>(n), static_cast<blasint>(k), 1.0f, A.data(),
-                static_cast<blasint>(A.outerStride()), B.data(), static_cast<blasint>(B.outerStride()), 0.0f, C.data(),
-                static_cast<blasint>(C.outerStride()));
-    return;
-  }
-#endif
-  if (k == 0) {
-    C.setZero();
-  } else {
-    eigen_product(A, transpose_a, B, transpose_b, C);
-  }
+  multiply_any<Eigen::MatrixXf>(A, transpose_a, B, transpose_b, C);
 }
 
 void solve_upper_in_place(const Eigen::Ref<const MatrixXd>& U, MatrixXd& L) {
