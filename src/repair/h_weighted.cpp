@@ -140,6 +140,11 @@ HWeightedResult h_weighted_alm(const MatrixXd& G, const MatrixXd& H, const Fixed
   VectorXd lambda;
   decompose(Z, s, X, P, lambda);
   MatrixXd Zp, grad, Zp_trial, grad_trial, D, r, z, p, w, correction;
+  // The subproblem's gradient at Y, whose M = Z - s Y is decomposed in (P, lambda); Zp gets (M)_+.
+  const auto gradient_at = [&](const MatrixXd& Y, MatrixXd& Zp_out, MatrixXd& grad_out) {
+    Zp_out = positive_part(P, lambda);
+    grad_out = (H2.cwiseProduct(Y - G) - Zp_out).cwiseProduct(free);
+  };
   double gn = 0.0, rounding = 0.0, previous_primal = std::numeric_limits<double>::infinity();
   const double root_n = std::sqrt(static_cast<double>(n));
   for (out.outer = 0;; ++out.outer) {
@@ -148,10 +153,7 @@ HWeightedResult h_weighted_alm(const MatrixXd& G, const MatrixXd& H, const Fixed
         std::max(0.1 * tolerance * dual_scale, 0.1 * dual_scale * std::pow(1e-2, out.outer));
     bool fresh = false;  // Zp and grad are those of X already (the line search computed them)
     for (;;) {
-      if (!fresh) {
-        Zp = positive_part(P, lambda);
-        grad = (H2.cwiseProduct(X - G) - Zp).cwiseProduct(free);
-      }
+      if (!fresh) gradient_at(X, Zp, grad);
       fresh = false;
       gn = grad.norm();
       // The gradient's own rounding: Zp comes from an eigendecomposition of M = Z - s X, exact for a
@@ -214,8 +216,7 @@ HWeightedResult h_weighted_alm(const MatrixXd& G, const MatrixXd& H, const Fixed
         for (int k = 0; k < kGradientHalvings && !taken; ++k, t *= 0.5) {
           trial = X + t * D;
           decompose(Z, s, trial, P, lambda);
-          Zp_trial = positive_part(P, lambda);
-          grad_trial = (H2.cwiseProduct(trial - G) - Zp_trial).cwiseProduct(free);
+          gradient_at(trial, Zp_trial, grad_trial);
           taken = grad_trial.norm() < gn;
         }
         if (!taken) {
@@ -227,7 +228,6 @@ HWeightedResult h_weighted_alm(const MatrixXd& G, const MatrixXd& H, const Fixed
         std::swap(Zp, Zp_trial);
         std::swap(grad, grad_trial);
         fresh = true;
-        t *= 2.0;
       } else {
         for (int k = 0; k < 40; ++k) {
           trial = X + t * D;
