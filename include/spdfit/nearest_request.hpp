@@ -120,8 +120,9 @@ struct NearestRun {
 /// names), checks that X is square (a DataError naming the file, and a first row that looks like a
 /// header of numbers) and each matrix option's size and entries (a DataError naming its file), and
 /// repairs it (nearest); the repair's refusals (NaN, a bad diagonal, infeasible kept entries) are
-/// io::DataError naming X's file, InputError otherwise. Cost: the repair's.
-NearestRun run_nearest(const NearestCommand& command);
+/// io::DataError naming X's file, InputError otherwise. Cost: the repair's. The command is taken by
+/// value: a caller that moves it in (std::move) lends its matrix to the repair without a copy.
+NearestRun run_nearest(NearestCommand command);
 
 /// The run as `spdfit nearest --json` prints it: the repair's JSON with the variables' names and
 /// the options it ran with (corr, keep_diag, via_corr, min_eig_rel, alpha).

@@ -13,6 +13,7 @@
 #include <exception>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mex.h"
@@ -118,16 +119,16 @@ void fit_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* prhs[
 
 void nearest_command(bool want_info, mxArray* plhs[], int nrhs, const mxArray* prhs[]) {
   need_arguments("nearest", nrhs, 2, "C: [X, info] = spdfit.nearest(C, name, value, ...)");
-  const Eigen::MatrixXd C = read_matrix(prhs[1], "C");
-  // The command's workflow: it reads the matrix options given as files ('Fixed', 'mask.csv').
+  // The command's workflow: it reads the matrix options given as files ('Fixed', 'mask.csv'). C is
+  // moved into it, not copied.
   NearestCommand command;
-  command.matrix.values = C;
+  command.matrix.values = read_matrix(prhs[1], "C");
   const std::vector<std::string_view> given = set_pairs(command.repair, nearest_option_table(),
                                                         pairs_from("nearest", nrhs, prhs, 2), matlab_function("nearest"));
   check_nearest_request(given);
-  const NearestRun run = run_nearest(command);
+  const NearestRun run = run_nearest(std::move(command));
   const NearestResult& result = run.result;
-  plhs[0] = write_matrix(command.repair.factors_only ? result.F : result.X);
+  plhs[0] = write_matrix(run.repair.factors_only ? result.F : result.X);
   plhs[1] = want_info ? write_json(to_json(result)) : mxCreateDoubleMatrix(0, 0, mxREAL);
   plhs[2] = warnings_cell(run.warnings);
 }

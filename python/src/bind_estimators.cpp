@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "bindings.hpp"
@@ -120,15 +121,15 @@ void bind_estimators(py::module_& m) {
   // files' readers' too).
   m.def(
       "nearest",
-      [](const Eigen::MatrixXd& C, const std::string& entry, const py::dict& options) {
+      [](Eigen::MatrixXd C, const std::string& entry, const py::dict& options) {
         std::vector<std::string_view> given;
         NearestCommand command;
-        command.matrix.values = C;
+        command.matrix.values = std::move(C);  // the caster's copy, moved on to the repair (run_nearest)
         command.repair = nearest_request(entry, options, given);
         command.repair.fixed_index_base = 0;
         check_nearest_request(given, python::entry(entry).unavailable);
         py::gil_scoped_release release;
-        NearestRun run = run_nearest(command);
+        NearestRun run = run_nearest(std::move(command));
         run.result.warnings = std::move(run.warnings);
         return run.result;
       },
