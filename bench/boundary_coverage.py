@@ -6,8 +6,9 @@ Q fixed), full non-diagonal noise covariances Sigma_A and Sigma_B (fixed) of tot
 `noise` per entry against a signal of standard deviation 1, m rows, and `rest` rows recorded at rest
 (A's true values zero, B's a constant load) from which auto takes its noise model
 (spdfit.NoiseModel.from_rest). Each trial draws new data and rest rows and runs
-spdfit.fit(A, B, "auto", noise=..., bootstrap=R); an entry is covered when its percentile interval
-contains the truth. Printed per set-up and build: the fraction of trials on the boundary (auto's
+spdfit.fit(A, B, "auto", noise=..., bootstrap=R, interval=...) for each of the bootstrap's interval
+types (`--types`, default percentile, basic and normal: the same replicates, seed k + 1, for every
+type); an entry is covered when its interval contains the truth. Printed per set-up and build: the fraction of trials on the boundary (auto's
 reason "boundary"), the method auto ran there, and the mean coverage over the six distinct entries
 of X (lowest-highest entry), over all trials and over the boundary trials alone, with binomial
 standard errors; and the mean error ||X - X_true||_F.
@@ -17,6 +18,8 @@ process on the same draws, so that two builds are compared in one run:
 
     /usr/bin/python3 bench/boundary_coverage.py --trials 400 --replicates 200 \
         --builds build/python /path/to/other/build/python
+
+(A build from before the interval types, 2026-12-02, runs with `--types percentile` only.)
 """
 import argparse
 import json
@@ -59,12 +62,13 @@ def draw(k, m, noise, rest):
     return A, B, rest_A, rest_B, X
 
 
-def child(trials, replicates):
-    """In the build's process: every set-up's trials, as JSON on stdout."""
+def child(trials, replicates, kind):
+    """In the build's process: every set-up's trials with one interval type, as JSON on stdout."""
     import warnings
     import spdfit
     warnings.simplefilter("ignore", spdfit.SpdfitWarning)
     upper = np.triu_indices(N)
+    extra = {} if kind == "percentile" else {"interval": kind}  # builds without the option: percentile
     out = []
     for m, noise, rest in SETUPS:
         rows = []
@@ -72,7 +76,7 @@ def child(trials, replicates):
         for k in range(trials):
             A, B, rest_A, rest_B, X = draw(k, m, noise, rest)
             r = spdfit.fit(A, B, "auto", noise=spdfit.NoiseModel.from_rest(rest_A, rest_B), bootstrap=replicates,
-                           seed=k + 1)
+                           seed=k + 1, **extra)
             reason = r.diagnostics.reason.code if r.diagnostics.reason else ""
             if not r.ok or r.interval is None:
                 rows.append({"ok": False, "reason": reason, "method": r.method})
@@ -80,6 +84,7 @@ def child(trials, replicates):
             covered = (r.interval.lower <= X) & (X <= r.interval.upper)
             rows.append({"ok": True, "reason": reason, "method": r.method,
                          "covered": covered[upper].astype(int).tolist(),
+                         "width": float(np.mean((r.interval.upper - r.interval.lower)[upper])),
                          "error": float(np.linalg.norm(r.X - X))})
         out.append({"m": m, "noise": noise, "rest": rest, "rows": rows, "cpu": time.process_time() - start})
     print(json.dumps(out))
@@ -101,10 +106,12 @@ def main():
     parser.add_argument("--trials", type=int, default=400)
     parser.add_argument("--replicates", type=int, default=200)
     parser.add_argument("--builds", nargs="+", default=["build/python"])
-    parser.add_argument("--child", action="store_true", help=argparse.SUPPRESS)
+    parser.add_argument("--types", nargs="+", default=["percentile", "basic", "normal"],
+                        help="the bootstrap's interval types to measure")
+    parser.add_argument("--child", help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.child:
-        child(args.trials, args.replicates)
+        child(args.trials, args.replicates, args.child)
         return
 
     sys.path.insert(0, str(HERE))
@@ -112,20 +119,22 @@ def main():
     results = {}
     for build in args.builds:
         env = dict(os.environ, PYTHONPATH=str(pathlib.Path(build).resolve()))
-        text = subprocess.run([sys.executable, __file__, "--child", "--trials", str(args.trials), "--replicates",
-                               str(args.replicates)], env=env, check=True, capture_output=True, text=True).stdout
-        results[build] = json.loads(text)
+        for kind in args.types:
+            text = subprocess.run([sys.executable, __file__, "--child", kind, "--trials", str(args.trials),
+                                   "--replicates", str(args.replicates)], env=env, check=True, capture_output=True,
+                                  text=True).stdout
+            results[(build, kind)] = json.loads(text)
 
     print(f"# auto's bootstrap coverage on the boundary: {time.strftime('%Y-%m-%d')}, {cpu_model()}\n")
     print(f"`/usr/bin/python3 bench/boundary_coverage.py --trials {args.trials} --replicates {args.replicates} "
-          f"--builds {' '.join(args.builds)}`: n = {N}, X = Q diag(1, 1e-3, 1e-6) Q^T, full Sigma_A and Sigma_B, "
-          f"auto with the noise model of the rest rows and {args.replicates} bootstrap replicates per trial, "
-          f"nominal level 95%. Coverage: mean over X's six distinct entries ± its binomial standard error "
-          f"(lowest-highest entry).\n")
-    print("| build | m | noise std | on the boundary | auto ran there | coverage, all trials | coverage, boundary "
-          "trials | coverage, interior trials | mean error ‖X − X_true‖_F | CPU seconds |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
-    for build, setups in results.items():
+          f"--builds {' '.join(args.builds)} --types {' '.join(args.types)}`: n = {N}, X = Q diag(1, 1e-3, 1e-6) "
+          f"Q^T, full Sigma_A and Sigma_B, auto with the noise model of the rest rows and {args.replicates} "
+          f"bootstrap replicates per trial, nominal level 95%. Coverage: mean over X's six distinct entries ± its "
+          f"binomial standard error (lowest-highest entry); width: the intervals' mean width over those entries.\n")
+    print("| build | interval | m | noise std | on the boundary | auto ran there | coverage, all trials | coverage, "
+          "boundary trials | coverage, interior trials | mean width | mean error ‖X − X_true‖_F | CPU seconds |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for (build, kind), setups in results.items():
         for s in setups:
             rows = s["rows"]
             on = [r for r in rows if r["reason"] == "boundary"]
@@ -135,9 +144,11 @@ def main():
             all_cov, _ = summary(rows)
             on_cov, _ = summary(on)
             off_cov, _ = summary(off)
-            print(f"| {build} | {s['m']} | {s['noise']} | {len(on)} of {len(rows)} ({100 * len(on) / len(rows):.0f}%) "
-                  f"| {', '.join(ran) or '-'} | {all_cov} | {on_cov} | {off_cov} | {np.mean(errors):.4g} "
-                  f"| {s['cpu']:.0f} |")
+            widths = [r["width"] for r in rows if r["ok"] and "width" in r]
+            width = f"{np.mean(widths):.4f}" if widths else "-"
+            print(f"| {build} | {kind} | {s['m']} | {s['noise']} | {len(on)} of {len(rows)} "
+                  f"({100 * len(on) / len(rows):.0f}%) | {', '.join(ran) or '-'} | {all_cov} | {on_cov} | {off_cov} "
+                  f"| {width} | {np.mean(errors):.4g} | {s['cpu']:.0f} |")
 
 
 if __name__ == "__main__":

@@ -55,6 +55,28 @@ inline std::optional<RobustLoss> robust_loss_named(std::string_view name) {
   return std::nullopt;
 }
 
+/// The bootstrap interval of each entry of X (FitOptions::interval), from the replicates'
+/// quantiles q_lo, q_hi (at (1 - level) / 2 and (1 + level) / 2), their mean and standard error.
+enum class BootstrapInterval {
+  Percentile,  ///< [q_lo, q_hi]: the replicates' central fraction as it is
+  Basic,       ///< [2 X - q_hi, 2 X - q_lo]: the percentile interval reflected about the estimate,
+               ///< which corrects the estimate's bias (same width); better near the SPD boundary
+  Normal,      ///< (X - bias) -+ z se, z the normal quantile at (1 + level) / 2
+};
+
+/// "percentile", "basic" or "normal".
+inline const char* to_string(BootstrapInterval type) {
+  return type == BootstrapInterval::Basic ? "basic" : type == BootstrapInterval::Normal ? "normal" : "percentile";
+}
+
+/// The interval to_string spells `name`, or nothing.
+inline std::optional<BootstrapInterval> bootstrap_interval_named(std::string_view name) {
+  for (BootstrapInterval t : {BootstrapInterval::Percentile, BootstrapInterval::Basic, BootstrapInterval::Normal}) {
+    if (name == to_string(t)) return t;
+  }
+  return std::nullopt;
+}
+
 /// Options for the estimators. The defaults follow the source documents.
 struct FitOptions {
   /// Relative cut-off for the numerical rank (spdfit/rank.hpp): a singular value sigma_i counts
@@ -136,8 +158,11 @@ struct FitOptions {
   /// refit each resample with the same method (auto: the method it chose on the full data). An
   /// integer >= 0. The overloads taking a Reduction have no rows to resample and ignore it.
   int bootstrap = 0;
-  /// The bootstrap's two-sided percentile interval covers this fraction: in (0, 1), default 0.95.
+  /// The bootstrap's two-sided interval covers this fraction: in (0, 1), default 0.95.
   double confidence = 0.95;
+  /// The bootstrap interval of each entry of X (Bootstrap::interval): percentile (the default),
+  /// basic or normal. The sorted values' intervals (eigenvalues, modes) stay percentile intervals.
+  BootstrapInterval interval = BootstrapInterval::Percentile;
   /// The bootstrap's seed: replicate r draws from a generator keyed by (seed, r), so the numbers
   /// depend on nothing else (not on the number of threads).
   std::uint64_t seed = 1;

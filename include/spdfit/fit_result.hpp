@@ -154,11 +154,14 @@ struct Diagnostics {
   std::optional<AutoReason> reason;
 };
 
-/// A two-sided bootstrap percentile interval for each entry: `lower` and `upper` are the
-/// (1 - level) / 2 and (1 + level) / 2 quantiles of the replicates (linear interpolation between
-/// order statistics, as numpy.quantile's default).
+/// A two-sided bootstrap interval for each entry, of the kind `type` (FitOptions::interval). With
+/// q_lo and q_hi the (1 - level) / 2 and (1 + level) / 2 quantiles of the replicates (linear
+/// interpolation between order statistics, as numpy.quantile's default): percentile [q_lo, q_hi];
+/// basic [2 X - q_hi, 2 X - q_lo]; normal X - bias -+ z se (Bootstrap::bias, standard_errors; z
+/// the standard normal quantile at (1 + level) / 2).
 struct Interval {
   double level = 0.95;
+  BootstrapInterval type = BootstrapInterval::Percentile;
   Eigen::MatrixXd lower, upper;
 };
 

@@ -154,8 +154,13 @@ void bind_results(py::module_& m) {
       .def(pickle_json<Diagnostics>("Diagnostics", &exact_json<Diagnostics>))
       .def("__repr__", json_repr<Diagnostics>("Diagnostics"));
 
-  py::class_<Interval>(m, "Interval", "A bootstrap percentile interval: the central `level` fraction of the replicates.")
+  py::class_<Interval>(m, "Interval",
+                       "A bootstrap interval of each entry at `level`: 'percentile' (the central `level` fraction of "
+                       "the replicates), 'basic' (that reflected about the estimate) or 'normal' (the bias-corrected "
+                       "estimate -+ z standard errors), as `type` says (fit's interval=).")
       .def_property_readonly("level", copied(&Interval::level))
+      .def_property_readonly("type", [](const Interval& i) { return std::string(to_string(i.type)); },
+                             "'percentile', 'basic' or 'normal'")
       .def_property_readonly("lower", copied(&Interval::lower))
       .def_property_readonly("upper", copied(&Interval::upper))
       .def(pickle_json<Interval>("Interval", &exact_json<Interval>))
@@ -200,7 +205,7 @@ void bind_results(py::module_& m) {
       .def_property_readonly("standard_errors", from_bootstrap(&Bootstrap::standard_errors),
                              "the bootstrap standard error of every entry of X (n x n), or None without bootstrap=N")
       .def_property_readonly("interval", from_bootstrap(&Bootstrap::interval),
-                             "the bootstrap percentile interval (level, lower, upper), or None")
+                             "the bootstrap interval (level, type, lower, upper), or None")
       .def_property_readonly("bias", from_bootstrap(&Bootstrap::bias),
                              "the bootstrap bias estimate (mean of the replicates minus X), or None")
       .def_property_readonly("bootstrap", copied(&FitResult::bootstrap),

@@ -102,7 +102,7 @@ using Spec = OptionSpec<IdentifyRequest>;
 // The fit's options every estimator of identify shares.
 const std::vector<std::string_view> kSharedFitOptions = {
     "rank_tolerance", "noise_ratio", "noise", "rest_a", "rest_b", "noise_std_a", "noise_std_b", "noise_cov_a",
-    "noise_cov_b", "max_iterations", "min_eig", "bootstrap", "confidence", "seed", "threads", "a_cols", "b_cols",
+    "noise_cov_b", "max_iterations", "min_eig", "bootstrap", "confidence", "interval", "seed", "threads", "a_cols", "b_cols",
     "scale_a", "scale_b", "rows", "rest_rows", "time_col", "offsets", "robust", "robust_tuning"};
 
 const MatrixInput& matrix(const OptionValue& v) { return std::get<MatrixInput>(v); }

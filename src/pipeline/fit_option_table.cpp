@@ -384,6 +384,28 @@ std::vector<Spec> make_table() {
   confidence.get = [](const FitRequest& r) -> std::optional<OptionValue> { return r.options.confidence; };
   table.push_back(confidence);
 
+  Spec interval;
+  interval.name = "interval";
+  interval.cli = "--interval";
+  interval.python = "interval";
+  interval.type = OptionType::Choice;
+  interval.value_name = "percentile|basic|normal";
+  interval.choices = {"percentile", "basic", "normal"};
+  interval.help = "The bootstrap interval of each entry: percentile (the replicates' quantiles), basic (those "
+                  "reflected about the estimate, which corrects its bias: better where X is near singular) or "
+                  "normal (the bias-corrected estimate -+ z standard errors)";
+  interval.default_text = "percentile";
+  interval.needs = {"bootstrap"};
+  interval.needs_message = "`interval` applies to the bootstrap: give `bootstrap` N as well";
+  interval.set = [](FitRequest& r, const OptionValue& v) {
+    r.options.interval = bootstrap_interval_named(std::get<std::string>(v)).value_or(BootstrapInterval::Percentile);
+  };
+  interval.get = [](const FitRequest& r) -> std::optional<OptionValue> {
+    return std::string(to_string(r.options.interval));
+  };
+  interval.nullable = false;
+  table.push_back(interval);
+
   Spec seed;
   seed.name = "seed";
   seed.cli = "--seed";

@@ -160,7 +160,8 @@ std::string report(const FitResult& result, const ReportHints& hints) {
   }
   if (b) {
     out << "\n" << format_percent(b->interval.level, Precision::Medium)
-        << " percentile intervals of every entry and the bias estimate: " << hints.details << "\n";
+        << " " << to_string(b->interval.type) << " intervals of every entry and the bias estimate: " << hints.details
+        << "\n";
   }
   // noise_sigma is the equal-noise model's estimate: beside a noise model it would contradict it.
   if (d.noise_sigma && !d.noise_model) {

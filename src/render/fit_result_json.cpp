@@ -67,6 +67,7 @@ AutoReason reason_from(const Json& object, const std::string& type) {
 
 Json interval_json(const Interval& interval, JsonStyle style) {
   return {{"level", interval.level},
+          {"type", to_string(interval.type)},
           {"lower", matrix_json(interval.lower, style)},
           {"upper", matrix_json(interval.upper, style)}};
 }
@@ -74,6 +75,12 @@ Json interval_json(const Interval& interval, JsonStyle style) {
 Interval interval_from(const Json& object, const std::string& type) {
   Interval out;
   out.level = number_from(field(object, "level", type), type + " 'level'");
+  if (optional_field(object, "type")) {  // absent in results written before the interval types
+    const auto name = value_from<std::string>(object, "type", type);
+    const std::optional<BootstrapInterval> kind = bootstrap_interval_named(name);
+    if (!kind) throw std::invalid_argument(type + " 'type': expected percentile, basic or normal, got '" + name + "'");
+    out.type = *kind;
+  }
   out.lower = matrix_from(field(object, "lower", type), type + " 'lower'");
   out.upper = matrix_from(field(object, "upper", type), type + " 'upper'");
   return out;

@@ -138,6 +138,21 @@ Moments moments(std::vector<double> values, double level) {
 
 std::string percent(double fraction) { return format_percent(fraction); }
 
+// The standard normal quantile z with Phi(z) = p, p in (0, 1): Newton's method on
+// Phi(z) = erfc(-z / sqrt 2) / 2 from the logistic approximation, to rounding (a handful of steps).
+double normal_quantile(double p) {
+  double z = std::log(p / (1.0 - p)) / 1.702;  // the logistic distribution matched to the normal
+  for (int it = 0; it < 50; ++it) {
+    const double cdf = 0.5 * std::erfc(-z / std::sqrt(2.0));
+    const double density = std::exp(-0.5 * z * z) / std::sqrt(2.0 * 3.14159265358979323846);
+    if (!(density > 0.0)) break;
+    const double step = (cdf - p) / density;
+    z -= step;
+    if (std::abs(step) <= 1e-15 * std::max(1.0, std::abs(z))) break;
+  }
+  return z;
+}
+
 }  // namespace
 
 SpectrumUncertainty summarize_spectrum(const VectorXd& estimate, const std::vector<std::optional<VectorXd>>& replicates,
@@ -228,6 +243,8 @@ void attach_bootstrap(FitResult& result, const std::vector<Replicate>& replicate
   boot.seed = options.seed;
   boot.method = result.method;
   boot.interval.level = options.confidence;
+  boot.interval.type = options.interval;
+  const double z = normal_quantile(0.5 * (1.0 + options.confidence));
   const Index rows = result.X.rows(), cols = result.X.cols();
   std::vector<const MatrixXd*> present;
   const std::string* first_failure = nullptr;
@@ -250,8 +267,21 @@ void attach_bootstrap(FitResult& result, const std::vector<Replicate>& replicate
       const Moments mo = moments(values, options.confidence);
       boot.standard_errors(i, j) = mo.standard_error;
       boot.bias(i, j) = mo.mean - result.X(i, j);
-      boot.interval.lower(i, j) = mo.lower;
-      boot.interval.upper(i, j) = mo.upper;
+      const double estimate = result.X(i, j);
+      switch (options.interval) {
+        case BootstrapInterval::Percentile:
+          boot.interval.lower(i, j) = mo.lower;
+          boot.interval.upper(i, j) = mo.upper;
+          break;
+        case BootstrapInterval::Basic:  // the percentile interval reflected about the estimate
+          boot.interval.lower(i, j) = 2.0 * estimate - mo.upper;
+          boot.interval.upper(i, j) = 2.0 * estimate - mo.lower;
+          break;
+        case BootstrapInterval::Normal:  // centred on the bias-corrected estimate X - bias = 2 X - mean
+          boot.interval.lower(i, j) = (2.0 * estimate - mo.mean) - z * mo.standard_error;
+          boot.interval.upper(i, j) = (2.0 * estimate - mo.mean) + z * mo.standard_error;
+          break;
+      }
     }
   }
   if (result.diagnostics.symmetric || (rows == cols && result.X == result.X.transpose())) {

@@ -81,8 +81,35 @@ def test_confidence_sets_the_level(spdfit, files):
     assert np.all(width < np.array(wide["interval"]["upper"]) - np.array(wide["interval"]["lower"]))
 
 
+def test_interval_types_from_the_same_replicates(spdfit, files):
+    runs = {kind: json.loads(spdfit("fit", "-m", "spd-tls", "--bootstrap", "150", "--interval", kind, "--json",
+                                    *files).stdout) for kind in ("percentile", "basic", "normal")}
+    default = json.loads(spdfit("fit", "-m", "spd-tls", "--bootstrap", "150", "--json", *files).stdout)
+    assert default["interval"] == runs["percentile"]["interval"] and default["interval"]["type"] == "percentile"
+    X = np.array(runs["basic"]["X"])
+    q_lo, q_hi = (np.array(runs["percentile"]["interval"][k]) for k in ("lower", "upper"))
+    # basic: the percentile interval reflected about the estimate
+    assert runs["basic"]["interval"]["type"] == "basic"
+    np.testing.assert_allclose(runs["basic"]["interval"]["lower"], 2 * X - q_hi, rtol=1e-12, atol=1e-14)
+    np.testing.assert_allclose(runs["basic"]["interval"]["upper"], 2 * X - q_lo, rtol=1e-12, atol=1e-14)
+    # normal: X - bias -+ z se with z = Phi^-1(0.975) (scipy's normal quantile: 1.959963984540054)
+    z = 1.959963984540054
+    se, bias = np.array(runs["normal"]["standard_errors"]), np.array(runs["normal"]["bias"])
+    assert runs["normal"]["interval"]["type"] == "normal"
+    np.testing.assert_allclose(runs["normal"]["interval"]["lower"], X - bias - z * se, rtol=1e-12, atol=1e-14)
+    np.testing.assert_allclose(runs["normal"]["interval"]["upper"], X - bias + z * se, rtol=1e-12, atol=1e-14)
+    # The same replicates: standard errors, bias and the eigenvalues' (percentile) intervals unchanged.
+    for kind in ("basic", "normal"):
+        assert runs[kind]["standard_errors"] == default["standard_errors"]
+        assert runs[kind]["bootstrap"]["eigenvalues"] == default["bootstrap"]["eigenvalues"]
+    report = spdfit("fit", "-m", "spd-tls", "--bootstrap", "50", "--interval", "basic", "--report", *files)
+    assert report.returncode == 0 and "95% basic intervals of every entry" in report.stdout
+
+
 @pytest.mark.parametrize("args, message", [
     (["--bootstrap", "-1"], "--bootstrap"),
+    (["--interval", "basic"], "--interval applies to the bootstrap"),
+    (["--bootstrap", "10", "--interval", "bca"], "percentile"),
     (["--bootstrap", "10", "--confidence", "1"], "fraction strictly between 0 and 1"),
     (["--bootstrap", "10", "--confidence", "95"], "fraction strictly between 0 and 1"),
     (["--seed", "3"], "--seed applies to the bootstrap"),

@@ -3,11 +3,13 @@ independent references: the closed-form standard errors of least squares, scipy.
 total least squares, Monte Carlo coverage of the intervals, and the streaming bootstrap against the
 in-memory one."""
 import os
+import pickle
 import warnings
 
 import numpy as np
 import pytest
 import scipy.odr
+import scipy.stats
 
 import spdfit
 import spdfit.hexapod
@@ -53,6 +55,80 @@ def test_fields_shapes_and_meaning():
     eig = r.bootstrap.eigenvalues
     np.testing.assert_allclose(eig.estimate, np.linalg.eigvalsh(r.X), rtol=1e-12)
     assert np.all(eig.lower <= eig.estimate) and np.all(eig.estimate <= eig.upper)
+
+
+def test_interval_types_against_scipys_normal_quantile():
+    A, B = noisy_pair(np.random.default_rng(12), 60, X2, 0.3, 0.3)
+    level = 0.9
+    fits = {kind: quiet_fit(A, B, "spd-tls", bootstrap=300, seed=4, confidence=level, interval=kind)
+            for kind in ("percentile", "basic", "normal")}
+    perc, basic, normal = fits["percentile"], fits["basic"], fits["normal"]
+    assert (perc.interval.type, basic.interval.type, normal.interval.type) == ("percentile", "basic", "normal")
+    np.testing.assert_allclose(basic.interval.lower, 2 * perc.X - perc.interval.upper, rtol=1e-12, atol=1e-14)
+    np.testing.assert_allclose(basic.interval.upper, 2 * perc.X - perc.interval.lower, rtol=1e-12, atol=1e-14)
+    z = scipy.stats.norm.ppf(0.5 * (1 + level))
+    centre = normal.X - normal.bias
+    np.testing.assert_allclose(normal.interval.lower, centre - z * normal.standard_errors, rtol=1e-12, atol=1e-14)
+    np.testing.assert_allclose(normal.interval.upper, centre + z * normal.standard_errors, rtol=1e-12, atol=1e-14)
+    np.testing.assert_array_equal(normal.standard_errors, perc.standard_errors)
+    np.testing.assert_array_equal(basic.bootstrap.eigenvalues.lower, perc.bootstrap.eigenvalues.lower)
+    again = pickle.loads(pickle.dumps(basic))
+    assert again.interval.type == "basic"
+    np.testing.assert_array_equal(again.interval.lower, basic.interval.lower)
+    with pytest.raises(ValueError, match="bootstrap"):
+        spdfit.fit(A, B, "spde", interval="basic")
+    with pytest.raises(ValueError, match="percentile"):
+        spdfit.fit(A, B, "spde", bootstrap=10, interval="bca")
+
+
+def boundary_data(k, m):
+    """The boundary set-up of bench/boundary_coverage.py (n = 3, X of condition 1e6, full noise
+    covariances, noise std 0.3 per entry): auto's likelihood infimum is on the boundary in about
+    85% of the data sets."""
+    rng = np.random.default_rng(42)
+    Q, _ = np.linalg.qr(rng.standard_normal((3, 3)))
+    X = Q @ np.diag([1.0, 1e-3, 1e-6]) @ Q.T
+    X = 0.5 * (X + X.T)
+    covs = []
+    for _ in range(2):
+        G = rng.standard_normal((3, 3))
+        C = G @ G.T + 0.3 * np.eye(3)
+        covs.append(0.09 * 3 * C / np.trace(C))
+    rng = np.random.default_rng(1000 + k)
+    A0 = rng.standard_normal((m, 3))
+    A = A0 + rng.multivariate_normal(np.zeros(3), covs[0], m)
+    B = A0 @ X + rng.multivariate_normal(np.zeros(3), covs[1], m)
+    rest_A = rng.multivariate_normal(np.zeros(3), covs[0], 2000)
+    rest_B = np.array([0.5, -1.0, 2.0]) + rng.multivariate_normal(np.zeros(3), covs[1], 2000)
+    return A, B, rest_A, rest_B, X
+
+
+@monte_carlo
+def test_basic_interval_covers_better_than_percentile_on_the_boundary():
+    # Paired on the same replicates: the percentile interval repeats the constrained estimate's bias
+    # (bench/boundary_coverage.py: 88.6 +- 0.8 % on the boundary trials at m = 40), the basic one
+    # corrects it at the same width. The difference's standard error is estimated from the trials.
+    upper = np.triu_indices(3)
+    diffs, basic_cov, boundary = [], [], 0
+    for k in range(150):
+        A, B, rest_A, rest_B, X = boundary_data(k, 40)
+        noise = spdfit.NoiseModel.from_rest(rest_A, rest_B)
+        p = quiet_fit(A, B, "auto", noise=noise, bootstrap=100, seed=k + 1)
+        b = quiet_fit(A, B, "auto", noise=noise, bootstrap=100, seed=k + 1, interval="basic")
+        boundary += p.diagnostics.reason is not None and p.diagnostics.reason.code == "boundary"
+        np.testing.assert_array_equal(p.standard_errors, b.standard_errors)
+        np.testing.assert_allclose(b.interval.upper - b.interval.lower, p.interval.upper - p.interval.lower,
+                                   rtol=1e-12, atol=1e-14)
+        cover_p = ((p.interval.lower <= X) & (X <= p.interval.upper))[upper].mean()
+        cover_b = ((b.interval.lower <= X) & (X <= b.interval.upper))[upper].mean()
+        diffs.append(cover_b - cover_p)
+        basic_cov.append(cover_b)
+    assert boundary >= 100  # the set-up hits the boundary (85% expected)
+    diffs = np.array(diffs)
+    se = diffs.std(ddof=1) / np.sqrt(len(diffs))
+    assert diffs.mean() > 3 * se, (diffs.mean(), se)
+    coverage = np.mean(basic_cov)
+    assert coverage > 0.90 - 3 * np.std(basic_cov, ddof=1) / np.sqrt(len(basic_cov)), coverage
 
 
 def test_seed_and_threads():
