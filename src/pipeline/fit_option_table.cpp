@@ -358,7 +358,7 @@ std::vector<Spec> make_table() {
   bootstrap.python = "bootstrap";
   bootstrap.type = OptionType::Integer;
   bootstrap.value_name = "N";
-  bootstrap.help = "Resample the rows N times for standard errors, a percentile interval and the bias of "
+  bootstrap.help = "Resample the rows N times for standard errors, an interval (`interval`) and the bias of "
                    "every entry of X (auto: refitting the method it chose)";
   bootstrap.default_text = "0";
   bootstrap.range = {0.0, 1e7};
