@@ -27,6 +27,11 @@ ref = cli_json(cli, sprintf('fit --method spd-tls --bootstrap 50 --seed 3 --conf
 assert_close(X, ref.X, 1e-13, 'bootstrap X');
 assert_close(info.standard_errors, ref.standard_errors, 1e-12, 'bootstrap standard errors');
 assert(info.bootstrap.replicates == 50, 'bootstrap replicates');
+[X, info] = spdfit.fit(A, B, 'spd-tls', 'Bootstrap', 50, 'Seed', 3, 'Confidence', 0.9, 'Interval', 'basic');
+ref = cli_json(cli, sprintf('fit --method spd-tls --bootstrap 50 --seed 3 --confidence 0.9 --interval basic --json "%s" "%s"', ...
+                            fullfile(work, 'A.csv'), fullfile(work, 'B.csv')));
+assert(strcmp(info.interval.type, 'basic') && strcmp(ref.interval.type, 'basic'), 'basic interval type');
+assert_close(info.interval.lower, ref.interval.lower, 1e-12, 'basic interval');
 
 % The noise model: rest rows and covariances as matrices, standard deviations as numbers, against
 % the CLI's files and lists.
@@ -218,6 +223,8 @@ expect_error(@() spdfit.fit(A, B, 'spde', 'NoSuchOption', 1), 'spdfit:UsageError
 expect_error(@() spdfit.fit(A, B, 'spde', 'Bootstrap'), 'spdfit:UsageError', 'name-value pairs');
 expect_error(@() spdfit.fit(A, B, 'spde', 'Bootstrap', 2.5), 'spdfit:UsageError', 'integer');
 expect_error(@() spdfit.fit(A, B, 'spde', 'Confidence', 0.9), 'spdfit:UsageError', 'Bootstrap');
+expect_error(@() spdfit.fit(A, B, 'spde', 'Interval', 'basic'), 'spdfit:UsageError', 'Bootstrap');
+expect_error(@() spdfit.fit(A, B, 'spde', 'Bootstrap', 10, 'Interval', 'bca'), 'spdfit:UsageError', 'percentile');
 expect_error(@() spdfit.fit(A, B, 'ls', 'MaxIterations', 10), 'spdfit:UsageError', 'MaxIterations');
 expect_error(@() spdfit.fit(A, B, 'spd-tls', 'MaxIterations', -1), 'spdfit:UsageError', 'MaxIterations');
 expect_error(@() spdfit.nearest(C, 'Corr', 'yes'), 'spdfit:UsageError', 'Corr');
