@@ -39,10 +39,15 @@ SETUPS = [  # (m, noise std per entry, rest rows)
 ]
 
 
+# X's eigenvalues: the issue's near-singular X by default; `--eigenvalues 1 0.6 0.3` gives a
+# well-conditioned X for comparison (the boundary then is rarely or never hit).
+EIGENVALUES = [1.0, 1e-3, 1e-6]
+
+
 def truth_and_covariances(noise):
     rng = np.random.default_rng(42)
     Q, _ = np.linalg.qr(rng.standard_normal((N, N)))
-    X = Q @ np.diag([1.0, 1e-3, 1e-6]) @ Q.T
+    X = Q @ np.diag(EIGENVALUES) @ Q.T
     covs = []
     for _ in range(2):
         G = rng.standard_normal((N, N))
@@ -108,8 +113,11 @@ def main():
     parser.add_argument("--builds", nargs="+", default=["build/python"])
     parser.add_argument("--types", nargs="+", default=["percentile", "basic", "normal"],
                         help="the bootstrap's interval types to measure")
+    parser.add_argument("--eigenvalues", nargs=3, type=float, default=EIGENVALUES,
+                        help="X's eigenvalues (default 1 1e-3 1e-6: condition 1e6)")
     parser.add_argument("--child", help=argparse.SUPPRESS)
     args = parser.parse_args()
+    EIGENVALUES[:] = args.eigenvalues
     if args.child:
         child(args.trials, args.replicates, args.child)
         return
@@ -121,13 +129,15 @@ def main():
         env = dict(os.environ, PYTHONPATH=str(pathlib.Path(build).resolve()))
         for kind in args.types:
             text = subprocess.run([sys.executable, __file__, "--child", kind, "--trials", str(args.trials),
-                                   "--replicates", str(args.replicates)], env=env, check=True, capture_output=True,
+                                   "--replicates", str(args.replicates), "--eigenvalues",
+                                   *map(repr, args.eigenvalues)], env=env, check=True, capture_output=True,
                                   text=True).stdout
             results[(build, kind)] = json.loads(text)
 
     print(f"# auto's bootstrap coverage on the boundary: {time.strftime('%Y-%m-%d')}, {cpu_model()}\n")
     print(f"`/usr/bin/python3 bench/boundary_coverage.py --trials {args.trials} --replicates {args.replicates} "
-          f"--builds {' '.join(args.builds)} --types {' '.join(args.types)}`: n = {N}, X = Q diag(1, 1e-3, 1e-6) "
+          f"--builds {' '.join(args.builds)} --types {' '.join(args.types)} --eigenvalues "
+          f"{' '.join(map(repr, args.eigenvalues))}`: n = {N}, X = Q diag({', '.join(map(repr, args.eigenvalues))}) "
           f"Q^T, full Sigma_A and Sigma_B, auto with the noise model of the rest rows and {args.replicates} "
           f"bootstrap replicates per trial, nominal level 95%. Coverage: mean over X's six distinct entries ± its "
           f"binomial standard error (lowest-highest entry); width: the intervals' mean width over those entries.\n")
