@@ -117,6 +117,19 @@ void solve_upper_in_place(const Eigen::Ref<const MatrixXd>& U, MatrixXd& L) {
   U.triangularView<Eigen::Upper>().solveInPlace(L);
 }
 
+void solve_upper_from_right_in_place(const Eigen::Ref<const MatrixXd>& U, MatrixXd& L) {
+  if (L.size() == 0) return;
+#ifdef SPDFIT_HAVE_LAPACK
+  if (U.rows() >= 64) {
+    cblas_dtrsm(CblasColMajor, CblasRight, CblasUpper, CblasNoTrans, CblasNonUnit, static_cast<blasint>(L.rows()),
+                static_cast<blasint>(L.cols()), 1.0, U.data(), static_cast<blasint>(U.outerStride()), L.data(),
+                static_cast<blasint>(L.outerStride()));
+    return;
+  }
+#endif
+  U.triangularView<Eigen::Upper>().solveInPlace<Eigen::OnTheRight>(L);
+}
+
 bool cholesky_downdate(const Eigen::Ref<const MatrixXd>& R, const Eigen::Ref<const Eigen::VectorXd>& x, MatrixXd& Rc) {
   const Index k = R.rows();
   if (R.cols() != k || x.size() != k) throw std::logic_error("cholesky_downdate: R must be k x k and x of size k");

@@ -216,6 +216,10 @@ void product_into(const Matrix& A, bool transpose_a, const Matrix& B, bool trans
 /// built with LAPACK and U has 64 rows or more, else Eigen.
 void solve_upper_in_place(const Eigen::Ref<const MatrixXd>& U, MatrixXd& L);
 
+/// L := L U^-1 for an upper triangular U (its upper triangle is read): BLAS dtrsm from the right
+/// when spdfit is built with LAPACK and U has 64 rows or more, else Eigen.
+void solve_upper_from_right_in_place(const Eigen::Ref<const MatrixXd>& U, MatrixXd& L);
+
 /// The lower triangle of X = L L^T (the upper one is left as it was): BLAS dsyrk when spdfit is
 /// built with LAPACK and X has 64 rows or more, else Eigen.
 void lower_gram(const Eigen::Ref<const MatrixXd>& L, MatrixXd& X);

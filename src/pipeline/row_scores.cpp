@@ -84,21 +84,25 @@ VectorXd whitened_residuals(const Eigen::Ref<const MatrixXd>& A, const Eigen::Re
 
 void whitened_residuals_into(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B, const MatrixXd& X,
                              const VectorXd& c, const MatrixXd& covariance, VectorXd& out) {
-  MatrixXd S = 0.5 * (covariance + covariance.transpose());
-  const double top = S.size() ? S.diagonal().cwiseAbs().maxCoeff() : 0.0;
-  Eigen::LLT<MatrixXd> llt(S);
-  if (llt.info() != Eigen::Success || !(top > 0.0)) {
-    S.diagonal().array() += std::max(top, 1.0) * 1e-12;
-    llt.compute(S);
+  // The methods without noise in A and without a noise model: residuals as they are (no
+  // factorization: at d = 1000 the Cholesky factor's inverse alone cost 4% of a fit).
+  const bool identity = covariance.isIdentity(0.0);
+  const Index m = A.rows(), n = A.cols(), d = B.cols();
+  MatrixXd Linv_t;
+  if (!identity) {
+    MatrixXd S = 0.5 * (covariance + covariance.transpose());
+    const double top = S.size() ? S.diagonal().cwiseAbs().maxCoeff() : 0.0;
+    Eigen::LLT<MatrixXd> llt(S);
+    if (llt.info() != Eigen::Success || !(top > 0.0)) {
+      S.diagonal().array() += std::max(top, 1.0) * 1e-12;
+      llt.compute(S);
+    }
+    Linv_t = MatrixXd(llt.matrixL().solve(MatrixXd::Identity(d, d))).transpose();
   }
   // A block of rows at a time (no matrix of m rows: its fresh pages would cost more than the
   // arithmetic at these widths): residuals, then whitened by L^-1. For the narrow matrices of a fit
   // (n, d up to 16) a blocked GEMM's packing costs more than its arithmetic: see below.
   constexpr Index kBlockRows = 2048, kNarrow = 16;
-  const Index m = A.rows(), n = A.cols(), d = B.cols();
-  const MatrixXd Linv_t = MatrixXd(llt.matrixL().solve(MatrixXd::Identity(d, d))).transpose();
-  // The methods without noise in A and without a noise model: residuals as they are.
-  const bool identity = covariance.isIdentity(0.0);
   out.resize(m);
   MatrixXd residual, whitened;
   VectorXd squares;
@@ -171,10 +175,10 @@ VectorXd row_scores(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const 
   const VectorXd& s = result.diagnostics.singular_values_a;
   const double cutoff_ratio = options.rank_cutoff(m, n);
   MatrixXd map;
-  if (n > 0 && s.size() == n && s(n - 1) > kRowScoreFullRankMargin * cutoff_ratio * s(0)) {
-    map.setIdentity(n, n);
-    solve_upper_in_place(R11, map);
-  } else {
+  // Full rank: each block's a_i R11^-1 by a triangular solve from the right (half a product's
+  // multiply-adds, no inverse formed); else the SVD's V_r S_r^-1.
+  const bool triangular = n > 0 && s.size() == n && s(n - 1) > kRowScoreFullRankMargin * cutoff_ratio * s(0);
+  if (!triangular) {
     const Svd dec = svd(R11, false, true);
     const double largest = dec.s.size() ? dec.s(0) : 0.0;
     const double cutoff = cutoff_ratio * largest;
@@ -188,7 +192,11 @@ VectorXd row_scores(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const 
   MatrixXd centred, projected;
   for (Index i0 = 0; i0 < m; i0 += kBlockRows) {
     const Index r = std::min(kBlockRows, m - i0);
-    if (centre) {
+    if (triangular) {
+      projected = A.middleRows(i0, r);
+      if (centre) projected.rowwise() -= factor.means().head(n).transpose();
+      solve_upper_from_right_in_place(R11, projected);
+    } else if (centre) {
       centred = A.middleRows(i0, r).rowwise() - factor.means().head(n).transpose();
       multiply(centred, false, map, false, projected);
     } else {
