@@ -284,6 +284,21 @@ TEST(Linalg, MultiplyAgreesWithEigen) {
   EXPECT_THROW(detail::multiply(MatrixXd(3, 4), false, MatrixXd(3, 4), false, C), std::invalid_argument);
 }
 
+// L U^-1 by the triangular solve from the right (the row scores' leverages): L recovered from the
+// solution times U, on the BLAS's path (n >= 64) and Eigen's, with U read from its upper triangle.
+TEST(Linalg, SolveUpperFromRightRecoversTheRows) {
+  Generator g(17);
+  for (Index n : {5, 70, 130}) {
+    MatrixXd U = g.gaussian(n, n);
+    U.diagonal().array() += 3.0 * std::sqrt(static_cast<double>(n));  // well conditioned
+    const MatrixXd upper = U.triangularView<Eigen::Upper>();
+    const MatrixXd L = g.gaussian(2 * n + 3, n);
+    MatrixXd Y = L;
+    detail::solve_upper_from_right_in_place(U, Y);  // U's lower triangle (nonzero here) is ignored
+    EXPECT_LT((Y * upper - L).norm(), 1e-12 * L.norm());
+  }
+}
+
 // The single-precision product (pattern_newton's conjugate gradients) agrees with the double one to
 // float's rounding, for every transpose and for column blocks.
 TEST(Linalg, SinglePrecisionMultiplyAgreesWithDouble) {
