@@ -151,8 +151,9 @@ std::string report(const FitResult& result, const ReportHints& hints) {
     out << '\n';
   }
   if (b && b->eigenvalues) {
+    // The eigenvalues' intervals are percentile intervals whatever the entries' type: said where it differs.
     out << "\neigenvalues (ascending) +- standard error   [" << format_percent(b->interval.level, Precision::Medium)
-        << " interval]\n"
+        << (b->interval.type == BootstrapInterval::Percentile ? " interval]\n" : " percentile interval]\n")
         << report(*b->eigenvalues, "  ");
   } else if (d.min_eigenvalue && d.max_eigenvalue) {
     out << "\neigenvalues: " << format_number(*d.min_eigenvalue, Precision::Full) << " to "

@@ -104,6 +104,7 @@ def test_interval_types_from_the_same_replicates(spdfit, files):
         assert runs[kind]["bootstrap"]["eigenvalues"] == default["bootstrap"]["eigenvalues"]
     report = spdfit("fit", "-m", "spd-tls", "--bootstrap", "50", "--interval", "basic", "--report", *files)
     assert report.returncode == 0 and "95% basic intervals of every entry" in report.stdout
+    assert "[95% percentile interval]" in report.stdout  # the eigenvalues' stay percentile intervals
 
 
 @pytest.mark.parametrize("args, message", [
