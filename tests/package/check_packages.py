@@ -24,7 +24,7 @@ import sys
 # Programs the test suites and scripts start by name (what shutil.which finds), with whether a
 # missing one skips tests instead of failing them. R is an optional extra reference: its
 # answers are stored in tests/data/r_matrix, and the tests that run it skip without it.
-PROGRAMS = {"octave-cli": "test", "mpirun": "test", "clang++-14": "test", "cmake": "runtime"}
+PROGRAMS = {"octave-cli": "test", "mpirun": "test", "clang++-14": "runtime", "cmake": "runtime"}
 OPTIONAL_PROGRAMS = {"Rscript"}
 # CMake cache entries of tools used when present (CMakeLists.txt: ccache). CMake's own toolchain
 # entries (CMAKE_AR, CMAKE_LINKER, ...) are left out too: CMake picks whichever archiver and

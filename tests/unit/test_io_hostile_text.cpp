@@ -85,7 +85,7 @@ TEST(IoHostileText, Utf16) {
   EXPECT_EQ(e.line(), 0u);
   EXPECT_NE(e.problem().find("UTF-16"), std::string::npos) << e.what();
   // Without a byte-order mark: a NUL every other byte, ASCII between.
-  for (const std::string text : {std::string("1\0,\0002\0\n\0", 8), std::string("\0001\0,\0002\0\n", 8)}) {
+  for (const std::string& text : {std::string("1\0,\0002\0\n\0", 8), std::string("\0001\0,\0002\0\n", 8)}) {
     EXPECT_NE(ParseError(text).problem().find("looks like UTF-16 text without a byte-order mark"), std::string::npos)
         << ParseError(text).what();
   }
