@@ -23,8 +23,6 @@ using Eigen::VectorXd;
 
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
-
 bool all_finite(const Eigen::Ref<const MatrixXd>& M) { return M.allFinite(); }
 
 // A singular vector is defined up to its sign, which differs between SVD algorithms: make each
