@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "numerics/block_qr.hpp"
 #include "numerics/cholesky_downdate.hpp"
@@ -217,6 +218,32 @@ bool symmetric_eigen_in_place(MatrixXd& M, VectorXd& w, bool vectors) {
   }
 #endif
   Eigen::SelfAdjointEigenSolver<MatrixXd> eig(M, vectors ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
+  if (eig.info() != Eigen::Success) return false;
+  w = eig.eigenvalues();
+  if (vectors) M = eig.eigenvectors();
+  return true;
+}
+
+bool symmetric_eigen_in_place(Eigen::MatrixXf& M, Eigen::VectorXf& w, bool vectors) {
+  const Index n = M.rows();
+#ifdef SPDFIT_HAVE_LAPACK
+  if (n >= 64) {  // as the double-precision solver above
+    w.resize(n);
+    // The documented workspace sizes, not LAPACKE_ssyevd's query: the query returns the size as a
+    // float, which rounds 1 + 6 n + 2 n^2 down from n = 2897 on (above 2^24), and ssyevd then
+    // refuses it (Debian 12's OpenBLAS 0.3.21).
+    const lapack_int size = static_cast<lapack_int>(n);
+    const lapack_int lwork = vectors ? 1 + 6 * size + 2 * size * size : 2 * size + 1;
+    const lapack_int liwork = vectors ? 3 + 5 * size : 1;
+    std::vector<float> work(static_cast<std::size_t>(lwork));
+    std::vector<lapack_int> iwork(static_cast<std::size_t>(liwork));
+    const lapack_int info = LAPACKE_ssyevd_work(LAPACK_COL_MAJOR, vectors ? 'V' : 'N', 'L', size, M.data(),
+                                                size, w.data(), work.data(), lwork, iwork.data(), liwork);
+    return info == 0;
+  }
+#endif
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXf> eig(M, vectors ? Eigen::ComputeEigenvectors
+                                                                 : Eigen::EigenvaluesOnly);
   if (eig.info() != Eigen::Success) return false;
   w = eig.eigenvalues();
   if (vectors) M = eig.eigenvectors();

@@ -241,6 +241,12 @@ bool symmetric_eigen_large(const Eigen::Ref<const MatrixXd>& M, VectorXd& w, Mat
 /// 2 n + 1 without) is the only other allocation. False when it fails.
 bool symmetric_eigen_in_place(MatrixXd& M, VectorXd& w, bool vectors);
 
+/// The same in single precision (LAPACK's ssyevd, else Eigen's solver below 64 rows), about half
+/// dsyevd's time (bench/results/eigh-precision-epyc-2026-12-02.md): exact for a matrix within
+/// about 6e-8 ||M||_2 of M, for the steps of an iteration whose accuracy needs no more (the early
+/// Newton steps of correlation_newton).
+bool symmetric_eigen_in_place(Eigen::MatrixXf& M, Eigen::VectorXf& w, bool vectors);
+
 /// The eigendecomposition M = V diag(w) V^T of a symmetric M, w ascending (V only when given):
 /// symmetric_eigen_large from 64 rows on for dynamic matrices, Eigen's SelfAdjointEigenSolver
 /// below and for bounded sizes. False when it fails.

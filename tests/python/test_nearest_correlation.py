@@ -156,3 +156,25 @@ def test_r_matrix_symw_converges_and_is_optimal():
     S = X - C - np.diag(y)
     assert np.linalg.eigvalsh(S)[0] >= -rounding
     assert np.linalg.norm(S @ X) <= rounding * np.linalg.norm(X)
+
+
+def test_large_n_with_single_precision_early_steps_is_certified():
+    """From n = 1000 on, the Newton steps whose dual gradient is far above single precision's
+    rounding level decompose in single precision (correlation_newton.cpp); the last steps and the
+    answer are in double. The answer is certified as above, from X alone: S = X - C - diag(y)
+    positive semidefinite and S X = 0 to 1e-10 ||C||_2 (the answer meets it by a factor of 1e3;
+    X rounded to single precision misses it by a factor of 100)."""
+    n = 1200
+    C = random_indefinite(n, 11) / np.sqrt(n)
+    np.fill_diagonal(C, 1.0)
+    r = spdfit.nearest_correlation(C, min_eig=0, full_output=True)
+    assert r.converged and r.iterations <= 10
+    X = r.X
+    assert np.all(np.diag(X) == 1.0) and np.max(np.abs(X - X.T)) == 0
+    assert np.linalg.eigvalsh(X)[0] >= -n * np.finfo(float).eps * np.linalg.norm(X, 2)
+    y = np.sum(((X - C) @ X) * X, axis=1) / np.sum(X * X, axis=1)
+    S = X - C - np.diag(y)
+    level = 1e-10 * np.linalg.norm(C, 2)
+    assert np.linalg.eigvalsh(S)[0] >= -level
+    assert np.linalg.norm(S @ X) <= level * np.linalg.norm(X)
+    assert r.distance == pytest.approx(np.linalg.norm(X - C), rel=1e-12)

@@ -148,7 +148,9 @@ TEST(FitWithoutReportedDiagnostics, AnIllConditionedAIsStillWarnedAbout) {
     EXPECT_EQ(without.warnings, full.warnings) << cond;
     const bool warned = full.diagnostics.cond_a_scaled > 1e12;
     EXPECT_EQ(warned, cond > 1e12) << cond;
-    if (warned) EXPECT_EQ(without.diagnostics.cond_a_scaled, full.diagnostics.cond_a_scaled) << cond;
+    if (warned) {
+      EXPECT_EQ(without.diagnostics.cond_a_scaled, full.diagnostics.cond_a_scaled) << cond;
+    }
   }
 }
 

@@ -30,7 +30,9 @@ TEST(HexapodDescribe, ReportsTheModelFunctionsAndTheirDecompositions) {
   // smallest singular value of M - lambda I), summing to the trace.
   const Matrix6d& M = d.mass_matrix;
   for (int i = 0; i < 6; ++i) {
-    if (i > 0) EXPECT_LE(d.mass_matrix_eigenvalues(i - 1), d.mass_matrix_eigenvalues(i));
+    if (i > 0) {
+      EXPECT_LE(d.mass_matrix_eigenvalues(i - 1), d.mass_matrix_eigenvalues(i));
+    }
     const Matrix6d shifted = M - d.mass_matrix_eigenvalues(i) * Matrix6d::Identity();
     EXPECT_LT(Eigen::JacobiSVD<Matrix6d>(shifted).singularValues()(5), 100 * kEps * M.norm());
   }

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
 
 #include "numerics/linalg.hpp"
 #include "spdfit/nearest_correlation.hpp"
@@ -319,6 +321,41 @@ TEST(Linalg, SinglePrecisionMultiplyAgreesWithDouble) {
   }
   Eigen::MatrixXf C;
   EXPECT_THROW(detail::multiply(Eigen::MatrixXf(3, 4), false, Eigen::MatrixXf(3, 4), false, C), std::invalid_argument);
+}
+
+// The single-precision eigensolver (correlation_newton's early steps): eigenvalues within float's
+// rounding of double precision's (Weyl: each within ||E||_2 of a backward error E), residual and
+// orthogonality at float's level, ascending; Eigen's solver below 64 rows, ssyevd above, and a
+// size above 2896, where LAPACKE_ssyevd's own workspace query (a float) would round the workspace
+// below its minimum and ssyevd refused it.
+TEST(Linalg, SinglePrecisionEigenAgreesWithDouble) {
+  Generator g(17);
+  for (Index n : {20, 150, 2900}) {
+    const MatrixXd M0 = g.gaussian(n, n);
+    const MatrixXd M = (M0 + M0.transpose()) / 2.0;
+    Eigen::MatrixXf V = M.cast<float>();
+    Eigen::VectorXf w;
+    ASSERT_TRUE(detail::symmetric_eigen_in_place(V, w, true)) << n;
+    MatrixXd Vd = M;
+    VectorXd wd;
+    ASSERT_TRUE(detail::symmetric_eigen_in_place(Vd, wd, false)) << n;
+    const double norm = std::max(std::abs(wd(0)), std::abs(wd(n - 1)));
+    // float's eps 6e-8, a growth of sqrt(n) and a margin
+    const double level = 1e-6 * std::sqrt(static_cast<double>(n)) * norm;
+    EXPECT_LT((w.cast<double>() - wd).cwiseAbs().maxCoeff(), level) << n;
+    for (Index i = 1; i < n; ++i) ASSERT_LE(w(i - 1), w(i)) << n;
+    const MatrixXd P = V.cast<double>();
+    MatrixXd MP, PtP;
+    detail::multiply(M, false, P, false, MP);
+    EXPECT_LT((MP - P * w.cast<double>().asDiagonal()).norm(), level * std::sqrt(static_cast<double>(n)))
+        << n;
+    detail::multiply(P, true, P, false, PtP);
+    EXPECT_LT((PtP - MatrixXd::Identity(n, n)).norm(), 1e-6 * static_cast<double>(n)) << n;
+    Eigen::MatrixXf values_only = M.cast<float>();
+    Eigen::VectorXf w2;
+    ASSERT_TRUE(detail::symmetric_eigen_in_place(values_only, w2, false)) << n;
+    EXPECT_LT((w2.cast<double>() - wd).cwiseAbs().maxCoeff(), level) << n;
+  }
 }
 
 TEST(NearestCorrelation, InputChecks) {
