@@ -75,8 +75,8 @@ VectorXd gradient_at(const Matrix& P, const VectorXd& lambda, const VectorXd& b)
 // semidefiniteness of V to cancellation; the conjugate gradients then stall, so it is not used.)
 //
 // In the precision of P (Scalar): single precision in the mixed-precision steps (kSingleMinRows),
-// whose directions need no more, with sgemm's half of dgemm's time; h, V h and the diagonal in
-// double.
+// whose directions need no more, with sgemm's half of dgemm's time; h and V h in double, the
+// diagonal computed in Scalar and kept in double.
 template <typename Scalar>
 class Jacobian {
  public:
@@ -246,7 +246,7 @@ CorrelationNewtonResult correlation_newton(MatrixXd G, const VectorXd& b, int ma
     if (!next_single) Pf = MatrixXf();
     // Armijo backtracking on theta (convex, so the Newton step is a descent direction). The
     // current eigenvectors are not needed past the direction: each trial is decomposed in P's
-    // storage, the full step (usually taken) with eigenvectors, for the next iteration; shorter
+    // storage (Pf's in single precision), the full step (usually taken) with eigenvectors, for the next iteration; shorter
     // ones with eigenvalues only, and the one taken again with eigenvectors.
     const double slope = F.dot(step);
     const double theta0 = theta;

@@ -31,11 +31,11 @@ struct CorrelationNewtonResult {
 /// step the Jacobian's buffers, 3 n r + r (n - r) for r positive eigenvalues: about 4 n^2 at the
 /// peak. Throws std::runtime_error when an eigendecomposition fails. Cost per step: one symmetric
 /// eigendecomposition (O(n^3)) and, per conjugate-gradient iteration, two products of an n x n by
-/// an n x r matrix (4 n^2 r flops). From n = 1000 on, the steps whose gradient is more than 1000
-/// times single precision's rounding level of it run in single precision (ssyevd and sgemm, about
-/// half the time; their n^2 floats of eigenvectors and ssyevd's 2 n^2 floats of workspace stay
-/// within the peak above);
-/// the stopping test, the last steps and X always come from double precision.
+/// an n x r matrix (4 n^2 r flops). From n = 1000 on, the steps whose gradient stays far above
+/// single precision's rounding level of it (the rule in correlation_newton.cpp) run in single
+/// precision (ssyevd and sgemm, about half the time; their n^2 floats of eigenvectors and ssyevd's
+/// 2 n^2 floats of workspace stay within the peak above); the stopping test, the last steps and X
+/// always come from double precision.
 CorrelationNewtonResult correlation_newton(Eigen::MatrixXd G, const Eigen::VectorXd& b, int max_iterations,
                                            double tolerance, Eigen::MatrixXd* eigenvectors = nullptr,
                                            Eigen::VectorXd* eigenvalues = nullptr);
