@@ -7,8 +7,8 @@ Q fixed), full non-diagonal noise covariances Sigma_A and Sigma_B (fixed) of tot
 (A's true values zero, B's a constant load) from which auto takes its noise model
 (spdfit.NoiseModel.from_rest). Each trial draws new data and rest rows and runs
 spdfit.fit(A, B, "auto", noise=..., bootstrap=R, interval=...) for each of the bootstrap's interval
-types (`--types`, default percentile, basic and normal: the same replicates, seed k + 1, for every
-type); an entry is covered when its interval contains the truth. Printed per set-up and build: the fraction of trials on the boundary (auto's
+types (`--types`, default percentile, basic and normal; also auto, and `default`, which passes no
+`interval` at all: the same replicates, seed k + 1, for every type); an entry is covered when its interval contains the truth. Printed per set-up and build: the fraction of trials on the boundary (auto's
 reason "boundary"), the method auto ran there, and the mean coverage over the six distinct entries
 of X (lowest-highest entry), over all trials and over the boundary trials alone, with binomial
 standard errors; and the mean error ||X - X_true||_F.
@@ -19,7 +19,8 @@ process on the same draws, so that two builds are compared in one run:
     /usr/bin/python3 bench/boundary_coverage.py --trials 400 --replicates 200 \
         --builds build/python /path/to/other/build/python
 
-(A build from before the interval types, 2026-12-02, runs with `--types percentile` only.)
+(A build from before the interval types, 2026-12-02, runs with `--types default` only: its
+default was the percentile interval.)
 """
 import argparse
 import json
@@ -73,7 +74,7 @@ def child(trials, replicates, kind):
     import spdfit
     warnings.simplefilter("ignore", spdfit.SpdfitWarning)
     upper = np.triu_indices(N)
-    extra = {} if kind == "percentile" else {"interval": kind}  # builds without the option: percentile
+    extra = {} if kind == "default" else {"interval": kind}  # builds without the option: `default`
     out = []
     for m, noise, rest in SETUPS:
         rows = []

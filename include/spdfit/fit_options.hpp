@@ -62,16 +62,40 @@ enum class BootstrapInterval {
   Basic,       ///< [2 X - q_hi, 2 X - q_lo]: the percentile interval reflected about the estimate,
                ///< which corrects the estimate's bias (same width); better near the SPD boundary
   Normal,      ///< (X - bias) -+ z se, z the normal quantile at (1 + level) / 2
+  /// Basic where the positive semidefinite constraint is active (X, or at least
+  /// kBoundaryReplicateFraction of the replicates, singular: kSingularRelative), else
+  /// percentile. Only asked for: an Interval's type is the one computed.
+  Auto,
 };
 
-/// "percentile", "basic" or "normal".
+/// An X is singular, on the boundary of the positive semidefinite cone, when its smallest
+/// eigenvalue (less psd-ls's floor min_eig) is within this times its largest of 0: spd-tls's and
+/// psd-ls's boundary estimates are singular to rounding, ~1e-16; an indefinite X is not.
+inline constexpr double kSingularRelative = 1e-10;
+
+/// BootstrapInterval::Auto takes the basic interval when at least this fraction of the replicates
+/// is singular, even where X is not.
+inline constexpr double kBoundaryReplicateFraction = 0.1;
+
+/// "percentile", "basic", "normal" or "auto".
 inline const char* to_string(BootstrapInterval type) {
-  return type == BootstrapInterval::Basic ? "basic" : type == BootstrapInterval::Normal ? "normal" : "percentile";
+  switch (type) {
+    case BootstrapInterval::Basic:
+      return "basic";
+    case BootstrapInterval::Normal:
+      return "normal";
+    case BootstrapInterval::Auto:
+      return "auto";
+    case BootstrapInterval::Percentile:
+      break;
+  }
+  return "percentile";
 }
 
 /// The interval to_string spells `name`, or nothing.
 inline std::optional<BootstrapInterval> bootstrap_interval_named(std::string_view name) {
-  for (BootstrapInterval t : {BootstrapInterval::Percentile, BootstrapInterval::Basic, BootstrapInterval::Normal}) {
+  for (BootstrapInterval t : {BootstrapInterval::Percentile, BootstrapInterval::Basic, BootstrapInterval::Normal,
+                              BootstrapInterval::Auto}) {
     if (name == to_string(t)) return t;
   }
   return std::nullopt;
@@ -160,9 +184,10 @@ struct FitOptions {
   int bootstrap = 0;
   /// The bootstrap's two-sided interval covers this fraction: in (0, 1), default 0.95.
   double confidence = 0.95;
-  /// The bootstrap interval of each entry of X (Bootstrap::interval): percentile (the default),
+  /// The bootstrap interval of each entry of X (Bootstrap::interval): auto (the default: basic
+  /// where X or many replicates are on the boundary of the cone, else percentile), percentile,
   /// basic or normal. The sorted values' intervals (eigenvalues, modes) stay percentile intervals.
-  BootstrapInterval interval = BootstrapInterval::Percentile;
+  BootstrapInterval interval = BootstrapInterval::Auto;
   /// The bootstrap's seed: replicate r draws from a generator keyed by (seed, r), so the numbers
   /// depend on nothing else (not on the number of threads).
   std::uint64_t seed = 1;

@@ -25,10 +25,11 @@ struct GlobalRequest {
   bool index_col = false;     ///< every data file's first column holds row labels: dropped
   bool no_index_col = false;  ///< every data file's first column is data
   bool no_header = false;     ///< every text data file's first line is data
+  bool header_row = false;    ///< every text data file's first line is a header row, whatever it holds
 };
 
 /// The global options: quiet and verbose (each excludes the other), index_col and no_index_col
-/// (likewise), no_header; the command line's only.
+/// (likewise), no_header and header_row (likewise); the command line's only.
 const std::vector<OptionSpec<GlobalRequest>>& global_option_table();
 
 /// The reading rules the global options set (index_column, header_row), in `read`.

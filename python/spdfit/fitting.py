@@ -34,8 +34,9 @@ def fit(A, B=None, method="auto", *, a_cols=None, b_cols=None, **options):
     type and range, and one that the method does not take (noise_ratio with spde, ...) is an error.
     With bootstrap=N > 0 the rows of [A B] are resampled N times and each resample refitted with the
     same method (auto: the one it chose); the result then has standard_errors (the shape of X),
-    interval (level, type, lower, upper: of the kind the `interval` option names, by default the
-    central `confidence` fraction of the replicates), bias (their
+    interval (level, type, lower, upper: of the kind the `interval` option names, by default
+    auto: the basic interval where X, or at least 10% of the replicates, is singular, else the
+    percentile one, the central `confidence` fraction of the replicates; `type` says which), bias (their
     mean minus X) and bootstrap (replicates, failed, seed, eigenvalues with their intervals); without
     it these attributes are None. reported_diagnostics=False skips the diagnostics that neither X
     nor a warning needs (at n = 2000 more than half of spde's time); X and the other warnings are

@@ -61,7 +61,11 @@ std::vector<OptionSpec<GlobalRequest>> make_global_table() {
            "The first line of each text data file is data. Without this, a first line with no number in it is a "
            "header row of column names, and so is 0,1,...,k-1 (pandas' header of a frame without column names), "
            "with a warning",
-           {}, &GlobalRequest::no_header),
+           {"header_row"}, &GlobalRequest::no_header),
+      flag("header_row", "--header-row",
+           "The first line of each text data file is a header row of column names, whatever it holds (R's "
+           "write.csv quotes numbered names: \"1\",\"2\",...)",
+           {"no_header"}, &GlobalRequest::header_row),
   };
 }
 
@@ -76,6 +80,7 @@ void apply_global_options(const GlobalRequest& request, io::ReadOptions& read) {
   if (request.index_col) read.index_column = io::IndexColumn::Drop;
   if (request.no_index_col) read.index_column = io::IndexColumn::Keep;
   if (request.no_header) read.header_row = io::HeaderRow::Absent;
+  if (request.header_row) read.header_row = io::HeaderRow::Present;
 }
 
 const std::vector<OptionSpec<OutputRequest>>& output_option_table() {

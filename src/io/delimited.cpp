@@ -87,7 +87,35 @@ void DelimitedParser::decide_index_column() {
                   "--no-index-col (index_col=False)");
 }
 
+namespace {
+
+// A spreadsheet's error value (Excel's #N/A, #VALUE!, ...) as a line's first field: a line that
+// begins so is a row with an error in its first cell, not a comment, so it is refused rather than
+// skipped (skipping would shift every later row's number). The value, or empty.
+std::string_view spreadsheet_error(std::string_view content) {
+  static constexpr std::string_view kErrors[] = {"#N/A",   "#VALUE!", "#DIV/0!", "#REF!", "#NAME?",
+                                                 "#NUM!",  "#NULL!",  "#SPILL!", "#CALC!"};
+  for (std::string_view error : kErrors) {
+    if (content.substr(0, error.size()) != error) continue;
+    if (content.size() == error.size()) return error;
+    const char next = content[error.size()];
+    if (next == ',' || next == ';' || next == '\t' || next == ' ') return error;
+  }
+  return {};
+}
+
+}  // namespace
+
 void DelimitedParser::parse_line(const Line& line) {
+  if (!line.content.empty() && line.content[0] == '#') {
+    const std::string_view error = spreadsheet_error(line.content);
+    if (!error.empty()) {
+      fail(line, 0,
+           "'" + std::string(error) + "' is a spreadsheet's error value (a formula that failed), not a number; "
+           "a line starting with # would otherwise be a comment, skipped, and every later row numbered one "
+           "less: fix or delete that row in the spreadsheet, or export it again");
+    }
+  }
   if (line.content.empty() || line.content[0] == '#' || line.content[0] == '%') return;
   if (!seen_content_) {
     seen_content_ = true;
@@ -130,8 +158,9 @@ void DelimitedParser::parse_line(const Line& line) {
                                     source_ + ":" + std::to_string(line.number) + ": the first line, " +
                                         abbreviated_count(line, 1) +
                                         ", is read as data (every field is a number, quoted or not); if it names "
-                                        "the columns (as R's write.csv quotes numbered names), --header reads it as "
-                                        "a header row (Python: header=True)",
+                                        "the columns (as R's write.csv quotes numbered names), the global option "
+                                        "--header-row reads it as a header row (spdfit --header-row fit ...; "
+                                        "Python: header=True)",
                                     source_));
       }
     }
@@ -365,6 +394,28 @@ void DelimitedParser::select_columns(const Line& first_row) {
   selected_ = one_based(chosen);
 }
 
+namespace {
+// "2024-01-31", "10:15:02.5", "2024-01-31T10:15:02Z", "31/01/2024": a date or time of day, as a
+// log's first column holds one.
+bool looks_like_timestamp(std::string_view t) {
+  if (t.empty() || !std::isdigit(static_cast<unsigned char>(t[0]))) return false;
+  bool mark = false;
+  for (char c : t) {
+    if (c == '-' || c == ':' || c == '/') {
+      mark = true;
+    } else if (!std::isdigit(static_cast<unsigned char>(c)) && c != '.' && c != 'T' && c != 'Z' && c != '+' &&
+               c != ' ') {
+      return false;
+    }
+  }
+  return mark;
+}
+
+constexpr const char* kTimestampHint =
+    "; a timestamp in the first column? --index-col drops it (Python: index_col=True), or --a-cols "
+    "and --b-cols choose the columns of A and B (Python: a_cols, b_cols)";
+}  // namespace
+
 std::size_t DelimitedParser::parse_row(const Line& line) {
   FieldSplitter splitter(line.content, separator_);
   Field field;
@@ -399,7 +450,12 @@ std::size_t DelimitedParser::parse_row(const Line& line) {
       value.text = trimmed(unquoted);
       if (!value.text.empty() && parse_number(value.text).kind == NumberKind::NotANumber) {
         const std::string_view quoted = line.content.substr(field.offset, field.text.size() + 2);
-        fail(line, field.offset, quote_token(quoted) + " is quoted text, not a number");
+        std::string problem = quote_token(quoted) + " is quoted text, not a number" + selected_column_note();
+        if (!selecting && field.offset <= 1 && looks_like_timestamp(value.text)) problem += kTimestampHint;
+        if (value.text.find(',') != std::string_view::npos && separator_ != Separator::Comma) {
+          problem += " (decimal comma? use '.' for decimals)";
+        }
+        fail(line, field.offset, problem);
       }
     }
     // An empty field is pandas' NaN: read as one where NaN is allowed, an error otherwise.
@@ -422,7 +478,7 @@ double DelimitedParser::parse_value(const Line& line, const Field& field) const 
     case NumberKind::Finite:
       return number.value;
     case NumberKind::NaN:
-      if (!options_.allow_nonfinite) fail(line, field.offset, "NaN is not allowed");
+      if (!options_.allow_nonfinite) fail(line, field.offset, "NaN is not allowed" + selected_column_note());
       return number.value;
     case NumberKind::Infinity:
       if (!options_.allow_nonfinite) {
@@ -454,23 +510,6 @@ void DelimitedParser::fail_empty_field(const Line& line, const Field& field, std
   fail(line, field.offset, "empty field: nothing between two " + separator_name(separator_) + hint);
 }
 
-namespace {
-// "2024-01-31", "10:15:02.5", "2024-01-31T10:15:02Z", "31/01/2024": a date or time of day, as a
-// log's first column holds one.
-bool looks_like_timestamp(std::string_view t) {
-  if (t.empty() || !std::isdigit(static_cast<unsigned char>(t[0]))) return false;
-  bool mark = false;
-  for (char c : t) {
-    if (c == '-' || c == ':' || c == '/') {
-      mark = true;
-    } else if (!std::isdigit(static_cast<unsigned char>(c)) && c != '.' && c != 'T' && c != 'Z' && c != '+' &&
-               c != ' ') {
-      return false;
-    }
-  }
-  return mark;
-}
-}  // namespace
 
 // Says why a field is not a number, pointing at a separator the file does not use when there
 // is one, because a mixed-up separator is the usual cause.
@@ -489,23 +528,29 @@ void DelimitedParser::fail_not_a_number(const Line& line, const Field& field) co
   }
   std::string problem = quote_token(t) + " is not a number";
   if (selecting()) {
-    for (std::size_t k = 0; k < selected_.size(); ++k) {
-      for (std::size_t c : selected_[k]) {
-        if (c == current_column_ + 1) {
-          problem += "; column " + std::to_string(c) + " is selected by `" + options_.columns[k].option + "` '" +
-                     options_.columns[k].spec + "'";
-        }
-      }
-    }
+    problem += selected_column_note();
   } else if (field.offset <= 1 && looks_like_timestamp(t)) {
-    problem += "; a timestamp in the first column? --index-col drops it (Python: index_col=True), or --a-cols "
-               "and --b-cols choose the columns of A and B (Python: a_cols, b_cols)";
+    problem += kTimestampHint;
   } else if (separator_ == Separator::Semicolon && t.find(',') != std::string_view::npos) {
     problem += " (decimal comma? use '.' for decimals)";
   } else if (t.find(' ') != std::string_view::npos) {
     problem += "; " + separator_origin();
   }
   fail(line, field.offset, problem);
+}
+
+std::string DelimitedParser::selected_column_note() const {
+  std::string note;
+  if (!selecting()) return note;
+  for (std::size_t k = 0; k < selected_.size(); ++k) {
+    for (std::size_t c : selected_[k]) {
+      if (c == current_column_ + 1) {
+        note += "; column " + std::to_string(c) + " is selected by `" + options_.columns[k].option + "` '" +
+                options_.columns[k].spec + "'";
+      }
+    }
+  }
+  return note;
 }
 
 std::string DelimitedParser::separator_origin() const {

@@ -109,6 +109,9 @@ class DelimitedParser {
   [[noreturn]] void fail_empty_field(const Line& line, const Field& field, std::size_t index) const;
   [[noreturn]] void fail_not_a_number(const Line& line, const Field& field) const;
   std::string separator_origin() const;
+  /// "; column N is selected by `--b-cols` 'F1:F6'" for the field being parsed, when columns are
+  /// selected; else empty.
+  std::string selected_column_note() const;
   [[noreturn]] void fail(const Line& line, std::size_t offset, const std::string& problem) const;
 
   std::string source_;

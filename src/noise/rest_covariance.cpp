@@ -8,6 +8,7 @@
 
 #include "noise/noise_checks.hpp"
 #include "noise/rest_moments.hpp"
+#include "pipeline/sentinels.hpp"
 #include "spdfit/noise_model.hpp"
 #include "spdfit/outcome.hpp"
 #include "spdfit/row_reader.hpp"
@@ -23,6 +24,18 @@ namespace detail {
 void RowMoments::add(const Eigen::Ref<const MatrixXd>& block) {
   const Index k = block.rows();
   if (k == 0) return;
+  constexpr std::size_t kNamed = 5;
+  for (Index i = 0; i < k; ++i) {
+    Index column = -1;
+    for (Index j = 0; j < block.cols() && column < 0; ++j) {
+      if (std::abs(block(i, j)) >= kSentinelMagnitude) column = j;
+    }
+    if (column < 0) continue;
+    ++sentinel_rows_;
+    if (sentinels_.size() < kNamed) {
+      sentinels_.push_back({rows_ + static_cast<std::uint64_t>(i), column, block(i, column)});
+    }
+  }
   const VectorXd block_mean = block.colwise().mean().transpose();
   const MatrixXd centered = block.rowwise() - block_mean.transpose();
   MatrixXd block_m2 = MatrixXd::Zero(block.cols(), block.cols());
@@ -85,6 +98,29 @@ NoiseModel NoiseModel::from_rest_moments(const detail::RowMoments& a, const deta
         detail::number(100.0 * std::sqrt(2.0 / (static_cast<double>(rows) - 1.0))) +
         "%); record a longer stretch at rest"));
   }
+  // A logger's code for an invalid reading among the rest rows: the covariances would be its square.
+  const auto sentinels = [&](const detail::RowMoments& side, const std::string& path, const std::string& which) {
+    if (side.sentinel_rows() == 0) return;
+    std::string named;
+    for (const detail::RowMoments::Sentinel& s : side.sentinels()) {
+      named += (named.empty() ? "" : ", ") + std::to_string(s.row + 1) + " (" + detail::number(s.value) +
+               " in column " + std::to_string(s.column + 1) + ")";
+    }
+    const bool one = side.sentinel_rows() == 1;
+    // Rows of a file are its data rows; rows given in memory (or chosen from a log by rest_rows)
+    // are counted among the rest rows.
+    std::string text = "the rest rows of " + which + (path.empty() ? std::string() : " (" + path + ")") +
+                       " hold a value of magnitude 1e30 or more in " + (path.empty() ? "rest " : "") +
+                       (one ? "row " : "rows ") + named;
+    if (side.sentinel_rows() > side.sentinels().size()) {
+      text += " and " + std::to_string(side.sentinel_rows() - side.sentinels().size()) + " more";
+    }
+    text += ": a logger's code for an invalid reading, not noise; the noise model's covariances are its square and "
+            "decide the fit: leave " + std::string(one ? "that row" : "those rows") + " out of the rest rows";
+    model.warnings_.push_back(Warning(Code::Outliers, text, "rest_rows"));
+  };
+  sentinels(a, model.rest_a_path_, "A");
+  sentinels(b, model.rest_b_path_, "B");
   std::string moving;
   for (Index j = 0; j < model.rest_mean_a_.size(); ++j) {
     const double sd = std::sqrt(model.cov_a_(j, j));

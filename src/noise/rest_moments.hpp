@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <vector>
 
 namespace spdfit::detail {
 
@@ -22,7 +23,20 @@ class RowMoments {
   /// The sample covariance M2 / (N - 1), exactly symmetric; needs N >= 2.
   Eigen::MatrixXd covariance() const;
 
+  /// A value of magnitude kSentinelMagnitude or more (a logger's code for an invalid reading):
+  /// its row (0-based, counted over every block) and column.
+  struct Sentinel {
+    std::uint64_t row;
+    Eigen::Index column;
+    double value;
+  };
+  /// The first few such values (one per row), and how many rows hold one.
+  const std::vector<Sentinel>& sentinels() const { return sentinels_; }
+  std::uint64_t sentinel_rows() const { return sentinel_rows_; }
+
  private:
+  std::vector<Sentinel> sentinels_;
+  std::uint64_t sentinel_rows_ = 0;
   std::uint64_t rows_ = 0;
   Eigen::VectorXd mean_;
   Eigen::MatrixXd m2_;

@@ -389,16 +389,18 @@ std::vector<Spec> make_table() {
   interval.cli = "--interval";
   interval.python = "interval";
   interval.type = OptionType::Choice;
-  interval.value_name = "percentile|basic|normal";
-  interval.choices = {"percentile", "basic", "normal"};
+  interval.value_name = "auto|percentile|basic|normal";
+  interval.choices = {"auto", "percentile", "basic", "normal"};
   interval.help = "The bootstrap interval of each entry: percentile (the replicates' quantiles), basic (those "
-                  "reflected about the estimate, which corrects its bias: better where X is near singular) or "
-                  "normal (the bias-corrected estimate -+ z standard errors)";
-  interval.default_text = "percentile";
+                  "reflected about the estimate, which corrects its bias: better where X is near singular), "
+                  "normal (the bias-corrected estimate -+ z standard errors) or auto: basic where X, or at least "
+                  "10% of the replicates, is singular (on the boundary of the cone), else percentile; the "
+                  "result's interval type says which";
+  interval.default_text = "auto";
   interval.needs = {"bootstrap"};
   interval.needs_message = "`interval` applies to the bootstrap: give `bootstrap` N as well";
   interval.set = [](FitRequest& r, const OptionValue& v) {
-    r.options.interval = bootstrap_interval_named(std::get<std::string>(v)).value_or(BootstrapInterval::Percentile);
+    r.options.interval = bootstrap_interval_named(std::get<std::string>(v)).value_or(BootstrapInterval::Auto);
   };
   interval.get = [](const FitRequest& r) -> std::optional<OptionValue> {
     return std::string(to_string(r.options.interval));

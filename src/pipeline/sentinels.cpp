@@ -25,7 +25,7 @@ std::string number(double value) {
   return text;
 }
 
-// The rows to keep, as ranges of 1-based row numbers in the file ("1-16, 18-50"), when short:
+// The rows to keep, as ranges of 1-based row numbers in the file ("1:16,18:50", as `rows` takes them), when short:
 // runs of consecutive numbers among the rows of A and B that are not left out.
 std::string kept_rows(Eigen::Index m, const std::vector<Eigen::Index>& left_out, const RowNumbers& numbers) {
   std::string out;
@@ -33,7 +33,7 @@ std::string kept_rows(Eigen::Index m, const std::vector<Eigen::Index>& left_out,
   std::uint64_t first = 0, last = 0;  // the current run, 1-based; first == 0: none
   const auto close = [&] {
     if (first == 0) return;
-    out += (ranges == 0 ? "" : ", ") + std::to_string(first) + (last > first ? "-" + std::to_string(last) : std::string());
+    out += (ranges == 0 ? "" : ",") + std::to_string(first) + (last > first ? ":" + std::to_string(last) : std::string());
     ++ranges;
     first = 0;
   };
@@ -90,7 +90,7 @@ std::optional<Warning> sentinel_warning(const Eigen::Ref<const Eigen::MatrixXd>&
           " the fit (and A's and B's singular values, ranks and condition numbers); leave " +
           (one ? "it" : "them") + " out of A and B";
   const std::string kept = kept_rows(m, rows, numbers);
-  if (!kept.empty()) text += " (fit rows " + kept + ")";
+  if (!kept.empty()) text += " (the rows " + kept + ", as --rows takes them without --time-col)";
   return Warning(Code::Outliers, text, "rows");
 }
 

@@ -234,6 +234,39 @@ std::optional<Warning> bias_warning(const FitResult& result, const DynamicReduct
                                  "estimate, can miss the truth; " + consistent + " consistent here");
 }
 
+// Whether an ascending spectrum is singular above `floor` (kSingularRelative): its smallest
+// eigenvalue at `floor` to rounding, as the constrained estimators' boundary estimates have it; an
+// indefinite X (an unconstrained method's) is not on the boundary.
+bool singular(const VectorXd& w, double floor) {
+  return w.size() > 0 && std::abs(w(0) - floor) <= kSingularRelative * std::abs(w(w.size() - 1));
+}
+
+// BootstrapInterval::Auto resolved: basic when X is singular (psd-ls: X - min_eig I; its
+// certificate's smallest eigenvalue) or at least kBoundaryReplicateFraction of the replicates are.
+// There the constraint cuts the replicates' distribution at the boundary, so the percentile
+// interval repeats the estimate's bias towards it instead of correcting it (bench/results/
+// boundary-coverage-intervals-epyc-2026-12-02.md). Percentile elsewhere, and for X not symmetric.
+BootstrapInterval auto_interval(const FitResult& result, const VectorXd& estimate,
+                                const std::vector<std::optional<VectorXd>>& spectra, const FitOptions& options) {
+  if (estimate.size() == 0) return BootstrapInterval::Percentile;
+  const double floor = result.method == Method::PsdLeastSquares && !result.diagnostics.reason ? options.min_eig : 0.0;
+  bool on_boundary = result.diagnostics.boundary_certificate.has_value() || singular(estimate, floor);
+  if (const std::optional<PsdCertificate>& certificate = result.diagnostics.certificate) {
+    const double largest = std::abs(estimate(estimate.size() - 1));
+    on_boundary = on_boundary || std::abs(certificate->primal_min_eig) <= kSingularRelative * largest;
+  }
+  if (on_boundary) return BootstrapInterval::Basic;
+  std::size_t with = 0, singular_ones = 0;
+  for (const std::optional<VectorXd>& w : spectra) {
+    if (!w) continue;
+    ++with;
+    singular_ones += singular(*w, floor) ? 1 : 0;
+  }
+  const bool many =
+      with > 0 && static_cast<double>(singular_ones) >= kBoundaryReplicateFraction * static_cast<double>(with);
+  return many ? BootstrapInterval::Basic : BootstrapInterval::Percentile;
+}
+
 }  // namespace
 
 void attach_bootstrap(FitResult& result, const std::vector<Replicate>& replicates, const FitOptions& options,
@@ -243,7 +276,6 @@ void attach_bootstrap(FitResult& result, const std::vector<Replicate>& replicate
   boot.seed = options.seed;
   boot.method = result.method;
   boot.interval.level = options.confidence;
-  boot.interval.type = options.interval;
   const double z = normal_quantile(0.5 * (1.0 + options.confidence));
   const Index rows = result.X.rows(), cols = result.X.cols();
   std::vector<const MatrixXd*> present;
@@ -260,6 +292,23 @@ void attach_bootstrap(FitResult& result, const std::vector<Replicate>& replicate
   boot.bias.resize(rows, cols);
   boot.interval.lower.resize(rows, cols);
   boot.interval.upper.resize(rows, cols);
+  // The spectra of X and of the replicates, for the eigenvalues' intervals and auto's interval.
+  const bool symmetric = result.diagnostics.symmetric || (rows == cols && result.X == result.X.transpose());
+  std::vector<std::optional<VectorXd>> spectra(replicates.size());
+  VectorXd estimate_spectrum;
+  if (symmetric) {
+    parallel_for(replicates.size(), options.threads, [&](std::size_t r) {
+      const MatrixXd& X = replicates[r].X;
+      VectorXd w;
+      if (X.rows() == rows && X.cols() == cols && X == X.transpose() && symmetric_eigen(X, w)) spectra[r] = w;
+    });
+    if (!symmetric_eigen(result.X, estimate_spectrum)) {
+      throw std::runtime_error("bootstrap: the eigensolver did not converge");
+    }
+  }
+  boot.interval.type = options.interval == BootstrapInterval::Auto
+                           ? auto_interval(result, estimate_spectrum, spectra, options)
+                           : options.interval;
   std::vector<double> values(present.size());
   for (Index j = 0; j < cols; ++j) {
     for (Index i = 0; i < rows; ++i) {
@@ -268,8 +317,9 @@ void attach_bootstrap(FitResult& result, const std::vector<Replicate>& replicate
       boot.standard_errors(i, j) = mo.standard_error;
       boot.bias(i, j) = mo.mean - result.X(i, j);
       const double estimate = result.X(i, j);
-      switch (options.interval) {
+      switch (boot.interval.type) {
         case BootstrapInterval::Percentile:
+        case BootstrapInterval::Auto:  // resolved above
           boot.interval.lower(i, j) = mo.lower;
           boot.interval.upper(i, j) = mo.upper;
           break;
@@ -284,17 +334,7 @@ void attach_bootstrap(FitResult& result, const std::vector<Replicate>& replicate
       }
     }
   }
-  if (result.diagnostics.symmetric || (rows == cols && result.X == result.X.transpose())) {
-    std::vector<std::optional<VectorXd>> spectra(replicates.size());
-    parallel_for(replicates.size(), options.threads, [&](std::size_t r) {
-      const MatrixXd& X = replicates[r].X;
-      VectorXd w;
-      if (X.rows() == rows && X.cols() == cols && X == X.transpose() && symmetric_eigen(X, w)) spectra[r] = w;
-    });
-    VectorXd estimate;
-    if (!symmetric_eigen(result.X, estimate)) throw std::runtime_error("bootstrap: the eigensolver did not converge");
-    boot.eigenvalues = summarize_spectrum(estimate, spectra, options.confidence);
-  }
+  if (symmetric) boot.eigenvalues = summarize_spectrum(estimate_spectrum, spectra, options.confidence);
 
   // Replicates that agree to rounding (a Poisson bootstrap of one group: each replicate is the
   // estimate or nothing; data without noise) carry no spread: a standard error of 0, or of

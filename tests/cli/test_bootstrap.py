@@ -85,6 +85,7 @@ def test_interval_types_from_the_same_replicates(spdfit, files):
     runs = {kind: json.loads(spdfit("fit", "-m", "spd-tls", "--bootstrap", "150", "--interval", kind, "--json",
                                     *files).stdout) for kind in ("percentile", "basic", "normal")}
     default = json.loads(spdfit("fit", "-m", "spd-tls", "--bootstrap", "150", "--json", *files).stdout)
+    # the default, auto: percentile here, where X and its replicates are well inside the cone
     assert default["interval"] == runs["percentile"]["interval"] and default["interval"]["type"] == "percentile"
     X = np.array(runs["basic"]["X"])
     q_lo, q_hi = (np.array(runs["percentile"]["interval"][k]) for k in ("lower", "upper"))

@@ -39,7 +39,7 @@ def test_a_sentinel_is_named_with_the_rows_to_keep(spdfit, tmp_path):
     a, b = write_csv(tmp_path / "A.csv", A), write_csv(tmp_path / "B.csv", B)
     result = spdfit("fit", "--method", "spde", "--json", a, b)
     assert "row 17 (9.9e+37 in A's column 2) holds a value of magnitude 1e30 or more" in result.stderr
-    assert "(fit rows 1-16, 18-50)" in result.stderr
+    assert "(the rows 1:16,18:50, as --rows takes them without --time-col)" in result.stderr
     if result.returncode == 0:
         doc = json.loads(result.stdout)
         assert "logger" in " ".join(doc["warnings"]) and "outliers" in doc["warning_codes"]
@@ -57,7 +57,7 @@ def test_one_huge_entry_is_named_and_a_failure_points_at_it(spdfit, tmp_path):
     a, b = write_csv(tmp_path / "A.csv", A), write_csv(tmp_path / "B.csv", B)
     result = spdfit("fit", "--method", "spde", "--json", a, b)
     assert "row 5 (1e+160 in A's column 1)" in result.stderr
-    assert "(fit rows 1-4, 6-50)" in result.stderr
+    assert "(the rows 1:4,6:50, as --rows takes them without --time-col)" in result.stderr
     if result.returncode != 0:
         assert "values of magnitude 1e30 or more, which decide this" in result.stderr
     # compare says it once, not once per method.
@@ -115,3 +115,62 @@ def test_quoted_numbered_names_are_data_with_a_warning(spdfit, tmp_path):
     out, err = fit_json(spdfit, "--method", "ls", str(a), b)
     assert out["m"] == 21
     assert "is read as data" in err and "--header" in err
+
+
+def test_the_rows_a_sentinel_warning_names_are_what_rows_takes(spdfit, tmp_path):
+    A, B = problem()
+    A[16, 1] = 9.9e37
+    a, b = write_csv(tmp_path / "A.csv", A), write_csv(tmp_path / "B.csv", B)
+    # typed as the warning gives it: the fit of the other rows, against NumPy's least squares
+    out, err = fit_json(spdfit, "--method", "ls", "--rows", "1:16,18:50", a, b)
+    keep = np.r_[0:16, 17:50]
+    assert out["m"] == 49 and "1e30" not in err
+    ref = np.linalg.lstsq(A[keep], B[keep], rcond=None)[0]
+    np.testing.assert_allclose(np.array(out["X"]), ref, rtol=ROUNDING, atol=ROUNDING)
+
+
+def test_a_sentinel_among_the_rest_rows_is_named(spdfit, tmp_path):
+    A, B = problem(m=200)
+    rng = np.random.default_rng(5)
+    rest_a, rest_b = 0.01 * rng.standard_normal((100, 3)), 0.01 * rng.standard_normal((100, 3))
+    rest_b[4, 1] = 9.9e37
+    files = [write_csv(tmp_path / n, M) for n, M in (("A.csv", A), ("B.csv", B), ("ra.csv", rest_a),
+                                                      ("rb.csv", rest_b))]
+    result = spdfit("fit", "--method", "auto", "--json", "--rest-a", files[2], "--rest-b", files[3], *files[:2])
+    assert result.returncode == 0, result.stderr
+    assert (f"the rest rows of B ({files[3]}) hold a value of magnitude 1e30 or more "
+            "in row 5 (9.9e+37 in column 2)") in result.stderr, result.stderr
+    assert "leave that row out of the rest rows" in result.stderr
+    # one log: the rest segment first, then the data; the rest rows counted from the segment's first
+    log = np.vstack([np.hstack([rest_a, rest_b]), np.hstack([A, B])])
+    path = write_csv(tmp_path / "log.csv", log)
+    result = spdfit("fit", "--method", "auto", "--json", "--rest-rows", ":100", "--a-cols", "1:3", "--b-cols",
+                    "4:6", path)
+    assert result.returncode == 0, result.stderr
+    assert ("the rest rows of B hold a value of magnitude 1e30 or more in rest row 5 (9.9e+37 in column 2)"
+            in result.stderr), result.stderr
+    # without it, no such warning
+    rest_b[4, 1] = 0.0
+    write_csv(tmp_path / "rb.csv", rest_b)
+    result = spdfit("fit", "--method", "auto", "--json", "--rest-a", files[2], "--rest-b", files[3], *files[:2])
+    assert result.returncode == 0 and "1e30" not in result.stderr, result.stderr
+
+
+def test_header_row_reads_rs_numbered_names_as_a_header(spdfit, tmp_path):
+    # R's write.csv(row.names = FALSE) of a matrix without names: "1","2","3" over the rows
+    A, B = problem()
+    for name, M in (("A.csv", A), ("B.csv", B)):
+        lines = ['"1","2","3"'] + [",".join(f'"{v!r}"' for v in row) for row in M]
+        (tmp_path / name).write_text("\n".join(lines) + "\n")
+    a, b = str(tmp_path / "A.csv"), str(tmp_path / "B.csv")
+    result = spdfit("fit", "--method", "ls", "--json", a, b)
+    assert result.returncode == 0 and "the global option --header-row reads it as a header row" in result.stderr
+    assert json.loads(result.stdout)["m"] == 51  # the names read as data, as the warning says
+    result = spdfit("--header-row", "fit", "--method", "ls", "--json", a, b)
+    assert result.returncode == 0 and "header" not in result.stderr, result.stderr
+    out = json.loads(result.stdout)
+    assert out["m"] == 50
+    np.testing.assert_allclose(np.array(out["X"]), np.linalg.lstsq(A, B, rcond=None)[0], rtol=ROUNDING,
+                               atol=ROUNDING)
+    usage = spdfit("--header-row", "--no-header", "fit", "--method", "ls", a, b)
+    assert usage.returncode == 2 and "--no-header" in usage.stderr and "--header-row" in usage.stderr

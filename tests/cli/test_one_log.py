@@ -180,7 +180,7 @@ def test_rows_are_named_as_numbered_in_the_file(spdfit, log, spiked):
     assert robust["X"] == alone["X"] and 750 in robust["robust"]["rows_downweighted"]
     assert robust["robust"]["rows_downweighted"] == [r + 600 for r in alone["robust"]["rows_downweighted"]]
     r = spdfit("fit", "--method", "ls", "--rows", "601:", *COLS, spiked["sentinel"])
-    assert "row 800 (9.9e+37 in A's column 1)" in r.stderr and "fit rows 601-799, 801-1000" in r.stderr, r.stderr
+    assert "row 800 (9.9e+37 in A's column 1)" in r.stderr and "the rows 601:799,801:1000, as --rows takes them" in r.stderr, r.stderr
 
 
 def test_compare_and_identify_name_dominant_rows_once(spdfit, log, spiked):

@@ -171,3 +171,15 @@ def test_the_physical_fit_weighs_by_the_noise_model():
     unweighted = quiet(ph.identify, sim.A, sim.B, g)
     np.testing.assert_array_equal(out["M_p"], alone["M_p"])
     assert not np.array_equal(out["M_p"], unweighted["M_p"])
+
+
+def test_from_rest_names_a_loggers_invalid_code():
+    # 9.9e37 among the rest rows would make the covariances its square (NumPy: np.cov's ~1e73)
+    _, _, rest_A, rest_B, _ = simulated(50, 1, rest_rows=300)
+    rest_A[99, 2] = 9.9e37
+    model = spdfit.NoiseModel.from_rest(rest_A, rest_B)
+    assert np.cov(rest_A, rowvar=False)[2, 2] > 1e70 and model.cov_a[2, 2] > 1e70
+    named = [w for w in model.warnings if "1e30" in w]
+    assert len(named) == 1 and named[0].startswith("the rest rows of A hold"), model.warnings
+    assert "in rest row 100 (9.9e+37 in column 3)" in named[0] and "outliers" in model.warning_codes
+    assert not any("1e30" in w for w in spdfit.NoiseModel.from_rest(rest_A[:99], rest_B[:99]).warnings)

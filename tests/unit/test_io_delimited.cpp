@@ -423,7 +423,7 @@ TEST(IoDelimited, QuotedNumbersInTheFirstRowAreData) {
   ASSERT_EQ(numbered.values.rows(), 2);
   ASSERT_EQ(numbered.warnings.size(), 1u);
   EXPECT_NE(numbered.warnings[0].text.find("is read as data"), std::string::npos) << numbered.warnings[0].text;
-  EXPECT_NE(numbered.warnings[0].text.find("--header"), std::string::npos);
+  EXPECT_NE(numbered.warnings[0].text.find("--header-row"), std::string::npos);
   // Unquoted 1, 2, 3 is as obvious as any row of numbers: no warning.
   EXPECT_TRUE(parse_delimited("1,2,3\n4,5,6\n", "A.csv", {}).warnings.empty());
   // pandas' quoted header "0","1" stays a header (the one exception).
@@ -442,6 +442,35 @@ TEST(IoDelimited, NoData) {
 TEST(IoDelimited, HeaderOnlyFirstLine) {
   // Only the first non-comment line can be a header; later text is an error.
   ExpectError("a,b\nc,d\n", 2, 1, "'c' is not a number");
+}
+
+// A spreadsheet's error value in a row's first cell (Excel writes #N/A unquoted) is refused, naming
+// the line: skipped as a comment, it would shift every later row's number. Comments stay comments.
+TEST(IoDelimited, SpreadsheetErrorValuesAreNotComments) {
+  const std::string rest =
+      " is a spreadsheet's error value (a formula that failed), not a number; a line starting with # would "
+      "otherwise be a comment, skipped, and every later row numbered one less: fix or delete that row in the "
+      "spreadsheet, or export it again";
+  ExpectError("a,b\n1,2\n#N/A,3\n4,5\n", 3, 1, "'#N/A'" + rest);
+  ExpectError("1;2\n#DIV/0!;3\n", 2, 1, "'#DIV/0!'" + rest);
+  ExpectError("1,2\n#VALUE!\n", 2, 1, "'#VALUE!'" + rest);
+  const Table table =
+      parse_delimited("# logged 2026-12-02\na,b\n1,2\n#NA is not an error value\n#N/Ab\n3,4\n", "A.csv", {});
+  EXPECT_EQ(table.values.rows(), 2);
+}
+
+// Quoted fields that are not numbers get the hints unquoted ones get: the selected column, a
+// timestamp in the first column, a decimal comma.
+TEST(IoDelimited, QuotedTextNamesTheSelectedColumn) {
+  ReadOptions options;
+  options.columns = {{"2", "a_cols"}, {"3", "b_cols"}};
+  const DataError e = ParseError("t,a,b\n\"0.1\",\"1\",\"ERR\"\n", options);
+  EXPECT_EQ(e.line(), 2u);
+  EXPECT_EQ(e.problem(), "'\"ERR\"' is quoted text, not a number; column 3 is selected by `b_cols` '3'");
+  const std::string timestamp = ParseError("t,a\n\"2026-11-27 10:00:00\",\"1\"\n").problem();
+  EXPECT_NE(timestamp.find("a timestamp in the first column?"), std::string::npos) << timestamp;
+  EXPECT_NE(ParseError("a;b\n\"1,5\";\"2\"\n").problem().find("(decimal comma? use '.' for decimals)"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -27,7 +27,7 @@ TEST(Sentinels, NamesTheRowTheValueAndTheRowsToKeep) {
   EXPECT_NE(w->text.find("row 17 (9.9e+37 in A's column 2) holds a value of magnitude 1e30 or more"),
             std::string::npos)
       << w->text;
-  EXPECT_NE(w->text.find("(fit rows 1-16, 18-50)"), std::string::npos) << w->text;
+  EXPECT_NE(w->text.find("(the rows 1:16,18:50, as --rows takes them without --time-col)"), std::string::npos) << w->text;
 }
 
 TEST(Sentinels, CountsRowsBeyondTheFiveNamedAndOneRowOnce) {
@@ -53,7 +53,7 @@ TEST(Sentinels, SilentBelowTheMagnitudeAndOnInfinityFreeData) {
   A(9, 0) = 1e30;  // the bound itself is a code
   const auto w = sentinel_warning(A, B);
   ASSERT_TRUE(w.has_value());
-  EXPECT_NE(w->text.find("(fit rows 1-9)"), std::string::npos) << w->text;
+  EXPECT_NE(w->text.find("(the rows 1:9, as --rows takes them without --time-col)"), std::string::npos) << w->text;
 }
 
 }  // namespace
