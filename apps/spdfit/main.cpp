@@ -100,6 +100,12 @@ int main(int argc, char** argv) {
     if (first < argc && command_app == nullptr && first == 1) {
       message = std::string("unknown command '") + argv[first] + "' (commands: " + known + ")";
     }
+    // CLI11's "--scale-b: At Most 1 required but received 2": an option given twice.
+    const std::string twice = ": At Most 1 required but received ";
+    if (const std::size_t at = message.find(twice); at != std::string::npos) {
+      message = message.substr(0, at) + " is given " + message.substr(at + twice.size()) +
+                " times: give it once (an option's list of values goes in one argument, comma-separated)";
+    }
     std::string help = "spdfit --help";
     if (command_app != nullptr) {
       help = std::string("spdfit ") + argv[first];

@@ -174,3 +174,11 @@ def test_header_row_reads_rs_numbered_names_as_a_header(spdfit, tmp_path):
                                atol=ROUNDING)
     usage = spdfit("--header-row", "--no-header", "fit", "--method", "ls", a, b)
     assert usage.returncode == 2 and "--no-header" in usage.stderr and "--header-row" in usage.stderr
+
+
+def test_an_option_given_twice_is_named_plainly(spdfit, tmp_path):
+    A, B = problem()
+    a, b = write_csv(tmp_path / "A.csv", A), write_csv(tmp_path / "B.csv", B)
+    result = spdfit("fit", "--scale-b", "1000", "--scale-b", "1", a, b)
+    assert result.returncode == 2
+    assert "--scale-b is given 2 times: give it once" in result.stderr and "At Most" not in result.stderr
