@@ -94,8 +94,8 @@ inline const char* to_string(BootstrapInterval type) {
 
 /// The interval to_string spells `name`, or nothing.
 inline std::optional<BootstrapInterval> bootstrap_interval_named(std::string_view name) {
-  for (BootstrapInterval t : {BootstrapInterval::Percentile, BootstrapInterval::Basic, BootstrapInterval::Normal,
-                              BootstrapInterval::Auto}) {
+  for (BootstrapInterval t : {BootstrapInterval::Percentile, BootstrapInterval::Basic,
+                              BootstrapInterval::Normal, BootstrapInterval::Auto}) {
     if (name == to_string(t)) return t;
   }
   return std::nullopt;

@@ -111,9 +111,10 @@ void DelimitedParser::parse_line(const Line& line) {
     const std::string_view error = spreadsheet_error(line.content);
     if (!error.empty()) {
       fail(line, 0,
-           "'" + std::string(error) + "' is a spreadsheet's error value (a formula that failed), not a number; "
-           "a line starting with # would otherwise be a comment, skipped, and every later row numbered one "
-           "less: fix or delete that row in the spreadsheet, or export it again");
+           "'" + std::string(error) +
+               "' is a spreadsheet's error value (a formula that failed), not a number; a line starting "
+               "with # would otherwise be a comment, skipped, and every later row numbered one less: fix "
+               "or delete that row in the spreadsheet, or export it again");
     }
   }
   if (line.content.empty() || line.content[0] == '#' || line.content[0] == '%') return;
@@ -158,9 +159,9 @@ void DelimitedParser::parse_line(const Line& line) {
                                     source_ + ":" + std::to_string(line.number) + ": the first line, " +
                                         abbreviated_count(line, 1) +
                                         ", is read as data (every field is a number, quoted or not); if it names "
-                                        "the columns (as R's write.csv quotes numbered names), the global option "
-                                        "--header-row reads it as a header row (spdfit --header-row fit ...; "
-                                        "Python: header=True)",
+                                        "the columns (as R's write.csv quotes numbered names), the global "
+                                        "option --header-row reads it as a header row (spdfit --header-row "
+                                        "fit ...; Python: header=True)",
                                     source_));
       }
     }
@@ -509,7 +510,6 @@ void DelimitedParser::fail_empty_field(const Line& line, const Field& field, std
   if (index == 0) fail(line, field.offset, "empty field: the line starts with " + one + hint);
   fail(line, field.offset, "empty field: nothing between two " + separator_name(separator_) + hint);
 }
-
 
 // Says why a field is not a number, pointing at a separator the file does not use when there
 // is one, because a mixed-up separator is the usual cause.

@@ -99,7 +99,8 @@ NoiseModel NoiseModel::from_rest_moments(const detail::RowMoments& a, const deta
         "%); record a longer stretch at rest"));
   }
   // A logger's code for an invalid reading among the rest rows: the covariances would be its square.
-  const auto sentinels = [&](const detail::RowMoments& side, const std::string& path, const std::string& which) {
+  const auto sentinels = [&](const detail::RowMoments& side, const std::string& path,
+                             const std::string& which) {
     if (side.sentinel_rows() == 0) return;
     std::string named;
     for (const detail::RowMoments::Sentinel& s : side.sentinels()) {
@@ -115,8 +116,9 @@ NoiseModel NoiseModel::from_rest_moments(const detail::RowMoments& a, const deta
     if (side.sentinel_rows() > side.sentinels().size()) {
       text += " and " + std::to_string(side.sentinel_rows() - side.sentinels().size()) + " more";
     }
-    text += ": a logger's code for an invalid reading, not noise; the noise model's covariances are its square and "
-            "decide the fit: leave " + std::string(one ? "that row" : "those rows") + " out of the rest rows";
+    text += ": a logger's code for an invalid reading, not noise; the noise model's covariances are its "
+            "square and decide the fit: leave " +
+            std::string(one ? "that row" : "those rows") + " out of the rest rows";
     model.warnings_.push_back(Warning(Code::Outliers, text, "rest_rows"));
   };
   sentinels(a, model.rest_a_path_, "A");

@@ -393,9 +393,9 @@ std::vector<Spec> make_table() {
   interval.choices = {"auto", "percentile", "basic", "normal"};
   interval.help = "The bootstrap interval of each entry: percentile (the replicates' quantiles), basic (those "
                   "reflected about the estimate, which corrects its bias: better where X is near singular), "
-                  "normal (the bias-corrected estimate -+ z standard errors) or auto: basic where X, or at least "
-                  "10% of the replicates, is singular (on the boundary of the cone), else percentile; the "
-                  "result's interval type says which";
+                  "normal (the bias-corrected estimate -+ z standard errors) or auto: basic where X, or at "
+                  "least 10% of the replicates, is singular (on the boundary of the cone), else percentile; "
+                  "the result's interval type says which";
   interval.default_text = "auto";
   interval.needs = {"bootstrap"};
   interval.needs_message = "`interval` applies to the bootstrap: give `bootstrap` N as well";

@@ -25,15 +25,16 @@ std::string number(double value) {
   return text;
 }
 
-// The rows to keep, as ranges of 1-based row numbers in the file ("1:16,18:50", as `rows` takes them), when short:
-// runs of consecutive numbers among the rows of A and B that are not left out.
+// The rows to keep, as ranges of 1-based row numbers in the file ("1:16,18:50", as `rows` takes
+// them), when short: runs of consecutive numbers among the rows of A and B that are not left out.
 std::string kept_rows(Eigen::Index m, const std::vector<Eigen::Index>& left_out, const RowNumbers& numbers) {
   std::string out;
   std::size_t ranges = 0, next = 0;
   std::uint64_t first = 0, last = 0;  // the current run, 1-based; first == 0: none
   const auto close = [&] {
     if (first == 0) return;
-    out += (ranges == 0 ? "" : ",") + std::to_string(first) + (last > first ? ":" + std::to_string(last) : std::string());
+    out += (ranges == 0 ? "" : ",") + std::to_string(first) +
+           (last > first ? ":" + std::to_string(last) : std::string());
     ++ranges;
     first = 0;
   };

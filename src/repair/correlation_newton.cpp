@@ -246,8 +246,8 @@ CorrelationNewtonResult correlation_newton(MatrixXd G, const VectorXd& b, int ma
     if (!next_single) Pf = MatrixXf();
     // Armijo backtracking on theta (convex, so the Newton step is a descent direction). The
     // current eigenvectors are not needed past the direction: each trial is decomposed in P's
-    // storage (Pf's in single precision), the full step (usually taken) with eigenvectors, for the next iteration; shorter
-    // ones with eigenvalues only, and the one taken again with eigenvectors.
+    // storage (Pf's in single precision), the full step (usually taken) with eigenvectors, for the
+    // next iteration; shorter ones with eigenvalues only, and the one taken again with eigenvectors.
     const double slope = F.dot(step);
     const double theta0 = theta;
     // Near the solution the decrease (about ||F||^2) falls below theta's own rounding: there the

@@ -247,9 +247,11 @@ bool singular(const VectorXd& w, double floor) {
 // interval repeats the estimate's bias towards it instead of correcting it (bench/results/
 // boundary-coverage-intervals-epyc-2026-12-02.md). Percentile elsewhere, and for X not symmetric.
 BootstrapInterval auto_interval(const FitResult& result, const VectorXd& estimate,
-                                const std::vector<std::optional<VectorXd>>& spectra, const FitOptions& options) {
+                                const std::vector<std::optional<VectorXd>>& spectra,
+                                const FitOptions& options) {
   if (estimate.size() == 0) return BootstrapInterval::Percentile;
-  const double floor = result.method == Method::PsdLeastSquares && !result.diagnostics.reason ? options.min_eig : 0.0;
+  const bool own_floor = result.method == Method::PsdLeastSquares && !result.diagnostics.reason;
+  const double floor = own_floor ? options.min_eig : 0.0;
   bool on_boundary = result.diagnostics.boundary_certificate.has_value() || singular(estimate, floor);
   if (const std::optional<PsdCertificate>& certificate = result.diagnostics.certificate) {
     const double largest = std::abs(estimate(estimate.size() - 1));
@@ -262,8 +264,8 @@ BootstrapInterval auto_interval(const FitResult& result, const VectorXd& estimat
     ++with;
     singular_ones += singular(*w, floor) ? 1 : 0;
   }
-  const bool many =
-      with > 0 && static_cast<double>(singular_ones) >= kBoundaryReplicateFraction * static_cast<double>(with);
+  const bool many = with > 0 && static_cast<double>(singular_ones) >=
+                                    kBoundaryReplicateFraction * static_cast<double>(with);
   return many ? BootstrapInterval::Basic : BootstrapInterval::Percentile;
 }
 
