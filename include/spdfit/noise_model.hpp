@@ -17,6 +17,7 @@ namespace spdfit {
 namespace detail {
 class RowMoments;
 struct NoiseModelJson;
+struct LogRestRows;
 }
 
 /// Where a noise model's covariances come from.
@@ -116,7 +117,8 @@ class NoiseModel {
   const std::vector<Warning>& warnings() const { return warnings_; }
 
   /// The library names of the options that gave Sigma_A and Sigma_B, in backticks as messages
-  /// use them: "`noise_std_a`", "`noise_cov_a`" or "`rest_a`" (and the same for B).
+  /// use them: "`noise_std_a`", "`noise_cov_a`" or "`rest_a`" (and the same for B); "`rest_rows`"
+  /// for both when the rest rows are rows of the fitted log (FitRequest::rest_rows).
   std::string option_a() const;
   std::string option_b() const;
 
@@ -140,10 +142,11 @@ class NoiseModel {
 
  private:
   friend struct detail::NoiseModelJson;  // the JSON rendering (render/noise_model_json.cpp) reads and restores it
+  friend struct detail::LogRestRows;     // from_rest of a log's rest_rows (rest_covariance.cpp)
   NoiseModel() = default;
   // The model of the rest rows' moments (rest_covariance.cpp), with its warnings.
   static NoiseModel from_rest_moments(const detail::RowMoments& a, const detail::RowMoments& b,
-                                      std::string a_path, std::string b_path);
+                                      std::string a_path, std::string b_path, bool log_rows = false);
   void classify();
 
   NoiseSource source_ = NoiseSource::Std;
@@ -152,6 +155,7 @@ class NoiseModel {
   std::optional<std::uint64_t> rest_rows_;
   Eigen::VectorXd rest_mean_a_, rest_mean_b_;
   std::string rest_a_path_, rest_b_path_;
+  bool log_rows_ = false;  // Rest from rows of the fitted log (rest_rows), not rest_a and rest_b
   std::vector<Warning> warnings_;
   bool a_zero_ = true, a_definite_ = false, b_definite_ = false;
 };

@@ -33,10 +33,56 @@ std::optional<ScaledNoise> scaled_noise(const DynamicReduction& data) {
   return out;
 }
 
+namespace {
+
+// The columns whose rest rows are too few for the covariance `method` needs definite (B's for the
+// methods that weight by Sigma_B, either for spd-tls and auto): N rows give rank N - 1 at most, so
+// N <= columns makes it singular whatever the noise. Nothing when that is not why it refuses.
+std::optional<std::uint64_t> too_few_for(const NoiseModel& model, Method method) {
+  const auto rows = model.rest_rows();
+  if (!rows || model.b_is_positive_definite()) return std::nullopt;
+  const auto n = static_cast<std::uint64_t>(model.cov_a().rows());
+  const auto d = static_cast<std::uint64_t>(model.cov_b().rows());
+  switch (method) {
+    case Method::SymmetricProcrustes:
+    case Method::PsdLeastSquares:
+      return *rows <= d ? std::optional<std::uint64_t>(d) : std::nullopt;
+    case Method::TotalLeastSquares:
+    case Method::TotalLeastSquaresSymmetric:
+    case Method::TotalLeastSquaresPsd:
+      if (model.a_is_zero()) return std::nullopt;
+      return *rows <= d ? std::optional<std::uint64_t>(d) : std::nullopt;
+    case Method::SpdTotalLeastSquares:
+    case Method::Auto:
+      if (model.a_is_positive_definite()) return std::nullopt;
+      return *rows <= std::min(n, d) ? std::optional<std::uint64_t>(std::min(n, d)) : std::nullopt;
+    default:
+      return std::nullopt;
+  }
+}
+
+}  // namespace
+
+bool rest_rows_too_few(const NoiseModel& model, Method method) { return too_few_for(model, method).has_value(); }
+
 std::optional<std::string> noise_refusal(const std::optional<NoiseModel>& model, Method method) {
   if (!model) return std::nullopt;
   const std::string name(to_string(method));
   const std::string a = model->option_a(), b = model->option_b();
+  if (method != Method::Spde) {
+    if (const std::optional<std::uint64_t> columns = too_few_for(*model, method)) {
+      // Singular because the rest rows are too few, whatever the noise: say that, not "exact columns".
+      const bool log = a == b;  // a log's rest_rows give both
+      return std::to_string(*model->rest_rows()) + " rest rows for " + std::to_string(*columns) + " columns (" +
+             (log ? a : a + ", " + b) +
+             "): their sample covariances are singular whatever the noise (N rows give rank N - 1 at most), "
+             "and " + name + " with a noise model needs " +
+             (method == Method::SpdTotalLeastSquares || method == Method::Auto ? "one of them" : "B's") +
+             " positive definite; " + (log ? "give more rest rows in " + a : std::string("record more rest rows")) +
+             ": at least " + std::to_string(*columns + 1) +
+             ", and hundreds for a good estimate (its relative error is about sqrt(2 / N))";
+    }
+  }
   switch (method) {
     case Method::LeastSquares:
       return std::nullopt;
@@ -54,22 +100,11 @@ std::optional<std::string> noise_refusal(const std::optional<NoiseModel>& model,
     case Method::TotalLeastSquaresPsd:
       if (model->a_is_zero() || model->b_is_positive_definite()) return std::nullopt;
       return name + " with a noise model is generalized total least squares, which needs B's noise covariance (" +
-             b + ") positive definite unless A is exact (" + a +
-             " zero: least squares): B has exact columns or directions here; use spd-tls";
+             b + ") positive definite unless A is exact (Sigma_A zero, from " + a +
+             ": least squares): B has exact columns or directions here; use spd-tls";
     case Method::SpdTotalLeastSquares:
     case Method::Auto:
       if (model->a_is_positive_definite() || model->b_is_positive_definite()) return std::nullopt;
-      if (const auto rows = model->rest_rows()) {
-        // Singular because the rest rows are too few, whatever the noise: say that, not "exact columns".
-        const auto columns = static_cast<std::uint64_t>(std::min(model->cov_a().rows(), model->cov_b().rows()));
-        if (*rows <= columns) {
-          return std::to_string(*rows) + " rest rows for " + std::to_string(columns) + " columns (" + a + ", " + b +
-                 "): their sample covariances are singular whatever the noise (N rows give rank N - 1 at most), and " +
-                 name + " with a noise model needs one of them positive definite; record more rest rows: at least " +
-                 std::to_string(columns + 1) + ", and hundreds for a good estimate (its relative error is about "
-                 "sqrt(2 / N))";
-        }
-      }
       return name + " with a noise model is the maximum-likelihood estimate, which needs X Sigma_A X + Sigma_B "
                     "positive definite for every positive definite X, so Sigma_A (" + a + ") or Sigma_B (" + b +
                     ") positive definite: both are singular (exact columns or directions in A and in B)";

@@ -58,7 +58,7 @@ FitResult psd_least_squares_scaled(const DynamicReduction& data, double epsilon_
   if (noise) {
     // Weighted by Sigma_B^-1: the unweighted problem on the whitened data with the floor 0
     // (whiten_b), and the certificate recomputed for the weighted problem from the returned X.
-    if (!noise->b_definite) throw noise_refusal_error(*noise_refusal(data.options.noise, method), method);
+    if (!noise->b_definite) throw_noise_refusal(*noise_refusal(data.options.noise, method), method, data.options.noise);
     const WhitenedB w = whiten_b(data, *noise, epsilon_s, true);
     if (!detail::psd_ls_kernel(w.data, 0.0, data.options.max_iterations, k) ||
         !weighted_certificate(data, *noise, w, epsilon_s, k)) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -113,10 +114,22 @@ constexpr bool uses_vectors_a(Method method) {
 /// there is none (estimators/noise_weights.hpp says what each method needs).
 std::optional<std::string> noise_refusal(const std::optional<NoiseModel>& model, Method method);
 
-/// The usage error of noise_refusal's text for `method`: Code::OptionNotApplicable for spde (it
-/// takes no noise model), Code::OptionValue for a model the method cannot use.
-inline OptionError noise_refusal_error(const std::string& why, Method method) {
-  return OptionError(why, method == Method::Spde ? Code::OptionNotApplicable : Code::OptionValue, "noise");
+/// Whether `method` refuses `model` because its rest rows are too few for the columns whose
+/// covariance it needs definite (N rows give rank N - 1 at most): the data's shortcoming, not the
+/// request's.
+bool rest_rows_too_few(const NoiseModel& model, Method method);
+
+/// Throws noise_refusal's text for `method`: a usage error (OptionError) with Code::OptionNotApplicable
+/// for spde (it takes no noise model) and Code::OptionValue for a model the method cannot use, but a
+/// data error (InputError, Code::NoiseModel) where the rest rows are too few (rest_rows_too_few).
+[[noreturn]] inline void throw_noise_refusal(const std::string& why, Method method,
+                                             const std::optional<NoiseModel>& model) {
+  if (model && rest_rows_too_few(*model, method)) {
+    std::string subject = model->option_a();  // "`rest_rows`": the subject without backticks
+    subject.erase(std::remove(subject.begin(), subject.end(), '`'), subject.end());
+    throw InputError(why, Code::NoiseModel, subject);
+  }
+  throw OptionError(why, method == Method::Spde ? Code::OptionNotApplicable : Code::OptionValue, "noise");
 }
 
 /// data_of for `method`: also throws std::invalid_argument when B's columns differ from A's and
@@ -126,7 +139,7 @@ inline OptionError noise_refusal_error(const std::string& why, Method method) {
 inline const DynamicReduction& data_of(const Reduction& reduction, Method method) {
   const DynamicReduction& data = data_of(reduction);
   if (auto refusal = non_square_refusal(method, data.n, data.d)) throw std::invalid_argument(*refusal);
-  if (auto refusal = noise_refusal(data.options.noise, method)) throw noise_refusal_error(*refusal, method);
+  if (auto refusal = noise_refusal(data.options.noise, method)) throw_noise_refusal(*refusal, method, data.options.noise);
   if (uses_vectors_a(method) && data.V_a.rows() != data.n) {
     throw std::logic_error(std::string("this Reduction was made for another method, without the singular vectors ") +
                            std::string(to_string(method)) + " needs: make one with spdfit::reduce");

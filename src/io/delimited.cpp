@@ -1,5 +1,6 @@
 // The delimited-text reader: CSV, semicolon-separated (European spreadsheets), tab-separated,
 // and space-aligned columns (MATLAB's save -ascii).
+#include <algorithm>
 #include <cctype>
 #include <cstddef>
 #include <limits>
@@ -51,6 +52,7 @@ DelimitedParser::DelimitedParser(std::string source, ReadOptions options, const 
   slots_ = layout.slots;
   out_columns_ = layout.selected;
   selected_ = layout.selected_columns;
+  units_row_ = layout.units_row;
 }
 
 void DelimitedParser::feed(std::string_view text) {
@@ -104,6 +106,13 @@ std::string_view spreadsheet_error(std::string_view content) {
   return {};
 }
 
+// A line of commas and semicolons only (among blanks): a spreadsheet's empty row (Excel writes
+// ",,,,," for a row it has formatted but holds no values, often many after the data), read as
+// a blank line. (split_file.cpp's line scan decides so too.)
+bool separators_only(std::string_view content) {
+  return !content.empty() && content.find_first_not_of(",; \t") == std::string_view::npos;
+}
+
 }  // namespace
 
 void DelimitedParser::parse_line(const Line& line) {
@@ -118,6 +127,16 @@ void DelimitedParser::parse_line(const Line& line) {
     }
   }
   if (line.content.empty() || line.content[0] == '#' || line.content[0] == '%') return;
+  if (separators_only(line.content)) {
+    if (rows_ > 0 || resumed_) {
+      if (empty_rows_named_.size() + empty_rows_pending_lines_.size() < kNamedEmptyRows) {
+        empty_rows_pending_lines_.push_back(line.number);
+      }
+      ++empty_rows_pending_;
+    }
+    return;
+  }
+  if (empty_rows_pending_ > 0) note_empty_rows();
   if (!seen_content_) {
     seen_content_ = true;
     separator_ = detect_separator(line.content);
@@ -168,6 +187,18 @@ void DelimitedParser::parse_line(const Line& line) {
   }
   const bool first_row = rows_ == 0 && !resumed_;
   if (have_header_ && first_row) choose_separator_after_header(line);
+  if (have_header_ && first_row && !units_row_ && is_units_row(line)) {
+    units_row_ = true;
+    units_line_ = line.number;
+    const std::string shown =
+        line.content.size() <= 60 ? std::string(line.content) : std::string(line.content.substr(0, 57)) + "...";
+    warnings_.push_back(Warning(Code::FileNotice,
+                                source_ + ":" + std::to_string(line.number) + ": the line under the header, '" + shown +
+                                    "', is read as a units row (as loggers write one under the column names) and "
+                                    "skipped: none of its fields is a number",
+                                source_));
+    return;
+  }
   if (first_row && selecting()) select_columns(line);
 
   const std::size_t fields = parse_row(line);
@@ -200,6 +231,34 @@ void DelimitedParser::parse_line(const Line& line) {
   ++rows_;
 }
 
+// Lines of separators only between data rows (empty_rows_pending_, now followed by a data row):
+// one notice for the file, naming the first few such lines and counting them all, rewritten as
+// more are found.
+void DelimitedParser::note_empty_rows() {
+  empty_rows_named_.insert(empty_rows_named_.end(), empty_rows_pending_lines_.begin(), empty_rows_pending_lines_.end());
+  empty_rows_between_ += empty_rows_pending_;
+  empty_rows_pending_lines_.clear();
+  empty_rows_pending_ = 0;
+  const std::size_t named = empty_rows_named_.size(), more = empty_rows_between_ - named;
+  std::string lines;
+  for (std::size_t k = 0; k < named; ++k) {
+    const bool last = k + 1 == named && more == 0 && k > 0;
+    lines += (k == 0 ? "" : last ? " and " : ", ") + std::to_string(empty_rows_named_[k]);
+  }
+  if (more > 0) lines += " and " + std::to_string(more) + " more";
+  const bool one = empty_rows_between_ == 1;
+  std::string text = source_ + ": " + (one ? "line " : "lines ") + lines + (one ? " holds" : " hold") +
+                     " only separators (a spreadsheet's empty " + (one ? "row" : "rows") +
+                     ") between data rows: skipped as blank lines are, so --rows numbers the data rows without " +
+                     (one ? "it" : "them");
+  if (empty_rows_notice_ == 0) {
+    warnings_.push_back(Warning(Code::FileNotice, std::move(text), source_));
+    empty_rows_notice_ = warnings_.size();
+  } else {
+    warnings_[empty_rows_notice_ - 1].text = std::move(text);
+  }
+}
+
 // The header is needed again at the first data row, which may be in the next piece.
 void DelimitedParser::keep_header(const Line& line) {
   have_header_ = true;
@@ -214,7 +273,8 @@ void DelimitedParser::finish() const {
   if (rows_ > 0 || resumed_) return;
   std::string problem = "no data rows";
   if (have_header_) {
-    problem += " (only a header row, line " + std::to_string(header_.number) + ")";
+    problem += " (only a header row, line " + std::to_string(header_.number) +
+               (units_row_ ? ", and a units row, line " + std::to_string(units_line_) : std::string()) + ")";
   } else if (any_text_) {
     problem += " (only comments and blank lines)";
   } else {
@@ -340,6 +400,44 @@ bool DelimitedParser::header_first_cell_empty(const Line& line) const {
     ++count;
   }
   return count >= 2 && first_empty;
+}
+
+// A units row under the header ("s,N,N,N*m"): as many fields as the header, some text, and no
+// field a number (quoted or not, or with a decimal comma; NaN and Inf spellings count as numbers,
+// as in is_header), so that skipping it loses no value.
+bool DelimitedParser::is_units_row(const Line& line) const {
+  FieldSplitter splitter(line.content, separator_);
+  Field field;
+  std::size_t count = 0;
+  bool any_text = false;
+  while (next_field(line, &splitter, &field)) {
+    std::string text(trimmed(field.quoted ? unquote(field) : std::string(field.text)));
+    if (!text.empty()) {
+      if (parse_number(text).kind != NumberKind::NotANumber) return false;
+      std::replace(text.begin(), text.end(), ',', '.');  // "3,5": a number with a decimal comma
+      if (parse_number(text).kind != NumberKind::NotANumber) return false;
+      any_text = true;
+    }
+    ++count;
+  }
+  FieldSplitter names(header_.content, separator_);
+  std::size_t header_fields = 0;
+  while (next_field(header_, &names, &field)) ++header_fields;
+  return any_text && count == header_fields;
+}
+
+// Whether most of a line's fields are not numbers (a units row, not a data row with one bad field).
+bool DelimitedParser::mostly_text(const Line& line) const {
+  FieldSplitter splitter(line.content, separator_);
+  Field field;
+  std::size_t count = 0, text = 0;
+  while (next_field(line, &splitter, &field)) {
+    std::string value(trimmed(field.quoted ? unquote(field) : std::string(field.text)));
+    std::replace(value.begin(), value.end(), ',', '.');  // a decimal comma's number is a number
+    if (!value.empty() && parse_number(value).kind == NumberKind::NotANumber) ++text;
+    ++count;
+  }
+  return 2 * text > count;
 }
 
 // The header's own separator may be unknown (a single name, perhaps with spaces, as in
@@ -527,11 +625,17 @@ void DelimitedParser::fail_not_a_number(const Line& line, const Field& field) co
     }
   }
   std::string problem = quote_token(t) + " is not a number";
+  if (have_header_ && rows_ == 0 && !resumed_ && !units_row_ && mostly_text(line)) {
+    // Directly under the header: a units row with a number in it ("1" for a dimensionless column)?
+    problem += "; a units row under the header? It is skipped only when none of its fields is a number";
+  }
+  const bool decimal_comma = separator_ == Separator::Semicolon && t.find(',') != std::string_view::npos;
   if (selecting()) {
     problem += selected_column_note();
+    if (decimal_comma) problem += " (decimal comma? use '.' for decimals)";
   } else if (field.offset <= 1 && looks_like_timestamp(t)) {
     problem += kTimestampHint;
-  } else if (separator_ == Separator::Semicolon && t.find(',') != std::string_view::npos) {
+  } else if (decimal_comma) {
     problem += " (decimal comma? use '.' for decimals)";
   } else if (t.find(' ') != std::string_view::npos) {
     problem += "; " + separator_origin();

@@ -37,12 +37,13 @@ class DelimitedParser {
     std::vector<long> slots;  ///< with selected columns: each file column's place in a row, or -1
     std::size_t selected = 0;
     std::vector<std::vector<std::size_t>> selected_columns;
+    bool units_row = false;  ///< a second header row (units) under the header, skipped
   };
   /// The layout decided so far: final once a data row has been parsed and the index column decided
   /// (ReadOptions::index_column), which is after the first piece with three data rows.
   Layout layout() const {
     return {separator_, separator_line_, have_header_, columns_, columns_line_, drop_first_, slots_, out_columns_,
-            selected_};
+            selected_,   units_row_};
   }
   /// A parser for a later part of a file whose first lines decided `layout`: the part starts at a
   /// line start after the file's first data row, with `lines_before` lines and `bytes_before` bytes
@@ -98,6 +99,9 @@ class DelimitedParser {
   bool next_field(const Line& line, FieldSplitter* splitter, Field* field) const;
   bool is_header(const Line& line, Separator separator) const;
   bool header_first_cell_empty(const Line& line) const;
+  bool is_units_row(const Line& line) const;
+  bool mostly_text(const Line& line) const;
+  void note_empty_rows();
   bool counts_columns(const Line& line, std::size_t start = 0, bool* all_quoted = nullptr) const;
   std::string abbreviated_count(const Line& line, std::size_t start = 0) const;
   void choose_separator_after_header(const Line& data);
@@ -146,6 +150,16 @@ class DelimitedParser {
   std::size_t first_data_line_ = 0;
   std::vector<Warning> warnings_;
   bool resumed_ = false;  // built from a Layout: the first lines were parsed elsewhere
+  // Lines of separators only (a spreadsheet's empty rows) since the last data row, and those
+  // between data rows (note_empty_rows).
+  static constexpr std::size_t kNamedEmptyRows = 5;
+  std::size_t empty_rows_pending_ = 0;
+  std::vector<std::size_t> empty_rows_pending_lines_;  // the first few, while kNamedEmptyRows are not named
+  std::vector<std::size_t> empty_rows_named_;          // the first few of those between data rows
+  std::size_t empty_rows_between_ = 0;
+  std::size_t empty_rows_notice_ = 0;  // 1 + the notice's index in warnings_, or 0
+  bool units_row_ = false;  // the line after the header was a units row, skipped
+  std::size_t units_line_ = 0;
 
   // ReadOptions::columns, decided at the first data row: each file column's place in a row of
   // values (-1: not selected, not parsed), the selected count, the selections' 1-based columns;

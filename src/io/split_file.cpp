@@ -40,8 +40,9 @@ std::uint64_t part_begin(std::uint64_t size, int part, int parts) {
 
 // Calls visit(start, has_content) for each line that starts in the bytes [begin, end) of the
 // file, in order, until visit returns false. Lines end as the parser ends them (LF, CR LF or a
-// lone CR); a line has content unless it is blank (spaces and tabs only) or a comment ('#' or
-// '%' first), as the parser decides, the UTF-8 byte-order mark at the file's start not counting.
+// lone CR); a line has content unless it is blank (spaces and tabs only, or a spreadsheet's empty
+// row of commas and semicolons) or a comment ('#' or '%' first), as the parser decides, the UTF-8
+// byte-order mark at the file's start not counting.
 template <class Visit>
 void scan_lines(const std::string& path, std::uint64_t begin, std::uint64_t end, Visit visit) {
   const Descriptor fd(path);
@@ -88,7 +89,7 @@ void scan_lines(const std::string& path, std::uint64_t begin, std::uint64_t end,
       }
       next_is_start = false;
       after_cr = false;
-      if (pending && p >= bom_end && b != ' ' && b != '\t') {
+      if (pending && p >= bom_end && b != ' ' && b != '\t' && b != ',' && b != ';') {
         pending = false;
         const bool content = b != '\n' && b != '\r' && b != '#' && b != '%';
         if (!visit(start, content)) return;
@@ -126,14 +127,15 @@ void SplitFile::set_counts(const std::vector<std::vector<std::uint64_t>>& counts
     if (c.size() != 2) throw std::invalid_argument("SplitFile: two numbers per part");
     content += c[1];
   }
-  const std::uint64_t header = layout_.have_header ? 1 : 0;
+  const std::uint64_t header = (layout_.have_header ? 1 : 0) + (layout_.units_row ? 1 : 0);
   rows_ = content >= header ? content - header : 0;
 }
 
 LinePosition SplitFile::locate(std::uint64_t row) const {
   if (npy_) return {row, 0};
   if (row > rows_) throw std::invalid_argument("SplitFile::locate: row beyond the file");
-  const std::uint64_t wanted = row + (layout_.have_header ? 1 : 0);  // among the lines with content
+  // among the lines with content: the header's, and a units row's under it
+  const std::uint64_t wanted = row + (layout_.have_header ? 1 : 0) + (layout_.units_row ? 1 : 0);
   std::uint64_t lines_before = 0;
   std::uint64_t content_before = 0;
   int part = 0;

@@ -165,7 +165,7 @@ std::string NoiseModel::option_a() const {
     case NoiseSource::Cov:
       return "`noise_cov_a`";
     case NoiseSource::Rest:
-      return "`rest_a`";
+      return log_rows_ ? "`rest_rows`" : "`rest_a`";
   }
   return "`noise`";
 }
@@ -177,7 +177,7 @@ std::string NoiseModel::option_b() const {
     case NoiseSource::Cov:
       return "`noise_cov_b`";
     case NoiseSource::Rest:
-      return "`rest_b`";
+      return log_rows_ ? "`rest_rows`" : "`rest_b`";
   }
   return "`noise`";
 }

@@ -75,9 +75,10 @@ constexpr double kRestMeanDeviations = 3.0;
 }  // namespace
 
 NoiseModel NoiseModel::from_rest_moments(const detail::RowMoments& a, const detail::RowMoments& b,
-                                         std::string a_path, std::string b_path) {
+                                         std::string a_path, std::string b_path, bool log_rows) {
   NoiseModel model;
   model.source_ = NoiseSource::Rest;
+  model.log_rows_ = log_rows;
   model.cov_a_ = a.covariance();
   model.cov_b_ = b.covariance();
   model.rest_mean_a_ = a.mean();
@@ -134,25 +135,41 @@ NoiseModel NoiseModel::from_rest_moments(const detail::RowMoments& a, const deta
   }
   if (!moving.empty()) {
     model.warnings_.push_back(Warning(Code::NoiseModelNotice, 
-        "the rest rows of A (`rest_a`) have a mean far from zero for their spread in column(s) " + moving +
+        "the rest rows of A (" + model.option_a() + ") have a mean far from zero for their spread in column(s) " + moving +
         ": at rest the accelerations are zero; was the machine moving, or is there an offset?"));
   }
   return model;
 }
 
+namespace {
+
+// The checks of from_rest's rows, naming them `option` ("`rest_a`"; "A's rest segment" for a log's
+// rest_rows) with `subject` as the error's subject.
+void check_rest_rows(const Eigen::Ref<const MatrixXd>& rows, const std::string& option, const std::string& subject) {
+  if (rows.cols() < 1) throw InputError(option + " has no columns", Code::NoiseModel, subject);
+  if (rows.rows() < 2) {
+    throw InputError(option + " has " + std::to_string(rows.rows()) +
+                         " row(s): a covariance needs at least 2 (and about 10 per column to be trusted)",
+                     Code::NoiseModel, subject);
+  }
+  if (!rows.allFinite()) throw InputError(option + " holds NaN or Inf", Code::NoiseModel, subject);
+}
+
+}  // namespace
+
+NoiseModel detail::LogRestRows::from_rest(const Eigen::Ref<const MatrixXd>& rest_a,
+                                          const Eigen::Ref<const MatrixXd>& rest_b) {
+  check_rest_rows(rest_a, "A's rest segment", "rest_rows");
+  check_rest_rows(rest_b, "B's rest segment", "rest_rows");
+  detail::RowMoments a, b;
+  a.add(rest_a);
+  b.add(rest_b);
+  return NoiseModel::from_rest_moments(a, b, {}, {}, true);
+}
+
 NoiseModel NoiseModel::from_rest(const Eigen::Ref<const MatrixXd>& rest_a, const Eigen::Ref<const MatrixXd>& rest_b) {
-  auto check = [](const Eigen::Ref<const MatrixXd>& rows, const char* option) {
-    const std::string subject = detail::bare(option);
-    if (rows.cols() < 1) throw InputError(std::string(option) + " has no columns", Code::NoiseModel, subject);
-    if (rows.rows() < 2) {
-      throw InputError(std::string(option) + " has " + std::to_string(rows.rows()) +
-                           " row(s): a covariance needs at least 2 (and about 10 per column to be trusted)",
-                       Code::NoiseModel, subject);
-    }
-    if (!rows.allFinite()) throw InputError(std::string(option) + " holds NaN or Inf", Code::NoiseModel, subject);
-  };
-  check(rest_a, "`rest_a`");
-  check(rest_b, "`rest_b`");
+  check_rest_rows(rest_a, "`rest_a`", "rest_a");
+  check_rest_rows(rest_b, "`rest_b`", "rest_b");
   if (rest_a.rows() != rest_b.rows()) {
     throw InputError("`rest_b` has " + std::to_string(rest_b.rows()) + " rows but `rest_a` has " +
                          std::to_string(rest_a.rows()) + ": the rest rows of A and B come from the same stretch of log",

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "spdfit/noise_model.hpp"
+
 namespace spdfit::detail {
 
 /// The mean and M2 = sum_i (x_i - mean)(x_i - mean)^T of the rows seen so far. Each block is
@@ -40,6 +42,14 @@ class RowMoments {
   std::uint64_t rows_ = 0;
   Eigen::VectorXd mean_;
   Eigen::MatrixXd m2_;
+};
+
+/// NoiseModel::from_rest of a log's rest segment (FitRequest::rest_rows): its messages and
+/// option_a() and option_b() name `rest_rows`, not `rest_a` and `rest_b`, which the user did not
+/// give. Throws InputError (subject rest_rows) as from_rest does.
+struct LogRestRows {
+  static NoiseModel from_rest(const Eigen::Ref<const Eigen::MatrixXd>& rest_a,
+                              const Eigen::Ref<const Eigen::MatrixXd>& rest_b);
 };
 
 }  // namespace spdfit::detail

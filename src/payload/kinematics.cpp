@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "io/row_selection.hpp"
+#include "pipeline/sentinels.hpp"
 #include "spdfit/format.hpp"
 #include "spdfit/io.hpp"
 
@@ -98,6 +99,13 @@ Kinematics kinematics(const PayloadSignals& signals, const IdentifyRequest& requ
                       std::to_string(signals.time.size()), Code::DataShape, "time_col");
   }
   if (signals.time.size() > 0 && !signals.time.allFinite()) throw SignalError("the time column (`time_col`) is not finite");
+  for (Eigen::Index i = 0; i < signals.time.size(); ++i) {
+    // A logger's code for an invalid reading (9.9e37): that row has no place in time ranges.
+    if (std::abs(signals.time(i)) >= spdfit::detail::kSentinelMagnitude) {
+      throw SignalError(row_text(i) + ": the time column (`time_col`) holds " + format_number(signals.time(i)) +
+                        ", a logger's code for an invalid reading, not a time: delete that row from the log");
+    }
+  }
 
   const int orientations = (signals.quaternion.size() > 0) + (signals.rotation.size() > 0) + (signals.gravity.size() > 0);
   const bool specific = signals.specific_force.size() > 0;

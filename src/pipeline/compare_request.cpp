@@ -105,7 +105,9 @@ CompareRun run_compare(const CompareRequest& request) {
       throw InputError(problem, Code::DataShape, "truth");
     }
   }
-  if (std::optional<Warning> w = detail::sentinel_warning(A, B, numbers)) out.warnings.push_back(std::move(*w));
+  if (std::optional<Warning> w = detail::sentinel_warning(A, B, numbers, options.robust != RobustLoss::None)) {
+    out.warnings.push_back(std::move(*w));
+  }
   // Offsets a fit without them would take for signal: said once for every estimator.
   for (Warning& w : detail::offset_warnings_as_given(A, B, options)) out.warnings.push_back(std::move(w));
   // Rows that dominate the fit: said once, as auto's fit finds them (least squares' for a non-square X).

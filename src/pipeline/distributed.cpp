@@ -246,7 +246,9 @@ DistributedFit fit_files_distributed(const std::string& a_path, const std::strin
   detail::check_method_fits(method, one_file ? a_path : b_path, n_columns, d);
   // The noise model (every process has the options) against the data's sizes, and what the
   // method needs of it, alike on every process.
-  if (auto refusal = detail::noise_refusal(options.noise, method)) throw detail::noise_refusal_error(*refusal, method);
+  if (auto refusal = detail::noise_refusal(options.noise, method)) {
+    detail::throw_noise_refusal(*refusal, method, options.noise);
+  }
   if (options.noise) static_cast<void>(options.noise->resolved(n_columns, d));
 
   const bool bootstrap = options.bootstrap > 0;

@@ -153,7 +153,7 @@ FitResult fit_numbered(const Eigen::Ref<const MatrixXd>& A_given, const Eigen::R
       }
     }
     if (tare) result.offsets = tare->offsets();
-    if (std::optional<Warning> w = detail::sentinel_warning(A, B, numbers)) {
+    if (std::optional<Warning> w = detail::sentinel_warning(A, B, numbers, options.robust != RobustLoss::None)) {
       result.warnings.insert(result.warnings.begin(), std::move(*w));
       if (!result.ok()) result.message += detail::sentinel_failure_note();
     }

@@ -171,7 +171,9 @@ FitResult fit_files(const std::string& a_path, const std::string& b_path, Method
   std::string error;
   if (!options.is_valid(&error)) throw OptionError(error);
   // A noise model the method cannot use is refused before any file is read.
-  if (auto refusal = detail::noise_refusal(options.noise, method)) throw detail::noise_refusal_error(*refusal, method);
+  if (auto refusal = detail::noise_refusal(options.noise, method)) {
+    detail::throw_noise_refusal(*refusal, method, options.noise);
+  }
   std::optional<StreamOptions> streamed = stream;
   if (streamed) streamed->read = read;  // one way of reading, whichever path
   // Standard input is read once: with a streaming bootstrap its text is kept while it is streamed

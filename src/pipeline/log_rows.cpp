@@ -7,6 +7,9 @@
 #include <cstdint>
 
 #include "io/row_selection.hpp"
+#include "noise/rest_moments.hpp"
+#include "pipeline/sentinels.hpp"
+#include "spdfit/format.hpp"
 #include "spdfit/noise_model.hpp"
 
 namespace spdfit::detail {
@@ -42,6 +45,16 @@ Eigen::VectorXd log_time_column(const FitRequest& request, const std::string& pa
       throw io::DataError(path, 0, 0,
                           "the time column (`time_col` '" + request.time_col + "') is not a number in data row " +
                               std::to_string(r + 1),
+                          Code::DataValue);
+    }
+    if (std::abs(table.values(r, 0)) >= kSentinelMagnitude) {
+      // A logger's code in the time column: its row would silently fall in or out of open ranges.
+      throw io::DataError(path, 0, 0,
+                          "the time column (`time_col` '" + request.time_col + "') holds " +
+                              format_number(table.values(r, 0)) + " in data row " + std::to_string(r + 1) +
+                              ": a logger's code for an invalid reading, not a time, so that row has no place in "
+                              "time ranges; delete it from the log, or select rows by number (`rows` and "
+                              "`rest_rows` without `time_col`)",
                           Code::DataValue);
     }
   }
@@ -93,7 +106,7 @@ std::vector<Warning> apply_log_rows(const FitRequest& request, Eigen::MatrixXd& 
   if (!rest.empty()) {
     const Eigen::MatrixXd rest_a = A(rest, Eigen::all), rest_b = B(rest, Eigen::all);
     try {
-      options.noise = NoiseModel::from_rest(rest_a, rest_b);
+      options.noise = LogRestRows::from_rest(rest_a, rest_b);
     } catch (const std::invalid_argument& e) {
       throw io::DataError(source, 0, 0, "`rest_rows` '" + request.rest_rows + "': " + e.what(), Code::NoiseModel);
     }

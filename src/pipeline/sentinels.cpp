@@ -57,7 +57,8 @@ std::string kept_rows(Eigen::Index m, const std::vector<Eigen::Index>& left_out,
 }  // namespace
 
 std::optional<Warning> sentinel_warning(const Eigen::Ref<const Eigen::MatrixXd>& A,
-                                        const Eigen::Ref<const Eigen::MatrixXd>& B, const RowNumbers& numbers) {
+                                        const Eigen::Ref<const Eigen::MatrixXd>& B, const RowNumbers& numbers,
+                                        bool robust) {
   std::vector<Sentinel> found;
   std::vector<Eigen::Index> rows;
   const Eigen::Index m = A.rows();
@@ -86,6 +87,11 @@ std::optional<Warning> sentinel_warning(const Eigen::Ref<const Eigen::MatrixXd>&
   std::string text = (one ? "row " : "rows ") + named;
   if (rows.size() > found.size()) text += " and " + std::to_string(rows.size() - found.size()) + " more";
   text += (one ? " holds" : " hold");
+  if (robust) {
+    text += " a value of magnitude 1e30 or more: a logger's code for an invalid reading, not a measurement; the "
+            "robust fit gave " + std::string(one ? "it" : "them") + " weight 0";
+    return Warning(Code::Outliers, text, "rows");
+  }
   text += " a value of magnitude 1e30 or more: a logger's code for an invalid reading, not a measurement, and " +
           std::string(one ? "it dominates" : "they dominate") +
           " the fit (and A's and B's singular values, ranks and condition numbers); leave " +

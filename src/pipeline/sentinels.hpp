@@ -18,9 +18,12 @@ constexpr double kSentinelMagnitude = 1e30;
 
 /// The warning about the rows of A and B (m rows each, numbered as in their files by `numbers`)
 /// holding a value of magnitude kSentinelMagnitude or more, naming up to five with their values and
-/// column, and the rows to keep; nothing when there is none. Cost O(m (n + d)).
+/// column, and the rows to keep; nothing when there is none. `robust`: the fit was robust, which
+/// gives such rows weight 0 (robust/m_estimator.cpp), and the warning says so instead. Cost
+/// O(m (n + d)).
 std::optional<Warning> sentinel_warning(const Eigen::Ref<const Eigen::MatrixXd>& A,
-                                        const Eigen::Ref<const Eigen::MatrixXd>& B, const RowNumbers& numbers = {});
+                                        const Eigen::Ref<const Eigen::MatrixXd>& B, const RowNumbers& numbers = {},
+                                        bool robust = false);
 
 /// The streamed fit's form of sentinel_warning (no rows kept to name): the warning when the factor
 /// of the pass (its scale exponents: a magnitude of 2^99, 6e29, or more) holds such a value, naming

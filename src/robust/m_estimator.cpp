@@ -20,6 +20,7 @@
 #include "numerics/linalg.hpp"
 #include "pipeline/offsets.hpp"
 #include "pipeline/row_scores.hpp"
+#include "pipeline/sentinels.hpp"
 #include "spdfit/fit.hpp"
 #include "spdfit/random.hpp"
 #include "uncertainty/bootstrap.hpp"
@@ -665,6 +666,26 @@ Iterated iterate(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const Mat
 
 }  // namespace
 
+namespace {
+
+// 1 for each row of A and B, 0 for one holding a value of magnitude kSentinelMagnitude or more;
+// empty when no row does.
+VectorXd valid_rows(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B) {
+  const auto sentinel = [](double v) { return std::abs(v) >= kSentinelMagnitude; };
+  VectorXd out;
+  for (Index i = 0; i < A.rows(); ++i) {
+    bool bad = false;
+    for (Index j = 0; j < A.cols() && !bad; ++j) bad = sentinel(A(i, j));
+    for (Index j = 0; j < B.cols() && !bad; ++j) bad = sentinel(B(i, j));
+    if (!bad) continue;
+    if (!out.size()) out = VectorXd::Ones(A.rows());
+    out(i) = 0.0;
+  }
+  return out;
+}
+
+}  // namespace
+
 RobustReport robust_report(RobustLoss loss, double k, const VectorXd& weights, double scale, int iterations,
                            bool converged) {
   constexpr double kDownweighted = 0.5;
@@ -707,10 +728,25 @@ RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const
   // Gram matrix once, for the start and for every iteration's fit (downdated by the rows weighted
   // below 1).
   const int ea = scale_exponent(A).value_or(0), eb = scale_exponent(B).value_or(0);
+  // Rows holding a logger's code for an invalid reading (kSentinelMagnitude) are not measurements:
+  // weight 0 throughout, for both losses. (Huber's weight k/u leaves a row's influence growing
+  // with its values in A: with 9.9e37 in A it decided X.) Empty when there is none.
+  const VectorXd valid = valid_rows(A, B);
   std::optional<GramBase> base;
   if (loss == RobustLoss::Huber && !intercept) base = gram_base(A, B, ea, eb);
+  // Least trimmed squares' start, of the valid rows only (its random subsets those of the data
+  // without the logger's codes).
+  const auto trimmed_start = [&] {
+    if (!valid.size()) return least_trimmed_squares(A, B, intercept, method, inner);
+    std::vector<Index> rows;
+    for (Index i = 0; i < m; ++i) {
+      if (valid(i) > 0.0) rows.push_back(i);
+    }
+    return least_trimmed_squares(MatrixXd(A(rows, Eigen::all)), MatrixXd(B(rows, Eigen::all)), intercept, method,
+                                 inner);
+  };
   if (loss == RobustLoss::Tukey) {
-    const TrimmedStart start = least_trimmed_squares(A, B, intercept, method, inner);
+    const TrimmedStart start = trimmed_start();
     X = start.X;
     c = start.c;
     scale = start.scale;
@@ -720,10 +756,15 @@ RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const
     // than the iterations' fits), else from the QR.
     std::optional<TriangularFactor> from_gram;
     if (base) {
-      from_gram = downdated_gram_factor(A, B, VectorXd::Ones(m), *base, ea, eb);
+      from_gram = downdated_gram_factor(A, B, valid.size() ? valid : VectorXd::Ones(m), *base, ea, eb);
     }
-    const TriangularFactor plain_factor =
-        from_gram ? std::move(*from_gram) : TriangularFactor::from_data(A, B, intercept);
+    const auto unweighted = [&] {
+      if (!valid.size()) return TriangularFactor::from_data(A, B, intercept);
+      TriangularFactor out(A.cols(), B.cols(), intercept);
+      out.append(A, B, valid);
+      return out;
+    };
+    const TriangularFactor plain_factor = from_gram ? std::move(*from_gram) : unweighted();
     FitOptions quiet = inner;
     quiet.diagnostics = false;
     FitResult plain = fit(reduce_for(plain_factor, quiet, method), method);
@@ -736,14 +777,14 @@ RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const
     } else {
       // The plain fit fails where a few rows decide it (a logger's 1e30 in B, which spd-tls's
       // start cannot survive): Huber then starts, as Tukey does, from least trimmed squares.
-      const TrimmedStart start = least_trimmed_squares(A, B, intercept, method, inner);
+      const TrimmedStart start = trimmed_start();
       X = start.X;
       c = start.c;
     }
   }
   const int max_iterations = std::max(options.max_iterations, 1);
-  Iterated fitted = iterate(A, B, method, inner, intercept, loss, k, X, c, scale, ea, eb, VectorXd(),
-                            max_iterations, base ? &*base : nullptr);
+  Iterated fitted = iterate(A, B, method, inner, intercept, loss, k, X, c, scale, ea, eb, valid, max_iterations,
+                            base ? &*base : nullptr);
   FitResult result = std::move(fitted.result);
   RobustReport report = robust_report(loss, k, fitted.weights, fitted.scale, fitted.iterations, fitted.converged);
   if (!fitted.converged && result.ok()) {
@@ -764,7 +805,8 @@ RobustFit robust_fit(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const
     const double scale_full = fitted.scale;
     replicates = run_replicates(
         static_cast<std::size_t>(options.bootstrap), options, [&](std::size_t r) -> Replicate {
-          const VectorXd counts = resample_weights(m, options.seed, r);
+          VectorXd counts = resample_weights(m, options.seed, r);
+          if (valid.size()) counts.array() *= valid.array();
           FitOptions rep = replicate_options(inner);
           try {
             Iterated again =

@@ -182,3 +182,42 @@ def test_an_option_given_twice_is_named_plainly(spdfit, tmp_path):
     result = spdfit("fit", "--scale-b", "1000", "--scale-b", "1", a, b)
     assert result.returncode == 2
     assert "--scale-b is given 2 times: give it once" in result.stderr and "At Most" not in result.stderr
+
+
+def test_a_spreadsheet_export_with_units_and_empty_rows_is_read(spdfit, tmp_path):
+    """A logger's CSV as Excel saves it: a units row under the names, empty rows (",,,,,") between
+    the data rows and many after them. Read as the data rows alone, with a notice for each kind of
+    line skipped that sits among the data; in memory and streamed, against NumPy's least squares."""
+    A, B = problem()
+    lines = ["t,a1,a2,a3,f1,f2,f3", "s,m/s^2,m/s^2,m/s^2,N,N,N"]
+    for i, row in enumerate(np.hstack([A, B])):
+        if i == 20:
+            lines.append(",,,,,,")
+        lines.append(",".join([repr(0.01 * i)] + [repr(float(v)) for v in row]))
+    lines += [",,,,,,"] * 30
+    path = tmp_path / "log.csv"
+    path.write_text("\r\n".join(lines) + "\r\n")
+    ref = np.linalg.lstsq(A, B, rcond=None)[0]
+    for extra in ([], ["--stream"]):
+        out, err = fit_json(spdfit, "--method", "ls", "--a-cols", "a1:a3", "--b-cols", "f1:f3", *extra, str(path))
+        assert out["m"] == 50
+        np.testing.assert_allclose(np.array(out["X"]), ref, rtol=ROUNDING, atol=ROUNDING)
+        assert "2: the line under the header, 's,m/s^2,m/s^2,m/s^2,N,N,N', is read as a units row" in err, err
+        assert "line 23 holds only separators (a spreadsheet's empty row) between data rows" in err, err
+    # --rows counts data rows: 21:50 are the rows after the empty one
+    out, _ = fit_json(spdfit, "--method", "ls", "--a-cols", "a1:a3", "--b-cols", "f1:f3", "--rows", "21:50",
+                      str(path))
+    np.testing.assert_allclose(np.array(out["X"]), np.linalg.lstsq(A[20:], B[20:], rcond=None)[0],
+                               rtol=ROUNDING, atol=ROUNDING)
+
+
+def test_a_sentinel_in_the_time_column_is_a_data_error(spdfit, tmp_path):
+    A, B = problem()
+    t = 0.01 * np.arange(50)
+    t[30] = 9.9e37
+    path = write_csv(tmp_path / "log.csv", np.column_stack([t, A, B]))
+    result = spdfit("fit", "--method", "ls", "--a-cols", "2:4", "--b-cols", "5:7", "--time-col", "1", "--rows",
+                    "0.1:", path)
+    assert result.returncode == 1, result.stderr
+    assert ("the time column (--time-col '1') holds 9.9e+37 in data row 31: a logger's code for an invalid "
+            "reading, not a time") in result.stderr, result.stderr

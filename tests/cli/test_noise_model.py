@@ -170,9 +170,34 @@ def test_too_few_rest_rows_for_the_columns_say_so(spdfit, files, tmp_path, rows)
     a = write(tmp_path / "ra.csv", rng.standard_normal((rows, 3)) * STD_A)
     b = write(tmp_path / "rb.csv", rng.standard_normal((rows, 3)) * STD_B)
     r = spdfit("fit", "--method", "spd-tls", "--rest-a", a, "--rest-b", b, files["A"], files["B"])
-    assert r.returncode == 2, r.stderr  # as every noise model the method cannot use
+    # a data error, as one rest row is (it was 2, a usage error, before 2026-12-02)
+    assert r.returncode == 1, r.stderr
     assert f"{rows} rest rows for 3 columns (--rest-a, --rest-b): their sample covariances are singular" in r.stderr
     assert "record more rest rows: at least 4" in r.stderr and "exact columns" not in r.stderr
+    # the rest segment of the log itself: named by the option given
+    log = write(tmp_path / "log.csv", np.vstack([
+        np.hstack([rng.standard_normal((rows, 3)) * STD_A, rng.standard_normal((rows, 3)) * STD_B]),
+        np.hstack([np.loadtxt(files["A"], delimiter=",", ndmin=2), np.loadtxt(files["B"], delimiter=",", ndmin=2)])]))
+    r = spdfit("fit", "--method", "spd-tls", "--rest-rows", f"1:{rows}", "--a-cols", "1:3", "--b-cols", "4:6", log)
+    assert r.returncode == 1, r.stderr
+    assert f"{rows} rest rows for 3 columns (--rest-rows): their sample covariances" in r.stderr, r.stderr
+    assert "--rest-a" not in r.stderr and "give more rest rows in --rest-rows: at least 4" in r.stderr
+    # tls needs B's covariance definite: the same diagnosis (it said "B has exact columns ... use spd-tls")
+    r = spdfit("fit", "--method", "tls", "--rest-rows", f"1:{rows}", "--a-cols", "1:3", "--b-cols", "4:6", log)
+    assert r.returncode == 1, r.stderr
+    assert f"{rows} rest rows for 3 columns (--rest-rows)" in r.stderr and "needs B's positive definite" in r.stderr
+    assert "exact columns" not in r.stderr, r.stderr
+
+
+def test_one_rest_row_of_a_log_names_the_segment(spdfit, files, tmp_path):
+    rng = np.random.default_rng(5)
+    A = np.loadtxt(files["A"], delimiter=",", ndmin=2)
+    B = np.loadtxt(files["B"], delimiter=",", ndmin=2)
+    log = write(tmp_path / "log.csv", np.vstack([np.hstack([0.01 * rng.standard_normal((1, 3)), B[:1]]),
+                                                 np.hstack([A, B])]))
+    r = spdfit("fit", "--method", "spd-tls", "--rest-rows", "1", "--a-cols", "1:3", "--b-cols", "4:6", log)
+    assert r.returncode == 1, r.stderr
+    assert ("--rest-rows '1': A's rest segment has 1 row(s): a covariance needs at least 2" in r.stderr), r.stderr
 
 
 @pytest.mark.parametrize("bad,words", [

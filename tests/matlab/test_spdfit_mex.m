@@ -185,8 +185,9 @@ assert(strcmp(ih.robust.method, 'huber') && all(ismember([5 27], ih.robust.rows_
 assert_close(Xh, spdfit.fit(A, B, 'ls'), 0.05, 'Robust huber');
 expect_error(@() spdfit.fit(A, B, 'spde', 'Robust', 'huber'), 'spdfit:UsageError', 'spde');
 % Issue 45 item 5's messages through MATLAB: too few rest rows say so, a subnormal standard
-% deviation is a number, NaN in a matrix to repair is named by its entry.
-expect_error(@() spdfit.fit(A, B, 'spd-tls', 'RestA', RA(1:3, :), 'RestB', RB(1:3, :)), 'spdfit:UsageError', ...
+% deviation is a number, NaN in a matrix to repair is named by its entry. Too few rest rows are
+% the data's shortcoming: spdfit:DataError (spdfit:UsageError before 2026-12-02).
+expect_error(@() spdfit.fit(A, B, 'spd-tls', 'RestA', RA(1:3, :), 'RestB', RB(1:3, :)), 'spdfit:DataError', ...
              'record more rest rows: at least 4');
 spdfit.fit(A, B, 'ls', 'NoiseStdA', 0, 'NoiseStdB', 1e-308);
 Cn = [1 0.5 NaN; 0.5 1 0.2; NaN 0.2 1];

@@ -273,3 +273,27 @@ def test_one_file_with_columns_gives_the_two_files_estimate(files, kind, tmp_pat
                               tmp_path / f"log.{kind}", *selection))
         assert relative(out["X"], reference["X"]) < 1e-12
         assert out["m"] == M and sum(out["rows_per_process"]) == M
+
+
+def test_a_spreadsheet_export_splits_as_it_reads(files, tmp_path):
+    """A log as a spreadsheet exports it (issue 42): a units row under the header, empty rows of
+    commas between data rows and after them. The processes count those lines as the parser reads
+    them (not as rows), so that mpirun's fit is the one-process fit of the same rows, and NumPy's."""
+    A, B = np.load(files / "A.npy"), np.load(files / "B.npy")
+    names = [f"a{j}" for j in range(N)] + [f"f{j}" for j in range(N)]
+    lines = [",".join(names), ",".join(["m/s^2"] * N + ["N"] * N)]
+    for i, row in enumerate(np.hstack([A, B])):
+        if i in (1, 4000, 7777):
+            lines.append("," * (2 * N - 1))
+        lines.append(",".join("%.17g" % v for v in row))
+    lines += ["," * (2 * N - 1)] * 500
+    log = tmp_path / "log.csv"
+    log.write_text("\n".join(lines) + "\n")
+    cols = ["--a-cols", f"a0:a{N - 1}", "--b-cols", f"f0:f{N - 1}"]
+    reference = fit_json(run_cli(cli_path(), "fit", "--method", "ls", "--stream", "--json", *cols, log))
+    np.testing.assert_allclose(reference["X"], np.linalg.lstsq(A, B, rcond=None)[0], rtol=1e-10, atol=1e-10)
+    for k in (2, 3):
+        result = mpirun(k, "fit", "--method", "ls", "--stream", "--json", "--block-rows", "1000", *cols, log)
+        out = fit_json(result)
+        assert out["m"] == M and sum(out["rows_per_process"]) == M
+        assert relative(out["X"], reference["X"]) < 1e-12

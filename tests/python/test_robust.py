@@ -155,3 +155,33 @@ def test_fit_all_robust_is_each_methods_robust_fit():
         else:
             np.testing.assert_array_equal(r.X, quiet(spdfit.fit, A, B, method, robust="tukey").X)
             assert {6, 61} <= set(r.robust["rows_downweighted"])
+
+
+@pytest.mark.parametrize("loss", ["huber", "tukey"])
+@pytest.mark.parametrize("where", ["A", "B"])
+def test_a_loggers_code_gets_weight_0(loss, where):
+    # A logger's 9.9e37 is no measurement: the robust fit gives its row weight 0, so X is the robust
+    # fit of the other rows (Huber's weight k/u left its influence growing in A: X(2, :) was 1e-38),
+    # and the fixed point A^T W (A X - B) = 0 holds over those rows (NumPy, from the result).
+    rng = np.random.default_rng(7)
+    A = rng.uniform(-1, 1, (200, 3))
+    B = A @ X_TRUE + 0.01 * rng.standard_normal((200, 3))
+    (A if where == "A" else B)[16, 1] = 9.9e37
+    with pytest.warns(spdfit.OutliersWarning, match="the robust fit gave it weight 0"):
+        r = spdfit.fit(A, B, "ls", robust=loss)
+    keep = np.arange(200) != 16
+    ref = quiet(spdfit.fit, A[keep], B[keep], "ls", robust=loss)
+    np.testing.assert_allclose(r.X, ref.X, rtol=1e-7, atol=1e-9)
+    assert 17 in r.robust["rows_downweighted"] and r.robust["converged"]
+    u = np.linalg.norm(A[keep] @ r.X - B[keep], axis=1) / r.robust["scale"]
+    k = r.robust["tuning"]
+    w = np.minimum(1, k / u) if loss == "huber" else np.where(u < k, (1 - (u / k) ** 2) ** 2, 0.0)
+    residual = A[keep] @ r.X - B[keep]
+    gradient = A[keep].T @ (w[:, None] * residual)
+    # to the reweighting's stopping test (X settled to 1e-8 of itself): 1e-6 to 1e-5 on clean rows
+    assert np.linalg.norm(gradient) <= 1e-5 * np.linalg.norm(A[keep].T @ (w[:, None] * np.abs(residual)))
+    assert np.abs(r.X - X_TRUE).max() < 0.01
+    # spd-tls too: the row took no part
+    s = quiet(spdfit.fit, A, B, "spd-tls", robust=loss)
+    np.testing.assert_allclose(s.X, quiet(spdfit.fit, A[keep], B[keep], "spd-tls", robust=loss).X, rtol=1e-7,
+                               atol=1e-9)

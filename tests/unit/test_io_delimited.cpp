@@ -440,8 +440,11 @@ TEST(IoDelimited, NoData) {
 }
 
 TEST(IoDelimited, HeaderOnlyFirstLine) {
-  // Only the first non-comment line can be a header; later text is an error.
-  ExpectError("a,b\nc,d\n", 2, 1, "'c' is not a number");
+  // Only the first non-comment line can be a header (and a units row under it); later text is an
+  // error.
+  ExpectError("a,b\nc,d\ne,f\n", 3, 1, "'e' is not a number");
+  EXPECT_STREQ(ParseError("a,b\nc,d\n").what(), "A.csv: no data rows (only a header row, line 1, and a units row, "
+                                                  "line 2)");
 }
 
 // A spreadsheet's error value in a row's first cell (Excel writes #N/A unquoted) is refused, naming
@@ -457,6 +460,55 @@ TEST(IoDelimited, SpreadsheetErrorValuesAreNotComments) {
   const Table table =
       parse_delimited("# logged 2026-12-02\na,b\n1,2\n#NA is not an error value\n#N/Ab\n3,4\n", "A.csv", {});
   EXPECT_EQ(table.values.rows(), 2);
+}
+
+// Excel writes ",,,,," for rows it has formatted but holds no values: after the data they are
+// blank lines, silently; between data rows too, with a notice (--rows numbers data rows only).
+TEST(IoDelimited, SpreadsheetEmptyRowsAreBlankLines) {
+  const Table trailing = parse_delimited("a,b,c\n1,2,3\n4,5,6\n,,\n,,\r\n;;\n", "A.csv", {});
+  ASSERT_EQ(trailing.values.rows(), 2);
+  EXPECT_EQ(trailing.values(1, 2), 6.0);
+  EXPECT_TRUE(trailing.warnings.empty());
+  const Table middle = parse_delimited("a,b\n1,2\n,\n , \n3,4\n,\n5,6\n", "A.csv", {});
+  ASSERT_EQ(middle.values.rows(), 3);
+  EXPECT_EQ(middle.values(2, 1), 6.0);
+  ASSERT_EQ(middle.warnings.size(), 1u);
+  EXPECT_EQ(middle.warnings[0].text,
+            "A.csv: lines 3, 4 and 6 hold only separators (a spreadsheet's empty rows) between data rows: skipped "
+            "as blank lines are, so --rows numbers the data rows without them");
+  // the first five named, the others counted
+  std::string many = "a,b\n1,2\n";
+  for (int k = 0; k < 8; ++k) many += ",\n3,4\n";
+  const Table counted = parse_delimited(many, "A.csv", {});
+  ASSERT_EQ(counted.warnings.size(), 1u);
+  EXPECT_EQ(counted.warnings[0].text.substr(0, 37), "A.csv: lines 3, 5, 7, 9, 11 and 3 mor");
+  ExpectError("a,b\n1,2\n,3\n", 3, 1,
+              "empty field: the line starts with ','; a missing value? pandas' to_csv writes NaN as an empty "
+              "field (drop such rows first)");
+}
+
+// A units row under the header (DAQ loggers write one): skipped with a notice when none of its
+// fields is a number; a first row with a number in it stays data (or an error).
+TEST(IoDelimited, UnitsRowUnderTheHeaderIsSkipped) {
+  const Table table = parse_delimited("t,Fx,Fy\ns,N,\"N\"\n0.1,2,3\n0.2,4,5\n", "A.csv", {});
+  ASSERT_EQ(table.values.rows(), 2);
+  EXPECT_EQ(table.values(1, 2), 5.0);
+  EXPECT_EQ(table.column_names, (std::vector<std::string>{"t", "Fx", "Fy"}));
+  ASSERT_EQ(table.warnings.size(), 1u);
+  EXPECT_EQ(table.warnings[0].text,
+            "A.csv:2: the line under the header, 's,N,\"N\"', is read as a units row (as loggers write one under "
+            "the column names) and skipped: none of its fields is a number");
+  // Unitless columns may have empty cells; NaN is a number's spelling: data, refused as such.
+  EXPECT_EQ(parse_delimited("a;b;c\n;m;\n1;2;3\n", "A.csv", {}).values.rows(), 1);
+  ExpectError("a,b\nx,1\n", 2, 1, "'x' is not a number");
+  EXPECT_EQ(ParseError("a,b\nNaN,nan\n").line(), 2u);
+  // not the header's fields; a decimal comma is a number; a "1" among units is hinted at
+  const std::string units = "; a units row under the header? It is skipped only when none of its fields is a number";
+  ExpectError("a,b\nN,N,N\n1,2\n", 2, 1, "'N' is not a number" + units);
+  ExpectError("a;b\n3,5;4,5\n", 2, 1, "'3,5' is not a number (decimal comma? use '.' for decimals)");
+  ExpectError("t,a,b,c\ns,N,N,1\n1,2,3,4\n", 2, 1, "'s' is not a number" + units);
+  // Only directly under the header.
+  ExpectError("a,b\n1,2\nN,N\n", 3, 1, "'N' is not a number");
 }
 
 // Quoted fields that are not numbers get the hints unquoted ones get: the selected column, a
