@@ -11,6 +11,7 @@
 
 #include "estimators/kernels.hpp"
 #include "factor/reduce.hpp"
+#include "noise/noise_checks.hpp"
 #include "spdfit/format.hpp"
 #include "numerics/linalg.hpp"
 
@@ -63,7 +64,10 @@ std::optional<std::uint64_t> too_few_for(const NoiseModel& model, Method method)
 
 }  // namespace
 
-bool rest_rows_too_few(const NoiseModel& model, Method method) { return too_few_for(model, method).has_value(); }
+void throw_noise_refusal(const std::string& why, Method method, const std::optional<NoiseModel>& model) {
+  if (model && too_few_for(*model, method)) throw InputError(why, Code::NoiseModel, bare(model->option_a()));
+  throw OptionError(why, method == Method::Spde ? Code::OptionNotApplicable : Code::OptionValue, "noise");
+}
 
 std::optional<std::string> noise_refusal(const std::optional<NoiseModel>& model, Method method) {
   if (!model) return std::nullopt;

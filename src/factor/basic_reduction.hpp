@@ -3,7 +3,6 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -114,23 +113,13 @@ constexpr bool uses_vectors_a(Method method) {
 /// there is none (estimators/noise_weights.hpp says what each method needs).
 std::optional<std::string> noise_refusal(const std::optional<NoiseModel>& model, Method method);
 
-/// Whether `method` refuses `model` because its rest rows are too few for the columns whose
-/// covariance it needs definite (N rows give rank N - 1 at most): the data's shortcoming, not the
-/// request's.
-bool rest_rows_too_few(const NoiseModel& model, Method method);
-
 /// Throws noise_refusal's text for `method`: a usage error (OptionError) with Code::OptionNotApplicable
 /// for spde (it takes no noise model) and Code::OptionValue for a model the method cannot use, but a
-/// data error (InputError, Code::NoiseModel) where the rest rows are too few (rest_rows_too_few).
-[[noreturn]] inline void throw_noise_refusal(const std::string& why, Method method,
-                                             const std::optional<NoiseModel>& model) {
-  if (model && rest_rows_too_few(*model, method)) {
-    std::string subject = model->option_a();  // "`rest_rows`": the subject without backticks
-    subject.erase(std::remove(subject.begin(), subject.end(), '`'), subject.end());
-    throw InputError(why, Code::NoiseModel, subject);
-  }
-  throw OptionError(why, method == Method::Spde ? Code::OptionNotApplicable : Code::OptionValue, "noise");
-}
+/// data error (InputError, Code::NoiseModel) where the rest rows are too few for the columns whose
+/// covariance the method needs definite (N rows give rank N - 1 at most): the data's shortcoming,
+/// not the request's.
+[[noreturn]] void throw_noise_refusal(const std::string& why, Method method,
+                                      const std::optional<NoiseModel>& model);
 
 /// data_of for `method`: also throws std::invalid_argument when B's columns differ from A's and
 /// the method does not fit a non-square X (non_square_refusal) or cannot use the noise model

@@ -402,42 +402,31 @@ bool DelimitedParser::header_first_cell_empty(const Line& line) const {
   return count >= 2 && first_empty;
 }
 
-// A units row under the header ("s,N,N,N*m"): as many fields as the header, some text, and no
-// field a number (quoted or not, or with a decimal comma; NaN and Inf spellings count as numbers,
-// as in is_header), so that skipping it loses no value.
-bool DelimitedParser::is_units_row(const Line& line) const {
+// A line's fields, those that are text and those that are numbers (quoted or not, or with a decimal
+// comma: "3,5"; NaN and Inf spellings count as numbers, as in is_header); empty fields are neither.
+DelimitedParser::FieldKinds DelimitedParser::field_kinds(const Line& line) const {
   FieldSplitter splitter(line.content, separator_);
   Field field;
-  std::size_t count = 0;
-  bool any_text = false;
-  while (next_field(line, &splitter, &field)) {
-    std::string text(trimmed(field.quoted ? unquote(field) : std::string(field.text)));
-    if (!text.empty()) {
-      if (parse_number(text).kind != NumberKind::NotANumber) return false;
-      std::replace(text.begin(), text.end(), ',', '.');  // "3,5": a number with a decimal comma
-      if (parse_number(text).kind != NumberKind::NotANumber) return false;
-      any_text = true;
-    }
-    ++count;
-  }
-  FieldSplitter names(header_.content, separator_);
-  std::size_t header_fields = 0;
-  while (next_field(header_, &names, &field)) ++header_fields;
-  return any_text && count == header_fields;
-}
-
-// Whether most of a line's fields are not numbers (a units row, not a data row with one bad field).
-bool DelimitedParser::mostly_text(const Line& line) const {
-  FieldSplitter splitter(line.content, separator_);
-  Field field;
-  std::size_t count = 0, text = 0;
+  FieldKinds kinds;
   while (next_field(line, &splitter, &field)) {
     std::string value(trimmed(field.quoted ? unquote(field) : std::string(field.text)));
-    std::replace(value.begin(), value.end(), ',', '.');  // a decimal comma's number is a number
-    if (!value.empty() && parse_number(value).kind == NumberKind::NotANumber) ++text;
-    ++count;
+    std::replace(value.begin(), value.end(), ',', '.');
+    if (!value.empty()) ++(parse_number(value).kind == NumberKind::NotANumber ? kinds.text : kinds.numbers);
+    ++kinds.fields;
   }
-  return 2 * text > count;
+  return kinds;
+}
+
+// A units row under the header ("s,N,N,N*m"): as many fields as the header, some text, and no
+// field a number, so that skipping it loses no value.
+bool DelimitedParser::is_units_row(const Line& line) const {
+  const FieldKinds kinds = field_kinds(line);
+  if (kinds.text == 0 || kinds.numbers > 0) return false;
+  FieldSplitter names(header_.content, separator_);
+  Field field;
+  std::size_t header_fields = 0;
+  while (next_field(header_, &names, &field)) ++header_fields;
+  return kinds.fields == header_fields;
 }
 
 // The header's own separator may be unknown (a single name, perhaps with spaces, as in
@@ -625,9 +614,13 @@ void DelimitedParser::fail_not_a_number(const Line& line, const Field& field) co
     }
   }
   std::string problem = quote_token(t) + " is not a number";
-  if (have_header_ && rows_ == 0 && !resumed_ && !units_row_ && mostly_text(line)) {
-    // Directly under the header: a units row with a number in it ("1" for a dimensionless column)?
-    problem += "; a units row under the header? It is skipped only when none of its fields is a number";
+  if (have_header_ && rows_ == 0 && !resumed_ && !units_row_) {
+    // Directly under the header, mostly text: a units row with a number in it ("1" for a
+    // dimensionless column)?
+    const FieldKinds kinds = field_kinds(line);
+    if (2 * kinds.text > kinds.fields) {
+      problem += "; a units row under the header? It is skipped only when none of its fields is a number";
+    }
   }
   const bool decimal_comma = separator_ == Separator::Semicolon && t.find(',') != std::string_view::npos;
   if (selecting()) {

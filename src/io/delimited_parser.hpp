@@ -99,8 +99,11 @@ class DelimitedParser {
   bool next_field(const Line& line, FieldSplitter* splitter, Field* field) const;
   bool is_header(const Line& line, Separator separator) const;
   bool header_first_cell_empty(const Line& line) const;
+  struct FieldKinds {
+    std::size_t fields = 0, text = 0, numbers = 0;
+  };
+  FieldKinds field_kinds(const Line& line) const;
   bool is_units_row(const Line& line) const;
-  bool mostly_text(const Line& line) const;
   void note_empty_rows();
   bool counts_columns(const Line& line, std::size_t start = 0, bool* all_quoted = nullptr) const;
   std::string abbreviated_count(const Line& line, std::size_t start = 0) const;

@@ -56,25 +56,35 @@ std::string kept_rows(Eigen::Index m, const std::vector<Eigen::Index>& left_out,
 
 }  // namespace
 
+std::vector<Eigen::Index> sentinel_rows(const Eigen::Ref<const Eigen::MatrixXd>& A,
+                                        const Eigen::Ref<const Eigen::MatrixXd>& B) {
+  std::vector<Eigen::Index> rows;
+  const bool with_b = B.rows() == A.rows();
+  for (Eigen::Index i = 0; i < A.rows(); ++i) {
+    if ((A.row(i).cwiseAbs().array() >= kSentinelMagnitude).any() ||
+        (with_b && (B.row(i).cwiseAbs().array() >= kSentinelMagnitude).any())) {
+      rows.push_back(i);
+    }
+  }
+  return rows;
+}
+
 std::optional<Warning> sentinel_warning(const Eigen::Ref<const Eigen::MatrixXd>& A,
                                         const Eigen::Ref<const Eigen::MatrixXd>& B, const RowNumbers& numbers,
                                         bool robust) {
-  std::vector<Sentinel> found;
-  std::vector<Eigen::Index> rows;
+  const std::vector<Eigen::Index> rows = sentinel_rows(A, B);
   const Eigen::Index m = A.rows();
-  for (Eigen::Index i = 0; i < m; ++i) {
-    bool any = false;
-    const auto scan = [&](const Eigen::Ref<const Eigen::MatrixXd>& M, bool in_a) {
-      for (Eigen::Index j = 0; j < M.cols(); ++j) {
-        const double v = M(i, j);
-        if (!(std::abs(v) >= kSentinelMagnitude)) continue;
-        if (!any && found.size() < kNamedRows) found.push_back({i, in_a, j, v});
-        any = true;
-      }
-    };
-    scan(A, true);
-    if (B.rows() == m) scan(B, false);
-    if (any) rows.push_back(i);
+  // The first few rows' first such value: A's columns, then B's.
+  std::vector<Sentinel> found;
+  for (std::size_t k = 0; k < rows.size() && k < kNamedRows; ++k) {
+    const Eigen::Index i = rows[k];
+    for (Eigen::Index j = 0; j < A.cols() + B.cols(); ++j) {
+      const bool in_a = j < A.cols();
+      const double v = in_a ? A(i, j) : B(i, j - A.cols());
+      if (!(std::abs(v) >= kSentinelMagnitude)) continue;
+      found.push_back({i, in_a, in_a ? j : j - A.cols(), v});
+      break;
+    }
   }
   if (rows.empty()) return std::nullopt;
   std::string named;

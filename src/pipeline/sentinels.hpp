@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "pipeline/row_numbers.hpp"
 #include "spdfit/outcome.hpp"
@@ -15,6 +16,11 @@ namespace spdfit::detail {
 /// The magnitude from which a value is a logger's code, not a measurement: no quantity a fit's
 /// user logs reaches it in any unit, and loggers' "invalid" codes (9.9e37, FLT_MAX) are above it.
 constexpr double kSentinelMagnitude = 1e30;
+
+/// The rows (0-based, ascending) of A and B (when B has A's rows) holding a value of magnitude
+/// kSentinelMagnitude or more. Cost O(m (n + d)).
+std::vector<Eigen::Index> sentinel_rows(const Eigen::Ref<const Eigen::MatrixXd>& A,
+                                        const Eigen::Ref<const Eigen::MatrixXd>& B);
 
 /// The warning about the rows of A and B (m rows each, numbered as in their files by `numbers`)
 /// holding a value of magnitude kSentinelMagnitude or more, naming up to five with their values and

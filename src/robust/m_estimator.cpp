@@ -671,16 +671,10 @@ namespace {
 // 1 for each row of A and B, 0 for one holding a value of magnitude kSentinelMagnitude or more;
 // empty when no row does.
 VectorXd valid_rows(const Eigen::Ref<const MatrixXd>& A, const Eigen::Ref<const MatrixXd>& B) {
-  const auto sentinel = [](double v) { return std::abs(v) >= kSentinelMagnitude; };
-  VectorXd out;
-  for (Index i = 0; i < A.rows(); ++i) {
-    bool bad = false;
-    for (Index j = 0; j < A.cols() && !bad; ++j) bad = sentinel(A(i, j));
-    for (Index j = 0; j < B.cols() && !bad; ++j) bad = sentinel(B(i, j));
-    if (!bad) continue;
-    if (!out.size()) out = VectorXd::Ones(A.rows());
-    out(i) = 0.0;
-  }
+  const std::vector<Index> codes = sentinel_rows(A, B);
+  if (codes.empty()) return {};
+  VectorXd out = VectorXd::Ones(A.rows());
+  for (Index i : codes) out(i) = 0.0;
   return out;
 }
 
